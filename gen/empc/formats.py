@@ -1,0 +1,73 @@
+"""The one source of truth for the datapath's number formats.
+
+Everything the RTL and the bit-accurate models agree on lives here: word
+widths, fractional bits and raw units.  ``empc roms`` writes these into the
+Verilog header ``empc_formats.vh`` (macros ``EMPC_*``) and into
+``manifest.json``; RTL modules take their parameter defaults from the header
+and the Python models import this module, so the two cannot disagree.
+
+Raw units (so the datapath converts nothing):
+  current   ADC LSB (``adc_amps_per_lsb`` A)              Q14.4  in 18 bit
+  angle     electrical, unsigned, 2**16 = 2 pi           16 bit
+  sin/cos   1.0 = 2**16                                   Q2.16  in 18 bit
+  voltage   PWM ticks at the nominal DC link              Q14.4  in 18 bit (transforms)
+            (1 tick = Udc_nom / PWM_HALF_PERIOD volts)    Q16.8  in 24 bit (MPC u state)
+  speed     encoder counts per control period Ts          Q16.16 in 32 bit
+  position  encoder counts (multi-turn)                   Q32.8  in 40 bit
+"""
+from __future__ import annotations
+
+# DSP48A1 operands and accumulator
+OPW = 18            # signed multiplier operand width
+PRODW = 2 * OPW     # full product width
+ACCW = 48           # accumulator width
+
+ADC_BITS = 12
+I_FRAC = 4          # fractional bits of currents (ADC LSB)
+I_W = 18
+TRIG_FRAC = 16      # sin/cos: 1.0 = 2**16
+TRIG_W = 18
+ANGLE_BITS = 16
+V_FRAC = 4          # voltages in the transform chain (PWM ticks)
+V_W = 18
+U_FRAC = 8          # MPC control u and du (PWM ticks)
+U_W = 24
+W_FRAC = 16         # speed, counts per Ts
+W_W = 32
+TH_FRAC = 8         # position, counts
+TH_W = 40
+POS_W = 32          # integer multi-turn encoder counter
+KDC_FRAC = 16       # DC-link compensation factor Udc_nom/Udc, 1.0 = 2**16, 18 bit unsigned
+
+# MPC core (see mpc_fixed.py)
+COEF_W = OPW        # polynomial coefficient mantissa
+WN_FRAC = OPW - 1   # normalised scheduling speed, Q1.17
+SIG_SHIFT_BITS = 5  # per-column signal right shift 0..31
+PROD_SHIFT_BITS = 4 # per-gain product left shift 0..15
+ACC_FRAC = U_FRAC + 8  # accumulator LSB = 2**-ACC_FRAC PWM ticks (8 guard bits below u's LSB)
+
+
+def sat(x: int, width: int) -> int:
+    """Saturate a Python int to a signed ``width``-bit range."""
+    hi = (1 << (width - 1)) - 1
+    lo = -(1 << (width - 1))
+    return hi if x > hi else lo if x < lo else x
+
+
+def sat_flag(x: int, width: int) -> tuple[int, bool]:
+    y = sat(x, width)
+    return y, y != x
+
+
+def rshift_round(x: int, n: int) -> int:
+    """Arithmetic right shift with round-half-up (add 2**(n-1), then floor)."""
+    if n <= 0:
+        return x << (-n)
+    return (x + (1 << (n - 1))) >> n
+
+
+FORMAT_CONSTANTS = {
+    name: value
+    for name, value in dict(globals()).items()
+    if name.isupper() and isinstance(value, int)
+}

