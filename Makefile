@@ -39,7 +39,7 @@ roms: $(STAMP) ## coefficient ROMs, Verilog header and manifest for CONFIG (defa
 	$(EMPC) roms $(CONFIG_ARG) --out $(ROMS)
 
 sim: $(STAMP) check-tools roms ## the regression (CI): model tests, every block's cocotb test, formal proofs, short closed loop
-	$(PY) -m pytest -n $(JOBS) -q
+	$(PY) -m pytest -n $(JOBS) -q -m "not full"
 	$(MAKE) --no-print-directory formal
 
 sim-full: $(STAMP) check-tools roms ## paper-length closed-loop scenarios on Verilator

@@ -1,0 +1,2 @@
+rtl/sync_2ff.v
+rtl/adc_spi.v

@@ -32,7 +32,8 @@ def main(argv: list[str]) -> int:
         cmd = ["verilator", "--lint-only", "-Wall", f"-I{ROOT / 'rtl'}", f"-I{roms_dir()}",
                "--top-module", top.stem, str(top)] + [a for p in sources if p != top for a in ("-v", str(p))]
         r = subprocess.run(cmd, cwd=ROOT, env=env, capture_output=True, text=True)
-        out = (r.stdout + r.stderr).strip()
+        out = "\n".join(l for l in (r.stdout + r.stderr).splitlines()
+                        if l.strip() and not l.startswith(("- V e r i l a t i o n", "- Verilator:"))).strip()
         if r.returncode != 0 or out:
             failed.append(top.stem)
             print(f"--- {top.stem}: FAIL\n{out}")

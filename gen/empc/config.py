@@ -52,6 +52,7 @@ class Weights:
     Q_yw: tuple[float, float, float]
     Q_dy: tuple[float, float, float]
     Q_du: tuple[float, float]
+    ebar_step_max: tuple[float, float, float] = (0.0, 0.0, 0.0)   # algorithm 2, eq. 25 clamps (0 = default)
 
 
 @dataclass(frozen=True)
@@ -66,7 +67,6 @@ class Control:
     design_quantised: bool
     voltage_limit: str
     i_max: float
-    ebar_step_max: tuple[float, float, float]
     weights: dict = field(default_factory=dict)   # {(alg, task): Weights}
 
     def weights_for(self, algorithm: int | None = None, task: str | None = None) -> Weights:
@@ -215,6 +215,8 @@ def from_dict(d: dict, source: str = "<dict>") -> Config:
                 Q_yw=_vector(_req(sec, "Q_yw", name), 3, f"{name}.Q_yw"),
                 Q_dy=_vector(_req(sec, "Q_dy", name), 3, f"{name}.Q_dy"),
                 Q_du=_vector(_req(sec, "Q_du", name), 2, f"{name}.Q_du"),
+                ebar_step_max=_vector(sec.get("ebar_step_max", [0.0, 0.0, 0.0]), 3, f"{name}.ebar_step_max",
+                                      positive=False),
             )
     if (alg, task) not in weights:
         raise ConfigError(f"weights.alg{alg}.{task} is missing (needed by control.algorithm={alg}, task={task!r})")
@@ -222,7 +224,6 @@ def from_dict(d: dict, source: str = "<dict>") -> Config:
         algorithm=alg, task=task, N=N, Ts=Ts, omega_min=wmin, omega_max=wmax, omega_points=npts,
         design_quantised=bool(c.get("design_quantised", True)), voltage_limit=vl,
         i_max=_positive(c.get("i_max", 10.0), "control.i_max"),
-        ebar_step_max=_vector(c.get("ebar_step_max", [0.0, 0.0, 0.0]), 3, "control.ebar_step_max", positive=False),
         weights=weights,
     )
     cfg = Config(motor=motor, inverter=inverter, sensors=sensors, f_clk=f_clk, control=control, source=source)
@@ -251,6 +252,17 @@ def load(path: str | Path | None = None, overrides: dict | None = None) -> Confi
                 cur = cur.setdefault(k, {})
             cur[last] = v
     return from_dict(d, source=str(p))
+
+
+def display_path(source: str) -> str:
+    """A configuration path as users see it: relative to the package or repository when possible."""
+    p = Path(source)
+    for base in (Path(__file__).resolve().parents[2], Path.cwd()):
+        try:
+            return str(p.resolve().relative_to(base))
+        except (ValueError, OSError):
+            continue
+    return source
 
 
 def default() -> Config:

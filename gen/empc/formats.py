@@ -44,7 +44,7 @@ COEF_W = OPW        # polynomial coefficient mantissa
 WN_FRAC = OPW - 1   # normalised scheduling speed, Q1.17
 SIG_SHIFT_BITS = 5  # per-column signal right shift 0..31
 PROD_SHIFT_BITS = 4 # per-gain product left shift 0..15
-ACC_FRAC = U_FRAC + 8  # accumulator LSB = 2**-ACC_FRAC PWM ticks (8 guard bits below u's LSB)
+ACC_FRAC = 32         # accumulator LSB = 2**-32 PWM ticks: small gains keep 18-bit mantissas; range +-2**15 ticks
 
 
 def sat(x: int, width: int) -> int:

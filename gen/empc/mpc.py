@@ -96,7 +96,9 @@ def closed_loop_matrix(motor, ctrl, omega_e: float, algorithm: int | None = None
 
     The load torque (an unmeasured constant) and, in the speed task, the angle (not fed
     back) are left out: they give structural unit eigenvalues, not instability.
-    Loop state z = [x_k, x_{k-1}, u_{k-1}] (+ ebar_{k-1} for algorithm 2) over the kept states.
+    Loop state z = [x_k, x_{k-1}, u_{k-1}] over the kept states, plus for algorithm 2
+    zeta_{k-1} = K_ebar ebar_{k-1}: the law sees ebar only through K_ebar (2 x 3), and the
+    third direction (null space of K_ebar) is a neutral unit mode that changes nothing.
     """
     algorithm = algorithm or ctrl.algorithm
     task = task or ctrl.task
@@ -114,10 +116,10 @@ def closed_loop_matrix(motor, ctrl, omega_e: float, algorithm: int | None = None
         Ke = np.zeros((nu, 0))
         ne = 0
     else:
-        # ebar_k = ebar_{k-1} - C x_k; du = K_ebar ebar_k - K_y C x_k - K_dx (x_k - x_{k-1})
+        # zeta_k = zeta_{k-1} - K_ebar C x_k; du = zeta_k - K_y C x_k - K_dx (x_k - x_{k-1})
         Kx = -g["K_ebar"] @ C - g["K_y"] @ C - K_dx
-        Ke = g["K_ebar"]
-        ne = ny
+        Ke = np.eye(nu)
+        ne = nu
     Kxm = K_dx
     n = 2 * nx + nu + ne
     sx, sxm, su, se = slice(0, nx), slice(nx, 2 * nx), slice(2 * nx, 2 * nx + nu), slice(2 * nx + nu, n)
@@ -132,8 +134,8 @@ def closed_loop_matrix(motor, ctrl, omega_e: float, algorithm: int | None = None
     if ne:
         T[sx, se] = Bd @ Ke
         T[su, se] = Ke
-        T[se, sx] = -C
-        T[se, se] = np.eye(ny)
+        T[se, sx] = -g["K_ebar"] @ C
+        T[se, se] = np.eye(nu)
     return T
 
 

@@ -62,16 +62,15 @@ class Plant:
     motor: object
     Udc: float
     f_pwm: float
-    substeps: int = 8
+    substeps: int = 4
     dead_time: float = 0.0
     state: PlantState = field(default_factory=PlantState)
     tau_load: float = 0.0
     theta_offset: float = 0.0    # encoder zero vs. rotor d axis, electrical rad
 
     # --- dynamics ---
-    def _deriv(self, x: np.ndarray, u_alpha: float, u_beta: float) -> np.ndarray:
+    def _deriv(self, i_d, i_q, w, th, u_alpha, u_beta):
         m = self.motor
-        i_d, i_q, w, th = x
         c, s = math.cos(th), math.sin(th)
         u_d = c * u_alpha + s * u_beta
         u_q = -s * u_alpha + c * u_beta
@@ -81,35 +80,40 @@ class Plant:
         w_m = w / m.p
         friction = m.B * w_m + (m.tau_c * math.tanh(w_m / 0.05) if m.tau_c else 0.0)
         dw = m.p * (torque - friction - self.tau_load) / m.J
-        return np.array([did, diq, dw, w])
+        return did, diq, dw, w
 
     def phase_voltages(self, duties) -> tuple[float, float]:
         """Averaged alpha-beta voltage of the inverter for phase duties in [0, 1]."""
-        d = np.clip(np.asarray(duties, dtype=float), 0.0, 1.0)
-        v = self.Udc * d
+        v = [self.Udc * min(max(float(d), 0.0), 1.0) for d in duties]
         if self.dead_time:
             # each switching edge pair loses t_dead of the commanded voltage against the current
-            i_abc = self.phase_currents()
-            v = v - np.sign(i_abc) * self.Udc * 2.0 * self.dead_time * self.f_pwm
-        vn = v - v.mean()
-        return clarke(*vn)
+            loss = self.Udc * 2.0 * self.dead_time * self.f_pwm
+            v = [vi - math.copysign(loss, ii) if ii else vi for vi, ii in zip(v, self.phase_currents())]
+        mean = (v[0] + v[1] + v[2]) / 3.0
+        return clarke(v[0] - mean, v[1] - mean, v[2] - mean)
 
     def phase_currents(self) -> np.ndarray:
         a, b = inv_park(self.state.i_d, self.state.i_q, self.state.theta_e)
         return np.array(inv_clarke(a, b))
 
     def step(self, duration: float, duties) -> None:
-        """Hold ``duties`` (phase A, B, C in [0,1]) for ``duration`` seconds."""
-        u_alpha, u_beta = self.phase_voltages(duties)
+        """Hold ``duties`` (phase A, B, C in [0,1]) for ``duration`` seconds (RK4 sub-steps)."""
+        ua, ub = self.phase_voltages(duties)
         h = duration / self.substeps
-        x = self.state.as_array()
+        st = self.state
+        x0, x1, x2, x3 = st.i_d, st.i_q, st.w_e, st.theta_e
+        f = self._deriv
         for _ in range(self.substeps):
-            k1 = self._deriv(x, u_alpha, u_beta)
-            k2 = self._deriv(x + 0.5 * h * k1, u_alpha, u_beta)
-            k3 = self._deriv(x + 0.5 * h * k2, u_alpha, u_beta)
-            k4 = self._deriv(x + h * k3, u_alpha, u_beta)
-            x = x + (h / 6.0) * (k1 + 2 * k2 + 2 * k3 + k4)
-        self.state = PlantState(*x)
+            a0, a1, a2, a3 = f(x0, x1, x2, x3, ua, ub)
+            b0, b1, b2, b3 = f(x0 + 0.5 * h * a0, x1 + 0.5 * h * a1, x2 + 0.5 * h * a2, x3 + 0.5 * h * a3, ua, ub)
+            c0, c1, c2, c3 = f(x0 + 0.5 * h * b0, x1 + 0.5 * h * b1, x2 + 0.5 * h * b2, x3 + 0.5 * h * b3, ua, ub)
+            d0, d1, d2, d3 = f(x0 + h * c0, x1 + h * c1, x2 + h * c2, x3 + h * c3, ua, ub)
+            k = h / 6.0
+            x0 += k * (a0 + 2 * b0 + 2 * c0 + d0)
+            x1 += k * (a1 + 2 * b1 + 2 * c1 + d1)
+            x2 += k * (a2 + 2 * b2 + 2 * c2 + d2)
+            x3 += k * (a3 + 2 * b3 + 2 * c3 + d3)
+        self.state = PlantState(x0, x1, x2, x3)
 
     def step_pwm(self, duties) -> None:
         self.step(1.0 / self.f_pwm, duties)

@@ -1,0 +1,211 @@
+"""Bit-accurate model of the explicit-MPC core (rtl/mpc_core.v).
+
+The RTL must match :func:`update` bit for bit.  One update, in this order:
+
+1. Scheduling speed: ``wn = clamp(sat18(rshift_round(omega, WS)), wn_min, wn_max)``
+   (Q1.17, |wn| <= 1; the polynomials are never extrapolated beyond Omega_e).
+2. Algorithm 2 only: ``ebar[o] = satSIG(ebar_prev[o] + clamp(w_k[o] - y[o], +-ebar_lim[o]))`` (eq. 25).
+3. Signal vector S (fixed index layout, see ``SIG_*``), all SIG_W-bit saturated:
+   W_rel[m,o] = w_{k+m}[o] - (position task and o == 2 ? y[2] : 0)
+   E[m,o]     = w_{k+m}[o] - y[o]
+   Y[o]       = y[o], except 0 for the angle in the position task
+   EBAR[o]    = ebar[o],   DX[n] = dx[n]
+   (angles relative to the measured theta_k: the law is invariant to a common shift).
+4. Per row i (d, q) and column j in order 0..ncols-1:
+   a    = sat18(rshift_round(S[sig_j], c_j))                       operand
+   h    = sat18(p1 + rshift_round(p2 * wn, 17))
+   k    = sat18(p0 + rshift_round(h * wn, 17))                     gain, eq. 29
+   term = sat48((k * a) << s_ij);   acc = sat48(acc + term)
+5. ``du = satU(rshift_round(acc, ACC_FRAC - U_FRAC))``, ``u_raw = satU(u_prev + du)`` (eqs. 24/27).
+6. Voltage limit (circle, vector scaling, never outside the circle):
+   u18 = sat18(rshift_round(u_raw, U_FRAC - V_FRAC)); r = u18_d^2 + u18_q^2
+   if r <= umax^2: u = u_raw
+   else: normalise r = m 4^-z (m in [2^36, 2^38)), T = RSQRT[m >> 28],
+         f = min((umax * T) >> (18 - z), 2^17 - 1)   (Q1.17, f <= umax/|u|)
+         u = trunc0(u18 * f / 2^17) << (U_FRAC - V_FRAC)
+   RSQRT[i] = floor(2^16 / sqrt((i + 1) / 1024)) uses the upper end of each bin,
+   so the scaled vector is inside the circle; its magnitude is >= 0.998 umax - 2 LSB.
+
+Saturation events are reported per kind in ``flags`` (bit names in ``FLAG_BITS``).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from ..formats import (ACC_FRAC, ACCW, OPW, U_FRAC, U_W, V_FRAC, rshift_round, sat)
+
+SIG_W = 40
+N_MAX = 8
+SIG_WREL = 0            # + 3*(m-1) + o, m = 1..N
+SIG_E = 3 * N_MAX       # 24
+SIG_Y = 6 * N_MAX       # 48
+SIG_EBAR = SIG_Y + 3    # 51
+SIG_DX = SIG_EBAR + 3   # 54
+N_SIGNALS = SIG_DX + 5  # 59
+MAX_COLS = 64
+RSQRT_BITS = 10
+OP_MAX = (1 << (OPW - 1)) - 1
+
+FLAG_BITS = {
+    "operand": 0, "gain": 1, "term": 2, "acc": 3, "du": 4, "u": 5,
+    "ebar": 6, "ebar_inc": 7, "limit": 8, "wn_clamp": 9, "signal": 10,
+}
+
+
+def rsqrt_table() -> list[int]:
+    n = 1 << RSQRT_BITS
+    return [min(int(math.floor(65536.0 / math.sqrt((i + 1) / n))), OP_MAX) for i in range(n)]
+
+
+RSQRT = rsqrt_table()
+
+
+@dataclass
+class Params:
+    """One coefficient bank (what `empc roms` writes and the CPU can upload)."""
+    algorithm: int
+    task: str                      # "speed" | "position"
+    N: int
+    ws: int                        # scheduling speed right shift
+    wn_min: int
+    wn_max: int
+    u_max: int                     # voltage limit, Q14.4 PWM ticks (V_FRAC)
+    ebar_lim: tuple                # 3 raw clamps of the eq. 25 increments
+    col_sig: list                  # per column: signal index into S
+    col_shift: list                # per column: operand right shift c_j
+    coef: list                     # [row][col] -> (p0, p1, p2, s)
+
+    @property
+    def ncols(self) -> int:
+        return len(self.col_sig)
+
+
+@dataclass
+class Inputs:
+    y: tuple                       # 3 raw outputs (i_d, i_q Q.4; w Q16.16 or theta Q32.8)
+    omega: int                     # scheduling speed Q16.16 counts/Ts
+    dx: tuple                      # 5 raw state increments (dtau = 0)
+    wref: tuple                    # (N+1) x 3: w_k, w_{k+1}, ..., w_{k+N}
+    u_prev: tuple                  # 2 x Q16.8
+    ebar_prev: tuple = (0, 0, 0)
+
+
+@dataclass
+class Outputs:
+    u: tuple
+    du: tuple
+    u_raw: tuple
+    ebar: tuple
+    wn: int
+    flags: int
+    counts: dict = field(default_factory=dict)
+
+
+def _count(counts: dict, name: str, hit: bool) -> None:
+    if hit:
+        counts[name] = counts.get(name, 0) + 1
+
+
+def signals(p: Params, x: Inputs, ebar: tuple, counts: dict) -> list[int]:
+    S = [0] * N_SIGNALS
+    pos = p.task == "position"
+    y = list(x.y)
+
+    def put(i, v):
+        s = sat(v, SIG_W)
+        _count(counts, "signal", s != v)
+        S[i] = s
+
+    for m in range(1, p.N + 1):
+        for o in range(3):
+            w = x.wref[m][o]
+            put(SIG_WREL + 3 * (m - 1) + o, w - (y[2] if (pos and o == 2) else 0))
+            put(SIG_E + 3 * (m - 1) + o, w - y[o])
+    for o in range(3):
+        put(SIG_Y + o, 0 if (pos and o == 2) else y[o])
+        put(SIG_EBAR + o, ebar[o])
+    for n in range(5):
+        put(SIG_DX + n, x.dx[n])
+    return S
+
+
+def update(p: Params, x: Inputs) -> Outputs:
+    counts: dict = {}
+    # 1. scheduling speed
+    wn0 = sat(rshift_round(x.omega, p.ws), OPW)
+    wn0 = max(min(wn0, OP_MAX), -OP_MAX)
+    wn = min(max(wn0, p.wn_min), p.wn_max)
+    _count(counts, "wn_clamp", wn != wn0)
+    # 2. aggregated error (algorithm 2)
+    ebar = tuple(x.ebar_prev)
+    if p.algorithm == 2:
+        nb = []
+        for o in range(3):
+            inc = x.wref[0][o] - x.y[o]
+            lim = p.ebar_lim[o]
+            inc_c = min(max(inc, -lim), lim)
+            _count(counts, "ebar_inc", inc_c != inc)
+            v = x.ebar_prev[o] + inc_c
+            s = sat(v, SIG_W)
+            _count(counts, "ebar", s != v)
+            nb.append(s)
+        ebar = tuple(nb)
+    # 3./4. signals and the polynomial-gain MAC
+    S = signals(p, x, ebar, counts)
+    du, u_raw = [], []
+    for i in range(2):
+        acc = 0
+        for j in range(p.ncols):
+            a0 = rshift_round(S[p.col_sig[j]], p.col_shift[j])
+            a = sat(a0, OPW)
+            _count(counts, "operand", a != a0)
+            p0, p1, p2, s = p.coef[i][j]
+            h0 = p1 + rshift_round(p2 * wn, OPW - 1)
+            h = sat(h0, OPW)
+            k0 = p0 + rshift_round(h * wn, OPW - 1)
+            k = sat(k0, OPW)
+            _count(counts, "gain", h != h0 or k != k0)
+            t0 = (k * a) << s
+            t = sat(t0, ACCW)
+            _count(counts, "term", t != t0)
+            acc0 = acc + t
+            acc = sat(acc0, ACCW)
+            _count(counts, "acc", acc != acc0)
+        d0 = rshift_round(acc, ACC_FRAC - U_FRAC)
+        d = sat(d0, U_W)
+        _count(counts, "du", d != d0)
+        u0 = x.u_prev[i] + d
+        u = sat(u0, U_W)
+        _count(counts, "u", u != u0)
+        du.append(d)
+        u_raw.append(u)
+    # 6. voltage limit
+    u_out, limited = limit_circle(u_raw, p.u_max)
+    _count(counts, "limit", limited)
+    flags = 0
+    for name, n in counts.items():
+        if n:
+            flags |= 1 << FLAG_BITS[name]
+    return Outputs(tuple(u_out), tuple(du), tuple(u_raw), ebar, wn, flags, counts)
+
+
+def limit_circle(u_raw, u_max: int) -> tuple[list[int], bool]:
+    sh = U_FRAC - V_FRAC
+    u18 = [sat(rshift_round(v, sh), OPW) for v in u_raw]
+    r = u18[0] * u18[0] + u18[1] * u18[1]
+    if r <= u_max * u_max:
+        return list(u_raw), False
+    z = 0
+    m = r
+    while m < (1 << 36):
+        m <<= 2
+        z += 1
+    T = RSQRT[m >> (38 - RSQRT_BITS)]
+    f = min((u_max * T) >> (18 - z), OP_MAX)
+    out = []
+    for v in u18:
+        prod = v * f
+        q = -((-prod) >> (OPW - 1)) if prod < 0 else prod >> (OPW - 1)   # truncate toward zero
+        out.append(q << sh)
+    return out, True
