@@ -15,6 +15,8 @@ JOBS     ?= 2
 EMPC     := $(PY) -m empc.cli
 CONFIG_ARG := $(if $(CONFIG),--config $(CONFIG),)
 export EMPC_ROMS := $(abspath $(ROMS))
+export OPENBLAS_NUM_THREADS := 1
+export OMP_NUM_THREADS := 1
 
 RTL_FILES := $(shell sed -e 's/\#.*//' rtl/rtl_files.f)
 

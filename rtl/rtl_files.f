@@ -1,2 +1,15 @@
 rtl/sync_2ff.v
 rtl/adc_spi.v
+rtl/sincos.v
+rtl/glitch_filter.v
+rtl/pwm_center.v
+rtl/irc_decoder.v
+rtl/hall_decoder.v
+rtl/pos_sense.v
+rtl/park_core.v
+rtl/park.v
+rtl/inv_park.v
+rtl/clarke.v
+rtl/inv_clarke.v
+rtl/min_sub.v
+rtl/duty_scale.v

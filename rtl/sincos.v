@@ -3,7 +3,8 @@
 //
 // Method (bit-exact model: gen/empc/rtlmodel/sincos.py):
 //   q = angle[15:14], r = angle[13:0]; x = q[0] ? 2^14 - r : r  (0..2^14);
-//   |sin| = T[k] + ((D[k] * f + 16) >> 5), k = x[13:5], f = x[4:0]   (x = 2^14 -> exactly 2^16)
+//   |sin| = T[k] + ((D[k] * f + 16) >> 5), x = 32 k + f; for odd quadrants k = ~r[13:5],
+//   f = ~r[4:0] + 1 (1..32), which equals x = 2^14 - r without a subtractor
 //   T[k] = round(2^16 sin(k pi/1024)), D[k] = T[k+1] - T[k]  (512-word ROM, rtl/sincos_table.vh);
 //   negative in quadrants 2, 3;  cos(angle) = sin(angle + 2^14).
 //   The 8x5 interpolation product is built from shifts and adds (no DSP).
@@ -21,6 +22,7 @@
 // Reset: all pipeline registers and outputs clear to 0 (the ROM read registers too); the ROM
 //   contents are constant.
 `default_nettype none
+`include "empc_formats.vh"
 module sincos (
     input  wire                                   clk,
     input  wire                                   rst,
@@ -30,7 +32,6 @@ module sincos (
     output reg  signed [`EMPC_TRIG_W-1:0]         sin_out,
     output reg  signed [`EMPC_TRIG_W-1:0]         cos_out
 );
-`include "empc_formats.vh"
     localparam integer AW = `EMPC_ANGLE_BITS;          // 16
     localparam integer TW = `EMPC_TRIG_W;              // 18
     localparam integer QB = AW - 2;                    // 14: bits inside a quadrant
@@ -39,9 +40,7 @@ module sincos (
     localparam integer VB = `EMPC_TRIG_FRAC + 1;       // 17: node value 0..2^16
     localparam integer DB = 8;                         // node difference (max 201)
     localparam integer WB = VB + DB;                   // 25: ROM word
-    localparam integer PB = DB + FB;                   // 13: interpolation product
-    localparam [VB-1:0] ONE = {1'b1, {(VB-1){1'b0}}};  // 2^16
-    localparam [AW-1:0] QUARTER = {2'b01, {QB{1'b0}}}; // 2^14 = pi/2
+    localparam integer PB = DB + FB + 1;               // 14: interpolation product D*f + 16, f <= 32
 
     // quarter-wave ROM: word k = {T[k], D[k]}
     reg [WB-1:0] rom [0:(1<<LB)-1];
@@ -49,46 +48,52 @@ module sincos (
 `include "sincos_table.vh"
     end
 
-    // D * f by shift-and-add (kept out of the DSP48A1 on purpose)
+    // D * f by shift-and-add (kept out of the DSP48A1 on purpose); f = 0..32, and f = 32
+    // (the only value with bit FB set) has no other bit set
     function [PB-1:0] mul_df;
         input [DB-1:0] d;
-        input [FB-1:0] f;
+        input [FB:0]   f;
         integer i;
         begin
             mul_df = {PB{1'b0}};
             for (i = 0; i < FB; i = i + 1)
-                if (f[i]) mul_df = mul_df + ({{FB{1'b0}}, d} << i);
+                if (f[i]) mul_df = mul_df + ({{(FB+1){1'b0}}, d} << i);
+            if (f[FB]) mul_df = {1'b0, d, {FB{1'b0}}};
         end
     endfunction
 
     // ---- stage A: quadrant folding -------------------------------------------------
-    wire [AW-1:0] ang_c = angle + QUARTER;             // cos = sin(angle + pi/2), modulo 2 pi
-    wire [QB:0]   x_s   = angle[QB]   ? ({1'b1, {QB{1'b0}}} - {1'b0, angle[QB-1:0]}) : {1'b0, angle[QB-1:0]};
-    wire [QB:0]   x_c   = ang_c[QB]   ? ({1'b1, {QB{1'b0}}} - {1'b0, ang_c[QB-1:0]}) : {1'b0, ang_c[QB-1:0]};
+    // Odd quadrants need S(2^14 - r) = S(~r + 1): table index ~r[13:5] and fraction
+    // ~r[4:0] + 1 (1..32; 32 lands exactly on the next node), so no subtractor is needed.
+    // cos(angle) = sin(angle + 2^14): same r, quadrant + 1.
+    wire          odd_s = angle[QB];
+    wire          odd_c = ~angle[QB];
+    wire [QB-1:0] rr_s  = angle[QB-1:0] ^ {QB{odd_s}};
+    wire [QB-1:0] rr_c  = angle[QB-1:0] ^ {QB{odd_c}};
 
     reg [LB-1:0] a_addr_s, a_addr_c;
-    reg [FB-1:0] a_f_s, a_f_c;
-    reg          a_full_s, a_full_c, a_neg_s, a_neg_c, a_v;
+    reg [FB:0]   a_f_s, a_f_c;
+    reg          a_neg_s, a_neg_c, a_v;
     always @(posedge clk) begin
         if (rst) begin
             a_addr_s <= {LB{1'b0}}; a_addr_c <= {LB{1'b0}};
-            a_f_s    <= {FB{1'b0}}; a_f_c    <= {FB{1'b0}};
-            a_full_s <= 1'b0;       a_full_c <= 1'b0;
+            a_f_s    <= {(FB+1){1'b0}}; a_f_c <= {(FB+1){1'b0}};
             a_neg_s  <= 1'b0;       a_neg_c  <= 1'b0;
             a_v      <= 1'b0;
         end else begin
-            a_addr_s <= x_s[QB-1:FB]; a_addr_c <= x_c[QB-1:FB];
-            a_f_s    <= x_s[FB-1:0];  a_f_c    <= x_c[FB-1:0];
-            a_full_s <= x_s[QB];      a_full_c <= x_c[QB];
-            a_neg_s  <= angle[AW-1];  a_neg_c  <= ang_c[AW-1];
+            a_addr_s <= rr_s[QB-1:FB]; a_addr_c <= rr_c[QB-1:FB];
+            a_f_s    <= {1'b0, rr_s[FB-1:0]} + {{FB{1'b0}}, odd_s};
+            a_f_c    <= {1'b0, rr_c[FB-1:0]} + {{FB{1'b0}}, odd_c};
+            a_neg_s  <= angle[AW-1];
+            a_neg_c  <= angle[AW-1] ^ angle[AW-2];
             a_v      <= in_valid;
         end
     end
 
     // ---- stage B: ROM read (synchronous, both ports of one block RAM) -------------
     reg [WB-1:0] b_word_s, b_word_c;
-    reg [FB-1:0] b_f_s, b_f_c;
-    reg          b_full_s, b_full_c, b_neg_s, b_neg_c, b_v;
+    reg [FB:0]   b_f_s, b_f_c;
+    reg          b_neg_s, b_neg_c, b_v;
     always @(posedge clk) begin
         if (rst) begin
             b_word_s <= {WB{1'b0}};
@@ -100,23 +105,24 @@ module sincos (
     end
     always @(posedge clk) begin
         if (rst) begin
-            b_f_s    <= {FB{1'b0}}; b_f_c    <= {FB{1'b0}};
-            b_full_s <= 1'b0;       b_full_c <= 1'b0;
-            b_neg_s  <= 1'b0;       b_neg_c  <= 1'b0;
-            b_v      <= 1'b0;
+            b_f_s   <= {(FB+1){1'b0}}; b_f_c <= {(FB+1){1'b0}};
+            b_neg_s <= 1'b0;       b_neg_c <= 1'b0;
+            b_v     <= 1'b0;
         end else begin
-            b_f_s    <= a_f_s;    b_f_c    <= a_f_c;
-            b_full_s <= a_full_s; b_full_c <= a_full_c;
-            b_neg_s  <= a_neg_s;  b_neg_c  <= a_neg_c;
-            b_v      <= a_v;
+            b_f_s   <= a_f_s;      b_f_c   <= a_f_c;
+            b_neg_s <= a_neg_s;    b_neg_c <= a_neg_c;
+            b_v     <= a_v;
         end
     end
 
     // ---- stage C: interpolation, round half up -------------------------------------
+    // the FB low bits of the rounded product are discarded by the rounding shift
+    /* verilator lint_off UNUSEDSIGNAL */
     wire [PB-1:0] p_s = mul_df(b_word_s[DB-1:0], b_f_s) + {{(PB-FB){1'b0}}, 1'b1, {(FB-1){1'b0}}};
     wire [PB-1:0] p_c = mul_df(b_word_c[DB-1:0], b_f_c) + {{(PB-FB){1'b0}}, 1'b1, {(FB-1){1'b0}}};
-    wire [VB-1:0] m_s = b_word_s[WB-1:DB] + {{(VB-DB){1'b0}}, p_s[PB-1:FB]};
-    wire [VB-1:0] m_c = b_word_c[WB-1:DB] + {{(VB-DB){1'b0}}, p_c[PB-1:FB]};
+    /* verilator lint_on UNUSEDSIGNAL */
+    wire [VB-1:0] m_s = b_word_s[WB-1:DB] + {{(VB-(PB-FB)){1'b0}}, p_s[PB-1:FB]};
+    wire [VB-1:0] m_c = b_word_c[WB-1:DB] + {{(VB-(PB-FB)){1'b0}}, p_c[PB-1:FB]};
 
     reg [VB-1:0] c_mag_s, c_mag_c;
     reg          c_neg_s, c_neg_c, c_v;
@@ -126,16 +132,16 @@ module sincos (
             c_neg_s <= 1'b0;       c_neg_c <= 1'b0;
             c_v     <= 1'b0;
         end else begin
-            c_mag_s <= b_full_s ? ONE : m_s;
-            c_mag_c <= b_full_c ? ONE : m_c;
+            c_mag_s <= m_s;        c_mag_c <= m_c;
             c_neg_s <= b_neg_s;    c_neg_c <= b_neg_c;
             c_v     <= b_v;
         end
     end
 
     // ---- stage D: sign ----------------------------------------------------------------
-    wire signed [TW-1:0] mag_s = $signed({{(TW-VB){1'b0}}, c_mag_s});
-    wire signed [TW-1:0] mag_c = $signed({{(TW-VB){1'b0}}, c_mag_c});
+    // conditional negation as (m ^ -neg) + neg: one carry chain per output
+    wire [TW-1:0] sgn_s = ({{(TW-VB){1'b0}}, c_mag_s} ^ {TW{c_neg_s}}) + {{(TW-1){1'b0}}, c_neg_s};
+    wire [TW-1:0] sgn_c = ({{(TW-VB){1'b0}}, c_mag_c} ^ {TW{c_neg_c}}) + {{(TW-1){1'b0}}, c_neg_c};
     always @(posedge clk) begin
         if (rst) begin
             out_valid <= 1'b0;
@@ -144,8 +150,8 @@ module sincos (
         end else begin
             out_valid <= c_v;
             if (c_v) begin
-                sin_out <= c_neg_s ? -mag_s : mag_s;
-                cos_out <= c_neg_c ? -mag_c : mag_c;
+                sin_out <= $signed(sgn_s);
+                cos_out <= $signed(sgn_c);
             end
         end
     end

@@ -13,6 +13,9 @@
 // T_OUT_PS to the whole round trip you want to model (FPGA clk->pad, isolator,
 // t_DO of the ADC, board, input pad).  A master that samples outside the valid
 // window reads 'x' (Icarus) and the comparison in the test fails.
+// under Verilator (the shared runner builds without --timing) the model is
+// zero-delay (MISO changes in the time step of the launching edge) and
+// drives 0 instead of 'z' when released.
 //
 // Ports: sclk, cs_n (from the master), code0..2 (driven by the testbench /
 // cocotb; Python writes new codes once per PWM period), lead (3 x LEAD_ZEROS
@@ -39,11 +42,15 @@ module adc_spi_slave #(
     input  wire [3*LEAD_ZEROS-1:0]   lead,
     output wire [2:0]                miso
 );
-    localparam integer TRAIL = FRAME_BITS - LEAD_ZEROS - ADC_BITS;
     localparam real T_HOLD = T_HOLD_PS / 1000.0;
     localparam real T_OUT  = T_OUT_PS / 1000.0;
 
-    reg [2:0] miso_r = 3'bzzz;
+`ifdef VERILATOR
+    localparam [2:0] RELEASED = 3'b000;     // 2-state: no 'z' (tristate lowering would drop the driver)
+`else
+    localparam [2:0] RELEASED = 3'bzzz;
+`endif
+    reg [2:0] miso_r = RELEASED;
     assign miso = miso_r;
 
     reg [FRAME_BITS-1:0] f0 = 0, f1 = 0, f2 = 0;
@@ -56,20 +63,37 @@ module adc_spi_slave #(
     integer sclk_high_min_ps = 0;
     realtime t_cs_rise = 0.0, t_sclk_fall = 0.0, t_sclk_rise = 0.0;
 
-    function [FRAME_BITS-1:0] mkframe;
+    function [FRAME_BITS-1:0] mkframe;   // lead | code | TRAIL zeros
         input [ADC_BITS-1:0] c;
         input [LEAD_ZEROS-1:0] l;
         begin
-            if (TRAIL > 0) mkframe = {l, c, {(TRAIL > 0 ? TRAIL : 1){1'b0}}};
-            else           mkframe = {l, c};
+            mkframe = {FRAME_BITS{1'b0}};
+            mkframe[FRAME_BITS-1 -: LEAD_ZEROS] = l;
+            mkframe[FRAME_BITS-1-LEAD_ZEROS -: ADC_BITS] = c;
         end
     endfunction
 
+    // With VERILATOR defined (no --timing in the shared runner): zero-delay, MISO changes
+    // with the launching edge.  Icarus: hold / invalid ('x') / valid timing.
     task launch;
         input [2:0] v;
         begin
+`ifdef VERILATOR
+            miso_r <= v;
+`else
             miso_r <= #(T_HOLD) 3'bxxx;
             miso_r <= #(T_OUT) v;
+`endif
+        end
+    endtask
+
+    task release_out;
+        begin
+`ifdef VERILATOR
+            miso_r <= RELEASED;
+`else
+            miso_r <= #(T_HOLD) RELEASED;
+`endif
         end
     endtask
 
@@ -81,43 +105,43 @@ module adc_spi_slave #(
         end
     endfunction
 
-    always @(negedge cs_n) begin
-        if (sclk !== 1'b1) proto_err = proto_err + 1;
-        if (frames > 0) cs_high_min_ps = tmin(cs_high_min_ps, $rtoi(($realtime - t_cs_rise) * 1000.0 + 0.5));
-        frames = frames + 1;
-        s_code0 = code0; s_code1 = code1; s_code2 = code2;
-        f0 = mkframe(code0, lead[0*LEAD_ZEROS +: LEAD_ZEROS]);
-        f1 = mkframe(code1, lead[1*LEAD_ZEROS +: LEAD_ZEROS]);
-        f2 = mkframe(code2, lead[2*LEAD_ZEROS +: LEAD_ZEROS]);
-        bitn = 0;
-        launch({f2[FRAME_BITS-1], f1[FRAME_BITS-1], f0[FRAME_BITS-1]});
-    end
-
-    always @(posedge cs_n) begin
-        t_cs_rise = $realtime;
-        if (frames > 0 && bitn != FRAME_BITS) proto_err = proto_err + 1;
-        miso_r <= #(T_HOLD) 3'bzzz;
-    end
-
-    always @(negedge sclk) begin
-        if (cs_n === 1'b0) begin
-            t_sclk_fall = $realtime;
-            if (bitn > 0) sclk_high_min_ps = tmin(sclk_high_min_ps, $rtoi(($realtime - t_sclk_rise) * 1000.0 + 0.5));
-            bitn = bitn + 1;
-            if (bitn < FRAME_BITS)
-                launch({f2[FRAME_BITS-1-bitn], f1[FRAME_BITS-1-bitn], f0[FRAME_BITS-1-bitn]});
-            else
-                miso_r <= #(T_HOLD) 3'bzzz;   // conversion complete, output released
-        end else if (frames > 0) begin
-            proto_err = proto_err + 1;
+    // One process for all pin events (edge detection by hand), so both
+    // simulators order the CS and SCLK actions the same way.
+    reg cs_q = 1'bx, sclk_q = 1'bx;        // no edge before the pins are known (2-state: 0)
+    always @(cs_n or sclk) begin
+        if (cs_q === 1'b1 && cs_n === 1'b0) begin                  // CS falling: convert
+            if (sclk !== 1'b1) proto_err = proto_err + 1;
+            if (frames > 0) cs_high_min_ps = tmin(cs_high_min_ps, $rtoi(($realtime - t_cs_rise) * 1000.0 + 0.5));
+            frames = frames + 1;
+            s_code0 = code0; s_code1 = code1; s_code2 = code2;
+            f0 = mkframe(code0, lead[0*LEAD_ZEROS +: LEAD_ZEROS]);
+            f1 = mkframe(code1, lead[1*LEAD_ZEROS +: LEAD_ZEROS]);
+            f2 = mkframe(code2, lead[2*LEAD_ZEROS +: LEAD_ZEROS]);
+            bitn = 0;
+            launch({f2[FRAME_BITS-1], f1[FRAME_BITS-1], f0[FRAME_BITS-1]});
+        end else if (cs_q === 1'b0 && cs_n === 1'b1) begin         // CS rising
+            t_cs_rise = $realtime;
+            if (frames > 0 && bitn != FRAME_BITS) proto_err = proto_err + 1;
+            release_out;
         end
-    end
-
-    always @(posedge sclk) begin
-        if (cs_n === 1'b0) begin
+        if (sclk_q === 1'b1 && sclk === 1'b0) begin                // SCLK falling
+            if (cs_n === 1'b0) begin
+                t_sclk_fall = $realtime;
+                if (bitn > 0) sclk_high_min_ps = tmin(sclk_high_min_ps, $rtoi(($realtime - t_sclk_rise) * 1000.0 + 0.5));
+                bitn = bitn + 1;
+                if (bitn < FRAME_BITS)
+                    launch({f2[FRAME_BITS-1-bitn], f1[FRAME_BITS-1-bitn], f0[FRAME_BITS-1-bitn]});
+                else
+                    release_out;                                    // conversion complete
+            end else if (frames > 0) begin
+                proto_err = proto_err + 1;                          // SCLK must idle high
+            end
+        end else if (sclk_q === 1'b0 && sclk === 1'b1 && cs_n === 1'b0) begin   // SCLK rising
             t_sclk_rise = $realtime;
             sclk_low_min_ps = tmin(sclk_low_min_ps, $rtoi(($realtime - t_sclk_fall) * 1000.0 + 0.5));
         end
+        cs_q = cs_n;
+        sclk_q = sclk;
     end
 endmodule
 `default_nettype wire

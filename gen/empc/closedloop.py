@@ -66,10 +66,12 @@ class Trace:
 
 
 def simulate(cfg, controller, scenario: Scenario, seed: int = 0, substeps: int = 4,
-             plant_motor=None) -> Trace:
+             plant_motor=None, ideal_timing: bool = False) -> Trace:
     """Run ``controller`` on the plant for ``scenario``; returns the per-control-period trace.
 
     ``plant_motor`` lets the plant differ from the design motor (parameter mismatch).
+    ``ideal_timing`` applies u at the sampling instant (no half-period output delay),
+    for analysis only: the hardware cannot do it.
     """
     c = cfg.control
     M = cfg.pwm_per_control
@@ -129,6 +131,8 @@ def simulate(cfg, controller, scenario: Scenario, seed: int = 0, substeps: int =
                 sat_now = getattr(controller, "saturations", 0)
                 rec["sat"][k] = sat_now - sat_prev
                 sat_prev = sat_now
+                if ideal_timing:
+                    duties = controller.modulate(theta_meas, w_est)
             plant.step(0.5 * Tpwm, duties)
             t += 0.5 * Tpwm
             ipk = max(ipk, float(np.max(np.abs(plant.phase_currents()))))
@@ -140,10 +144,11 @@ def simulate(cfg, controller, scenario: Scenario, seed: int = 0, substeps: int =
                  rec["ipk"], rec["sat"], rec["w_meas"])
 
 
-def metrics(tr: Trace, sc: Scenario, settle_band: float | None = None) -> dict:
+def metrics(tr: Trace, sc: Scenario, settle_floor: float = 0.0) -> dict:
     """Tracking figures per reference segment plus peaks.
 
-    steps: overshoot (% of the step), settling time (to within the band, staying),
+    steps: overshoot (% of the step), settling time (to within max(2 % of the step,
+    settle_floor) and staying there until the segment ends),
     ramps: mean and max |error| over the second half of the ramp (the constant lag
     of algorithm 1 vs ~0 for algorithm 2), peak phase current, saturations.
     """
@@ -161,7 +166,8 @@ def metrics(tr: Trace, sc: Scenario, settle_band: float | None = None) -> dict:
         seg = {"kind": kind, "t0": t0, "t1": t1, "from": v0, "to": v1}
         if kind == "step":
             size = v1 - v0
-            band = settle_band if settle_band is not None else 0.02 * abs(size)
+            band = max(0.02 * abs(size), settle_floor)
+            seg["band"] = band
             ys = y[sel]
             ts = tr.t[sel]
             if size != 0:
@@ -180,6 +186,8 @@ def metrics(tr: Trace, sc: Scenario, settle_band: float | None = None) -> dict:
             seg["final_error"] = float(np.mean(np.abs(e[sel][-max(1, len(ys) // 10):])))
         elif kind == "ramp":
             half = sel & (tr.t >= 0.5 * (t0 + t1))
+            if not np.any(half):
+                continue
             seg["ramp_error_mean"] = float(np.mean(e[half]))
             seg["ramp_error_max"] = float(np.max(np.abs(e[half])))
             ramp_means.append(abs(seg["ramp_error_mean"]))

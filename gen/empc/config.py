@@ -67,6 +67,7 @@ class Control:
     design_quantised: bool
     voltage_limit: str
     i_max: float
+    speed_estimate: str
     weights: dict = field(default_factory=dict)   # {(alg, task): Weights}
 
     def weights_for(self, algorithm: int | None = None, task: str | None = None) -> Weights:
@@ -116,6 +117,19 @@ class Config:
         return self.rad_per_count / self.control.Ts
 
     @property
+    def speed_correction(self) -> float:
+        """Half-period acceleration term added to the backward difference (eq. 37), rad/s per A of i_q.
+
+        Eq. 37 is the mean speed over the last period, i.e. the speed half a period ago;
+        the model state wants the speed now.  The torque equation gives the missing
+        (Ts/2) * dw/dt = (Ts/2) * 1.5 p^2 psi / J * i_q.  0 when speed_estimate = "eq37".
+        """
+        if self.control.speed_estimate != "accel":
+            return 0.0
+        m = self.motor
+        return 0.5 * self.control.Ts * 1.5 * m.p * m.p * m.psi / m.J
+
+    @property
     def u_max(self) -> float:
         """Voltage limit in volts: circle Udc/sqrt(3)."""
         return self.inverter.Udc / math.sqrt(3.0)
@@ -147,6 +161,12 @@ def _vector(value, n: int, name: str, positive: bool = True) -> tuple:
     if not isinstance(value, (list, tuple)) or len(value) != n:
         raise ConfigError(f"{name} must be a list of {n} numbers, got {value!r}")
     return tuple(_positive(v, f"{name}[{i}]", allow_zero=not positive) for i, v in enumerate(value))
+
+
+def _choice(value, options: tuple, name: str):
+    if value not in options:
+        raise ConfigError(f"{name} must be one of {', '.join(map(repr, options))}, got {value!r}")
+    return value
 
 
 def from_dict(d: dict, source: str = "<dict>") -> Config:
@@ -224,6 +244,7 @@ def from_dict(d: dict, source: str = "<dict>") -> Config:
         algorithm=alg, task=task, N=N, Ts=Ts, omega_min=wmin, omega_max=wmax, omega_points=npts,
         design_quantised=bool(c.get("design_quantised", True)), voltage_limit=vl,
         i_max=_positive(c.get("i_max", 10.0), "control.i_max"),
+        speed_estimate=_choice(c.get("speed_estimate", "accel"), ("eq37", "accel"), "control.speed_estimate"),
         weights=weights,
     )
     cfg = Config(motor=motor, inverter=inverter, sensors=sensors, f_clk=f_clk, control=control, source=source)

@@ -11,11 +11,23 @@ from . import __version__, formats
 from .config import display_path
 
 
+def speed_correction_raw(cfg) -> tuple[int, int]:
+    """(KACC, KACC_SHIFT): omega_raw += rshift_round(KACC * i_q_raw, KACC_SHIFT) (see Config.speed_correction)."""
+    k = cfg.speed_correction * (cfg.amps_per_lsb / (1 << formats.I_FRAC)) * (1 << formats.W_FRAC) / cfg.rad_s_per_count_ts
+    if k == 0:
+        return 0, 0
+    shift = max(0, min(31, formats.OPW - 2 - math.ceil(math.log2(abs(k)))))
+    return int(round(k * (1 << shift))), shift
+
+
 def config_constants(cfg) -> dict[str, int]:
     """Integer constants the RTL needs from the configuration (raw units)."""
     p = cfg.motor.p
     cpr = cfg.sensors.encoder_cpr
+    kacc, kacc_shift = speed_correction_raw(cfg)
     return {
+        "KACC": kacc,
+        "KACC_SHIFT": kacc_shift,
         "CLK_HZ": int(round(cfg.f_clk)),
         "PWM_HALF_PERIOD": cfg.pwm_half_period,
         "PWM_PER_CONTROL": cfg.pwm_per_control,

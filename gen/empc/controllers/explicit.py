@@ -1,7 +1,9 @@
 """Explicit MPC of paper 000 (float): laws (23)-(24) and (25)-(27) with polynomial gains.
 
 ``gains="poly"`` evaluates the fitted 2nd-order polynomials (29) (what the FPGA
-does), ``gains="exact"`` recomputes the exact gains at each speed (reference).
+does), ``gains="exact"`` the exact gains (eqs. 23-28) at each speed, taken from a
+dense table over Omega_e (``EXACT_POINTS``) with linear interpolation, whose error
+is far below the polynomial fit's (tests check both).
 Online stage (sec. V-A): the error increments of (25) are clamped per output
 and u is limited to the circle |u| <= Udc/sqrt(3) by vector scaling; u_{k-1}
 keeps the limited value (incremental-form anti-windup).
@@ -33,6 +35,10 @@ class ExplicitMPC(Controller):
         self.name = f"explicit-mpc-alg{self.algorithm}-{self.task}-{gains}"
         if gains == "poly":
             self.fit = gain_fit or fit_mod.fit(cfg, self.algorithm, self.task)
+        elif gains == "exact":
+            self.table = exact_table(cfg, self.algorithm, self.task)
+        else:
+            raise ValueError(f"gains must be 'poly' or 'exact', got {gains!r}")
         self.ebar_max = self._ebar_clamp()
         self.reset()
 
@@ -53,12 +59,17 @@ class ExplicitMPC(Controller):
         w = float(np.clip(w, c.omega_min, c.omega_max))
         if self.mode == "poly":
             return self.fit.evaluate(w)
-        return mpc.gains(self.cfg.motor, c, w, self.algorithm, self.task)
+        grid, tab = self.table
+        x = (w - grid[0]) / (grid[1] - grid[0])
+        i = min(max(int(x), 0), len(grid) - 2)
+        f = x - i
+        return {n: (1 - f) * v[i] + f * v[i + 1] for n, v in tab.items()}
 
     def step(self, meas) -> np.ndarray:
         Ts = self.cfg.control.Ts
         theta = meas.theta_e
         w = 0.0 if self.theta_prev is None else (theta - self.theta_prev) / Ts   # eq. 37
+        w += self.cfg.speed_correction * meas.i_q
         self.theta_prev = theta
         x = np.array([meas.i_d, meas.i_q, w, theta, 0.0])
         dx = np.zeros(5) if self.x_prev is None else x - self.x_prev
@@ -82,6 +93,19 @@ class ExplicitMPC(Controller):
         self.u_dq = u
         self.last = {"w_sched": w, "du": du}
         return u
+
+
+EXACT_POINTS = 1201
+_TABLES: dict = {}
+
+
+def exact_table(cfg, algorithm: int, task: str):
+    key = (id(cfg), cfg.motor, cfg.control.Ts, cfg.control.N, cfg.control.omega_min, cfg.control.omega_max,
+           algorithm, task, cfg.control.weights_for(algorithm, task))
+    if key not in _TABLES:
+        grid = np.linspace(cfg.control.omega_min, cfg.control.omega_max, EXACT_POINTS)
+        _TABLES[key] = fit_mod.profiles(cfg, algorithm, task, grid=grid)
+    return _TABLES[key]
 
 
 def ebar_step_limits(cfg, task: str) -> np.ndarray:

@@ -4,14 +4,17 @@ The RTL must match :func:`update` bit for bit.  One update, in this order:
 
 1. Scheduling speed: ``wn = clamp(sat18(rshift_round(omega, WS)), wn_min, wn_max)``
    (Q1.17, |wn| <= 1; the polynomials are never extrapolated beyond Omega_e).
+   flag wn_clamp: wn differs from the unsaturated rshift_round(omega, WS).
 2. Algorithm 2 only: ``ebar[o] = satSIG(ebar_prev[o] + clamp(w_k[o] - y[o], +-ebar_lim[o]))`` (eq. 25).
-3. Signal vector S (fixed index layout, see ``SIG_*``), all SIG_W-bit saturated:
+3. Signal vector S (fixed index layout, see ``SIG_*``), all SIG_W-bit saturated
+   (horizon m = 1..min(N, N_MAX, len(wref) - 1); all other indices up to 63 read 0):
    W_rel[m,o] = w_{k+m}[o] - (position task and o == 2 ? y[2] : 0)
    E[m,o]     = w_{k+m}[o] - y[o]
    Y[o]       = y[o], except 0 for the angle in the position task
    EBAR[o]    = ebar[o],   DX[n] = dx[n]
    (angles relative to the measured theta_k: the law is invariant to a common shift).
-4. Per row i (d, q) and column j in order 0..ncols-1:
+4. Per row i (d, q) and column j in order 0..min(ncols, MAX_COLS)-1
+   (flag signal: a column reads a signal that saturated):
    a    = sat18(rshift_round(S[sig_j], c_j))                       operand
    h    = sat18(p1 + rshift_round(p2 * wn, 17))
    k    = sat18(p0 + rshift_round(h * wn, 17))                     gain, eq. 29
@@ -25,8 +28,14 @@ The RTL must match :func:`update` bit for bit.  One update, in this order:
          u = trunc0(u18 * f / 2^17) << (U_FRAC - V_FRAC)
    RSQRT[i] = floor(2^16 / sqrt((i + 1) / 1024)) uses the upper end of each bin,
    so the scaled vector is inside the circle; its magnitude is >= 0.998 umax - 2 LSB.
+   The direction is kept while |u_raw| < 8192 PWM ticks (5.6x the default limit);
+   beyond, the 18-bit operands saturate per component (direction error < 0.5 deg).
 
 Saturation events are reported per kind in ``flags`` (bit names in ``FLAG_BITS``).
+
+Image fields are used as the RTL stores them (``effective``): p0, p1, p2 saturated to
+18 bit, wn_min / wn_max clamped to +-OP_MAX, u_max to 0..OP_MAX, ncols to MAX_COLS.
+Generated images are unaffected (they are always inside these ranges).
 """
 from __future__ import annotations
 
@@ -43,6 +52,7 @@ SIG_Y = 6 * N_MAX       # 48
 SIG_EBAR = SIG_Y + 3    # 51
 SIG_DX = SIG_EBAR + 3   # 54
 N_SIGNALS = SIG_DX + 5  # 59
+N_SIG_INDEX = 64        # col_sig is 6 bit; indices N_SIGNALS..63 read 0
 MAX_COLS = 64
 RSQRT_BITS = 10
 OP_MAX = (1 << (OPW - 1)) - 1
@@ -107,17 +117,24 @@ def _count(counts: dict, name: str, hit: bool) -> None:
         counts[name] = counts.get(name, 0) + 1
 
 
-def signals(p: Params, x: Inputs, ebar: tuple, counts: dict) -> list[int]:
-    S = [0] * N_SIGNALS
+def horizon(p: Params, x: Inputs) -> int:
+    """Horizon steps the core reads: the image's N, at most N_MAX and the wref ports present."""
+    return max(0, min(p.N, N_MAX, len(x.wref) - 1))
+
+
+def signals(p: Params, x: Inputs, ebar: tuple, saturated: set | None = None) -> list[int]:
+    """Signal vector S (64 entries, unused ones 0); indices that saturated go into ``saturated``."""
+    S = [0] * N_SIG_INDEX
     pos = p.task == "position"
     y = list(x.y)
 
     def put(i, v):
         s = sat(v, SIG_W)
-        _count(counts, "signal", s != v)
+        if s != v and saturated is not None:
+            saturated.add(i)
         S[i] = s
 
-    for m in range(1, p.N + 1):
+    for m in range(1, horizon(p, x) + 1):
         for o in range(3):
             w = x.wref[m][o]
             put(SIG_WREL + 3 * (m - 1) + o, w - (y[2] if (pos and o == 2) else 0))
@@ -133,10 +150,11 @@ def signals(p: Params, x: Inputs, ebar: tuple, counts: dict) -> list[int]:
 def update(p: Params, x: Inputs) -> Outputs:
     counts: dict = {}
     # 1. scheduling speed
-    wn0 = sat(rshift_round(x.omega, p.ws), OPW)
+    wr = rshift_round(x.omega, p.ws)
+    wn0 = sat(wr, OPW)
     wn0 = max(min(wn0, OP_MAX), -OP_MAX)
-    wn = min(max(wn0, p.wn_min), p.wn_max)
-    _count(counts, "wn_clamp", wn != wn0)
+    wn = min(max(wn0, _clamp(p.wn_min, OP_MAX)), _clamp(p.wn_max, OP_MAX))
+    _count(counts, "wn_clamp", wn != wr)
     # 2. aggregated error (algorithm 2)
     ebar = tuple(x.ebar_prev)
     if p.algorithm == 2:
@@ -152,15 +170,20 @@ def update(p: Params, x: Inputs) -> Outputs:
             nb.append(s)
         ebar = tuple(nb)
     # 3./4. signals and the polynomial-gain MAC
-    S = signals(p, x, ebar, counts)
+    sat_sig: set = set()
+    S = signals(p, x, ebar, sat_sig)
+    ncols = min(p.ncols, MAX_COLS)
     du, u_raw = [], []
     for i in range(2):
         acc = 0
-        for j in range(p.ncols):
+        for j in range(ncols):
+            if i == 0:
+                _count(counts, "signal", p.col_sig[j] in sat_sig)
             a0 = rshift_round(S[p.col_sig[j]], p.col_shift[j])
             a = sat(a0, OPW)
             _count(counts, "operand", a != a0)
             p0, p1, p2, s = p.coef[i][j]
+            p0, p1, p2 = sat(p0, OPW), sat(p1, OPW), sat(p2, OPW)
             h0 = p1 + rshift_round(p2 * wn, OPW - 1)
             h = sat(h0, OPW)
             k0 = p0 + rshift_round(h * wn, OPW - 1)
@@ -181,7 +204,7 @@ def update(p: Params, x: Inputs) -> Outputs:
         du.append(d)
         u_raw.append(u)
     # 6. voltage limit
-    u_out, limited = limit_circle(u_raw, p.u_max)
+    u_out, limited = limit_circle(u_raw, min(max(p.u_max, 0), OP_MAX))
     _count(counts, "limit", limited)
     flags = 0
     for name, n in counts.items():
@@ -190,7 +213,12 @@ def update(p: Params, x: Inputs) -> Outputs:
     return Outputs(tuple(u_out), tuple(du), tuple(u_raw), ebar, wn, flags, counts)
 
 
+def _clamp(v: int, lim: int) -> int:
+    return max(min(v, lim), -lim)
+
+
 def limit_circle(u_raw, u_max: int) -> tuple[list[int], bool]:
+    """Circle limiter of step 6; ``u_max`` in 0..OP_MAX (Q14.4)."""
     sh = U_FRAC - V_FRAC
     u18 = [sat(rshift_round(v, sh), OPW) for v in u_raw]
     r = u18[0] * u18[0] + u18[1] * u18[1]

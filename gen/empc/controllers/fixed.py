@@ -1,0 +1,72 @@
+"""Explicit MPC through the bit-accurate model of the RTL core (rtlmodel/mpc_core.py).
+
+Measurements are converted into the core's raw integer units exactly as the
+FPGA front end delivers them (currents in ADC LSB Q.4, encoder counts, speed as
+counts per Ts, eq. 37), the law runs in the core model, and u (PWM ticks Q16.8)
+is converted back to volts for modulation.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .. import formats as F
+from .. import header, roms
+from ..rtlmodel import mpc_core as core
+from .base import Controller
+
+
+class FixedMPC(Controller):
+    def __init__(self, cfg, algorithm: int | None = None, task: str | None = None, params: core.Params | None = None):
+        super().__init__(cfg)
+        c = cfg.control
+        self.algorithm = algorithm or c.algorithm
+        self.task = task or c.task
+        self.N = c.N
+        self.params = params or roms.design(cfg, self.algorithm, self.task)["params"]
+        self.name = f"fixed-mpc-alg{self.algorithm}-{self.task}"
+        self.kacc, self.kacc_shift = header.speed_correction_raw(cfg)
+        self.reset()
+
+    # --- raw unit conversions (the RTL front end) ---
+    def i_raw(self, amps: float) -> int:
+        return F.sat(int(round(amps / self.cfg.amps_per_lsb * (1 << F.I_FRAC))), F.I_W)
+
+    def out3_raw(self, v: float) -> int:
+        """Speed (rad/s) -> Q16.16 counts/Ts, or angle (rad) -> Q32.8 counts."""
+        if self.task == "speed":
+            return int(round(v / self.cfg.rad_s_per_count_ts * (1 << F.W_FRAC)))
+        return int(round(v / self.cfg.rad_per_count * (1 << F.TH_FRAC)))
+
+    def reset(self) -> None:
+        super().reset()
+        self.u_raw = (0, 0)
+        self.ebar = (0, 0, 0)
+        self.prev = None
+        self.counts_prev = None
+        self.saturations = 0
+        self.flag_counts: dict = {}
+
+    def step(self, meas) -> np.ndarray:
+        counts = meas.counts
+        speed_counts = 0 if self.counts_prev is None else counts - self.counts_prev   # eq. 37, counts per Ts
+        self.counts_prev = counts
+        i_d, i_q = self.i_raw(meas.i_d), self.i_raw(meas.i_q)
+        omega = (speed_counts << F.W_FRAC) + F.rshift_round(self.kacc * i_q, self.kacc_shift)
+        y2 = omega if self.task == "speed" else counts << F.TH_FRAC
+        state = (i_d, i_q, omega, counts << F.TH_FRAC, 0)
+        dx = (0, 0, 0, 0, 0) if self.prev is None else tuple(a - b for a, b in zip(state, self.prev))
+        self.prev = state
+        refs = [meas.w_k] + list(meas.W)
+        wref = tuple((self.i_raw(r[0]), self.i_raw(r[1]), self.out3_raw(r[2])) for r in refs)
+        out = core.update(self.params, core.Inputs(y=(i_d, i_q, y2), omega=omega, dx=dx, wref=wref,
+                                                   u_prev=self.u_raw, ebar_prev=self.ebar))
+        self.u_raw = out.u
+        self.ebar = out.ebar
+        self.saturations += int(out.flags & (1 << core.FLAG_BITS["limit"]) != 0)
+        for k, v in out.counts.items():
+            self.flag_counts[k] = self.flag_counts.get(k, 0) + v
+        vpt = self.cfg.volts_per_tick / (1 << F.U_FRAC)
+        self.u_dq = np.array([out.u[0] * vpt, out.u[1] * vpt])
+        return self.u_dq

@@ -1,0 +1,376 @@
+// pos_sense: electrical angle, alignment and speed estimate for one axis
+// (paper 000 sec. V-A "Position Sensing", eq. 37).
+//
+// Mechanical position modulo CPR, exact and drift free:
+//   m = (pos - ref) mod CPR,  0 <= m < CPR,
+// where ref is the count at the last alignment event.  m is tracked
+// incrementally from the modular difference d = pos - last_pos (exact for any
+// movement below 2**(POS_W-1) counts between two looks, so the wrap of the
+// 32-bit counter is harmless): a bit-serial reducer adds d mod CPR to m, one bit
+// of d per clock (c_k = 2**k mod CPR doubled each clock, one conditional
+// subtraction keeps every value in [0, CPR)).  A +-1 step takes 1 clock to
+// capture and 1 clock to apply; a jump of any size is applied in at most
+// POS_W clocks; counts arriving meanwhile are picked up by the next capture.
+// No state other than the integer m depends on history, so the angle after N
+// whole mechanical turns is bit-identical (also when CPR is not a multiple of P).
+//
+// Angle (2**ANGLE_BITS = one electrical turn):
+//   theta = ( (m * ANGLE_MUL + 2**(S-1)) >> S ) + base       (mod 2**ANGLE_BITS)
+//   ANGLE_MUL = round(P * 2**(ANGLE_BITS+S) / CPR)           (constant function)
+// S defaults to the largest value <= 24 for which ANGLE_MUL < 2**MUL_W
+// (MUL_W = 17: m and ANGLE_MUL are both unsigned 17-bit, one DSP48A1 18x18).
+// Error against the exact 2**16 * frac(P*m/CPR) (+ base):
+//   |err| <= 0.5 + (CPR-1) * |ANGLE_MUL - P*2**(16+S)/CPR| / 2**S  LSB
+//   (default CPR=4000, P=4: S=10, ANGLE_MUL=67109, |err| <= 1.03 LSB =
+//   0.0057 deg electrical; so theta is within 1 LSB of round(exact)).
+//   The Python model empc.rtlmodel.pos_sense.angle_error_bound() gives the
+//   bound for any CPR/P.
+//
+// Alignment (base and ref):
+//   - before the first index, rough HALL alignment: when hall_valid first rises
+//     (and nothing is aligned yet): base = centre of the sector, ref = pos.
+//     At every later hall_change (still not index-aligned): base = the sector
+//     edge just crossed (start of the new sector when moving up 1 sector, end of
+//     it when moving down 1 sector, its centre after an implausible jump),
+//     ref = pos.  Sector s spans [(s-1)*60, s*60) deg electrical + hall_offset;
+//     edge/centre angles are round(k * 2**16 / 12) (k = 0..11).
+//   - index_event: base = 0, ref = index_pos, aligned = 1; from then on
+//     theta = f(m) + cal_offset (cal_offset and hall_offset are live register
+//     inputs: a new calibration value acts at once).  HALL changes are ignored
+//     while aligned.  Every index_event re-aligns to index_pos (with exact
+//     counting this changes nothing; after lost counts it repairs the angle).
+//   - align_clear: back to HALL mode (aligned = 0) without a jump of theta
+//     (base takes cal_offset - hall_offset); the next HALL edge / index
+//     re-synchronises.  An index_event in the same clock wins.
+//   Priority: index_event > align_clear > HALL init > HALL change.
+//
+// Speed (eq. 37, backward difference) and sampling, on the sample strobe:
+//   speed           = pos - pos_at_previous_sample, counts per Ts, POS_W-bit
+//                     modular difference (exact while |movement| < 2**(POS_W-1)
+//                     counts per Ts, so a counter wrap does not disturb it; 0 at
+//                     the first sample after reset)
+//   speed_q         = speed * 2**W_FRAC saturated to W_W bits (the MPC speed
+//                     format, Q16.16 by default); speed_sat = 1 when saturated
+//   pos_at_sample   = pos,  theta_at_sample = theta (as output in that clock)
+//   sample_valid    one-clock pulse, the clock after sample
+// Multi-turn position for the position loop: the raw POS_W-bit count pos
+// (modular; use differences).
+//
+// Ports:
+//   pos[POS_W], index_event, index_pos[POS_W]   from irc_decoder
+//   hall_sector[3], hall_valid, hall_change     from hall_decoder
+//   cal_offset[16], hall_offset[16]             calibration registers
+//   align_clear, sample                          strobes
+//   theta[16], valid, aligned, pos_mod[MW]      angle (continuous)
+//   speed[POS_W], speed_q[W_W], speed_sat, pos_at_sample[POS_W],
+//   theta_at_sample[16], sample_valid           per sample
+// Parameters: CPR, POLE_PAIRS, POS_W, ANGLE_BITS, MUL_W, ANGLE_MUL_SHIFT (-1 =
+//   auto), W_W, W_FRAC (>= 1).  Requires 2 <= CPR < 2**17 for the one-DSP
+//   product (larger works, more DSPs).
+// Latency: pos step -> pos_mod 2 clocks (+1 per extra bit of a jump);
+//   pos_mod -> theta 2 clocks (DSP product register, then round + offset);
+//   a +-1 count reaches theta 4 clocks after pos.  valid/aligned are delayed
+//   with theta.  sample -> speed/... 1 clock.
+// Reset: m = 0, not aligned, no HALL init, theta valid = 0, speed 0.
+// Resources: 1 DSP48A1 (default), ~3*POS_W + 3*MW + 60 FFs, no BRAM.
+`default_nettype none
+`include "empc_formats.vh"
+module pos_sense #(
+    parameter integer CPR = `EMPC_ENC_CPR,
+    parameter integer POLE_PAIRS = `EMPC_POLE_PAIRS,
+    parameter integer POS_W = `EMPC_POS_W,
+    parameter integer ANGLE_BITS = `EMPC_ANGLE_BITS,
+    parameter integer MUL_W = 17,
+    parameter integer ANGLE_MUL_SHIFT = -1,
+    parameter integer W_W = `EMPC_W_W,
+    parameter integer W_FRAC = `EMPC_W_FRAC
+) (
+    input  wire                  clk,
+    input  wire                  rst,
+    input  wire [POS_W-1:0]      pos,
+    input  wire                  index_event,
+    input  wire [POS_W-1:0]      index_pos,
+    input  wire [2:0]            hall_sector,
+    input  wire                  hall_valid,
+    input  wire                  hall_change,
+    input  wire [ANGLE_BITS-1:0] cal_offset,
+    input  wire [ANGLE_BITS-1:0] hall_offset,
+    input  wire                  align_clear,
+    input  wire                  sample,
+    output reg  [ANGLE_BITS-1:0] theta,
+    output reg                   valid,
+    output reg                   aligned,
+    output wire [MW-1:0]         pos_mod,
+    output reg  [POS_W-1:0]      speed,
+    output reg  [W_W-1:0]        speed_q,
+    output reg                   speed_sat,
+    output reg  [POS_W-1:0]      pos_at_sample,
+    output reg  [ANGLE_BITS-1:0] theta_at_sample,
+    output reg                   sample_valid
+);
+    // ---------------- constants ----------------
+    function integer clog2;
+        input integer v;
+        integer t;
+        begin
+            clog2 = 0;
+            t = v - 1;
+            while (t > 0) begin
+                clog2 = clog2 + 1;
+                t = t >> 1;
+            end
+        end
+    endfunction
+
+    function integer clog2_64;
+        input [63:0] v;
+        reg [63:0] t;
+        begin
+            clog2_64 = 0;
+            t = v - 64'd1;
+            while (t > 64'd0) begin
+                clog2_64 = clog2_64 + 1;
+                t = t >> 1;
+            end
+        end
+    endfunction
+
+    // round(p * 2**(ab+s) / cpr), round half up
+    function [63:0] calc_mul;
+        input integer cpr;
+        input integer p;
+        input integer ab;
+        input integer s;
+        reg [63:0] num;
+        reg [63:0] den;
+        begin
+            num = 64'd0;
+            num[31:0] = p;
+            num = num << (ab + s);
+            den = 64'd0;
+            den[31:0] = cpr;
+            calc_mul = (2 * num + den) / (2 * den);
+        end
+    endfunction
+
+    // largest s <= 24 with calc_mul(...) < 2**mul_w
+    function integer auto_shift;
+        input integer cpr;
+        input integer p;
+        input integer ab;
+        input integer mul_w;
+        integer s;
+        reg [63:0] lim;
+        begin
+            auto_shift = 0;
+            lim = 64'd1 << mul_w;
+            for (s = 0; s <= 24; s = s + 1)
+                if (calc_mul(cpr, p, ab, s) < lim) auto_shift = s;
+        end
+    endfunction
+
+    localparam integer MW = (clog2(CPR) < 1) ? 1 : clog2(CPR);       // m in [0, CPR)
+    localparam integer S = (ANGLE_MUL_SHIFT < 0) ? auto_shift(CPR, POLE_PAIRS, ANGLE_BITS, MUL_W)
+                                                 : ANGLE_MUL_SHIFT;
+    localparam [63:0] MUL64 = calc_mul(CPR, POLE_PAIRS, ANGLE_BITS, S);
+    localparam integer MULB = (clog2_64(MUL64 + 64'd1) < 1) ? 1 : clog2_64(MUL64 + 64'd1);
+    localparam [MULB-1:0] MUL = MUL64[MULB-1:0];
+    localparam integer PROD_W = MW + MULB;
+    localparam integer EXT_W = ((PROD_W > S + ANGLE_BITS) ? PROD_W : S + ANGLE_BITS) + 1;
+    localparam [EXT_W-1:0] HALF = (S > 0) ? ({{(EXT_W-1){1'b0}}, 1'b1} << (S - 1)) : {EXT_W{1'b0}};
+    localparam [MW:0] CPR_C = CPR[MW:0];
+    localparam [MW-1:0] ONE_M = {{(MW-1){1'b0}}, 1'b1};
+
+    // HALL angles: table of round(k * 2**ANGLE_BITS / 12) mod 2**ANGLE_BITS, k = 0..11
+    function [12*ANGLE_BITS-1:0] hall_tab;
+        input integer dummy;
+        integer k;
+        reg [63:0] v;
+        begin
+            hall_tab = {(12*ANGLE_BITS){1'b0}};
+            for (k = 0; k < 12; k = k + 1) begin
+                v = 64'd0;
+                v[31:0] = k + dummy;
+                v = ((v << ANGLE_BITS) + 64'd6) / 64'd12;
+                hall_tab[k*ANGLE_BITS +: ANGLE_BITS] = v[ANGLE_BITS-1:0];
+            end
+        end
+    endfunction
+    localparam [12*ANGLE_BITS-1:0] HALL_TAB = hall_tab(0);
+    // sector s (1..6): start k = 2s-2, centre k = 2s-1, end k = 2s (mod 12)
+    function [3:0] k_start;  input [2:0] s; k_start  = {s, 1'b0} - 4'd2; endfunction
+    function [3:0] k_centre; input [2:0] s; k_centre = {s, 1'b0} - 4'd1; endfunction
+    function [3:0] k_end;    input [2:0] s; k_end    = (s == 3'd6) ? 4'd0 : {s, 1'b0}; endfunction
+    function [2:0] s_next;   input [2:0] s; s_next   = (s == 3'd6) ? 3'd1 : s + 3'd1; endfunction
+
+    // ---------------- state ----------------
+    reg [POS_W-1:0]      last_pos;   // count already accounted for in m
+    reg [POS_W-1:0]      r;          // remaining jump (signed), shifted right per clock
+    reg [MW-1:0]         c;          // 2**k mod CPR for the current bit of r
+    reg [MW-1:0]         m;          // (pos - ref) mod CPR
+    reg                  busy;
+    reg                  al;         // index aligned (internal, leads the output by 2 clocks)
+    reg                  hall_init;
+    reg [2:0]            last_sector;
+    reg [ANGLE_BITS-1:0] base_rel;   // angle added to f(m), relative to the offset in use
+
+    assign pos_mod = m;
+
+    // ---------------- bit-serial modular accumulation ----------------
+    wire [POS_W-1:0] d = pos - last_pos;
+    wire [MW:0] m_add   = {1'b0, m} + {1'b0, c};
+    wire [MW:0] m_sub   = {1'b0, m} - {1'b0, c};
+    wire [MW:0] c2      = {c, 1'b0};
+    // the results are < CPR <= 2**MW, so their top (carry) bit is always 0
+    /* verilator lint_off UNUSEDSIGNAL */
+    wire [MW:0] m_add_c = (m_add >= CPR_C) ? m_add - CPR_C : m_add;
+    wire [MW:0] m_sub_c = (m < c) ? m_sub + CPR_C : m_sub;
+    wire [MW:0] c2_c    = (c2 >= CPR_C) ? c2 - CPR_C : c2;
+    /* verilator lint_on UNUSEDSIGNAL */
+    wire [POS_W-1:0] r_sh = {r[POS_W-1], r[POS_W-1:1]};
+
+    // ---------------- alignment events ----------------
+    wire ev_hall_init = !al && !hall_init && hall_valid;
+    wire ev_hall_chg  = !al && hall_init && hall_valid && hall_change;
+    wire hall_fwd = (hall_sector == s_next(last_sector));
+    wire hall_bwd = (last_sector == s_next(hall_sector));
+    // table index: centre at HALL init, else the edge crossed (centre after a jump)
+    wire [3:0] hall_k = ev_hall_init ? k_centre(hall_sector) :
+                        hall_fwd     ? k_start(hall_sector) :
+                        hall_bwd     ? k_end(hall_sector) : k_centre(hall_sector);
+    reg  [ANGLE_BITS-1:0] hall_base;
+    integer hi;
+    always @* begin
+        hall_base = HALL_TAB[0 +: ANGLE_BITS];
+        for (hi = 1; hi < 12; hi = hi + 1)
+            if (hall_k == hi[3:0]) hall_base = HALL_TAB[hi*ANGLE_BITS +: ANGLE_BITS];
+    end
+    wire ev_any = index_event || ev_hall_init || ev_hall_chg;
+    wire [POS_W-1:0] ev_pos = index_event ? index_pos : pos;
+
+    always @(posedge clk) begin
+        if (rst) begin
+            last_pos    <= {POS_W{1'b0}};
+            r           <= {POS_W{1'b0}};
+            c           <= ONE_M;
+            m           <= {MW{1'b0}};
+            busy        <= 1'b0;
+            al          <= 1'b0;
+            hall_init   <= 1'b0;
+            last_sector <= 3'd0;
+            base_rel    <= {ANGLE_BITS{1'b0}};
+        end else begin
+            // m / ref
+            if (ev_any) begin
+                m        <= {MW{1'b0}};
+                last_pos <= ev_pos;
+                busy     <= 1'b0;
+                r        <= {POS_W{1'b0}};
+                c        <= ONE_M;
+            end else if (!busy) begin
+                if (d != {POS_W{1'b0}}) begin
+                    r        <= d;
+                    c        <= ONE_M;
+                    last_pos <= pos;
+                    busy     <= 1'b1;
+                end
+            end else if (&r) begin
+                m    <= m_sub_c[MW-1:0];
+                busy <= 1'b0;
+            end else begin
+                if (r[0]) m <= m_add_c[MW-1:0];
+                r <= r_sh;
+                c <= c2_c[MW-1:0];
+                if (r_sh == {POS_W{1'b0}}) busy <= 1'b0;
+            end
+
+            // alignment state
+            if (index_event) begin
+                al       <= 1'b1;
+                base_rel <= {ANGLE_BITS{1'b0}};
+            end else if (align_clear && al) begin
+                base_rel <= cal_offset - hall_offset;
+                al       <= 1'b0;
+            end else if (ev_hall_init || ev_hall_chg) begin
+                base_rel <= hall_base;
+            end
+            if (hall_valid && (!hall_init || hall_change)) begin
+                hall_init   <= 1'b1;
+                last_sector <= hall_sector;
+            end
+        end
+    end
+
+    // ---------------- angle pipeline: product, then round + offset ----------------
+    reg [PROD_W-1:0]     prod;
+    reg [ANGLE_BITS-1:0] base_d;
+    reg                  v1, al1;
+    // only bits [S +: ANGLE_BITS] of the rounded product are the angle (mod 2**ANGLE_BITS)
+    /* verilator lint_off UNUSEDSIGNAL */
+    wire [EXT_W-1:0]     prod_r = {{(EXT_W-PROD_W){1'b0}}, prod} + HALF;
+    /* verilator lint_on UNUSEDSIGNAL */
+    always @(posedge clk) begin
+        if (rst) begin
+            prod    <= {PROD_W{1'b0}};
+            base_d  <= {ANGLE_BITS{1'b0}};
+            v1      <= 1'b0;
+            al1     <= 1'b0;
+            theta   <= {ANGLE_BITS{1'b0}};
+            valid   <= 1'b0;
+            aligned <= 1'b0;
+        end else begin
+            prod    <= m * MUL;
+            base_d  <= base_rel + (al ? cal_offset : hall_offset);
+            v1      <= al | hall_init;
+            al1     <= al;
+            theta   <= prod_r[S +: ANGLE_BITS] + base_d;
+            valid   <= v1;
+            aligned <= al1;
+        end
+    end
+
+    // ---------------- speed (eq. 37) and sampling ----------------
+    localparam integer WIDE = POS_W + W_FRAC;
+    wire [POS_W-1:0] diff = pos - pos_at_sample;
+    wire [WIDE-1:0]  wide = {diff, {W_FRAC{1'b0}}};
+    wire [WIDE-W_W:0] top = wide[WIDE-1:W_W-1];
+    wire fits = (&top) | ~(|top);
+    localparam [W_W-1:0] QMAX = {1'b0, {(W_W-1){1'b1}}};
+    localparam [W_W-1:0] QMIN = {1'b1, {(W_W-1){1'b0}}};
+    reg have_prev;
+    always @(posedge clk) begin
+        if (rst) begin
+            speed           <= {POS_W{1'b0}};
+            speed_q         <= {W_W{1'b0}};
+            speed_sat       <= 1'b0;
+            pos_at_sample   <= {POS_W{1'b0}};
+            theta_at_sample <= {ANGLE_BITS{1'b0}};
+            sample_valid    <= 1'b0;
+            have_prev       <= 1'b0;
+        end else begin
+            sample_valid <= sample;
+            if (sample) begin
+                have_prev       <= 1'b1;
+                pos_at_sample   <= pos;
+                theta_at_sample <= theta;
+                if (have_prev) begin
+                    speed     <= diff;
+                    speed_q   <= fits ? wide[W_W-1:0] : (diff[POS_W-1] ? QMIN : QMAX);
+                    speed_sat <= !fits;
+                end else begin
+                    speed     <= {POS_W{1'b0}};
+                    speed_q   <= {W_W{1'b0}};
+                    speed_sat <= 1'b0;
+                end
+            end
+        end
+    end
+
+    // synthesis translate_off
+    initial begin
+        if (CPR < 2) $display("ERROR: pos_sense CPR=%0d < 2", CPR);
+        if (W_FRAC < 1 || WIDE < W_W) $display("ERROR: pos_sense needs W_FRAC >= 1 and POS_W + W_FRAC >= W_W");
+    end
+    // synthesis translate_on
+endmodule
+`default_nettype wire
