@@ -144,11 +144,12 @@ def simulate(cfg, controller, scenario: Scenario, seed: int = 0, substeps: int =
                  rec["ipk"], rec["sat"], rec["w_meas"])
 
 
-def metrics(tr: Trace, sc: Scenario, settle_floor: float = 0.0) -> dict:
+def metrics(tr: Trace, sc: Scenario, settle_floor: float = 0.0, preview: float = 0.0) -> dict:
     """Tracking figures per reference segment plus peaks.
 
     steps: overshoot (% of the step), settling time (to within max(2 % of the step,
-    settle_floor) and staying there until the segment ends),
+    settle_floor) and staying there until the segment ends, less the ``preview``
+    window in which the controller already sees the next segment's references),
     ramps: mean and max |error| over the second half of the ramp (the constant lag
     of algorithm 1 vs ~0 for algorithm 2), peak phase current, saturations.
     """
@@ -165,6 +166,7 @@ def metrics(tr: Trace, sc: Scenario, settle_floor: float = 0.0) -> dict:
             continue
         seg = {"kind": kind, "t0": t0, "t1": t1, "from": v0, "to": v1}
         if kind == "step":
+            sel = sel & (tr.t < t1 - preview)
             size = v1 - v0
             band = max(0.02 * abs(size), settle_floor)
             seg["band"] = band
@@ -183,13 +185,16 @@ def metrics(tr: Trace, sc: Scenario, settle_floor: float = 0.0) -> dict:
                 seg["settling_time"] = float(ts[outside[-1] + 1] - t0)
             if seg["settling_time"] is not None:
                 settles.append(seg["settling_time"])
-            seg["final_error"] = float(np.mean(np.abs(e[sel][-max(1, len(ys) // 10):])))
+            tail = e[sel][-max(1, len(ys) // 2):]
+            seg["final_error"] = float(np.mean(np.abs(tail[-max(1, len(ys) // 10):])))
+            seg["final_error_mean"] = float(np.mean(tail))       # signed: zero-symmetric error -> ~0
         elif kind == "ramp":
             half = sel & (tr.t >= 0.5 * (t0 + t1))
             if not np.any(half):
                 continue
             seg["ramp_error_mean"] = float(np.mean(e[half]))
             seg["ramp_error_max"] = float(np.max(np.abs(e[half])))
+            seg["ramp_error_std"] = float(np.std(e[half]))
             ramp_means.append(abs(seg["ramp_error_mean"]))
         out["segments"].append(seg)
     out["ramp_error_mean_abs"] = float(np.mean(ramp_means)) if ramp_means else None

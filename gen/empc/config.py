@@ -53,6 +53,7 @@ class Weights:
     Q_dy: tuple[float, float, float]
     Q_du: tuple[float, float]
     ebar_step_max: tuple[float, float, float] = (0.0, 0.0, 0.0)   # algorithm 2, eq. 25 clamps (0 = default)
+    integrate: tuple[bool, bool, bool] = (True, True, True)        # algorithm 2: outputs with the 2nd integrator
 
 
 @dataclass(frozen=True)
@@ -163,6 +164,14 @@ def _vector(value, n: int, name: str, positive: bool = True) -> tuple:
     return tuple(_positive(v, f"{name}[{i}]", allow_zero=not positive) for i, v in enumerate(value))
 
 
+def _bools(value, n: int, name: str) -> tuple:
+    if not isinstance(value, (list, tuple)) or len(value) != n or not all(isinstance(v, bool) for v in value):
+        raise ConfigError(f"{name} must be a list of {n} booleans, got {value!r}")
+    if not any(value):
+        raise ConfigError(f"{name} must integrate at least one output, got {value!r}")
+    return tuple(value)
+
+
 def _choice(value, options: tuple, name: str):
     if value not in options:
         raise ConfigError(f"{name} must be one of {', '.join(map(repr, options))}, got {value!r}")
@@ -237,6 +246,7 @@ def from_dict(d: dict, source: str = "<dict>") -> Config:
                 Q_du=_vector(_req(sec, "Q_du", name), 2, f"{name}.Q_du"),
                 ebar_step_max=_vector(sec.get("ebar_step_max", [0.0, 0.0, 0.0]), 3, f"{name}.ebar_step_max",
                                       positive=False),
+                integrate=_bools(sec.get("integrate", [True, True, True]), 3, f"{name}.integrate"),
             )
     if (alg, task) not in weights:
         raise ConfigError(f"weights.alg{alg}.{task} is missing (needed by control.algorithm={alg}, task={task!r})")

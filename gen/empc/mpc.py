@@ -7,6 +7,8 @@ Algorithm 1 (cost 21):  du_k = K_e (W - 1 (x) y_k) - K_dx dx_k                 (
 Algorithm 2 (cost 22):  ebar_k = ebar_{k-1} + w_k - y_k                         (25)
                         du_k = K_ebar ebar_k + K_WL W - K_y y_k - K_dx dx_k     (26)
 with E_hat = 1 (x) ebar_k + L (W - Y), L = tril(1_N, -1) (x) I_3, K_WL = K_W (I + L) (28).
+Generalisation: ``integrate`` selects which outputs carry the second integrator
+(L = tril(1_N, -1) (x) D, D = diag(integrate)); the paper integrates all three.
 The weights are block diagonals of Q_*^T Q_* (eq. 19).
 """
 from __future__ import annotations
@@ -75,14 +77,17 @@ def gains(motor, ctrl, omega_e: float, algorithm: int | None = None, task: str |
         K_dx = Hinv_first @ (SG.T @ Qyw @ SF + P.G.T @ Qdy @ P.F)
         return {"K_e": K_e, "K_dx": K_dx}
     if algorithm == 2:
-        M = np.eye(model.NY * N) + P.L
+        # integrated outputs (eq. 25): D selects them; the paper integrates all three
+        D = np.diag(np.asarray(w.integrate, dtype=float))
+        L = np.kron(np.tril(np.ones((N, N)), -1), D)
+        M = np.eye(model.NY * N) + L
         MSG, MSF = M @ P.S @ P.G, M @ P.S @ P.F
         H = MSG.T @ Qyw @ MSG + P.G.T @ Qdy @ P.G + Qdu
         Hinv_first = first @ np.linalg.inv(H)
         K_W = Hinv_first @ MSG.T @ Qyw
         K_WL = K_W @ M
         return {
-            "K_ebar": K_W @ ones,
+            "K_ebar": K_W @ ones @ D,
             "K_WL": K_WL,
             "K_y": K_WL @ ones,
             "K_dx": Hinv_first @ (MSG.T @ Qyw @ MSF + P.G.T @ Qdy @ P.F),
@@ -96,9 +101,8 @@ def closed_loop_matrix(motor, ctrl, omega_e: float, algorithm: int | None = None
 
     The load torque (an unmeasured constant) and, in the speed task, the angle (not fed
     back) are left out: they give structural unit eigenvalues, not instability.
-    Loop state z = [x_k, x_{k-1}, u_{k-1}] over the kept states, plus for algorithm 2
-    zeta_{k-1} = K_ebar ebar_{k-1}: the law sees ebar only through K_ebar (2 x 3), and the
-    third direction (null space of K_ebar) is a neutral unit mode that changes nothing.
+    Loop state z = [x_k, x_{k-1}, u_{k-1}] over the kept states, plus for algorithm 2 the
+    aggregated errors the law can see (see below).
     """
     algorithm = algorithm or ctrl.algorithm
     task = task or ctrl.task
@@ -113,13 +117,21 @@ def closed_loop_matrix(motor, ctrl, omega_e: float, algorithm: int | None = None
     # u_k = u_{k-1} + Kx x_k + Kxm x_{k-1} (+ Ke ebar_{k-1});  x_{k+1} = Ad x_k + Bd u_k
     if algorithm == 1:
         Kx = -g["K_e"] @ ones @ C - K_dx
+        E_out = np.zeros((0, ny))           # no aggregated-error states
         Ke = np.zeros((nu, 0))
-        ne = 0
     else:
-        # zeta_k = zeta_{k-1} - K_ebar C x_k; du = zeta_k - K_y C x_k - K_dx (x_k - x_{k-1})
+        # du = K_ebar ebar_k - K_y C x_k - K_dx (x_k - x_{k-1}), ebar_k = ebar_{k-1} - D C x_k.
+        # Minimal ebar states: the integrated outputs themselves if at most two, otherwise
+        # zeta = K_ebar ebar (2 states): the third direction is a neutral mode that changes nothing.
         Kx = -g["K_ebar"] @ C - g["K_y"] @ C - K_dx
-        Ke = np.eye(nu)
-        ne = nu
+        integ = [o for o in range(ny) if np.any(g["K_ebar"][:, o] != 0)]
+        if len(integ) <= nu:
+            E_out = np.eye(ny)[integ]                  # ebar_I = E_out ebar
+            Ke = g["K_ebar"][:, integ]
+        else:
+            E_out = g["K_ebar"]                        # zeta = K_ebar ebar
+            Ke = np.eye(nu)
+    ne = E_out.shape[0]
     Kxm = K_dx
     n = 2 * nx + nu + ne
     sx, sxm, su, se = slice(0, nx), slice(nx, 2 * nx), slice(2 * nx, 2 * nx + nu), slice(2 * nx + nu, n)
@@ -134,8 +146,8 @@ def closed_loop_matrix(motor, ctrl, omega_e: float, algorithm: int | None = None
     if ne:
         T[sx, se] = Bd @ Ke
         T[su, se] = Ke
-        T[se, sx] = -g["K_ebar"] @ C
-        T[se, se] = np.eye(nu)
+        T[se, sx] = -E_out @ C
+        T[se, se] = np.eye(ne)
     return T
 
 

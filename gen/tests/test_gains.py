@@ -29,6 +29,7 @@ def cost_function(cfg, alg, task, omega, x_k, dx_k, y_k, W, ebar_k):
     C = model.output_matrix(task)
     Ad, Bd = model.discrete(cfg.motor, omega, c.Ts)
     qyw, qdy, qdu = (np.asarray(v, float) ** 2 for v in (w.Q_yw, w.Q_dy, w.Q_du))
+    D = np.asarray(w.integrate, dtype=float)       # outputs carrying the second integrator
 
     def J(dU):
         dU = dU.reshape(N, 2)
@@ -44,7 +45,7 @@ def cost_function(cfg, alg, task, omega, x_k, dx_k, y_k, W, ebar_k):
                 r = y - W[j]
             else:
                 r = y - W[j] - eb           # (22): y_{k+j} - w_{k+j} - ebar_{k+j-1}
-                eb = eb + W[j] - y          # ebar_{k+j} = ebar_{k+j-1} + w_{k+j} - y_{k+j}
+                eb = eb + D * (W[j] - y)    # ebar_{k+j} = ebar_{k+j-1} + w_{k+j} - y_{k+j} (integrated outputs)
             total += r @ (qyw * r) + dy @ (qdy * dy) + dU[j] @ (qdu * dU[j])
         return total
     return J
@@ -78,7 +79,7 @@ def test_gains_match_brute_force_qp(alg, task):
         C = model.output_matrix(task)
         y_k = C @ x_k
         W = y_k + rng.normal(0, 1, (c.N, 3)) * np.array([1.0, 1.0, 30.0 if task == "speed" else 1.0])
-        ebar = rng.normal(0, 1, 3) if alg == 2 else np.zeros(3)
+        ebar = rng.normal(0, 1, 3) * np.asarray(c.weights_for(2, task).integrate) if alg == 2 else np.zeros(3)
         J = cost_function(CFG, alg, task, omega, x_k, dx_k, y_k, W, ebar)
         du_qp, _ = qp_first_move(J, 2 * c.N)
         g = mpc.gains(CFG.motor, c, omega, alg, task)
@@ -91,6 +92,27 @@ def test_gains_match_brute_force_qp(alg, task):
         worst = max(worst, err)
         assert err < 1e-6, f"alg {alg} {task} omega {omega:.1f}: law {du} vs QP {du_qp}"
     print(f"seed {SEED}: alg {alg} {task}: {n_points} random points, worst relative difference {worst:.2e}")
+
+
+@pytest.mark.parametrize("task", ["speed", "position"])
+def test_paper_integrators_all_outputs(task):
+    """The paper's variant (all three outputs integrated) against the same brute force."""
+    from dataclasses import replace
+    cfg = config.load(config.DEFAULT_CONFIG.with_name("paper_tables.toml"))
+    c = cfg.control
+    rng = np.random.default_rng(SEED)
+    omega = 300.0
+    x_k = np.array([0.3, -1.0, omega, 2.0, 0.0])
+    dx_k = np.array([0.1, -0.2, 5.0, omega * c.Ts, 0.0])
+    C = model.output_matrix(task)
+    y_k = C @ x_k
+    W = y_k + rng.normal(0, 1, (c.N, 3))
+    ebar = rng.normal(0, 1, 3)
+    J = cost_function(cfg, 2, task, omega, x_k, dx_k, y_k, W, ebar)
+    du_qp, _ = qp_first_move(J, 2 * c.N)
+    g = mpc.gains(cfg.motor, c, omega, 2, task)
+    du = g["K_ebar"] @ ebar + g["K_WL"] @ W.reshape(-1) - g["K_y"] @ y_k - g["K_dx"] @ dx_k
+    np.testing.assert_allclose(du, du_qp, rtol=1e-6, atol=1e-9)
 
 
 def test_alg2_translation_invariance():

@@ -167,12 +167,11 @@ class PwmCenter:
         clipped = [min(c, P) for c in cmp_in]
         any_clip = int(any(c > P for c in cmp_in))
         h = self.ideal()
-        mode_sw = self.mode_act ^ self.mode_eff
 
         # stage B next state
         hi_n, lo_n = [0] * self.nch, [0] * self.nch
         for i in range(self.nch):
-            if not alive or (mode_sw and (self.hi[i] or self.lo[i])):
+            if not alive:
                 pass
             elif self.mode_act != MODE_COMPL:
                 hi_n[i], lo_n[i] = h[i], 1
