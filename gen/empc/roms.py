@@ -5,6 +5,7 @@ Writes into the output directory:
   coef_alg{1,2}_{speed,position}.hex   every design the configuration has weights for (--all)
   rsqrt.hex                     the voltage limiter's 1/sqrt table (rtlmodel/mpc_core.py)
   empc_formats.vh               formats, layout and configuration constants for the RTL
+  empc_regs.vh                  register map (gen/empc/regmap.py)
   manifest.json                 formats, scalings, column layout, fit and quantisation errors
 Nothing is written if the configuration or any requested design is invalid.
 """
@@ -15,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import __version__, config as config_mod, fit as fit_mod, formats, header, image, mpc, quantise
+from . import __version__, config as config_mod, fit as fit_mod, formats, header, image, mpc, quantise, regmap
 from .rtlmodel import mpc_core as core
 
 
@@ -84,6 +85,7 @@ def generate(cfg, out: Path, all_designs: bool = True) -> dict:
                   "SIG_DX": core.SIG_DX, "N": cfg.control.N,
                   "BOOT_ALGORITHM": boot[0], "BOOT_TASK_POSITION": 1 if boot[1] == "position" else 0})
     header.write(cfg, out, extra)
+    (out / "empc_regs.vh").write_text(regmap.render_vh())
     manifest = {
         "generator": f"empc {__version__}",
         "config": config_mod.display_path(cfg.source),
