@@ -33,9 +33,6 @@ def config_constants(cfg) -> dict[str, int]:
         "PWM_PER_CONTROL": cfg.pwm_per_control,
         "ENC_CPR": cpr,
         "POLE_PAIRS": p,
-        # electrical angle (2**16 per electrical turn) = (count mod cpr) * ANGLE_MUL >> ANGLE_MUL_SHIFT
-        "ANGLE_MUL_SHIFT": 24,
-        "ANGLE_MUL": int(round(p * (1 << (formats.ANGLE_BITS + 24)) / cpr)),
         "ADC_OFFSET": cfg.sensors.adc_offset,
         # voltage limit |u| <= Udc/sqrt(3) in PWM ticks (Q.4) at the nominal DC link
         "U_MAX_V": int(math.floor(cfg.pwm_half_period / math.sqrt(3.0) * (1 << formats.V_FRAC))),
