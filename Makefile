@@ -40,9 +40,8 @@ check-tools:
 roms: $(STAMP) ## coefficient ROMs, Verilog header and manifest for CONFIG (default: BLWR233D, paper 000)
 	$(EMPC) roms $(CONFIG_ARG) --out $(ROMS)
 
-sim: $(STAMP) check-tools roms ## the regression (CI): model tests, every block's cocotb test, formal proofs, short closed loop
+sim: $(STAMP) check-tools roms ## the regression (CI): model tests, every block's cocotb test, formal proofs (tb/test_formal.py), short closed loop
 	$(PY) -m pytest -n $(JOBS) -q -m "not full"
-	$(MAKE) --no-print-directory formal
 
 sim-full: $(STAMP) check-tools roms ## paper-length closed-loop scenarios on Verilator
 	EMPC_FULL=1 $(PY) -m pytest -n $(JOBS) -q -m full tb

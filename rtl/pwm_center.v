@@ -22,8 +22,8 @@
 //                      0->1 starts the outputs at the next period boundary.
 //   mode               0 = complementary hi/lo with dead time, 1 = PWM + enable
 //                      (hi = PWM command, lo = bridge enable); sampled at the
-//                      period boundary; a change turns a channel that is on
-//                      off for one clock (dead time then applies as usual).
+//                      period boundary (the dead-time logic starts from the
+//                      present pin state, so a switch cannot overlap hi/lo).
 //   dead[DEAD_W-1:0]   dead time in clocks (complementary mode): a switch turns
 //                      on only after `dead` clocks with both switches off.
 //   cmp_in[NCH*CW-1:0] compare values (channel i in bits i*CW +: CW), 0..P,
@@ -172,7 +172,6 @@ module pwm_center #(
     end
 
     // ---- stage B: output registers ------------------------------------------------
-    wire mode_sw = mode_act ^ mode_eff;     // mode change: channels that are on go off for one clock
     always @(posedge clk) begin
         if (rst) begin
             period_start <= 1'b0;
@@ -196,7 +195,7 @@ module pwm_center #(
             wire q_ok = (q >= dead);
             reg  hi_n, lo_n;
             always @(*) begin
-                if (~alive | (mode_sw & (hi[i] | lo[i]))) begin
+                if (~alive) begin
                     hi_n = 1'b0;
                     lo_n = 1'b0;
                 end else if (mode_act != MODE_COMPL) begin

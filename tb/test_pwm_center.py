@@ -284,8 +284,6 @@ async def test_duty_corners(dut):
     else:   # long period (default P): every corner once, each mode once (~3 periods per combination)
         combos = [((corner + [rng.randint(1, P - 1)] * NCH)[:NCH], MODE_PWM_EN),
                   ((corner[::-1] + [rng.randint(1, P - 1)] * NCH)[:NCH], MODE_COMPL)]
-        if NCH < 4:
-            combos.append(([rng.randint(1, P - 1)] * (NCH - 1) + [corner[NCH - 1]], MODE_PWM_EN))
     periods = 0
     dmax = (1 << DEAD_W) - 1
     for cmps, mode in combos:
