@@ -51,7 +51,7 @@
 // Parameters: ADC_BITS, FRAME_BITS, LEAD_ZEROS (>= 1), SCLK_DIV (>= 1),
 //   SAMPLE_DELAY (>= 3), CS_QUIET (>= 1), CAL_LOG2 (>= 1), CUR_W (>= 2),
 //   MISS_W, OFFSET_RESET.
-// Resources: no DSP, no BRAM; about 200 FF.
+// Resources: no DSP, no BRAM; ~310 FF (Yosys, defaults), ~70 CARRY4, small LUT count.
 // Reset (synchronous, rst): cs_n = 1, sclk = 1, idle, all outputs 0,
 //   offsets = OFFSET_RESET, calibration idle, cal_done = 0, miss_cnt = 0.
 `default_nettype none
@@ -281,9 +281,9 @@ module adc_spi #(
                 code0      <= fcode0;
                 code1      <= fcode1;
                 code2      <= fcode2;
-                diff0      <= $signed({2'b00, fcode0}) - $signed({2'b00, offset0});
-                diff1      <= $signed({2'b00, fcode1}) - $signed({2'b00, offset1});
-                diff2      <= $signed({2'b00, fcode2}) - $signed({2'b00, offset2});
+                diff0      <= $signed({{(D_W-ADC_BITS){1'b0}}, fcode0}) - $signed({{(D_W-ADC_BITS){1'b0}}, offset0});
+                diff1      <= $signed({{(D_W-ADC_BITS){1'b0}}, fcode1}) - $signed({{(D_W-ADC_BITS){1'b0}}, offset1});
+                diff2      <= $signed({{(D_W-ADC_BITS){1'b0}}, fcode2}) - $signed({{(D_W-ADC_BITS){1'b0}}, offset2});
                 lead_bad_a <= lead_bad;
             end
         end
@@ -350,7 +350,7 @@ module adc_spi #(
     end
 
     // ---------------------- stage B: saturation, overcurrent, valid pulse
-    wire signed [D_W-1:0] thr_p = $signed({2'b00, oc_thr});
+    wire signed [D_W-1:0] thr_p = $signed({{(D_W-ADC_BITS){1'b0}}, oc_thr});
     wire signed [D_W-1:0] thr_n = -thr_p;
     wire [2:0] oc_now = {(diff2 > thr_p) | (diff2 < thr_n),
                          (diff1 > thr_p) | (diff1 < thr_n),

@@ -26,7 +26,7 @@
 module duty_scale #(
     parameter integer V_W             = `EMPC_V_W,
     parameter integer V_FRAC          = `EMPC_V_FRAC,
-    parameter integer KDC_W           = `EMPC_OPW,
+    parameter integer KDC_W           = `EMPC_KDC_W,
     parameter integer KDC_FRAC        = `EMPC_KDC_FRAC,
     parameter integer PWM_HALF_PERIOD = `EMPC_PWM_HALF_PERIOD,
     parameter integer CW              = $clog2(PWM_HALF_PERIOD + 1)

@@ -68,11 +68,11 @@ module glitch_filter #(
         end
     endgenerate
 
-    // synthesis translate_off
+`ifndef SYNTHESIS
     initial begin
         if (FILTER_LEN < 1 || FILTER_LEN >= (1 << LEN_W))
             $display("ERROR: glitch_filter FILTER_LEN=%0d out of range 1..%0d", FILTER_LEN, (1 << LEN_W) - 1);
     end
-    // synthesis translate_on
+`endif
 endmodule
 `default_nettype wire

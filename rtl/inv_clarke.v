@@ -18,7 +18,7 @@
 //   u_a, u_b, u_c      signed V_W-bit phase voltages, Q.4 in PWM ticks
 //   sat                1-cycle pulse with done if u_b or u_c saturated
 // Parameters: V_W (default from empc_formats.vh).
-// Latency: done is high K_BITS + 2 = 23 cycles after the start cycle.
+// Latency: done is high K_BITS + 3 = 24 cycles after the start cycle.
 // Resources: no DSP, no BRAM; one V_W+21 bit adder plus three ~V_W-bit output adders.
 // Reset: outputs 0, not busy; a conversion in flight is dropped.
 `default_nettype none
@@ -58,13 +58,16 @@ module inv_clarke #(
     wire signed [AW-1:0] b_ext  = {{(AW-V_W){r_b[V_W-1]}}, r_b};
     wire signed [AW-1:0] addend = K_SQ3[cnt] ? b_ext : {AW{1'b0}};
 
+    // output stage 1 (fin): qb, qc registered; stage 2 (fin2): + (1 - u_alpha), round, saturate
     wire signed [QW-1:0] qb  = acc[AW-1:HS];
     wire                 z   = (acc[HS-1:0] == {HS{1'b0}});
     wire signed [QW-1:0] qc  = ~(qb - {{(QW-1){1'b0}}, z});
+    reg  signed [QW-1:0] r_qb, r_qc;
+    reg                  fin2;
     wire signed [SW-1:0] w_e = {{(SW-V_W-1){w[V_W]}}, w};
     /* verilator lint_off UNUSEDSIGNAL */  // bit 0 is below the result LSB
-    wire signed [SW-1:0] sb  = {qb[QW-1], qb} + w_e;
-    wire signed [SW-1:0] sc  = {qc[QW-1], qc} + w_e;
+    wire signed [SW-1:0] sb  = {r_qb[QW-1], r_qb} + w_e;
+    wire signed [SW-1:0] sc  = {r_qc[QW-1], r_qc} + w_e;
     /* verilator lint_on UNUSEDSIGNAL */
     wire signed [SW-2:0] rb  = sb[SW-1:1];
     wire signed [SW-2:0] rc  = sc[SW-1:1];
@@ -78,12 +81,14 @@ module inv_clarke #(
         if (rst) begin
             r_a <= {V_W{1'b0}}; r_b <= {V_W{1'b0}}; w <= {(V_W+1){1'b0}};
             acc <= {AW{1'b0}}; cnt <= {CNT_W{1'b0}}; run <= 1'b0; fin <= 1'b0; busy <= 1'b0;
+            r_qb <= {QW{1'b0}}; r_qc <= {QW{1'b0}}; fin2 <= 1'b0;
             u_a <= {V_W{1'b0}}; u_b <= {V_W{1'b0}}; u_c <= {V_W{1'b0}};
             done <= 1'b0; sat <= 1'b0;
         end else begin
             done <= 1'b0;
             sat  <= 1'b0;
             fin  <= 1'b0;
+            fin2 <= fin;
             if (start && !busy) begin
                 r_a  <= u_alpha;
                 r_b  <= u_beta;
@@ -103,6 +108,10 @@ module inv_clarke #(
                 end
             end
             if (fin) begin
+                r_qb <= qb;
+                r_qc <= qc;
+            end
+            if (fin2) begin
                 u_a  <= r_a;
                 u_b  <= b_hi ? YMAX : b_lo ? YMIN : rb[V_W-1:0];
                 u_c  <= c_hi ? YMAX : c_lo ? YMIN : rc[V_W-1:0];

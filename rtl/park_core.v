@@ -19,7 +19,7 @@
 // Parameters: W (data, <= 18), TW (trig, <= 18), TF (trig fraction bits), INVERSE (0/1).
 // Latency: done is high LATENCY = 8 cycles after the start cycle (4 multiplier issues,
 //   product, accumulate, round/saturate). Throughput: one rotation per 8 cycles.
-// Resources: 1 DSP48A1 (registered A/B inputs, registered product), ~90 LUT.
+// Resources: 1 DSP48A1 (registered A/B inputs, registered product), ~140 LUT, ~180 FF.
 // Reset: all registers clear to 0 (outputs 0, not busy); a rotation in flight is dropped.
 `default_nettype none
 `include "empc_formats.vh"
@@ -69,6 +69,8 @@ module park_core #(
 
     wire signed [AW-1:0] p_ext  = {{(AW-PW){mul_p[PW-1]}}, mul_p};
     wire signed [AW-1:0] base   = c2_first ? {AW{1'b0}} : acc;
+    // base +/- p as one adder: base + (p ^ -sub) + sub
+    wire signed [AW-1:0] p_x    = p_ext ^ {AW{c2_sub}};
     // round half up: (acc + 2^(TF-1)) >>> TF computed as ((acc >>> (TF-1)) + 1) >>> 1,
     // the TF-1 bits below the rounding bit cannot carry and are dropped
     /* verilator lint_off UNUSEDSIGNAL */  // rsum[0] is below the result LSB
@@ -117,7 +119,7 @@ module park_core #(
             mul_p <= mul_a * mul_b;
             c2_v <= c1_v; c2_first <= c1_first; c2_sub <= c1_sub; c2_dst <= c1_dst;
             // accumulate
-            if (c2_v) acc <= c2_sub ? base - p_ext : base + p_ext;
+            if (c2_v) acc <= base + p_x + {{(AW-1){1'b0}}, c2_sub};
             c3_v <= c2_v; c3_last <= ~c2_first; c3_dst <= c2_dst;
             // round, saturate, output
             if (c3_v && c3_last) begin

@@ -10,7 +10,7 @@
 // of d per clock (c_k = 2**k mod CPR doubled each clock, one conditional
 // subtraction keeps every value in [0, CPR)).  A +-1 step takes 1 clock to
 // capture and 1 clock to apply; a jump of any size is applied in at most
-// POS_W clocks; counts arriving meanwhile are picked up by the next capture.
+// POS_W + 1 clocks; counts arriving meanwhile are picked up by the next capture.
 // No state other than the integer m depends on history, so the angle after N
 // whole mechanical turns is bit-identical (also when CPR is not a multiple of P).
 //
@@ -34,15 +34,18 @@
 //     it when moving down 1 sector, its centre after an implausible jump),
 //     ref = pos.  Sector s spans [(s-1)*60, s*60) deg electrical + hall_offset;
 //     edge/centre angles are round(k * 2**16 / 12) (k = 0..11).
-//   - index_event: base = 0, ref = index_pos, aligned = 1; from then on
-//     theta = f(m) + cal_offset (cal_offset and hall_offset are live register
-//     inputs: a new calibration value acts at once).  HALL changes are ignored
-//     while aligned.  Every index_event re-aligns to index_pos (with exact
-//     counting this changes nothing; after lost counts it repairs the angle).
+//   - the first index_event (after reset or align_clear): base = 0,
+//     ref = index_pos, aligned = 1; from then on theta = f(m) + cal_offset
+//     (cal_offset and hall_offset are live register inputs: a new calibration
+//     value acts at once).  HALL changes are ignored while aligned.  Later
+//     index events are ignored (REALIGN = 0, default: an index pulse wider
+//     than one count latches a direction-dependent count, which must not make
+//     theta jump) or re-align every time (REALIGN = 1: repairs lost counts).
 //   - align_clear: back to HALL mode (aligned = 0) without a jump of theta
 //     (base takes cal_offset - hall_offset); the next HALL edge / index
-//     re-synchronises.  An index_event in the same clock wins.
-//   Priority: index_event > align_clear > HALL init > HALL change.
+//     re-synchronises.  An index_event in the same clock wins (re-aligns).
+//     Without HALL (hall_valid never seen) valid drops to 0 until the index.
+//   Priority: index alignment > align_clear > HALL init > HALL change.
 //
 // Speed (eq. 37, backward difference) and sampling, on the sample strobe:
 //   speed           = pos - pos_at_previous_sample, counts per Ts, POS_W-bit
@@ -65,14 +68,15 @@
 //   speed[POS_W], speed_q[W_W], speed_sat, pos_at_sample[POS_W],
 //   theta_at_sample[16], sample_valid           per sample
 // Parameters: CPR, POLE_PAIRS, POS_W, ANGLE_BITS, MUL_W, ANGLE_MUL_SHIFT (-1 =
-//   auto), W_W, W_FRAC (>= 1).  Requires 2 <= CPR < 2**17 for the one-DSP
-//   product (larger works, more DSPs).
+//   auto), W_W, W_FRAC (>= 1), REALIGN (0/1, see above).  MW = clog2(CPR).
+//   2 <= CPR < 2**17 keeps the product in one DSP (larger works, more DSPs).
 // Latency: pos step -> pos_mod 2 clocks (+1 per extra bit of a jump);
 //   pos_mod -> theta 2 clocks (DSP product register, then round + offset);
 //   a +-1 count reaches theta 4 clocks after pos.  valid/aligned are delayed
 //   with theta.  sample -> speed/... 1 clock.
 // Reset: m = 0, not aligned, no HALL init, theta valid = 0, speed 0.
-// Resources: 1 DSP48A1 (default), ~3*POS_W + 3*MW + 60 FFs, no BRAM.
+// Resources (Yosys synth_xilinx xc6s, default): 1 DSP48A1, ~250 FFs,
+//   ~370 LUTs, no BRAM.
 `default_nettype none
 `include "empc_formats.vh"
 module pos_sense #(
@@ -83,7 +87,8 @@ module pos_sense #(
     parameter integer MUL_W = 17,
     parameter integer ANGLE_MUL_SHIFT = -1,
     parameter integer W_W = `EMPC_W_W,
-    parameter integer W_FRAC = `EMPC_W_FRAC
+    parameter integer W_FRAC = `EMPC_W_FRAC,
+    parameter integer REALIGN = 0
 ) (
     input  wire                  clk,
     input  wire                  rst,
@@ -245,8 +250,10 @@ module pos_sense #(
         for (hi = 1; hi < 12; hi = hi + 1)
             if (hall_k == hi[3:0]) hall_base = HALL_TAB[hi*ANGLE_BITS +: ANGLE_BITS];
     end
-    wire ev_any = index_event || ev_hall_init || ev_hall_chg;
-    wire [POS_W-1:0] ev_pos = index_event ? index_pos : pos;
+    // index alignment: the first index after reset / align_clear (every index if REALIGN)
+    wire ev_index = index_event && (!al || align_clear || (REALIGN != 0));
+    wire ev_any = ev_index || ev_hall_init || ev_hall_chg;
+    wire [POS_W-1:0] ev_pos = ev_index ? index_pos : pos;
 
     always @(posedge clk) begin
         if (rst) begin
@@ -285,7 +292,7 @@ module pos_sense #(
             end
 
             // alignment state
-            if (index_event) begin
+            if (ev_index) begin
                 al       <= 1'b1;
                 base_rel <= {ANGLE_BITS{1'b0}};
             end else if (align_clear && al) begin
@@ -302,16 +309,17 @@ module pos_sense #(
     end
 
     // ---------------- angle pipeline: product, then round + offset ----------------
-    reg [PROD_W-1:0]     prod;
+    wire [PROD_W-1:0]    prod_mul = m * MUL;
+    // prod = m * ANGLE_MUL + 2**(S-1) (DSP multiply + post-add of a constant); only bits
+    // [S +: ANGLE_BITS] are the angle (mod 2**ANGLE_BITS), the others are unused on purpose
+    /* verilator lint_off UNUSEDSIGNAL */
+    reg [EXT_W-1:0]      prod;
+    /* verilator lint_on UNUSEDSIGNAL */
     reg [ANGLE_BITS-1:0] base_d;
     reg                  v1, al1;
-    // only bits [S +: ANGLE_BITS] of the rounded product are the angle (mod 2**ANGLE_BITS)
-    /* verilator lint_off UNUSEDSIGNAL */
-    wire [EXT_W-1:0]     prod_r = {{(EXT_W-PROD_W){1'b0}}, prod} + HALF;
-    /* verilator lint_on UNUSEDSIGNAL */
     always @(posedge clk) begin
         if (rst) begin
-            prod    <= {PROD_W{1'b0}};
+            prod    <= {EXT_W{1'b0}};
             base_d  <= {ANGLE_BITS{1'b0}};
             v1      <= 1'b0;
             al1     <= 1'b0;
@@ -319,11 +327,11 @@ module pos_sense #(
             valid   <= 1'b0;
             aligned <= 1'b0;
         end else begin
-            prod    <= m * MUL;
+            prod    <= {{(EXT_W-PROD_W){1'b0}}, prod_mul} + HALF;
             base_d  <= base_rel + (al ? cal_offset : hall_offset);
             v1      <= al | hall_init;
             al1     <= al;
-            theta   <= prod_r[S +: ANGLE_BITS] + base_d;
+            theta   <= prod[S +: ANGLE_BITS] + base_d;
             valid   <= v1;
             aligned <= al1;
         end
@@ -366,11 +374,11 @@ module pos_sense #(
         end
     end
 
-    // synthesis translate_off
+`ifndef SYNTHESIS
     initial begin
         if (CPR < 2) $display("ERROR: pos_sense CPR=%0d < 2", CPR);
         if (W_FRAC < 1 || WIDE < W_W) $display("ERROR: pos_sense needs W_FRAC >= 1 and POS_W + W_FRAC >= W_W");
     end
-    // synthesis translate_on
+`endif
 endmodule
 `default_nettype wire

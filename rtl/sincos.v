@@ -7,7 +7,7 @@
 //   f = ~r[4:0] + 1 (1..32), which equals x = 2^14 - r without a subtractor
 //   T[k] = round(2^16 sin(k pi/1024)), D[k] = T[k+1] - T[k]  (512-word ROM, rtl/sincos_table.vh);
 //   negative in quadrants 2, 3;  cos(angle) = sin(angle + 2^14).
-//   The 8x5 interpolation product is built from shifts and adds (no DSP).
+//   The 8x6 interpolation product is a balanced shift-and-add tree (no DSP).
 // Ports:
 //   in_valid, angle   angle (unsigned ANGLE_BITS, 2^16 = 2 pi) sampled when in_valid = 1
 //   out_valid         1-cycle pulse, LATENCY cycles after in_valid
@@ -17,7 +17,8 @@
 //   (tested exhaustively, tb/test_sincos.py).
 // Parameters: none (formats from empc_formats.vh; the table is generated for ANGLE_BITS = 16,
 //   TRIG_FRAC = 16 and checked against the model by the test).
-// Latency: 4 clock cycles (input regs, ROM read, interpolation, sign). Throughput 1/clock.
+// Latency: 4 clock cycles (folding, ROM read, interpolation increment, add + sign).
+//   Throughput 1/clock.
 // Resources: 1 RAMB16 (512 x 25, dual read port), no DSP.
 // Reset: all pipeline registers and outputs clear to 0 (the ROM read registers too); the ROM
 //   contents are constant.
@@ -48,17 +49,23 @@ module sincos (
 `include "sincos_table.vh"
     end
 
-    // D * f by shift-and-add (kept out of the DSP48A1 on purpose); f = 0..32, and f = 32
-    // (the only value with bit FB set) has no other bit set
-    function [PB-1:0] mul_df;
+    // rounded interpolation increment (D * f + 16) >> 5, D * f by shift-and-add as a balanced
+    // adder tree (kept out of the DSP48A1 on purpose); f = 0..32, and f = 32 (the only value
+    // with bit FB set) has no other bit set, so its term shares the f[FB-1] term's adder input
+    function [PB-FB-1:0] interp;
         input [DB-1:0] d;
         input [FB:0]   f;
-        integer i;
+        /* verilator lint_off UNUSEDSIGNAL */  // sum[FB-1:0] is below the rounded result
+        reg   [PB-1:0] t0, t1, t2, t3, t4, sum;
+        /* verilator lint_on UNUSEDSIGNAL */
         begin
-            mul_df = {PB{1'b0}};
-            for (i = 0; i < FB; i = i + 1)
-                if (f[i]) mul_df = mul_df + ({{(FB+1){1'b0}}, d} << i);
-            if (f[FB]) mul_df = {1'b0, d, {FB{1'b0}}};
+            t0  = f[0] ? {{(FB+1){1'b0}}, d}      : {PB{1'b0}};
+            t1  = f[1] ? {{FB{1'b0}}, d, 1'b0}    : {PB{1'b0}};
+            t2  = f[2] ? {{(FB-1){1'b0}}, d, 2'b0} : {PB{1'b0}};
+            t3  = f[3] ? {{(FB-2){1'b0}}, d, 3'b0} : {PB{1'b0}};
+            t4  = f[4] ? {{(FB-3){1'b0}}, d, 4'b0} : f[5] ? {1'b0, d, 5'b0} : {PB{1'b0}};
+            sum = ((t0 + t1) + (t2 + t3)) + (t4 + {{(PB-FB){1'b0}}, 1'b1, {(FB-1){1'b0}}});
+            interp = sum[PB-1:FB];
         end
     endfunction
 
@@ -115,33 +122,32 @@ module sincos (
         end
     end
 
-    // ---- stage C: interpolation, round half up -------------------------------------
-    // the FB low bits of the rounded product are discarded by the rounding shift
-    /* verilator lint_off UNUSEDSIGNAL */
-    wire [PB-1:0] p_s = mul_df(b_word_s[DB-1:0], b_f_s) + {{(PB-FB){1'b0}}, 1'b1, {(FB-1){1'b0}}};
-    wire [PB-1:0] p_c = mul_df(b_word_c[DB-1:0], b_f_c) + {{(PB-FB){1'b0}}, 1'b1, {(FB-1){1'b0}}};
-    /* verilator lint_on UNUSEDSIGNAL */
-    wire [VB-1:0] m_s = b_word_s[WB-1:DB] + {{(VB-(PB-FB)){1'b0}}, p_s[PB-1:FB]};
-    wire [VB-1:0] m_c = b_word_c[WB-1:DB] + {{(VB-(PB-FB)){1'b0}}, p_c[PB-1:FB]};
-
-    reg [VB-1:0] c_mag_s, c_mag_c;
-    reg          c_neg_s, c_neg_c, c_v;
+    // ---- stage C: rounded interpolation increment ------------------------------------
+    reg [VB-1:0]    c_t_s, c_t_c;
+    reg [PB-FB-1:0] c_q_s, c_q_c;
+    reg             c_neg_s, c_neg_c, c_v;
+    wire [PB-FB-1:0] q_s = interp(b_word_s[DB-1:0], b_f_s);
+    wire [PB-FB-1:0] q_c = interp(b_word_c[DB-1:0], b_f_c);
     always @(posedge clk) begin
         if (rst) begin
-            c_mag_s <= {VB{1'b0}}; c_mag_c <= {VB{1'b0}};
-            c_neg_s <= 1'b0;       c_neg_c <= 1'b0;
+            c_t_s   <= {VB{1'b0}};      c_t_c <= {VB{1'b0}};
+            c_q_s   <= {(PB-FB){1'b0}}; c_q_c <= {(PB-FB){1'b0}};
+            c_neg_s <= 1'b0;            c_neg_c <= 1'b0;
             c_v     <= 1'b0;
         end else begin
-            c_mag_s <= m_s;        c_mag_c <= m_c;
-            c_neg_s <= b_neg_s;    c_neg_c <= b_neg_c;
+            c_t_s   <= b_word_s[WB-1:DB];  c_t_c <= b_word_c[WB-1:DB];
+            c_q_s   <= q_s;                c_q_c <= q_c;
+            c_neg_s <= b_neg_s;            c_neg_c <= b_neg_c;
             c_v     <= b_v;
         end
     end
 
-    // ---- stage D: sign ----------------------------------------------------------------
+    // ---- stage D: T + increment, sign -------------------------------------------------
+    wire [VB-1:0] m_s = c_t_s + {{(VB-(PB-FB)){1'b0}}, c_q_s};
+    wire [VB-1:0] m_c = c_t_c + {{(VB-(PB-FB)){1'b0}}, c_q_c};
     // conditional negation as (m ^ -neg) + neg: one carry chain per output
-    wire [TW-1:0] sgn_s = ({{(TW-VB){1'b0}}, c_mag_s} ^ {TW{c_neg_s}}) + {{(TW-1){1'b0}}, c_neg_s};
-    wire [TW-1:0] sgn_c = ({{(TW-VB){1'b0}}, c_mag_c} ^ {TW{c_neg_c}}) + {{(TW-1){1'b0}}, c_neg_c};
+    wire [TW-1:0] sgn_s = ({{(TW-VB){1'b0}}, m_s} ^ {TW{c_neg_s}}) + {{(TW-1){1'b0}}, c_neg_s};
+    wire [TW-1:0] sgn_c = ({{(TW-VB){1'b0}}, m_c} ^ {TW{c_neg_c}}) + {{(TW-1){1'b0}}, c_neg_c};
     always @(posedge clk) begin
         if (rst) begin
             out_valid <= 1'b0;

@@ -243,7 +243,9 @@ async def illegal_saturation(dut):
                   env.max_err + 5, env.max_err, env.n)
 
 
-@cocotb.test()
+# The backdoor deposit into the `pos` output register works on Icarus; Verilator keeps the
+# output port variable separate from the register, so the wrap test runs on Icarus only.
+@cocotb.test(skip=os.environ.get("SIM", "icarus") == "verilator")
 async def counter_wrap(dut):
     """pos deposited near +2**31 and near 0, then driven across the boundary both ways."""
     env = Env(dut, 0)

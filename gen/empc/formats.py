@@ -38,6 +38,7 @@ TH_FRAC = 8         # position, counts
 TH_W = 40
 POS_W = 32          # integer multi-turn encoder counter
 KDC_FRAC = 16       # DC-link compensation factor Udc_nom/Udc, 1.0 = 2**16, 18 bit unsigned
+KDC_W = 18
 
 # MPC core (see mpc_fixed.py)
 COEF_W = OPW        # polynomial coefficient mantissa

@@ -110,8 +110,10 @@ class PosSense:
                "pos_at_sample", "theta_at_sample", "sample_valid")
 
     def __init__(self, cpr: int, p: int, pos_w: int = F.POS_W, angle_bits: int = ANGLE_BITS,
-                 mul_w: int = 17, shift: int | None = None, w_w: int = F.W_W, w_frac: int = F.W_FRAC):
+                 mul_w: int = 17, shift: int | None = None, w_w: int = F.W_W, w_frac: int = F.W_FRAC,
+                 realign: bool = False):
         self.cpr, self.p, self.pos_w, self.ab = cpr, p, pos_w, angle_bits
+        self.realign = bool(realign)
         self.w_w, self.w_frac = w_w, w_frac
         self.mul, self.s = angle_params(cpr, p, angle_bits, mul_w, shift)
         self.reset()
@@ -159,10 +161,11 @@ class PosSense:
         # ---- next state of the tracker / alignment (from pre-edge values) ----
         ev_hall_init = (not self.al) and (not self.hall_init) and hall_valid
         ev_hall_chg = (not self.al) and self.hall_init and hall_valid and hall_change
-        ev_any = index_event or ev_hall_init or ev_hall_chg
+        ev_index = index_event and ((not self.al) or align_clear or self.realign)
+        ev_any = ev_index or ev_hall_init or ev_hall_chg
         m, last_pos, r, c, busy = self.m, self.last_pos, self.r, self.c, self.busy
         if ev_any:
-            m, last_pos, busy, r, c = 0, (index_pos if index_event else pos), 0, 0, 1
+            m, last_pos, busy, r, c = 0, (index_pos if ev_index else pos), 0, 0, 1
         elif not busy:
             d = (pos - self.last_pos) & pmask
             if d:
@@ -178,7 +181,7 @@ class PosSense:
             if r == 0:
                 busy = 0
         al, base_rel = self.al, self.base_rel
-        if index_event:
+        if ev_index:
             al, base_rel = 1, 0
         elif align_clear and self.al:
             al, base_rel = 0, (cal_offset - hall_offset) & amask
@@ -197,8 +200,8 @@ class PosSense:
             hall_init, last_sector = 1, hall_sector
         # ---- angle pipeline ----
         half = (1 << (self.s - 1)) if self.s > 0 else 0
-        theta = (((self.prod + half) >> self.s) + self.base_d) & amask
-        prod = self.m * self.mul
+        theta = ((self.prod >> self.s) + self.base_d) & amask
+        prod = self.m * self.mul + half
         base_d = (self.base_rel + (cal_offset if self.al else hall_offset)) & amask
         v1 = int(bool(self.al or self.hall_init))
         valid, aligned, al1 = self.v1, self.al1, self.al
