@@ -129,7 +129,8 @@ module ctrl_seq #(
         input signed [UW-1:0] v;
         reg signed [UW:0] t;
         begin
-            t = ({v[UW-1], v} + ({{UW{1'b0}}, 1'b1} <<< (UV_SH - 1))) >>> UV_SH;
+            t = $signed({v[UW-1], v}) + $signed({{UW{1'b0}}, 1'b1} << (UV_SH - 1));
+            t = t >>> UV_SH;                         // t is signed: arithmetic shift
             if (t > $signed({{(UW+2-VW){1'b0}}, {(VW-1){1'b1}}}))
                 u_to_v = {1'b0, {(VW-1){1'b1}}};
             else if (t < $signed({{(UW+1-VW){1'b1}}, 1'b1, {(VW-1){1'b0}}}))

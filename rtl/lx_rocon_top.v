@@ -1,13 +1,30 @@
 // lx_rocon_top: LX_RoCoN (XC6SLX9) top level of the explicit-MPC PMSM drive.
 //
-// STUB: ports are final; the body is filled in by the integration (issue 5).
-// Until then every power output is held in the safe state (all bridges off).
+// Board clock -> clk_gen (PLL, 100 MHz) -> one fabric clock domain.  The LPC4088
+// EMC bus (asynchronous) enters through emc_bus; word addresses select the global
+// registers (0x000..0x0ff), axis n's registers (0x100 + 0x100 n) or axis n's
+// coefficient-image window (0x1000 + 0x400 n, write-only); see docs/registers.md.
+// NAXES axes (mpc_axis), PWM periods phase-locked to axis 0 (sync chain); the
+// current ADCs of all axes share SCLK/CS (driven by axis 0; the axes' conversions
+// are simultaneous because their PWMs are in phase), one MISO triple per axis.
+// Safety: after reset every axis is disabled (bridges off); the watchdog
+// (WDOG_TIMEOUT PWM periods, on by default) latches a fault on every axis when the
+// CPU stops writing WDOG_KICK; any latched, unmasked fault switches the bridges of
+// its axis off in the clock the cause is registered.
+// Reset: rst_n_in (asynchronous, synchronised in clk_gen) and PLL lock.
 `default_nettype none
+`include "empc_formats.vh"
+`include "empc_regs.vh"
 module lx_rocon_top #(
     parameter integer NAXES = 1,           // motors driven (LX_RoCoN: up to 4 from 16 half-bridges)
-    parameter integer EMC_AW = 14          // CPU bus word-address lines
+    parameter integer EMC_AW = 14,         // CPU bus word-address lines
+    parameter real    CLKIN_PERIOD_NS = 20.0,
+    parameter integer PLL_MULT = 12,
+    parameter integer PLL_DIV = 6,
+    parameter BOOT_FILE = "coef_boot.hex",
+    parameter RSQRT_FILE = "rsqrt.hex"
 ) (
-    input  wire                 clk_in,    // board oscillator (CLKIN_HZ), multiplied to the fabric clock
+    input  wire                 clk_in,    // board oscillator (PLL: clk_in * PLL_MULT / PLL_DIV = 100 MHz)
     input  wire                 rst_n_in,  // external reset, active low, asynchronous
     // LPC4088 EMC static memory bus (CS0), asynchronous to the fabric clock
     input  wire                 emc_cs_n,
@@ -15,7 +32,7 @@ module lx_rocon_top #(
     input  wire                 emc_we_n,
     input  wire [EMC_AW-1:0]    emc_a,
     inout  wire [31:0]          emc_d,
-    output wire                 cpu_irq,
+    output reg                  cpu_irq,
     // encoders and HALL sensors
     input  wire [NAXES-1:0]     irc_a,
     input  wire [NAXES-1:0]     irc_b,
@@ -23,22 +40,149 @@ module lx_rocon_top #(
     input  wire [NAXES-1:0]     irc_mark,
     input  wire [3*NAXES-1:0]   hall,
     // LX_PWR half-bridges: PWM (high-side command) + enable per half-bridge
+    // (complementary mode, CTRL.complementary = 1: high and low switch)
     output wire [3*NAXES-1:0]   pwm_out,
     output wire [3*NAXES-1:0]   pwm_en,
     // current ADCs (3 simultaneous-sampling channels per axis, shared SCLK/CS)
     output wire                 adc_sclk,
     output wire                 adc_cs_n,
     input  wire [3*NAXES-1:0]   adc_miso,
-    output wire [1:0]           led
+    output reg  [1:0]           led
 );
-    assign emc_d    = 32'bz;
-    assign cpu_irq  = 1'b0;
-    assign pwm_out  = {3*NAXES{1'b0}};
-    assign pwm_en   = {3*NAXES{1'b0}};
-    assign adc_sclk = 1'b0;
-    assign adc_cs_n = 1'b1;
-    assign led      = 2'b00;
-    wire unused = &{1'b0, clk_in, rst_n_in, emc_cs_n, emc_oe_n, emc_we_n, emc_a, irc_a, irc_b, irc_idx,
-                    irc_mark, hall, adc_miso};
+    wire clk, rst, locked;
+    clk_gen #(.CLKIN_PERIOD_NS(CLKIN_PERIOD_NS), .MULT(PLL_MULT), .DIV(PLL_DIV)) u_clk (
+        .clk_in(clk_in), .rst_n_in(rst_n_in), .clk(clk), .rst(rst), .locked(locked));
+
+    // ---------------- CPU bus ----------------
+    wire [31:0] emc_d_out;
+    wire        emc_d_oe;
+    assign emc_d = emc_d_oe ? emc_d_out : 32'bz;
+    wire             reg_wr, reg_rd, err_wr_short, err_rd_short;
+    wire [EMC_AW-1:0] reg_addr;
+    wire [31:0]      reg_wdata;
+    reg  [31:0]      reg_rdata;
+    emc_bus #(.AW(EMC_AW)) u_bus (
+        .clk(clk), .rst(rst), .emc_cs_n(emc_cs_n), .emc_oe_n(emc_oe_n), .emc_we_n(emc_we_n), .emc_a(emc_a),
+        .emc_d_in(emc_d), .emc_d_out(emc_d_out), .emc_d_oe(emc_d_oe), .reg_wr(reg_wr), .reg_rd(reg_rd),
+        .reg_addr(reg_addr), .reg_wdata(reg_wdata), .reg_rdata(reg_rdata), .err_wr_short(err_wr_short),
+        .err_rd_short(err_rd_short));
+
+    wire in_global = reg_addr < `EMPC_REG_AXIS_BASE;
+    wire in_coef = reg_addr >= `EMPC_REG_COEF_BASE;
+    wire [EMC_AW-1:0] axis_off = reg_addr - `EMPC_REG_AXIS_BASE;
+    wire [EMC_AW-1:0] coef_off = reg_addr - `EMPC_REG_COEF_BASE;
+
+    // ---------------- global registers ----------------
+    reg  [31:0] scratch;
+    reg  [15:0] wdog_timeout;
+    reg  [31:0] time_cnt;
+    reg  [1:0]  irq_status, irq_enable;
+    reg         wdog_kick;
+    wire [NAXES-1:0] period_tick, control_done, fault_any;
+    reg         fault_any_d;
+    wire        wdog_expired;
+    watchdog u_wdog (.clk(clk), .rst(rst), .tick(period_tick[0]), .kick(wdog_kick), .timeout(wdog_timeout),
+                     .expired(wdog_expired));
+
+    always @(posedge clk) begin
+        wdog_kick <= 1'b0;
+        if (rst) begin
+            scratch <= 32'd0;
+            wdog_timeout <= `EMPC_G_WDOG_TIMEOUT_RESET;
+            time_cnt <= 32'd0;
+            irq_status <= 2'd0;
+            irq_enable <= 2'd0;
+            fault_any_d <= 1'b0;
+            cpu_irq <= 1'b0;
+            led <= 2'b00;
+        end else begin
+            if (period_tick[0]) time_cnt <= time_cnt + 32'd1;
+            fault_any_d <= |fault_any;
+            if (control_done[0]) irq_status[`EMPC_G_IRQ_STATUS_PERIOD] <= 1'b1;
+            if ((|fault_any) && !fault_any_d) irq_status[`EMPC_G_IRQ_STATUS_FAULT] <= 1'b1;
+            if (reg_wr && in_global) begin
+                case (reg_addr[7:0])
+                    `EMPC_G_SCRATCH: scratch <= reg_wdata;
+                    `EMPC_G_WDOG_TIMEOUT: wdog_timeout <= reg_wdata[15:0];
+                    `EMPC_G_WDOG_KICK: wdog_kick <= (reg_wdata[15:0] == `EMPC_WDOG_KEY);
+                    `EMPC_G_IRQ_STATUS: irq_status <= irq_status & ~reg_wdata[1:0];
+                    `EMPC_G_IRQ_ENABLE: irq_enable <= reg_wdata[1:0];
+                    default: ;
+                endcase
+            end
+            cpu_irq <= |(irq_status & irq_enable);
+            led <= {|fault_any, time_cnt[13]};
+        end
+    end
+
+    localparam [7:0] CAP_PPC = `EMPC_PWM_PER_CONTROL;
+    localparam [7:0] CAP_LAYOUT = `EMPC_IMG_LAYOUT;
+    localparam [3:0] CAP_N = `EMPC_N;
+    localparam [31:0] NAXES_W = NAXES;
+    localparam [3:0] CAP_NAXES = NAXES_W[3:0];
+    reg [31:0] g_rdata;
+    reg        rd_global, rd_axis;
+    reg [EMC_AW-9:0] rd_axis_sel;
+    always @(posedge clk) begin
+        if (rst) begin
+            g_rdata <= 32'd0;
+            rd_global <= 1'b0;
+            rd_axis <= 1'b0;
+            rd_axis_sel <= {(EMC_AW-8){1'b0}};
+        end else begin
+            rd_global <= reg_rd && in_global;
+            rd_axis <= reg_rd && !in_global && !in_coef;
+            rd_axis_sel <= axis_off[EMC_AW-1:8];
+            if (reg_rd && in_global) begin
+                case (reg_addr[7:0])
+                    `EMPC_G_ID: g_rdata <= `EMPC_ID_MAGIC;
+                    `EMPC_G_VERSION: g_rdata <= `EMPC_VERSION;
+                    `EMPC_G_CAPS: g_rdata <= {8'd0, CAP_PPC, CAP_LAYOUT, CAP_N, CAP_NAXES};
+                    `EMPC_G_PWM_HALF: g_rdata <= `EMPC_PWM_HALF_PERIOD;
+                    `EMPC_G_SCRATCH: g_rdata <= scratch;
+                    `EMPC_G_WDOG_TIMEOUT: g_rdata <= {16'd0, wdog_timeout};
+                    `EMPC_G_TIME: g_rdata <= time_cnt;
+                    `EMPC_G_IRQ_STATUS: g_rdata <= {30'd0, irq_status};
+                    `EMPC_G_IRQ_ENABLE: g_rdata <= {30'd0, irq_enable};
+                    default: g_rdata <= 32'd0;
+                endcase
+            end
+        end
+    end
+
+    // ---------------- axes ----------------
+    wire [32*NAXES-1:0] a_rdata;
+    wire [NAXES-1:0]    sync_out;
+    wire [NAXES-1:0]    sclk_ax, cs_ax;
+    genvar n;
+    generate
+        for (n = 0; n < NAXES; n = n + 1) begin : g_axis
+            wire sel = !in_global && !in_coef && axis_off[EMC_AW-1:8] == n;
+            wire csel = in_coef && coef_off[EMC_AW-1:10] == n;
+            mpc_axis #(.BOOT_FILE(BOOT_FILE), .RSQRT_FILE(RSQRT_FILE)) u_axis (
+                .clk(clk), .rst(rst),
+                .reg_wr(reg_wr && sel), .reg_rd(reg_rd && sel), .reg_addr(axis_off[7:0]), .reg_wdata(reg_wdata),
+                .reg_rdata(a_rdata[32*n +: 32]), .coef_we(reg_wr && csel), .coef_addr(coef_off[9:0]),
+                .watchdog_expired(wdog_expired), .pwm_sync_in(n == 0 ? 1'b0 : sync_out[0]),
+                .pwm_sync_out(sync_out[n]),
+                .irc_a(irc_a[n]), .irc_b(irc_b[n]), .irc_idx(irc_idx[n]), .irc_mark(irc_mark[n]),
+                .hall(hall[3*n +: 3]), .pwm_hi(pwm_out[3*n +: 3]), .pwm_lo(pwm_en[3*n +: 3]),
+                .adc_sclk(sclk_ax[n]), .adc_cs_n(cs_ax[n]), .adc_miso(adc_miso[3*n +: 3]),
+                .period_tick(period_tick[n]), .control_done(control_done[n]), .fault_any(fault_any[n]));
+        end
+    endgenerate
+    assign adc_sclk = sclk_ax[0];
+    assign adc_cs_n = cs_ax[0];
+
+    always @(*) begin
+        if (rd_global)
+            reg_rdata = g_rdata;
+        else if (rd_axis && {{(40-EMC_AW){1'b0}}, rd_axis_sel} < NAXES)
+            reg_rdata = a_rdata[32*rd_axis_sel +: 32];
+        else
+            reg_rdata = 32'd0;
+    end
+
+    wire unused = &{1'b0, locked, err_wr_short, err_rd_short, sclk_ax, cs_ax, sync_out};
 endmodule
 `default_nettype wire

@@ -61,8 +61,7 @@ module mpc_lane (
     localparam integer DSH  = `EMPC_ACC_FRAC - `EMPC_U_FRAC;   // 24
     localparam integer VSH  = `EMPC_U_FRAC - `EMPC_V_FRAC;     // 4
     localparam integer FR   = OPW - 1;                   // 17: Q1.17 scaling
-    localparam integer RW   = PW - FR + 1;               // 20: rounded product
-    localparam integer GW   = RW + 1;                    // 21: gain sum
+    localparam integer GW   = PW - FR + 2;               // 21: gain sum
     localparam signed [OPW-1:0]  OMAX = {1'b0, {(OPW-1){1'b1}}};
     localparam signed [OPW-1:0]  OMIN = {1'b1, {(OPW-1){1'b0}}};
     localparam signed [ACCW-1:0] AMAX = {1'b0, {(ACCW-1){1'b1}}};
@@ -77,15 +76,6 @@ module mpc_lane (
         else     cvp <= {cvp[6:1], cv};
     end
 
-    // rshift_round(x, 17) of a product, 20 bits (|x| <= 2^34)
-    function signed [RW-1:0] rnd17;
-        input signed [PW-1:0] x;
-        reg signed [PW:0] t;
-        begin
-            t = {x[PW-1], x} + {{(PW-FR+1){1'b0}}, 1'b1, {(FR-1){1'b0}}};
-            rnd17 = t[PW:FR];
-        end
-    endfunction
 
     // ---- mul1: p2 * wn (or limiter operands) ----
     mpc_mul18 u_mul1 (
@@ -96,10 +86,12 @@ module mpc_lane (
     );
 
     // h = sat18(p1 + rnd17(p2 * wn))   (cycle G1+2)
-    wire signed [RW-1:0] r1 = rnd17(prod1);
-    wire signed [GW-1:0] h0 = {{(GW-OPW){p1[OPW-1]}}, p1} + {r1[RW-1], r1};
-    wire h_hi = (h0 > $signed({{(GW-OPW){1'b0}}, OMAX}));
-    wire h_lo = (h0 < $signed({{(GW-OPW){1'b1}}, OMIN}));
+    // rshift_round(x, n) = (x >>> n) + x[n-1]: one adder with the rounding bit as carry-in
+    wire signed [GW-1:0] h0 = {{(GW-OPW){p1[OPW-1]}}, p1} + {{(GW-PW+FR){prod1[PW-1]}}, prod1[PW-1:FR]}
+                              + {{(GW-1){1'b0}}, prod1[FR-1]};
+    wire h_ov = ~((&h0[GW-1:OPW-1]) | ~(|h0[GW-1:OPW-1]));   // upper bits not all equal
+    wire h_hi = h_ov & ~h0[GW-1];
+    wire h_lo = h_ov & h0[GW-1];
     wire signed [OPW-1:0] h = h_hi ? OMAX : h_lo ? OMIN : h0[OPW-1:0];
 
     // ---- mul2: h * wn ----
@@ -107,17 +99,18 @@ module mpc_lane (
     mpc_mul18 u_mul2 (.clk(clk), .rst(rst), .a(h), .b(wn), .p(prod2));
 
     // k = sat18(p0 + rnd17(h * wn))   (cycle G1+4)
-    wire signed [RW-1:0] r2 = rnd17(prod2);
-    wire signed [GW-1:0] k0 = {{(GW-OPW){p0[OPW-1]}}, p0} + {r2[RW-1], r2};
-    wire k_hi = (k0 > $signed({{(GW-OPW){1'b0}}, OMAX}));
-    wire k_lo = (k0 < $signed({{(GW-OPW){1'b1}}, OMIN}));
+    wire signed [GW-1:0] k0 = {{(GW-OPW){p0[OPW-1]}}, p0} + {{(GW-PW+FR){prod2[PW-1]}}, prod2[PW-1:FR]}
+                              + {{(GW-1){1'b0}}, prod2[FR-1]};
+    wire k_ov = ~((&k0[GW-1:OPW-1]) | ~(|k0[GW-1:OPW-1]));   // upper bits not all equal
+    wire k_hi = k_ov & ~k0[GW-1];
+    wire k_lo = k_ov & k0[GW-1];
     wire signed [OPW-1:0] k = k_hi ? OMAX : k_lo ? OMIN : k0[OPW-1:0];
 
     // ---- limiter operand: u18 = sat18(rshift_round(u_raw, VSH)) ----
-    wire signed [UW:0] ur0 = {u_raw[UW-1], u_raw} + {{(UW-VSH+1){1'b0}}, 1'b1, {(VSH-1){1'b0}}};
-    wire signed [UW-VSH:0] ur = ur0[UW:VSH];
-    wire ur_hi = (ur > $signed({{(UW-VSH+1-OPW){1'b0}}, OMAX}));
-    wire ur_lo = (ur < $signed({{(UW-VSH+1-OPW){1'b1}}, OMIN}));
+    wire signed [UW-VSH:0] ur = {u_raw[UW-1], u_raw[UW-1:VSH]} + {{(UW-VSH){1'b0}}, u_raw[VSH-1]};
+    wire ur_ov = ~((&ur[(UW-VSH+1)-1:OPW-1]) | ~(|ur[(UW-VSH+1)-1:OPW-1]));   // upper bits not all equal
+    wire ur_hi = ur_ov & ~ur[(UW-VSH+1)-1];
+    wire ur_lo = ur_ov & ur[(UW-VSH+1)-1];
     wire signed [OPW-1:0] u18 = ur_hi ? OMAX : ur_lo ? OMIN : ur[OPW-1:0];
     reg  signed [OPW-1:0] u18_r;
 
@@ -142,10 +135,10 @@ module mpc_lane (
     wire signed [ACCW-1:0] acc_s = a_ovf ? (acc0[ACCW] ? AMIN : AMAX) : acc0[ACCW-1:0];
 
     // du = sat24(rshift_round(acc, DSH))
-    wire signed [ACCW:0] d0 = {acc[ACCW-1], acc} + {{(ACCW-DSH+1){1'b0}}, 1'b1, {(DSH-1){1'b0}}};
-    wire signed [ACCW-DSH:0] d1 = d0[ACCW:DSH];
-    wire d_hi = (d1 > $signed({{(ACCW-DSH+1-UW){1'b0}}, UMAXV}));
-    wire d_lo = (d1 < $signed({{(ACCW-DSH+1-UW){1'b1}}, UMINV}));
+    wire signed [ACCW-DSH:0] d1 = {acc[ACCW-1], acc[ACCW-1:DSH]} + {{(ACCW-DSH){1'b0}}, acc[DSH-1]};
+    wire d_ov = ~((&d1[(ACCW-DSH+1)-1:UW-1]) | ~(|d1[(ACCW-DSH+1)-1:UW-1]));   // upper bits not all equal
+    wire d_hi = d_ov & ~d1[(ACCW-DSH+1)-1];
+    wire d_lo = d_ov & d1[(ACCW-DSH+1)-1];
     wire signed [UW-1:0] du_s = d_hi ? UMAXV : d_lo ? UMINV : d1[UW-1:0];
 
     // u_raw = sat24(u_prev + du)
@@ -154,9 +147,8 @@ module mpc_lane (
     wire signed [UW-1:0] u_s = u_ovf ? (u0[UW] ? UMINV : UMAXV) : u0[UW-1:0];
 
     // u_lim = trunc0(prod3 / 2^17) << VSH   (|u18 * f| < 2^34: 19-bit quotient)
-    wire signed [PW:0] q0 = {prod3[PW-1], prod3} +
-                            (prod3[PW-1] ? {{(PW-FR+1){1'b0}}, {FR{1'b1}}} : {(PW+1){1'b0}});
-    wire signed [PW-FR:0] q1 = q0[PW:FR];
+    wire q_up = prod3[PW-1] && (|prod3[FR-1:0]);
+    wire signed [PW-FR:0] q1 = {prod3[PW-1], prod3[PW-1:FR]} + {{(PW-FR){1'b0}}, q_up};
     assign u_lim = {q1[UW-VSH-1:0], {VSH{1'b0}}};
 
     always @(posedge clk) begin
@@ -202,6 +194,6 @@ module mpc_lane (
     end
 
     // rounding remainders are dropped by design
-    wire unused_ok = &{1'b0, q0[FR-1:0], d0[DSH-1:0], ur0[VSH-1:0]};
+    wire unused_ok = &{1'b0, prod1[FR-2:0], prod2[FR-2:0]};
 endmodule
 `default_nettype wire

@@ -6,10 +6,11 @@
 //                  (r = m 4^-z with m in [2^36, 2^38) <=> z = 18 - P)
 //   L+2:           RSQRT address m >> 28 = r[2P+1 : 2P-8]  (block RAM, registered read)
 //   L+3:           t = RSQRT[m >> 28] valid (the core multiplies umax * t in lane d's mul1)
-//   L+5:           f = min((umax * t) >> (18 - z), 2^17 - 1) = min(ut >> P, 2^17 - 1), comb.
-// lim, P and t hold until the next go.  RSQRT[i] = floor(2^16 / sqrt((i + 1) / 1024))
+//   L+5:           ut = umax * t valid;  f = min((umax * t) >> (18 - z), 2^17 - 1)
+//                  = min(ut >> P, 2^17 - 1) registered -> valid in L+6.
+// lim, P, t and f hold until the next go / ut change.  RSQRT[i] = floor(2^16 / sqrt((i + 1) / 1024))
 // (rsqrt.hex written by `empc roms`); bit-exact to limit_circle() in rtlmodel/mpc_core.py.
-// Ports: go, sq_d, sq_q, usq (valid with go), ut (umax * t, valid in L+5); lim, t, f.
+// Ports: go, sq_d, sq_q, usq (valid with go), ut (umax * t, valid in L+5); lim, t, f (L+6).
 // Parameters: RSQRT_FILE ($readmemh file, RSQRT_BITS address bits, 18-bit words).
 // Latency: see above (fixed).  Resources: 1 RAMB16 (1024 x 18), no DSP.
 // Reset: registers clear to 0 (the ROM contents are constant).
@@ -27,7 +28,7 @@ module mpc_limiter #(
     input  wire signed [2*`EMPC_OPW-1:0]   ut,
     output reg                             lim,
     output reg  signed [`EMPC_OPW-1:0]     t,
-    output wire signed [`EMPC_OPW-1:0]     f
+    output reg  signed [`EMPC_OPW-1:0]     f
 );
     localparam integer OPW = `EMPC_OPW;               // 18
     localparam integer PW  = 2 * OPW;                 // 36: r <= 2^35 fits unsigned in PW bits
@@ -59,7 +60,7 @@ module mpc_limiter #(
 
     // f = min(ut >> P, 2^17 - 1); ut = umax * t >= 0
     wire [PW-1:0] us = ut >> pidx;
-    assign f = (|us[PW-1:OPW-1]) ? OMAX : {1'b0, us[OPW-2:0]};
+    wire [OPW-1:0] f_c = (|us[PW-1:OPW-1]) ? OMAX : {1'b0, us[OPW-2:0]};
 
     always @(posedge clk) begin
         if (rst) begin
@@ -68,6 +69,7 @@ module mpc_limiter #(
             lim   <= 1'b0;
             pidx  <= {PB{1'b0}};
             t     <= {OPW{1'b0}};
+            f     <= {OPW{1'b0}};
         end else begin
             if (go) begin
                 r     <= {sq_d[PW-1], sq_d} + {sq_q[PW-1], sq_q};
@@ -76,6 +78,7 @@ module mpc_limiter #(
             lim  <= (r > {1'b0, usq_r});
             pidx <= pr;
             t    <= rom[addr];
+            f    <= f_c;
         end
     end
 

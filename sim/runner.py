@@ -88,6 +88,13 @@ def run(
     build_dir = BUILD / "sim" / f"{name or test_module}_{toplevel}_{sim}_{tag}"
     build_dir.mkdir(parents=True, exist_ok=True)
 
+    # $readmemh files (coefficient images, tables) resolve relative to the simulator's
+    # working directory, which is the build directory: link the generated ones there
+    for hexfile in roms_dir().glob("*.hex"):
+        link = build_dir / hexfile.name
+        if link.is_symlink() or link.exists():
+            link.unlink()
+        link.symlink_to(hexfile)
     sources = rtl_sources() + sim_sources() + list(extra_sources or [])
     includes = [ROOT / "rtl", roms_dir()]
     build_args: list[str] = []
@@ -95,7 +102,10 @@ def run(
         build_args += ["-Wno-fatal"]
         if waves:
             build_args += ["--trace-fst", "--trace-structs"]
-        build_args += ["-O2", "--output-split", "20000"]
+        build_args += ["-O2"]
+        # the PyPI wheel's verilated.mk leaves CFG_CXXFLAGS_PCH_I empty, which breaks the
+        # precompiled-header rules of split (parallel) builds; make takes the fix from MAKEFLAGS
+        os.environ["MAKEFLAGS"] = (os.environ.get("MAKEFLAGS", "") + " CFG_CXXFLAGS_PCH_I=-include").strip()
     runner = get_runner(sim)
     runner.build(
         sources=sources,

@@ -13,8 +13,20 @@ from .closedloop import Scenario
 from .reference import steps_and_ramps
 
 
+# Breakpoints (t, value, kind) of each profile (reference.steps_and_ramps); the RTL co-simulation
+# turns the same list into reference-generator segments (rtlmodel/ref_gen.segments_from_points).
+POINTS = {
+    "speed_steps": [(0.01, 300.0, "step"), (0.11, 600.0, "step"), (0.21, -300.0, "step"), (0.31, 0.0, "step")],
+    "position_alg1": [(0.01, 20.0, "step"), (0.06, 20.0, "step"), (0.26, 120.0, "ramp"), (0.36, 120.0, "step"),
+                      (0.56, 20.0, "ramp"), (0.60, 0.0, "step")],
+    "load_step": [(0.01, 10.0, "step")],
+    "speed_alg2": [(0.01, 300.0, "step"), (0.11, 600.0, "step"), (0.21, 100.0, "ramp"), (0.31, 100.0, "step")],
+}
+POINTS["position_alg2"] = POINTS["position_alg1"]
+
+
 def _speed_steps() -> Scenario:
-    pts = [(0.01, 300.0, "step"), (0.11, 600.0, "step"), (0.21, -300.0, "step"), (0.31, 0.0, "step")]
+    pts = POINTS["speed_steps"]
     segs = [("step", 0.01, 0.11, 0.0, 300.0), ("step", 0.11, 0.21, 300.0, 600.0),
             ("step", 0.21, 0.31, 600.0, -300.0), ("step", 0.31, 0.40, -300.0, 0.0)]
     return Scenario("speed_steps", "speed", 0.40, steps_and_ramps(pts), segments=segs,
@@ -22,8 +34,7 @@ def _speed_steps() -> Scenario:
 
 
 def _position(alg: int) -> Scenario:
-    pts = [(0.01, 20.0, "step"), (0.06, 20.0, "step"), (0.26, 120.0, "ramp"), (0.36, 120.0, "step"),
-           (0.56, 20.0, "ramp"), (0.60, 0.0, "step")]
+    pts = POINTS[f"position_alg{alg}"]
     segs = [("step", 0.01, 0.06, 0.0, 20.0), ("ramp", 0.06, 0.26, 20.0, 120.0), ("step", 0.26, 0.36, 120.0, 120.0),
             ("ramp", 0.36, 0.56, 120.0, 20.0), ("step", 0.60, 0.70, 20.0, 0.0)]
     return Scenario(f"position_alg{alg}", "position", 0.70, steps_and_ramps(pts), segments=segs,
@@ -32,7 +43,7 @@ def _position(alg: int) -> Scenario:
 
 
 def _load_step() -> Scenario:
-    pts = [(0.01, 10.0, "step")]
+    pts = POINTS["load_step"]
     segs = [("step", 0.01, 0.10, 0.0, 10.0), ("step", 0.10, 0.30, 10.0, 10.0)]
     return Scenario("load_step", "position", 0.30, steps_and_ramps(pts), segments=segs,
                     load=lambda t: 0.05 if t >= 0.10 else 0.0,
@@ -40,7 +51,7 @@ def _load_step() -> Scenario:
 
 
 def _speed_alg2() -> Scenario:
-    pts = [(0.01, 300.0, "step"), (0.11, 600.0, "step"), (0.21, 100.0, "ramp"), (0.31, 100.0, "step")]
+    pts = POINTS["speed_alg2"]
     segs = [("step", 0.01, 0.11, 0.0, 300.0), ("step", 0.11, 0.21, 300.0, 600.0), ("ramp", 0.21, 0.31, 600.0, 100.0)]
     return Scenario("speed_alg2", "speed", 0.40, steps_and_ramps(pts), segments=segs,
                     description="speed steps 0 -> 300 -> 600 rad/s and a ramp to 100 rad/s, algorithm 2")

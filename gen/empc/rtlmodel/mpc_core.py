@@ -57,6 +57,10 @@ MAX_COLS = 64
 RSQRT_BITS = 10
 OP_MAX = (1 << (OPW - 1)) - 1
 
+# timing of rtl/mpc_core.v (not part of the arithmetic): start -> done cycles and boot load
+LATENCY_BASE = 30       # latency = LATENCY_BASE + min(ncols, MAX_COLS)
+BOOT_CYCLES = 771       # rst released -> ready (768 image words streamed through the write port)
+
 FLAG_BITS = {
     "operand": 0, "gain": 1, "term": 2, "acc": 3, "du": 4, "u": 5,
     "ebar": 6, "ebar_inc": 7, "limit": 8, "wn_clamp": 9, "signal": 10,

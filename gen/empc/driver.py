@@ -1,0 +1,80 @@
+"""CPU-side driver for the drive's register map (gen/empc/regmap.py).
+
+Works over any bus object with ``async write(addr, data)`` and ``async read(addr)``
+(word addresses): the cocotb EMC bus-functional model in simulation, or a thin
+wrapper around memory-mapped I/O on the LPC4088.  Register names and fields come
+from the register map, so this driver, the RTL header and docs/registers.md
+cannot disagree.
+"""
+from __future__ import annotations
+
+from . import image as image_mod
+from . import regmap
+from .rtlmodel.ref_gen import Slot
+
+_GLOBAL = {r.name: r for r in regmap.GLOBAL}
+_AXIS = {r.name: r for r in regmap.AXIS}
+
+
+assert not set(_GLOBAL) & set(_AXIS), "global and axis register names must differ"
+
+
+def address(name: str, axis: int = 0) -> int:
+    """Word address of a register (global registers ignore ``axis``)."""
+    if name in _GLOBAL:
+        return _GLOBAL[name].offset
+    return regmap.AXIS_BASE + axis * regmap.AXIS_STRIDE + _AXIS[name].offset
+
+
+def field_value(reg: str, **fields) -> int:
+    r = _AXIS.get(reg) or _GLOBAL[reg]
+    by_name = {f.name: f for f in r.fields}
+    v = 0
+    for k, x in fields.items():
+        f = by_name[k]
+        if x >> f.width:
+            raise ValueError(f"{reg}.{k}={x} does not fit {f.width} bits")
+        v |= (int(x) & ((1 << f.width) - 1)) << f.lsb
+    return v
+
+
+class Drive:
+    def __init__(self, bus, axis: int = 0):
+        self.bus = bus
+        self.axis = axis
+
+    async def write(self, name: str, value: int) -> None:
+        await self.bus.write(address(name, self.axis), value & 0xFFFFFFFF)
+
+    async def read(self, name: str) -> int:
+        return await self.bus.read(address(name, self.axis))
+
+    async def read_signed(self, name: str, bits: int = 32) -> int:
+        v = await self.read(name) & ((1 << bits) - 1)
+        return v - (1 << bits) if v >> (bits - 1) else v
+
+    async def kick(self) -> None:
+        await self.bus.write(address("WDOG_KICK"), regmap.WDOG_KEY)
+
+    async def command(self, **bits) -> None:
+        await self.write("CMD", field_value("CMD", **{k: int(v) for k, v in bits.items()}))
+
+    async def control(self, enable: bool, run: bool, complementary: bool = False, pwm_per_control: int = 5) -> None:
+        await self.write("CTRL", field_value("CTRL", enable=int(enable), run=int(run),
+                                             complementary=int(complementary), pwm_per_control=pwm_per_control))
+
+    async def upload_image(self, words: list[int], swap: bool = True) -> None:
+        """Write a coefficient image into the inactive bank, then (optionally) request the swap."""
+        base = regmap.COEF_BASE + self.axis * regmap.COEF_STRIDE
+        for a in range(image_mod.USED):
+            await self.bus.write(base + a, words[a])
+        if swap:
+            await self.command(coef_swap=1)
+
+    async def program_profile(self, slots: list[Slot], start_slot: int = 0, start: bool = True) -> None:
+        for i, s in enumerate(slots):
+            await self.write("SEG_ADDR", start_slot + i)
+            for name, v in s.regs().items():          # SEG_FLAGS last: it stores the slot
+                await self.write(name, v)
+        if start:
+            await self.write("SEG_START", start_slot)

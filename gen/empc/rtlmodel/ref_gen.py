@@ -1,0 +1,284 @@
+"""Bit-exact model of ``rtl/ref_gen.v`` plus the profile-to-slot helper.
+
+The reference generator (paper 000 sec. V-A) evaluates time-parameterised
+polynomial segments by exact integer forward differences once per control
+period.  Values are Q.32 of the task output unit (encoder counts for
+position, counts per Ts for speed), held modulo 2**64: the position integer
+part wraps modulo 2**32 like the encoder counter (consumers take differences);
+for speed the CPU keeps the profile within +-2**31 counts/Ts.
+
+Per advance (see the RTL header for the exact rules)::
+
+    h1 = head + d1; d1' = d1 + d2; remaining' = remaining - 1 (if the segment ends)
+    start pending       -> load(start slot)
+    remaining' == 0     -> last ? hold (d1 = d2 = 0) : load(slot + 1 mod 16)
+    otherwise           -> head = h1, d1 = d1', remaining = remaining'
+    load(s): head = h1 if relative[s] else r0[s]; d1, d2, remaining = d1[s], d2[s], len[s]
+
+``w`` is the delay line w_k .. w_{k+N} (``w[N]`` = head).  A sync sets the head
+at once and refills the delay line by N shifts in the following N clocks; an
+advance in the sync clock or during that fill is deferred to the clock after it.
+
+:func:`segments_from_points` turns a step/ramp profile in SI units into slots.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+NSLOT = 16
+M64 = (1 << 64) - 1
+M32 = (1 << 32) - 1
+Q = 32                  # fractional bits of the generator values
+
+
+def _s32(x: int) -> int:
+    x &= M32
+    return x - (1 << 32) if x >> 31 else x
+
+
+def s64(x: int) -> int:
+    """Signed value of a 64-bit word."""
+    x &= M64
+    return x - (1 << 64) if x >> 63 else x
+
+
+@dataclass(frozen=True)
+class Slot:
+    """One segment slot.  ``r0``/``d1`` are Q.32 (any int, stored modulo 2**64),
+    ``d2`` a signed 32-bit Q.32 second difference, ``length`` in control periods
+    (0 = the segment never ends)."""
+    length: int = 0
+    r0: int = 0
+    d1: int = 0
+    d2: int = 0
+    relative: bool = False
+    last: bool = False
+
+    def normalised(self) -> "Slot":
+        if not -(1 << 31) <= self.d2 < (1 << 31) and not 0 <= self.d2 <= M32:
+            raise ValueError(f"d2 {self.d2} does not fit 32 bits")
+        if not 0 <= self.length <= M32:
+            raise ValueError(f"length {self.length} out of 0..2**32-1")
+        return Slot(self.length, self.r0 & M64, self.d1 & M64, _s32(self.d2), bool(self.relative), bool(self.last))
+
+    def regs(self) -> dict:
+        """Register words (gen/empc/regmap.py AXIS SEG_*) that program this slot; write SEG_FLAGS last."""
+        s = self.normalised()
+        return {"SEG_LEN": s.length, "SEG_R0_LO": s.r0 & M32, "SEG_R0_HI": s.r0 >> 32,
+                "SEG_D1_LO": s.d1 & M32, "SEG_D1_HI": s.d1 >> 32, "SEG_D2": s.d2 & M32,
+                "SEG_FLAGS": int(s.relative) | (int(s.last) << 1)}
+
+
+class RefGen:
+    """One ``ref_gen`` instance.
+
+    Operation-level API: :meth:`write_slot`, :meth:`start`, :meth:`sync`,
+    :meth:`advance` (each as if it happened alone in one clock).  Clock-level
+    API: :meth:`step` (all inputs of one clock, with the RTL's priorities).
+    """
+
+    def __init__(self, N: int = 4):
+        if N < 1:
+            raise ValueError("N must be >= 1")
+        self.N = N
+        self.mem = [Slot()] * NSLOT        # not cleared by reset (LUT RAM)
+        self.reset()
+
+    def reset(self) -> None:
+        self.head = 0
+        self.d1 = 0
+        self.d2 = 0
+        self.rem = 0
+        self.ends = False
+        self.last = False
+        self.slot = 0
+        self.pend = False
+        self.pend_slot = 0
+        self.fill = 0
+        self.adv_pend = False
+        self.dl = [0] * self.N
+
+    @property
+    def w(self) -> list[int]:
+        """w_k .. w_{k+N} (unsigned 64-bit words)."""
+        return self.dl + [self.head]
+
+    def w_bus(self) -> int:
+        """The flattened RTL output bus ``w`` ((N+1) x 64 bit, w_k at the LSBs)."""
+        v = 0
+        for j, x in enumerate(self.w):
+            v |= x << (64 * j)
+        return v
+
+    # ---- operations ----
+    def write_slot(self, idx: int, slot: Slot) -> None:
+        self.mem[idx % NSLOT] = slot.normalised()
+
+    def start(self, slot: int) -> None:
+        self.step(start=True, start_slot=slot)
+
+    def sync(self, value: int) -> None:
+        """Sync and the N clocks of delay-line fill (all of w equal ``value`` afterwards)."""
+        self.step(sync=True, sync_value=value)
+        for _ in range(self.N):
+            self.step()
+
+    def advance(self) -> list[int]:
+        self.step(advance=True)
+        return self.w
+
+    def load_program(self, slots, base: int = 0) -> None:
+        for i, s in enumerate(slots):
+            self.write_slot(base + i, s)
+
+    # ---- one clock ----
+    def step(self, seg_we: bool = False, seg_addr: int = 0, seg: Slot | None = None,
+             start: bool = False, start_slot: int = 0, sync: bool = False, sync_value: int = 0,
+             advance: bool = False) -> None:
+        """One rising clock edge with the given inputs, with the RTL's priorities: sync first
+        (an advance in its clock or in the N fill clocks after it is deferred to the clock
+        after the fill); a start in the clock of an executed advance is taken by it, else
+        it stays pending; the slot write lands after the clock's load (a load of the slot
+        being written sees the old contents)."""
+        start_slot %= NSLOT
+        if sync:
+            v = sync_value & M64
+            self.head = v
+            self.fill = self.N
+            self.adv_pend = self.adv_pend or advance
+            self.d1 = self.d2 = self.rem = 0
+            self.ends = self.last = False
+            if start:
+                self.pend, self.pend_slot = True, start_slot
+        else:
+            filling = self.fill != 0
+            adv = (advance or self.adv_pend) and not filling
+            old_head = self.head
+            if adv:
+                self._advance(start, start_slot)
+                self.adv_pend = False
+            else:
+                if advance:
+                    self.adv_pend = True
+                if start:
+                    self.pend, self.pend_slot = True, start_slot
+            if filling:
+                self.fill -= 1
+            if adv or filling:
+                self.dl = self.dl[1:] + [old_head]
+        if seg_we:
+            self.write_slot(seg_addr, seg if seg is not None else Slot())
+
+    def _advance(self, start: bool, start_slot: int) -> None:
+        h1 = (self.head + self.d1) & M64
+        d1n = (self.d1 + self.d2) & M64
+        seg_end = self.ends and self.rem == 1
+        do_start = start or self.pend
+        ld = start_slot if start else self.pend_slot if self.pend else (self.slot + 1) % NSLOT
+        self.pend = False
+        if do_start or (seg_end and not self.last):
+            s = self.mem[ld]
+            self.head = h1 if s.relative else s.r0
+            self.d1, self.d2, self.rem = s.d1, s.d2, s.length
+            self.ends, self.last, self.slot = s.length != 0, s.last, ld
+        elif seg_end:                       # last: hold
+            self.head = h1
+            self.d1 = self.d2 = self.rem = 0
+            self.ends = False
+        else:
+            self.head = h1
+            self.d1 = d1n
+            if self.ends:
+                self.rem -= 1
+
+
+def q32(value: float) -> int:
+    """Round a value in the output unit to Q.32 (round half up)."""
+    import math
+    return int(math.floor(value * (1 << Q) + 0.5))
+
+
+def segments_from_points(points, unit_per_si: float, Ts: float, v0: float = 0.0,
+                         relative_start: bool = False, exact_ramps: bool = True) -> list[Slot]:
+    """Slots for a profile of steps and ramps given in SI units.
+
+    ``points``: (t, value, kind) in time order, as in :func:`empc.reference.steps_and_ramps`:
+    kind ``"step"`` holds the previous value on [t_prev, t) and jumps to ``value`` at t;
+    ``"ramp"`` moves linearly from the previous value to reach ``value`` at t.  The profile
+    starts at t = 0 with ``v0`` and holds the last value forever (final slot len = 0).
+    ``unit_per_si`` converts SI to the generator unit (counts per rad, or counts/Ts per rad/s);
+    times are rounded to whole control periods ``Ts``; period 0 is the advance that takes
+    the start (the head, w_{k+N}).
+
+    Steps become absolute segments (r0 = the value); ramps relative segments with
+    d1 = slope per period; holds d1 = 0.  With ``relative_start`` the first segment is
+    relative (keeps the generator's present value, e.g. after CMD.ref_sync) and the profile
+    is offset by (start value - v0) until the first step.  Ramp ends: with ``exact_ramps`` a
+    ramp of L periods and Q.32 increment D is split into r = D mod L periods of
+    floor(D/L) + 1 and L - r periods of floor(D/L), so it ends exactly on the Q.32 value
+    (one extra slot when r != 0); without, one slot with d1 = round(D/L), ending within
+    L/2 LSB of Q.32.  Raises ValueError if more than 16 slots are needed.
+    """
+    segs: list[Slot] = []
+    cur = q32(v0 * unit_per_si)           # tracked (nominal) generator value, Q.32
+    p_prev = 0
+    # the open hold segment: (absolute r0 or None for relative)
+    open_r0 = None if relative_start else cur
+    for t, v, kind in points:
+        p = int(round(t / Ts))
+        L = p - p_prev
+        if L < 0:
+            raise ValueError(f"breakpoint at t={t} is before the previous one")
+        target = q32(v * unit_per_si)
+        if kind == "step":
+            if L > 0:
+                segs.append(_hold(L, open_r0))
+            elif not segs and p == 0:
+                pass                                    # step at t = 0 replaces the start value
+            open_r0 = target
+            cur = target
+        elif kind == "ramp":
+            if L == 0:
+                raise ValueError(f"ramp to {v} at t={t} has zero duration")
+            if open_r0 is not None:
+                # the ramp starts at an absolute value (after a step / absolute start):
+                # a zero-length hold is not possible, so the ramp segment itself is absolute
+                first_abs = open_r0
+            else:
+                first_abs = None
+            D = target - cur
+            if exact_ramps:
+                qd, r = divmod(D, L)
+                parts = [(r, qd + 1), (L - r, qd)] if r else [(L, qd)]
+            else:
+                parts = [(L, (2 * D + L) // (2 * L))]
+            for i, (n, d1) in enumerate(parts):
+                if i == 0 and first_abs is not None:
+                    segs.append(Slot(n, first_abs & M64, d1 & M64, 0, relative=False))
+                else:
+                    segs.append(Slot(n, 0, d1 & M64, 0, relative=True))
+                cur += n * d1
+            open_r0 = None
+        else:
+            raise ValueError(f"unknown breakpoint kind {kind!r}")
+        p_prev = p
+    segs.append(_hold(0, open_r0))
+    if len(segs) > NSLOT:
+        raise ValueError(f"profile needs {len(segs)} slots, the generator has {NSLOT}")
+    return segs
+
+
+def _hold(length: int, r0) -> Slot:
+    if r0 is None:
+        return Slot(length, 0, 0, 0, relative=True)
+    return Slot(length, r0 & M64, 0, 0, relative=False)
+
+
+def profile_values(slots, n: int, init: int = 0, N: int = 4, start_slot: int = 0) -> list[int]:
+    """Head values (period 0 .. n-1 after the start) of ``slots`` run on a fresh generator
+    synced to ``init``: the sequence w_{k+N} that the RTL produces."""
+    g = RefGen(N)
+    g.load_program(slots, start_slot)
+    g.sync(init)
+    g.start(start_slot)
+    return [g.advance()[-1] for _ in range(n)]

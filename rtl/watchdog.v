@@ -1,0 +1,50 @@
+// watchdog: CPU watchdog counting PWM-period ticks.
+//
+// The counter counts `tick` pulses (one per PWM period) since the last `kick`.
+// `expired` goes high in the clock after the tick that makes the count reach
+// `timeout` and stays high until the next `kick` (the fault latch downstream
+// makes the fault itself sticky).  timeout = 0 disables the watchdog: counter
+// and expired are held at 0, so enabling it later starts a fresh interval.
+// If timeout is lowered below the current count, expired rises in the next
+// clock (no tick needed).  Raising timeout does not clear expired; only kick
+// (or timeout = 0, or reset) does.  A kick in the same clock as a tick wins
+// (count 0).  The counter stops while expired, so it never overflows (it only
+// counts while count < timeout <= 2**TW-1).
+//
+// Ports:
+//   clk, rst   clock, synchronous active-high reset
+//   tick       pulse per PWM period
+//   kick       pulse: restart the interval, clear expired
+//   timeout    interval in ticks, 0 = disabled
+//   expired    level, registered
+// Parameters:
+//   TW         width of timeout and of the tick counter (16 for WDOG_TIMEOUT)
+// Latency: expired rises 1 clock after the timeout-th tick; falls 1 clock after kick.
+// Reset: count 0, expired 0.
+// Resources: TW+1 flip-flops, one TW-bit incrementer and comparator; no DSP/BRAM.
+`default_nettype none
+module watchdog #(
+    parameter integer TW = 16
+) (
+    input  wire          clk,
+    input  wire          rst,
+    input  wire          tick,
+    input  wire          kick,
+    input  wire [TW-1:0] timeout,
+    output reg           expired
+);
+    reg  [TW-1:0] count;
+    wire [TW-1:0] count_n = (tick && !expired) ? count + {{(TW-1){1'b0}}, 1'b1} : count;
+
+    always @(posedge clk) begin
+        if (rst || kick || timeout == {TW{1'b0}}) begin
+            count   <= {TW{1'b0}};
+            expired <= 1'b0;
+        end else begin
+            count <= count_n;
+            if (count_n >= timeout)
+                expired <= 1'b1;
+        end
+    end
+endmodule
+`default_nettype wire

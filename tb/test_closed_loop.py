@@ -1,0 +1,399 @@
+"""RTL-in-the-loop motor co-simulation of the whole drive (lx_rocon_top, one axis).
+
+The Python PMSM model (gen/empc/pmsm.py) drives the encoder (sim/quad_gen.v,
+a target count per half PWM period), the HALL pins and the ADC SPI slave
+(sim/adc_spi_slave.v, phase-current codes per period), and reads the compare
+values the drive loads every PWM period.  The CPU side is the EMC bus-functional
+model (tb/emc_bfm.py) through the register-map driver (gen/empc/driver.py).
+
+In lockstep, the bit-accurate Python model of the sequencer (front end, MPC core,
+modulation: gen/empc/rtlmodel/ctrl_seq.py) and of the reference generator sees
+the same inputs at every ADC trigger; every compare value the RTL loads must
+equal the model's (bit-exact).  The resulting trajectory is also compared with
+the float closed loop (closedloop.py, fitted gains) within the stated tolerance.
+Reports: build/reports/closed_loop_<scenario>.{json,png}.
+"""
+from __future__ import annotations
+
+import json
+import math
+import os
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import cocotb
+from cocotb.clock import Clock
+from cocotb.triggers import ClockCycles, RisingEdge, ReadOnly
+
+from empc import closedloop as cl
+from empc import config, driver, header, image, pmsm, regmap, scenarios
+from empc.rtlmodel import pos_sense
+from empc.rtlmodel.ctrl_seq import CtrlSeq, Regs
+from empc.rtlmodel.hall_decoder import DEFAULT_SEQUENCE
+from empc.rtlmodel.ref_gen import RefGen, segments_from_points
+
+ROOT = Path(__file__).resolve().parents[1]
+REPORTS = ROOT / "build" / "reports"
+
+# Co-simulation scenarios: (paper scenario, simulated seconds, fault injection or None)
+COSIM = {
+    "short": ("position_alg2", 0.060, None),
+    "overcurrent": ("position_alg2", 0.030, "overcurrent"),
+    "encoder": ("position_alg2", 0.030, "encoder"),
+    "watchdog": ("position_alg2", 0.040, "watchdog"),
+    "position_alg1": ("position_alg1", 0.70, None),
+    "position_alg2": ("position_alg2", 0.70, None),
+    "speed_steps": ("speed_steps", 0.40, None),
+    "load_step": ("load_step", 0.30, None),
+}
+
+
+def hall_code(theta_e: float) -> int:
+    s = int((theta_e % (2 * math.pi)) // (math.pi / 3))
+    return DEFAULT_SEQUENCE[s]
+
+
+class CoSim:
+    def __init__(self, dut, name: str):
+        self.dut = dut
+        self.name = name
+        scen_name, self.duration, self.fault = COSIM[name]
+        self.sc, alg = scenarios.get(scen_name)
+        self.cfg = config.default().with_control(algorithm=alg, task=self.sc.task)
+        c = self.cfg.control
+        self.M = self.cfg.pwm_per_control
+        self.P = self.cfg.pwm_half_period
+        self.Tpwm = 1.0 / self.cfg.inverter.f_pwm
+        self.plant = pmsm.Plant(self.cfg.motor, self.cfg.inverter.Udc, self.cfg.inverter.f_pwm, substeps=4)
+        self.sensors = pmsm.Sensors(self.cfg)
+        roms_dir = Path(os.environ.get("EMPC_ROMS", ROOT / "build" / "roms" / "default"))
+        self.image = image.read_hex(roms_dir / f"coef_alg{alg}_{self.sc.task}.hex")
+        self.boot = image.decode(image.read_hex(roms_dir / "coef_boot.hex"))
+        self.params = image.decode(self.image)
+        kacc, ksh = header.speed_correction_raw(self.cfg)
+        self.regs = Regs(pwm_per_control=self.M, kacc=kacc, kacc_shift=ksh, half_period=self.P, run=False)
+        self.seq = CtrlSeq(params=self.boot, N=c.N)
+        self.ref = RefGen(c.N)
+        unit = 1.0 / (self.cfg.rad_per_count if self.sc.task == "position" else self.cfg.rad_s_per_count_ts)
+        self.slots = segments_from_points(scenarios.POINTS[self.sc.name], unit, c.Ts)
+        self.cmp_rtl = (0, 0, 0)
+        self.mismatches = []
+        self.checked = 0
+        self.rec = {k: [] for k in ("t", "i_d", "i_q", "w_e", "theta_e", "u_d", "u_q", "ref", "ipk")}
+        self.period = 0
+        self.t = 0.0
+        self.inject = False
+        self.started = False       # SEG_START written: the next control period takes the profile
+        self.t_profile0 = None     # sim time of profile time 0 (see pwm_period)
+
+    # ------------------------------------------------------------------ pins
+    def drive_plant_pins(self):
+        st = self.plant.state
+        codes = self.sensors.adc_codes(self.plant.phase_currents())
+        if self.fault == "overcurrent" and self.inject:
+            codes = [4095, codes[1], codes[2]]
+        count = self.sensors.encoder_count(st.theta_e)
+        self.dut.enc_target.value = count & 0xFFFFFFFF
+        self.dut.adc_code0.value = codes[0]
+        self.dut.adc_code1.value = codes[1]
+        self.dut.adc_code2.value = codes[2]
+        self.dut.hall.value = hall_code(st.theta_e)
+        return codes, count
+
+    # ------------------------------------------------------------------ one PWM period
+    async def pwm_period(self, actions, at_boundary: bool = False):
+        dut = self.dut
+        if not at_boundary:
+            await RisingEdge(dut.dbg_period_start)
+        bridges_on = int(dut.pwm_en.value) == 0b111
+        duties = np.array(self.cmp_rtl, dtype=float) / self.P if bridges_on else None
+        for act in actions:            # CPU accesses in the first half period (mirrored in the model)
+            await act()
+        self._plant_half(duties)
+        codes, count = self.drive_plant_pins()
+        await RisingEdge(dut.dbg_adc_trig)
+        await ReadOnly()
+        self.regs.run = bool(int(dut.dbg_running.value))
+        control = self.seq.per_cnt + 1 >= self.regs.pwm_per_control
+        ref_w = self.ref.advance() if control else None
+        if control and self.started and self.t_profile0 is None:
+            # this advance loads the profile's first value into the head w_{k+N}: the
+            # sample instant is profile time -N Ts
+            self.t_profile0 = self.t + self.cfg.control.N * self.cfg.control.Ts
+        theta16 = pos_sense.angle(count, self.cfg.sensors.encoder_cpr, self.cfg.motor.p, base=0)
+        off = self.cfg.sensors.adc_offset
+        out = self.seq.period(theta16, count & 0xFFFFFFFF, tuple(c - off for c in codes), self.regs, ref_w)
+        await RisingEdge(dut.dbg_cmp_load)
+        await ReadOnly()
+        v = int(dut.dbg_cmp.value)
+        self.cmp_rtl = tuple((v >> (12 * i)) & 0xFFF for i in range(3))
+        self.checked += 1
+        if self.cmp_rtl != tuple(out["cmp"]):
+            self.mismatches.append((self.period, self.cmp_rtl, tuple(out["cmp"])))
+            if len(self.mismatches) == 1 and os.environ.get("EMPC_COSIM_DEBUG"):
+                seq = dut.u_top.g_axis[0].u_axis.u_seq
+                names = ("core_y0", "core_y1", "core_y2", "core_omega", "core_dx", "core_wref", "u_st0", "u_st1",
+                         "i_d", "i_q", "pos_trig", "pos_prev", "theta_trig")
+                for n in names:
+                    h = getattr(seq, n)
+                    self.dut._log.error("RTL %s = %s", n, hex(int(h.value)))
+                self.dut._log.error("model out %s run %s ref_w %s", {k: v for k, v in out.items() if k != "core"},
+                                    self.regs.run, ref_w)
+                if "core" in out:
+                    self.dut._log.error("model core %s", out["core"])
+        self._plant_half(duties)
+        if control:
+            st = self.plant.state
+            vpu = self.cfg.volts_per_tick / 256
+            self.rec["t"].append(self.t - 0.5 * self.Tpwm)
+            for k, val in (("i_d", st.i_d), ("i_q", st.i_q), ("w_e", st.w_e), ("theta_e", st.theta_e),
+                           ("u_d", self.seq.u[0] * vpu), ("u_q", self.seq.u[1] * vpu)):
+                self.rec[k].append(val)
+            self.rec["ipk"].append(float(np.max(np.abs(self.plant.phase_currents()))))
+        self.period += 1
+
+    def _plant_half(self, duties):
+        if duties is None:           # bridges off: currents decay through the diodes, motor coasts
+            self.plant.state.i_d = 0.0
+            self.plant.state.i_q = 0.0
+            self.plant.step(0.5 * self.Tpwm, [0.0, 0.0, 0.0])
+            self.plant.state.i_d = 0.0
+            self.plant.state.i_q = 0.0
+        else:
+            if self.sc.load is not None and self.t_profile0 is not None:
+                self.plant.tau_load = self.sc.load(self.t - self.t_profile0)
+            self.plant.step(0.5 * self.Tpwm, duties)
+        self.t += 0.5 * self.Tpwm
+
+
+async def run_cosim(dut, name: str) -> dict:
+    cs = CoSim(dut, name)
+    from emc_bfm import EmcBfm
+    bus = EmcBfm(dut, pins=dict(cs_n="cpu_cs_n", oe_n="cpu_oe_n", we_n="cpu_we_n", a="cpu_a", d="cpu_d",
+                                d_oe="cpu_d_oe", bus="emc_d_seen"))
+    drv = driver.Drive(bus)
+    cocotb.start_soon(Clock(dut.clk, 10, unit="ns").start())
+    dut.rst_n.value = 0
+    dut.enc_target.value = 0
+    dut.idx_enable.value = 0
+    dut.mark.value = 0
+    dut.enc_glitch.value = 0
+    dut.hall.value = hall_code(0.0)
+    off = cs.cfg.sensors.adc_offset
+    for i in range(3):
+        getattr(dut, f"adc_code{i}").value = off
+    bus.idle()
+    await ClockCycles(dut.clk, 20)
+    dut.rst_n.value = 1
+    # decoders settle (HALL debounce), then the first index pulse aligns the angle at count 0
+    await ClockCycles(dut.clk, 3000)
+    dut.idx_enable.value = 1
+    assert await drv.read("ID") == regmap.ID_MAGIC, "bus or bitstream: ID register"
+    wall0 = time.perf_counter()
+    # lockstep from the first PWM period after alignment: the sequencer's state so far is known
+    # (disabled, zero currents: every control period just shifted its counter), take it over
+    await RisingEdge(dut.dbg_period_start)
+    await ReadOnly()
+    cs.seq.per_cnt = int(dut.dbg_per_cnt.value)
+    cs.seq.first = False
+    await RisingEdge(dut.clk)           # the loop's first period continues from this boundary
+
+    async def w(name, value):
+        await drv.write(name, value)
+
+    # configuration, one short burst of CPU writes per PWM period, mirrored in the model
+    plan = []
+    words = cs.image
+    if cs.params != cs.boot:
+        chunk = 100
+        for a0 in range(0, image.USED, chunk):
+            async def up(a0=a0):
+                base = regmap.COEF_BASE
+                for a in range(a0, min(image.USED, a0 + chunk)):
+                    await bus.write(base + a, words[a])
+            plan.append([up])
+
+        async def swap():
+            await drv.command(coef_swap=1)
+        plan.append([swap])
+
+        async def check_swap():
+            st = await drv.read("STATUS")
+            assert (st >> 7) & 1 == 0, "coefficient swap still pending while the core is idle"
+            cs.seq.params = cs.params
+        plan.append([check_swap])
+
+    async def ref_setup():
+        await drv.command(ref_sync=1)         # head = measured position (0) / speed (0)
+        cs.ref.sync(0)
+    plan.append([ref_setup])
+    for i, s in enumerate(cs.slots):
+        async def wslot(i=i, s=s):
+            await w("SEG_ADDR", i)
+            for n, v in s.regs().items():
+                await w(n, v)
+            cs.ref.write_slot(i, s)
+        plan.append([wslot])
+
+    async def kick():
+        await drv.kick()
+
+    async def enable():
+        await w("SEG_START", 0)
+        cs.ref.start(0)
+        cs.started = True
+        await drv.control(enable=True, run=True, pwm_per_control=cs.M)
+    plan.append([kick, enable])
+    n_periods = int(round(cs.duration / cs.Tpwm))
+    fault_at = n_periods // 3
+    fault_seen = None
+    for k in range(len(plan) + n_periods):
+        acts = list(plan[k]) if k < len(plan) else []
+        if k % 100 == 50 and not (cs.fault == "watchdog" and k >= fault_at):
+            acts.append(kick)
+        if cs.fault == "overcurrent" and k == fault_at:
+            cs.inject = True
+        if cs.fault == "encoder" and k == fault_at:
+            async def glitch():
+                for _ in range(5):             # both channels toggle in one sample: illegal transitions
+                    dut.enc_glitch.value = 1
+                    await ClockCycles(dut.clk, 40)
+                    dut.enc_glitch.value = 0
+                    await ClockCycles(dut.clk, 40)
+            acts.append(glitch)
+        await cs.pwm_period(acts, at_boundary=(k == 0))
+        if cs.fault and fault_seen is None and int(dut.dbg_trip.value):
+            fault_seen = cs.period
+            # from here the drive must keep every bridge off
+        if fault_seen is not None:
+            assert int(dut.pwm_en.value) == 0 and int(dut.pwm_out.value) == 0, \
+                f"outputs not safe {cs.period - fault_seen} periods after the fault"
+        if cs.mismatches and cs.fault is None:
+            break
+    wall = time.perf_counter() - wall0
+    await RisingEdge(dut.clk)             # leave the ReadOnly phase before driving the bus
+    if cs.mismatches:
+        dut._log.error("first mismatches (period, RTL cmp, model cmp): %s", cs.mismatches[:5])
+    # read back status over the bus
+    status = {n: await drv.read(n) for n in ("STATUS", "FAULT", "LATENCY", "PERIODS", "SAT_LIMIT", "SAT_EBAR_INC",
+                                              "SAT_WN", "SAT_OPERAND", "SAT_TERM", "SAT_ACC", "SAT_DU", "SAT_U",
+                                              "SAT_FRONT", "CNT_ADC_MISS", "CNT_ENC_ERR", "CNT_OVERRUN")}
+    return {"cs": cs, "wall": wall, "status": status, "fault_seen": fault_seen}
+
+
+def metrics_report(cs: CoSim, res: dict) -> dict:
+    rec = {k: np.array(v) for k, v in cs.rec.items()}
+    t = rec["t"] - cs.t_profile0
+    sel = t >= 0
+    prof = cs.sc.profile
+    ref = np.array([prof(x) for x in t[sel]])
+    tr = cl.Trace(t[sel], ref, rec["i_d"][sel], rec["i_q"][sel], rec["w_e"][sel], rec["theta_e"][sel],
+                  rec["u_d"][sel], rec["u_q"][sel], rec["ipk"][sel], np.zeros(sel.sum()), np.zeros(sel.sum()))
+    sc = cs.sc
+    sc_cut = cl.Scenario(sc.name, sc.task, float(t[sel][-1]) if sel.any() else 0.0, sc.profile, sc.load,
+                         sc.description, [s for s in sc.segments if s[2] <= (t[sel][-1] if sel.any() else 0)])
+    floor = cs.cfg.rad_s_per_count_ts if sc.task == "speed" else 4 * cs.cfg.rad_per_count
+    m = cl.metrics(tr, sc_cut, settle_floor=floor, preview=cs.cfg.control.N * cs.cfg.control.Ts)
+    return tr, sc_cut, m
+
+
+@cocotb.test()
+async def closed_loop(dut):
+    name = os.environ.get("EMPC_COSIM", "short")
+    res = await run_cosim(dut, name)
+    cs = res["cs"]
+    sim_ms = cs.period * cs.Tpwm * 1e3
+    dut._log.info("%s: %d PWM periods (%.1f ms simulated) in %.1f s wall; %d compare sets checked, %d mismatches",
+                  name, cs.period, sim_ms, res["wall"], cs.checked, len(cs.mismatches))
+    report = {"scenario": name, "paper_scenario": cs.sc.name, "fault_injection": cs.fault,
+              "pwm_periods": cs.period, "simulated_ms": sim_ms, "wall_s": res["wall"],
+              "sim_ms_per_wall_s": sim_ms / res["wall"], "compare_sets_checked": cs.checked,
+              "mismatches_vs_bit_accurate_model": len(cs.mismatches),
+              "first_mismatches": [list(map(list, [[m[0]], m[1], m[2]])) for m in cs.mismatches[:5]],
+              "status_registers": res["status"],
+              "latency_adc_trigger_to_pwm_update_cycles": res["status"]["LATENCY"],
+              "fault_seen_period": res["fault_seen"]}
+    if cs.fault is None:
+        assert not cs.mismatches, f"RTL compare values differ from the bit-accurate model: {cs.mismatches[:3]}"
+        tr, sc_cut, m = metrics_report(cs, res)
+        report["metrics"] = m
+        # float loop (fitted gains) on the same profile for the stated tolerance
+        from empc.controllers.explicit import ExplicitMPC
+        ftr = cl.simulate(cs.cfg, ExplicitMPC(cs.cfg), sc_cut)
+        fm = cl.metrics(ftr, sc_cut, settle_floor=cs.cfg.rad_s_per_count_ts if cs.sc.task == "speed"
+                        else 4 * cs.cfg.rad_per_count, preview=cs.cfg.control.N * cs.cfg.control.Ts)
+        report["float_metrics"] = fm
+        report["rms_error_rtl_vs_float_rel"] = abs(m["rms_error"] - fm["rms_error"]) / max(fm["rms_error"], 1e-12)
+        assert report["rms_error_rtl_vs_float_rel"] < 0.10, report["rms_error_rtl_vs_float_rel"]
+        assert res["status"]["CNT_OVERRUN"] == 0 and res["status"]["FAULT"] == 0, res["status"]
+        _plot(cs, tr, ftr, REPORTS / f"closed_loop_{name}.png")
+    else:
+        assert res["fault_seen"] is not None, f"{cs.fault}: no fault tripped"
+        bit = {"overcurrent": 0, "encoder": 2, "watchdog": 3}[cs.fault]
+        assert (res["status"]["FAULT"] >> bit) & 1, f"{cs.fault}: FAULT register {res['status']['FAULT']:#x}"
+        # cleared only by the CPU: still latched now, clears once the cause has gone
+        cs.inject = False
+        drv = driver.Drive(__import__("emc_bfm").EmcBfm(dut, pins=dict(cs_n="cpu_cs_n", oe_n="cpu_oe_n",
+                           we_n="cpu_we_n", a="cpu_a", d="cpu_d", d_oe="cpu_d_oe", bus="emc_d_seen")))
+        await drv.kick()
+        cs.drive_plant_pins()
+        await ClockCycles(dut.clk, 12000)
+        assert await drv.read("FAULT") != 0, "fault cleared without the CPU"
+        await drv.kick()
+        await drv.command(fault_clear=1)
+        await ClockCycles(dut.clk, 100)
+        report["fault_after_clear"] = await drv.read("FAULT")
+        assert report["fault_after_clear"] == 0, f"fault did not clear: {report['fault_after_clear']:#x}"
+        for k, v in res["status"].items():
+            assert v < 0xFFFFFFFF, f"counter {k} saturated/wrapped"
+    REPORTS.mkdir(parents=True, exist_ok=True)
+    (REPORTS / f"closed_loop_{name}.json").write_text(json.dumps(report, indent=1, default=float) + "\n")
+
+
+def _plot(cs, tr, ftr, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(1, 3, figsize=(15, 4))
+    y, fy = tr.output(cs.sc.task), ftr.output(cs.sc.task)
+    ax[0].plot(tr.t, tr.ref[:, 2], "k--", lw=1, label="reference")
+    ax[0].plot(tr.t, y, lw=1, label="RTL co-simulation")
+    ax[0].plot(ftr.t, fy, lw=1, label="float model")
+    ax[1].plot(tr.t, tr.i_q, lw=1, label="i_q RTL")
+    ax[1].plot(tr.t, tr.i_d, lw=1, label="i_d RTL")
+    ax[1].plot(ftr.t, ftr.i_q, lw=1, alpha=0.6, label="i_q float")
+    ax[2].plot(tr.t, tr.u_q, lw=1, label="u_q RTL")
+    ax[2].plot(tr.t, tr.u_d, lw=1, label="u_d RTL")
+    for a in ax:
+        a.grid(True, alpha=0.3)
+        a.legend(fontsize=7)
+        a.set_xlabel("t [s]")
+    fig.suptitle(f"RTL-in-the-loop: {cs.name} ({cs.sc.description})", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+
+
+# ---------------------------------------------------------------- pytest entries
+def _run(name, sim=None):
+    from runner import run
+    run(toplevel="cosim_top", test_module="test_closed_loop", sim=sim, name=f"cosim_{name}",
+        extra_env={"EMPC_COSIM": name})
+
+
+def test_closed_loop_short():
+    _run("short")
+
+
+@pytest.mark.parametrize("fault", ["overcurrent", "encoder", "watchdog"])
+def test_fault_injection(fault):
+    _run(fault)
+
+
+@pytest.mark.full
+@pytest.mark.parametrize("name", ["position_alg1", "position_alg2", "speed_steps", "load_step"])
+def test_closed_loop_full(name):
+    _run(name, sim="verilator")

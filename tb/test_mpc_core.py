@@ -1,0 +1,611 @@
+"""mpc_core: bit-exact against gen/empc/rtlmodel/mpc_core.py, bank protocol, latency, float-law error.
+
+pytest entries:
+  test_mpc_core          Icarus, ports driven directly: boot, a few hundred vectors over the 4 generated
+                         images (CPU upload + atomic swap during an update), latency, handshake.
+  test_mpc_core_stream   Verilator, sim/mpc_core_stream.v: >= 100k random vectors per generated image
+                         plus corner cases plus random (out-of-range) images, compared with the model.
+  test_batch_model       the numpy twin used for the stream comparison == the scalar model.
+  test_float_error       core (model) du vs. the float law with exact gains, bound relative to u_max.
+Seed: EMPC_SEED (default 4242); vector count per image in the stream test: EMPC_MPC_VECTORS (100000).
+"""
+from __future__ import annotations
+
+import json
+import os
+import random
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import mpc_core_vectors as V
+from empc import image
+from empc.rtlmodel import mpc_core as core
+
+ROOT = Path(__file__).resolve().parents[1]
+SEED = int(os.environ.get("EMPC_SEED", "4242"))
+N_STREAM = int(os.environ.get("EMPC_MPC_VECTORS", "100000"))
+IMAGES = ("alg1_speed", "alg1_position", "alg2_speed", "alg2_position")
+LAT_BASE = core.LATENCY_BASE
+SW, UW, OPW = core.SIG_W, 24, 18
+
+
+def roms() -> Path:
+    return Path(os.environ.get("EMPC_ROMS", ROOT / "build" / "roms" / "default")).resolve()
+
+
+def load_image(name: str) -> list[int]:
+    return image.read_hex(roms() / f"coef_{name}.hex")
+
+
+def header_n() -> int:
+    from empc import header
+    return header.read(roms() / "empc_formats.vh")["N"]
+
+
+# ============================================================================ cocotb (Icarus, ports)
+def _u(v: int, w: int) -> int:
+    return v & ((1 << w) - 1)
+
+
+def _s(v: int, w: int) -> int:
+    v &= (1 << w) - 1
+    return v - (1 << w) if v >> (w - 1) else v
+
+
+def _pack(vals, w: int) -> int:
+    out = 0
+    for k, v in enumerate(vals):
+        out |= _u(int(v), w) << (k * w)
+    return out
+
+
+def _unpack(v: int, n: int, w: int) -> list[int]:
+    return [_s(v >> (k * w), w) for k in range(n)]
+
+
+def drive(dut, x: dict, i: int, N: int) -> None:
+    dut.y0.value = _u(int(x["y"][i, 0]), OPW)
+    dut.y1.value = _u(int(x["y"][i, 1]), OPW)
+    dut.y2.value = _u(int(x["y"][i, 2]), SW)
+    dut.omega.value = _u(int(x["omega"][i]), 32)
+    dut.dx.value = _pack(x["dx"][i], SW)
+    dut.wref.value = _pack(x["wref"][i].reshape(-1), SW)
+    dut.u_prev.value = _pack(x["u_prev"][i], UW)
+    dut.ebar_prev.value = _pack(x["ebar_prev"][i], SW)
+
+
+def read_out(dut) -> dict:
+    return {"u": _unpack(int(dut.u.value), 2, UW), "du": _unpack(int(dut.du.value), 2, UW),
+            "u_raw": _unpack(int(dut.u_raw.value), 2, UW), "ebar": _unpack(int(dut.ebar.value), 3, SW),
+            "wn": _s(int(dut.wn.value), OPW), "flags": int(dut.flags.value)}
+
+
+def _mismatch(got: dict, exp: dict) -> str | None:
+    for k in exp:
+        if got[k] != exp[k]:
+            return f"{k}: dut {got[k]} model {exp[k]}"
+    return None
+
+
+class Bench:
+    def __init__(self, dut):
+        from cocotb.triggers import RisingEdge, ReadOnly
+        self.dut, self.RisingEdge, self.ReadOnly = dut, RisingEdge, ReadOnly
+        self.N = header_n()
+        self.scramble = V.empty_inputs(1, self.N)
+        for k, v in self.scramble.items():
+            v[...] = 0x5A5A5
+
+    async def reset(self) -> int:
+        dut = self.dut
+        dut.rst.value = 1
+        for s in ("start", "cfg_we", "cfg_swap"):
+            getattr(dut, s).value = 0
+        dut.cfg_addr.value = 0
+        dut.cfg_wdata.value = 0
+        for _ in range(3):
+            await self.RisingEdge(dut.clk)
+        dut.rst.value = 0
+        n = 0
+        while True:
+            await self.RisingEdge(dut.clk)
+            n += 1
+            await self.ReadOnly()
+            if int(dut.ready.value):
+                return n
+            assert n < 5000, "ready never rose"
+
+    async def write_image(self, words: list[int], during=None) -> None:
+        dut = self.dut
+        await self.RisingEdge(dut.clk)
+        for a in range(image.USED):
+            dut.cfg_we.value = 1
+            dut.cfg_addr.value = a
+            dut.cfg_wdata.value = words[a]
+            await self.RisingEdge(dut.clk)
+        dut.cfg_we.value = 0
+
+    async def run(self, x: dict, i: int, swap_at: int | None = None) -> tuple[dict, int]:
+        """Apply vector i, pulse start, wait for done; returns outputs and start->done cycles."""
+        dut = self.dut
+        await self.RisingEdge(dut.clk)
+        drive(dut, x, i, self.N)
+        dut.start.value = 1
+        await self.RisingEdge(dut.clk)
+        dut.start.value = 0
+        # scramble the inputs: the core must have registered them at start
+        drive(dut, self.scramble, 0, self.N)
+        n = 1
+        while True:
+            if swap_at is not None and n == swap_at:
+                dut.cfg_swap.value = 1
+            await self.ReadOnly()
+            assert int(dut.busy.value) == 1 or int(dut.done.value) == 1, f"busy low before done (cycle {n})"
+            if int(dut.done.value):
+                break
+            await self.RisingEdge(dut.clk)
+            dut.cfg_swap.value = 0
+            n += 1
+            assert n < 500, "done never came"
+        assert int(dut.busy.value) == 0
+        return read_out(dut), n
+
+
+def _model_outputs(p: core.Params, x: dict, i: int) -> dict:
+    return V.outputs_of(core.update(p, V.to_inputs(x, i)))
+
+
+async def _check_vectors(tb: Bench, p: core.Params, x: dict, names=None, log=None) -> int:
+    lat_exp = LAT_BASE + min(p.ncols, core.MAX_COLS)
+    for i in range(len(x["omega"])):
+        got, lat = await tb.run(x, i)
+        exp = _model_outputs(p, x, i)
+        err = _mismatch(got, exp)
+        assert err is None, f"vector {i} ({names[i] if names else 'random'}): {err}; inputs {V.to_inputs(x, i)}"
+        assert lat == lat_exp, f"latency {lat} != {lat_exp}"
+        assert int(tb.dut.latency.value) == lat_exp
+    return len(x["omega"])
+
+
+try:
+    import cocotb
+
+    @cocotb.test()
+    async def boot_vectors_swap(dut):
+        """Boot image, direct vectors on all 4 images, CPU upload and atomic swap."""
+        from cocotb.clock import Clock
+        from cocotb.triggers import RisingEdge, ReadOnly
+        cocotb.start_soon(Clock(dut.clk, 10, unit="ns").start())
+        tb = Bench(dut)
+        rng = np.random.default_rng(SEED)
+        dut._log.info(f"seed {SEED} (EMPC_SEED), N = {tb.N}")
+        n_ready = await tb.reset()
+        dut._log.info(f"ready {n_ready} cycles after reset release, boot_ok={int(dut.boot_ok.value)}")
+        assert n_ready == core.BOOT_CYCLES, n_ready
+        assert int(dut.boot_ok.value) == 1 and int(dut.bank.value) == 0 and int(dut.swap_pending.value) == 0
+        boot_w = image.read_hex(roms() / "coef_boot.hex")
+        p_boot = image.decode(boot_w)
+        total = 0
+        # boot image: corners (subset) + random
+        xc, names = V.corner_inputs(p_boot, tb.N, rng)
+        sel = list(range(0, len(names)))[:60] + list(range(60, len(names), 40))
+        total += await _check_vectors(tb, p_boot, V.take(xc, sel), [names[k] for k in sel])
+        total += await _check_vectors(tb, p_boot, V.random_inputs(rng, 40, p_boot, tb.N))
+        # outputs hold during the next update until its done
+        x2 = V.random_inputs(rng, 2, p_boot, tb.N)
+        out0, _ = await tb.run(x2, 0)
+        await RisingEdge(dut.clk)
+        drive(dut, x2, 1, tb.N)
+        dut.start.value = 1
+        await RisingEdge(dut.clk)
+        dut.start.value = 0
+        for _ in range(20):
+            await RisingEdge(dut.clk)
+            await ReadOnly()
+            assert read_out(dut) == out0, "outputs changed before done"
+            assert int(dut.busy.value) == 1
+        # a start while busy is ignored
+        await RisingEdge(dut.clk)
+        dut.start.value = 1
+        await RisingEdge(dut.clk)
+        dut.start.value = 0
+        while not int(dut.done.value):
+            await RisingEdge(dut.clk)
+            await ReadOnly()
+        assert _mismatch(read_out(dut), _model_outputs(p_boot, x2, 1)) is None
+        await RisingEdge(dut.clk)
+        await ReadOnly()
+        assert int(dut.busy.value) == 0 and int(dut.done.value) == 0, "start during busy was not ignored"
+        # walk through the other images: upload into the inactive bank, swap during an update
+        p_cur = p_boot
+        order = [n for n in IMAGES if load_image(n) != boot_w] + [n for n in IMAGES if load_image(n) == boot_w]
+        for k, name in enumerate(order):
+            w = load_image(name)
+            p_new = image.decode(w)
+            bank0 = int(dut.bank.value)
+            # upload into the inactive bank while updates run on the active one
+            wr = cocotb.start_soon(tb.write_image(w))
+            x = V.random_inputs(rng, 12, p_cur, tb.N)
+            total += await _check_vectors(tb, p_cur, x)
+            await wr
+            assert int(dut.bank.value) == bank0, "write changed the active bank"
+            # still the old tuning
+            x = V.random_inputs(rng, 3, p_cur, tb.N)
+            total += await _check_vectors(tb, p_cur, x)
+            # swap requested in the middle of an update: that update still uses the old bank
+            got, lat = await tb.run(x, 0, swap_at=10)
+            assert _mismatch(got, _model_outputs(p_cur, x, 0)) is None, "update during swap used new bank"
+            assert int(dut.swap_pending.value) == 1 and int(dut.bank.value) == bank0
+            await RisingEdge(dut.clk)
+            await ReadOnly()
+            assert int(dut.swap_pending.value) == 0 and int(dut.bank.value) == 1 - bank0
+            x = V.random_inputs(rng, 50, p_new, tb.N)
+            xc, names = V.corner_inputs(p_new, tb.N, rng)
+            sel = list(range(0, len(names), 25))
+            total += await _check_vectors(tb, p_new, x)
+            total += await _check_vectors(tb, p_new, V.take(xc, sel), [names[s] for s in sel])
+            dut._log.info(f"image {name}: bank {1 - bank0}, swap during update ok, ncols {p_new.ncols}, "
+                          f"latency {LAT_BASE + p_new.ncols} cycles")
+            p_cur = p_new
+        # swap requested while idle: takes effect at the next edge; swap + start in one cycle
+        w = load_image(IMAGES[0])
+        await tb.write_image(w)
+        p_new = image.decode(w)
+        x = V.random_inputs(rng, 1, p_new, tb.N)
+        await RisingEdge(dut.clk)
+        drive(dut, x, 0, tb.N)
+        dut.cfg_swap.value = 1
+        dut.start.value = 1
+        await RisingEdge(dut.clk)
+        dut.cfg_swap.value = 0
+        dut.start.value = 0
+        while True:
+            await RisingEdge(dut.clk)
+            await ReadOnly()
+            if int(dut.done.value):
+                break
+        assert _mismatch(read_out(dut), _model_outputs(p_new, x, 0)) is None, "swap with start in one cycle"
+        total += 1
+        dut._log.info(f"checked {total} vectors bit-exact (outputs u, du, u_raw, ebar, wn, flags), "
+                      f"latency = {LAT_BASE} + ncols, boot {n_ready} cycles")
+
+    @cocotb.test()
+    async def bad_boot(dut):
+        """A boot image with a wrong checksum: ready still rises, boot_ok = 0."""
+        from cocotb.clock import Clock
+        cocotb.start_soon(Clock(dut.clk, 10, unit="ns").start())
+        n_ready = await Bench(dut).reset()
+        assert n_ready == core.BOOT_CYCLES and int(dut.boot_ok.value) == 0, (n_ready, int(dut.boot_ok.value))
+        dut._log.info("corrupted boot image: ready after 771 cycles, boot_ok = 0")
+
+    @cocotb.test()
+    async def stream(dut):
+        """Streaming harness (sim/mpc_core_stream.v): many vectors back to back on Verilator."""
+        if not hasattr(dut, "go"):
+            return
+        from cocotb.clock import Clock
+        from cocotb.triggers import RisingEdge
+        Clock(dut.clk, 10, unit="ns", impl="gpi").start()   # C clock: no Python per cycle
+        N = header_n()
+        dut.go.value = 0
+        rng = np.random.default_rng(SEED)
+        t0 = time.time()
+        jobs = stream_jobs(rng, N)
+        write_stream(Path("mpc_stream_in.bin"), jobs, N)
+        t1 = time.time()
+        dut._log.info(f"seed {SEED}: {sum(len(j['x']['omega']) for j in jobs)} vectors in {len(jobs)} jobs, "
+                      f"generated in {t1 - t0:.1f} s")
+        for _ in range(5):
+            await RisingEdge(dut.clk)
+        dut.go.value = 1
+        await RisingEdge(dut.clk)
+        dut.go.value = 0
+        await RisingEdge(dut.finished)          # no Python per clock cycle
+        t2 = time.time()
+        dut._log.info(f"simulation {t2 - t1:.1f} s, {int(dut.cycles.value)} cycles")
+        res = compare_stream(Path("mpc_stream_out.txt"), jobs, dut._log)
+        Path("mpc_stream_result.json").write_text(json.dumps(res, indent=1))
+        from bench_mpc_core import merge_report
+        merge_report({"vectors": res["vectors"], "mismatches": res["mismatches"], "seed": SEED,
+                      "sim_cycles": int(dut.cycles.value), "stream_jobs": res["jobs"]})
+        dut._log.info(f"compare {time.time() - t2:.1f} s")
+        assert res["mismatches"] == 0, res
+except ImportError:   # pytest without cocotb context
+    pass
+
+
+# ============================================================================ stream files
+def stream_jobs(rng, N: int) -> list[dict]:
+    """Images with their vectors: the 4 generated ones (random + corners), then random images."""
+    jobs = []
+    for name in IMAGES:
+        w = load_image(name)
+        p = image.decode(w)
+        xc, names = V.corner_inputs(p, N, rng)
+        x = V.concat(xc, V.random_inputs(rng, N_STREAM, p, N))
+        jobs.append({"name": name, "words": w, "p": p, "x": x, "corners": len(names)})
+    n_rand = int(os.environ.get("EMPC_MPC_RANDOM_IMAGES", "12"))
+    for k in range(n_rand):
+        w, p = V.random_image(rng, N)
+        x = V.random_inputs(rng, 2000, p, N)
+        jobs.append({"name": f"random{k}", "words": w, "p": p, "x": x, "corners": 0})
+    return jobs
+
+
+def _hex_cols(vals: np.ndarray, width: int) -> np.ndarray:
+    """(n,) int64 -> (n, digits) uint8 ASCII hex of the two's complement in `width` bits."""
+    digits = (width + 3) // 4
+    v = vals.astype(np.int64)
+    u = (v & ((1 << width) - 1)).astype(np.uint64) if width < 64 else v.astype(np.uint64)
+    shifts = np.arange(digits - 1, -1, -1, dtype=np.uint64) * np.uint64(4)
+    nib = (u[:, None] >> shifts[None, :]) & np.uint64(15)
+    return np.frombuffer(b"0123456789abcdef", np.uint8)[nib.astype(np.int64)]
+
+
+def _lines(cols: list[np.ndarray]) -> bytes:
+    n = cols[0].shape[0]
+    parts = []
+    for c in cols:
+        parts.append(c)
+        parts.append(np.full((n, 1), ord(" "), np.uint8))
+    parts[-1] = np.full((n, 1), ord("\n"), np.uint8)
+    return np.concatenate(parts, axis=1).tobytes()
+
+
+def vector_fields(x: dict, N: int) -> list[tuple[np.ndarray, int]]:
+    f = [(x["y"][:, 0], OPW), (x["y"][:, 1], OPW), (x["y"][:, 2], SW), (x["omega"], 32)]
+    f += [(x["dx"][:, k], SW) for k in range(5)]
+    f += [(x["wref"][:, m, o], SW) for m in range(N + 1) for o in range(3)]
+    f += [(x["u_prev"][:, i], UW) for i in range(2)]
+    f += [(x["ebar_prev"][:, o], SW) for o in range(3)]
+    return f
+
+
+def write_stream(path: Path, jobs: list[dict], N: int) -> None:
+    """Binary command file for sim/mpc_core_stream.v: 'w' cfg write, 's' swap, 'v' update, 'e' end."""
+    with open(path, "wb") as fh:
+        for job in jobs:
+            w = job["words"]
+            rec = np.zeros(image.USED, dtype=[("c", "u1"), ("a", ">u2"), ("d", ">u4")])
+            rec["c"], rec["a"], rec["d"] = ord("w"), np.arange(image.USED), np.array(w[:image.USED], np.uint32)
+            fh.write(rec.tobytes())
+            fh.write(b"s")
+            fv = np.stack([v for v, _ in vector_fields(job["x"], N)], axis=1).astype(">i8")
+            n = fv.shape[0]
+            body = np.concatenate([np.full((n, 1), ord("v"), np.uint8), fv.view(np.uint8).reshape(n, -1)], axis=1)
+            fh.write(body.tobytes())
+        fh.write(b"e")
+
+
+OUT_FIELDS = [("u", 2, UW), ("du", 2, UW), ("u_raw", 2, UW), ("ebar", 3, SW), ("wn", 1, OPW), ("flags", 1, 11),
+              ("lat", 1, 8)]
+
+
+def read_stream(path: Path) -> dict:
+    raw = np.frombuffer(path.read_bytes(), np.uint8)
+    widths = [(w + 3) // 4 * k for _, k, w in OUT_FIELDS]  # vectors are printed as one hex number each
+    L = sum(widths) + len(widths)
+    assert raw.size % L == 0, f"output file size {raw.size} not a multiple of line length {L}"
+    rows = raw.reshape(-1, L)
+    lut = np.zeros(256, np.int64)
+    for i, c in enumerate(b"0123456789abcdef"):
+        lut[c] = i
+    out, pos = {}, 0
+    for (name, k, w), wd in zip(OUT_FIELDS, widths):
+        d = (w + 3) // 4
+        vals = []
+        for e in range(k - 1, -1, -1):           # highest element printed first
+            digs = lut[rows[:, pos + (k - 1 - e) * d: pos + (k - e) * d]]
+            v = np.zeros(len(rows), np.int64)
+            for c in range(d):
+                v = (v << 4) | digs[:, c]
+            v = np.where(v >> (w - 1) & 1, v - (1 << w), v) if name not in ("flags", "lat") else v
+            vals.append((e, v))
+        vals.sort()
+        out[name] = np.stack([v for _, v in vals], axis=1) if k > 1 else vals[0][1]
+        pos += wd + 1
+    return out
+
+
+def compare_stream(path: Path, jobs: list[dict], log) -> dict:
+    got = read_stream(path)
+    n_total = sum(len(j["x"]["omega"]) for j in jobs)
+    assert len(got["wn"]) == n_total, f"{len(got['wn'])} results for {n_total} vectors"
+    res = {"seed": SEED, "vectors": n_total, "mismatches": 0, "jobs": []}
+    base = 0
+    for job in jobs:
+        x, p = job["x"], job["p"]
+        n = len(x["omega"])
+        exp = V.update_batch(p, x)
+        bad = np.zeros(n, bool)
+        for k in ("u", "du", "u_raw", "ebar", "wn", "flags"):
+            g = got[k][base:base + n]
+            e = exp[k]
+            bad |= (g != e).reshape(n, -1).any(axis=1)
+        lat = got["lat"][base:base + n]
+        lat_exp = LAT_BASE + min(p.ncols, core.MAX_COLS)
+        bad_lat = int((lat != lat_exp).sum())
+        nb = int(bad.sum())
+        flag_hits = {name: int(((exp["flags"] >> b) & 1).sum()) for name, b in core.FLAG_BITS.items()}
+        res["jobs"].append({"name": job["name"], "vectors": n, "corners": job["corners"], "mismatches": nb,
+                            "latency": lat_exp, "latency_mismatches": bad_lat, "flag_hits": flag_hits})
+        res["mismatches"] += nb + bad_lat
+        log.info(f"{job['name']}: {n} vectors ({job['corners']} corner), {nb} mismatches, latency {lat_exp} "
+                 f"({bad_lat} off), flags set: {flag_hits}")
+        if nb:
+            i = int(np.nonzero(bad)[0][0])
+            log.error(f"first mismatch vector {i}: dut " +
+                      str({k: got[k][base + i].tolist() for k in ('u', 'du', 'u_raw', 'ebar', 'wn', 'flags')}) +
+                      " model " + str({k: exp[k][i].tolist() for k in ('u', 'du', 'u_raw', 'ebar', 'wn', 'flags')}))
+        base += n
+    return res
+
+
+# ============================================================================ pytest entries
+def _file_params() -> dict:
+    return {"BOOT_FILE": f'"{roms() / "coef_boot.hex"}"', "RSQRT_FILE": f'"{roms() / "rsqrt.hex"}"'}
+
+
+def test_mpc_core():
+    from runner import run
+    run(toplevel="mpc_core", test_module="test_mpc_core", parameters=_file_params(), testcase="boot_vectors_swap")
+
+
+def test_mpc_core_bad_boot():
+    w = image.read_hex(roms() / "coef_boot.hex")
+    w[image.A_CSUM] ^= 1
+    bad = ROOT / "build" / "sim" / "mpc_core_bad_boot.hex"
+    bad.parent.mkdir(parents=True, exist_ok=True)
+    image.write_hex(w, bad)
+    from runner import run
+    run(toplevel="mpc_core", test_module="test_mpc_core", testcase="bad_boot",
+        parameters={**_file_params(), "BOOT_FILE": f'"{bad}"'})
+
+
+def test_mpc_core_stream():
+    from runner import run
+    run(toplevel="mpc_core_stream", test_module="test_mpc_core", sim="verilator", parameters=_file_params(),
+        testcase="stream")
+
+
+def test_batch_model():
+    """The numpy twin equals the scalar model (the specification) on every image, incl. random ones."""
+    rng = np.random.default_rng(SEED + 1)
+    N = header_n()
+    n_checked = 0
+    cases = [(name, image.decode(load_image(name))) for name in IMAGES]
+    cases += [(f"random{k}", V.random_image(rng, N)[1]) for k in range(8)]
+    for name, p in cases:
+        xc, names = V.corner_inputs(p, N, rng)
+        x = V.concat(xc, V.random_inputs(rng, 1000, p, N)) if name in IMAGES else V.random_inputs(rng, 600, p, N)
+        got = V.update_batch(p, x)
+        for i in range(len(x["omega"])):
+            exp = _model_outputs(p, x, i)
+            g = {k: (got[k][i].tolist() if np.ndim(got[k][i]) else int(got[k][i])) for k in exp}
+            assert g == exp, f"{name} vector {i}: batch {g} scalar {exp}"
+            n_checked += 1
+    print(f"seed {SEED + 1}: batch model == scalar model on {n_checked} vectors, {len(cases)} images")
+
+
+# ============================================================================ error against the float law
+def operating_points(rng, p: core.Params, cfg, units: dict, n: int) -> dict:
+    """Realistic operating points in raw units: |i| <= i_max / 2, speeds over Omega_e, small errors."""
+    N = p.N
+    pos = p.task == "position"
+    isc = units["amps_per_lsb"] / (1 << 4)
+    wsc = units["rad_s_per_count_per_ts"] / (1 << 16)
+    thsc = units["rad_per_count_electrical"] / (1 << 8)
+    x = V.empty_inputs(n, N)
+    imax = cfg.control.i_max / isc
+    x["y"][:, 0:2] = rng.uniform(-0.5, 0.5, (n, 2)) * imax
+    om = rng.integers(p.wn_min << p.ws, (p.wn_max << p.ws) + 1, n)
+    x["omega"] = om
+    x["y"][:, 2] = rng.integers(-(1 << 36), 1 << 36, n) if pos else om
+    for m in range(N + 1):
+        x["wref"][:, m, 0:2] = x["y"][:, 0:2] + rng.uniform(-0.1, 0.1, (n, 2)) * imax
+        x["wref"][:, m, 2] = x["y"][:, 2] + (rng.uniform(-1, 1, n) * (0.5 / thsc) if pos
+                                             else rng.uniform(-1, 1, n) * (20 / wsc))
+    x["dx"][:, 0:2] = rng.uniform(-0.02, 0.02, (n, 2)) * imax
+    x["dx"][:, 2] = rng.uniform(-1, 1, n) * (2 / wsc)
+    x["dx"][:, 3] = om * 256 // 65536 + rng.integers(-100, 100, n)
+    x["ebar_prev"][:, 2] = rng.uniform(-1, 1, n) * (0.3 / thsc if pos else 3 / wsc)
+    return x
+
+
+def float_du(p: core.Params, g: dict, x: dict, ebar_raw, i: int, units: dict) -> np.ndarray:
+    """du (V) of eq. 23 / 26 in SI units with gains g, for raw vector i (angles relative, as the core)."""
+    N = p.N
+    pos = p.task == "position"
+    isc = units["amps_per_lsb"] / (1 << 4)
+    wsc = units["rad_s_per_count_per_ts"] / (1 << 16)
+    thsc = units["rad_per_count_electrical"] / (1 << 8)
+    s2 = thsc if pos else wsc
+    y = np.array([x["y"][i, 0] * isc, x["y"][i, 1] * isc, x["y"][i, 2] * s2])
+    W = np.array([[x["wref"][i, m, 0] * isc, x["wref"][i, m, 1] * isc, x["wref"][i, m, 2] * s2]
+                  for m in range(1, N + 1)])
+    dx = np.array([x["dx"][i, 0] * isc, x["dx"][i, 1] * isc, x["dx"][i, 2] * wsc, x["dx"][i, 3] * thsc, 0.0])
+    if pos:
+        W[:, 2] -= y[2]
+        y[2] = 0.0
+    if p.algorithm == 1:
+        return g["K_e"] @ (W.reshape(-1) - np.tile(y, N)) - g["K_dx"] @ dx
+    eb = np.array([ebar_raw[0] * isc, ebar_raw[1] * isc, ebar_raw[2] * s2])
+    return g["K_ebar"] @ eb + g["K_WL"] @ W.reshape(-1) - g["K_y"] @ y - g["K_dx"] @ dx
+
+
+BOUND_EXACT = 0.02      # |du_core - du_law(exact gains)| / u_max   (polynomial fit error dominates)
+BOUND_FIT = 5e-4        # |du_core - du_law(fitted polynomials, float)| / u_max  (fixed-point error)
+
+
+def float_error(n: int = 300, seed: int = SEED + 2) -> dict:
+    from empc import config, fit, mpc, quantise
+    man = json.loads((roms() / "manifest.json").read_text())
+    cfg = config.load(ROOT / man["config"])
+    units = man["units"]
+    rng = np.random.default_rng(seed)
+    skip_flags = (1 << core.FLAG_BITS["limit"]) | (1 << core.FLAG_BITS["ebar_inc"])
+    res = {}
+    for name in IMAGES:
+        p = image.decode(load_image(name))
+        gf = fit.fit(cfg, p.algorithm, p.task, w_norm=quantise.w_norm_rtl(cfg, p.ws))
+        x = operating_points(rng, p, cfg, units, n)
+        out = V.update_batch(p, x)
+        umax_v = min(p.u_max, core.OP_MAX) / (1 << 4) * units["volts_per_tick"]
+        e_ex, e_fit = [], []
+        for i in range(n):
+            assert not (out["flags"][i] & ~skip_flags), f"{name}: operating point {i} saturates ({out['flags'][i]:#x})"
+            w = float(np.clip(x["omega"][i] * units["rad_s_per_count_per_ts"] / 65536.0,
+                              cfg.control.omega_min, cfg.control.omega_max))
+            du_core = out["du"][i] / 256.0 * units["volts_per_tick"]
+            du_ex = float_du(p, mpc.gains(cfg.motor, cfg.control, w, p.algorithm, p.task), x, out["ebar"][i], i, units)
+            du_fit = float_du(p, gf.evaluate(w), x, out["ebar"][i], i, units)
+            e_ex.append(np.max(np.abs(du_core - du_ex)))
+            e_fit.append(np.max(np.abs(du_core - du_fit)))
+        res[name] = {"points": n, "u_max_V": umax_v,
+                     "max_err_exact_V": float(max(e_ex)), "rel_exact": float(max(e_ex) / umax_v),
+                     "max_err_fit_V": float(max(e_fit)), "rel_fit": float(max(e_fit) / umax_v)}
+    return res
+
+
+def test_float_error():
+    """du of the core (bit-exact model) vs. the float law with exact gains (and with the fitted polynomials)."""
+    res = float_error()
+    for name, r in res.items():
+        print(f"{name}: {r['points']} operating points, max |du - du_exact| = {r['max_err_exact_V']:.4f} V "
+              f"({100 * r['rel_exact']:.3f} % of u_max {r['u_max_V']:.2f} V), max |du - du_fitted_float| = "
+              f"{r['max_err_fit_V'] * 1e3:.3f} mV ({100 * r['rel_fit']:.4f} %)")
+        assert r["rel_exact"] < BOUND_EXACT, (name, r)
+        assert r["rel_fit"] < BOUND_FIT, (name, r)
+
+
+def test_limiter_bound():
+    """Circle limiter of the model (the RTL is bit-exact to it): |u| <= umax and |u| >= 0.998 umax - 2 LSB."""
+    rng = np.random.default_rng(SEED + 3)
+    n_lim = 0
+    for umax in (23094, min(image.decode(load_image(IMAGES[0])).u_max, core.OP_MAX), 131071, 5000, 1000, 50):
+        for _ in range(100000 // 6):
+            R = umax * np.exp(rng.uniform(0, 5))
+            a = rng.uniform(0, 2 * np.pi)
+            u = [max(min(int(R * np.cos(a)) << 4, (1 << 23) - 1), -(1 << 23)),
+                 max(min(int(R * np.sin(a)) << 4, (1 << 23) - 1), -(1 << 23))]
+            out, lim = core.limit_circle(u, umax)
+            if not lim:
+                continue
+            n_lim += 1
+            m2 = (out[0] >> 4) ** 2 + (out[1] >> 4) ** 2
+            assert m2 <= umax * umax, (u, umax, out)
+            assert np.sqrt(m2) >= 0.998 * umax - 2, (u, umax, out)
+    print(f"seed {SEED + 3}: limiter bound held on {n_lim} limited vectors")
+
+
+@pytest.mark.full
+def test_bench_mpc_core():
+    """Synthesis benchmark (sim/bench_mpc_core.py, ~1 min of Yosys): 6 DSP48A1, report written."""
+    import bench_mpc_core
+    assert bench_mpc_core.main() == 0
+    rep = json.loads(bench_mpc_core.REPORT.read_text())
+    print({k: rep.get(k) for k in ("dsp48a1", "lut", "ff", "ramb16", "ramb8", "clock_mhz", "latency_cycles")})
+    assert rep["dsp48a1"] == 6, rep["dsp48a1"]
