@@ -82,6 +82,13 @@ def cmd_simulate(args) -> int:
     return 0
 
 
+def cmd_compare(args) -> int:
+    from . import compare
+    rep = compare.run(quick=args.quick, out=Path(args.out), only=args.only or None)
+    print(f"wrote {args.out}/compare.json, compare.md and {len(rep['cases'])} plots in {rep['wall_s']:.0f} s")
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="empc", description=__doc__)
     sub = ap.add_subparsers(dest="cmd", required=True)
@@ -109,6 +116,11 @@ def main(argv: list[str] | None = None) -> int:
     s.add_argument("--out", default="build/reports")
     s.set_defaults(func=cmd_simulate)
     r.add_argument("--boot-only", action="store_true", help="only the configuration's own algorithm/task")
+    c = sub.add_parser("compare", help="explicit MPC vs the reference controllers of papers 001/002: compare.{json,md}, plots")
+    c.add_argument("--quick", action="store_true", help="short version (the regression runs it)")
+    c.add_argument("--out", default="build/reports")
+    c.add_argument("--only", nargs="*", help="run only these case keys (e.g. s2_iq_step fw_002)")
+    c.set_defaults(func=cmd_compare)
     args = ap.parse_args(argv)
     try:
         return args.func(args)

@@ -66,18 +66,19 @@ class Trace:
 
 
 def simulate(cfg, controller, scenario: Scenario, seed: int = 0, substeps: int = 4,
-             plant_motor=None, ideal_timing: bool = False) -> Trace:
+             plant_motor=None, ideal_timing: bool = False, dead_time: float = 0.0) -> Trace:
     """Run ``controller`` on the plant for ``scenario``; returns the per-control-period trace.
 
     ``plant_motor`` lets the plant differ from the design motor (parameter mismatch).
     ``ideal_timing`` applies u at the sampling instant (no half-period output delay),
     for analysis only: the hardware cannot do it.
+    ``dead_time`` (s) enables the plant's inverter dead-time voltage error (default off).
     """
     c = cfg.control
     M = cfg.pwm_per_control
     Tpwm = 1.0 / cfg.inverter.f_pwm
     plant = pmsm.Plant(plant_motor or cfg.motor, cfg.inverter.Udc, cfg.inverter.f_pwm, substeps=substeps,
-                       dead_time=0.0)
+                       dead_time=dead_time)
     plant.state = pmsm.PlantState(*scenario.x0)
     sensors = pmsm.Sensors(cfg, rng=np.random.default_rng(seed))
     controller.reset()

@@ -20,7 +20,7 @@ POINTS = {
     "position_alg1": [(0.01, 20.0, "step"), (0.06, 20.0, "step"), (0.26, 120.0, "ramp"), (0.36, 120.0, "step"),
                       (0.56, 20.0, "ramp"), (0.60, 0.0, "step")],
     "load_step": [(0.01, 10.0, "step")],
-    "speed_alg2": [(0.01, 300.0, "step"), (0.11, 600.0, "step"), (0.21, 100.0, "ramp"), (0.31, 100.0, "step")],
+    "speed_alg2": [(0.01, 300.0, "step"), (0.11, 600.0, "step"), (0.21, 600.0, "step"), (0.31, 100.0, "ramp")],
 }
 POINTS["position_alg2"] = POINTS["position_alg1"]
 
