@@ -18,9 +18,13 @@ export EMPC_ROMS := $(abspath $(ROMS))
 export OPENBLAS_NUM_THREADS := 1
 export OMP_NUM_THREADS := 1
 
-RTL_FILES := $(shell sed -e 's/\#.*//' rtl/rtl_files.f)
+PACKAGE  ?= tqg144
+SPEED    ?= 2
+export EMPC_PACKAGE := $(PACKAGE)
+export EMPC_PART    := xc6slx9-$(SPEED)-$(PACKAGE)
+SYNTH_ARGS ?=
 
-.PHONY: all venv check-tools roms sim sim-full lint formal synth bitstream reports clean distclean
+.PHONY: all venv check-tools roms sim sim-full lint formal synth bitstream core clean distclean
 
 all: roms lint synth ## main job: coefficient ROMs, lint, netlist + resource report
 	@echo "ROMs in $(ROMS), netlist and reports in build/synth and build/reports."
@@ -53,13 +57,19 @@ formal: $(STAMP) ## SymbiYosys proofs (PWM safety)
 	$(PY) sim/formal.py
 
 synth: $(STAMP) roms ## Yosys synth_xilinx -family xc6s on lx_rocon_top: EDIF + build/reports/synth.json
-	$(PY) sim/synth.py
+	$(PY) sim/synth.py $(SYNTH_ARGS)
 
 bitstream: synth ## ISE 14.7 ngdbuild/map/par/trce/bitgen (needs ISE on PATH and every pin LOC'd)
 	$(PY) sim/bitstream.py
 
+core: $(STAMP) ## regenerate the FuseSoC core empc.core from rtl/rtl_files.f
+	$(PY) sim/gen_core.py
+
 clean:
 	rm -rf build sim_build results.xml
 
-distclean: clean
+distcore: $(STAMP) ## regenerate the FuseSoC core empc.core from rtl/rtl_files.f
+	$(PY) sim/gen_core.py
+
+clean: clean
 	rm -rf $(VENV) gen/*.egg-info

@@ -253,13 +253,11 @@ module mpc_axis #(
 
     // ---------------- sequencer and MPC core ----------------
     wire                            core_start, core_done, core_busy;
-    wire signed [`EMPC_OPW-1:0]     core_y0, core_y1;
-    wire signed [`EMPC_SIG_W-1:0]   core_y2;
-    wire signed [`EMPC_W_W-1:0]     core_omega;
-    wire [5*`EMPC_SIG_W-1:0]        core_dx;
-    wire [(N+1)*3*`EMPC_SIG_W-1:0]  core_wref;
-    wire [2*`EMPC_U_W-1:0]          core_u_prev, core_u, core_du, core_u_raw;
-    wire [3*`EMPC_SIG_W-1:0]        core_ebar_prev, core_ebar;
+    wire                            core_in_we;
+    wire [5:0]                      core_in_addr;
+    wire signed [`EMPC_SIG_W-1:0]   core_in_wdata;
+    wire [2*`EMPC_U_W-1:0]          core_u, core_du, core_u_raw;
+    wire [3*`EMPC_SIG_W-1:0]        core_ebar;
     wire signed [`EMPC_OPW-1:0]     core_wn;
     wire [10:0]                     core_flags;
     wire [7:0]                      core_latency;
@@ -276,38 +274,55 @@ module mpc_axis #(
         .run(running), .theta(theta), .pos(pos), .pos_sample(pos_sample), .adc_valid(adc_valid),
         .cur0(cur0), .cur1(cur1), .cur2(cur2), .kdc(r_kdc), .kacc(r_kacc), .kacc_shift(r_kacc_shift),
         .id_ref(r_id_ref), .iq_ref(r_iq_ref), .task_pos(task_pos), .ref_advance(ref_advance), .ref_w(ref_w),
-        .core_start(core_start), .core_y0(core_y0), .core_y1(core_y1), .core_y2(core_y2),
-        .core_omega(core_omega), .core_dx(core_dx), .core_wref(core_wref), .core_u_prev(core_u_prev),
-        .core_ebar_prev(core_ebar_prev), .core_done(core_done), .core_u(core_u), .core_ebar(core_ebar),
+        .core_start(core_start), .core_in_we(core_in_we), .core_in_addr(core_in_addr),
+        .core_in_wdata(core_in_wdata), .core_done(core_done), .core_u(core_u), .core_ebar(core_ebar),
         .cmp(cmp), .cmp_load(cmp_load), .control_done(control_done), .overrun(overrun),
         .front_sat(seq_front_sat), .latency(seq_latency), .i_d(st_id), .i_q(st_iq), .omega(omega),
         .u_d(st_ud), .u_q(st_uq), .theta_trig(theta_trig));
 
     mpc_core #(.N(N), .BOOT_FILE(BOOT_FILE), .RSQRT_FILE(RSQRT_FILE)) u_core (
-        .clk(clk), .rst(rst), .start(core_start), .y0(core_y0), .y1(core_y1), .y2(core_y2), .omega(core_omega),
-        .dx(core_dx), .wref(core_wref), .u_prev(core_u_prev), .ebar_prev(core_ebar_prev), .busy(core_busy),
+        .clk(clk), .rst(rst), .start(core_start), .in_we(core_in_we), .in_addr(core_in_addr),
+        .in_wdata(core_in_wdata), .busy(core_busy),
         .done(core_done), .u(core_u), .du(core_du), .u_raw(core_u_raw), .ebar(core_ebar), .wn(core_wn),
         .flags(core_flags), .latency(core_latency), .cfg_we(coef_we), .cfg_addr(coef_addr),
         .cfg_wdata(reg_wdata), .cfg_swap(c_coef_swap), .ready(core_ready), .bank(core_bank),
         .swap_pending(core_swap_pending), .boot_ok(core_boot_ok), .task_pos(task_pos));
 
     // ---------------- counters ----------------
-    localparam integer NCNT = 15;
+    // Event counters SAT_OPERAND .. CNT_OVERRUN (register-map order) in LUT RAM: events
+    // set a pending bit; a scanner visits one counter per clock and increments it
+    // (saturating at 2^32-1).  An event kind is counted at most once per 16 clocks, which
+    // is exact for these (at most one per control period; overruns and front-end
+    // saturations once per PWM period).  ADC misses and encoder errors come from the
+    // blocks' own saturating counters.
+    localparam integer NCNT = 13;
     localparam [7:0] CNT_LO = `EMPC_A_SAT_OPERAND;
     localparam [7:0] CNT_HI = CNT_LO + NCNT[7:0];
     wire [7:0] cnt_idx = reg_addr - CNT_LO;
-    reg [31:0] cnt [0:NCNT-1];          // SAT_OPERAND .. CNT_OVERRUN, in register-map order
-    reg [31:0] periods;
-    integer ci;
-    wire [NCNT-1:0] cnt_inc = {overrun, enc_err_pulse, adc_trig_miss, seq_front_sat | adc_sat | cmp_clip,
-                               core_done ? core_flags : 11'd0};
+    reg  [31:0] cnt_mem [0:15];
+    reg  [NCNT-1:0] cnt_pend;
+    reg  [3:0]  scan;
+    reg         clearing;
+    reg  [31:0] periods;
+    wire [NCNT-1:0] cnt_ev = {overrun, seq_front_sat | adc_sat | cmp_clip, core_done ? core_flags : 11'd0};
+    wire [31:0] scan_val = cnt_mem[scan];
     always @(posedge clk) begin
         if (rst || c_clear_cnt) begin
-            for (ci = 0; ci < NCNT; ci = ci + 1) cnt[ci] <= 32'd0;
+            cnt_pend <= {NCNT{1'b0}};
+            scan <= 4'd0;
+            clearing <= 1'b1;
             periods <= 32'd0;
         end else begin
-            for (ci = 0; ci < NCNT; ci = ci + 1)
-                if (cnt_inc[ci] && cnt[ci] != 32'hffffffff) cnt[ci] <= cnt[ci] + 32'd1;
+            scan <= scan + 4'd1;
+            if (clearing) begin
+                cnt_mem[scan] <= 32'd0;
+                if (scan == 4'd15) clearing <= 1'b0;
+                cnt_pend <= cnt_ev;
+            end else begin
+                if ({1'b0, scan} < NCNT[4:0] && cnt_pend[scan] && scan_val != 32'hffffffff)
+                    cnt_mem[scan] <= scan_val + 32'd1;
+                cnt_pend <= (cnt_pend & ~(({{(NCNT-1){1'b0}}, 1'b1}) << scan)) | cnt_ev;
+            end
             if (control_done && running) periods <= periods + 32'd1;
         end
     end
@@ -357,9 +372,11 @@ module mpc_axis #(
                 `EMPC_A_IABC1: reg_rdata <= {20'd0, code2};
                 `EMPC_A_LATENCY: reg_rdata <= {16'd0, seq_latency};
                 `EMPC_A_PERIODS: reg_rdata <= periods;
+                `EMPC_A_CNT_ADC_MISS: reg_rdata <= {24'd0, adc_miss_cnt};
+                `EMPC_A_CNT_ENC_ERR: reg_rdata <= {16'd0, enc_err_cnt};
                 default: begin
                     if (reg_addr >= CNT_LO && reg_addr < CNT_HI)
-                        reg_rdata <= cnt[cnt_idx[3:0]];
+                        reg_rdata <= cnt_mem[cnt_idx[3:0]];
                     else
                         reg_rdata <= 32'd0;
                 end
@@ -367,10 +384,11 @@ module mpc_axis #(
         end
     end
 
+    // adc_trig_miss: counted by adc_spi itself (miss_cnt -> CNT_ADC_MISS)
     wire unused = &{1'b0, dir, index_seen, index_dir, mark_pos, mark_seen, mark_event, enc_err_flag,
-                    enc_err_cnt, enc_in_state, enc_ready, hall_code, hall_ready, hall_fault, theta_valid, speed_sat,
+                    enc_in_state, enc_ready, hall_code, hall_ready, hall_fault, theta_valid, speed_sat,
                     sample_valid, ps_speed, pos_at_sample, ps_speed_q, theta_at_sample,
-                    pwm_fault_latched, mode_eff, adc_busy, adc_miss_cnt, oc_ch, core_busy, core_du, core_u_raw,
+                    pwm_fault_latched, mode_eff, adc_busy, adc_trig_miss, oc_ch, core_busy, core_du, core_u_raw,
                     core_wn, core_latency, core_boot_ok, theta_trig, cnt_idx[7:4]};
 endmodule
 `default_nettype wire

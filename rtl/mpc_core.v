@@ -5,15 +5,25 @@
 // polynomials k = p0 + wn (p1 + p2 wn) and accumulating k * a << s over the image's columns,
 // du, u_raw = u_prev + du and the circle voltage limiter (RSQRT table, vector scaling).
 //
-// Handshake: `start` (1 cycle, accepted when ready && !busy) registers all inputs; `busy`
-// is high from the next cycle until the outputs are loaded; `done` is a 1-cycle pulse
-// with the outputs valid; outputs hold until the next update's done.
-// Latency: start -> done = LAT_BASE + ncols clock cycles (LAT_BASE = 30; ncols of the
-// active image: 17 for algorithm 1, 23 for algorithm 2 with N = 4 -> 47 / 53 cycles),
+// Inputs: a 64 x 40-bit input buffer written through in_we / in_addr / in_wdata (one word
+// per clock, signed, sign-extended by the writer) before start; word map EMPC_IN_* of the
+// header / IN_* of the model (y[o] at 0..2, omega 3, dx[n] 4..8, u_prev[i] 9..10,
+// ebar_prev[o] 11..13, wref[m][o] at 16 + 3 m + o for m = 0..N).  The core reads the buffer
+// during the update (it does not copy it): the words must not change from start to done.
+// Handshake: `start` (1 cycle, accepted when ready && !busy); `busy` is high from the next
+// cycle until the outputs are loaded; `done` is a 1-cycle pulse with the outputs valid;
+// outputs hold until the next update's done.
+// Latency: start -> done = LAT_BASE + ncols clock cycles (LAT_BASE = 38; ncols of the
+// active image: 17 for algorithm 1, 23 for algorithm 2 with N = 4 -> 55 / 61 cycles),
 // independent of the data (the limiter path is always traversed).  Port `latency`.
-// Schedule (cycle 0 = first cycle after start): item WN at 0, EB0..2 at 1..3, column j
-// at 7 + j (operand pipeline O0..O5, gain pipeline G0 = O0 + 1 .. G8), acc final at
-// c = 16 + ncols, du c, u_raw c+1, squares c+2..c+4, limiter c+4..c+10, u c+12, done c+13.
+// Schedule (cycle 0 = first cycle after start; item issue at O0 of mpc_operand):
+//   0..8   YC0 YC1 YC2 WN LO HI EBA0 EBA1 EBA2     (copies of y, wn and its clamp, eq. 25 inc)
+//   11+j   column j (j < ncols); lanes: G1 = 12 + j, acc includes it from 19 + j
+//   u = cycle - 11 - ncols:  u 5 round step (mul3 = 2^23, acc += it at u 8), u 9 du = acc[47:24];
+//   u 8..15 items UR0 UR1 UMX NUMX UR0 EBB0 EBB1 EBB2; u 13.. op bus u18_d, u18_q, umax,
+//   -umax, u18_d; lane d: u18_d^2, u18_q^2, -umax^2 accumulated (acc = r at u 18,
+//   r - umax^2 at u 20); u 19 RSQRT address, u 20 t, mul2_d = t umax, u 22 f -> op bus,
+//   u 23 mul3 = u18 f, u 25 outputs, u 26 done.
 //
 // Coefficient banks: two banks (mpc_coef_mem).  Bank `bank` is active (read by updates),
 // the other one is written by the CPU port (cfg_we, cfg_addr = image word address,
@@ -26,21 +36,23 @@
 // Reset: bank 0 active, the boot image (BOOT_FILE) is streamed into bank 0 through the
 // same write path (mpc_boot, USED = 768 words); `ready` rises 771 cycles after rst is
 // released, boot_ok = magic and checksum of the boot image correct.  start, cfg_we and
-// cfg_swap are ignored while ready = 0.  All outputs clear to 0 at reset.
+// cfg_swap are ignored while ready = 0 (the input buffer can be written at any time).
+// All outputs clear to 0 at reset.
 //
 // Ports (vectors flattened, element k at [k*W +: W]):
-//   y0, y1 (i_d, i_q, Q14.4, 18 bit), y2 (speed Q16.16 or angle Q32.8, 40 bit), omega (Q16.16)
-//   dx[5 x 40], wref[(N+1) x 3 x 40] (index 3 m + o, m = 0: w_k), u_prev[2 x 24] (Q16.8),
-//   ebar_prev[3 x 40]; outputs u, du, u_raw [2 x 24], ebar [3 x 40], wn (Q1.17), flags
+//   in_we, in_addr[5:0], in_wdata[39:0]: input buffer write port
+//   outputs u, du, u_raw [2 x 24], ebar [3 x 40], wn (Q1.17), flags
 //   (bit = FLAG_BITS of the model: 0 operand, 1 gain, 2 term, 3 acc, 4 du, 5 u, 6 ebar,
 //   7 ebar_inc, 8 limit, 9 wn_clamp, 10 signal: that saturation happened in this update).
 //   Status: ready, bank (active), swap_pending, boot_ok, task_pos (task of the active bank,
 //   1 = position: the front end selects y2 / references accordingly), latency.
 // Parameters: N (horizon inputs, default EMPC_N), BOOT_FILE, RSQRT_FILE ($readmemh paths).
 // Resources: 6 DSP48A1 (3 per lane, the limiter reuses them), block RAM for the boot
-// ROM (1024 x 32), RSQRT (1024 x 18) and the coefficient memories.
+// ROM (1024 x 32), RSQRT (1024 x 18) and the coefficient memories, LUT RAM for the input
+// buffer, the scratch words and the bank headers.
 `default_nettype none
 `include "empc_formats.vh"
+`include "mpc_items.vh"
 module mpc_core #(
     parameter integer N = `EMPC_N,
     parameter BOOT_FILE = "coef_boot.hex",
@@ -50,14 +62,9 @@ module mpc_core #(
     input  wire                            rst,
     // update
     input  wire                            start,
-    input  wire signed [`EMPC_OPW-1:0]     y0,
-    input  wire signed [`EMPC_OPW-1:0]     y1,
-    input  wire signed [`EMPC_SIG_W-1:0]   y2,
-    input  wire signed [`EMPC_W_W-1:0]     omega,
-    input  wire [5*`EMPC_SIG_W-1:0]        dx,
-    input  wire [(N+1)*3*`EMPC_SIG_W-1:0]  wref,
-    input  wire [2*`EMPC_U_W-1:0]          u_prev,
-    input  wire [3*`EMPC_SIG_W-1:0]        ebar_prev,
+    input  wire                            in_we,
+    input  wire [5:0]                      in_addr,
+    input  wire signed [`EMPC_SIG_W-1:0]   in_wdata,
     output reg                             busy,
     output reg                             done,
     output reg  [2*`EMPC_U_W-1:0]          u,
@@ -78,13 +85,18 @@ module mpc_core #(
     output wire                            boot_ok,
     output wire                            task_pos      // active bank: 1 = position task
 );
-    localparam integer OPW = `EMPC_OPW;
-    localparam integer UW  = `EMPC_U_W;
-    localparam integer SW  = `EMPC_SIG_W;
-    localparam [7:0] LAT_BASE = 8'd30;       // start -> done = LAT_BASE + ncols
-    localparam [7:0] T_COL    = 8'd7;        // first column item
-    localparam [7:0] T_FIN    = 8'd16;       // acc final at T_FIN + ncols
-    localparam [1:0] K_NONE = 2'd0, K_COL = 2'd1, K_WN = 2'd2, K_EB = 2'd3;
+    localparam integer OPW  = `EMPC_OPW;
+    localparam integer UW   = `EMPC_U_W;
+    localparam integer SW   = `EMPC_SIG_W;
+    localparam integer ACCW = `EMPC_ACCW;
+    localparam integer T_COL = 11;            // first column item
+    localparam integer NPRE  = 9;             // pre-phase items at cycles 0..8
+    localparam integer NTAIL = 26;            // tail steps u = 0..25
+    localparam [7:0] LAT_BASE = T_COL[7:0] + NTAIL[7:0] + 8'd1;   // start -> done = LAT_BASE + ncols
+    // tail steps (u = cycles after the last column item)
+    localparam integer U_RND = 5, U_UR0 = 8, U_UR1 = 9, U_DU = 9, U_UMX = 10, U_NUMX = 11, U_UR0B = 12,
+                       U_EBB = 13, U_ULD0 = 12, U_M3U0 = 13, U_CLR = 14, U_ACCX = 16, U_LDR = 18,
+                       U_LDLIM = 20, U_M2T = 20, U_SELF = 22, U_M3RND = 23, U_FIRE = 25;
 
     // ---- boot stream and write port ----
     wire        b_we;
@@ -96,53 +108,68 @@ module mpc_core #(
     );
     reg ready_r;
     assign ready = ready_r;
-    wire        w_we   = ready_r ? cfg_we : b_we;
-    wire [9:0]  w_addr = ready_r ? cfg_addr : b_addr;
-    wire [31:0] w_data = ready_r ? cfg_wdata : b_data;
-    wire        w_bank = ready_r ? ~bank : 1'b0;
+    // write port, registered: a word goes to the bank that is inactive in the cycle of the request
+    reg         w_we, w_bank;
+    reg  [9:0]  w_addr;
+    reg  [31:0] w_data;
+    always @(posedge clk) begin
+        if (rst) begin
+            w_we   <= 1'b0;
+            w_bank <= 1'b0;
+            w_addr <= 10'd0;
+            w_data <= 32'd0;
+        end else begin
+            w_we   <= ready_r ? cfg_we : b_we;
+            w_bank <= ready_r ? ~bank : 1'b0;
+            w_addr <= ready_r ? cfg_addr : b_addr;
+            w_data <= ready_r ? cfg_wdata : b_data;
+        end
+    end
 
-    // ---- control ----
+    // ---- sequencing: one-hot pre-phase and tail, column counter ----
     wire start_ok = start && ready_r && !busy;
-    reg  [7:0] t;
-    reg  [12:1] ls;              // ls[k]: fin delayed by k cycles
-    wire [6:0] ncols;
-    wire [7:0] ncols8 = {1'b0, ncols};
-    wire fin = busy && (t == T_FIN + ncols8);
-    assign latency = LAT_BASE + ncols8;
-
-    // item token at O0
-    wire [7:0] tc = t - T_COL;
-    wire is_col = busy && (t >= T_COL) && (tc < ncols8);
-    wire [1:0] kind0 = !busy ? K_NONE : (t == 8'd0) ? K_WN :
-                       (t >= 8'd1 && t <= 8'd3) ? K_EB : is_col ? K_COL : K_NONE;
-    wire [1:0] eo0 = t[1:0] - 2'd1;
-    wire [5:0] j0 = tc[5:0];
-    reg  [5:0] j1, j2, j3, j4, j5, j6, j7;
-    reg        cv1, cv2;
+    reg  [NPRE+1:0]  pre;         // pre[k]: cycle k (k = 0 .. T_COL-1)
+    reg  [NTAIL-1:0] tl;          // tl[u]: tail step u
+    reg              col_run;
+    reg  [5:0]       jc;          // column at O0
+    wire [6:0]       ncols;
+    wire             last_col = col_run && ({1'b0, jc} == ncols - 7'd1);
+    // next state of the sequencer
+    wire [NPRE+1:0]  pre_n  = {pre[NPRE:0], start_ok};
+    wire             tail_go = last_col || (pre[T_COL-1] && ncols == 7'd0);
+    wire [NTAIL-1:0] tl_n   = {tl[NTAIL-2:0], tail_go};
+    wire             col_n  = (pre[T_COL-1] && ncols != 7'd0) || (col_run && !last_col);
+    reg  [6:1]       colv;        // column token at O1..O6
+    reg  [5:0]       j1, j2, j3, j4, j5, j6;
+    assign latency = LAT_BASE + {1'b0, ncols};
 
     always @(posedge clk) begin
         if (rst) begin
             ready_r <= 1'b0;
             busy <= 1'b0;
-            t <= 8'd0;
-            ls <= 12'd0;
+            pre <= {(NPRE+2){1'b0}};
+            tl <= {NTAIL{1'b0}};
+            col_run <= 1'b0;
+            jc <= 6'd0;
+            colv <= 6'd0;
+            j1 <= 6'd0; j2 <= 6'd0; j3 <= 6'd0; j4 <= 6'd0; j5 <= 6'd0; j6 <= 6'd0;
             bank <= 1'b0;
             swap_pending <= 1'b0;
-            j1 <= 6'd0; j2 <= 6'd0; j3 <= 6'd0; j4 <= 6'd0; j5 <= 6'd0; j6 <= 6'd0; j7 <= 6'd0;
-            cv1 <= 1'b0; cv2 <= 1'b0;
         end else begin
             if (b_done) ready_r <= 1'b1;
-            ls <= {ls[11:1], fin};
-            {j7, j6, j5, j4, j3, j2, j1} <= {j6, j5, j4, j3, j2, j1, j0};
-            cv1 <= is_col;
-            cv2 <= cv1;
-            if (start_ok) begin
-                busy <= 1'b1;
-                t <= 8'd0;
-            end else if (busy) begin
-                t <= t + 8'd1;
-                if (ls[12]) busy <= 1'b0;
+            pre <= pre_n;
+            tl <= tl_n;
+            if (pre[T_COL-1] && ncols != 7'd0) begin
+                col_run <= 1'b1;
+                jc <= 6'd0;
+            end else if (col_run) begin
+                jc <= jc + 6'd1;
+                if (last_col) col_run <= 1'b0;
             end
+            colv <= {colv[5:1], col_run};
+            {j6, j5, j4, j3, j2, j1} <= {j5, j4, j3, j2, j1, jc};
+            if (start_ok) busy <= 1'b1;
+            else if (tl[U_FIRE]) busy <= 1'b0;
             // bank swap: applied at an edge with no update running
             if (!busy && ready_r && (swap_pending || cfg_swap)) begin
                 bank <= ~bank;
@@ -153,85 +180,118 @@ module mpc_core #(
         end
     end
 
+    // item token at O0, registered: decoded from the next state of the one-hot sequencer
+    reg  [3:0] kind_n, kind0;
+    reg  [1:0] idx_n, idx0;
+    always @* begin
+        kind_n = `MPC_K_NONE;
+        idx_n  = 2'd0;
+        if (pre_n[0] | pre_n[1] | pre_n[2]) begin
+            kind_n = `MPC_K_YC;
+            idx_n  = {pre_n[2], pre_n[1]};
+        end
+        if (pre_n[3]) kind_n = `MPC_K_WN;
+        if (pre_n[4]) kind_n = `MPC_K_LO;
+        if (pre_n[5]) kind_n = `MPC_K_HI;
+        if (pre_n[6] | pre_n[7] | pre_n[8]) begin
+            kind_n = `MPC_K_EBA;
+            idx_n  = {pre_n[8], pre_n[7]};
+        end
+        if (col_n) kind_n = `MPC_K_COL;
+        if (tl_n[U_UR0] | tl_n[U_UR0B]) kind_n = `MPC_K_UR;
+        if (tl_n[U_UR1]) begin
+            kind_n = `MPC_K_UR;
+            idx_n  = 2'd1;
+        end
+        if (tl_n[U_UMX]) kind_n = `MPC_K_UMX;
+        if (tl_n[U_NUMX]) kind_n = `MPC_K_NUMX;
+        if (tl_n[U_EBB] | tl_n[U_EBB+1] | tl_n[U_EBB+2]) begin
+            kind_n = `MPC_K_EBB;
+            idx_n  = {tl_n[U_EBB+2], tl_n[U_EBB+1]};
+        end
+    end
+    always @(posedge clk) begin
+        if (rst) begin
+            kind0 <= `MPC_K_NONE;
+            idx0  <= 2'd0;
+        end else begin
+            kind0 <= kind_n;
+            idx0  <= idx_n;
+        end
+    end
+
     // ---- coefficient banks ----
     wire [10:0] desc;
     wire signed [OPW-1:0] p2_d, p2_q, p1_d, p1_q, p0_d, p0_q;
     wire [3:0] s_d, s_q;
     wire alg2, pos;
+    wire [3:0] neff;
+    wire [2:0] hdr_field;
+    wire [32:0] hdr;
     assign task_pos = pos;
-    wire [4:0] neff3, ws;
-    wire signed [OPW-1:0] wn_min, wn_max;
-    wire [OPW-1:0] u_max;
-    wire [3*32-1:0] ebar_lim;
     mpc_coef_mem #(.N(N)) u_mem (
         .clk(clk), .rst(rst),
         .we(w_we), .wbank(w_bank), .waddr(w_addr), .wdata(w_data),
-        .rbank(bank), .ra_desc(j0), .ra_p2(j1), .ra_p1(j3), .ra_p0(j5), .ra_s(j7),
+        .rbank(bank), .ra_desc(col_run ? jc + 6'd1 : 6'd0), .ra_c(jc), .ra_p0(j2), .ra_s(j6), .s_clr(!colv[6]),
         .desc(desc), .p2_d(p2_d), .p2_q(p2_q), .p1_d(p1_d), .p1_q(p1_q), .p0_d(p0_d), .p0_q(p0_q),
         .s_d(s_d), .s_q(s_q),
-        .alg2(alg2), .pos(pos), .ncols(ncols), .neff3(neff3), .ws(ws),
-        .wn_min(wn_min), .wn_max(wn_max), .u_max(u_max), .ebar_lim(ebar_lim)
+        .alg2(alg2), .pos(pos), .ncols(ncols), .neff(neff), .hdr_field(hdr_field), .hdr(hdr)
     );
-
-    // ---- operand stream, wn, ebar ----
-    wire signed [OPW-1:0] op, wn_c;
-    wire [3*SW-1:0] ebar_c;
-    wire f_signal, f_operand, f_wn, f_ebar, f_ebar_inc;
-    mpc_operand #(.N(N)) u_op (
-        .clk(clk), .rst(rst), .cap(start_ok),
-        .y0(y0), .y1(y1), .y2(y2), .omega(omega), .dx(dx), .wref(wref), .ebar_prev(ebar_prev),
-        .alg2(alg2), .pos(pos), .neff3(neff3), .ws(ws), .wn_min(wn_min), .wn_max(wn_max),
-        .ebar_lim(ebar_lim), .kind(kind0), .eo(eo0), .desc(desc),
-        .op(op), .wn(wn_c), .ebar(ebar_c),
-        .f_signal(f_signal), .f_operand(f_operand), .f_wn(f_wn), .f_ebar(f_ebar), .f_ebar_inc(f_ebar_inc)
-    );
-
-    reg [2*UW-1:0] up_r;
-    always @(posedge clk) begin
-        if (rst) up_r <= {(2*UW){1'b0}};
-        else if (start_ok) up_r <= u_prev;
-    end
 
     // ---- lanes ----
-    wire signed [2*OPW-1:0] prod1_d, prod3_d, prod1_q, prod3_q;
-    wire signed [UW-1:0] du_d, du_q, ur_d, ur_q, ul_d, ul_q;
-    wire fg_d, ft_d, fa_d, fd_d, fu_d, fg_q, ft_q, fa_q, fd_q, fu_q;
-    wire signed [OPW-1:0] lim_t, lim_f;
-    wire lim;
-    wire m1_aux = ls[2] | ls[7];
-    wire signed [OPW-1:0] umax_s = u_max;               // <= 2^17 - 1: positive
-    wire signed [OPW-1:0] m1_b = ls[7] ? lim_t : umax_s;
-    wire signed [UW-1:0] up_d = up_r[0 +: UW];
-    wire signed [UW-1:0] up_q = up_r[UW +: UW];
+    wire signed [ACCW-1:0] prod2_d, prod2_q, acc_d, acc_q;
+    wire signed [UW-1:0] ul_d, ul_q;
+    wire signed [OPW-1:0] op, op_next, wn_c, wn_s, lim_t, lim_f;
+    wire fg_d, ft_d, fa_d, fd_d, fg_q, ft_q, fa_q, fd_q;
+    wire m3u = |tl[U_M3RND:U_M3U0];
     mpc_lane u_lane_d (
-        .clk(clk), .rst(rst), .clr(start_ok), .wn(wn_c), .cv(cv2),
-        .p2(p2_d), .p1(p1_d), .p0(p0_d), .a(op), .s(s_d),
-        .m1_aux(m1_aux), .m1_a(umax_s), .m1_b(m1_b),
-        .m3_sq(ls[2]), .m3_scale(ls[10]), .f(lim_f),
-        .ld_du(fin), .ld_u(ls[1]), .u_prev(up_d),
-        .prod1(prod1_d), .prod3(prod3_d), .du(du_d), .u_raw(ur_d), .u_lim(ul_d),
-        .f_gain(fg_d), .f_term(ft_d), .f_acc(fa_d), .f_du(fd_d), .f_u(fu_d)
+        .clk(clk), .rst(rst), .clr(start_ok), .wn(wn_c), .cv(colv[1]),
+        .p2(p2_d), .p1(p1_d), .p0(p0_d), .a(op), .a_next(op_next), .s(s_d),
+        .rnd(tl[U_RND]), .acc_clr(tl[U_CLR]), .acc_x(tl[U_ACCX] | tl[U_ACCX+1] | tl[U_ACCX+3]),
+        .m2_t(tl[U_M2T]), .t(lim_t),
+        .u_ld(tl[U_ULD0] | tl[U_ULD0+1] | tl[U_ULD0+2] | tl[U_ULD0+4]), .m3_u(m3u), .m3_rnd(tl[U_M3RND]),
+        .prod2(prod2_d), .acc(acc_d), .u_lim(ul_d),
+        .f_gain(fg_d), .f_term(ft_d), .f_acc(fa_d), .f_du(fd_d)
     );
     mpc_lane u_lane_q (
-        .clk(clk), .rst(rst), .clr(start_ok), .wn(wn_c), .cv(cv2),
-        .p2(p2_q), .p1(p1_q), .p0(p0_q), .a(op), .s(s_q),
-        .m1_aux(1'b0), .m1_a({OPW{1'b0}}), .m1_b({OPW{1'b0}}),
-        .m3_sq(ls[2]), .m3_scale(ls[10]), .f(lim_f),
-        .ld_du(fin), .ld_u(ls[1]), .u_prev(up_q),
-        .prod1(prod1_q), .prod3(prod3_q), .du(du_q), .u_raw(ur_q), .u_lim(ul_q),
-        .f_gain(fg_q), .f_term(ft_q), .f_acc(fa_q), .f_du(fd_q), .f_u(fu_q)
+        .clk(clk), .rst(rst), .clr(start_ok), .wn(wn_c), .cv(colv[1]),
+        .p2(p2_q), .p1(p1_q), .p0(p0_q), .a(op), .a_next(op_next), .s(s_q),
+        .rnd(tl[U_RND]), .acc_clr(1'b0), .acc_x(1'b0),
+        .m2_t(1'b0), .t(lim_t),
+        .u_ld(tl[U_ULD0+1]), .m3_u(m3u), .m3_rnd(tl[U_M3RND]),
+        .prod2(prod2_q), .acc(acc_q), .u_lim(ul_q),
+        .f_gain(fg_q), .f_term(ft_q), .f_acc(fa_q), .f_du(fd_q)
+    );
+    wire signed [UW-1:0] dun_d = acc_d[ACCW-1:ACCW-UW];       // du after the round step
+    wire signed [UW-1:0] dun_q = acc_q[ACCW-1:ACCW-UW];
+
+    // ---- operand ALU ----
+    wire signed [UW-1:0] ur_d, ur_q;
+    wire [3*SW-1:0] ebar_c;
+    wire f_signal, f_operand, f_wn, f_ebar, f_ebar_inc, f_u;
+    mpc_operand u_op (
+        .clk(clk), .rst(rst), .clr(start_ok),
+        .in_we(in_we), .in_addr(in_addr), .in_wdata(in_wdata),
+        .kind(kind0), .idx(idx0), .desc(desc), .alg2(alg2), .pos(pos), .neff(neff),
+        .hdr_field(hdr_field), .hdr(hdr), .du_d(dun_d), .du_q(dun_q), .sel_f(tl[U_SELF]), .f(lim_f),
+        .op_next(op_next), .op(op), .wn(wn_c), .wn_s(wn_s), .ur_d(ur_d), .ur_q(ur_q), .ebar_s(ebar_c),
+        .f_signal(f_signal), .f_operand(f_operand), .f_wn(f_wn), .f_ebar(f_ebar), .f_ebar_inc(f_ebar_inc),
+        .f_u(f_u)
     );
 
     // ---- limiter ----
+    wire lim;
     mpc_limiter #(.RSQRT_FILE(RSQRT_FILE)) u_lim (
-        .clk(clk), .rst(rst), .go(ls[4]), .sq_d(prod3_d), .sq_q(prod3_q), .usq(prod1_d),
-        .ut(prod1_d), .lim(lim), .t(lim_t), .f(lim_f)
+        .clk(clk), .rst(rst), .acc(acc_d), .ld_r(tl[U_LDR]), .ld_lim(tl[U_LDLIM]), .ut(prod2_d),
+        .lim(lim), .t(lim_t), .f(lim_f)
     );
 
     // ---- outputs ----
+    reg [2*UW-1:0] du_s;
     always @(posedge clk) begin
         if (rst) begin
             done  <= 1'b0;
+            du_s  <= {(2*UW){1'b0}};
             u     <= {(2*UW){1'b0}};
             du    <= {(2*UW){1'b0}};
             u_raw <= {(2*UW){1'b0}};
@@ -239,19 +299,20 @@ module mpc_core #(
             wn    <= {OPW{1'b0}};
             flags <= 11'd0;
         end else begin
-            done <= ls[12];
-            if (ls[12]) begin
+            if (tl[U_DU]) du_s <= {dun_q, dun_d};
+            done <= tl[U_FIRE];
+            if (tl[U_FIRE]) begin
                 u     <= lim ? {ul_q, ul_d} : {ur_q, ur_d};
-                du    <= {du_q, du_d};
+                du    <= du_s;
                 u_raw <= {ur_q, ur_d};
                 ebar  <= ebar_c;
-                wn    <= wn_c;
-                flags <= {f_signal, f_wn, lim, f_ebar_inc, f_ebar, fu_d | fu_q, fd_d | fd_q,
+                wn    <= wn_s;
+                flags <= {f_signal, f_wn, lim, f_ebar_inc, f_ebar, f_u, fd_d | fd_q,
                           fa_d | fa_q, ft_d | ft_q, fg_d | fg_q, f_operand};
             end
         end
     end
 
-    wire unused_ok = &{1'b0, prod1_q, tc[7:6]};
+    wire unused_ok = &{1'b0, prod2_q, acc_q[ACCW-UW-1:0]};
 endmodule
 `default_nettype wire

@@ -1,23 +1,28 @@
-// mpc_lane: one row (d or q) of the explicit MPC law: polynomial gain, MAC, du, u_raw.
+// mpc_lane: one row (d or q) of the explicit MPC law: polynomial gain and MAC.
 //
 // Per column (one per clock, bit-exact to gen/empc/rtlmodel/mpc_core.py, step 4):
-//   h    = sat18(p1 + rshift_round(p2 * wn, 17))          mul1
-//   k    = sat18(p0 + rshift_round(h * wn, 17))           mul2     (eq. 29)
-//   term = sat48((k * a) << s);  acc = sat48(acc + term)  mul3 + fabric accumulator
-// The per-gain shift s (0..15) sits between the product and the accumulation, so
-// the DSP48A1's own post-adder/accumulator cannot be used: shift, saturation and the
-// 48-bit saturating accumulator are fabric logic.  Step 5 (ld_du, ld_u):
-//   du = sat24(rshift_round(acc, ACC_FRAC - U_FRAC)),  u_raw = sat24(u_prev + du).
-// Voltage limiter support (step 6, controlled by mpc_core): u18 = sat18(rshift_round(
-// u_raw, U_FRAC - V_FRAC)); mul3 computes u18^2 (m3_sq) and u18 * f (m3_scale);
-// u_lim = trunc0(u18 * f / 2^17) << (U_FRAC - V_FRAC); mul1 takes external operands
-// (m1_aux: m1_a * m1_b) so the limiter needs no multiplier of its own.
-// Timing (cycle G1 = cycle in which cv and p2 are valid): p1 valid in G1+2, p0 and a
-// in G1+4, s in G1+6; acc includes the column from G1+8.  Multiplier products appear
-// 2 cycles after their operands (prod1, prod3 outputs).
+//   h    = sat18(p1 + rshift_round(p2 * wn, 17))          mul1 (post-adder: + p1 2^17 + 2^16)
+//   k    = sat18(p0 + rshift_round(h * wn, 17))           mul2 (post-adder: + p0 2^17 + 2^16)
+//   term = sat48((k * a) << s);  acc = sat48(acc + term)  mul3 + fabric shift/accumulator
+// The per-gain shift s (0..15) sits between the product and the accumulation, so the
+// DSP48A1's accumulator cannot be used: shift (two 4:1 stages) and the 48-bit adder are
+// fabric logic.  Both saturations avoid multiplexers: a saturated term is the AMAX pattern
+// (flip-flop set / reset, low fill) with AMIN = AMAX + carry-in; a saturated accumulator
+// holds AMAX (set / reset) with a flag for AMIN (carry-in on the next addition).
+// Round step (rnd): mul3 = 2^23 (post-adder only), acc = sat48(acc + 2^23), after which du = acc[47:24] =
+//   sat24(rshift_round(acc, ACC_FRAC - U_FRAC)) (flag f_du if that step saturated).
+// Limiter support (sequenced by mpc_core): mul3 multiplies u18 (register loaded from the
+// operand bus, u_ld) by the operand bus (m3_u), optionally accumulated (acc_x, shift 0);
+// m3_rnd adds 2^17 - 1 for u18 < 0, so u_lim = (prod3 >>> 17) << 4 = trunc0(u18 f / 2^17) << 4;
+// m2_t (lane d): mul2 = t * wn (the core loads u_max into wn) with no post-add.
+// Timing (G1 = cycle in which cv, p2 and p1 are valid): p0 valid in G1+2, a (operand bus)
+// in G1+4, s in G1+6; acc includes the column from G1+8 (rnd: asserted in G1+4 of the
+// step after the last column, when mul3 would sample its operands; s must read 0 in G1+6).
+// mul products appear 2 cycles after their operands.
 // Ports: see the port list; f_* are sticky saturation flags (cleared by clr).
 // Parameters: none (widths from empc_formats.vh).
-// Reset / clr: acc, du, u_raw, u18 and flags clear to 0.
+// Reset / clr: flags clear to 0; clr / acc_clr make the next accumulation start from 0
+// (the acc register itself resets to AMAX, a don't-care value).
 `default_nettype none
 `include "empc_formats.vh"
 module mpc_lane (
@@ -27,173 +32,184 @@ module mpc_lane (
     input  wire signed [`EMPC_OPW-1:0]     wn,        // scheduling speed Q1.17
     input  wire                            cv,        // column valid (cycle G1)
     input  wire signed [`EMPC_OPW-1:0]     p2,        // G1
-    input  wire signed [`EMPC_OPW-1:0]     p1,        // G1+2
-    input  wire signed [`EMPC_OPW-1:0]     p0,        // G1+4
-    input  wire signed [`EMPC_OPW-1:0]     a,         // G1+4 operand
+    input  wire signed [`EMPC_OPW-1:0]     p1,        // G1
+    input  wire signed [`EMPC_OPW-1:0]     p0,        // G1+2
+    input  wire signed [`EMPC_OPW-1:0]     a,         // G1+4 operand bus
+    input  wire signed [`EMPC_OPW-1:0]     a_next,    // operand bus of the next cycle
     input  wire [`EMPC_PROD_SHIFT_BITS-1:0] s,        // G1+6 product shift
-    input  wire                            m1_aux,    // mul1 operands from m1_a / m1_b
-    input  wire signed [`EMPC_OPW-1:0]     m1_a,
-    input  wire signed [`EMPC_OPW-1:0]     m1_b,
-    input  wire                            m3_sq,     // mul3 operands (u18, u18)
-    input  wire                            m3_scale,  // mul3 operands (u18, f)
-    input  wire signed [`EMPC_OPW-1:0]     f,
-    input  wire                            ld_du,     // acc final: load du
-    input  wire                            ld_u,      // load u_raw = u_prev + du
-    input  wire signed [`EMPC_U_W-1:0]     u_prev,
-    output wire signed [2*`EMPC_OPW-1:0]   prod1,     // mul1 product
-    output wire signed [2*`EMPC_OPW-1:0]   prod3,     // mul3 product
-    output reg  signed [`EMPC_U_W-1:0]     du,
-    output reg  signed [`EMPC_U_W-1:0]     u_raw,
-    output wire signed [`EMPC_U_W-1:0]     u_lim,     // limited u from prod3 (m3_scale + 2)
+    input  wire                            rnd,       // round step (G1+4 of the extra step)
+    input  wire                            acc_clr,   // acc = 0
+    input  wire                            acc_x,     // acc += prod3 of two cycles ago (shift 0)
+    input  wire                            m2_t,      // mul2 = t * wn, no post-add
+    input  wire signed [`EMPC_OPW-1:0]     t,
+    input  wire                            u_ld,      // u18 = a_next
+    input  wire                            m3_u,      // mul3 = u18 * a
+    input  wire                            m3_rnd,    // mul3 post-add 2^17 - 1 if u18 < 0
+    output wire signed [`EMPC_ACCW-1:0]    prod2,     // mul2 result
+    output reg  signed [`EMPC_ACCW-1:0]    acc,
+    output wire signed [`EMPC_U_W-1:0]     u_lim,     // from prod3 (m3_rnd + 2)
     output reg                             f_gain,
     output reg                             f_term,
     output reg                             f_acc,
-    output reg                             f_du,
-    output reg                             f_u
+    output reg                             f_du
 );
     localparam integer OPW  = `EMPC_OPW;                 // 18
     localparam integer PW   = 2 * OPW;                   // 36 product
     localparam integer ACCW = `EMPC_ACCW;                // 48
     localparam integer UW   = `EMPC_U_W;                 // 24
-    localparam integer SB   = `EMPC_PROD_SHIFT_BITS;     // 4
-    localparam integer SMAX = (1 << SB) - 1;             // 15
-    localparam integer TW   = PW + SMAX;                 // 51: exact shifted product
     localparam integer DSH  = `EMPC_ACC_FRAC - `EMPC_U_FRAC;   // 24
     localparam integer VSH  = `EMPC_U_FRAC - `EMPC_V_FRAC;     // 4
     localparam integer FR   = OPW - 1;                   // 17: Q1.17 scaling
-    localparam integer GW   = PW - FR + 2;               // 21: gain sum
+    localparam integer TAW  = PW + 3;                    // 39: product << s[1:0]
     localparam signed [OPW-1:0]  OMAX = {1'b0, {(OPW-1){1'b1}}};
     localparam signed [OPW-1:0]  OMIN = {1'b1, {(OPW-1){1'b0}}};
     localparam signed [ACCW-1:0] AMAX = {1'b0, {(ACCW-1){1'b1}}};
-    localparam signed [ACCW-1:0] AMIN = {1'b1, {(ACCW-1){1'b0}}};
-    localparam signed [UW-1:0]   UMAXV = {1'b0, {(UW-1){1'b1}}};
-    localparam signed [UW-1:0]   UMINV = {1'b1, {(UW-1){1'b0}}};
+    // post-adder constant p << 17 | 2^16: p + rshift_round(x, 17) = (x + p 2^17 + 2^16) >>> 17
+    function signed [ACCW-1:0] pc;
+        input signed [OPW-1:0] p;
+        pc = {{(ACCW-OPW-FR){p[OPW-1]}}, p, 1'b1, {(FR-1){1'b0}}};
+    endfunction
+    // sat18 of p >>> 17 (|p| < 2^36): fits iff p[47:34] all equal
+    function signed [OPW-1:0] sat_hi;
+        input [ACCW-FR-1:0] p;             // p[47:17]
+        sat_hi = ((&p[ACCW-FR-1:OPW-1]) | ~(|p[ACCW-FR-1:OPW-1])) ? p[OPW-1:0] :
+                 (p[ACCW-FR-1] ? OMIN : OMAX);
+    endfunction
 
     // column-valid pipeline: cvp[k] = column valid in cycle G1+k
     reg [7:1] cvp;
-    always @(posedge clk) begin
-        if (rst) cvp <= 7'd0;
-        else     cvp <= {cvp[6:1], cv};
-    end
+    reg       rnd6, rnd7, rnd8;
 
+    // ---- mul1: p2 * wn + p1 2^17 + 2^16 ----
+    wire signed [ACCW-1:0] prod1;
+    mpc_mul18 u_mul1 (.clk(clk), .rst(rst), .a(wn), .b(p2), .c(pc(p1)), .c_clr(1'b0), .ab_clr(1'b0), .p(prod1));
+    wire signed [OPW-1:0] h = sat_hi(prod1[ACCW-1:FR]);              // G1+2
+    wire h_sat = ~((&prod1[ACCW-1:PW-2]) | ~(|prod1[ACCW-1:PW-2]));
 
-    // ---- mul1: p2 * wn (or limiter operands) ----
-    mpc_mul18 u_mul1 (
-        .clk(clk), .rst(rst),
-        .a(m1_aux ? m1_a : wn),
-        .b(m1_aux ? m1_b : p2),
-        .p(prod1)
-    );
+    // ---- mul2: h * wn + p0 2^17 + 2^16  (or t * wn) ----
+    mpc_mul18 u_mul2 (.clk(clk), .rst(rst), .a(m2_t ? t : h), .b(wn), .c(pc(p0)), .c_clr(m2_t), .ab_clr(1'b0),
+                      .p(prod2));
+    wire signed [OPW-1:0] k = sat_hi(prod2[ACCW-1:FR]);              // G1+4
+    wire k_sat = ~((&prod2[ACCW-1:PW-2]) | ~(|prod2[ACCW-1:PW-2]));
 
-    // h = sat18(p1 + rnd17(p2 * wn))   (cycle G1+2)
-    // rshift_round(x, n) = (x >>> n) + x[n-1]: one adder with the rounding bit as carry-in
-    wire signed [GW-1:0] h0 = {{(GW-OPW){p1[OPW-1]}}, p1} + {{(GW-PW+FR){prod1[PW-1]}}, prod1[PW-1:FR]}
-                              + {{(GW-1){1'b0}}, prod1[FR-1]};
-    wire h_ov = ~((&h0[GW-1:OPW-1]) | ~(|h0[GW-1:OPW-1]));   // upper bits not all equal
-    wire h_hi = h_ov & ~h0[GW-1];
-    wire h_lo = h_ov & h0[GW-1];
-    wire signed [OPW-1:0] h = h_hi ? OMAX : h_lo ? OMIN : h0[OPW-1:0];
-
-    // ---- mul2: h * wn ----
-    wire signed [PW-1:0] prod2;
-    mpc_mul18 u_mul2 (.clk(clk), .rst(rst), .a(h), .b(wn), .p(prod2));
-
-    // k = sat18(p0 + rnd17(h * wn))   (cycle G1+4)
-    wire signed [GW-1:0] k0 = {{(GW-OPW){p0[OPW-1]}}, p0} + {{(GW-PW+FR){prod2[PW-1]}}, prod2[PW-1:FR]}
-                              + {{(GW-1){1'b0}}, prod2[FR-1]};
-    wire k_ov = ~((&k0[GW-1:OPW-1]) | ~(|k0[GW-1:OPW-1]));   // upper bits not all equal
-    wire k_hi = k_ov & ~k0[GW-1];
-    wire k_lo = k_ov & k0[GW-1];
-    wire signed [OPW-1:0] k = k_hi ? OMAX : k_lo ? OMIN : k0[OPW-1:0];
-
-    // ---- limiter operand: u18 = sat18(rshift_round(u_raw, VSH)) ----
-    wire signed [UW-VSH:0] ur = {u_raw[UW-1], u_raw[UW-1:VSH]} + {{(UW-VSH){1'b0}}, u_raw[VSH-1]};
-    wire ur_ov = ~((&ur[(UW-VSH+1)-1:OPW-1]) | ~(|ur[(UW-VSH+1)-1:OPW-1]));   // upper bits not all equal
-    wire ur_hi = ur_ov & ~ur[(UW-VSH+1)-1];
-    wire ur_lo = ur_ov & ur[(UW-VSH+1)-1];
-    wire signed [OPW-1:0] u18 = ur_hi ? OMAX : ur_lo ? OMIN : ur[OPW-1:0];
-    reg  signed [OPW-1:0] u18_r;
-
-    // ---- mul3: k * a (or u18^2, u18 * f) ----
+    // ---- mul3: k * a  (or u18 * a [+ 2^17 - 1]) ----
+    reg  signed [OPW-1:0] u18;
+    wire signed [ACCW-1:0] prod3;
+    wire m3_c = m3_rnd & u18[OPW-1];
+    // round step: prod3 = 0 * 0 + 2^(DSH-1)
+    wire [ACCW-1:0] c3 = {{(ACCW-DSH){1'b0}}, rnd, {(DSH-1-FR){1'b0}}, {FR{m3_c}}};
     mpc_mul18 u_mul3 (
-        .clk(clk), .rst(rst),
-        .a(m3_scale ? u18_r : m3_sq ? u18 : k),
-        .b(m3_scale ? f     : m3_sq ? u18 : a),
-        .p(prod3)
+        .clk(clk), .rst(rst), .a(m3_u ? u18 : k), .b(a), .c(c3), .c_clr(1'b0), .ab_clr(rnd), .p(prod3)
     );
+    assign u_lim = {prod3[FR+UW-VSH-1:FR], {VSH{1'b0}}};
 
-    // term = sat48(prod3 << s)   (cycle G1+6)
-    wire signed [TW-1:0] tx = {{SMAX{prod3[PW-1]}}, prod3} <<< s;
-    wire t_ovf = ~((&tx[TW-1:ACCW-1]) | ~(|tx[TW-1:ACCW-1]));
-    wire signed [ACCW-1:0] term = t_ovf ? (tx[TW-1] ? AMIN : AMAX) : tx[ACCW-1:0];
-    reg  signed [ACCW-1:0] term_r;
+    // ---- stage a (G1+6): prod3 << s[1:0]; term overflow (s >= 13) ----
+    wire signed [PW-1:0] p3 = prod3[PW-1:0];
+    wire [TAW-1:0] ta = {{3{p3[PW-1]}}, p3} << s[1:0];
+    // (p3 << s) fits 48 bit iff p3[35 : 47-s] all equal (s <= 12: always)
+    wire [2:0] p3x = p3[PW-2:PW-4] ^ {3{p3[PW-1]}};
+    wire t_ovf = (s == 4'd13 && p3x[2]) || (s == 4'd14 && |p3x[2:1]) || (s == 4'd15 && |p3x[2:0]);
+    // A saturated term is encoded without a multiplexer: ta_r = 2^35 - 1 (set), sh_r = 3 (set),
+    // fill = 1 gives tb = AMAX; for AMIN = AMAX + 1 (mod 2^48) the adder gets a carry-in and a
+    // negative extension bit.  (Reset state: ta_r[34:0] ones, sh_r = 3; don't-care values.)
+    reg  [TAW-1:0] ta_r;
+    reg  [1:0]     sh_r;
+    reg            fill_r, tl_r;
 
-    // acc = sat48(acc + term)   (cycle G1+7)
-    reg  signed [ACCW-1:0] acc;
-    wire signed [ACCW:0] acc0 = {acc[ACCW-1], acc} + {term_r[ACCW-1], term_r};
-    wire a_ovf = acc0[ACCW] ^ acc0[ACCW-1];
-    wire signed [ACCW-1:0] acc_s = a_ovf ? (acc0[ACCW] ? AMIN : AMAX) : acc0[ACCW-1:0];
-
-    // du = sat24(rshift_round(acc, DSH))
-    wire signed [ACCW-DSH:0] d1 = {acc[ACCW-1], acc[ACCW-1:DSH]} + {{(ACCW-DSH){1'b0}}, acc[DSH-1]};
-    wire d_ov = ~((&d1[(ACCW-DSH+1)-1:UW-1]) | ~(|d1[(ACCW-DSH+1)-1:UW-1]));   // upper bits not all equal
-    wire d_hi = d_ov & ~d1[(ACCW-DSH+1)-1];
-    wire d_lo = d_ov & d1[(ACCW-DSH+1)-1];
-    wire signed [UW-1:0] du_s = d_hi ? UMAXV : d_lo ? UMINV : d1[UW-1:0];
-
-    // u_raw = sat24(u_prev + du)
-    wire signed [UW:0] u0 = {u_prev[UW-1], u_prev} + {du[UW-1], du};
-    wire u_ovf = u0[UW] ^ u0[UW-1];
-    wire signed [UW-1:0] u_s = u_ovf ? (u0[UW] ? UMINV : UMAXV) : u0[UW-1:0];
-
-    // u_lim = trunc0(prod3 / 2^17) << VSH   (|u18 * f| < 2^34: 19-bit quotient)
-    wire q_up = prod3[PW-1] && (|prod3[FR-1:0]);
-    wire signed [PW-FR:0] q1 = {prod3[PW-1], prod3[PW-1:FR]} + {{(PW-FR){1'b0}}, q_up};
-    assign u_lim = {q1[UW-VSH-1:0], {VSH{1'b0}}};
+    // ---- stage b + accumulate (G1+7): acc = sat48(acc + sat48(ta << 4 sh)) ----
+    wire [ACCW+11:0] tbx = {{(ACCW-TAW){ta_r[TAW-1]}}, ta_r, {12{fill_r}}};
+    reg  [ACCW-1:0]  tb;
+    always @* begin
+        case (sh_r)
+            2'd0:    tb = tbx[12 +: ACCW];
+            2'd1:    tb = tbx[8 +: ACCW];
+            2'd2:    tb = tbx[4 +: ACCW];
+            default: tb = tbx[0 +: ACCW];
+        endcase
+    end
+    // The accumulator saturates without a multiplexer: on overflow acc = AMAX (bits 46:0 set,
+    // bit 47 reset through the flip-flops' synchronous set / reset) and nsat = 1 marks AMIN,
+    // which enters the next addition as AMAX + carry-in (like a saturated term).  fresh = 1
+    // (after clr / acc_clr) makes the next accumulation start from 0.
+    reg             nsat, fresh;
+    wire [ACCW-1:0] acc_g = acc & {ACCW{~fresh}};
+    wire            n_g   = nsat & ~fresh;
+    // T + G + c written as {T, 0} - {~G, ~c}: keeps the term on the carry chain's DI inputs
+    wire [ACCW+1:0] sumx  = {tb[ACCW-1] | tl_r, tb, 1'b0} - {~(acc_g[ACCW-1] | n_g), ~acc_g, ~(n_g | tl_r)};
+    wire [ACCW:0]   sum   = sumx[ACCW+1:1];
+    wire            a_neg2 = n_g & tl_r;                 // AMIN + AMIN: sure negative overflow
+    wire            a_ovf = (sum[ACCW] ^ sum[ACCW-1]) | a_neg2;
+    wire            a_ng  = sum[ACCW] | a_neg2;          // overflow direction: negative
+    wire            acc_en = cvp[7] || rnd8 || acc_x;
 
     always @(posedge clk) begin
         if (rst) begin
-            term_r <= {ACCW{1'b0}};
-            acc    <= {ACCW{1'b0}};
-            du     <= {UW{1'b0}};
-            u_raw  <= {UW{1'b0}};
-            u18_r  <= {OPW{1'b0}};
+            cvp <= 7'd0;
+            rnd6 <= 1'b0;
+            rnd7 <= 1'b0;
+            rnd8 <= 1'b0;
+            u18 <= {OPW{1'b0}};
+            fill_r <= 1'b0;
+            tl_r <= 1'b0;
+            nsat <= 1'b0;
+            fresh <= 1'b1;
             f_gain <= 1'b0;
             f_term <= 1'b0;
-            f_acc  <= 1'b0;
-            f_du   <= 1'b0;
-            f_u    <= 1'b0;
+            f_acc <= 1'b0;
+            f_du <= 1'b0;
         end else begin
-            term_r <= term;
-            if (m3_sq) u18_r <= u18;
+            cvp <= {cvp[6:1], cv};
+            rnd6 <= rnd;
+            rnd7 <= rnd6;
+            rnd8 <= rnd7;
+            if (u_ld) u18 <= a_next;
+            fill_r <= t_ovf;
+            tl_r <= t_ovf & p3[PW-1];
+            if (clr || acc_clr) begin
+                fresh <= 1'b1;
+                nsat <= 1'b0;
+            end else if (acc_en) begin
+                fresh <= 1'b0;
+                nsat <= a_ovf & a_ng;
+            end
             if (clr) begin
-                acc    <= {ACCW{1'b0}};
                 f_gain <= 1'b0;
                 f_term <= 1'b0;
-                f_acc  <= 1'b0;
-                f_du   <= 1'b0;
-                f_u    <= 1'b0;
+                f_acc <= 1'b0;
+                f_du <= 1'b0;
             end else begin
-                if (cvp[2] && (h_hi || h_lo)) f_gain <= 1'b1;
-                if (cvp[4] && (k_hi || k_lo)) f_gain <= 1'b1;
+                if (cvp[2] && h_sat) f_gain <= 1'b1;
+                if (cvp[4] && k_sat) f_gain <= 1'b1;
                 if (cvp[6] && t_ovf) f_term <= 1'b1;
-                if (cvp[7]) begin
-                    acc <= acc_s;
-                    if (a_ovf) f_acc <= 1'b1;
-                end
-                if (ld_du) begin
-                    du <= du_s;
-                    if (d_hi || d_lo) f_du <= 1'b1;
-                end
-                if (ld_u) begin
-                    u_raw <= u_s;
-                    if (u_ovf) f_u <= 1'b1;
-                end
+                if (cvp[7] && a_ovf) f_acc <= 1'b1;
+                if (rnd8 && a_ovf) f_du <= 1'b1;
             end
         end
     end
 
-    // rounding remainders are dropped by design
-    wire unused_ok = &{1'b0, prod1[FR-2:0], prod2[FR-2:0]};
+    // accumulator register (reset value AMAX; only read after an accumulation from fresh)
+    always @(posedge clk) begin
+        if (rst || (acc_en && a_ovf)) begin
+            acc <= AMAX;
+        end else if (acc_en) begin
+            acc <= sum[ACCW-1:0];
+        end
+    end
+
+    always @(posedge clk) begin
+        if (rst || t_ovf) begin
+            ta_r[PW-2:0] <= {(PW-1){1'b1}};
+            ta_r[PW-1]   <= 1'b0;
+            sh_r         <= 2'd3;
+        end else begin
+            ta_r[PW-1:0] <= ta[PW-1:0];
+            sh_r         <= s[3:2];
+        end
+        if (rst) ta_r[TAW-1:PW] <= {(TAW-PW){1'b0}};
+        else     ta_r[TAW-1:PW] <= ta[TAW-1:PW];
+    end
+
+    // rounding remainders and the upper product bits are dropped by design
+    wire unused_ok = &{1'b0, sumx[0], prod1[FR-1:0], prod2[FR-1:0], prod3[ACCW-1:FR+UW-VSH], prod3[FR-1:0]};
 endmodule
 `default_nettype wire

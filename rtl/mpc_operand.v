@@ -1,284 +1,413 @@
-// mpc_operand: the MPC core's operand stream (model steps 1-3 and the operand of step 4).
+// mpc_operand: the MPC core's input buffer and operand ALU (model steps 1-3, the operand of
+// step 4, u_raw of step 5 and the limiter's operands).
 //
-// Captures the update's inputs at `cap` and, for one item per clock, produces
-//   a = sat18(rshift_round(sat40(A - B), c))
-// where A / B are selected from the captured inputs by the item:
-//   COL  column j: signal col_sig (desc[5:0]) of the model's layout SIG_*, c = desc[10:6]
-//        W_rel[m,o] = wref[m][o] - (position and o == 2 ? y2 : 0),  E[m,o] = wref[m][o] - y[o],
-//        Y[o] = y[o] (0 for the angle in the position task), EBAR[o], DX[n];
-//        m > min(N_img, N) and signal indices 59..63 read 0.
-//   WN   scheduling speed: A = omega, c = ws; then wn = clamp(a, -(2^17-1)..2^17-1,
-//        wn_min..wn_max) (step 1).
-//   EB o aggregated error (step 2, alg2 only): inc = sat40(wref[0][o] - y[o]),
-//        ebar[o] = sat40(ebar[o] + clamp(inc, +-ebar_lim[o])).
-// Pipeline (item token at O0, desc valid at O1 from the column memory):
-//   O1 decode, O2 select A/B, O3 A - B sat40, O4 barrel shift (or EB clamp),
-//   O5 round + sat18 -> op (valid in O6; or EB ebar write), O6 WN clamp -> wn (valid O7).
-// Flags (sticky, cleared by cap): f_signal (a column read a saturated signal), f_operand,
-//   f_wn (wn != unsaturated rshift_round(omega, ws)), f_ebar, f_ebar_inc.
-// Vector layouts: dx[n*40 +: 40], wref[(3*m + o)*40 +: 40] (m = 0..N), ebar[o*40 +: 40].
-// Parameters: N horizon inputs (wref has N+1 entries), N <= EMPC_N_MAX.
-// Reset: all registers 0.
+// Input buffer: 64 x 40-bit LUT RAM written through in_we / in_addr / in_wdata (word map
+// EMPC_IN_*: y[o] at IN_Y + o, omega, dx[n], u_prev[i], ebar_prev[o], wref[m][o] at
+// IN_WREF + 3 m + o).  It is read (not copied) during the update: the writer keeps it
+// stable from start to done.  Scratch RAM: 16 x 40-bit LUT RAM written by the ALU
+// (y[o] copies at 0..2, the eq. 25 increments inc[o] at 4..6).
+// ALU, one item per clock (kinds in mpc_items.vh), item token at O0:
+//   O0  decode (columns: descriptor {c, sig} from the coefficient memory, read one cycle
+//       ahead) -> registers
+//   O1  read A = buffer word or 0, B = scratch word / header field / du[i] / 0 -> registers
+//       (the ebar_lim clamp of EBAR columns / EBB items is applied here)
+//   O2  D = A + B or A - B (41 bit)
+//   O3  S = sat40(D); Y1 = (S << 1) >>> (16 c[4]); scratch write (YC, EBA), EBA clamp
+//       decision, EBB ebar, UR u_raw = sat24(D)
+//   O4  op = sat18(rshift_round(S, c)) from Y1 (shifts 4 c[3:2], c[1:0], round, saturate);
+//       op_next = f instead when sel_f (limiter)
+//   O5  op valid; WN / LO / HI: wn register (clamp steps), UMX: wn_s = wn, wn = op
+// Items: YC o (copy y[o]), EBA o (inc = w_k[o] - y[o], clamp = |inc| > ebar_lim[o]),
+//   WN (omega >> ws), LO / HI (op = wn_min / wn_max; wn = max(wn, lo), then min(wn, hi)),
+//   COL (W_rel, E, Y, EBAR, DX per the signal layout SIG_*; m > neff and indices 59..63 read
+//   0; EBAR[o] = sat40(ebar_prev[o] + clamp(inc[o])) recomputed), UR i (u_prev[i] + du[i],
+//   c = U_FRAC - V_FRAC: op = u18[i]), UMX / NUMX (op = +-u_max), EBB o (ebar[o]).
+// Flags (sticky, cleared by clr): f_signal (a column's signal saturated to 40 bit),
+//   f_operand, f_wn (wn != unsaturated rshift_round(omega, ws)), f_ebar, f_ebar_inc, f_u.
+// Parameters: none (widths and the word map from empc_formats.vh).
+// Reset: registers 0 (the buffers are LUT RAM: not reset, initial contents 0).
 `default_nettype none
 `include "empc_formats.vh"
-module mpc_operand #(
-    parameter integer N = `EMPC_N
-) (
+`include "mpc_items.vh"
+module mpc_operand (
     input  wire                          clk,
     input  wire                          rst,
-    input  wire                          cap,
-    input  wire signed [`EMPC_OPW-1:0]   y0,
-    input  wire signed [`EMPC_OPW-1:0]   y1,
-    input  wire signed [`EMPC_SIG_W-1:0] y2,
-    input  wire signed [`EMPC_W_W-1:0]   omega,
-    input  wire [5*`EMPC_SIG_W-1:0]      dx,
-    input  wire [(N+1)*3*`EMPC_SIG_W-1:0] wref,
-    input  wire [3*`EMPC_SIG_W-1:0]      ebar_prev,
+    input  wire                          clr,        // start of an update: flags = 0
+    // input buffer write port
+    input  wire                          in_we,
+    input  wire [5:0]                    in_addr,
+    input  wire signed [`EMPC_SIG_W-1:0] in_wdata,
+    // item token at O0
+    input  wire [3:0]                    kind,
+    input  wire [1:0]                    idx,        // o (YC, EBA, EBB) or row i (UR)
+    input  wire [10:0]                   desc,       // {c, sig} of the column, valid at O0
     // fields of the running coefficient bank (stable during an update)
     input  wire                          alg2,
     input  wire                          pos,
-    input  wire [4:0]                    neff3,      // 3 * min(N_img, N)
-    input  wire [`EMPC_SIG_SHIFT_BITS-1:0] ws,
-    input  wire signed [`EMPC_OPW-1:0]   wn_min,
-    input  wire signed [`EMPC_OPW-1:0]   wn_max,
-    input  wire [3*32-1:0]               ebar_lim,
-    // item token at O0
-    input  wire [1:0]                    kind,       // 0 none, 1 COL, 2 WN, 3 EB
-    input  wire [1:0]                    eo,         // EB output index
-    input  wire [`EMPC_SIG_SHIFT_BITS+5:0] desc,     // {shift, sig} of the column, valid at O1
+    input  wire [3:0]                    neff,       // min(N_img, N, N_MAX)
+    output reg  [2:0]                    hdr_field,  // header entry read at O1
+    input  wire [32:0]                   hdr,
+    // lanes / limiter
+    input  wire signed [`EMPC_U_W-1:0]   du_d,       // at O1 of UR items
+    input  wire signed [`EMPC_U_W-1:0]   du_q,
+    input  wire                          sel_f,      // O4: op_next = f
+    input  wire signed [`EMPC_OPW-1:0]   f,
+    output wire signed [`EMPC_OPW-1:0]   op_next,
     output reg  signed [`EMPC_OPW-1:0]   op,
-    output reg  signed [`EMPC_OPW-1:0]   wn,
-    output wire [3*`EMPC_SIG_W-1:0]      ebar,
+    output reg  signed [`EMPC_OPW-1:0]   wn,         // the lanes' scheduling speed
+    output reg  signed [`EMPC_OPW-1:0]   wn_s,       // wn of this update (saved at UMX)
+    output reg  signed [`EMPC_U_W-1:0]   ur_d,       // u_raw
+    output reg  signed [`EMPC_U_W-1:0]   ur_q,
+    output reg  [3*`EMPC_SIG_W-1:0]      ebar_s,     // ebar (EBB items)
     output reg                           f_signal,
     output reg                           f_operand,
     output reg                           f_wn,
     output reg                           f_ebar,
-    output reg                           f_ebar_inc
+    output reg                           f_ebar_inc,
+    output reg                           f_u
 );
     localparam integer SW   = `EMPC_SIG_W;            // 40
     localparam integer OPW  = `EMPC_OPW;              // 18
+    localparam integer UW   = `EMPC_U_W;              // 24
     localparam integer CB   = `EMPC_SIG_SHIFT_BITS;   // 5
-    localparam [1:0] K_COL = 2'd1, K_WN = 2'd2, K_EB = 2'd3;
-    // source index layout of the A multiplexer
-    localparam integer S_W0    = 3 * N;               // wref[0][o]
-    localparam integer S_Y     = S_W0 + 3;
-    localparam integer S_EBAR  = S_Y + 3;
-    localparam integer S_DX    = S_EBAR + 3;
-    localparam integer S_OMEGA = S_DX + 5;
-    localparam integer S_ZERO  = S_OMEGA + 1;
-    localparam integer NSRC    = S_ZERO + 1;
-    localparam integer XB      = (NSRC <= 32) ? 5 : 6;   // N <= 8: NSRC <= 40
-    localparam integer NX      = 1 << XB;
+    localparam [CB-1:0] C_UR = `EMPC_U_FRAC - `EMPC_V_FRAC;
     localparam signed [OPW-1:0] OMAX = {1'b0, {(OPW-1){1'b1}}};
     localparam signed [OPW-1:0] OMIN = {1'b1, {(OPW-1){1'b0}}};
-    localparam signed [SW-1:0]  SMAXV = {1'b0, {(SW-1){1'b1}}};
-    localparam signed [SW-1:0]  SMINV = {1'b1, {(SW-1){1'b0}}};
-    localparam [5:0] G_WREL = `EMPC_SIG_WREL, G_E = `EMPC_SIG_E, G_Y = `EMPC_SIG_Y,
-                     G_EBAR = `EMPC_SIG_EBAR, G_DX = `EMPC_SIG_DX, G_END = `EMPC_SIG_DX + 5;
-
-    // ---- captured inputs ----
-    reg signed [OPW-1:0] y0_r, y1_r;
-    reg signed [SW-1:0]  y2_r;
-    reg signed [`EMPC_W_W-1:0] om_r;
-    reg [5*SW-1:0]       dx_r;
-    reg [(N+1)*3*SW-1:0] wref_r;
-    reg [3*SW-1:0]       ebar_r;
-    assign ebar = ebar_r;
-
-    // ---- O1: decode ----
-    reg [1:0]    kind1, kind2, kind3, kind4, kind5, kind6;
-    reg [1:0]    eo1, eo2, eo3, eo4, eo5;
-    reg [XB-1:0] src1, src2;
-    reg [1:0]    bsel1, bsel2;          // B = 0, y0, y1, y2
-    reg [CB-1:0] c1, c2, c3, c4;
-    reg          rb5;                   // rounding bit (c != 0) in O5
-    wire [5:0]   sig = desc[5:0];
-    reg  [5:0]   l;
-    always @* begin
-        src1  = S_ZERO[XB-1:0];
-        bsel1 = 2'd0;
-        c1    = desc[CB+5:6];
-        l     = 6'd0;
-        case (kind1)
-            K_WN: begin
-                src1 = S_OMEGA[XB-1:0];
-                c1   = ws;
-            end
-            K_EB: begin
-                src1  = S_W0[XB-1:0] + {{(XB-2){1'b0}}, eo1};
-                bsel1 = eo1 + 2'd1;
-                c1    = {CB{1'b0}};
-            end
-            K_COL: begin
-                if (sig < G_E) begin
-                    l = sig - G_WREL;
-                    if (l < {1'b0, neff3}) begin
-                        src1 = l[XB-1:0];
-                        if (pos && (l % 6'd3) == 6'd2) bsel1 = 2'd3;
-                    end
-                end else if (sig < G_Y) begin
-                    l = sig - G_E;
-                    if (l < {1'b0, neff3}) begin
-                        src1  = l[XB-1:0];
-                        bsel1 = (l % 6'd3) == 6'd0 ? 2'd1 : (l % 6'd3) == 6'd1 ? 2'd2 : 2'd3;
-                    end
-                end else if (sig < G_EBAR) begin
-                    l = sig - G_Y;
-                    if (!(pos && l == 6'd2)) src1 = S_Y[XB-1:0] + l[XB-1:0];
-                end else if (sig < G_DX) begin
-                    l = sig - G_EBAR;
-                    src1 = S_EBAR[XB-1:0] + l[XB-1:0];
-                end else if (sig < G_END) begin
-                    l = sig - G_DX;
-                    src1 = S_DX[XB-1:0] + l[XB-1:0];
+    localparam signed [UW-1:0]  UMAXV = {1'b0, {(UW-1){1'b1}}};
+    localparam signed [UW-1:0]  UMINV = {1'b1, {(UW-1){1'b0}}};
+    localparam [5:0] IN_Y = `EMPC_IN_Y, IN_OMEGA = `EMPC_IN_OMEGA, IN_UPREV = `EMPC_IN_UPREV,
+                     IN_EBAR = `EMPC_IN_EBAR, IN_WREF = `EMPC_IN_WREF, IN_DX = `EMPC_IN_DX;
+    // header fields (mpc_coef_mem)
+    localparam [2:0] F_WS = 3'd0, F_WNMIN = 3'd1, F_WNMAX = 3'd2, F_UMAX = 3'd3, F_LIM = 3'd4;
+    // B operand sources
+    localparam [1:0] B_SCR = 2'd0, B_HDR = 2'd1, B_DUD = 2'd2, B_DUQ = 2'd3;
+    // scratch RAM slots
+    localparam [3:0] R_Y = 4'd0, R_INC = 4'd4;
+    // column decode table: sig -> {cat[2:0], m1[2:0], o[1:0], A word[5:0]}
+    localparam [2:0] CT_ZERO = 3'd0, CT_WREL = 3'd1, CT_E = 3'd2, CT_Y = 3'd3, CT_EBAR = 3'd4, CT_DX = 3'd5;
+    localparam integer TE = 14;
+    function [64*TE-1:0] col_table;
+        input [5:0] wref1;                // buffer word of wref[1][0]
+        integer m1, o1, l;
+        reg [TE-1:0] e;
+        begin
+            col_table = {(64*TE){1'b0}};                                   // CT_ZERO
+            for (m1 = 0; m1 < `EMPC_N_MAX; m1 = m1 + 1)
+                for (o1 = 0; o1 < 3; o1 = o1 + 1) begin
+                    e = {CT_WREL, m1[2:0], o1[1:0], wref1 + m1[5:0] * 6'd3 + o1[5:0]};
+                    col_table[(`EMPC_SIG_WREL + 3 * m1 + o1) * TE +: TE] = e;   // W_rel[m1 + 1][o1]
+                    e[13:11] = CT_E;
+                    col_table[(`EMPC_SIG_E + 3 * m1 + o1) * TE +: TE] = e;      // E[m1 + 1][o1]
                 end
+            for (l = 0; l < 3; l = l + 1) begin
+                col_table[(`EMPC_SIG_Y + l) * TE +: TE] = {CT_Y, 3'd0, l[1:0], IN_Y + l[5:0]};
+                col_table[(`EMPC_SIG_EBAR + l) * TE +: TE] = {CT_EBAR, 3'd0, l[1:0], IN_EBAR + l[5:0]};
+            end
+            for (l = 0; l < 5; l = l + 1)
+                col_table[(`EMPC_SIG_DX + l) * TE +: TE] = {CT_DX, 5'd0, IN_DX + l[5:0]};
+        end
+    endfunction
+    localparam [64*TE-1:0] COLTAB = col_table(IN_WREF + 6'd3);
+
+    // ---- buffers ----
+    reg [SW-1:0] abuf [0:`EMPC_IN_WORDS-1];
+    reg [SW-1:0] sbuf [0:15];
+    integer bi;
+    initial begin
+        for (bi = 0; bi < `EMPC_IN_WORDS; bi = bi + 1) abuf[bi] = {SW{1'b0}};
+        for (bi = 0; bi < 16; bi = bi + 1) sbuf[bi] = {SW{1'b0}};
+    end
+    always @(posedge clk)
+        if (in_we) abuf[in_addr] <= in_wdata;
+
+    // ---- O0: decode (the descriptor of a column at O0 is valid at O0) -> O1 registers ----
+    reg  [1:0]  idx1;
+    reg  [2:0]  clamp_o, neg_o;         // EBA results per o
+    wire [TE-1:0] ent = COLTAB[desc[5:0]*TE +: TE];
+    wire [2:0] e_cat = ent[13:11];
+    wire [2:0] e_m1  = ent[10:8];
+    wire [1:0] e_o   = ent[7:6];
+    wire [5:0] e_aa  = ent[5:0];
+    wire       e_inh = {1'b0, e_m1} < neff;
+    reg  [5:0]  a_addr0;
+    reg         a_zero0, b_zero0, sub0, nosig0, ebar0, ws0;
+    reg  [3:0]  s_addr0;
+    reg  [1:0]  b_sel0, eo0;
+    reg  [2:0]  hf0;
+    reg  [CB-1:0] c0;
+    always @* begin
+        a_addr0 = 6'd0;
+        a_zero0 = 1'b1;
+        b_zero0 = 1'b1;
+        b_sel0  = B_SCR;
+        s_addr0 = 4'd0;
+        sub0    = 1'b0;
+        nosig0  = 1'b0;
+        c0      = {CB{1'b0}};
+        hf0     = F_LIM + {1'b0, idx};
+        eo0     = idx;
+        ebar0   = 1'b0;
+        ws0     = 1'b0;
+        case (kind)
+            `MPC_K_YC: begin
+                a_addr0 = IN_Y + {4'd0, idx};
+                a_zero0 = 1'b0;
+            end
+            `MPC_K_EBA: begin
+                a_addr0 = IN_WREF + {4'd0, idx};
+                a_zero0 = 1'b0;
+                b_zero0 = 1'b0;
+                s_addr0 = R_Y + {2'd0, idx};
+                sub0    = 1'b1;
+            end
+            `MPC_K_WN: begin
+                a_addr0 = IN_OMEGA;
+                a_zero0 = 1'b0;
+                hf0     = F_WS;
+                ws0     = 1'b1;
+            end
+            `MPC_K_LO, `MPC_K_HI, `MPC_K_UMX, `MPC_K_NUMX: begin
+                b_zero0 = 1'b0;
+                b_sel0  = B_HDR;
+                hf0     = (kind == `MPC_K_LO) ? F_WNMIN : (kind == `MPC_K_HI) ? F_WNMAX : F_UMAX;
+                sub0    = (kind == `MPC_K_NUMX);
+            end
+            `MPC_K_UR: begin
+                a_addr0 = IN_UPREV + {4'd0, idx};
+                a_zero0 = 1'b0;
+                b_zero0 = 1'b0;
+                b_sel0  = idx[0] ? B_DUQ : B_DUD;
+                c0      = C_UR;
+            end
+            `MPC_K_EBB: begin
+                a_addr0 = IN_EBAR + {4'd0, idx};
+                a_zero0 = 1'b0;
+                ebar0   = 1'b1;
+            end
+            `MPC_K_COL: begin
+                c0 = desc[CB+5:6];
+                a_addr0 = e_aa;
+                eo0 = e_o;
+                hf0 = F_LIM + {1'b0, e_o};
+                case (e_cat)
+                    CT_WREL: if (e_inh) begin
+                        a_zero0 = 1'b0;
+                        if (pos && e_o == 2'd2) begin
+                            b_zero0 = 1'b0;
+                            s_addr0 = R_Y + 4'd2;
+                            sub0    = 1'b1;
+                        end
+                    end
+                    CT_E: if (e_inh) begin
+                        a_zero0 = 1'b0;
+                        b_zero0 = 1'b0;
+                        s_addr0 = R_Y + {2'd0, e_o};
+                        sub0    = 1'b1;
+                    end
+                    CT_Y:    a_zero0 = pos && e_o == 2'd2;
+                    CT_EBAR: begin
+                        a_zero0 = 1'b0;
+                        ebar0   = 1'b1;
+                        nosig0  = 1'b1;
+                    end
+                    CT_DX:   a_zero0 = 1'b0;
+                    CT_ZERO: ;                  // signal indices 59..63
+                    default: ;
+                endcase
             end
             default: ;
         endcase
+        // ebar_prev[o] + inc[o] (algorithm 2, no clamp; the clamp is patched in at O1)
+        if (ebar0 && alg2) begin
+            b_zero0 = 1'b0;
+            s_addr0 = R_INC + {2'd0, eo0};
+        end
     end
 
-    // ---- O2: select ----
-    wire [NX*SW-1:0] srcv;
-    genvar g;
-    generate
-        for (g = 0; g < NX; g = g + 1) begin : g_src
-            if (g < 3 * N) begin : g_wref
-                assign srcv[g*SW +: SW] = wref_r[(g+3)*SW +: SW];
-            end else if (g < S_Y) begin : g_w0
-                assign srcv[g*SW +: SW] = wref_r[(g-S_W0)*SW +: SW];
-            end else if (g == S_Y) begin : g_y0
-                assign srcv[g*SW +: SW] = {{(SW-OPW){y0_r[OPW-1]}}, y0_r};
-            end else if (g == S_Y + 1) begin : g_y1
-                assign srcv[g*SW +: SW] = {{(SW-OPW){y1_r[OPW-1]}}, y1_r};
-            end else if (g == S_Y + 2) begin : g_y2
-                assign srcv[g*SW +: SW] = y2_r;
-            end else if (g < S_DX) begin : g_ebar
-                assign srcv[g*SW +: SW] = ebar_r[(g-S_EBAR)*SW +: SW];
-            end else if (g < S_OMEGA) begin : g_dx
-                assign srcv[g*SW +: SW] = dx_r[(g-S_DX)*SW +: SW];
-            end else if (g == S_OMEGA) begin : g_om
-                assign srcv[g*SW +: SW] = {{(SW-`EMPC_W_W){om_r[`EMPC_W_W-1]}}, om_r};
-            end else begin : g_zero
-                assign srcv[g*SW +: SW] = {SW{1'b0}};
-            end
-        end
-    endgenerate
-    wire [SW-1:0] a_sel = srcv[src2*SW +: SW];
-    wire [SW-1:0] b_sel = (bsel2 == 2'd1) ? {{(SW-OPW){y0_r[OPW-1]}}, y0_r} :
-                          (bsel2 == 2'd2) ? {{(SW-OPW){y1_r[OPW-1]}}, y1_r} :
-                          (bsel2 == 2'd3) ? y2_r : {SW{1'b0}};
+    // ---- O1: clamp patch (EBA results of the same update may arrive at O1), read ----
+    reg  [5:0]  a_addr;
+    reg         a_zero, b_zero, sub1r, nosig1, ebar1, ws1;
+    reg  [3:0]  s_addr;
+    reg  [1:0]  b_sel1, eo1;
+    reg  [2:0]  hf1;
+    reg  [CB-1:0] c1r;
+    wire        cl1   = ebar1 && alg2 && clamp_o[eo1];
+    wire [1:0]  b_sel = cl1 ? B_HDR : b_sel1;
+    wire        sub1  = cl1 ? neg_o[eo1] : sub1r;
+    wire [CB-1:0] c1  = ws1 ? hdr[CB-1:0] : c1r;
+    always @* hdr_field = hf1;
+    wire [SW-1:0] a_rd = abuf[a_addr];
+    wire [SW-1:0] s_rd = sbuf[s_addr];
+    reg  [SW-1:0] b_rd;
+    always @* begin
+        case (b_sel)
+            B_SCR:   b_rd = s_rd;
+            B_HDR:   b_rd = {{(SW-33){hdr[32]}}, hdr};
+            B_DUD:   b_rd = {{(SW-UW){du_d[UW-1]}}, du_d};
+            default: b_rd = {{(SW-UW){du_q[UW-1]}}, du_q};
+        endcase
+    end
     reg signed [SW-1:0] av, bv;
+    reg  [31:0]   lim2, lim3;           // ebar_lim[o] of an EBA item (O2, O3)
 
-    // ---- O3: S = sat40(A - B) ----
-    wire signed [SW:0] d0 = {av[SW-1], av} - {bv[SW-1], bv};
-    wire d_ovf = d0[SW] ^ d0[SW-1];
-    wire signed [SW-1:0] d_s = d_ovf ? (d0[SW] ? SMINV : SMAXV) : d0[SW-1:0];
-    reg  signed [SW-1:0] sv;
+    // ---- O2: D = A +- B ----
+    reg  [3:0]   kind1, kind2, kind3, kind4, kind5;
+    reg  [1:0]   idx2, idx3;
+    reg          sub2, nosig2, nosig3;
+    reg  [CB-1:0] c2, c3, c4;
+    // A + (B ^ sub) + sub, the carry-in as an extra LSB (keeps A on the carry chain's DI inputs)
+    wire [SW+1:0] d0x = {av[SW-1], av, 1'b1} + {({bv[SW-1], bv} ^ {(SW+1){sub2}}), sub2};
+    wire [SW:0]  d0 = d0x[SW+1:1];
+    reg  [SW:0]  dv;
 
-    // ---- O4: t2 = (S << 1) >>> c  |  EB: inc = clamp(S, +-lim) ----
-    wire signed [SW:0] t2 = $signed({sv, 1'b0}) >>> c4;
-    reg  signed [SW:0] t2r;
-    wire [31:0] lim4 = ebar_lim[eo4*32 +: 32];
-    wire signed [SW:0] lim_p = {{(SW-31){1'b0}}, lim4};
-    wire signed [SW:0] lim_n = -lim_p;
-    wire signed [SW:0] sv_x = {sv[SW-1], sv};
-    wire inc_hi = sv_x > lim_p;
-    wire inc_lo = sv_x < lim_n;
-    wire signed [SW:0] inc = inc_hi ? lim_p : inc_lo ? lim_n : sv_x;
-    reg  signed [SW:0] incr;
+    // ---- O3: S = sat40(D), Y1 = {S, 0} >>> 16 c[4] ----
+    wire         d_sgn = dv[SW];
+    wire         d_ovf = dv[SW] ^ dv[SW-1];
+    wire [SW-1:0] sv   = d_ovf ? {d_sgn, {(SW-1){~d_sgn}}} : dv[SW-1:0];
+    wire [SW:0]  w1    = {sv, 1'b0};
+    wire [SW:0]  y1    = c3[4] ? {{16{sv[SW-1]}}, w1[SW:16]} : w1;
+    reg  [SW:0]  y1r;
+    wire [SW-1:0] s_y1 = y1[SW:1];       // S (items with c = 0: scratch / ebar writes)
+    // EBA: clamp = |inc| > lim:  |D| >= 2^32 (top bits not all sign), else the sign of
+    // D - lim - 1 (D >= 0) or D + lim (D < 0), formed on 34 bits
+    wire         d_top = ~((&dv[SW:33]) | ~(|dv[SW:33]));
+    wire [34:0]  ccmpx = {dv[33:0], 1'b0} - {({2'b00, lim3} ^ {34{d_sgn}}), 1'b1};   // D + (lim ^ ~sgn)
+    wire [33:0]  ccmp  = ccmpx[34:1];
+    wire         clamp = d_top | (ccmp[33] ^ ~d_sgn);
+    // UR: u_raw = sat24(D)
+    wire         u_fit = (&dv[SW:UW-1]) | ~(|dv[SW:UW-1]);
+    wire [UW-1:0] u_s  = u_fit ? dv[UW-1:0] : (d_sgn ? UMINV : UMAXV);
 
-    // ---- O5: a = sat18((t2 + rb) >>> 1)  |  EB: ebar[o] = sat40(ebar[o] + inc) ----
-    wire signed [SW:0]   a1 = {t2r[SW], t2r[SW:1]} + {{SW{1'b0}}, t2r[0] & rb5};
-    wire a_ov = ~((&a1[(SW+1)-1:OPW-1]) | ~(|a1[(SW+1)-1:OPW-1]));   // upper bits not all equal
-    wire a_hi = a_ov & ~a1[(SW+1)-1];
-    wire a_lo = a_ov & a1[(SW+1)-1];
-    wire signed [OPW-1:0] a_s = a_hi ? OMAX : a_lo ? OMIN : a1[OPW-1:0];
-    wire signed [SW-1:0] eb_old = ebar_r[eo5*SW +: SW];
-    wire signed [SW+1:0] e0 = {{2{eb_old[SW-1]}}, eb_old} + {incr[SW], incr};
-    wire e_ov = ~((&e0[(SW+2)-1:SW-1]) | ~(|e0[(SW+2)-1:SW-1]));   // upper bits not all equal
-    wire e_hi = e_ov & ~e0[(SW+2)-1];
-    wire e_lo = e_ov & e0[(SW+2)-1];
-    wire signed [SW-1:0] e_s = e_hi ? SMAXV : e_lo ? SMINV : e0[SW-1:0];
-    reg                  wsat6;          // WN item: a saturated to 18 bit
+    // ---- O4: op = sat18(rshift_round(S, c)) ----
+    wire         y_sgn = y1r[SW];
+    wire [SW:0]  y2    = $signed(y1r) >>> {c4[3:2], 2'b00};
+    wire [OPW+3:0] y3w = y2[OPW+3:0] >> c4[1:0];
+    wire [OPW:0] y3    = y3w[OPW:0];
+    // the result fits 18 bit iff Y1 bits [39 : 18 + c[3:0]] equal the sign: bits above the
+    // y2 window (>= 22 + 4 c[3:2]) by groups of 4, the rest in y2 (>= 18 + c[1:0])
+    wire [21:0]  y_x   = y1r[SW-1:OPW] ^ {22{y_sgn}};    // positions 18..39
+    wire         g22   = |y_x[7:4];
+    wire         g26   = |y_x[11:8];
+    wire         g30   = |y_x[15:12];
+    wire         g34   = |y_x[21:16];
+    wire         nf_hi = g34 | (c4[3:2] < 2'd3 && g30) | (c4[3:2] < 2'd2 && g26) | (c4[3:2] == 2'd0 && g22);
+    wire [3:0]   y2x   = y2[OPW+3:OPW] ^ {4{y_sgn}};      // y2 positions 18..21
+    wire         nf_lo = y2x[3] | (c4[1:0] < 2'd3 && y2x[2]) | (c4[1:0] < 2'd2 && y2x[1]) | (c4[1:0] == 2'd0 && y2x[0]);
+    wire         nfit  = nf_hi | nf_lo;
+    wire [OPW:0] a1    = {y3[OPW], y3[OPW:1]} + {{OPW{1'b0}}, y3[0]};
+    wire         a_sat = nfit | (a1[OPW] ^ a1[OPW-1]);
+    wire signed [OPW-1:0] a_s = a_sat ? (y_sgn ? OMIN : OMAX) : a1[OPW-1:0];
+    assign op_next = sel_f ? f : a_s;
+    reg          sat5;
 
-    // ---- O6: wn = clamp(op) ----
-    // min(max(w1, wn_min), wn_max) with both comparisons in parallel
-    wire signed [OPW-1:0] w1 = (op == OMIN) ? -OMAX : op;
-    wire w_lo  = w1 < wn_min;
-    wire w_hi  = w1 > wn_max;
-    wire w_inv = wn_min > wn_max;
-    wire signed [OPW-1:0] w3 = w_lo ? (w_inv ? wn_max : wn_min) : (w_hi ? wn_max : w1);
+    // ---- O5: wn clamp steps: L = wn < op + k (k = 1 for HI) ----
+    wire         is_hi = (kind5 == `MPC_K_HI);
+    wire [OPW+1:0] wdx = {wn[OPW-1], wn, 1'b1} + {~{op[OPW-1], op}, ~is_hi};
+    wire [OPW:0] wd    = wdx[OPW+1:1];
+    wire         w_lt  = wd[OPW];
 
     integer o;
     always @(posedge clk) begin
+        // scratch RAM write (O3)
+        if (kind3 == `MPC_K_YC || kind3 == `MPC_K_EBA)
+            sbuf[(kind3 == `MPC_K_YC ? R_Y : R_INC) + {2'd0, idx3}] <= s_y1;
         if (rst) begin
-            y0_r <= {OPW{1'b0}};
-            y1_r <= {OPW{1'b0}};
-            y2_r <= {SW{1'b0}};
-            om_r <= {`EMPC_W_W{1'b0}};
-            dx_r <= {(5*SW){1'b0}};
-            wref_r <= {((N+1)*3*SW){1'b0}};
-            ebar_r <= {(3*SW){1'b0}};
-            kind1 <= 2'd0; kind2 <= 2'd0; kind3 <= 2'd0; kind4 <= 2'd0; kind5 <= 2'd0; kind6 <= 2'd0;
-            eo1 <= 2'd0; eo2 <= 2'd0; eo3 <= 2'd0; eo4 <= 2'd0; eo5 <= 2'd0;
-            src2 <= {XB{1'b0}};
-            bsel2 <= 2'd0;
+            kind1 <= `MPC_K_NONE; kind2 <= `MPC_K_NONE; kind3 <= `MPC_K_NONE;
+            kind4 <= `MPC_K_NONE; kind5 <= `MPC_K_NONE;
+            idx1 <= 2'd0; idx2 <= 2'd0; idx3 <= 2'd0;
+            a_addr <= 6'd0; a_zero <= 1'b1; b_zero <= 1'b1; sub1r <= 1'b0; nosig1 <= 1'b0; ebar1 <= 1'b0;
+            ws1 <= 1'b0; s_addr <= 4'd0; b_sel1 <= B_SCR; eo1 <= 2'd0; hf1 <= F_WS; c1r <= {CB{1'b0}};
+            sub2 <= 1'b0; nosig2 <= 1'b0; nosig3 <= 1'b0;
             c2 <= {CB{1'b0}}; c3 <= {CB{1'b0}}; c4 <= {CB{1'b0}};
-            rb5 <= 1'b0;
             av <= {SW{1'b0}};
             bv <= {SW{1'b0}};
-            sv <= {SW{1'b0}};
-            t2r <= {(SW+1){1'b0}};
-            incr <= {(SW+1){1'b0}};
+            lim2 <= 32'd0; lim3 <= 32'd0;
+            dv <= {(SW+1){1'b0}};
+            y1r <= {(SW+1){1'b0}};
             op <= {OPW{1'b0}};
+            sat5 <= 1'b0;
             wn <= {OPW{1'b0}};
-            wsat6 <= 1'b0;
+            wn_s <= {OPW{1'b0}};
+            ur_d <= {UW{1'b0}};
+            ur_q <= {UW{1'b0}};
+            ebar_s <= {(3*SW){1'b0}};
+            clamp_o <= 3'd0;
+            neg_o <= 3'd0;
             f_signal <= 1'b0; f_operand <= 1'b0; f_wn <= 1'b0; f_ebar <= 1'b0; f_ebar_inc <= 1'b0;
+            f_u <= 1'b0;
         end else begin
             // token pipeline
-            kind1 <= kind; kind2 <= kind1; kind3 <= kind2; kind4 <= kind3; kind5 <= kind4; kind6 <= kind5;
-            eo1 <= eo; eo2 <= eo1; eo3 <= eo2; eo4 <= eo3; eo5 <= eo4;
+            kind1 <= kind; kind2 <= kind1; kind3 <= kind2; kind4 <= kind3; kind5 <= kind4;
+            idx1 <= idx; idx2 <= idx1; idx3 <= idx2;
+            // O0 -> O1
+            a_addr <= a_addr0;
+            a_zero <= a_zero0;
+            b_zero <= b_zero0;
+            sub1r  <= sub0;
+            nosig1 <= nosig0;
+            ebar1  <= ebar0;
+            ws1    <= ws0;
+            s_addr <= s_addr0;
+            b_sel1 <= b_sel0;
+            eo1    <= eo0;
+            hf1    <= hf0;
+            c1r    <= c0;
             // O1 -> O2
-            src2  <= src1;
-            bsel2 <= bsel1;
-            c2 <= c1; c3 <= c2; c4 <= c3;
-            rb5 <= (c4 != {CB{1'b0}});
+            av <= a_zero ? {SW{1'b0}} : a_rd;
+            bv <= b_zero ? {SW{1'b0}} : b_rd;
+            sub2 <= sub1;
+            nosig2 <= nosig1;
+            c2 <= c1;
+            lim2 <= hdr[31:0];
             // O2 -> O3
-            av <= a_sel;
-            bv <= b_sel;
+            dv <= d0;
+            c3 <= c2;
+            nosig3 <= nosig2;
+            lim3 <= lim2;
             // O3 -> O4
-            sv <= d_s;
+            y1r <= y1;
+            c4 <= c3;
+            if (kind3 == `MPC_K_EBA) begin
+                clamp_o[idx3] <= clamp;
+                neg_o[idx3] <= d_sgn;
+            end
+            if (kind3 == `MPC_K_EBB)
+                for (o = 0; o < 3; o = o + 1)
+                    if (idx3 == o[1:0]) ebar_s[o*SW +: SW] <= s_y1;
+            if (kind3 == `MPC_K_UR) begin
+                if (idx3[0]) ur_q <= u_s;
+                else         ur_d <= u_s;
+            end
             // O4 -> O5
-            t2r  <= t2;
-            incr <= inc;
-            // O5 -> O6
-            op <= a_s;
-            wsat6 <= a_hi | a_lo;
-            if (cap) begin
-                y0_r   <= y0;
-                y1_r   <= y1;
-                y2_r   <= y2;
-                om_r   <= omega;
-                dx_r   <= dx;
-                wref_r <= wref;
-                ebar_r <= ebar_prev;
+            op <= op_next;
+            sat5 <= a_sat;
+            // O5: wn
+            case (kind5)
+                `MPC_K_WN: wn <= op;
+                `MPC_K_LO: if (w_lt) wn <= op;
+                `MPC_K_HI: if (!w_lt) wn <= op;
+                `MPC_K_UMX: begin
+                    wn_s <= wn;
+                    wn <= op;
+                end
+                default: ;
+            endcase
+            // flags
+            if (clr) begin
                 f_signal <= 1'b0; f_operand <= 1'b0; f_wn <= 1'b0; f_ebar <= 1'b0; f_ebar_inc <= 1'b0;
+                f_u <= 1'b0;
             end else begin
-                if (kind3 == K_COL && d_ovf) f_signal <= 1'b1;
-                if (kind4 == K_EB && alg2 && (inc_hi || inc_lo)) f_ebar_inc <= 1'b1;
-                if (kind5 == K_COL && (a_hi || a_lo)) f_operand <= 1'b1;
-                if (kind5 == K_EB && alg2) begin
-                    for (o = 0; o < 3; o = o + 1)
-                        if (eo5 == o[1:0]) ebar_r[o*SW +: SW] <= e_s;
-                    if (e_hi || e_lo) f_ebar <= 1'b1;
-                end
-                if (kind6 == K_WN) begin
-                    wn <= w3;
-                    if (wsat6 || (w3 != op)) f_wn <= 1'b1;
-                end
+                if (kind3 == `MPC_K_COL && d_ovf && !nosig3) f_signal <= 1'b1;
+                if (kind3 == `MPC_K_EBA && alg2 && clamp) f_ebar_inc <= 1'b1;
+                if (kind3 == `MPC_K_EBB && alg2 && d_ovf) f_ebar <= 1'b1;
+                if (kind3 == `MPC_K_UR && !u_fit) f_u <= 1'b1;
+                if (kind4 == `MPC_K_COL && a_sat) f_operand <= 1'b1;
+                if ((kind5 == `MPC_K_WN && sat5) || (kind5 == `MPC_K_LO && w_lt) || (kind5 == `MPC_K_HI && !w_lt))
+                    f_wn <= 1'b1;
             end
         end
     end
 
+    wire unused_ok = &{1'b0, y2[SW:OPW+4], y3w[OPW+3:OPW+1], y_x[3:0], ccmp[32:0], ccmpx[0], c4[4], d0x[0], wdx[0], wd[OPW-1:0]};
 endmodule
 `default_nettype wire

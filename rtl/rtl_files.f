@@ -1,18 +1,10 @@
 rtl/sync_2ff.v
 rtl/adc_spi.v
-rtl/sincos.v
 rtl/glitch_filter.v
 rtl/pwm_center.v
 rtl/irc_decoder.v
 rtl/hall_decoder.v
 rtl/pos_sense.v
-rtl/park_core.v
-rtl/park.v
-rtl/inv_park.v
-rtl/clarke.v
-rtl/inv_clarke.v
-rtl/min_sub.v
-rtl/duty_scale.v
 rtl/mpc_mul18.v
 rtl/mpc_lane.v
 rtl/mpc_limiter.v
@@ -28,3 +20,4 @@ rtl/fault_ctrl.v
 rtl/watchdog.v
 rtl/ref_gen.v
 rtl/emc_bus.v
+rtl/xform.v

@@ -2,7 +2,7 @@
 
 Usage: .venv/bin/python sim/bench_mpc_core.py      (about 1 minute: Yosys runs in WebAssembly)
 
-Reports resources (DSP48A1, LUT, FF, RAMB16/RAMB8, LUT-RAM), the latency (29 + ncols
+Reports resources (DSP48A1, LUT, FF, RAMB16/RAMB8, LUT-RAM), the latency (LATENCY_BASE + ncols
 cycles per image of the configuration), the boot-load time, and a timing proxy: Yosys has
 no Spartan-6 timing model, so the longest register-to-register path of the mapped netlist
 (FFs, DSP48A1 and block RAMs cut the paths) is found with typical Spartan-6 -2 delays

@@ -4,10 +4,11 @@
 // file IN_FILE, back to back (one command byte, then a big-endian record):
 //   'w' addr[2 bytes] data[4 bytes]   cfg write (one per clock)
 //   's'                               cfg_swap, wait until the bank changed
-//   'v' NF x 8 bytes                  one update, fields (two's complement, 64 bit each):
-//                                     y0 y1 y2 omega dx[0..4] wref[0..3N+2] u_prev[0..1] ebar_prev[0..2];
-//                                     start is issued in the cycle done of the previous update is
-//                                     high (the core accepts it: busy is low in the done cycle)
+//   'v' n[1 byte], n x {addr[1 byte], data[5 bytes]}
+//                                     one update: the n input-buffer words (addr = EMPC_IN_*
+//                                     word address, data = 40-bit two's complement) are written
+//                                     through in_we, one per clock, then start is pulsed in the
+//                                     cycle after the last write
 //   'e'                               end: `finished` rises
 // For every update one line goes to OUT_FILE: u du u_raw ebar wn flags latency (hex, vectors as
 // one number, element 0 in the low bits; latency = start -> done cycles).
@@ -28,20 +29,16 @@ module mpc_core_stream #(
 );
     localparam integer SW = `EMPC_SIG_W;
     localparam integer UW = `EMPC_U_W;
-    localparam integer NF = 4 + 5 + 3 * (N + 1) + 2 + 3;
+    localparam integer MAXW = `EMPC_IN_WORDS;
 
     reg rst = 1'b1;
     reg start = 1'b0;
     reg cfg_we = 1'b0, cfg_swap = 1'b0;
     reg [9:0] cfg_addr = 10'd0;
     reg [31:0] cfg_wdata = 32'd0;
-    reg signed [17:0] y0 = 0, y1 = 0;
-    reg signed [SW-1:0] y2 = 0;
-    reg signed [31:0] omega = 0;
-    reg [5*SW-1:0] dx = 0;
-    reg [(N+1)*3*SW-1:0] wref = 0;
-    reg [2*UW-1:0] u_prev = 0;
-    reg [3*SW-1:0] ebar_prev = 0;
+    reg in_we = 1'b0;
+    reg [5:0] in_addr = 6'd0;
+    reg [SW-1:0] in_wdata = {SW{1'b0}};
     wire busy, done, ready, bank, swap_pending, boot_ok, task_pos;
     wire [2*UW-1:0] u, du, u_raw;
     wire [3*SW-1:0] ebar;
@@ -50,22 +47,23 @@ module mpc_core_stream #(
     wire [7:0] latency;
 
     mpc_core #(.N(N), .BOOT_FILE(BOOT_FILE), .RSQRT_FILE(RSQRT_FILE)) dut (
-        .clk(clk), .rst(rst), .start(start), .y0(y0), .y1(y1), .y2(y2), .omega(omega), .dx(dx),
-        .wref(wref), .u_prev(u_prev), .ebar_prev(ebar_prev), .busy(busy), .done(done), .u(u), .du(du),
+        .clk(clk), .rst(rst), .start(start), .in_we(in_we), .in_addr(in_addr), .in_wdata(in_wdata),
+        .busy(busy), .done(done), .u(u), .du(du),
         .u_raw(u_raw), .ebar(ebar), .wn(wn), .flags(flags), .latency(latency), .cfg_we(cfg_we),
         .cfg_addr(cfg_addr), .cfg_wdata(cfg_wdata), .cfg_swap(cfg_swap), .ready(ready), .bank(bank),
         .swap_pending(swap_pending), .boot_ok(boot_ok), .task_pos(task_pos)
     );
 
     localparam [2:0] S_IDLE = 3'd0, S_RST = 3'd1, S_BOOT = 3'd2, S_CMD = 3'd3, S_RUN = 3'd4,
-                     S_SWAP = 3'd5, S_END = 3'd6;
+                     S_SWAP = 3'd5, S_END = 3'd6, S_WR = 3'd7;
     reg [2:0] state = S_IDLE;
     reg [3:0] rcnt = 4'd0;
     reg bank0 = 1'b0;
     reg [63:0] t_start = 64'd0;
-    integer fin = 0, fout = 0, ch, r, k;
-    reg [NF*64-1:0] rec;
+    integer fin = 0, fout = 0, ch, r, k, nw;
     reg [47:0] wrec;
+    reg [7:0] nbyte;
+    reg [MAXW*48-1:0] vrec;
     reg [7:0] lat;
 
     initial begin
@@ -90,18 +88,14 @@ module mpc_core_stream #(
                 bank0 <= bank;
                 state <= S_SWAP;
             end else if (ch == "v") begin
-                r = $fread(rec, fin);
-                y0 <= rec[(NF-1)*64 +: 18];
-                y1 <= rec[(NF-2)*64 +: 18];
-                y2 <= rec[(NF-3)*64 +: SW];
-                omega <= rec[(NF-4)*64 +: 32];
-                for (k = 0; k < 5; k = k + 1) dx[k*SW +: SW] <= rec[(NF-5-k)*64 +: SW];
-                for (k = 0; k < 3 * (N + 1); k = k + 1) wref[k*SW +: SW] <= rec[(NF-10-k)*64 +: SW];
-                for (k = 0; k < 2; k = k + 1) u_prev[k*UW +: UW] <= rec[(NF-10-3*(N+1)-k)*64 +: UW];
-                for (k = 0; k < 3; k = k + 1) ebar_prev[k*SW +: SW] <= rec[(NF-12-3*(N+1)-k)*64 +: SW];
-                start <= 1'b1;
-                t_start <= cycles;
-                state <= S_RUN;
+                r = $fread(nbyte, fin);
+                nw = nbyte;
+                for (k = 0; k < nw; k = k + 1) begin
+                    r = $fread(wrec, fin);
+                    vrec[k*48 +: 48] = wrec;
+                end
+                k = 0;
+                state <= S_WR;
             end else begin
                 state <= S_END;
             end
@@ -111,6 +105,7 @@ module mpc_core_stream #(
     always @(posedge clk) begin
         cycles <= cycles + 64'd1;
         start <= 1'b0;
+        in_we <= 1'b0;
         cfg_swap <= 1'b0;
         case (state)
             S_IDLE: if (go) begin
@@ -132,6 +127,19 @@ module mpc_core_stream #(
             end
             S_BOOT: if (ready) next_cmd;
             S_CMD: next_cmd;
+            S_WR: begin
+                cfg_we <= 1'b0;
+                if (k < nw) begin
+                    in_we <= 1'b1;
+                    in_addr <= vrec[k*48+40 +: 6];
+                    in_wdata <= vrec[k*48 +: SW];
+                    k = k + 1;
+                end else begin
+                    start <= 1'b1;
+                    t_start <= cycles;
+                    state <= S_RUN;
+                end
+            end
             S_RUN: if (done) begin
                 lat = cycles - t_start - 64'd1;
                 $fwrite(fout, "%h %h %h %h %h %h %h\n", u, du, u_raw, ebar, wn, flags, lat);

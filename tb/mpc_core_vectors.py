@@ -20,7 +20,6 @@ OP_MAX = core.OP_MAX
 UW = F.U_W
 ACCW = F.ACCW
 
-FIELDS_DOC = "y0 y1 y2 omega dx[5] wref[(N+1)*3] u_prev[2] ebar_prev[3]"
 
 
 # ----------------------------------------------------------------------------- helpers
@@ -57,6 +56,21 @@ def to_inputs(x: dict, i: int) -> core.Inputs:
         y=tuple(int(v) for v in x["y"][i]), omega=int(x["omega"][i]), dx=tuple(int(v) for v in x["dx"][i]),
         wref=tuple(tuple(int(v) for v in w) for w in x["wref"][i]),
         u_prev=tuple(int(v) for v in x["u_prev"][i]), ebar_prev=tuple(int(v) for v in x["ebar_prev"][i]))
+
+
+def input_word_arrays(x: dict, N: int) -> tuple[list[int], np.ndarray]:
+    """Input-buffer words of all vectors: (addresses, values (n, len(addresses)) int64).
+
+    Vectorised :func:`core.input_words` (same word map ``core.IN_*``; test_batch_model checks
+    the two agree).
+    """
+    cols = [(core.IN_Y + o, x["y"][:, o]) for o in range(3)]
+    cols.append((core.IN_OMEGA, x["omega"]))
+    cols += [(core.IN_DX + k, x["dx"][:, k]) for k in range(5)]
+    cols += [(core.IN_UPREV + i, x["u_prev"][:, i]) for i in range(2)]
+    cols += [(core.IN_EBAR + o, x["ebar_prev"][:, o]) for o in range(3)]
+    cols += [(core.IN_WREF + 3 * m + o, x["wref"][:, m, o]) for m in range(N + 1) for o in range(3)]
+    return [a for a, _ in cols], np.stack([v for _, v in cols], axis=1).astype(np.int64)
 
 
 def outputs_of(o: core.Outputs) -> dict:

@@ -40,7 +40,7 @@ REPORTS = ROOT / "build" / "reports"
 
 # Co-simulation scenarios: (paper scenario, simulated seconds, fault injection or None)
 COSIM = {
-    "short": ("position_alg2", 0.060, None),
+    "short": ("position_alg2", 0.080, None),
     "overcurrent": ("position_alg2", 0.030, "overcurrent"),
     "encoder": ("position_alg2", 0.030, "encoder"),
     "watchdog": ("position_alg2", 0.040, "watchdog"),
@@ -135,8 +135,7 @@ class CoSim:
             self.mismatches.append((self.period, self.cmp_rtl, tuple(out["cmp"])))
             if len(self.mismatches) == 1 and os.environ.get("EMPC_COSIM_DEBUG"):
                 seq = dut.u_top.g_axis[0].u_axis.u_seq
-                names = ("core_y0", "core_y1", "core_y2", "core_omega", "core_dx", "core_wref", "u_st0", "u_st1",
-                         "i_d", "i_q", "pos_trig", "pos_prev", "theta_trig")
+                names = ("u_st0", "u_st1", "i_d", "i_q", "omega", "pos_trig", "pos_prev", "theta_trig")
                 for n in names:
                     h = getattr(seq, n)
                     self.dut._log.error("RTL %s = %s", n, hex(int(h.value)))
@@ -300,9 +299,7 @@ def metrics_report(cs: CoSim, res: dict) -> dict:
     return tr, sc_cut, m
 
 
-@cocotb.test()
-async def closed_loop(dut):
-    name = os.environ.get("EMPC_COSIM", "short")
+async def closed_loop(dut, name: str):
     res = await run_cosim(dut, name)
     cs = res["cs"]
     sim_ms = cs.period * cs.Tpwm * 1e3
@@ -373,27 +370,50 @@ def _plot(cs, tr, ftr, path):
         a.set_xlabel("t [s]")
     fig.suptitle(f"RTL-in-the-loop: {cs.name} ({cs.sc.description})", fontsize=9)
     fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)   # fresh clone: build/reports may not exist yet
     fig.savefig(path, dpi=90)
     plt.close(fig)
 
 
+# ---------------------------------------------------------------- cocotb tests
+# One simulator build runs several scenarios in sequence (each starts with its own reset).
+@cocotb.test(skip=os.environ.get("EMPC_COSIM_SET", "ci") != "ci")
+async def cosim_short(dut):
+    await closed_loop(dut, "short")
+
+
+@cocotb.test(skip=os.environ.get("EMPC_COSIM_SET", "ci") != "ci")
+async def cosim_fault_overcurrent(dut):
+    await closed_loop(dut, "overcurrent")
+
+
+@cocotb.test(skip=os.environ.get("EMPC_COSIM_SET", "ci") != "ci")
+async def cosim_fault_encoder(dut):
+    await closed_loop(dut, "encoder")
+
+
+@cocotb.test(skip=os.environ.get("EMPC_COSIM_SET", "ci") != "ci")
+async def cosim_fault_watchdog(dut):
+    await closed_loop(dut, "watchdog")
+
+
+@cocotb.test(skip=os.environ.get("EMPC_COSIM_SET", "ci") != "full")
+async def cosim_full(dut):
+    for name in os.environ.get("EMPC_COSIM_FULL", "position_alg1,position_alg2,speed_steps,load_step").split(","):
+        await closed_loop(dut, name)
+
+
 # ---------------------------------------------------------------- pytest entries
-def _run(name, sim=None):
+def test_closed_loop():
+    """Short position scenario (bit-exact against the model) and the three fault injections, on Verilator."""
     from runner import run
-    run(toplevel="cosim_top", test_module="test_closed_loop", sim=sim, name=f"cosim_{name}",
-        extra_env={"EMPC_COSIM": name})
-
-
-def test_closed_loop_short():
-    _run("short")
-
-
-@pytest.mark.parametrize("fault", ["overcurrent", "encoder", "watchdog"])
-def test_fault_injection(fault):
-    _run(fault)
+    run(toplevel="cosim_top", test_module="test_closed_loop", sim="verilator", name="cosim",
+        extra_env={"EMPC_COSIM_SET": "ci"})
 
 
 @pytest.mark.full
-@pytest.mark.parametrize("name", ["position_alg1", "position_alg2", "speed_steps", "load_step"])
-def test_closed_loop_full(name):
-    _run(name, sim="verilator")
+def test_closed_loop_full():
+    """Paper-length scenarios (make sim-full)."""
+    from runner import run
+    run(toplevel="cosim_top", test_module="test_closed_loop", sim="verilator", name="cosim_full",
+        extra_env={"EMPC_COSIM_SET": "full"})

@@ -2,9 +2,11 @@
 
 pytest entries:
   test_mpc_core          Icarus, ports driven directly: boot, a few hundred vectors over the 4 generated
-                         images (CPU upload + atomic swap during an update), latency, handshake.
+                         images (inputs written through the input buffer, garbage in the words the core
+                         must not read; CPU upload + atomic swap during an update), latency, handshake.
   test_mpc_core_stream   Verilator, sim/mpc_core_stream.v: >= 100k random vectors per generated image
                          plus corner cases plus random (out-of-range) images, compared with the model.
+  test_input_words       the input-buffer word map: header EMPC_IN_* == model IN_*, core.input_words.
   test_batch_model       the numpy twin used for the stream comparison == the scalar model.
   test_float_error       core (model) du vs. the float law with exact gains, bound relative to u_max.
 Seed: EMPC_SEED (default 4242); vector count per image in the stream test: EMPC_MPC_VECTORS (100000).
@@ -66,15 +68,26 @@ def _unpack(v: int, n: int, w: int) -> list[int]:
     return [_s(v >> (k * w), w) for k in range(n)]
 
 
-def drive(dut, x: dict, i: int, N: int) -> None:
-    dut.y0.value = _u(int(x["y"][i, 0]), OPW)
-    dut.y1.value = _u(int(x["y"][i, 1]), OPW)
-    dut.y2.value = _u(int(x["y"][i, 2]), SW)
-    dut.omega.value = _u(int(x["omega"][i]), 32)
-    dut.dx.value = _pack(x["dx"][i], SW)
-    dut.wref.value = _pack(x["wref"][i].reshape(-1), SW)
-    dut.u_prev.value = _pack(x["u_prev"][i], UW)
-    dut.ebar_prev.value = _pack(x["ebar_prev"][i], SW)
+def input_words(x: dict, i: int, N: int) -> dict[int, int]:
+    """Input-buffer words of vector i (the model's word map, core.input_words)."""
+    return core.input_words(V.to_inputs(x, i), N)
+
+
+async def write_inputs(dut, words: dict[int, int], RisingEdge) -> None:
+    """Write the words through in_we / in_addr / in_wdata, one per clock (ends after the last write edge)."""
+    for a, v in words.items():
+        dut.in_we.value = 1
+        dut.in_addr.value = a
+        dut.in_wdata.value = _u(int(v), SW)
+        await RisingEdge(dut.clk)
+    dut.in_we.value = 0
+
+
+def unused_words(rng, N: int) -> dict[int, int]:
+    """Garbage for the buffer words the core must not read (14, 15 and beyond wref[N])."""
+    hi = 1 << (SW - 1)
+    addrs = [a for a in range(core.IN_WORDS) if a in (14, 15) or a >= core.IN_WREF + 3 * (N + 1)]
+    return {a: int(rng.integers(-hi, hi)) for a in addrs}
 
 
 def read_out(dut) -> dict:
@@ -95,17 +108,17 @@ class Bench:
         from cocotb.triggers import RisingEdge, ReadOnly
         self.dut, self.RisingEdge, self.ReadOnly = dut, RisingEdge, ReadOnly
         self.N = header_n()
-        self.scramble = V.empty_inputs(1, self.N)
-        for k, v in self.scramble.items():
-            v[...] = 0x5A5A5
+        self.rng = np.random.default_rng(SEED + 7)
 
     async def reset(self) -> int:
         dut = self.dut
         dut.rst.value = 1
-        for s in ("start", "cfg_we", "cfg_swap"):
+        for s in ("start", "cfg_we", "cfg_swap", "in_we"):
             getattr(dut, s).value = 0
         dut.cfg_addr.value = 0
         dut.cfg_wdata.value = 0
+        dut.in_addr.value = 0
+        dut.in_wdata.value = 0
         for _ in range(3):
             await self.RisingEdge(dut.clk)
         dut.rst.value = 0
@@ -128,16 +141,21 @@ class Bench:
             await self.RisingEdge(dut.clk)
         dut.cfg_we.value = 0
 
+    async def load(self, x: dict, i: int, garbage: bool = True) -> None:
+        """Write vector i into the input buffer (and garbage into the words the core must not read)."""
+        await self.RisingEdge(self.dut.clk)
+        w = input_words(x, i, self.N)
+        if garbage:
+            w = {**unused_words(self.rng, self.N), **w}
+        await write_inputs(self.dut, w, self.RisingEdge)
+
     async def run(self, x: dict, i: int, swap_at: int | None = None) -> tuple[dict, int]:
-        """Apply vector i, pulse start, wait for done; returns outputs and start->done cycles."""
+        """Write vector i, pulse start, wait for done; returns outputs and start->done cycles."""
         dut = self.dut
-        await self.RisingEdge(dut.clk)
-        drive(dut, x, i, self.N)
+        await self.load(x, i)
         dut.start.value = 1
         await self.RisingEdge(dut.clk)
         dut.start.value = 0
-        # scramble the inputs: the core must have registered them at start
-        drive(dut, self.scramble, 0, self.N)
         n = 1
         while True:
             if swap_at is not None and n == swap_at:
@@ -197,8 +215,7 @@ try:
         # outputs hold during the next update until its done
         x2 = V.random_inputs(rng, 2, p_boot, tb.N)
         out0, _ = await tb.run(x2, 0)
-        await RisingEdge(dut.clk)
-        drive(dut, x2, 1, tb.N)
+        await tb.load(x2, 1)
         dut.start.value = 1
         await RisingEdge(dut.clk)
         dut.start.value = 0
@@ -255,8 +272,7 @@ try:
         await tb.write_image(w)
         p_new = image.decode(w)
         x = V.random_inputs(rng, 1, p_new, tb.N)
-        await RisingEdge(dut.clk)
-        drive(dut, x, 0, tb.N)
+        await tb.load(x, 0)
         dut.cfg_swap.value = 1
         dut.start.value = 1
         await RisingEdge(dut.clk)
@@ -269,8 +285,9 @@ try:
                 break
         assert _mismatch(read_out(dut), _model_outputs(p_new, x, 0)) is None, "swap with start in one cycle"
         total += 1
-        dut._log.info(f"checked {total} vectors bit-exact (outputs u, du, u_raw, ebar, wn, flags), "
-                      f"latency = {LAT_BASE} + ncols, boot {n_ready} cycles")
+        dut._log.info(f"checked {total} vectors bit-exact (outputs u, du, u_raw, ebar, wn, flags; inputs written "
+                      f"through in_we with garbage in the unused buffer words), latency = {LAT_BASE} + ncols, "
+                      f"boot {n_ready} cycles")
 
     @cocotb.test()
     async def bad_boot(dut):
@@ -355,17 +372,12 @@ def _lines(cols: list[np.ndarray]) -> bytes:
     return np.concatenate(parts, axis=1).tobytes()
 
 
-def vector_fields(x: dict, N: int) -> list[tuple[np.ndarray, int]]:
-    f = [(x["y"][:, 0], OPW), (x["y"][:, 1], OPW), (x["y"][:, 2], SW), (x["omega"], 32)]
-    f += [(x["dx"][:, k], SW) for k in range(5)]
-    f += [(x["wref"][:, m, o], SW) for m in range(N + 1) for o in range(3)]
-    f += [(x["u_prev"][:, i], UW) for i in range(2)]
-    f += [(x["ebar_prev"][:, o], SW) for o in range(3)]
-    return f
-
-
 def write_stream(path: Path, jobs: list[dict], N: int) -> None:
-    """Binary command file for sim/mpc_core_stream.v: 'w' cfg write, 's' swap, 'v' update, 'e' end."""
+    """Binary command file for sim/mpc_core_stream.v: 'w' cfg write, 's' swap, 'v' update, 'e' end.
+
+    'v' n {addr, 40-bit value} x n: the input-buffer words of one update (V.input_word_arrays,
+    the model's word map), written by the harness before start.
+    """
     with open(path, "wb") as fh:
         for job in jobs:
             w = job["words"]
@@ -373,10 +385,13 @@ def write_stream(path: Path, jobs: list[dict], N: int) -> None:
             rec["c"], rec["a"], rec["d"] = ord("w"), np.arange(image.USED), np.array(w[:image.USED], np.uint32)
             fh.write(rec.tobytes())
             fh.write(b"s")
-            fv = np.stack([v for v, _ in vector_fields(job["x"], N)], axis=1).astype(">i8")
-            n = fv.shape[0]
-            body = np.concatenate([np.full((n, 1), ord("v"), np.uint8), fv.view(np.uint8).reshape(n, -1)], axis=1)
-            fh.write(body.tobytes())
+            addrs, vals = V.input_word_arrays(job["x"], N)
+            n, nw = vals.shape
+            u = (vals & ((1 << SW) - 1)).astype(">u8").view(np.uint8).reshape(n, nw, 8)[:, :, 8 - SW // 8:]
+            a = np.broadcast_to(np.array(addrs, np.uint8)[None, :, None], (n, nw, 1))
+            words = np.concatenate([a, u], axis=2).reshape(n, -1)
+            head = np.tile(np.array([ord("v"), nw], np.uint8), (n, 1))
+            fh.write(np.concatenate([head, words], axis=1).tobytes())
         fh.write(b"e")
 
 
@@ -482,12 +497,15 @@ def test_batch_model():
         xc, names = V.corner_inputs(p, N, rng)
         x = V.concat(xc, V.random_inputs(rng, 1000, p, N)) if name in IMAGES else V.random_inputs(rng, 600, p, N)
         got = V.update_batch(p, x)
+        addrs, vals = V.input_word_arrays(x, N)
         for i in range(len(x["omega"])):
+            assert dict(zip(addrs, vals[i].tolist())) == input_words(x, i, N), f"{name} vector {i}: word map"
             exp = _model_outputs(p, x, i)
             g = {k: (got[k][i].tolist() if np.ndim(got[k][i]) else int(got[k][i])) for k in exp}
             assert g == exp, f"{name} vector {i}: batch {g} scalar {exp}"
             n_checked += 1
-    print(f"seed {SEED + 1}: batch model == scalar model on {n_checked} vectors, {len(cases)} images")
+    print(f"seed {SEED + 1}: batch model == scalar model (and input word map == core.input_words) on "
+          f"{n_checked} vectors, {len(cases)} images")
 
 
 # ============================================================================ error against the float law
@@ -599,6 +617,39 @@ def test_limiter_bound():
             assert m2 <= umax * umax, (u, umax, out)
             assert np.sqrt(m2) >= 0.998 * umax - 2, (u, umax, out)
     print(f"seed {SEED + 3}: limiter bound held on {n_lim} limited vectors")
+
+
+def test_input_words():
+    """Word map of the input buffer: header == model constants, core.input_words layout and range checks."""
+    from empc import header
+    h = header.read(roms() / "empc_formats.vh")
+    names = ("IN_Y", "IN_OMEGA", "IN_DX", "IN_UPREV", "IN_EBAR", "IN_WREF", "IN_WORDS")
+    for n in names:
+        assert h[n] == getattr(core, n), (n, h[n], getattr(core, n))
+    N = header_n()
+    rng = np.random.default_rng(SEED + 4)
+    n_checked = 0
+    for n_ref in range(core.N_MAX + 1):
+        x = V.empty_inputs(1, n_ref)
+        for k in x:
+            x[k][...] = rng.integers(-(1 << 39), 1 << 39, x[k].shape)
+        inp = V.to_inputs(x, 0)
+        w = core.input_words(inp)
+        assert sorted(w) == list(range(14)) + list(range(core.IN_WREF, core.IN_WREF + 3 * (n_ref + 1))), sorted(w)
+        assert max(w) < core.IN_WORDS
+        assert [w[core.IN_Y + o] for o in range(3)] == list(inp.y) and w[core.IN_OMEGA] == inp.omega
+        assert [w[core.IN_DX + k] for k in range(5)] == list(inp.dx)
+        assert [w[core.IN_UPREV + i] for i in range(2)] == list(inp.u_prev)
+        assert [w[core.IN_EBAR + o] for o in range(3)] == list(inp.ebar_prev)
+        assert all(w[core.IN_WREF + 3 * m + o] == inp.wref[m][o] for m in range(n_ref + 1) for o in range(3))
+        n_checked += 1
+    x = V.empty_inputs(1, N)
+    with pytest.raises(ValueError):
+        core.input_words(V.to_inputs(x, 0), N + 1)            # more references than given
+    x["omega"][0] = 1 << 39
+    with pytest.raises(ValueError):
+        core.input_words(V.to_inputs(x, 0), N)                # does not fit 40 bit
+    print(f"input word map: header EMPC_IN_* == model, {n_checked} layouts (N = 0..{core.N_MAX}) checked")
 
 
 @pytest.mark.full

@@ -136,7 +136,8 @@ AXIS = (
     Reg("IABC1", 0x29, "RO", 0, "Last raw ADC code phase C (11:0).", width=12),
     Reg("LATENCY", 0x2a, "RO", 0, "Clocks from the ADC trigger to the new PWM compare values of the last control period."),
     Reg("PERIODS", 0x2b, "RO", 0, "Control periods run since enable."),
-    Reg("SAT_OPERAND", 0x30, "RO", 0, "Saturation counter: core operand (count of control periods with the event)."),
+    Reg("SAT_OPERAND", 0x30, "RO", 0, "Saturation counter: core operand. SAT_* and CNT_OVERRUN count control "
+        "periods in which the event happened (32-bit, saturating)."),
     Reg("SAT_GAIN", 0x31, "RO", 0, "Saturation counter: gain polynomial."),
     Reg("SAT_TERM", 0x32, "RO", 0, "Saturation counter: product term."),
     Reg("SAT_ACC", 0x33, "RO", 0, "Saturation counter: accumulator."),
@@ -148,9 +149,10 @@ AXIS = (
     Reg("SAT_WN", 0x39, "RO", 0, "Counter: scheduling speed clamped to Omega_e."),
     Reg("SAT_SIGNAL", 0x3a, "RO", 0, "Saturation counter: core signal (SIG_W)."),
     Reg("SAT_FRONT", 0x3b, "RO", 0, "Saturation counter: front end (transforms, speed, duty)."),
-    Reg("CNT_ADC_MISS", 0x3c, "RO", 0, "ADC triggers ignored while busy."),
-    Reg("CNT_ENC_ERR", 0x3d, "RO", 0, "Illegal quadrature transitions."),
-    Reg("CNT_OVERRUN", 0x3e, "RO", 0, "Control computations that missed their PWM update."),
+    Reg("CNT_OVERRUN", 0x3c, "RO", 0, "Control computations that missed their PWM update."),
+    Reg("CNT_ADC_MISS", 0x3d, "RO", 0, "ADC triggers ignored while busy (8-bit, saturating; not cleared by "
+        "CMD.clear_counters).", width=8),
+    Reg("CNT_ENC_ERR", 0x3e, "RO", 0, "Illegal quadrature transitions (16-bit, saturating).", width=16),
 )
 
 

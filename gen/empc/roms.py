@@ -83,6 +83,8 @@ def generate(cfg, out: Path, all_designs: bool = True) -> dict:
     extra.update({"SIG_W": core.SIG_W, "N_MAX": core.N_MAX, "MAX_COLS": core.MAX_COLS, "RSQRT_BITS": core.RSQRT_BITS,
                   "SIG_WREL": core.SIG_WREL, "SIG_E": core.SIG_E, "SIG_Y": core.SIG_Y, "SIG_EBAR": core.SIG_EBAR,
                   "SIG_DX": core.SIG_DX, "N": cfg.control.N,
+                  "IN_Y": core.IN_Y, "IN_OMEGA": core.IN_OMEGA, "IN_DX": core.IN_DX, "IN_UPREV": core.IN_UPREV,
+                  "IN_EBAR": core.IN_EBAR, "IN_WREF": core.IN_WREF, "IN_WORDS": core.IN_WORDS,
                   "BOOT_ALGORITHM": boot[0], "BOOT_TASK_POSITION": 1 if boot[1] == "position" else 0})
     header.write(cfg, out, extra)
     (out / "empc_regs.vh").write_text(regmap.render_vh())

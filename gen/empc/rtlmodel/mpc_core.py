@@ -1,6 +1,11 @@
 """Bit-accurate model of the explicit-MPC core (rtl/mpc_core.v).
 
-The RTL must match :func:`update` bit for bit.  One update, in this order:
+The RTL must match :func:`update` bit for bit.  The RTL reads its inputs from an input
+buffer of 40-bit signed words (written before ``start``, word map ``IN_*`` below,
+:func:`input_words` builds it from :class:`Inputs`); every input is used at the full
+SIG_W = 40 bit, so the model below is exact for any field value in the signed 40-bit
+range (the writer sign-extends: i_d, i_q 18 bit, omega 32 bit, u_prev 24 bit in practice).
+One update, in this order:
 
 1. Scheduling speed: ``wn = clamp(sat18(rshift_round(omega, WS)), wn_min, wn_max)``
    (Q1.17, |wn| <= 1; the polynomials are never extrapolated beyond Omega_e).
@@ -57,8 +62,17 @@ MAX_COLS = 64
 RSQRT_BITS = 10
 OP_MAX = (1 << (OPW - 1)) - 1
 
+# input buffer word map of rtl/mpc_core.v (in_we / in_addr / in_wdata; `empc roms` writes EMPC_IN_*)
+IN_Y = 0                # y[o] at IN_Y + o (i_d, i_q, speed or angle)
+IN_OMEGA = 3            # scheduling speed
+IN_DX = 4               # dx[n] at IN_DX + n, n = 0..4
+IN_UPREV = 9            # u_prev[i] at IN_UPREV + i
+IN_EBAR = 11            # ebar_prev[o] at IN_EBAR + o
+IN_WREF = 16            # wref[m][o] at IN_WREF + 3 m + o, m = 0..N (N <= N_MAX: up to word 42)
+IN_WORDS = 64           # buffer depth (6-bit address); other words are not read
+
 # timing of rtl/mpc_core.v (not part of the arithmetic): start -> done cycles and boot load
-LATENCY_BASE = 30       # latency = LATENCY_BASE + min(ncols, MAX_COLS)
+LATENCY_BASE = 38       # latency = LATENCY_BASE + min(ncols, MAX_COLS)
 BOOT_CYCLES = 771       # rst released -> ready (768 image words streamed through the write port)
 
 FLAG_BITS = {
@@ -114,6 +128,30 @@ class Outputs:
     wn: int
     flags: int
     counts: dict = field(default_factory=dict)
+
+
+def input_words(x: Inputs, N: int | None = None) -> dict[int, int]:
+    """Input-buffer words of one update: {address: signed value} (word map ``IN_*``).
+
+    ``N``: references written, w_k .. w_{k+N} (default: all of ``x.wref``, at most N_MAX).
+    Every value must fit the signed SIG_W-bit word (the writer sign-extends); the core reads
+    the words from ``start`` until ``done``, so they must not change in between.
+    """
+    nref = len(x.wref) - 1 if N is None else N
+    if not 0 <= nref <= min(N_MAX, len(x.wref) - 1):
+        raise ValueError(f"N = {nref}: wref has {len(x.wref)} entries, the buffer holds {N_MAX + 1}")
+    w = {IN_Y + o: x.y[o] for o in range(3)}
+    w[IN_OMEGA] = x.omega
+    w.update({IN_DX + n: x.dx[n] for n in range(5)})
+    w.update({IN_UPREV + i: x.u_prev[i] for i in range(2)})
+    w.update({IN_EBAR + o: x.ebar_prev[o] for o in range(3)})
+    for m in range(nref + 1):
+        w.update({IN_WREF + 3 * m + o: x.wref[m][o] for o in range(3)})
+    lo, hi = -(1 << (SIG_W - 1)), (1 << (SIG_W - 1)) - 1
+    for a, v in w.items():
+        if not lo <= v <= hi:
+            raise ValueError(f"input word {a} = {v} does not fit {SIG_W} bit")
+    return w
 
 
 def _count(counts: dict, name: str, hit: bool) -> None:
