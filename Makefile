@@ -24,7 +24,7 @@ export EMPC_PACKAGE := $(PACKAGE)
 export EMPC_PART    := xc6slx9-$(SPEED)-$(PACKAGE)
 SYNTH_ARGS ?=
 
-.PHONY: all venv check-tools roms sim sim-full lint formal synth bitstream core clean distclean
+.PHONY: all venv check-tools roms sim sim-full lint formal synth bitstream bench core clean distclean
 
 all: roms lint synth ## main job: coefficient ROMs, lint, netlist + resource report
 	@echo "ROMs in $(ROMS), netlist and reports in build/synth and build/reports."
@@ -62,14 +62,14 @@ synth: $(STAMP) roms ## Yosys synth_xilinx -family xc6s on lx_rocon_top: EDIF + 
 bitstream: synth ## ISE 14.7 ngdbuild/map/par/trce/bitgen (needs ISE on PATH and every pin LOC'd)
 	$(PY) sim/bitstream.py
 
+bench: $(STAMP) roms ## benchmark reports: MPC core alone through Yosys -> build/reports/mpc_core.json (+ vectors of the last stream test)
+	$(PY) sim/bench_mpc_core.py
+
 core: $(STAMP) ## regenerate the FuseSoC core empc.core from rtl/rtl_files.f
 	$(PY) sim/gen_core.py
 
 clean:
 	rm -rf build sim_build results.xml
 
-distcore: $(STAMP) ## regenerate the FuseSoC core empc.core from rtl/rtl_files.f
-	$(PY) sim/gen_core.py
-
-clean: clean
+distclean: clean
 	rm -rf $(VENV) gen/*.egg-info

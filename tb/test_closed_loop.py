@@ -27,6 +27,7 @@ import pytest
 import cocotb
 from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, RisingEdge, ReadOnly
+from cocotb.utils import get_sim_time
 
 from empc import closedloop as cl
 from empc import config, driver, header, image, pmsm, regmap, scenarios
@@ -37,6 +38,7 @@ from empc.rtlmodel.ref_gen import RefGen, segments_from_points
 
 ROOT = Path(__file__).resolve().parents[1]
 REPORTS = ROOT / "build" / "reports"
+CLK_PERIOD_NS = 10                    # fabric clock (100 MHz); the PLL model passes it through
 
 # Co-simulation scenarios: (paper scenario, simulated seconds, fault injection or None)
 COSIM = {
@@ -82,6 +84,8 @@ class CoSim:
         self.cmp_rtl = (0, 0, 0)
         self.mismatches = []
         self.checked = 0
+        self.lat_max = {"control": 0, "modulation": 0}   # adc_trig -> cmp_load, clock cycles
+        self.clk_ps = CLK_PERIOD_NS * 1000
         self.rec = {k: [] for k in ("t", "i_d", "i_q", "w_e", "theta_e", "u_d", "u_q", "ref", "ipk")}
         self.period = 0
         self.t = 0.0
@@ -116,6 +120,7 @@ class CoSim:
         codes, count = self.drive_plant_pins()
         await RisingEdge(dut.dbg_adc_trig)
         await ReadOnly()
+        t_trig = get_sim_time("ps")
         self.regs.run = bool(int(dut.dbg_running.value))
         control = self.seq.per_cnt + 1 >= self.regs.pwm_per_control
         ref_w = self.ref.advance() if control else None
@@ -128,6 +133,9 @@ class CoSim:
         out = self.seq.period(theta16, count & 0xFFFFFFFF, tuple(c - off for c in codes), self.regs, ref_w)
         await RisingEdge(dut.dbg_cmp_load)
         await ReadOnly()
+        lat = round((get_sim_time("ps") - t_trig) / self.clk_ps)
+        kind = "control" if control else "modulation"
+        self.lat_max[kind] = max(self.lat_max[kind], lat)
         v = int(dut.dbg_cmp.value)
         self.cmp_rtl = tuple((v >> (12 * i)) & 0xFFF for i in range(3))
         self.checked += 1
@@ -174,7 +182,7 @@ async def run_cosim(dut, name: str) -> dict:
     bus = EmcBfm(dut, pins=dict(cs_n="cpu_cs_n", oe_n="cpu_oe_n", we_n="cpu_we_n", a="cpu_a", d="cpu_d",
                                 d_oe="cpu_d_oe", bus="emc_d_seen"))
     drv = driver.Drive(bus)
-    cocotb.start_soon(Clock(dut.clk, 10, unit="ns").start())
+    cocotb.start_soon(Clock(dut.clk, CLK_PERIOD_NS, unit="ns").start())
     dut.rst_n.value = 0
     dut.enc_target.value = 0
     dut.idx_enable.value = 0
@@ -312,6 +320,7 @@ async def closed_loop(dut, name: str):
               "first_mismatches": [list(map(list, [[m[0]], m[1], m[2]])) for m in cs.mismatches[:5]],
               "status_registers": res["status"],
               "latency_adc_trigger_to_pwm_update_cycles": res["status"]["LATENCY"],
+              "latency_max_cycles": dict(cs.lat_max),
               "fault_seen_period": res["fault_seen"]}
     if cs.fault is None:
         assert not cs.mismatches, f"RTL compare values differ from the bit-accurate model: {cs.mismatches[:3]}"

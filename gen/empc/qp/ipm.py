@@ -144,6 +144,10 @@ def solve(H: np.ndarray, f: np.ndarray, cons: QuadConstraints, xi0: np.ndarray |
             ops.mul += n * n; ops.add += n * n
         w = mu / s
         ops.vdiv(mi)
+        if not np.all(np.isfinite(w)):
+            # validation mode only (tau -> 1e-13): a slack underflowed to 0, the iterate is converged
+            it -= 1
+            break
         K = HL + Dh.T @ (w[:, None] * Dh)
         ops.mul += mi * n; ops.matmul(n, mi, n); ops.add += n * n
         rhs_i = w * r_i - r_c / s
@@ -161,7 +165,11 @@ def solve(H: np.ndarray, f: np.ndarray, cons: QuadConstraints, xi0: np.ndarray |
                 dxi = np.linalg.solve(Lc.T, np.linalg.solve(Lc, rhs))
                 ops.cholesky(n); ops.chol_solve(n)
             except np.linalg.LinAlgError:
-                dxi = np.linalg.solve(K, rhs)
+                try:
+                    dxi = np.linalg.solve(K, rhs)
+                except np.linalg.LinAlgError:   # K numerically singular (tau -> 0): keep the iterate
+                    it -= 1
+                    break
                 _lu_ops(ops, n)
             dlam = np.zeros(0)
         Ddx = Dh @ dxi
@@ -199,7 +207,11 @@ def solve(H: np.ndarray, f: np.ndarray, cons: QuadConstraints, xi0: np.ndarray |
         if ne:
             lam = lam + alpha * dlam
             ops.axpy(ne)
-        tau = max(tau * tau_decrease, tau_min) if tau_decrease < 1.0 else tau
+        if tau_decrease < 1.0:
+            # validation mode: shrink the barrier only once near its central point (a step cut by
+            # the line search means the iterate is not yet centred), so no slack collapses early
+            if alpha >= 0.5:
+                tau = max(tau * tau_decrease, tau_min)
     return IPMResult(xi, mu, s, lam, it, res_norm, ls_total, fallbacks, ops)
 
 
