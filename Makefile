@@ -24,7 +24,7 @@ export EMPC_PACKAGE := $(PACKAGE)
 export EMPC_PART    := xc6slx9-$(SPEED)-$(PACKAGE)
 SYNTH_ARGS ?=
 
-.PHONY: all venv check-tools roms sim sim-full lint formal synth bitstream bench core clean distclean
+.PHONY: all venv check-tools roms sim sim-full lint formal synth bitstream bench readme core clean distclean
 
 all: roms lint synth ## main job: coefficient ROMs, lint, netlist + resource report
 	@echo "ROMs in $(ROMS), netlist and reports in build/synth and build/reports."
@@ -64,6 +64,9 @@ bitstream: synth ## ISE 14.7 ngdbuild/map/par/trce/bitgen (needs ISE on PATH and
 
 bench: $(STAMP) roms ## benchmark reports: MPC core alone through Yosys -> build/reports/mpc_core.json (+ vectors of the last stream test)
 	$(PY) sim/bench_mpc_core.py
+
+readme: $(STAMP) ## refresh the README's results tables from build/reports (run after sim, synth, bench, compare)
+	$(PY) sim/readme_results.py --write
 
 core: $(STAMP) ## regenerate the FuseSoC core empc.core from rtl/rtl_files.f
 	$(PY) sim/gen_core.py

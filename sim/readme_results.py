@@ -1,11 +1,24 @@
-"""Print the README's results tables (markdown) from the JSON reports under build/reports/.
+"""Render the README's results tables from the JSON reports under build/reports/.
 
-Usage: python sim/readme_results.py   (after `make sim`; paste into README.md)
+Usage: .venv/bin/python sim/readme_results.py            print every table (markdown)
+       .venv/bin/python sim/readme_results.py --write    replace the marked blocks in README.md
+
+A block in README.md is ``<!-- BEGIN NAME -->`` ... ``<!-- END NAME -->`` (NAME one of TABLES);
+``--write`` rewrites the text between the markers and leaves everything else alone.  A table whose
+reports do not exist yet is left as it is (the script says which command produces them).
+Producers: `make sim` (sim_*.json, closed_loop_short/fault json, mpc_core.json vectors),
+`make sim-full` (closed_loop_<paper scenario>.json), `make bench` (mpc_core.json resources),
+`make synth` (synth.json), `empc compare` (compare/compare.json; `--quick` in make sim).
 """
+from __future__ import annotations
+
 import json
+import re
+import sys
 from pathlib import Path
 
-R = Path("build/reports")
+ROOT = Path(__file__).resolve().parents[1]
+R = ROOT / "build" / "reports"
 
 
 def fmt(v, nd=3):
@@ -16,22 +29,25 @@ def fmt(v, nd=3):
     return str(v)
 
 
-def sim_table() -> str:
-    rows = ["| scenario | run | RMS error | max overshoot % | settling s | ramp error (mean abs) | peak phase A | limiter active | sim ms / wall s |",
+def _load(p: Path):
+    return json.loads(p.read_text()) if p.exists() else None
+
+
+def sim_table() -> str | None:
+    rows = ["| scenario | run | RMS error | max overshoot % | settling s | ramp error (mean abs) | peak phase current A | limiter active (periods) | sim ms / wall s |",
             "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
     for name in ("speed_steps", "speed_alg2", "position_alg1", "position_alg2", "load_step"):
-        p = R / f"sim_{name}.json"
-        if not p.exists():
+        r = _load(R / f"sim_{name}.json")
+        if r is None:
             continue
-        r = json.loads(p.read_text())
         for run, m in r["runs"].items():
             rows.append(f"| {name} | {run} | {fmt(m['rms_error'])} | {fmt(m['overshoot_pct_max'])} | "
                         f"{fmt(m['settling_time_max'])} | {fmt(m['ramp_error_mean_abs'])} | "
                         f"{fmt(m['peak_phase_current'])} | {m['saturations']} | {fmt(m['sim_ms_per_wall_s'])} |")
-    return "\n".join(rows)
+    return "\n".join(rows) if len(rows) > 2 else None
 
 
-def cosim_table() -> str:
+def cosim_table() -> str | None:
     rows = ["| co-simulation | simulated ms | compare sets checked | mismatches vs model | max latency control / other period (clk) | RTL vs float RMS error (rel.) | sim ms / wall s |",
             "| --- | --- | --- | --- | --- | --- | --- |"]
     for p in sorted(R.glob("closed_loop_*.json")):
@@ -41,10 +57,98 @@ def cosim_table() -> str:
         rows.append(f"| {r['scenario']} | {fmt(r['simulated_ms'])} | {r['compare_sets_checked']} | "
                     f"{r['mismatches_vs_bit_accurate_model']} | {lat} | "
                     f"{fmt(r.get('rms_error_rtl_vs_float_rel'))} | {fmt(r['sim_ms_per_wall_s'])} |")
+    return "\n".join(rows) if len(rows) > 2 else None
+
+
+def core_table() -> str | None:
+    r = _load(R / "mpc_core.json")
+    if r is None or "stream_jobs" not in r:
+        return None
+    rows = ["| image | vectors (corner cases) | mismatches | latency (clk) |", "| --- | --- | --- | --- |"]
+    for j in r["stream_jobs"]:
+        rows.append(f"| {j['name']} | {j['vectors']} ({j.get('corners', '-')}) | {j['mismatches']} | {j.get('latency', '-')} |")
+    rows.append(f"| **all** (seed {r.get('seed')}) | {r['vectors']} | {r['mismatches']} | |")
+    out = "\n".join(rows)
+    if "lut" in r:
+        out += ("\n\nCore alone (`make bench`, Yosys `synth_xilinx -family xc6s`): "
+                f"{r['lut']} LUT, {r['ff']} FF, {r['dsp48a1']} DSP48A1, {fmt(r['ramb16'])} RAMB16; "
+                f"latency {r.get('latency_cycles')} cycles ({r.get('latency_formula', '')}); timing proxy "
+                f"{fmt(r.get('clock_mhz'))} MHz (target {r.get('clock_mhz_target', 100)}).")
+    return out
+
+
+def compare_table() -> str | None:
+    for d in ("compare", "compare_quick"):
+        r = _load(R / d / "compare.json")
+        if r is not None:
+            break
+    else:
+        return None
+    cases = r["cases"]
+    rows = [f"From `build/reports/{d}/compare.json` ({'quick' if r.get('quick') else 'full'} run).", "",
+            "| case | controller | rise ms | overshoot % | ss error | ripple d / q A | flops per step (mean) |",
+            "| --- | --- | --- | --- | --- | --- | --- |"]
+    for key in ("s2_iq_step", "mismatch_p30", "s1_speed", "000_speed_steps"):
+        c = cases.get(key)
+        if c is None:
+            continue
+        for name, m in c["runs"].items():
+            rise = m.get("rise_time")
+            sse = m.get("ss_error_dq", m.get("ss_error"))
+            sse_s = " / ".join(fmt(x) for x in sse) if isinstance(sse, list) else fmt(sse)
+            rip = m.get("ripple_dq")
+            rows.append(f"| {key} | {name} | {fmt(rise * 1e3 if rise is not None else None, 2)} | "
+                        f"{fmt(m.get('overshoot_pct'), 2)} | {sse_s} | "
+                        f"{' / '.join(fmt(x) for x in rip) if rip else '-'} | {fmt(m.get('flops_mean'), 4)} |")
     return "\n".join(rows)
 
 
+def synth_table() -> str | None:
+    r = _load(R / "synth.json")
+    if r is None:
+        return None
+    cap, res, util = r["capacity"], r["resources"], r["utilisation_pct"]
+    rows = ["| resource | used | XC6SLX9 | % | budget |", "| --- | --- | --- | --- | --- |"]
+    for k, name in (("lut", "LUT6 cells (logic + LUT-RAM + INV)"), ("ff", "flip-flops"), ("dsp48a1", "DSP48A1"),
+                    ("ramb16", "RAMB16 (RAMB8 = 0.5)"), ("iob", "IOB")):
+        if k in res:
+            b = (r.get("budget") or {}).get(k, "-")
+            rows.append(f"| {name} | {fmt(res[k])} | {fmt(cap.get(k, '-'))} | {fmt(util.get(k), 3)} | {b} |")
+    t = r.get("timing") or {}
+    out = "\n".join(rows)
+    if t:
+        out += (f"\n\nTiming proxy (no placement, rough -2 delays): worst register-to-register path "
+                f"{fmt(t.get('worst_path_ns'))} ns ({t.get('worst_path_lut_levels')} LUT levels, end "
+                f"`{t.get('worst_path_endpoint')}`), est. fmax {fmt(t.get('est_fmax_mhz'))} MHz (target 100); "
+                f"max LUT levels register to register {t.get('max_lut_levels')}.")
+    return out
+
+
+TABLES = {"RESULTS_TABLE": sim_table, "COSIM_TABLE": cosim_table, "CORE_TABLE": core_table,
+          "COMPARE_TABLE": compare_table, "SYNTH_TABLE": synth_table}
+
+
+def write_readme(path: Path = ROOT / "README.md") -> list[str]:
+    text = path.read_text()
+    done = []
+    for name, fn in TABLES.items():
+        body = fn()
+        if body is None:
+            print(f"{name}: no report yet, left as it is", file=sys.stderr)
+            continue
+        pat = re.compile(rf"(<!-- BEGIN {name} -->\n).*?(<!-- END {name} -->)", re.S)
+        if not pat.search(text):
+            print(f"{name}: no <!-- BEGIN {name} --> block in {path.name}", file=sys.stderr)
+            continue
+        text = pat.sub(lambda m: m.group(1) + body + "\n" + m.group(2), text)
+        done.append(name)
+    path.write_text(text)
+    return done
+
+
 if __name__ == "__main__":
-    print(sim_table())
-    print()
-    print(cosim_table())
+    if "--write" in sys.argv[1:]:
+        print("updated:", ", ".join(write_readme()) or "nothing")
+    else:
+        for name, fn in TABLES.items():
+            print(f"## {name}\n{fn() or '(no report yet)'}\n")
