@@ -7,10 +7,12 @@
 // incrementally from the modular difference d = pos - last_pos (exact for any
 // movement below 2**(POS_W-1) counts between two looks, so the wrap of the
 // 32-bit counter is harmless): a bit-serial reducer adds d mod CPR to m, one bit
-// of d per clock (c_k = 2**k mod CPR doubled each clock, one conditional
-// subtraction keeps every value in [0, CPR)).  A +-1 step takes 1 clock to
-// capture and 1 clock to apply; a jump of any size is applied in at most
-// POS_W + 1 clocks; counts arriving meanwhile are picked up by the next capture.
+// of d per clock (bit k weighs c_k = 2**k mod CPR, a constant table indexed by
+// k; m +- c_k and one conditional +-CPR keep m in [0, CPR)).  A +-1 step takes 1
+// clock to capture and 1 clock to apply; a jump of any size is applied in at
+// most POS_W + 1 clocks; counts arriving meanwhile are picked up by the next
+// capture.  At an index event m restarts at 0 and the reducer takes the lag
+// pos - index_pos at once (so the counts since the latched index are added).
 // No state other than the integer m depends on history, so the angle after N
 // whole mechanical turns is bit-identical (also when CPR is not a multiple of P).
 //
@@ -41,9 +43,10 @@
 //     index events are ignored (REALIGN = 0, default: an index pulse wider
 //     than one count latches a direction-dependent count, which must not make
 //     theta jump) or re-align every time (REALIGN = 1: repairs lost counts).
-//   - align_clear: back to HALL mode (aligned = 0) without a jump of theta
-//     (base takes cal_offset - hall_offset); the next HALL edge / index
-//     re-synchronises.  An index_event in the same clock wins (re-aligns).
+//   - align_clear: back to HALL mode (aligned = 0) without a jump of theta:
+//     the angle keeps its index reference (theta = f(m) + cal_offset, cal_offset
+//     still live) until the next HALL edge (then base = edge + hall_offset) or
+//     index re-synchronises.  An index_event in the same clock wins (re-aligns).
 //     Without HALL (hall_valid never seen) valid drops to 0 until the index.
 //   Priority: index alignment > align_clear > HALL init > HALL change.
 //
@@ -71,12 +74,14 @@
 //   auto), W_W, W_FRAC (>= 1), REALIGN (0/1, see above).  MW = clog2(CPR).
 //   2 <= CPR < 2**17 keeps the product in one DSP (larger works, more DSPs).
 // Latency: pos step -> pos_mod 2 clocks (+1 per extra bit of a jump);
-//   pos_mod -> theta 2 clocks (DSP product register, then round + offset);
+//   pos_mod -> theta 2 clocks (DSP M register, then the DSP post-adder adds
+//   the offset and the rounding constant into the P register = theta);
 //   a +-1 count reaches theta 4 clocks after pos.  valid/aligned are delayed
 //   with theta.  sample -> speed/... 1 clock.
 // Reset: m = 0, not aligned, no HALL init, theta valid = 0, speed 0.
-// Resources (Yosys synth_xilinx xc6s, default): 1 DSP48A1, ~250 FFs,
-//   ~370 LUTs, no BRAM.
+// Resources (Yosys synth_xilinx xc6s, default): 1 DSP48A1, ~215 FFs,
+//   ~250 LUTs (~180 LUTs / ~110 FFs when the speed/sample outputs are left
+//   open, as in mpc_axis), no BRAM.
 `default_nettype none
 `include "empc_formats.vh"
 module pos_sense #(
@@ -102,7 +107,7 @@ module pos_sense #(
     input  wire [ANGLE_BITS-1:0] hall_offset,
     input  wire                  align_clear,
     input  wire                  sample,
-    output reg  [ANGLE_BITS-1:0] theta,
+    output wire [ANGLE_BITS-1:0] theta,
     output reg                   valid,
     output reg                   aligned,
     output wire [MW-1:0]         pos_mod,
@@ -181,124 +186,140 @@ module pos_sense #(
     localparam integer MULB = (clog2_64(MUL64 + 64'd1) < 1) ? 1 : clog2_64(MUL64 + 64'd1);
     localparam [MULB-1:0] MUL = MUL64[MULB-1:0];
     localparam integer PROD_W = MW + MULB;
-    localparam integer EXT_W = ((PROD_W > S + ANGLE_BITS) ? PROD_W : S + ANGLE_BITS) + 1;
-    localparam [EXT_W-1:0] HALF = (S > 0) ? ({{(EXT_W-1){1'b0}}, 1'b1} << (S - 1)) : {EXT_W{1'b0}};
     localparam [MW:0] CPR_C = CPR[MW:0];
-    localparam [MW-1:0] ONE_M = {{(MW-1){1'b0}}, 1'b1};
 
-    // HALL angles: table of round(k * 2**ANGLE_BITS / 12) mod 2**ANGLE_BITS, k = 0..11
-    function [12*ANGLE_BITS-1:0] hall_tab;
+    // HALL angles round(j * 2**ANGLE_BITS / 12) mod 2**ANGLE_BITS (j = 0..11), indexed by
+    // {sector, kind}: sector s (1..6) starts at j = 2s-2 (kind 0), its centre is j = 2s-1
+    // (kind 1), it ends at j = 2s mod 12 (kind 2); other entries 0
+    function [32*ANGLE_BITS-1:0] hall_tab;
         input integer dummy;
-        integer k;
+        integer sec, kd;
         reg [63:0] v;
         begin
-            hall_tab = {(12*ANGLE_BITS){1'b0}};
-            for (k = 0; k < 12; k = k + 1) begin
-                v = 64'd0;
-                v[31:0] = k + dummy;
-                v = ((v << ANGLE_BITS) + 64'd6) / 64'd12;
-                hall_tab[k*ANGLE_BITS +: ANGLE_BITS] = v[ANGLE_BITS-1:0];
+            hall_tab = {(32*ANGLE_BITS){1'b0}};
+            for (sec = 1; sec <= 6; sec = sec + 1)
+                for (kd = 0; kd < 3; kd = kd + 1) begin
+                    v = 64'd0;
+                    v[31:0] = (2 * sec - 2 + kd + dummy) % 12;
+                    v = ((v << ANGLE_BITS) + 64'd6) / 64'd12;
+                    hall_tab[(sec*4+kd)*ANGLE_BITS +: ANGLE_BITS] = v[ANGLE_BITS-1:0];
+                end
+        end
+    endfunction
+    localparam [32*ANGLE_BITS-1:0] HALL_TAB = hall_tab(0);
+    function [2:0] s_next; input [2:0] sec; s_next = (sec == 3'd6) ? 3'd1 : sec + 3'd1; endfunction
+
+    // C_TAB[k] = 2**k mod CPR, k = 0..POS_W-1: the weight of bit k of a jump
+    /* verilator lint_off UNUSEDSIGNAL */ // v < CPR: only its low MW bits
+    function [POS_W*MW-1:0] pow_tab;
+        input integer dummy;
+        integer j;
+        reg [63:0] v, cpr64;
+        begin
+            pow_tab = {(POS_W*MW){1'b0}};
+            cpr64 = 64'd0;
+            cpr64[31:0] = CPR + dummy;
+            v = 64'd1 % cpr64;
+            for (j = 0; j < POS_W; j = j + 1) begin
+                pow_tab[j*MW +: MW] = v[MW-1:0];
+                v = (2 * v) % cpr64;
             end
         end
     endfunction
-    localparam [12*ANGLE_BITS-1:0] HALL_TAB = hall_tab(0);
-    // sector s (1..6): start k = 2s-2, centre k = 2s-1, end k = 2s (mod 12)
-    function [3:0] k_start;  input [2:0] s; k_start  = {s, 1'b0} - 4'd2; endfunction
-    function [3:0] k_centre; input [2:0] s; k_centre = {s, 1'b0} - 4'd1; endfunction
-    function [3:0] k_end;    input [2:0] s; k_end    = (s == 3'd6) ? 4'd0 : {s, 1'b0}; endfunction
-    function [2:0] s_next;   input [2:0] s; s_next   = (s == 3'd6) ? 3'd1 : s + 3'd1; endfunction
+    /* verilator lint_on UNUSEDSIGNAL */
+    localparam [POS_W*MW-1:0] C_TAB = pow_tab(0);
+    localparam integer KW = (clog2(POS_W) < 1) ? 1 : clog2(POS_W);
 
     // ---------------- state ----------------
-    reg [POS_W-1:0]      last_pos;   // count already accounted for in m
+    reg [POS_W-1:0]      last_pos;   // count already handed to the reducer
     reg [POS_W-1:0]      r;          // remaining jump (signed), shifted right per clock
-    reg [MW-1:0]         c;          // 2**k mod CPR for the current bit of r
+    reg [KW-1:0]         k;          // bit of the jump in r[0]: weight 2**k
     reg [MW-1:0]         m;          // (pos - ref) mod CPR
     reg                  busy;
     reg                  al;         // index aligned (internal, leads the output by 2 clocks)
+    reg                  rel_cal;    // not aligned, but base_rel is relative to cal_offset (align_clear)
     reg                  hall_init;
     reg [2:0]            last_sector;
     reg [ANGLE_BITS-1:0] base_rel;   // angle added to f(m), relative to the offset in use
 
     assign pos_mod = m;
 
-    // ---------------- bit-serial modular accumulation ----------------
-    wire [POS_W-1:0] d = pos - last_pos;
-    wire [MW:0] m_add   = {1'b0, m} + {1'b0, c};
-    wire [MW:0] m_sub   = {1'b0, m} - {1'b0, c};
-    wire [MW:0] c2      = {c, 1'b0};
-    // the results are < CPR <= 2**MW, so their top (carry) bit is always 0
-    /* verilator lint_off UNUSEDSIGNAL */
-    wire [MW:0] m_add_c = (m_add >= CPR_C) ? m_add - CPR_C : m_add;
-    wire [MW:0] m_sub_c = (m < c) ? m_sub + CPR_C : m_sub;
-    wire [MW:0] c2_c    = (c2 >= CPR_C) ? c2 - CPR_C : c2;
-    /* verilator lint_on UNUSEDSIGNAL */
-    wire [POS_W-1:0] r_sh = {r[POS_W-1], r[POS_W-1:1]};
-
     // ---------------- alignment events ----------------
     wire ev_hall_init = !al && !hall_init && hall_valid;
     wire ev_hall_chg  = !al && hall_init && hall_valid && hall_change;
+    wire ev_hall = ev_hall_init || ev_hall_chg;
     wire hall_fwd = (hall_sector == s_next(last_sector));
     wire hall_bwd = (last_sector == s_next(hall_sector));
-    // table index: centre at HALL init, else the edge crossed (centre after a jump)
-    wire [3:0] hall_k = ev_hall_init ? k_centre(hall_sector) :
-                        hall_fwd     ? k_start(hall_sector) :
-                        hall_bwd     ? k_end(hall_sector) : k_centre(hall_sector);
-    reg  [ANGLE_BITS-1:0] hall_base;
-    integer hi;
-    always @* begin
-        hall_base = HALL_TAB[0 +: ANGLE_BITS];
-        for (hi = 1; hi < 12; hi = hi + 1)
-            if (hall_k == hi[3:0]) hall_base = HALL_TAB[hi*ANGLE_BITS +: ANGLE_BITS];
-    end
+    // kind of angle: centre at HALL init, else the edge crossed (centre after a jump)
+    wire [1:0] hall_kind = ev_hall_init ? 2'd1 : hall_fwd ? 2'd0 : hall_bwd ? 2'd2 : 2'd1;
+    wire [ANGLE_BITS-1:0] hall_base = HALL_TAB[{hall_sector, hall_kind}*ANGLE_BITS +: ANGLE_BITS];
     // index alignment: the first index after reset / align_clear (every index if REALIGN)
     wire ev_index = index_event && (!al || align_clear || (REALIGN != 0));
-    wire ev_any = ev_index || ev_hall_init || ev_hall_chg;
-    wire [POS_W-1:0] ev_pos = ev_index ? index_pos : pos;
+    wire ev_any = ev_index || ev_hall;
+
+    // ---------------- bit-serial modular accumulation ----------------
+    // d: the new counts (pos - last_pos), or at an index event the lag pos - index_pos
+    // (m restarts at 0 = index_pos and the reducer adds the counts since the index)
+    wire [POS_W-1:0] d = pos - (ev_index ? index_pos : last_pos);
+    wire [POS_W-1:0] r_sh = {r[POS_W-1], r[POS_W-1:1]};
+    wire r_hi0 = ~|r[POS_W-1:1];
+    wire r_hi1 = &r[POS_W-1:1];
+    wire r_neg1 = r_hi1 & r[0];                 // remainder -1: subtract 2**k, done
+    wire r_done = r_hi0 | r_neg1;               // last bit of the jump
+    wire load = !busy || ev_any;                // r <= d (ignored when d = 0 or at a HALL event)
+    // m +- c (c = 2**k mod CPR), then back into [0, CPR): + CPR if negative (subtract),
+    // - CPR if >= CPR (add).  s is in (-CPR, 2*CPR); the reduced value's top bit is 0.
+    wire [MW-1:0] c = C_TAB[k*MW +: MW];
+    wire [MW+1:0] s = {2'b0, m} + ({2'b0, c} ^ {(MW+2){r_neg1}}) + {{(MW+1){1'b0}}, r_neg1};
+    wire s_neg = s[MW+1];
+    wire s_ge = !s_neg && (s[MW:0] >= CPR_C);
+    /* verilator lint_off UNUSEDSIGNAL */
+    wire [MW:0] s_red = s[MW:0] + (s_neg ? CPR_C : s_ge ? -CPR_C : {(MW+1){1'b0}});
+    /* verilator lint_on UNUSEDSIGNAL */
 
     always @(posedge clk) begin
         if (rst) begin
             last_pos    <= {POS_W{1'b0}};
             r           <= {POS_W{1'b0}};
-            c           <= ONE_M;
+            k           <= {KW{1'b0}};
             m           <= {MW{1'b0}};
             busy        <= 1'b0;
             al          <= 1'b0;
+            rel_cal     <= 1'b0;
             hall_init   <= 1'b0;
             last_sector <= 3'd0;
             base_rel    <= {ANGLE_BITS{1'b0}};
         end else begin
-            // m / ref
-            if (ev_any) begin
-                m        <= {MW{1'b0}};
-                last_pos <= ev_pos;
-                busy     <= 1'b0;
-                r        <= {POS_W{1'b0}};
-                c        <= ONE_M;
-            end else if (!busy) begin
-                if (d != {POS_W{1'b0}}) begin
-                    r        <= d;
-                    c        <= ONE_M;
-                    last_pos <= pos;
-                    busy     <= 1'b1;
-                end
-            end else if (&r) begin
-                m    <= m_sub_c[MW-1:0];
-                busy <= 1'b0;
+            // reducer
+            if (load) begin
+                last_pos <= pos;
+                r        <= d;
             end else begin
-                if (r[0]) m <= m_add_c[MW-1:0];
-                r <= r_sh;
-                c <= c2_c[MW-1:0];
-                if (r_sh == {POS_W{1'b0}}) busy <= 1'b0;
+                r        <= r_sh;
             end
+            if (load) k <= {KW{1'b0}};
+            else      k <= k + 1'b1;
+            if (ev_any)
+                m <= {MW{1'b0}};
+            else if (busy && r[0])
+                m <= s_red[MW-1:0];
+            if (ev_hall && !ev_index)
+                busy <= 1'b0;
+            else if (load)
+                busy <= (d != {POS_W{1'b0}});
+            else if (r_done)
+                busy <= 1'b0;
 
             // alignment state
             if (ev_index) begin
                 al       <= 1'b1;
                 base_rel <= {ANGLE_BITS{1'b0}};
             end else if (align_clear && al) begin
-                base_rel <= cal_offset - hall_offset;
                 al       <= 1'b0;
-            end else if (ev_hall_init || ev_hall_chg) begin
+                rel_cal  <= 1'b1;
+                base_rel <= {ANGLE_BITS{1'b0}};
+            end else if (ev_hall) begin
+                rel_cal  <= 1'b0;
                 base_rel <= hall_base;
             end
             if (hall_valid && (!hall_init || hall_change)) begin
@@ -309,33 +330,43 @@ module pos_sense #(
     end
 
     // ---------------- angle pipeline: product, then round + offset ----------------
-    wire [PROD_W-1:0]    prod_mul = m * MUL;
-    // prod = m * ANGLE_MUL + 2**(S-1) (DSP multiply + post-add of a constant); only bits
-    // [S +: ANGLE_BITS] are the angle (mod 2**ANGLE_BITS), the others are unused on purpose
-    /* verilator lint_off UNUSEDSIGNAL */
-    reg [EXT_W-1:0]      prod;
+    // mprod = m * ANGLE_MUL (DSP M register), acc = mprod + base_d * 2**S + 2**(S-1) (DSP post-adder,
+    // P register): theta = acc[S +: ANGLE_BITS].  Only the low S + ANGLE_BITS bits matter (mod 2**16).
+    localparam integer ACC_W = S + ANGLE_BITS;
+    localparam integer MP_W = (PROD_W > ACC_W) ? PROD_W : ACC_W;
+    localparam [ACC_W-1:0] HALF = (S > 0) ? ({{(ACC_W-1){1'b0}}, 1'b1} << (S - 1)) : {ACC_W{1'b0}};
+    /* verilator lint_off UNUSEDSIGNAL */ // product bits >= ACC_W are whole turns, acc bits < S rounding only
+    reg  [MP_W-1:0]       mprod;
+    reg  [ACC_W-1:0]      acc;
     /* verilator lint_on UNUSEDSIGNAL */
-    reg [ANGLE_BITS-1:0] base_d;
-    reg                  v1, al1;
+    reg  [ANGLE_BITS-1:0] base_d;
+    reg                   v1, al1;
+    reg  [ACC_W-1:0]      base_s;
+    always @* begin
+        base_s = HALF;
+        base_s[S +: ANGLE_BITS] = base_d;
+    end
+    wire [MP_W-1:0]       m_mul = m * MUL;
     always @(posedge clk) begin
         if (rst) begin
-            prod    <= {EXT_W{1'b0}};
+            mprod   <= {MP_W{1'b0}};
+            acc     <= {ACC_W{1'b0}};
             base_d  <= {ANGLE_BITS{1'b0}};
             v1      <= 1'b0;
             al1     <= 1'b0;
-            theta   <= {ANGLE_BITS{1'b0}};
             valid   <= 1'b0;
             aligned <= 1'b0;
         end else begin
-            prod    <= {{(EXT_W-PROD_W){1'b0}}, prod_mul} + HALF;
-            base_d  <= base_rel + (al ? cal_offset : hall_offset);
+            mprod   <= m_mul;
+            base_d  <= base_rel + ((al || rel_cal) ? cal_offset : hall_offset);
+            acc     <= mprod[ACC_W-1:0] + base_s;
             v1      <= al | hall_init;
             al1     <= al;
-            theta   <= prod[S +: ANGLE_BITS] + base_d;
             valid   <= v1;
             aligned <= al1;
         end
     end
+    assign theta = acc[S +: ANGLE_BITS];
 
     // ---------------- speed (eq. 37) and sampling ----------------
     localparam integer WIDE = POS_W + W_FRAC;

@@ -289,10 +289,22 @@ async def hall_then_index(dut):
     await env.cycle(align_clear=1)
     await env.wait(4)
     assert int(dut.aligned.value) == 0 and env.theta() == th, "align_clear must not move theta"
-    env.inp["hall_sector"] = s % 6 + 1 if s % 6 + 1 != env.inp["hall_sector"] else (s + 1) % 6 + 1
+    # until the next HALL edge the angle stays on the index calibration: cal_offset live, hall_offset not
+    env.inp["hall_offset"] = (env.inp["hall_offset"] + 777) % 65536
+    await env.wait(4)
+    assert env.theta() == th, "after align_clear, hall_offset must not move theta before a HALL edge"
+    env.inp["cal_offset"] = (env.inp["cal_offset"] + 4321) % 65536
+    await env.wait(4)
+    assert env.theta() == (th + 4321) % 65536, "after align_clear, cal_offset stays live until a HALL edge"
+    prev_sector = env.inp["hall_sector"]          # last sector the DUT saw (HALL is tracked while aligned)
+    new = s % 6 + 1 if s % 6 + 1 != prev_sector else (s + 1) % 6 + 1
+    env.inp["hall_sector"] = new
     await env.cycle(hall_change=1)
     await env.wait(4)
     assert int(dut.aligned.value) == 0
+    assert new == prev_sector % 6 + 1, "test setup: a forward HALL edge"
+    exp = (hall_ref(2 * new - 2) + env.inp["hall_offset"]) % 65536
+    assert env.theta() == exp, f"HALL edge after align_clear: theta {env.theta()} expected {exp} (start + hall_offset)"
     await env.align_index(env.true, lag=0)
     await env.wait(4)
     assert int(dut.aligned.value) == 1 and env.theta() == env.inp["cal_offset"]

@@ -121,10 +121,11 @@ class PosSense:
     def reset(self) -> None:
         self.last_pos = 0
         self.r = 0          # signed
-        self.c = 1
+        self.k = 0          # weight 2**k of r's bit 0
         self.m = 0
         self.busy = 0
         self.al = 0
+        self.rel_cal = 0    # not aligned, base_rel relative to cal_offset (after align_clear)
         self.hall_init = 0
         self.last_sector = 0
         self.base_rel = 0
@@ -162,31 +163,35 @@ class PosSense:
         ev_hall_init = (not self.al) and (not self.hall_init) and hall_valid
         ev_hall_chg = (not self.al) and self.hall_init and hall_valid and hall_change
         ev_index = index_event and ((not self.al) or align_clear or self.realign)
-        ev_any = ev_index or ev_hall_init or ev_hall_chg
-        m, last_pos, r, c, busy = self.m, self.last_pos, self.r, self.c, self.busy
-        if ev_any:
-            m, last_pos, busy, r, c = 0, (index_pos if ev_index else pos), 0, 0, 1
-        elif not busy:
-            d = (pos - self.last_pos) & pmask
-            if d:
-                r, c, last_pos, busy = to_signed(d, pw), 1, pos, 1
-        elif self.r == -1:
-            m = (self.m - self.c) % cpr
-            busy = 0
+        ev_hall = ev_hall_init or ev_hall_chg
+        ev_any = ev_index or ev_hall
+        m, last_pos, r, k, busy = self.m, self.last_pos, self.r, self.k, self.busy
+        # d: new counts, or at an index event the lag pos - index_pos (m restarts at the index)
+        d = (pos - (index_pos if ev_index else self.last_pos)) & pmask
+        load = (not self.busy) or ev_any
+        if load:
+            last_pos, r, k = pos, to_signed(d, pw), 0
         else:
-            if self.r & 1:
-                m = (self.m + self.c) % cpr
-            r = self.r >> 1
-            c = (2 * self.c) % cpr
-            if r == 0:
-                busy = 0
-        al, base_rel = self.al, self.base_rel
+            r, k = self.r >> 1, self.k + 1
+        if ev_any:
+            m = 0
+        elif self.busy and (self.r & 1):
+            step = -(1 << self.k) if self.r == -1 else (1 << self.k)
+            m = (self.m + step) % cpr
+        if ev_hall and not ev_index:
+            busy = 0
+        elif load:
+            busy = int(d != 0)
+        elif self.r in (0, 1, -1):          # r >> 1 == 0, or remainder -1: last bit
+            busy = 0
+        al, base_rel, rel_cal = self.al, self.base_rel, self.rel_cal
         if ev_index:
             al, base_rel = 1, 0
         elif align_clear and self.al:
-            al, base_rel = 0, (cal_offset - hall_offset) & amask
-        elif ev_hall_init or ev_hall_chg:
+            al, rel_cal, base_rel = 0, 1, 0
+        elif ev_hall:
             s = hall_sector
+            rel_cal = 0
             if ev_hall_init:
                 base_rel = sector_centre(s, self.ab)
             elif s == _next_sector(self.last_sector):
@@ -202,7 +207,7 @@ class PosSense:
         half = (1 << (self.s - 1)) if self.s > 0 else 0
         theta = ((self.prod >> self.s) + self.base_d) & amask
         prod = self.m * self.mul + half
-        base_d = (self.base_rel + (cal_offset if self.al else hall_offset)) & amask
+        base_d = (self.base_rel + (cal_offset if (self.al or self.rel_cal) else hall_offset)) & amask
         v1 = int(bool(self.al or self.hall_init))
         valid, aligned, al1 = self.v1, self.al1, self.al
         # ---- sampling ----
@@ -223,8 +228,9 @@ class PosSense:
             self.theta_at_sample = self.theta
         self.sample_valid = sample_valid
         # ---- commit ----
-        self.m, self.last_pos, self.r, self.c, self.busy = m, last_pos, r, c, busy
-        self.al, self.base_rel, self.hall_init, self.last_sector = al, base_rel, hall_init, last_sector
+        self.m, self.last_pos, self.r, self.k, self.busy = m, last_pos, r, k, busy
+        self.al, self.base_rel, self.rel_cal = al, base_rel, rel_cal
+        self.hall_init, self.last_sector = hall_init, last_sector
         self.prod, self.base_d, self.v1, self.al1 = prod, base_d, v1, al1
         self.theta, self.valid, self.aligned = theta, valid, aligned
         return self
