@@ -39,19 +39,25 @@
 // (a leading-zero bit was 1: broken/floating MISO or frame misalignment).
 //
 // Offsets: offset_i resets to OFFSET_RESET; off_we[i] loads off_wdata
-// (CPU).  cal_start (pulse) clears the accumulators and counts the next
-// 2**CAL_LOG2 conversions *accepted after* cal_start; offset_i is then loaded
-// with the round-half-up mean (sum + 2**(CAL_LOG2-1)) >> CAL_LOG2 and
-// cal_done is set (sticky until the next cal_start).  cal_busy is high
-// meanwhile.  A calibration load has priority over a CPU write in the same
-// cycle; cal_start during calibration restarts it.  The sequencer must keep
+// (CPU) unless a calibration runs (CPU writes are ignored while cal_busy).
+// cal_start (pulse) starts a calibration: the channels are averaged one after
+// the other (channel 0, 1, 2), each over the next 2**CAL_LOG2 conversions
+// *accepted after* cal_start (resp. after the previous channel finished), so
+// 3 * 2**CAL_LOG2 conversions in all.  A channel's offset is loaded with the
+// round-half-up mean (sum + 2**(CAL_LOG2-1)) >> CAL_LOG2 in the valid cycle of
+// its last sample; after channel 2 cal_done is set (sticky until the next
+// cal_start).  cal_busy is high meanwhile; cal_start during calibration
+// restarts it.  One accumulator (preset to 2**(CAL_LOG2-1), so the mean is
+// its top bits) adds the code of the channel being calibrated, which a fourth
+// shift register collects from that channel's MISO.  The sequencer must keep
 // the bridges off (PWM outputs safe) during calibration: conversions keep
-// running on `trig` and `valid` keeps pulsing (corrected with the old offsets).
+// running on `trig` and `valid` keeps pulsing (corrected with the offsets of
+// the moment).
 //
 // Parameters: ADC_BITS, FRAME_BITS, LEAD_ZEROS (>= 1), SCLK_DIV (>= 1),
 //   SAMPLE_DELAY (>= 3), CS_QUIET (>= 1), CAL_LOG2 (>= 1), CUR_W (>= 2),
 //   MISS_W, OFFSET_RESET.
-// Resources: no DSP, no BRAM; ~310 FF (Yosys, defaults), ~70 CARRY4, small LUT count.
+// Resources (Yosys synth_xilinx xc6s, defaults): ~160 LUT, ~290 FF, no DSP, no BRAM.
 // Reset (synchronous, rst): cs_n = 1, sclk = 1, idle, all outputs 0,
 //   offsets = OFFSET_RESET, calibration idle, cal_done = 0, miss_cnt = 0.
 `default_nettype none
@@ -107,28 +113,22 @@ module adc_spi #(
     localparam integer HB_END = 2 * FRAME_BITS + 2;          // half-bit periods per frame
     localparam integer HB_W   = $clog2(HB_END + 1);
     localparam integer DIV_W  = (SCLK_DIV > 1) ? $clog2(SCLK_DIV) : 1;
-    localparam integer NCAP_W = $clog2(FRAME_BITS + 1);
     localparam integer PIPE_N = SAMPLE_DELAY - 1;             // strobe delay stages
     localparam integer Q_W    = (CS_QUIET > 1) ? $clog2(CS_QUIET) : 1;
-    localparam integer D_W    = (CUR_W + 1 > ADC_BITS + 2) ? CUR_W + 1 : ADC_BITS + 2;
+    localparam integer D_W    = ADC_BITS + 1;                  // code - offset, exact
     localparam integer ACC_W  = ADC_BITS + CAL_LOG2;
     localparam integer CODE_MSB = FRAME_BITS - 1 - LEAD_ZEROS;
 
     localparam integer HB_LAST_I    = HB_END - 1;
     localparam integer HB_LLAUNCH_I = 2 * FRAME_BITS - 2;     // last launching half-bit
     localparam integer DIV_LAST_I   = SCLK_DIV - 1;
-    localparam integer NCAP_LAST_I  = FRAME_BITS - 1;
     localparam integer Q_LAST_I     = (CS_QUIET > 1) ? CS_QUIET - 2 : 0;
     localparam [HB_W-1:0]   HB_LAST    = HB_LAST_I[HB_W-1:0];
     localparam [HB_W-1:0]   HB_LLAUNCH = HB_LLAUNCH_I[HB_W-1:0];
     localparam [DIV_W-1:0]  DIV_LAST   = DIV_LAST_I[DIV_W-1:0];
-    localparam [NCAP_W-1:0] NCAP_LAST  = NCAP_LAST_I[NCAP_W-1:0];
-    localparam [NCAP_W-1:0] NCAP_ALL   = FRAME_BITS[NCAP_W-1:0];
     localparam [Q_W-1:0]    Q_LAST     = Q_LAST_I[Q_W-1:0];
     localparam [CAL_LOG2-1:0] CAL_LAST = {CAL_LOG2{1'b1}};
     localparam [MISS_W-1:0] MISS_MAX  = {MISS_W{1'b1}};
-    localparam signed [D_W-1:0] CUR_MAX = (1 <<< (CUR_W - 1)) - 1;
-    localparam signed [D_W-1:0] CUR_MIN = -(1 <<< (CUR_W - 1));
 
     localparam [1:0] S_IDLE = 2'd0, S_XFER = 2'd1, S_WAIT = 2'd2, S_QUIET = 2'd3;
 
@@ -144,15 +144,19 @@ module adc_spi #(
     reg [HB_W-1:0]   hb;
     reg [Q_W-1:0]    qcnt;
     reg              lstb;                 // bit launched at the previous edge
+    reg              llast;                // ... and it was the last bit of the frame
     reg [PIPE_N-1:0] spipe;                // lstb delayed; spipe[PIPE_N-1] = capture now
-    reg [NCAP_W-1:0] ncap;
+    reg [PIPE_N-1:0] lpipe;                // llast delayed: the last capture
+    reg              all_cap;              // every bit of the frame captured
+    reg [CODE_MSB:0] shc;                  // code (+ trailing) bits of channel cal_ch (calibration)
+    reg [1:0]        cal_ch;               // channel being calibrated
     reg [FRAME_BITS-1:0] sh0, sh1, sh2;
     reg              capdone;              // last bit captured at the previous edge
     reg              st_a;                 // stage A registered (codes, differences)
     reg              frame_cal;            // this frame counts for calibration
 
     wire cap     = spipe[PIPE_N-1];
-    wire all_cap = (ncap == NCAP_ALL);
+    wire cap_last = lpipe[PIPE_N-1];
     wire accept  = trig & ~busy;
     wire [HB_W-1:0] hb_n = hb + 1'b1;
 
@@ -167,10 +171,12 @@ module adc_spi #(
             hb        <= {HB_W{1'b0}};
             qcnt      <= {Q_W{1'b0}};
             lstb      <= 1'b0;
+            llast     <= 1'b0;
             trig_miss <= 1'b0;
             miss_cnt  <= {MISS_W{1'b0}};
         end else begin
             lstb      <= 1'b0;
+            llast     <= 1'b0;
             trig_miss <= trig & busy;
             if (trig & busy && miss_cnt != MISS_MAX)
                 miss_cnt <= miss_cnt + 1'b1;
@@ -199,6 +205,7 @@ module adc_spi #(
                         end else begin
                             sclk <= hb_n[0];        // half-bits 0,1 high (CS setup), then low/high
                             lstb <= ~hb_n[0] && (hb_n <= HB_LLAUNCH);
+                            llast <= (hb_n == HB_LLAUNCH);
                         end
                     end else begin
                         dcnt <= dcnt + 1'b1;
@@ -221,33 +228,46 @@ module adc_spi #(
     generate
         if (PIPE_N > 1) begin : g_pipe
             always @(posedge clk) begin
-                if (rst) spipe <= {PIPE_N{1'b0}};
-                else     spipe <= {spipe[PIPE_N-2:0], lstb};
+                if (rst) begin
+                    spipe <= {PIPE_N{1'b0}};
+                    lpipe <= {PIPE_N{1'b0}};
+                end else begin
+                    spipe <= {spipe[PIPE_N-2:0], lstb};
+                    lpipe <= {lpipe[PIPE_N-2:0], llast};
+                end
             end
         end else begin : g_pipe1
             always @(posedge clk) begin
-                if (rst) spipe <= 1'b0;
-                else     spipe <= lstb;
+                if (rst) begin
+                    spipe <= 1'b0;
+                    lpipe <= 1'b0;
+                end else begin
+                    spipe <= lstb;
+                    lpipe <= llast;
+                end
             end
         end
     endgenerate
 
     always @(posedge clk) begin
         if (rst) begin
-            ncap    <= {NCAP_W{1'b0}};
+            all_cap <= 1'b0;
             sh0     <= {FRAME_BITS{1'b0}};
             sh1     <= {FRAME_BITS{1'b0}};
             sh2     <= {FRAME_BITS{1'b0}};
+            shc     <= {(CODE_MSB+1){1'b0}};
             capdone <= 1'b0;
         end else begin
-            capdone <= cap && (ncap == NCAP_LAST);
-            if (accept) begin
-                ncap <= {NCAP_W{1'b0}};
-            end else if (cap) begin
-                ncap <= ncap + 1'b1;
+            capdone <= cap_last;
+            if (accept)
+                all_cap <= 1'b0;
+            else if (cap_last)
+                all_cap <= 1'b1;
+            if (cap) begin
                 sh0  <= {sh0[FRAME_BITS-2:0], miso_s[0]};
                 sh1  <= {sh1[FRAME_BITS-2:0], miso_s[1]};
                 sh2  <= {sh2[FRAME_BITS-2:0], miso_s[2]};
+                shc  <= {shc[CODE_MSB-1:0], cal_ch[1] ? miso_s[2] : cal_ch[0] ? miso_s[1] : miso_s[0]};
             end
         end
     end
@@ -259,11 +279,8 @@ module adc_spi #(
     wire lead_bad = (|sh0[FRAME_BITS-1 -: LEAD_ZEROS]) | (|sh1[FRAME_BITS-1 -: LEAD_ZEROS])
                   | (|sh2[FRAME_BITS-1 -: LEAD_ZEROS]);
 
-    reg signed [D_W-1:0] diff0, diff1, diff2;   // code - offset, exact (-4095..4095)
+    reg [D_W-1:0]        diff0, diff1, diff2;   // code - offset, exact (-4095..4095), two's complement
     reg                  lead_bad_a;
-    reg [ACC_W-1:0]      acc0, acc1, acc2;
-    reg [CAL_LOG2-1:0]   cal_cnt;
-    reg                  cal_last;              // stage A added the last calibration sample
 
     always @(posedge clk) begin
         if (rst) begin
@@ -281,92 +298,113 @@ module adc_spi #(
                 code0      <= fcode0;
                 code1      <= fcode1;
                 code2      <= fcode2;
-                diff0      <= $signed({{(D_W-ADC_BITS){1'b0}}, fcode0}) - $signed({{(D_W-ADC_BITS){1'b0}}, offset0});
-                diff1      <= $signed({{(D_W-ADC_BITS){1'b0}}, fcode1}) - $signed({{(D_W-ADC_BITS){1'b0}}, offset1});
-                diff2      <= $signed({{(D_W-ADC_BITS){1'b0}}, fcode2}) - $signed({{(D_W-ADC_BITS){1'b0}}, offset2});
+                diff0      <= {1'b0, fcode0} - {1'b0, offset0};
+                diff1      <= {1'b0, fcode1} - {1'b0, offset1};
+                diff2      <= {1'b0, fcode2} - {1'b0, offset2};
                 lead_bad_a <= lead_bad;
             end
         end
     end
 
     // -------------------------------------------------------- calibration
-    // round-half-up mean: (acc + 2**(CAL_LOG2-1)) >> CAL_LOG2, computed as
-    // (acc >> (CAL_LOG2-1)) + 1 >> 1; cannot overflow (acc <= (2**ADC_BITS-1) * 2**CAL_LOG2)
-    /* verilator lint_off UNUSEDSIGNAL */ // bit 0 is the dropped rounding bit
-    wire [ADC_BITS:0] mean0 = acc0[ACC_W-1:CAL_LOG2-1] + 1'b1;
-    wire [ADC_BITS:0] mean1 = acc1[ACC_W-1:CAL_LOG2-1] + 1'b1;
-    wire [ADC_BITS:0] mean2 = acc2[ACC_W-1:CAL_LOG2-1] + 1'b1;
-    /* verilator lint_on UNUSEDSIGNAL */
+    // One channel after the other (cal_ch = 0, 1, 2), 2**CAL_LOG2 counted conversions each,
+    // on one accumulator preset to 2**(CAL_LOG2-1): its top ADC_BITS bits are then the
+    // round-half-up mean (sum + 2**(CAL_LOG2-1)) >> CAL_LOG2 (cannot overflow:
+    // acc <= (2**ADC_BITS-1) * 2**CAL_LOG2 + 2**(CAL_LOG2-1) < 2**ACC_W).
+    localparam [ACC_W-1:0] ACC_HALF = {{ADC_BITS{1'b0}}, 1'b1, {(CAL_LOG2-1){1'b0}}};
+    reg [ACC_W-1:0]      acc;
+    reg [CAL_LOG2-1:0]   cal_cnt;
+    reg                  cal_last;              // stage A added the channel's last sample
+    wire [ADC_BITS-1:0]  cal_code = shc[CODE_MSB -: ADC_BITS];
+    // offset write port: the calibration result, or the CPU value (CPU writes are ignored
+    // while cal_busy, so the end result is the same as averaging all channels at once)
+    wire [ADC_BITS-1:0]  off_d = cal_last ? acc[ACC_W-1 -: ADC_BITS] : off_wdata;
+    wire [2:0]           cal_ld = {3{cal_last}} & {cal_ch == 2'd2, cal_ch == 2'd1, cal_ch == 2'd0};
+    wire [2:0]           off_ld = cal_ld | (off_we & {3{~cal_busy}});
 
     always @(posedge clk) begin
         if (rst) begin
             frame_cal <= 1'b0;
             cal_busy  <= 1'b0;
             cal_done  <= 1'b0;
+            cal_ch    <= 2'd0;
             cal_cnt   <= {CAL_LOG2{1'b0}};
             cal_last  <= 1'b0;
-            acc0      <= {ACC_W{1'b0}};
-            acc1      <= {ACC_W{1'b0}};
-            acc2      <= {ACC_W{1'b0}};
+            acc       <= ACC_HALF;
             offset0   <= OFFSET_RESET[ADC_BITS-1:0];
             offset1   <= OFFSET_RESET[ADC_BITS-1:0];
             offset2   <= OFFSET_RESET[ADC_BITS-1:0];
         end else begin
             cal_last <= 1'b0;
             if (accept) frame_cal <= cal_busy;
-            // CPU writes
-            if (off_we[0]) offset0 <= off_wdata;
-            if (off_we[1]) offset1 <= off_wdata;
-            if (off_we[2]) offset2 <= off_wdata;
+            if (off_ld[0]) offset0 <= off_d;
+            if (off_ld[1]) offset1 <= off_d;
+            if (off_ld[2]) offset2 <= off_d;
             // accumulate at stage A
             if (capdone && frame_cal) begin
-                acc0     <= acc0 + {{CAL_LOG2{1'b0}}, fcode0};
-                acc1     <= acc1 + {{CAL_LOG2{1'b0}}, fcode1};
-                acc2     <= acc2 + {{CAL_LOG2{1'b0}}, fcode2};
-                cal_cnt  <= cal_cnt + 1'b1;
-                cal_last <= (cal_cnt == CAL_LAST);
+                acc       <= acc + {{CAL_LOG2{1'b0}}, cal_code};
+                cal_cnt   <= cal_cnt + 1'b1;
+                cal_last  <= (cal_cnt == CAL_LAST);
                 frame_cal <= 1'b0;
             end
-            // load offsets at stage B (calibration wins over CPU writes)
+            // load the offset at stage B, next channel
             if (cal_last) begin
-                offset0  <= mean0[ADC_BITS:1];
-                offset1  <= mean1[ADC_BITS:1];
-                offset2  <= mean2[ADC_BITS:1];
-                cal_busy <= 1'b0;
-                cal_done <= 1'b1;
+                acc    <= ACC_HALF;
+                cal_ch <= cal_ch + 2'd1;
+                if (cal_ch == 2'd2) begin
+                    cal_busy <= 1'b0;
+                    cal_done <= 1'b1;
+                end
             end
             // (re)start: clears everything, the frame in flight does not count
             if (cal_start) begin
                 cal_busy  <= 1'b1;
                 cal_done  <= 1'b0;
+                cal_ch    <= 2'd0;
                 cal_cnt   <= {CAL_LOG2{1'b0}};
                 cal_last  <= 1'b0;
                 frame_cal <= 1'b0;
-                acc0      <= {ACC_W{1'b0}};
-                acc1      <= {ACC_W{1'b0}};
-                acc2      <= {ACC_W{1'b0}};
+                acc       <= ACC_HALF;
             end
         end
     end
 
     // ---------------------- stage B: saturation, overcurrent, valid pulse
-    wire signed [D_W-1:0] thr_p = $signed({{(D_W-ADC_BITS){1'b0}}, oc_thr});
-    wire signed [D_W-1:0] thr_n = -thr_p;
-    wire [2:0] oc_now = {(diff2 > thr_p) | (diff2 < thr_n),
-                         (diff1 > thr_p) | (diff1 < thr_n),
-                         (diff0 > thr_p) | (diff0 < thr_n)};
-    wire [2:0] sat_now = {(diff2 > CUR_MAX) | (diff2 < CUR_MIN),
-                          (diff1 > CUR_MAX) | (diff1 < CUR_MIN),
-                          (diff0 > CUR_MAX) | (diff0 < CUR_MIN)};
-
-    function [CUR_W-1:0] satw;
-        input signed [D_W-1:0] d;
+    // |d| > thr on the registered difference: e = d ^ sign (= |d| - sign), so
+    // |d| > thr <=> (d >= 0) ? e > thr : e >= thr
+    function oc_f;
+        input [D_W-1:0] d;
+        input [ADC_BITS-1:0] thr;
+        reg [ADC_BITS-1:0] e;
         begin
-            if (d > CUR_MAX)      satw = CUR_MAX[CUR_W-1:0];
-            else if (d < CUR_MIN) satw = CUR_MIN[CUR_W-1:0];
-            else                  satw = d[CUR_W-1:0];
+            e = d[ADC_BITS-1:0] ^ {ADC_BITS{d[D_W-1]}};
+            oc_f = d[D_W-1] ? (e >= thr) : (e > thr);
         end
     endfunction
+    wire [2:0] oc_now = {oc_f(diff2, oc_thr), oc_f(diff1, oc_thr), oc_f(diff0, oc_thr)};
+
+    // cur = sat(d, CUR_W)
+    wire [2:0]       sat_now;
+    wire [CUR_W-1:0] satd0, satd1, satd2;
+    generate
+        if (CUR_W >= D_W) begin : g_nosat
+            assign sat_now = 3'b000;
+            assign satd0 = {{(CUR_W-D_W){diff0[D_W-1]}}, diff0};
+            assign satd1 = {{(CUR_W-D_W){diff1[D_W-1]}}, diff1};
+            assign satd2 = {{(CUR_W-D_W){diff2[D_W-1]}}, diff2};
+        end else begin : g_sat
+            localparam [CUR_W-1:0] CMAX = {1'b0, {(CUR_W-1){1'b1}}};
+            localparam [CUR_W-1:0] CMIN = {1'b1, {(CUR_W-1){1'b0}}};
+            // fits iff the bits above CUR_W-1 all equal the sign
+            wire [2:0] fit = {(&diff2[D_W-1:CUR_W-1]) | ~(|diff2[D_W-1:CUR_W-1]),
+                              (&diff1[D_W-1:CUR_W-1]) | ~(|diff1[D_W-1:CUR_W-1]),
+                              (&diff0[D_W-1:CUR_W-1]) | ~(|diff0[D_W-1:CUR_W-1])};
+            assign sat_now = ~fit;
+            assign satd0 = fit[0] ? diff0[CUR_W-1:0] : (diff0[D_W-1] ? CMIN : CMAX);
+            assign satd1 = fit[1] ? diff1[CUR_W-1:0] : (diff1[D_W-1] ? CMIN : CMAX);
+            assign satd2 = fit[2] ? diff2[CUR_W-1:0] : (diff2[D_W-1] ? CMIN : CMAX);
+        end
+    endgenerate
 
     always @(posedge clk) begin
         if (rst) begin
@@ -384,9 +422,9 @@ module adc_spi #(
             frame_err <= st_a & lead_bad_a;
             oc        <= st_a & (|oc_now);
             if (st_a) begin
-                cur0  <= satw(diff0);
-                cur1  <= satw(diff1);
-                cur2  <= satw(diff2);
+                cur0  <= satd0;
+                cur1  <= satd1;
+                cur2  <= satd2;
                 oc_ch <= oc_now;
             end
         end

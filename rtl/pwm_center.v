@@ -27,7 +27,7 @@
 //   dead[DEAD_W-1:0]   dead time in clocks (complementary mode): a switch turns
 //                      on only after `dead` clocks with both switches off.
 //   cmp_in[NCH*CW-1:0] compare values (channel i in bits i*CW +: CW), 0..P,
-//                      values > P are clipped to P (cmp_clip pulse)
+//                      values > P act as P (clipped; cmp_clip pulse)
 //   cmp_load           write cmp_in into the shadow registers; the shadow is
 //                      copied to the active compare at the next period boundary
 //   sync_in            rising edge restarts the counter at the boundary;
@@ -117,19 +117,15 @@ module pwm_center #(
     wire ok = enable & ~fault & ~fault_latched;
     wire alive = run & ok;
 
-    reg  [NCH*CW-1:0] cmp_clipped;
+    // Values > P are stored unclipped: the counter never leaves [0, P] (up 0..P-1,
+    // down P..1), so cnt < c / cnt <= c give the same command for any c >= P as for
+    // c = P (always on).  Only the clip flag needs the comparison.
     reg               any_clip;
     integer k;
     always @(*) begin
         any_clip = 1'b0;
-        for (k = 0; k < NCH; k = k + 1) begin
-            if (cmp_in[k*CW +: CW] > P) begin
-                cmp_clipped[k*CW +: CW] = P;
-                any_clip = 1'b1;
-            end else begin
-                cmp_clipped[k*CW +: CW] = cmp_in[k*CW +: CW];
-            end
-        end
+        for (k = 0; k < NCH; k = k + 1)
+            if (cmp_in[k*CW +: CW] > P) any_clip = 1'b1;
     end
 
     always @(posedge clk) begin
@@ -149,16 +145,12 @@ module pwm_center #(
                 cnt <= {CW{1'b0}};
                 dir <= 1'b1;
             end else if (dir) begin
-                if (cnt >= P_M1) begin
-                    cnt <= P;
-                    dir <= 1'b0;
-                end else begin
-                    cnt <= cnt + ONE;
-                end
+                cnt <= cnt + ONE;                  // P-1 -> P: turn round
+                if (cnt >= P_M1) dir <= 1'b0;
             end else begin
                 cnt <= cnt - ONE;
             end
-            if (cmp_load) shadow <= cmp_clipped;
+            if (cmp_load) shadow <= cmp_in;
             cmp_clip <= cmp_load & any_clip;
             if (bnd_edge) begin
                 cmp_act  <= shadow;

@@ -88,10 +88,12 @@ class Env:
             assert self.sig("cs_n") == 1 and self.sig("sclk") == 1 and self.sig("valid") == 0
 
     async def write_offset(self, ch, value):
+        before = self.sig(f"offset{ch}")
         await self.cycle(off_we=1 << ch, off_wdata=value)
-        self.model.write_offset(ch, value)
+        taken = self.model.write_offset(ch, value)
         await self.cycle()
-        assert self.sig(f"offset{ch}") == value
+        assert self.sig(f"offset{ch}") == (value if taken else before), "CPU offset write (ignored while cal_busy)"
+        return taken
 
     async def cal_start(self):
         await self.cycle(cal_start=1)
@@ -388,12 +390,17 @@ async def test_calibration(dut):
     thr = p.code_max
 
     async def run_cal(true_offs, noise, check_flags=True, first_hooks=None):
-        for i in range(n_cal):
+        # one channel after the other: channel ch's offset changes only after its last sample
+        for i in range(3 * n_cal):
             codes = [rand_code(rng, p, t, noise) if noise else t for t in true_offs]
-            before = list(e.model.offsets)
+            before = [e.sig(f"offset{c}") for c in range(3)]
             r = await e.frame(codes, thr=thr, hooks=first_hooks if i == 0 else None)
-            if check_flags and i < n_cal - 1:
-                assert e.model.cal_busy and [e.sig(f"offset{c}") for c in range(3)] == before
+            if check_flags and i < 3 * n_cal - 1:
+                ch, last = i // n_cal, i % n_cal == n_cal - 1
+                assert e.model.cal_busy and e.sig("cal_busy") == 1 and e.sig("cal_done") == 0
+                after = [e.sig(f"offset{c}") for c in range(3)]
+                assert all(after[c] == before[c] for c in range(3) if not (last and c == ch)), \
+                    f"frame {i}: only channel {ch} may change, at its last sample: {before} -> {after}"
         return r
 
     # 1) known offsets + small noise
@@ -414,11 +421,12 @@ async def test_calibration(dut):
     # 2) rounding: sums with remainder exactly half (rounds up) and half - 1 (rounds down)
     base = 1500
     await e.cal_start()
-    for i in range(n_cal):
+    for i in range(3 * n_cal):
+        j = i % n_cal           # sample number within the channel's turn
         # channel 0: half the samples base+1 -> mean base + 0.5 -> base+1
         # channel 1: half minus one sample base+1 -> base (n_cal >= 2)
         # channel 2: all base+1 except one base -> base+1
-        codes = [base + (i < n_cal // 2), base + (i < n_cal // 2 - 1), base + (i > 0)]
+        codes = [base + (j < n_cal // 2), base + (j < n_cal // 2 - 1), base + (j > 0)]
         await e.frame(codes, thr=thr)
     got = [e.sig(f"offset{c}") for c in range(3)]
     exp = [cal_mean(base * n_cal + n_cal // 2, p.cal_log2), cal_mean(base * n_cal + n_cal // 2 - 1, p.cal_log2),
@@ -435,23 +443,28 @@ async def test_calibration(dut):
     assert e.model.cal_done
     dut._log.info("cal_start mid-frame: in-flight frame excluded, offsets %s", e.model.offsets)
 
-    # 4) restart in the middle of a calibration
+    # 4) restart in the middle of a calibration (after channel 0 is done)
     await e.cal_start()
-    for _ in range(n_cal // 2 + 1):
+    for _ in range(n_cal + n_cal // 2 + 1):
         await e.frame([4000, 4000, 4000], thr=thr)
+    assert e.sig("offset0") == 4000 and e.sig("cal_busy") == 1
     await e.cal_start()
     await run_cal([2048, 2049, 2050], 1)
     assert [e.sig(f"offset{c}") for c in range(3)] == e.model.offsets
     assert all(abs(o - t) <= 1 for o, t in zip(e.model.offsets, [2048, 2049, 2050]))
 
-    # 5) CPU write during calibration is overwritten; a CPU write in the same cycle as the load loses
+    # 5) CPU writes are ignored during calibration (also in the cycle of a load)
     await e.cal_start()
-    await e.write_offset(0, 77)
+    assert not await e.write_offset(0, 77)
     assert e.sig("cal_busy") == 1
     true_offs = [1800, 1900, 2000]
-    for i in range(n_cal):
-        # sampled at edge E0 + valid_latency: the edge that loads the calibration result
-        hooks = {p.valid_latency() - 2: {"off_we": 0b110, "off_wdata": 55}} if i == n_cal - 1 else None
+    for i in range(3 * n_cal):
+        hooks = None
+        if i == n_cal + 1:                      # channel 0 already done, 1 running
+            hooks = {5: {"off_we": 0b111, "off_wdata": 66}}
+        elif i in (n_cal - 1, 3 * n_cal - 1):
+            # sampled at edge E0 + valid_latency: the edge that loads the calibration result
+            hooks = {p.valid_latency() - 2: {"off_we": 0b111, "off_wdata": 55}}
         await e.frame(true_offs, thr=thr, hooks=hooks)
     got = [e.sig(f"offset{c}") for c in range(3)]
     assert got == true_offs == e.model.offsets, got

@@ -132,6 +132,11 @@ class AdcSpiMaster:
     :meth:`cal_start`, :meth:`convert` (one accepted trigger, returns what appears at
     ``valid``).  ``counted=False`` in ``convert`` marks a frame that was already in
     flight when ``cal_start`` arrived (RTL: not counted for calibration).
+
+    Calibration averages one channel after the other (``cal_ch`` 0, 1, 2), each over
+    2**cal_log2 counted conversions; a channel's offset is loaded when its last sample
+    is in, ``cal_done`` after channel 2.  CPU offset writes are ignored while
+    ``cal_busy``.
     """
 
     p: AdcSpiParams = field(default_factory=AdcSpiParams)
@@ -139,18 +144,22 @@ class AdcSpiMaster:
     cal_busy: bool = False
     cal_done: bool = False
     cal_n: int = 0
-    cal_acc: list[int] = field(default_factory=lambda: [0] * N_CH)
+    cal_ch: int = 0
+    cal_acc: int = 0
 
     def __post_init__(self):
         if not self.offsets:
             self.offsets = [self.p.offset_reset] * N_CH
 
-    def write_offset(self, ch: int, value: int) -> None:
+    def write_offset(self, ch: int, value: int) -> bool:
+        """CPU write; returns False (ignored) while a calibration runs."""
+        if self.cal_busy:
+            return False
         self.offsets[ch] = value & self.p.code_max
+        return True
 
     def cal_start(self) -> None:
-        self.cal_busy, self.cal_done, self.cal_n = True, False, 0
-        self.cal_acc = [0] * N_CH
+        self.cal_busy, self.cal_done, self.cal_n, self.cal_ch, self.cal_acc = True, False, 0, 0, 0
 
     def convert(self, codes, thr: int, lead=(0, 0, 0), counted: bool = True) -> AdcResult:
         """One conversion of ``codes`` (3 ints), overcurrent threshold ``thr``."""
@@ -162,9 +171,11 @@ class AdcSpiMaster:
         cs = [correct(c, o, p.cur_w) for c, o in zip(codes, used)]
         oc_ch = tuple(overcurrent(c, o, thr) for c, o in zip(codes, used))
         if self.cal_busy and counted:
-            self.cal_acc = [a + c for a, c in zip(self.cal_acc, codes)]
+            self.cal_acc += codes[self.cal_ch]
             self.cal_n += 1
             if self.cal_n == 1 << p.cal_log2:
-                self.offsets = [cal_mean(a, p.cal_log2) for a in self.cal_acc]
-                self.cal_busy, self.cal_done = False, True
+                self.offsets[self.cal_ch] = cal_mean(self.cal_acc, p.cal_log2)
+                self.cal_ch, self.cal_n, self.cal_acc = self.cal_ch + 1, 0, 0
+                if self.cal_ch == N_CH:
+                    self.cal_busy, self.cal_done = False, True
         return AdcResult(codes, tuple(c for c, _ in cs), any(s for _, s in cs), oc_ch, any(oc_ch), ferr, used)
