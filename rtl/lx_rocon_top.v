@@ -67,10 +67,18 @@ module lx_rocon_top #(
         .reg_addr(reg_addr), .reg_wdata(reg_wdata), .reg_rdata(reg_rdata), .err_wr_short(err_wr_short),
         .err_rd_short(err_rd_short));
 
-    wire in_global = reg_addr < `EMPC_REG_AXIS_BASE;
-    wire in_coef = reg_addr >= `EMPC_REG_COEF_BASE;
-    wire [EMC_AW-1:0] axis_off = reg_addr - `EMPC_REG_AXIS_BASE;
-    wire [EMC_AW-1:0] coef_off = reg_addr - `EMPC_REG_COEF_BASE;
+    // address decode with constant compares only (no subtractors): axis n owns
+    // [AXIS_BASE + 0x100 n, +0x100), its coefficient window [COEF_BASE + 0x400 n, +0x400)
+    localparam integer AXIS_BASE = `EMPC_REG_AXIS_BASE;
+    localparam integer COEF_BASE = `EMPC_REG_COEF_BASE;
+    wire [31:0] addr32 = {{(32-EMC_AW){1'b0}}, reg_addr};
+    wire in_global = addr32 < AXIS_BASE;
+    wire in_coef = addr32 >= COEF_BASE;
+    wire in_axes = !in_global && !in_coef && (addr32 < AXIS_BASE + 256 * NAXES);
+    /* verilator lint_off UNUSEDSIGNAL */ // the axis / window index bits are decoded by compares
+    wire [EMC_AW-1:0] axis_off = reg_addr - AXIS_BASE[EMC_AW-1:0];
+    wire [EMC_AW-1:0] coef_off = reg_addr - COEF_BASE[EMC_AW-1:0];
+    /* verilator lint_on UNUSEDSIGNAL */
 
     // ---------------- global registers ----------------
     reg  [31:0] scratch;
@@ -115,38 +123,49 @@ module lx_rocon_top #(
         end
     end
 
+    // ---------------- read path ----------------
+    // Global read data is sampled at reg_rd into g_rdata (zero unless a global read;
+    // TIME, WDOG_TIMEOUT, IRQ_* and the constants), SCRATCH and the axis data are
+    // selected in the final OR: reg_rdata is valid (and non-zero) only in the clock
+    // after reg_rd, as emc_bus expects (RD_LAT = 1).
     localparam [7:0] CAP_PPC = `EMPC_PWM_PER_CONTROL;
     localparam [7:0] CAP_LAYOUT = `EMPC_IMG_LAYOUT;
     localparam [3:0] CAP_N = `EMPC_N;
     localparam [31:0] NAXES_W = NAXES;
     localparam [3:0] CAP_NAXES = NAXES_W[3:0];
+    localparam [31:0] PWM_HALF_W = `EMPC_PWM_HALF_PERIOD;
     reg [31:0] g_rdata;
-    reg        rd_global, rd_axis;
+    reg        rd_scratch, rd_axis;
     reg [EMC_AW-9:0] rd_axis_sel;
+    // all global offsets are below 16 in the current map: decode 4 bits, gate with [7:4] == 0
+    localparam G_NARROW = (`EMPC_G_ID < 16) && (`EMPC_G_VERSION < 16) && (`EMPC_G_CAPS < 16)
+                          && (`EMPC_G_PWM_HALF < 16) && (`EMPC_G_SCRATCH < 16) && (`EMPC_G_WDOG_TIMEOUT < 16)
+                          && (`EMPC_G_TIME < 16) && (`EMPC_G_IRQ_STATUS < 16) && (`EMPC_G_IRQ_ENABLE < 16);
+    wire       g_rd = reg_rd && in_global && (!G_NARROW || reg_addr[7:4] == 4'd0);
+    wire [7:0] g_idx = G_NARROW ? {4'd0, reg_addr[3:0]} : reg_addr[7:0];
     always @(posedge clk) begin
-        if (rst) begin
+        rd_scratch <= g_rd && g_idx == `EMPC_G_SCRATCH;
+        rd_axis <= reg_rd && in_axes;
+        rd_axis_sel <= axis_off[EMC_AW-1:8];
+        if (rst || !g_rd) begin
             g_rdata <= 32'd0;
-            rd_global <= 1'b0;
+        end else begin
+            case (g_idx)
+                `EMPC_G_ID: g_rdata <= `EMPC_ID_MAGIC;
+                `EMPC_G_VERSION: g_rdata <= `EMPC_VERSION;
+                `EMPC_G_CAPS: g_rdata <= {8'd0, CAP_PPC, CAP_LAYOUT, CAP_N, CAP_NAXES};
+                `EMPC_G_PWM_HALF: g_rdata <= PWM_HALF_W;
+                `EMPC_G_WDOG_TIMEOUT: g_rdata <= {16'd0, wdog_timeout};
+                `EMPC_G_TIME: g_rdata <= time_cnt;
+                `EMPC_G_IRQ_STATUS: g_rdata <= {30'd0, irq_status};
+                `EMPC_G_IRQ_ENABLE: g_rdata <= {30'd0, irq_enable};
+                default: g_rdata <= 32'd0;     // SCRATCH: in the final OR
+            endcase
+        end
+        if (rst) begin
+            rd_scratch <= 1'b0;
             rd_axis <= 1'b0;
             rd_axis_sel <= {(EMC_AW-8){1'b0}};
-        end else begin
-            rd_global <= reg_rd && in_global;
-            rd_axis <= reg_rd && !in_global && !in_coef;
-            rd_axis_sel <= axis_off[EMC_AW-1:8];
-            if (reg_rd && in_global) begin
-                case (reg_addr[7:0])
-                    `EMPC_G_ID: g_rdata <= `EMPC_ID_MAGIC;
-                    `EMPC_G_VERSION: g_rdata <= `EMPC_VERSION;
-                    `EMPC_G_CAPS: g_rdata <= {8'd0, CAP_PPC, CAP_LAYOUT, CAP_N, CAP_NAXES};
-                    `EMPC_G_PWM_HALF: g_rdata <= `EMPC_PWM_HALF_PERIOD;
-                    `EMPC_G_SCRATCH: g_rdata <= scratch;
-                    `EMPC_G_WDOG_TIMEOUT: g_rdata <= {16'd0, wdog_timeout};
-                    `EMPC_G_TIME: g_rdata <= time_cnt;
-                    `EMPC_G_IRQ_STATUS: g_rdata <= {30'd0, irq_status};
-                    `EMPC_G_IRQ_ENABLE: g_rdata <= {30'd0, irq_enable};
-                    default: g_rdata <= 32'd0;
-                endcase
-            end
         end
     end
 
@@ -157,8 +176,8 @@ module lx_rocon_top #(
     genvar n;
     generate
         for (n = 0; n < NAXES; n = n + 1) begin : g_axis
-            wire sel = !in_global && !in_coef && axis_off[EMC_AW-1:8] == n;
-            wire csel = in_coef && coef_off[EMC_AW-1:10] == n;
+            wire sel = !in_coef && (addr32 >= AXIS_BASE + 256 * n) && (addr32 < AXIS_BASE + 256 * (n + 1));
+            wire csel = (addr32 >= COEF_BASE + 1024 * n) && (addr32 < COEF_BASE + 1024 * (n + 1));
             mpc_axis #(.BOOT_FILE(BOOT_FILE), .RSQRT_FILE(RSQRT_FILE)) u_axis (
                 .clk(clk), .rst(rst),
                 .reg_wr(reg_wr && sel), .reg_rd(reg_rd && sel), .reg_addr(axis_off[7:0]), .reg_wdata(reg_wdata),
@@ -174,15 +193,16 @@ module lx_rocon_top #(
     assign adc_sclk = sclk_ax[0];
     assign adc_cs_n = cs_ax[0];
 
-    always @(*) begin
-        if (rd_global)
-            reg_rdata = g_rdata;
-        else if (rd_axis && {{(40-EMC_AW){1'b0}}, rd_axis_sel} < NAXES)
-            reg_rdata = a_rdata[32*rd_axis_sel +: 32];
-        else
-            reg_rdata = 32'd0;
-    end
+    wire [31:0] a_sel;
+    generate
+        if (NAXES == 1) begin : g_rd1
+            assign a_sel = a_rdata;
+        end else begin : g_rdn
+            assign a_sel = a_rdata[32*rd_axis_sel +: 32];
+        end
+    endgenerate
+    always @(*) reg_rdata = g_rdata | (rd_scratch ? scratch : 32'd0) | (rd_axis ? a_sel : 32'd0);
 
-    wire unused = &{1'b0, locked, err_wr_short, err_rd_short, sclk_ax, cs_ax, sync_out};
+    wire unused = &{1'b0, locked, err_wr_short, err_rd_short, sclk_ax, cs_ax, sync_out, rd_axis_sel};
 endmodule
 `default_nettype wire
