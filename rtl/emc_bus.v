@@ -63,7 +63,10 @@
 //   emc_a[AW-1:0]               word address (asynchronous)
 //   emc_d_in[31:0]              data pins, input side (asynchronous)
 //   emc_d_out[31:0], emc_d_oe   data pins, output side (the top builds the inout)
-//   reg_wr, reg_addr, reg_wdata write pulse, address, data (1 clock)
+//   reg_wr, reg_addr, reg_wdata write pulse, address, data (1 clock); reg_addr and
+//                               reg_wdata are valid in the reg_wr / reg_rd clock only (they
+//                               are the write's hold registers and follow the pins while WE
+//                               and CS are low)
 //   reg_rd                      read pulse (1 clock) with reg_addr
 //   reg_rdata[31:0]             read data, valid RD_LAT clocks after reg_rd
 //   err_wr_short, err_rd_short  timing-violation pulses
@@ -76,8 +79,8 @@
 // Latency: WE rise -> reg_wr 3 clocks (2 sync + edge); OE fall -> reg_rd
 //   RD_MIN_LOW + 2 clocks; reg_rd -> emc_d_oe RD_LAT + 1 clocks.
 // Reset: strobes read as high (idle), no access, bus not driven.
-// Resources: about 3 + 2*(AW+32) synchroniser flops, AW+32 hold, AW+32 port
-//   and 32 output flops, small counters; no DSP/BRAM.
+// Resources: about 3 + 2*(AW+32) synchroniser flops, AW+32 port and 32 output
+//   flops, small counters (189 FF, 17 LUT for AW = 14); no DSP/BRAM.
 `default_nettype none
 module emc_bus #(
     parameter integer AW = 14,
@@ -122,8 +125,6 @@ module emc_bus #(
     // ---------------- write ----------------
     reg           we_n_d;
     reg [WCW-1:0] wcnt;           // WE&CS low samples in the current WE low phase
-    reg [AW-1:0]  a_hold;
-    reg [31:0]    d_hold;
     wire          w_low  = !we_n_q && !cs_n_q;
     wire          we_rise = we_n_q && !we_n_d;
 
@@ -144,8 +145,6 @@ module emc_bus #(
         if (rst) begin
             we_n_d <= 1'b1;
             wcnt <= {WCW{1'b0}};
-            a_hold <= {AW{1'b0}};
-            d_hold <= 32'd0;
             reg_addr <= {AW{1'b0}};
             reg_wdata <= 32'd0;
             rcnt <= {RCW{1'b0}};
@@ -160,15 +159,17 @@ module emc_bus #(
                 wcnt <= {WCW{1'b0}};
             else if (!cs_n_q && wcnt != WMIN)
                 wcnt <= wcnt + {{(WCW-1){1'b0}}, 1'b1};
-            if (w_low) begin
-                a_hold <= a_q;
-                d_hold <= d_q;
-            end
+            // reg_addr / reg_wdata are the write's hold registers: they follow the
+            // aligned samples while WE and CS are low, so at the WE rise they hold
+            // the last sample that still saw WE low (no separate hold register and
+            // no address multiplexer; the read address is loaded at rd_fire below)
+            if (w_low)
+                reg_wdata <= d_q;
+            if (w_low || rd_fire)
+                reg_addr <= a_q;
             if (we_rise) begin
                 if (wcnt == WMIN) begin
                     reg_wr <= 1'b1;
-                    reg_addr <= a_hold;
-                    reg_wdata <= d_hold;
                 end else if (wcnt != {WCW{1'b0}}) begin
                     err_wr_short <= 1'b1;
                 end
@@ -186,7 +187,6 @@ module emc_bus #(
                     rcnt <= rcnt + {{(RCW-1){1'b0}}, 1'b1};
                 if (rd_fire) begin
                     reg_rd <= 1'b1;
-                    reg_addr <= a_q;
                     rd_act <= 1'b1;
                 end
                 rd_pipe[0] <= reg_rd;

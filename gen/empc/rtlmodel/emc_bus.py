@@ -15,7 +15,10 @@ class EmcBus:
     """One ``emc_bus`` instance.  :meth:`step` is one rising clock edge; the
     attributes after it are the registered outputs (``reg_wr``, ``reg_rd``,
     ``reg_addr``, ``reg_wdata``, ``emc_d_out``, ``drive``, ``err_wr_short``,
-    ``err_rd_short``); :meth:`d_oe` is the (combinational) output enable."""
+    ``err_rd_short``); :meth:`d_oe` is the (combinational) output enable.
+    ``reg_addr`` / ``reg_wdata`` follow the synchronised pins while WE and CS are
+    low (they are the write's hold registers) and take the read address at a
+    read; they are meaningful in the ``reg_wr`` / ``reg_rd`` clock."""
 
     def __init__(self, aw: int = 14, rd_lat: int = 1, wr_min_low: int = 3, rd_min_low: int = 2,
                  oe_pin_gate: bool = True):
@@ -33,7 +36,6 @@ class EmcBus:
         self.s_d = [0, 0]
         self.we_n_d = 1
         self.wcnt = 0
-        self.a_hold = self.d_hold = 0
         self.reg_wr = self.reg_rd = 0
         self.reg_addr = self.reg_wdata = 0
         self.err_wr_short = self.err_rd_short = 0
@@ -59,15 +61,15 @@ class EmcBus:
         n_reg_addr, n_reg_wdata = self.reg_addr, self.reg_wdata
         if we_rise:
             if self.wcnt == self.wr_min_low:
-                n_reg_wr, n_reg_addr, n_reg_wdata = 1, self.a_hold, self.d_hold
+                n_reg_wr = 1          # reg_addr / reg_wdata hold the last WE-low sample
             elif self.wcnt:
                 n_err_wr = 1
         if we_q:
             self.wcnt = 0
         elif not cs_q and self.wcnt != self.wr_min_low:
             self.wcnt += 1
-        if w_low:
-            self.a_hold, self.d_hold = a_q, d_q
+        if w_low:                     # reg_addr / reg_wdata follow the pins while WE and CS are low
+            n_reg_addr, n_reg_wdata = a_q, d_q
         # read side
         r_low = not oe_q and not cs_q and we_q and self.we_n_d
         n_reg_rd, n_err_rd = 0, 0
