@@ -123,8 +123,8 @@ module irc_decoder #(
     wire index_edge = ready && filt[2] && !prev[2];
     wire mark_edge  = ready && filt[3] && !prev[3];
 
-    wire [POS_W-1:0] pos_next = step_up ? pos + {{(POS_W-1){1'b0}}, 1'b1} :
-                                step_dn ? pos - {{(POS_W-1){1'b0}}, 1'b1} : pos;
+    // one adder, +1 / -1 / 0 (no multiplexer after the carry chain)
+    wire [POS_W-1:0] pos_next = pos + {{(POS_W-1){step_dn}}, step_up | step_dn};
     wire dir_next = step_up ? 1'b1 : step_dn ? 1'b0 : dir;
 
     always @(posedge clk) begin
