@@ -141,14 +141,13 @@ module pwm_center #(
             cmp_clip      <= 1'b0;
         end else begin
             sync_prev <= sync_s;
+            // one adder: +1 up, -1 down (P-1 -> P at the turn round); 0 at the boundary
             if (bnd_edge) begin
                 cnt <= {CW{1'b0}};
                 dir <= 1'b1;
-            end else if (dir) begin
-                cnt <= cnt + ONE;                  // P-1 -> P: turn round
-                if (cnt >= P_M1) dir <= 1'b0;
             end else begin
-                cnt <= cnt - ONE;
+                cnt <= cnt + {{(CW-1){~dir}}, 1'b1};
+                if (dir && cnt >= P_M1) dir <= 1'b0;
             end
             if (cmp_load) shadow <= cmp_in;
             cmp_clip <= cmp_load & any_clip;
