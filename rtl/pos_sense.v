@@ -71,7 +71,9 @@
 //   speed[POS_W], speed_q[W_W], speed_sat, pos_at_sample[POS_W],
 //   theta_at_sample[16], sample_valid           per sample
 // Parameters: CPR, POLE_PAIRS, POS_W, ANGLE_BITS, MUL_W, ANGLE_MUL_SHIFT (-1 =
-//   auto), W_W, W_FRAC (>= 1), REALIGN (0/1, see above).  MW = clog2(CPR).
+//   auto), W_W, W_FRAC (>= 1), REALIGN (0/1, see above), ANGLE_DSP (1 = the
+//   product on a DSP48A1; 0 = m * ANGLE_MUL tracked in fabric next to m, same
+//   outputs and latency, about 100 LUTs more, no DSP).  MW = clog2(CPR).
 //   2 <= CPR < 2**17 keeps the product in one DSP (larger works, more DSPs).
 // Latency: pos step -> pos_mod 2 clocks (+1 per extra bit of a jump);
 //   pos_mod -> theta 2 clocks (DSP M register, then the DSP post-adder adds
@@ -93,7 +95,8 @@ module pos_sense #(
     parameter integer ANGLE_MUL_SHIFT = -1,
     parameter integer W_W = `EMPC_W_W,
     parameter integer W_FRAC = `EMPC_W_FRAC,
-    parameter integer REALIGN = 0
+    parameter integer REALIGN = 0,
+    parameter integer ANGLE_DSP = 1
 ) (
     input  wire                  clk,
     input  wire                  rst,
@@ -329,44 +332,118 @@ module pos_sense #(
         end
     end
 
-    // ---------------- angle pipeline: product, then round + offset ----------------
-    // mprod = m * ANGLE_MUL (DSP M register), acc = mprod + base_d * 2**S + 2**(S-1) (DSP post-adder,
-    // P register): theta = acc[S +: ANGLE_BITS].  Only the low S + ANGLE_BITS bits matter (mod 2**16).
+    // ---------------- angle pipeline ----------------
+    // Both variants give theta(t+2) = ((m(t) * ANGLE_MUL + 2**(S-1)) >> S) + base_d(t+1)
+    // (mod 2**ANGLE_BITS); only the low S + ANGLE_BITS bits of the product matter.
     localparam integer ACC_W = S + ANGLE_BITS;
-    localparam integer MP_W = (PROD_W > ACC_W) ? PROD_W : ACC_W;
     localparam [ACC_W-1:0] HALF = (S > 0) ? ({{(ACC_W-1){1'b0}}, 1'b1} << (S - 1)) : {ACC_W{1'b0}};
-    /* verilator lint_off UNUSEDSIGNAL */ // product bits >= ACC_W are whole turns, acc bits < S rounding only
-    reg  [MP_W-1:0]       mprod;
-    reg  [ACC_W-1:0]      acc;
+    // step of m * ANGLE_MUL for the DSP-free angle (ANGLE_DSP = 0): S_TAB[2k + corr] =
+    // c_k * ANGLE_MUL - corr * CPR * ANGLE_MUL (mod 2**ACC_W)
+    /* verilator lint_off UNUSEDSIGNAL */ // w: only the low ACC_W bits (mod 2**ACC_W)
+    function [2*POS_W*ACC_W-1:0] stab;
+        input integer dummy;
+        integer j, cr;
+        reg [63:0] v, w, cpr64, mul64;
+        begin
+            stab = {(2*POS_W*ACC_W){1'b0}};
+            cpr64 = 64'd0;
+            cpr64[31:0] = CPR + dummy;
+            mul64 = MUL64;
+            v = 64'd1 % cpr64;
+            for (j = 0; j < POS_W; j = j + 1) begin
+                for (cr = 0; cr < 2; cr = cr + 1) begin
+                    w = v * mul64 - ((cr != 0) ? cpr64 * mul64 : 64'd0);
+                    stab[(2*j+cr)*ACC_W +: ACC_W] = w[ACC_W-1:0];
+                end
+                v = (2 * v) % cpr64;
+            end
+        end
+    endfunction
     /* verilator lint_on UNUSEDSIGNAL */
+    /* verilator lint_off UNUSEDPARAM */ // used only without the DSP (ANGLE_DSP = 0)
+    localparam [2*POS_W*ACC_W-1:0] S_TAB = stab(0);
+    /* verilator lint_on UNUSEDPARAM */
     reg  [ANGLE_BITS-1:0] base_d;
     reg                   v1, al1;
-    reg  [ACC_W-1:0]      base_s;
-    always @* begin
-        base_s = HALF;
-        base_s[S +: ANGLE_BITS] = base_d;
-    end
-    wire [MP_W-1:0]       m_mul = m * MUL;
     always @(posedge clk) begin
         if (rst) begin
-            mprod   <= {MP_W{1'b0}};
-            acc     <= {ACC_W{1'b0}};
             base_d  <= {ANGLE_BITS{1'b0}};
             v1      <= 1'b0;
             al1     <= 1'b0;
             valid   <= 1'b0;
             aligned <= 1'b0;
         end else begin
-            mprod   <= m_mul;
             base_d  <= base_rel + ((al || rel_cal) ? cal_offset : hall_offset);
-            acc     <= mprod[ACC_W-1:0] + base_s;
             v1      <= al | hall_init;
             al1     <= al;
             valid   <= v1;
             aligned <= al1;
         end
     end
-    assign theta = acc[S +: ANGLE_BITS];
+
+    generate
+        if (ANGLE_DSP != 0) begin : g_dsp
+            // mprod = m * ANGLE_MUL (DSP M register), acc = mprod + base_d * 2**S + 2**(S-1)
+            // (DSP post-adder, P register): theta = acc[S +: ANGLE_BITS]
+            localparam integer MP_W = (PROD_W > ACC_W) ? PROD_W : ACC_W;
+            /* verilator lint_off UNUSEDSIGNAL */ // product bits >= ACC_W are whole turns, acc bits < S rounding only
+            reg  [MP_W-1:0]  mprod;
+            reg  [ACC_W-1:0] acc;
+            /* verilator lint_on UNUSEDSIGNAL */
+            reg  [ACC_W-1:0] base_s;
+            always @* begin
+                base_s = HALF;
+                base_s[S +: ANGLE_BITS] = base_d;
+            end
+            wire [MP_W-1:0]  m_mul = m * MUL;
+            always @(posedge clk) begin
+                if (rst) begin
+                    mprod <= {MP_W{1'b0}};
+                    acc   <= {ACC_W{1'b0}};
+                end else begin
+                    mprod <= m_mul;
+                    acc   <= mprod[ACC_W-1:0] + base_s;
+                end
+            end
+            assign theta = acc[S +: ANGLE_BITS];
+        end else begin : g_nodsp
+            // No multiplier: a = m * ANGLE_MUL + 2**(S-1) (mod 2**ACC_W) is tracked next to m,
+            // one clock behind it.  Every step of m (+-c_k, then -+CPR) moves a by
+            // +-(c_k * ANGLE_MUL - corr * CPR * ANGLE_MUL): a table indexed by k and the
+            // reducer's correction bit, registered, then one add/subtract.
+            wire             corr = r_neg1 ? s_neg : s_ge;      // the reducer added +-CPR
+            wire             step = busy && r[0] && !ev_any;    // m changes by +-c_k (mod CPR)
+            reg  [ACC_W-1:0] sv;                                // the step of a, magnitude
+            reg              sv_sub, sv_on, a_clr;
+            reg  [ACC_W-1:0] a;
+            reg  [ANGLE_BITS-1:0] th;
+            // a +- sv in one adder: the LSB pair (1, sv_sub) injects the carry-in (a_n[0] unused)
+            /* verilator lint_off UNUSEDSIGNAL */
+            wire [ACC_W:0] a_n = {a, 1'b1} + {sv ^ {ACC_W{sv_sub}}, sv_sub};
+            /* verilator lint_on UNUSEDSIGNAL */
+            always @(posedge clk) begin
+                if (rst) begin
+                    sv     <= {ACC_W{1'b0}};
+                    sv_sub <= 1'b0;
+                    sv_on  <= 1'b0;
+                    a_clr  <= 1'b0;
+                    a      <= HALF;
+                    th     <= {ANGLE_BITS{1'b0}};
+                end else begin
+                    sv     <= S_TAB[{k, corr}*ACC_W +: ACC_W];
+                    sv_sub <= r_neg1;
+                    sv_on  <= step;
+                    a_clr  <= ev_any;
+                    if (a_clr)
+                        a <= HALF;
+                    else if (sv_on)
+                        a <= a_n[ACC_W:1];
+                    th     <= a[S +: ANGLE_BITS] + base_d;
+                end
+            end
+            assign theta = th;
+        end
+    endgenerate
 
     // ---------------- speed (eq. 37) and sampling ----------------
     localparam integer WIDE = POS_W + W_FRAC;

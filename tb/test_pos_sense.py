@@ -4,8 +4,9 @@ Model-only (pytest): the bit-exact angle function of empc.rtlmodel.pos_sense is
 checked for every m in [0, CPR) against the exact 2**16*frac(P*m/CPR) within
 the stated bound, for the default and non-multiple CPR/P pairs.
 
-cocotb (three builds: CPR/P = 4000/4 default, 4096/3, 1000/7): every clock all
-outputs are compared bit-exact with the stepping model PosSense; on top of that,
+cocotb (five builds: CPR/P = 4000/4 default, 4096/3, 1000/7, and 4000/4, 1000/7 with
+ANGLE_DSP = 0, the multiplier-free angle): every clock all outputs are compared
+bit-exact with the stepping model PosSense; on top of that,
 independently of the model:
   * theta after settling equals round-half-up angle of the true position
     relative to the index, within the stated bound of round(2**16*frac(P*x/CPR))
@@ -398,9 +399,11 @@ def test_angle_function_bound(cpr, p):
     print(f"CPR {cpr} P {p}: S {s} MUL {mul} worst {worst:.3f} <= bound {bound:.3f} LSB over {cpr} positions")
 
 
-@pytest.mark.parametrize("cpr,p,realign", [(4000, 4, 0), (4096, 3, 0), (1000, 7, 1)])
-def test_pos_sense(cpr, p, realign):
+@pytest.mark.parametrize("cpr,p,realign,dsp", [(4000, 4, 0, 1), (4096, 3, 0, 1), (1000, 7, 1, 1), (4000, 4, 0, 0),
+                                               (1000, 7, 1, 0)])
+def test_pos_sense(cpr, p, realign, dsp):
+    """ANGLE_DSP = 0 (angle tracked without the multiplier) must give the same bit-exact outputs."""
     from runner import run
-    params = dict(CPR=cpr, POLE_PAIRS=p, REALIGN=realign)
-    run(toplevel="pos_sense", test_module="test_pos_sense", parameters=params, name=f"test_pos_sense_{cpr}_{p}",
-        extra_env={"TB_PARAMS": json.dumps(params)})
+    params = dict(CPR=cpr, POLE_PAIRS=p, REALIGN=realign, ANGLE_DSP=dsp)
+    run(toplevel="pos_sense", test_module="test_pos_sense", parameters=params,
+        name=f"test_pos_sense_{cpr}_{p}" + ("" if dsp else "_nodsp"), extra_env={"TB_PARAMS": json.dumps(params)})
