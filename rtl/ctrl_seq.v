@@ -1,38 +1,69 @@
-// ctrl_seq: per-axis control sequencer (paper 000 Fig. 3, sec. V-A).
+// ctrl_seq: per-axis control sequencer (paper 000 Fig. 3, sec. V-A), on a bit-serial datapath.
 //
-// Every PWM period, at the ADC trigger (period centre), it latches the
-// electrical angle theta_trig and the encoder count, and when the ADC samples
-// arrive it runs the modulation chain for the held u_dq:
+// Every PWM period, at the ADC trigger (period centre), it latches the encoder count
+// and, THETA_LAT clocks later, the electrical angle theta_trig computed from that count
+// (pos_sense needs THETA_LAT clocks from a count to its angle), and runs the
+// modulation chain for the held u_dq when the ADC samples have arrived:
 //   theta_mod = theta_trig + (theta_trig - theta_trig_prev)   (one PWM period ahead:
 //               the angle in the middle of the period the new duties are applied)
 //   xform mod: inv_park(u, theta_mod) -> inv_clarke -> min_sub -> duty_scale(kdc) -> cmp, cmp_load
 // In the last PWM period of each control period (pwm_per_control periods), before
 // the modulation it runs the control law:
 //   xform front: clarke(i_abc) -> park(theta_trig) -> i_d, i_q
-//   omega = sat32((pos_trig - pos_prev) << 16) + rshift_round(kacc * i_q, kacc_shift)
-//           (eq. 37 in counts per Ts, plus the (Ts/2) acceleration term); the count is
-//           delayed by THETA_LAT so that it is the count theta_trig was computed from
+//   omega = sat32(sat32((pos_trig - pos_prev) << 16) + rshift_round(kacc * i_q, kacc_shift))
+//           (eq. 37 in counts per Ts, plus the (Ts/2) acceleration term)
 //   core inputs (raw units), written one word per clock into the core's input buffer:
 //   y = (i_d, i_q, omega | 0), omega, dx = x_k - x_{k-1}, u_prev, ebar_prev, and the
-//   references w_k..w_{k+N} from ref_gen (Q.32) -> Q16.16 speed or, for the position
-//   task, Q32.8 relative to the measured count (modulo 2^32, so the encoder wrap is
-//   harmless; the core's own translation then subtracts 0); one shared subtract/round/
-//   saturate formats the references one per clock
-//   -> mpc_core start/done -> u, ebar (kept here as the loop state).
+//   references w_k..w_{k+N} read bit by bit from ref_gen (Q.32) -> Q16.16 speed or, for
+//   the position task, Q32.8 relative to the measured count (modulo 2^32, so the
+//   encoder wrap is harmless; the core's own translation then subtracts 0), rounded
+//   half up and saturated to SIG_W
+//   -> mpc_core start/done -> u, ebar (held by the core; u also here as u_st).
 // With run = 0 the law is skipped and u = ebar = 0 (bridges, if enabled, see zero voltage).
+// Bit-exact to gen/empc/rtlmodel/ctrl_seq.py (CtrlSeq.period) with mpc_core.py.
 //
-// Ports: see below; formats are those of empc_formats.vh.  The bit-accurate model is
-// gen/empc/rtlmodel/ctrl_seq.py.
+// Datapath (LSB first, one bit per clock; no multiplier, no wide adder):
+//   X        40-bit word register = the core's in_wdata.  A word to copy (i_d, i_q,
+//            id_ref, iq_ref, u_prev, ebar_prev, the count) is loaded in parallel as the OR
+//            of "stage" registers, each a copy of its source that is held at 0 (flip-flop
+//            reset) except in the one clock it is selected; a computed word is shifted in
+//            at the top while the operand leaves at the bottom (X[0]).
+//   ALU      one serial adder A + (B or ~B) + carry (0..2: subtract with rounding), sign
+//            extension of narrow operands by holding their top bit, overflow flags and a
+//            saturation pattern for the words that saturate (omega, references).
+//   rings    shift registers holding the previous i_d, i_q, omega, count (B operands,
+//            refilled from the A stream in the same pass), dpos, omega (result), the
+//            acceleration term ka and the angle words; none needs a data multiplexer.
+//   mult     kacc * i_q: a serial-parallel multiplier (19-bit adder) fed with i_q bit by
+//            bit; its product stream is shifted through a 41-bit register for s + 40
+//            steps (s = kacc_shift), which leaves ka = product >> s in bits 40:1 and the
+//            rounding bit product[s-1] in bit 0 (0 for s = 0).
+//   theta    own 1-bit adder: theta_mod = 2 theta_trig - theta_prev (theta_trig if first),
+//            written into the xform angle register after the front has started.
+//   sequence a microprogram (one word per core-input step, block RAM), the control
+//            program from the trigger of a control period, a status program (U_D, U_Q)
+//            at every modulation start.
+//   status   the words I_D, I_Q, SPEED, REF (w_k in the task window: bits 47:16 speed,
+//            39:8 position), U_D, U_Q leave bit-serially (st_*) while they pass through
+//            the datapath; the register file assembles and stores them.
+//
+// Ports: see below; formats are those of empc_formats.vh.  References: ref_ok (ref_gen
+// w_ok), ref_age / ref_bit -> ref_q (combinational).  core_in_we / core_in_addr /
+// core_in_wdata and st_* are combinational from this module's registers.
 // Latency: adc_trig -> cmp_load is reported on `latency` (clocks) every period; it must
 // end before the next period boundary (PWM_HALF_PERIOD clocks after the trigger), else
-// `overrun` pulses at the boundary and the previous compare values stay.
-// Reset: state idle, u = ebar = 0, previous-sample registers 0, first-period flag set.
+// `overrun` pulses at the boundary (a trigger while a period is still running is ignored).
+// Modulation period: ADC conversion + 84 (xform mod) + 3 clocks; control period: about
+// 750 clocks for N = 4 (see docs/blocks/ctrl_seq.md).
+// Reset: idle, u = 0, previous-sample registers 0, first-period flag set.
 `default_nettype none
 `include "empc_formats.vh"
+`include "empc_regs.vh"
 module ctrl_seq #(
     parameter integer N = `EMPC_N,
     parameter integer CW = $clog2(`EMPC_PWM_HALF_PERIOD + 1),
-    parameter integer THETA_LAT = 4     // pos_sense: clocks from a count to its angle
+    parameter integer THETA_LAT = 4,    // pos_sense: clocks from a count to its angle (1..8)
+    parameter integer AW = (N < 2) ? 1 : $clog2(N + 1)
 ) (
     input  wire                           clk,
     input  wire                           rst,
@@ -58,184 +89,340 @@ module ctrl_seq #(
     input  wire                           task_pos,        // active coefficient bank: position task
     // reference generator
     output reg                            ref_advance,
-    input  wire [(N+1)*64-1:0]            ref_w,           // w_k .. w_{k+N}, Q.32
+    input  wire                           ref_ok,          // w_k .. w_{k+N} current
+    output wire [AW-1:0]                  ref_age,         // N - m for w_{k+m}
+    output wire [5:0]                     ref_bit,
+    input  wire                           ref_q,
     // MPC core
     output reg                            core_start,
-    output reg                            core_in_we,      // input buffer (map: EMPC_IN_* / mpc_core.py)
-    output reg  [5:0]                     core_in_addr,
-    output reg  signed [`EMPC_SIG_W-1:0]  core_in_wdata,
+    output wire                           core_in_we,      // input buffer (map: EMPC_IN_* / mpc_core.py)
+    output wire [5:0]                     core_in_addr,
+    output wire signed [`EMPC_SIG_W-1:0]  core_in_wdata,
     input  wire                           core_done,
     input  wire [2*`EMPC_U_W-1:0]         core_u,
     input  wire [3*`EMPC_SIG_W-1:0]       core_ebar,
     // PWM
-    output reg  [3*CW-1:0]                cmp,
+    output wire [3*CW-1:0]                cmp,
     output reg                            cmp_load,
     // status
     output reg                            control_done,    // pulse: a control period completed
     output reg                            overrun,         // pulse: computation missed the boundary
     output reg                            front_sat,       // pulse: a front-end block saturated
     output reg  [15:0]                    latency,
-    output reg  signed [`EMPC_I_W-1:0]    i_d,
-    output reg  signed [`EMPC_I_W-1:0]    i_q,
+    output wire signed [`EMPC_I_W-1:0]    i_d,
+    output wire signed [`EMPC_I_W-1:0]    i_q,
     output reg  signed [`EMPC_W_W-1:0]    omega,
-    output reg  signed [`EMPC_U_W-1:0]    u_d,
-    output reg  signed [`EMPC_U_W-1:0]    u_q,
-    output reg  [`EMPC_ANGLE_BITS-1:0]    theta_trig
+    output reg  [`EMPC_ANGLE_BITS-1:0]    theta_trig,
+    // status words, bit-serial (LSB first) into the register file: st_d shifted in with
+    // st_sh, the 32-bit word then written to register offset st_addr with st_wr
+    output wire                           st_sh,
+    output wire                           st_d,
+    output wire                           st_wr,
+    output wire [5:0]                     st_addr,
+    // event counters (register file words, incremented here): st_bit = the bit of word st_addr
+    // to read (cnt_q, one clock later), cnt_ev = events of the period per counter
+    output wire [4:0]                     st_bit,
+    input  wire                           cnt_q,
+    input  wire [13:0]                    cnt_ev,
+    input  wire                           cnt_clear,       // pulse: zero the counters
+    output wire                           cnt_done,        // pulse: a counter sweep ended (events taken)
+    output wire                           cnt_hide,        // counters are being zeroed (read them as 0)
+    output wire                           st_hide          // status words are being zeroed (after rst)
 );
-    localparam integer SW = `EMPC_SIG_W;
-    localparam integer UW = `EMPC_U_W;
-    localparam integer IW = `EMPC_I_W;
-    localparam integer WW = `EMPC_W_W;
-    localparam integer AB = `EMPC_ANGLE_BITS;
-    localparam integer PW = `EMPC_POS_W;
-    localparam integer TH_SH = 32 - `EMPC_TH_FRAC;           // ref Q.32 -> position Q.8
-    localparam integer W_SH = 32 - `EMPC_W_FRAC;             // ref Q.32 -> speed Q.16
+    localparam integer SW = `EMPC_SIG_W;     // 40
+    localparam integer UW = `EMPC_U_W;       // 24
+    localparam integer IW = `EMPC_I_W;       // 18
+    localparam integer WW = `EMPC_W_W;       // 32
+    localparam integer AB = `EMPC_ANGLE_BITS; // 16
+    localparam integer PW = `EMPC_POS_W;     // 32
 
-    localparam [3:0] S_IDLE = 4'd0, S_ADC = 4'd1, S_FRONT = 4'd2, S_OMEGA = 4'd3, S_OMEGA2 = 4'd4,
-                     S_WRITE = 4'd5, S_CORE = 4'd6, S_MOD = 4'd7, S_MOD_WAIT = 4'd8;
-    reg [3:0] state;
-    localparam [2:0] OMEGA_WAIT = 3'd4;  // i_q -> ka_b -> ka_p -> ka_t -> omega_r
-
-    // ---------------- helpers ----------------
-    function signed [SW-1:0] sat_sw;                 // saturate a 66-bit value to SIG_W
-        input signed [65:0] v;
-        begin
-            if (v > $signed({{(67-SW){1'b0}}, {(SW-1){1'b1}}}))
-                sat_sw = {1'b0, {(SW-1){1'b1}}};
-            else if (v < $signed({{(66-SW){1'b1}}, 1'b1, {(SW-1){1'b0}}}))
-                sat_sw = {1'b1, {(SW-1){1'b0}}};
-            else
-                sat_sw = v[SW-1:0];
-        end
-    endfunction
-
-    function signed [65:0] rsr;                      // rshift_round of a signed 64-bit value
-        input signed [63:0] v;
-        input integer n;
-        reg signed [65:0] t;
-        begin
-            t = {{2{v[63]}}, v} + (66'sd1 <<< (n - 1));
-            rsr = t >>> n;
-        end
-    endfunction
+    generate if (SW != 40 || UW != 24 || IW != 18 || WW != 32 || PW != 32 || AB != 16 ||
+                 `EMPC_W_FRAC != 16 || `EMPC_TH_FRAC != 8 || N > 8 || THETA_LAT < 1 || THETA_LAT > 8)
+    begin : g_bad_params
+        ctrl_seq_unsupported_parameters u_error ();   // no such module: elaboration stops here
+    end endgenerate
 
     // ---------------- per-period bookkeeping ----------------
     reg  [7:0]  per_cnt;            // PWM periods since the last control period
     reg         is_control;
-    reg         first;
-    reg  [AB-1:0] theta_mod;
-    reg  [PW-1:0] pos_trig, pos_prev;
-    reg  signed [IW-1:0] id_prev, iq_prev;
-    reg  signed [WW-1:0] omega_prev;
-    reg  signed [UW-1:0] u_st0, u_st1;
-    reg  [3*SW-1:0] ebar_st;
+    reg         first, mfirst;
     reg  [15:0] lat_cnt;
     reg         busy_period;        // between the trigger and cmp_load
-
+    reg  [PW-1:0] pos_trig;
+    reg  signed [UW-1:0] u_st0, u_st1;
+    reg         zeroed;             // run was low since the last core update: u_prev = ebar_prev = 0
+    wire        trig = adc_trig && !busy_period;
+    wire        ctl_now = (per_cnt + 8'd1 >= pwm_per_control);
 
     // ---------------- transform chain: one microprogrammed MAC (xform) ----------------
     reg  xf_front, xf_mod;
     wire xf_busy, xf_done, xf_sat;
-    wire signed [IW-1:0] xf_d, xf_q;
     wire [CW-1:0] cmp_a, cmp_b, cmp_c;
-    xform u_xform (.clk(clk), .rst(rst), .start_front(xf_front), .start_mod(xf_mod),
-                   .angle(xf_front ? theta_trig : theta_mod),
+    reg  [AB-1:0] ang;              // angle register: theta_trig for front, theta_mod for mod
+    reg  xf_run_mod;                // the xform operation in flight is the modulation
+    xform u_xform (.clk(clk), .rst(rst), .start_front(xf_front), .start_mod(xf_mod), .angle(ang),
                    .i_a(cur0), .i_b(cur1), .i_c(cur2), .u_d(u_st0), .u_q(u_st1), .kdc(kdc),
-                   .busy(xf_busy), .done(xf_done), .sat(xf_sat), .i_d(xf_d), .i_q(xf_q),
+                   .busy(xf_busy), .done(xf_done), .sat(xf_sat), .i_d(i_d), .i_q(i_q),
                    .cmp_a(cmp_a), .cmp_b(cmp_b), .cmp_c(cmp_c));
+    assign cmp = {cmp_c, cmp_b, cmp_a};
 
-    // the count that belongs to `theta` (pos_sense needs THETA_LAT clocks from count to angle)
-    reg [PW-1:0] pos_dl [0:THETA_LAT-1];
-    integer di;
-    always @(posedge clk) begin
-        pos_dl[0] <= pos;
-        for (di = 1; di < THETA_LAT; di = di + 1) pos_dl[di] <= pos_dl[di-1];
+    // ---------------- theta unit (own 1-bit adder) ----------------
+    reg  [2:0]  th_wait;            // clocks until theta belongs to the latched count
+    reg         th_wait_run, th_run, th_done, ang_run, ang_done;
+    reg  [3:0]  jt;
+    reg  [AB-1:0] tp, tm;           // theta_prev, theta_mod (shift registers)
+    reg         ta_d, tc;           // theta bit jt-1 (2 theta), carry
+    wire        ta  = theta_trig[jt];
+    wire        tb  = mfirst ? ta : tp[0];
+    wire        tr  = ta_d ^ ~tb ^ tc;          // 2 theta - theta_prev (theta if first)
+
+    // ---------------- microprogram (one word per step, block RAM) ----------------
+    localparam [3:0] OP_POS = 4'd0, OP_ZERO = 4'd1, OP_COPY = 4'd2, OP_REF = 4'd3, OP_DIFF = 4'd4,
+                     OP_OM = 4'd5, OP_FIX3 = 4'd6, OP_W6 = 4'd7, OP_ZPOS = 4'd8, OP_END = 4'd9,
+                     OP_STAT = 4'd10, OP_SEND = 4'd11, OP_CNT = 4'd12, OP_CEND = 4'd13;
+    localparam [3:0] SRC_POS = 4'd0, SRC_E0 = 4'd1, SRC_E1 = 4'd2, SRC_E2 = 4'd3, SRC_U0 = 4'd4,
+                     SRC_U1 = 4'd5, SRC_IDR = 4'd6, SRC_IQR = 4'd7, SRC_ID = 4'd8, SRC_IQ = 4'd9;
+    localparam integer NUC = 14 + 3 * (N + 1);
+    localparam integer PCI_STAT = 64, PCI_RSTZ = 67, PCI_CNT = 73;     // entry points
+    localparam [6:0]   PC_STAT = PCI_STAT[6:0], PC_RSTZ = PCI_RSTZ[6:0], PC_CNT = PCI_CNT[6:0];
+    localparam integer NCNT = 14;   // SAT_OPERAND .. CNT_OVERRUN, PERIODS
+    function [17:0] uword;
+        input [3:0] op;
+        input [3:0] src;
+        input [5:0] wa;
+        input [2:0] m;
+        uword = {1'b0, m, wa, src, op};
+    endfunction
+    (* rom_style = "block" *) reg [17:0] ucode [0:127];
+    integer ui, ua;
+    initial begin
+        for (ui = 0; ui < 128; ui = ui + 1) ucode[ui] = uword(OP_SEND, 4'd0, 6'd0, 3'd0);
+        ucode[0] = uword(OP_POS, SRC_POS, `EMPC_IN_DX + 6'd3, 3'd0);      // dx3 = dpos << 8
+        ucode[1] = uword(OP_ZERO, 4'd0, `EMPC_IN_DX + 6'd4, 3'd0);        // dx4 = 0
+        ucode[2] = uword(OP_COPY, SRC_E0, `EMPC_IN_EBAR + 6'd0, 3'd0);    // ebar_prev
+        ucode[3] = uword(OP_COPY, SRC_E1, `EMPC_IN_EBAR + 6'd1, 3'd0);
+        ucode[4] = uword(OP_COPY, SRC_E2, `EMPC_IN_EBAR + 6'd2, 3'd0);
+        ucode[5] = uword(OP_COPY, SRC_U0, `EMPC_IN_UPREV + 6'd0, 3'd0);   // u_prev
+        ucode[6] = uword(OP_COPY, SRC_U1, `EMPC_IN_UPREV + 6'd1, 3'd0);
+        for (ui = 0; ui <= N; ui = ui + 1) begin                          // wref[m] = (id_ref, iq_ref, w3)
+            ua = `EMPC_IN_WREF + 3 * ui;
+            ucode[7 + 3 * ui] = uword(OP_COPY, SRC_IDR, ua[5:0], 3'd0);
+            ua = ua + 1;
+            ucode[8 + 3 * ui] = uword(OP_COPY, SRC_IQR, ua[5:0], 3'd0);
+            ua = ua + 1;
+            ucode[9 + 3 * ui] = uword(OP_REF, 4'd0, ua[5:0], ui[2:0]);
+        end
+        ucode[NUC - 7] = uword(OP_DIFF, SRC_ID, `EMPC_IN_Y + 6'd0, 3'd0);    // y0 = i_d; dx0 at +4
+        ucode[NUC - 6] = uword(OP_DIFF, SRC_IQ, `EMPC_IN_Y + 6'd1, 3'd0);    // y1 = i_q; dx1 at +4
+        ucode[NUC - 5] = uword(OP_OM, 4'd0, 6'd0, 3'd0);
+        ucode[NUC - 4] = uword(OP_FIX3, 4'd0, `EMPC_IN_OMEGA, 3'd0);         // omega (and y2 = omega)
+        ucode[NUC - 3] = uword(OP_W6, 4'd0, `EMPC_IN_DX + 6'd2, 3'd0);       // dx2
+        ucode[NUC - 2] = uword(OP_ZPOS, 4'd0, `EMPC_IN_Y + 6'd2, 3'd0);      // y2 = 0 (position task)
+        ucode[NUC - 1] = uword(OP_END, 4'd0, 6'd0, 3'd0);
+        // status program, at every modulation start: U_D, U_Q = the u applied
+        ucode[PCI_STAT + 0] = uword(OP_STAT, SRC_U0, `EMPC_A_U_D, 3'd0);
+        ucode[PCI_STAT + 1] = uword(OP_STAT, SRC_U1, `EMPC_A_U_Q, 3'd0);
+        ucode[PCI_STAT + 2] = uword(OP_SEND, 4'd0, 6'd0, 3'd0);
+        // after rst: the status words to 0 (then the counters, zero sweep)
+        ucode[PCI_RSTZ + 0] = uword(OP_CNT, 4'd15, `EMPC_A_SPEED, 3'd0);
+        ucode[PCI_RSTZ + 1] = uword(OP_CNT, 4'd15, `EMPC_A_I_D, 3'd0);
+        ucode[PCI_RSTZ + 2] = uword(OP_CNT, 4'd15, `EMPC_A_I_Q, 3'd0);
+        ucode[PCI_RSTZ + 3] = uword(OP_CNT, 4'd15, `EMPC_A_U_D, 3'd0);
+        ucode[PCI_RSTZ + 4] = uword(OP_CNT, 4'd15, `EMPC_A_U_Q, 3'd0);
+        ucode[PCI_RSTZ + 5] = uword(OP_CNT, 4'd15, `EMPC_A_REF, 3'd0);
+        // counter sweep, after the modulation of a control period (or zeroing them)
+        for (ui = 0; ui < NCNT - 1; ui = ui + 1) begin
+            ua = `EMPC_A_SAT_OPERAND + ui;
+            ucode[PCI_CNT + ui] = uword(OP_CNT, ui[3:0], ua[5:0], 3'd0);
+        end
+        ucode[PCI_CNT + NCNT - 1] = uword(OP_CNT, 4'd13, `EMPC_A_PERIODS, 3'd0);
+        ucode[PCI_CNT + NCNT] = uword(OP_CEND, 4'd0, 6'd0, 3'd0);
     end
-    wire [PW-1:0] pos_theta = pos_dl[THETA_LAT-1];
+    reg  [6:0]  pc;
+    reg  [6:0]  pc_next;
+    reg  [17:0] uw;                 // ucode[pc]
+    wire [3:0]  u_op  = uw[3:0];
+    wire [3:0]  u_src = uw[7:4];
+    wire [5:0]  u_wa  = uw[13:8];
+    wire [2:0]  u_m   = uw[16:14];
 
-    // eq. 37: counts per Ts in Q16.16, saturated to W_W
-    wire signed [PW-1:0] dpos_c = pos_trig - pos_prev;
-    wire signed [PW+`EMPC_W_FRAC:0] spd_full = {dpos_c[PW-1], dpos_c, {`EMPC_W_FRAC{1'b0}}};
-    wire spd_ovf = (spd_full > $signed({{(PW+`EMPC_W_FRAC+1-WW+1){1'b0}}, {(WW-1){1'b1}}})) ||
-                   (spd_full < $signed({{(PW+`EMPC_W_FRAC+1-WW){1'b1}}, 1'b1, {(WW-1){1'b0}}}));
-    wire signed [WW-1:0] speed_q = (spd_full > $signed({{(PW+`EMPC_W_FRAC+1-WW+1){1'b0}}, {(WW-1){1'b1}}})) ?
-                                   {1'b0, {(WW-1){1'b1}}} :
-                                   (spd_full < $signed({{(PW+`EMPC_W_FRAC+1-WW){1'b1}}, 1'b1, {(WW-1){1'b0}}})) ?
-                                   {1'b1, {(WW-1){1'b0}}} : spd_full[WW-1:0];
+    // engine states
+    localparam [2:0] E_IDLE = 3'd0, E_OP = 3'd1, E_STG = 3'd2, E_LD = 3'd3, E_PASS = 3'd4,
+                     E_FIX = 3'd5, E_WR = 3'd6, E_WR2 = 3'd7;
+    reg  [2:0]  est;
+    reg         prog_done, front_done, adc_seen, core_run, core_fin;
+    reg  [5:0]  j;                  // bit of the pass
 
-    // speed-estimate acceleration term: one registered 18x18 product (one DSP48A1), then
-    // round/shift and the saturating sum each in their own register stage
-    reg  signed [17:0] ka_a, ka_b;
-    reg  signed [35:0] ka_p;
-    reg  signed [36:0] ka_t;
-    reg  signed [WW-1:0] omega_r;
-    reg                  omega_ovf_r;
-    wire signed [36:0] ka_round = {ka_p[35], ka_p} + ((kacc_shift == 5'd0) ? 37'sd0 : (37'sd1 <<< (kacc_shift - 5'd1)));
-    wire signed [37:0] omega_sum = {{6{speed_q[WW-1]}}, speed_q} + {ka_t[36], ka_t};
-    wire               omega_ovf = (omega_sum > $signed({7'd0, {(WW-1){1'b1}}})) ||
-                                   (omega_sum < $signed({6'h3f, 1'b1, {(WW-1){1'b0}}}));
+    wire is_pos  = (u_op == OP_POS);
+    wire is_ref  = (u_op == OP_REF);
+    wire is_diff = (u_op == OP_DIFF);
+    wire is_om   = (u_op == OP_OM);
+    wire is_fix3 = (u_op == OP_FIX3);
+    wire is_w6   = (u_op == OP_W6);
+    wire is_stat = (u_op == OP_STAT);
+    wire is_cnt  = (u_op == OP_CNT);
+    wire diff_q  = u_src[0];        // SRC_IQ (9) vs SRC_ID (8)
+    wire m0      = (u_m == 3'd0);
+    wire in_pass = (est == E_PASS);
+
+    // ---------------- stage registers and X ----------------
+    // Each stage register holds its source in the clock after its select and is 0 otherwise
+    // (the select drives the flip-flops' reset); X loads the OR of all stages.
+    reg  [SW-1:0] x;
+    reg  [PW-1:0] g_pos;
+    reg  [IW-1:0] g_id, g_iq, g_idr, g_iqr;
+    reg  [SW-1:0] g_e0, g_e1, g_e2;
+    reg  [UW-1:0] g_u0, g_u1;
+    reg           g_s18, g_s24;    // sign of the staged 18-bit source / of any 18- or 24-bit source
+    wire          sel = (est == E_STG);
+    wire          src18 = (u_src == SRC_ID) || (u_src == SRC_IQ) || (u_src == SRC_IDR) || (u_src == SRC_IQR);
+    wire          sgn18 = (u_src == SRC_ID) ? i_d[IW-1] : (u_src == SRC_IQ) ? i_q[IW-1] :
+                          (u_src == SRC_IDR) ? id_ref[IW-1] : iq_ref[IW-1];
+    wire          sgn24 = (u_src == SRC_U0) ? u_st0[UW-1] : u_st1[UW-1];
     always @(posedge clk) begin
-        ka_a <= kacc;
-        ka_b <= i_q;
-        ka_p <= ka_a * ka_b;
-        ka_t <= ka_round >>> kacc_shift;
-        omega_r <= (omega_sum > $signed({7'd0, {(WW-1){1'b1}}})) ? {1'b0, {(WW-1){1'b1}}} :
-                   (omega_sum < $signed({6'h3f, 1'b1, {(WW-1){1'b0}}})) ? {1'b1, {(WW-1){1'b0}}} :
-                   omega_sum[WW-1:0];
-        omega_ovf_r <= omega_ovf || spd_ovf;
+        g_pos <= (sel && u_src == SRC_POS) ? pos_trig : {PW{1'b0}};
+        g_id  <= (sel && u_src == SRC_ID)  ? i_d : {IW{1'b0}};
+        g_iq  <= (sel && u_src == SRC_IQ)  ? i_q : {IW{1'b0}};
+        g_idr <= (sel && u_src == SRC_IDR) ? id_ref : {IW{1'b0}};
+        g_iqr <= (sel && u_src == SRC_IQR) ? iq_ref : {IW{1'b0}};
+        g_e0  <= (sel && u_src == SRC_E0 && !zeroed) ? core_ebar[0*SW +: SW] : {SW{1'b0}};
+        g_e1  <= (sel && u_src == SRC_E1 && !zeroed) ? core_ebar[1*SW +: SW] : {SW{1'b0}};
+        g_e2  <= (sel && u_src == SRC_E2 && !zeroed) ? core_ebar[2*SW +: SW] : {SW{1'b0}};
+        g_u0  <= (sel && u_src == SRC_U0) ? u_st0 : {UW{1'b0}};
+        g_u1  <= (sel && u_src == SRC_U1) ? u_st1 : {UW{1'b0}};
+        g_s18 <= sel && src18 && sgn18;
+        g_s24 <= sel && (src18 ? sgn18 : (u_src == SRC_U0 || u_src == SRC_U1) && sgn24);
     end
+    // the OR of the stages, sign-extended through the two registered sign bits; bits
+    // 17:0 have 11 inputs with X's own shift: split 6 + 5 so that each is one LUT6
+    (* keep *) wire [IW-1:0] g_lo = x[IW:1] | g_pos[IW-1:0] | g_e0[IW-1:0] | g_e1[IW-1:0] | g_e2[IW-1:0] |
+                                    g_u0[IW-1:0];
+    wire [SW-1:0] g_all = {{(SW-PW){1'b0}}, g_pos[PW-1:IW], {IW{1'b0}}} |
+                          {g_e0[SW-1:IW], {IW{1'b0}}} | {g_e1[SW-1:IW], {IW{1'b0}}} | {g_e2[SW-1:IW], {IW{1'b0}}} |
+                          {{(SW-UW){g_s24}}, {(UW-IW){g_s18}}, g_id | g_iq | g_idr | g_iqr} |
+                          {{(SW-UW){1'b0}}, g_u0[UW-1:IW], {IW{1'b0}}} | {{(SW-IW){1'b0}}, g_u1[IW-1:0] | g_lo} |
+                          {{(SW-UW){1'b0}}, g_u1[UW-1:IW], {IW{1'b0}}};
+    assign core_in_wdata = x;
 
-    // ---------------- core input formatting ----------------
-    wire signed [PW-1:0] dpos = dpos_c;                        // modular difference: counts per Ts
-    wire signed [IW:0]   did  = {i_d[IW-1], i_d} - {id_prev[IW-1], id_prev};
-    wire signed [IW:0]   diq  = {i_q[IW-1], i_q} - {iq_prev[IW-1], iq_prev};
-    wire signed [WW:0]   dom  = {omega[WW-1], omega} - {omega_prev[WW-1], omega_prev};
-    // one core input word per clock: word index -> value (references through one
-    // shared 64-bit subtract, registered, then round + saturate)
-    localparam [5:0] IN_LAST_FIXED = 6'd13, IN_WREF = 6'd16;
-    localparam [5:0] IN_END = IN_WREF + 6'd3 * N[5:0] + 6'd3;        // one past the last word
-    reg  [5:0]  wr_idx;                 // word being prepared (stage 1)
-    reg         wr_busy;
-    reg  [5:0]  wr_m;                   // reference sample m of word wr_idx
-    reg  [1:0]  wr_o;                   // output o of word wr_idx
-    reg         s1_valid;
-    reg  [5:0]  s1_addr;
-    reg  signed [SW-1:0] s1_fixed;      // value of a non-reference word
-    reg         s1_isref;
-    reg  signed [63:0]   s1_ref;        // speed: ref; position: ref - count (mod 2^64)
-    wire signed [63:0] ref_sel = ref_w[wr_m*64 +: 64];
-    wire signed [SW-1:0] x_id = {{(SW-IW){i_d[IW-1]}}, i_d};
-    wire signed [SW-1:0] x_iq = {{(SW-IW){i_q[IW-1]}}, i_q};
-    wire signed [SW-1:0] x_om = {{(SW-WW){omega[WW-1]}}, omega};
-    wire signed [SW-1:0] x_did = {{(SW-IW-1){did[IW]}}, did};
-    wire signed [SW-1:0] x_diq = {{(SW-IW-1){diq[IW]}}, diq};
-    wire signed [SW-1:0] x_dom = {{(SW-WW-1){dom[WW]}}, dom};
-    wire signed [SW-1:0] x_u0 = {{(SW-UW){u_st0[UW-1]}}, u_st0};
-    wire signed [SW-1:0] x_u1 = {{(SW-UW){u_st1[UW-1]}}, u_st1};
-    wire signed [SW-1:0] x_idr = {{(SW-IW){id_ref[IW-1]}}, id_ref};
-    wire signed [SW-1:0] x_iqr = {{(SW-IW){iq_ref[IW-1]}}, iq_ref};
-    reg signed [SW-1:0] fixed_val;
+    // ---------------- serial operands ----------------
+    reg  [IW-1:0] idp, iqp;         // previous i_d, i_q
+    reg  [WW-1:0] omp;              // previous omega
+    reg  [PW-1:0] pp;               // previous count (after the POS pass: this period's count)
+    reg  [PW-1:0] dp;               // dpos
+    reg  [WW-1:0] om;               // omega (OM pass result, saturated by the FIX3 pass)
+    reg  [40:0]   ka;               // product stream: ka = ka[40:1], rounding bit ka[0]
+    reg           a_h, b_h;         // held sign bits
+    reg           c0, c1;           // carry 0..2
+    reg           sd, spd_ovf, om_ovf, om_sgn, rnd, nz, r_ref, ref_ovf, ref_sgn;
+
+    // reference pass: first bit j0, ALU from ja, X takes 40 result bits from ja
+    wire [5:0] ref_j0  = task_pos ? (m0 ? 6'd8 : 6'd23) : 6'd15;
+    wire [5:0] ref_ja  = task_pos ? 6'd24 : 6'd16;
+    wire       ref_alu = (j >= ref_ja);
+    wire       ref_x   = ref_alu && (task_pos || j < 6'd56);
+    wire       ref_win = m0 && (task_pos ? (j >= 6'd8 && j < 6'd40) : (j >= 6'd16 && j < 6'd48));
+    assign ref_age = N[AW-1:0] - u_m[AW-1:0];
+    assign ref_bit = j;
+
+    // A operand
+    wire spd_raw = spd_ovf ? ((j < 6'd31) ? ~sd : sd) : (j < 6'd16) ? 1'b0 : dp[0];
+    reg  a_raw;
     always @(*) begin
-        case (wr_idx)
-            6'd0: fixed_val = x_id;
-            6'd1: fixed_val = x_iq;
-            6'd2: fixed_val = task_pos ? {SW{1'b0}} : x_om;
-            6'd3: fixed_val = x_om;
-            6'd4: fixed_val = x_did;
-            6'd5: fixed_val = x_diq;
-            6'd6: fixed_val = x_dom;
-            6'd7: fixed_val = {{(SW-PW-`EMPC_TH_FRAC){dpos[PW-1]}}, dpos, {`EMPC_TH_FRAC{1'b0}}};
-            6'd9: fixed_val = x_u0;
-            6'd10: fixed_val = x_u1;
-            6'd11: fixed_val = ebar_st[0*SW +: SW];
-            6'd12: fixed_val = ebar_st[1*SW +: SW];
-            6'd13: fixed_val = ebar_st[2*SW +: SW];
-            default: fixed_val = (wr_o == 2'd0) ? x_idr : x_iqr;   // 8 (dtau) reads 0 below
-        endcase
+        if (is_ref) a_raw = ref_q;
+        else if (is_cnt) a_raw = cnt_q;
+        else if (is_om) a_raw = spd_raw;
+        else if (is_fix3) a_raw = om_ovf ? ((j < 6'd31) ? ~om_sgn : om_sgn) : om[0];
+        else if (is_w6) a_raw = om[0];
+        else a_raw = x[0];
     end
+    wire a_hold = (is_om || is_fix3 || is_w6) && (j > 6'd31);
+    wire a_bit  = a_hold ? a_h : a_raw;
+    // B operand
+    reg  b_raw;
+    always @(*) begin
+        if (is_pos) b_raw = pp[0];
+        else if (is_ref) b_raw = task_pos && j >= 6'd32 && pp[0];
+        else if (is_diff) b_raw = diff_q ? iqp[0] : idp[0];
+        else if (is_om) b_raw = ka[1];
+        else if (is_w6) b_raw = omp[0];
+        else b_raw = 1'b0;
+    end
+    wire [5:0] b_hw   = is_diff ? 6'd17 : 6'd31;
+    wire       b_hold = (is_diff || is_w6) && (j > b_hw);
+    wire       b_bit  = b_hold ? b_h : b_raw;
+    wire       sub    = is_pos || is_diff || is_w6 || (is_ref && task_pos);
+    wire       b_eff  = b_bit ^ sub;
+    wire       r      = a_bit ^ b_eff ^ c0;
+    wire       maj    = (a_bit & b_eff) | (c0 & (a_bit ^ b_eff));
+    wire       r_fix  = (j == 6'd39) ? ref_sgn : ~ref_sgn;    // saturated reference, 40 bits
+
+    // pass control
+    // status / counter passes: 32 bits, the word written in the clock after the last bit
+    wire [5:0] pass_last = is_pos ? 6'd31 : (is_stat || is_cnt) ? 6'd32 : is_ref ? 6'd63 : 6'd39;
+    wire       pass_end  = in_pass && (j == pass_last);
+    wire       fix_end   = (est == E_FIX) && (j == 6'd39);
+    // reference overflow including this clock's bit (used at j = 63)
+    wire       ref_ovf_now = task_pos ? (rnd && !nz && r) : (ref_ovf || (r != r_ref));
+    wire       x_shift = (in_pass && (!is_ref || ref_x) && !is_om && !is_cnt) || (est == E_FIX);
+    wire       x_in    = (est == E_FIX) ? r_fix : r;
+    wire       x_load  = (est == E_LD);
+    wire       x_clr   = (est == E_WR && !(is_fix3 && !task_pos)) || (est == E_WR2) ||
+                         (pass_end && ((is_ref && ref_ovf_now) || is_stat));
+    wire       wr_zero = (est == E_OP) && ((u_op == OP_ZERO) || (u_op == OP_ZPOS && task_pos));
+    assign core_in_we   = (est == E_WR) || (est == E_WR2) || wr_zero || (in_pass && is_diff && j == 6'd0);
+    assign core_in_addr = (est == E_WR2) ? `EMPC_IN_Y + 6'd2 :
+                          (est == E_WR && is_diff) ? u_wa + 6'd4 : u_wa;
+
+    // status streams: REF (w_k window, reference pass m = 0), I_D / I_Q (W4 / W5 passes,
+    // A = i_d / i_q), SPEED (FIX3 pass, result), U_D / U_Q (status passes, A = u)
+    // counters (OP_CNT, src = event index, 15 = status word to 0): word + event bit,
+    // saturating (no write if it was 2^32-1; PERIODS wraps); all 0 in a zero sweep
+    reg        cz;                  // zero sweep
+    reg        csat;                // the counter was 2^32-1 (carry out of bit 31, registered)
+    wire st_pass = in_pass && ((is_diff || is_fix3 || is_stat || is_cnt) ? (j < 6'd32) : (is_ref && ref_win));
+    assign st_sh   = st_pass;
+    assign st_d    = is_fix3 ? r : is_cnt ? (r && !cz && u_src != 4'd15) : a_raw;
+    assign st_wr   = pass_end && ((is_ref && m0) || is_diff || is_fix3 || is_stat || (is_cnt && !csat));
+    localparam [5:0] ST_REF = `EMPC_A_REF, ST_I_D = `EMPC_A_I_D, ST_SPEED = `EMPC_A_SPEED;
+    assign st_addr = is_ref ? ST_REF : is_diff ? (ST_I_D + {5'd0, diff_q}) : is_fix3 ? ST_SPEED : u_wa;
+    assign st_bit  = in_pass ? j[4:0] + 5'd1 : 5'd0;            // the counter bit needed next clock
+    wire [15:0] ev16 = {2'b00, cnt_ev};
+    wire   ev_k    = ev16[u_src] && !cz;
+
+    // ---------------- multiplier kacc * i_q (serial-parallel, steps mk = 0 .. s + 39) ----------------
+    reg         mrun, msg;
+    reg  [6:0]  mk;
+    reg  signed [18:0] ms;
+    wire        mb   = (mk < 7'd18) ? a_bit : msg;            // i_q bit mk (the W5 pass's A), then its sign
+    wire signed [18:0] msum = ms + (mb ? {kacc[17], kacc} : 19'sd0);
+    wire        m_end = (mk == {2'b00, kacc_shift} + 7'd39);
+    wire        m_start = (est == E_LD) && is_diff && diff_q;
 
     // ---------------- sequencer ----------------
-    reg [2:0] wait_cnt;
+    wire go_ctl  = trig && ctl_now;
+    wire go_stat = xf_mod && !xf_busy && (est == E_IDLE);
+    reg  cnt_pend, hide_st, hide_cnt;
+    wire quiet   = (est == E_IDLE) && !busy_period && !xf_mod && !trig;
+    wire go_rstz = quiet && hide_st;
+    wire go_cnt  = quiet && !hide_st && (hide_cnt || cnt_pend);
+    assign cnt_done = (est == E_OP) && (u_op == OP_CEND);
+    assign cnt_hide = hide_cnt;
+    assign st_hide  = hide_st;
+    wire step    = (est == E_OP && (u_op == OP_ZERO || u_op == OP_ZPOS)) ||
+                   (est == E_WR && !(is_fix3 && !task_pos)) || (est == E_WR2) ||
+                   (pass_end && (is_om || is_stat || is_cnt));
+    always @(*) begin
+        if (go_ctl) pc_next = 7'd0;
+        else if (go_stat) pc_next = PC_STAT;
+        else if (go_rstz) pc_next = PC_RSTZ;
+        else if (go_cnt) pc_next = PC_CNT;
+        else if (step) pc_next = pc + 7'd1;
+        else pc_next = pc;
+    end
+    always @(posedge clk) begin
+        uw <= ucode[pc_next];
+    end
+
     always @(posedge clk) begin
         // default single-cycle pulses
         xf_front <= 1'b0;
@@ -248,166 +435,331 @@ module ctrl_seq #(
         overrun <= 1'b0;
         front_sat <= 1'b0;
         if (rst) begin
-            state <= S_IDLE;
             per_cnt <= 8'd0;
             is_control <= 1'b0;
             first <= 1'b1;
-            theta_trig <= {AB{1'b0}};
-            theta_mod <= {AB{1'b0}};
-            pos_trig <= {PW{1'b0}};
-            pos_prev <= {PW{1'b0}};
-            id_prev <= {IW{1'b0}};
-            iq_prev <= {IW{1'b0}};
-            omega_prev <= {WW{1'b0}};
-            u_st0 <= {UW{1'b0}};
-            u_st1 <= {UW{1'b0}};
-            ebar_st <= {3*SW{1'b0}};
+            mfirst <= 1'b1;
+            busy_period <= 1'b0;
             lat_cnt <= 16'd0;
             latency <= 16'd0;
-            busy_period <= 1'b0;
-            wait_cnt <= 3'd0;
-            cmp <= {3*CW{1'b0}};
-            i_d <= {IW{1'b0}};
-            i_q <= {IW{1'b0}};
+            pos_trig <= {PW{1'b0}};
+            theta_trig <= {AB{1'b0}};
+            zeroed <= 1'b1;
+            th_wait <= 3'd0;
+            th_wait_run <= 1'b0;
+            th_run <= 1'b0;
+            th_done <= 1'b0;
+            ang_run <= 1'b0;
+            ang_done <= 1'b0;
+            jt <= 4'd0;
+            pc <= 7'd0;
+            est <= E_IDLE;
+            cnt_pend <= 1'b0;
+            hide_st <= 1'b1;
+            hide_cnt <= 1'b1;
+            cz <= 1'b0;
+            prog_done <= 1'b0;
+            front_done <= 1'b0;
+            adc_seen <= 1'b0;
+            core_run <= 1'b0;
+            core_fin <= 1'b0;
+            j <= 6'd0;
             omega <= {WW{1'b0}};
-            u_d <= {UW{1'b0}};
-            u_q <= {UW{1'b0}};
-            wr_idx <= 6'd0;
-            wr_m <= 6'd0;
-            wr_o <= 2'd0;
-            wr_busy <= 1'b0;
-            s1_valid <= 1'b0;
-            s1_addr <= 6'd0;
-            s1_isref <= 1'b0;
-            s1_fixed <= {SW{1'b0}};
-            s1_ref <= 64'sd0;
-            core_in_we <= 1'b0;
-            core_in_addr <= 6'd0;
-            core_in_wdata <= {SW{1'b0}};
+            mrun <= 1'b0;
         end else begin
+            pc <= pc_next;
             if (busy_period)
                 lat_cnt <= lat_cnt + 16'd1;
-            if (period_start && busy_period && state != S_IDLE)
+            if (period_start && busy_period)
                 overrun <= 1'b1;
-            if (!run) begin
-                u_st0 <= {UW{1'b0}};
-                u_st1 <= {UW{1'b0}};
-                ebar_st <= {3*SW{1'b0}};
+            zeroed <= core_done ? 1'b0 : (!run ? 1'b1 : zeroed);
+
+            // ---- trigger ----
+            if (trig) begin
+                mfirst <= first;
+                first <= 1'b0;
+                busy_period <= 1'b1;
+                lat_cnt <= 16'd0;
+                th_wait <= THETA_LAT[2:0] - 3'd1;
+                th_wait_run <= 1'b1;
+                th_done <= 1'b0;
+                ang_done <= 1'b0;
+                adc_seen <= 1'b0;
+                front_done <= 1'b0;
+                prog_done <= 1'b0;
+                core_fin <= 1'b0;
+                if (ctl_now) begin
+                    per_cnt <= 8'd0;
+                    is_control <= 1'b1;
+                    pos_sample <= 1'b1;
+                    ref_advance <= 1'b1;
+                    pos_trig <= pos;
+                    est <= E_OP;
+                end else begin
+                    per_cnt <= per_cnt + 8'd1;
+                    is_control <= 1'b0;
+                end
             end
-            // input-word pipeline: stage 1 registers the word, stage 2 rounds/saturates and writes
-            s1_valid <= (state == S_WRITE) && wr_busy;
-            s1_addr <= wr_idx;
-            s1_isref <= (wr_idx >= IN_WREF) && (wr_o == 2'd2);
-            s1_fixed <= (wr_idx == 6'd8) ? {SW{1'b0}} : fixed_val;
-            s1_ref <= task_pos ? ref_sel - {pos_trig, 32'd0} : ref_sel;
-            core_in_we <= s1_valid;
-            core_in_addr <= s1_addr;
-            core_in_wdata <= !s1_isref ? s1_fixed : task_pos ? sat_sw(rsr(s1_ref, TH_SH)) : sat_sw(rsr(s1_ref, W_SH));
-            case (state)
-                S_IDLE: if (adc_trig) begin
+
+            // ---- theta: latch (THETA_LAT clocks after the count), theta_mod pass, angle register ----
+            if (th_wait_run) begin
+                if (th_wait == 3'd0) begin
                     theta_trig <= theta;
-                    theta_mod <= theta + (first ? {AB{1'b0}} : (theta - theta_trig));
-                    first <= 1'b0;
-                    pos_trig <= pos_theta;
-                    busy_period <= 1'b1;
-                    lat_cnt <= 16'd0;
-                    if (per_cnt + 8'd1 >= pwm_per_control) begin
-                        per_cnt <= 8'd0;
-                        is_control <= 1'b1;
-                        pos_sample <= 1'b1;
-                        ref_advance <= 1'b1;
-                    end else begin
-                        per_cnt <= per_cnt + 8'd1;
-                        is_control <= 1'b0;
-                    end
-                    state <= S_ADC;
+                    th_wait_run <= 1'b0;
+                    th_run <= 1'b1;
+                    jt <= 4'd0;
+                end else
+                    th_wait <= th_wait - 3'd1;
+            end
+            if (th_run || ang_run) begin
+                jt <= jt + 4'd1;
+                if (jt == 4'd15) begin
+                    th_run <= 1'b0;
+                    ang_run <= 1'b0;
+                    th_done <= th_done | th_run;
+                    ang_done <= ang_done | ang_run;
                 end
-                S_ADC: if (adc_valid) begin        // xform samples the currents in this cycle
-                    if (is_control) begin
-                        xf_front <= 1'b1;
-                        state <= S_FRONT;
-                    end else
-                        state <= S_MOD;
-                end
-                S_FRONT: if (xf_done) begin
-                    if (xf_sat) front_sat <= 1'b1;
-                    i_d <= xf_d;
-                    i_q <= xf_q;
-                    wait_cnt <= 3'd0;
-                    state <= S_OMEGA;
-                end
-                S_OMEGA: begin                      // acceleration-term pipeline
-                    wait_cnt <= wait_cnt + 3'd1;
-                    if (wait_cnt == OMEGA_WAIT)
-                        state <= S_OMEGA2;
-                end
-                S_OMEGA2: begin
-                    omega <= omega_r;
-                    if (omega_ovf_r) front_sat <= 1'b1;
-                    if (run) begin
-                        wr_idx <= 6'd0;
-                        wr_m <= 6'd0;
-                        wr_o <= 2'd0;
-                        wr_busy <= 1'b1;
-                        state <= S_WRITE;
-                    end else begin
-                        id_prev <= i_d;
-                        iq_prev <= i_q;
-                        omega_prev <= omega_r;
-                        pos_prev <= pos_trig;
-                        control_done <= 1'b1;
-                        state <= S_MOD;
-                    end
-                end
-                S_WRITE: begin                      // stage 1 issues words; stage 2 (above) writes them
-                    if (wr_busy) begin
-                        if (wr_idx == IN_LAST_FIXED) begin
-                            wr_idx <= IN_WREF;
-                        end else if (wr_idx >= IN_WREF) begin
-                            if (wr_o == 2'd2) begin
-                                wr_o <= 2'd0;
-                                wr_m <= wr_m + 6'd1;
-                            end else
-                                wr_o <= wr_o + 2'd1;
-                            wr_idx <= wr_idx + 6'd1;
-                            if (wr_idx + 6'd1 == IN_END) wr_busy <= 1'b0;
-                        end else
-                            wr_idx <= wr_idx + 6'd1;
-                    end else if (!s1_valid && !core_in_we) begin
-                        id_prev <= i_d;
-                        iq_prev <= i_q;
-                        omega_prev <= omega;
-                        pos_prev <= pos_trig;
-                        core_start <= 1'b1;
-                        state <= S_CORE;
-                    end
-                end
-                S_CORE: if (core_done) begin
-                    u_st0 <= core_u[0 +: UW];
-                    u_st1 <= core_u[UW +: UW];
-                    ebar_st <= core_ebar;
+            end
+            // theta_mod into the angle register once the front (if any) has sampled theta_trig
+            if (th_done && !ang_done && !ang_run && (!is_control || front_done || xf_busy)) begin
+                ang_run <= 1'b1;
+                jt <= 4'd0;
+            end
+
+            // ---- ADC, front ----
+            if (busy_period && adc_valid) adc_seen <= 1'b1;
+            if (is_control && busy_period && adc_seen && th_done && !ang_run && !ang_done &&
+                !xf_busy && !xf_front && !front_done)
+                xf_front <= 1'b1;
+            if (xf_done && !xf_run_mod && is_control) begin
+                front_done <= 1'b1;
+                if (xf_sat) front_sat <= 1'b1;
+            end
+
+            // ---- core ----
+            if (prog_done && !core_fin && !core_run) begin
+                if (run) begin
+                    core_start <= 1'b1;
+                    core_run <= 1'b1;
+                end else begin
+                    core_fin <= 1'b1;
                     control_done <= 1'b1;
-                    state <= S_MOD;
                 end
-                S_MOD: begin                        // xform samples u_st, theta_mod, kdc
-                    xf_mod <= 1'b1;
-                    u_d <= u_st0;
-                    u_q <= u_st1;
-                    state <= S_MOD_WAIT;
+            end
+            if (core_run && core_done) begin
+                core_run <= 1'b0;
+                core_fin <= 1'b1;
+                control_done <= 1'b1;
+            end
+
+            // ---- modulation ----
+            if (busy_period && ang_done && adc_seen && !xf_busy && !xf_mod && !xf_front && !xf_run_mod &&
+                (!is_control || core_fin))
+                xf_mod <= 1'b1;
+            if (xf_done && xf_run_mod) begin
+                if (xf_sat) front_sat <= 1'b1;
+                cmp_load <= 1'b1;
+                latency <= lat_cnt + 16'd1;
+                busy_period <= 1'b0;
+            end
+
+            // ---- microprogram ----
+            if (go_stat) est <= E_OP;
+            // counter sweep after the modulation of a control period; zero sweep (status words
+            // too after rst) while the counters are hidden.  A trigger interrupts a zero sweep,
+            // which then starts again (it cannot meet a normal sweep, which ends well before).
+            if (go_rstz || go_cnt) begin
+                est <= E_OP;
+                cz <= hide_cnt;
+                cnt_pend <= 1'b0;
+            end
+            if (go_ctl) begin
+                cnt_pend <= 1'b1;                                        // counted after this period
+                cz <= 1'b0;
+            end
+            if (cnt_done && cz) begin
+                hide_cnt <= 1'b0;
+                hide_st <= 1'b0;
+            end
+            if (cnt_clear) hide_cnt <= 1'b1;
+            case (est)
+                E_IDLE: ;
+                E_OP: begin
+                    j <= 6'd0;
+                    begin
+                        case (u_op)
+                            OP_POS, OP_COPY, OP_STAT: est <= E_STG;
+                            OP_DIFF: if (front_done) est <= E_STG;
+                            OP_REF: if (ref_ok) begin
+                                est <= E_PASS;
+                                j <= ref_j0;
+                            end
+                            OP_OM: if (!mrun) est <= E_PASS;
+                            OP_FIX3: begin
+                                est <= E_PASS;
+                                if (spd_ovf || om_ovf) front_sat <= 1'b1;
+                            end
+                            OP_W6, OP_CNT: est <= E_PASS;
+                            OP_ZERO, OP_ZPOS: ;                  // written in this clock (pc + 1)
+                            OP_END: begin
+                                est <= E_IDLE;
+                                prog_done <= 1'b1;
+                            end
+                            default: est <= E_IDLE;              // OP_SEND, OP_CEND
+                        endcase
+                    end
                 end
-                S_MOD_WAIT: if (xf_done) begin
-                    if (xf_sat) front_sat <= 1'b1;
-                    cmp <= {cmp_c, cmp_b, cmp_a};
-                    cmp_load <= 1'b1;
-                    latency <= lat_cnt + 16'd1;
-                    busy_period <= 1'b0;
-                    state <= S_IDLE;
+                E_STG: est <= E_LD;
+                E_LD: est <= (u_op == OP_COPY) ? E_WR : E_PASS;
+                E_PASS: begin
+                    j <= j + 6'd1;
+                    if (pass_end) begin
+                        j <= 6'd0;
+                        if (is_om || is_stat || is_cnt) est <= E_OP;
+                        else if (is_ref && ref_ovf_now) est <= E_FIX;
+                        else est <= E_WR;
+                        if (is_fix3) omega <= om;           // complete since bit 31
+                    end
                 end
-                default: state <= S_IDLE;
+                E_FIX: begin
+                    j <= j + 6'd1;
+                    if (fix_end) est <= E_WR;
+                end
+                E_WR: est <= (is_fix3 && !task_pos) ? E_WR2 : E_OP;
+                default: est <= E_OP;                       // E_WR2
             endcase
+
+            // ---- multiplier: starts with the W5 pass (step mk = pass bit j) ----
+            if (m_start)
+                mrun <= 1'b1;
+            else if (mrun && m_end)
+                mrun <= 1'b0;
         end
     end
 
-    wire unused = &{1'b0, xf_busy};
+    // held u: loaded at core_done, 0 while run is low (flip-flop reset and enable, no mux)
+    always @(posedge clk) begin
+        if (rst || (!run && !core_done)) begin
+            u_st0 <= {UW{1'b0}};
+            u_st1 <= {UW{1'b0}};
+        end else if (core_done) begin
+            u_st0 <= core_u[0 +: UW];
+            u_st1 <= core_u[UW +: UW];
+        end
+    end
+    always @(posedge clk) begin
+        if (rst) xf_run_mod <= 1'b0;
+        else if (xf_mod && !xf_busy) xf_run_mod <= 1'b1;
+        else if (xf_done && xf_run_mod) xf_run_mod <= 1'b0;
+    end
+
+    // ---------------- datapath registers ----------------
+    always @(posedge clk) begin
+        // X: shift / parallel load (the OR of the stages; X is 0 before a load)
+        if (x_clr || rst)
+            x <= {SW{1'b0}};
+        else if (x_shift || x_load)
+            x <= {x_shift & x_in, x[SW-1:IW+1], {IW{1'b0}}} | g_all;     // x[IW:1] is in g_lo
+        // ALU carry: before the first ALU bit 1 (subtract), rnd (speed reference, OM: ka rounding
+        // bit) or 1 + rnd (position reference: subtract and round)
+        if (!in_pass || (is_ref && !ref_alu)) begin
+            if (is_ref) begin
+                c0 <= task_pos ? ~a_raw : a_raw;       // the value of the clock j = ja - 1 stays
+                c1 <= task_pos & a_raw;
+            end else begin
+                c0 <= sub | (is_om & ka[0]) | (is_cnt & ev_k);
+                c1 <= 1'b0;
+            end
+        end else begin
+            c0 <= maj ^ c1;
+            c1 <= maj & c1;
+        end
+        if (in_pass && j == 6'd31) a_h <= a_raw;
+        if (in_pass && j == 6'd31) csat <= maj && !cz && u_src != 4'd13 && u_src != 4'd15;
+        if (in_pass && j == b_hw) b_h <= b_raw;
+        // POS pass: dpos sign sd, spd = dpos << 16 overflows if dpos bits 31..15 are not all equal
+        if (in_pass && is_pos) begin
+            if (j == 6'd15) begin
+                sd <= r;
+                spd_ovf <= 1'b0;
+            end else if (j > 6'd15 && r != sd) spd_ovf <= 1'b1;
+            if (j == 6'd31) sd <= r;
+        end
+        // OM pass: omega overflows if result bits 39..31 are not all equal; om_sgn = bit 39
+        if (in_pass && is_om) begin
+            if (j == 6'd31) begin
+                om_ovf <= 1'b0;
+                om_sgn <= r;
+            end else if (j > 6'd31) begin
+                if (r != om_sgn) om_ovf <= 1'b1;
+                if (j == 6'd39) om_sgn <= r;
+            end
+        end
+        // reference pass: rounding bit, overflow
+        if (in_pass && is_ref) begin
+            if (task_pos) begin                       // (rel >> 24) + rnd overflows only to +2^39
+                if (j == 6'd23) begin
+                    rnd <= a_raw;
+                    nz <= 1'b0;
+                end else if (j >= 6'd24 && r) nz <= 1'b1;
+                ref_sgn <= 1'b0;
+            end else begin                            // (w >> 16) + rnd: bits 55..63 not all equal
+                if (j == 6'd55) begin
+                    r_ref <= r;
+                    ref_ovf <= 1'b0;
+                end else if (j > 6'd55 && r != r_ref) ref_ovf <= 1'b1;
+                ref_sgn <= a_raw;                     // w[63] at j = 63
+            end
+        end
+        // rings
+        if (in_pass && is_pos) pp <= {a_bit, pp[PW-1:1]};
+        else if (in_pass && is_ref && task_pos && j >= 6'd32) pp <= {pp[0], pp[PW-1:1]};
+        if (in_pass && is_pos) dp <= {r, dp[PW-1:1]};
+        else if (in_pass && is_om && j >= 6'd16 && j < 6'd32) dp <= {1'b0, dp[PW-1:1]};
+        if (in_pass && is_diff && !diff_q && j < 6'd18) idp <= {a_bit, idp[IW-1:1]};
+        if (in_pass && is_diff && diff_q && j < 6'd18) iqp <= {a_bit, iqp[IW-1:1]};
+        if (in_pass && is_w6 && j < 6'd32) omp <= {a_bit, omp[WW-1:1]};
+        if (in_pass && (is_om || is_fix3 || is_w6) && j < 6'd32) om <= {r, om[WW-1:1]};
+        // multiplier: s + 40 steps through ka, which keeps the last 41 product bits
+        if (m_start) begin
+            mk <= 7'd0;
+            ms <= 19'sd0;
+            ka <= 41'd0;
+        end else if (mrun) begin
+            mk <= mk + 7'd1;
+            ms <= msum >>> 1;
+            ka <= {msum[0], ka[40:1]};
+        end else if (in_pass && is_om) begin
+            ka <= {1'b0, ka[40:1]};
+        end
+        if (mrun && mk == 7'd17) msg <= mb;
+        // theta_mod pass and the angle register
+        if (th_run) begin
+            ta_d <= ta;
+            tc <= (ta_d & ~tb) | (tc & (ta_d ^ ~tb));
+            tm <= {tr, tm[AB-1:1]};
+            tp <= {ta, tp[AB-1:1]};
+            ang <= {ta, ang[AB-1:1]};
+        end else begin
+            ta_d <= 1'b0;
+            tc <= 1'b1;
+        end
+        if (ang_run) begin
+            ang <= {tm[0], ang[AB-1:1]};
+            tm <= {tm[0], tm[AB-1:1]};
+        end
+        if (rst) begin
+            pp <= {PW{1'b0}};
+            idp <= {IW{1'b0}};
+            iqp <= {IW{1'b0}};
+            omp <= {WW{1'b0}};
+            tp <= {AB{1'b0}};
+            ang <= {AB{1'b0}};
+            mk <= 7'd0;
+            ms <= 19'sd0;
+        end
+    end
+
+    wire unused = &{1'b0, uw[17]};
 endmodule
 `default_nettype wire

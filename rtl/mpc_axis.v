@@ -54,6 +54,7 @@ module mpc_axis #(
 );
     localparam integer CW = $clog2(`EMPC_PWM_HALF_PERIOD + 1);
     localparam integer NCAUSE = 7;
+    localparam integer RAW = (N < 2) ? 1 : $clog2(N + 1);
 
     // ---------------- registers ----------------
     reg         r_enable, r_run, r_compl;
@@ -68,24 +69,22 @@ module mpc_axis #(
     reg  [4:0]  r_kacc_shift;
     reg  signed [17:0] r_id_ref, r_iq_ref;
     reg  [3:0]  r_seg_addr;
-    reg  [31:0] r_seg_len, r_seg_r0_lo, r_seg_r0_hi, r_seg_d1_lo, r_seg_d1_hi, r_seg_d2;
-    reg  [1:0]  r_seg_flags;
     // command pulses
     reg         c_fault_clear, c_adc_cal, c_ref_sync, c_coef_swap, c_clear_cnt, c_align_clear;
-    reg         c_seg_we, c_seg_start;
+    reg         c_seg_start, c_ref_sync_d;
     reg  [3:0]  c_seg_start_slot;
     reg  [2:0]  c_off_we;
     reg  [11:0] c_off_wdata;
 
 
     always @(posedge clk) begin
+        c_ref_sync_d <= c_ref_sync && !rst;     // sync after the value latch
         c_fault_clear <= 1'b0;
         c_adc_cal <= 1'b0;
         c_ref_sync <= 1'b0;
         c_coef_swap <= 1'b0;
         c_clear_cnt <= 1'b0;
         c_align_clear <= 1'b0;
-        c_seg_we <= 1'b0;
         c_seg_start <= 1'b0;
         c_off_we <= 3'b000;
         if (rst) begin
@@ -107,13 +106,6 @@ module mpc_axis #(
             r_id_ref <= 18'sd0;
             r_iq_ref <= 18'sd0;
             r_seg_addr <= 4'd0;
-            r_seg_len <= 32'd0;
-            r_seg_r0_lo <= 32'd0;
-            r_seg_r0_hi <= 32'd0;
-            r_seg_d1_lo <= 32'd0;
-            r_seg_d1_hi <= 32'd0;
-            r_seg_d2 <= 32'd0;
-            r_seg_flags <= 2'd0;
             c_seg_start_slot <= 4'd0;
             c_off_wdata <= 12'd0;
         end else if (reg_wr) begin
@@ -152,13 +144,6 @@ module mpc_axis #(
                 `EMPC_A_ID_REF: r_id_ref <= reg_wdata[17:0];
                 `EMPC_A_IQ_REF: r_iq_ref <= reg_wdata[17:0];
                 `EMPC_A_SEG_ADDR: r_seg_addr <= reg_wdata[3:0];
-                `EMPC_A_SEG_LEN: r_seg_len <= reg_wdata;
-                `EMPC_A_SEG_R0_LO: r_seg_r0_lo <= reg_wdata;
-                `EMPC_A_SEG_R0_HI: r_seg_r0_hi <= reg_wdata;
-                `EMPC_A_SEG_D1_LO: r_seg_d1_lo <= reg_wdata;
-                `EMPC_A_SEG_D1_HI: r_seg_d1_hi <= reg_wdata;
-                `EMPC_A_SEG_D2: r_seg_d2 <= reg_wdata;
-                `EMPC_A_SEG_FLAGS: begin r_seg_flags <= reg_wdata[1:0]; c_seg_we <= 1'b1; end
                 `EMPC_A_SEG_START: begin c_seg_start <= 1'b1; c_seg_start_slot <= reg_wdata[3:0]; end
                 default: ;
             endcase
@@ -240,16 +225,36 @@ module mpc_axis #(
         .cal_done(adc_cal_done));
 
     // ---------------- reference generator ----------------
-    wire              ref_advance;
-    wire [(N+1)*64-1:0] ref_w;
+    // SEG_LEN .. SEG_FLAGS go straight into slot SEG_ADDR (field = offset - SEG_LEN).
+    wire              ref_advance, ref_ok, ref_q, ref_busy;
+    wire [RAW-1:0]    ref_age;
+    wire [5:0]        ref_bit, sync_idx;
     wire              task_pos;
     wire signed [`EMPC_W_W-1:0] omega;
-    wire [63:0] sync_value = task_pos ? {pos, 32'd0} : {{16{omega[`EMPC_W_W-1]}}, omega, 16'd0};
+    wire [7:0]        seg_off = reg_addr - `EMPC_A_SEG_LEN;
+    wire              seg_sel = (seg_off < 8'd7);
+    wire [31:0]       seg_rdata;
+    // sync value (task_pos ? {pos, 32'd0} : {sext(omega), 16'd0}), latched with the
+    // command and read bit by bit while the sync runs
+    reg  [31:0]       sync_pos, sync_om;
+    always @(posedge clk) begin
+        if (rst) begin
+            sync_pos <= 32'd0;
+            sync_om <= 32'd0;
+        end else if (c_ref_sync) begin
+            sync_pos <= pos;
+            sync_om <= omega;
+        end
+    end
+    wire sync_bit = task_pos ? (sync_idx[5] && sync_pos[sync_idx[4:0]]) :
+                    (sync_idx < 6'd16) ? 1'b0 : (sync_idx >= 6'd48) ? sync_om[31] :
+                    sync_om[{~sync_idx[4], sync_idx[3:0]}];
     ref_gen #(.N(N)) u_ref (
-        .clk(clk), .rst(rst), .seg_we(c_seg_we), .seg_addr(r_seg_addr), .seg_len(r_seg_len),
-        .seg_r0({r_seg_r0_hi, r_seg_r0_lo}), .seg_d1({r_seg_d1_hi, r_seg_d1_lo}), .seg_d2(r_seg_d2),
-        .seg_relative(r_seg_flags[0]), .seg_last(r_seg_flags[1]), .start(c_seg_start), .start_slot(c_seg_start_slot),
-        .sync(c_ref_sync), .sync_value(sync_value), .advance(ref_advance), .w(ref_w));
+        .clk(clk), .rst(rst), .seg_we(reg_wr && seg_sel), .seg_re(reg_rd && seg_sel), .seg_slot(r_seg_addr),
+        .seg_field(seg_off[2:0]), .seg_wdata(reg_wdata), .seg_rdata(seg_rdata),
+        .start(c_seg_start), .start_slot(c_seg_start_slot),
+        .sync(c_ref_sync_d), .sync_idx(sync_idx), .sync_bit(sync_bit), .advance(ref_advance),
+        .rd_age(ref_age), .rd_bit(ref_bit), .rd_q(ref_q), .w_ok(ref_ok), .busy(ref_busy));
 
     // ---------------- sequencer and MPC core ----------------
     wire                            core_start, core_done, core_busy;
@@ -265,20 +270,24 @@ module mpc_axis #(
     wire                            seq_front_sat;
     wire [15:0]                     seq_latency;
     wire signed [`EMPC_I_W-1:0]     st_id, st_iq;
-    wire signed [`EMPC_U_W-1:0]     st_ud, st_uq;
     wire [15:0]                     theta_trig;
     wire                            running = r_run && bridges_on;
+    wire                            st_sh, st_d, st_wr;
+    wire [5:0]                      st_addr;
 
     ctrl_seq #(.N(N)) u_seq (
         .clk(clk), .rst(rst), .adc_trig(adc_trig), .period_start(period_start), .pwm_per_control(r_ppc),
         .run(running), .theta(theta), .pos(pos), .pos_sample(pos_sample), .adc_valid(adc_valid),
         .cur0(cur0), .cur1(cur1), .cur2(cur2), .kdc(r_kdc), .kacc(r_kacc), .kacc_shift(r_kacc_shift),
-        .id_ref(r_id_ref), .iq_ref(r_iq_ref), .task_pos(task_pos), .ref_advance(ref_advance), .ref_w(ref_w),
+        .id_ref(r_id_ref), .iq_ref(r_iq_ref), .task_pos(task_pos), .ref_advance(ref_advance), .ref_ok(ref_ok),
+        .ref_age(ref_age), .ref_bit(ref_bit), .ref_q(ref_q),
         .core_start(core_start), .core_in_we(core_in_we), .core_in_addr(core_in_addr),
         .core_in_wdata(core_in_wdata), .core_done(core_done), .core_u(core_u), .core_ebar(core_ebar),
         .cmp(cmp), .cmp_load(cmp_load), .control_done(control_done), .overrun(overrun),
         .front_sat(seq_front_sat), .latency(seq_latency), .i_d(st_id), .i_q(st_iq), .omega(omega),
-        .u_d(st_ud), .u_q(st_uq), .theta_trig(theta_trig));
+        .theta_trig(theta_trig), .st_sh(st_sh), .st_d(st_d), .st_wr(st_wr), .st_addr(st_addr),
+        .st_bit(st_bit), .cnt_q(cnt_q), .cnt_ev(cnt_ev), .cnt_clear(c_clear_cnt), .cnt_done(cnt_done),
+        .cnt_hide(cnt_hide), .st_hide(st_hide));
 
     mpc_core #(.N(N), .BOOT_FILE(BOOT_FILE), .RSQRT_FILE(RSQRT_FILE)) u_core (
         .clk(clk), .rst(rst), .start(core_start), .in_we(core_in_we), .in_addr(core_in_addr),
@@ -288,100 +297,141 @@ module mpc_axis #(
         .cfg_wdata(reg_wdata), .cfg_swap(c_coef_swap), .ready(core_ready), .bank(core_bank),
         .swap_pending(core_swap_pending), .boot_ok(core_boot_ok), .task_pos(task_pos));
 
-    // ---------------- counters ----------------
-    // Event counters SAT_OPERAND .. CNT_OVERRUN (register-map order) in LUT RAM: events
-    // set a pending bit; a scanner visits one counter per clock and increments it
-    // (saturating at 2^32-1).  An event kind is counted at most once per 16 clocks, which
-    // is exact for these (at most one per control period; overruns and front-end
-    // saturations once per PWM period).  ADC misses and encoder errors come from the
-    // blocks' own saturating counters.
-    localparam integer NCNT = 13;
-    localparam [7:0] CNT_LO = `EMPC_A_SAT_OPERAND;
-    localparam [7:0] CNT_HI = CNT_LO + NCNT[7:0];
-    wire [7:0] cnt_idx = reg_addr - CNT_LO;
-    reg  [31:0] cnt_mem [0:15];
-    reg  [NCNT-1:0] cnt_pend;
-    reg  [3:0]  scan;
-    reg         clearing;
-    reg  [31:0] periods;
-    wire [NCNT-1:0] cnt_ev = {overrun, seq_front_sat | adc_sat | cmp_clip, core_done ? core_flags : 11'd0};
-    wire [31:0] scan_val = cnt_mem[scan];
+    // ---------------- status words and counters: one block RAM ----------------
+    // Words SPEED, I_D, I_Q, U_D, U_Q, REF, PERIODS and the event counters SAT_OPERAND ..
+    // CNT_OVERRUN live in a block RAM at their register offsets.  ctrl_seq streams each new
+    // word bit by bit into the shift register sts, which is then written in one clock (port
+    // A, shared with the CPU read; a write that meets a CPU read waits one clock), so a CPU
+    // read never sees a half-updated word.  The counters are incremented by ctrl_seq too:
+    // after the modulation of a control period it reads each counter bit by bit (port B,
+    // x1) and streams back counter + event (saturating at 2^32-1; PERIODS wraps).  The
+    // events of the period are held here until that sweep: the core's flags of the
+    // update, "front end saturated" (sequencer, ADC, PWM clip) and "overrun" at any time
+    // in the control period, and "a control period ran" for PERIODS; SAT_* and CNT_OVERRUN
+    // therefore count the control periods in which the event happened.  rst and
+    // CMD.clear_counters zero the counters (rst also the status words); they read 0 from
+    // the command on.  ADC misses and encoder errors come from the blocks' own counters.
+    reg         smem [0:2047];                     // 64 words x 32 bit, bit {word, bit}
+    integer si;
+    initial begin
+        for (si = 0; si < 2048; si = si + 1) smem[si] = 1'b0;
+    end
+    reg  [31:0] sts;
+    reg  [31:0] s_q;                               // port A read (0 unless a word of smem is read)
+    wire        cnt_q;
+    wire [4:0]  st_bit;
+    wire        cnt_done, cnt_hide, st_hide;
+    reg  [10:0] ev_core;
+    reg         ev_front, ev_ovr, ev_per;
+    wire [13:0] cnt_ev = {ev_per, ev_ovr, ev_front, ev_core};
     always @(posedge clk) begin
-        if (rst || c_clear_cnt) begin
-            cnt_pend <= {NCNT{1'b0}};
-            scan <= 4'd0;
-            clearing <= 1'b1;
-            periods <= 32'd0;
+        if (rst || cnt_done) begin
+            ev_core <= 11'd0;
+            ev_front <= 1'b0;
+            ev_ovr <= 1'b0;
+            ev_per <= 1'b0;
         end else begin
-            scan <= scan + 4'd1;
-            if (clearing) begin
-                cnt_mem[scan] <= 32'd0;
-                if (scan == 4'd15) clearing <= 1'b0;
-                cnt_pend <= cnt_ev;
-            end else begin
-                if ({1'b0, scan} < NCNT[4:0] && cnt_pend[scan] && scan_val != 32'hffffffff)
-                    cnt_mem[scan] <= scan_val + 32'd1;
-                cnt_pend <= (cnt_pend & ~(({{(NCNT-1){1'b0}}, 1'b1}) << scan)) | cnt_ev;
-            end
-            if (control_done && running) periods <= periods + 32'd1;
+            if (core_done) ev_core <= core_flags;
+            if (seq_front_sat || adc_sat || cmp_clip) ev_front <= 1'b1;
+            if (overrun) ev_ovr <= 1'b1;
+            if (control_done && running) ev_per <= 1'b1;
         end
     end
-
-    // ---------------- read mux ----------------
     always @(posedge clk) begin
-        if (rst)
-            reg_rdata <= 32'd0;
-        else if (reg_rd) begin
-            case (reg_addr)
-                `EMPC_A_CTRL: reg_rdata <= {16'd0, r_ppc, 5'd0, r_compl, r_run, r_enable};
-                `EMPC_A_STATUS: reg_rdata <= {23'd0, fault_any, core_swap_pending, core_bank, core_ready,
-                                              adc_cal_done, adc_cal_busy, aligned, bridges_on, running};
-                `EMPC_A_FAULT: reg_rdata <= {25'd0, fault_latched};
-                `EMPC_A_FAULT_MASK: reg_rdata <= {25'd0, r_fault_mask};
-                `EMPC_A_DEAD_TIME: reg_rdata <= {24'd0, r_dead};
-                `EMPC_A_KDC: reg_rdata <= {14'd0, r_kdc};
-                `EMPC_A_UDC: reg_rdata <= {16'd0, r_udc};
-                `EMPC_A_UDC_MIN: reg_rdata <= {16'd0, r_udc_min};
-                `EMPC_A_UDC_MAX: reg_rdata <= {16'd0, r_udc_max};
-                `EMPC_A_OC_THRESH: reg_rdata <= {20'd0, r_oc_thresh};
-                `EMPC_A_ADC_OFF0: reg_rdata <= {20'd0, off0};
-                `EMPC_A_ADC_OFF1: reg_rdata <= {20'd0, off1};
-                `EMPC_A_ADC_OFF2: reg_rdata <= {20'd0, off2};
-                `EMPC_A_ANGLE_CAL: reg_rdata <= {16'd0, r_angle_cal};
-                `EMPC_A_HALL_OFFSET: reg_rdata <= {16'd0, r_hall_offset};
-                `EMPC_A_KACC: reg_rdata <= {3'd0, r_kacc_shift, 6'd0, r_kacc};
-                `EMPC_A_ID_REF: reg_rdata <= {{14{r_id_ref[17]}}, r_id_ref};
-                `EMPC_A_IQ_REF: reg_rdata <= {{14{r_iq_ref[17]}}, r_iq_ref};
-                `EMPC_A_SEG_ADDR: reg_rdata <= {28'd0, r_seg_addr};
-                `EMPC_A_SEG_LEN: reg_rdata <= r_seg_len;
-                `EMPC_A_SEG_R0_LO: reg_rdata <= r_seg_r0_lo;
-                `EMPC_A_SEG_R0_HI: reg_rdata <= r_seg_r0_hi;
-                `EMPC_A_SEG_D1_LO: reg_rdata <= r_seg_d1_lo;
-                `EMPC_A_SEG_D1_HI: reg_rdata <= r_seg_d1_hi;
-                `EMPC_A_SEG_D2: reg_rdata <= r_seg_d2;
-                `EMPC_A_SEG_FLAGS: reg_rdata <= {30'd0, r_seg_flags};
-                `EMPC_A_POS: reg_rdata <= pos;
-                `EMPC_A_SPEED: reg_rdata <= omega;
-                `EMPC_A_THETA: reg_rdata <= {16'd0, theta};
-                `EMPC_A_I_D: reg_rdata <= {{14{st_id[17]}}, st_id};
-                `EMPC_A_I_Q: reg_rdata <= {{14{st_iq[17]}}, st_iq};
-                `EMPC_A_U_D: reg_rdata <= {{8{st_ud[23]}}, st_ud};
-                `EMPC_A_U_Q: reg_rdata <= {{8{st_uq[23]}}, st_uq};
-                `EMPC_A_REF: reg_rdata <= task_pos ? ref_w[8 +: 32] : ref_w[16 +: 32];
-                `EMPC_A_IABC0: reg_rdata <= {4'd0, code1, 4'd0, code0};
-                `EMPC_A_IABC1: reg_rdata <= {20'd0, code2};
-                `EMPC_A_LATENCY: reg_rdata <= {16'd0, seq_latency};
-                `EMPC_A_PERIODS: reg_rdata <= periods;
-                `EMPC_A_CNT_ADC_MISS: reg_rdata <= {24'd0, adc_miss_cnt};
-                `EMPC_A_CNT_ENC_ERR: reg_rdata <= {16'd0, enc_err_cnt};
-                default: begin
-                    if (reg_addr >= CNT_LO && reg_addr < CNT_HI)
-                        reg_rdata <= cnt_mem[cnt_idx[3:0]];
-                    else
-                        reg_rdata <= 32'd0;
-                end
-            endcase
+        if (st_sh) sts <= {st_d, sts[31:1]};
+    end
+    // port A: CPU read, or the write of sts (moved by one clock when it meets a CPU read)
+    reg         w_def;
+    reg  [5:0]  w_def_a;
+    wire        w_go = (st_wr && !reg_rd) || w_def;
+    wire [5:0]  w_a  = w_def ? w_def_a : st_addr;
+    always @(posedge clk) begin
+        w_def <= st_wr && reg_rd && !rst;
+        w_def_a <= st_addr;
+    end
+    wire s_cnt  = (reg_addr == `EMPC_A_PERIODS) ||
+                  (reg_addr >= `EMPC_A_SAT_OPERAND && reg_addr <= `EMPC_A_CNT_OVERRUN);
+    wire s_stat = (reg_addr == `EMPC_A_SPEED) || (reg_addr >= `EMPC_A_I_D && reg_addr <= `EMPC_A_REF);
+    wire s_rd   = reg_rd && ((s_cnt && !cnt_hide) || (s_stat && !st_hide));
+    wire [5:0]  pa = w_go ? w_a : reg_addr[5:0];   // (a write never meets a read)
+    always @(posedge clk) begin
+        if (w_go)
+            for (si = 0; si < 32; si = si + 1) smem[{pa, si[4:0]}] <= sts[si];
+        if (!s_rd)
+            s_q <= 32'd0;
+        else
+            for (si = 0; si < 32; si = si + 1) s_q[si] <= smem[{pa, si[4:0]}];
+    end
+    // port B (x1): counter bits for ctrl_seq
+    reg         cnt_q_r;
+    always @(posedge clk) cnt_q_r <= smem[{st_addr, st_bit}];
+    assign cnt_q = cnt_q_r;
+
+    // ---------------- read path ----------------
+    // The other readable registers have gated copies, loaded with their value by a read of
+    // their address and 0 in every other clock (flip-flop reset: no multiplexer); reg_rdata,
+    // valid the clock after reg_rd, is the OR of the copies, of the block RAM read and of
+    // ref_gen's field read.
+    localparam [7:0] R_ADC_OFF0 = `EMPC_A_ADC_OFF0, R_ADC_OFF1 = `EMPC_A_ADC_OFF1, R_ADC_OFF2 = `EMPC_A_ADC_OFF2, R_ANGLE_CAL = `EMPC_A_ANGLE_CAL, R_CNT_ADC_MISS = `EMPC_A_CNT_ADC_MISS, R_CNT_ENC_ERR = `EMPC_A_CNT_ENC_ERR, R_CTRL = `EMPC_A_CTRL, R_DEAD_TIME = `EMPC_A_DEAD_TIME, R_FAULT = `EMPC_A_FAULT, R_FAULT_MASK = `EMPC_A_FAULT_MASK, R_HALL_OFFSET = `EMPC_A_HALL_OFFSET, R_IABC0 = `EMPC_A_IABC0, R_IABC1 = `EMPC_A_IABC1, R_ID_REF = `EMPC_A_ID_REF, R_IQ_REF = `EMPC_A_IQ_REF, R_KACC = `EMPC_A_KACC, R_KDC = `EMPC_A_KDC, R_LATENCY = `EMPC_A_LATENCY, R_OC_THRESH = `EMPC_A_OC_THRESH, R_POS = `EMPC_A_POS, R_SEG_ADDR = `EMPC_A_SEG_ADDR, R_STATUS = `EMPC_A_STATUS, R_THETA = `EMPC_A_THETA, R_UDC = `EMPC_A_UDC, R_UDC_MAX = `EMPC_A_UDC_MAX, R_UDC_MIN = `EMPC_A_UDC_MIN;
+    wire rd_lo = reg_rd && (reg_addr[7:5] == 3'd0);
+    wire rd_hi = reg_rd && (reg_addr[7:5] == 3'd1);
+    reg  [10:0] q_ctrl;
+    reg  [8:0]  q_status;
+    reg  [6:0]  q_fault, q_fmask;
+    reg  [7:0]  q_dead, q_miss;
+    reg  [17:0] q_kdc, q_kacc, q_idr, q_iqr;
+    reg  [4:0]  q_ksh;
+    reg  [15:0] q_udc, q_udcmin, q_udcmax, q_acal, q_hoff, q_theta, q_lat, q_enc;
+    reg  [11:0] q_oc, q_off0, q_off1, q_off2, q_iabc1;
+    reg  [3:0]  q_sega;
+    reg  [31:0] q_pos;
+    reg  [23:0] q_iabc0;
+    always @(posedge clk) begin
+        q_ctrl    <= (rd_lo && reg_addr[4:0] == R_CTRL[4:0]) ? {r_ppc, r_compl, r_run, r_enable} : 11'd0;
+        q_status  <= (rd_lo && reg_addr[4:0] == R_STATUS[4:0]) ? {fault_any, core_swap_pending, core_bank,
+                     core_ready, adc_cal_done, adc_cal_busy, aligned, bridges_on, running} : 9'd0;
+        q_fault   <= (rd_lo && reg_addr[4:0] == R_FAULT[4:0]) ? fault_latched : 7'd0;
+        q_fmask   <= (rd_lo && reg_addr[4:0] == R_FAULT_MASK[4:0]) ? r_fault_mask : 7'd0;
+        q_dead    <= (rd_lo && reg_addr[4:0] == R_DEAD_TIME[4:0]) ? r_dead : 8'd0;
+        q_kdc     <= (rd_lo && reg_addr[4:0] == R_KDC[4:0]) ? r_kdc : 18'd0;
+        q_udc     <= (rd_lo && reg_addr[4:0] == R_UDC[4:0]) ? r_udc : 16'd0;
+        q_udcmin  <= (rd_lo && reg_addr[4:0] == R_UDC_MIN[4:0]) ? r_udc_min : 16'd0;
+        q_udcmax  <= (rd_lo && reg_addr[4:0] == R_UDC_MAX[4:0]) ? r_udc_max : 16'd0;
+        q_oc      <= (rd_lo && reg_addr[4:0] == R_OC_THRESH[4:0]) ? r_oc_thresh : 12'd0;
+        q_off0    <= (rd_lo && reg_addr[4:0] == R_ADC_OFF0[4:0]) ? off0 : 12'd0;
+        q_off1    <= (rd_lo && reg_addr[4:0] == R_ADC_OFF1[4:0]) ? off1 : 12'd0;
+        q_off2    <= (rd_lo && reg_addr[4:0] == R_ADC_OFF2[4:0]) ? off2 : 12'd0;
+        q_acal    <= (rd_lo && reg_addr[4:0] == R_ANGLE_CAL[4:0]) ? r_angle_cal : 16'd0;
+        q_hoff    <= (rd_lo && reg_addr[4:0] == R_HALL_OFFSET[4:0]) ? r_hall_offset : 16'd0;
+        q_kacc    <= (rd_lo && reg_addr[4:0] == R_KACC[4:0]) ? r_kacc : 18'd0;
+        q_ksh     <= (rd_lo && reg_addr[4:0] == R_KACC[4:0]) ? r_kacc_shift : 5'd0;
+        q_idr     <= (rd_lo && reg_addr[4:0] == R_ID_REF[4:0]) ? r_id_ref : 18'd0;
+        q_iqr     <= (rd_lo && reg_addr[4:0] == R_IQ_REF[4:0]) ? r_iq_ref : 18'd0;
+        q_sega    <= (rd_lo && reg_addr[4:0] == R_SEG_ADDR[4:0]) ? r_seg_addr : 4'd0;
+        q_pos     <= (rd_hi && reg_addr[4:0] == R_POS[4:0]) ? pos : 32'd0;
+        q_theta   <= (rd_hi && reg_addr[4:0] == R_THETA[4:0]) ? theta : 16'd0;
+        q_iabc0   <= (rd_hi && reg_addr[4:0] == R_IABC0[4:0]) ? {code1, code0} : 24'd0;
+        q_iabc1   <= (rd_hi && reg_addr[4:0] == R_IABC1[4:0]) ? code2 : 12'd0;
+        q_lat     <= (rd_hi && reg_addr[4:0] == R_LATENCY[4:0]) ? seq_latency : 16'd0;
+        q_miss    <= (rd_hi && reg_addr[4:0] == R_CNT_ADC_MISS[4:0]) ? adc_miss_cnt : 8'd0;
+        q_enc     <= (rd_hi && reg_addr[4:0] == R_CNT_ENC_ERR[4:0]) ? enc_err_cnt : 16'd0;
+        if (rst) begin
+            q_ctrl <= 11'd0; q_status <= 9'd0; q_fault <= 7'd0; q_fmask <= 7'd0; q_dead <= 8'd0; q_kdc <= 18'd0;
+            q_udc <= 16'd0; q_udcmin <= 16'd0; q_udcmax <= 16'd0; q_oc <= 12'd0; q_off0 <= 12'd0; q_off1 <= 12'd0;
+            q_off2 <= 12'd0; q_acal <= 16'd0; q_hoff <= 16'd0; q_kacc <= 18'd0; q_ksh <= 5'd0; q_idr <= 18'd0;
+            q_iqr <= 18'd0; q_sega <= 4'd0; q_pos <= 32'd0; q_theta <= 16'd0; q_iabc0 <= 24'd0; q_iabc1 <= 12'd0;
+            q_lat <= 16'd0; q_miss <= 8'd0; q_enc <= 16'd0;
         end
+    end
+    always @(*) begin
+        reg_rdata = seg_rdata | s_q | q_pos
+                  | {16'd0, q_ctrl[10:3], 5'd0, q_ctrl[2:0]} | {23'd0, q_status} | {25'd0, q_fault}
+                  | {25'd0, q_fmask} | {24'd0, q_dead} | {14'd0, q_kdc} | {16'd0, q_udc} | {16'd0, q_udcmin}
+                  | {16'd0, q_udcmax} | {20'd0, q_oc} | {20'd0, q_off0} | {20'd0, q_off1} | {20'd0, q_off2}
+                  | {16'd0, q_acal} | {16'd0, q_hoff} | {3'd0, q_ksh, 6'd0, q_kacc}
+                  | {{14{q_idr[17]}}, q_idr} | {{14{q_iqr[17]}}, q_iqr} | {28'd0, q_sega} | {16'd0, q_theta}
+                  | {4'd0, q_iabc0[23:12], 4'd0, q_iabc0[11:0]} | {20'd0, q_iabc1} | {16'd0, q_lat}
+                  | {24'd0, q_miss} | {16'd0, q_enc};
     end
 
     // adc_trig_miss: counted by adc_spi itself (miss_cnt -> CNT_ADC_MISS)
@@ -389,6 +439,6 @@ module mpc_axis #(
                     enc_in_state, enc_ready, hall_code, hall_ready, hall_fault, theta_valid, speed_sat,
                     sample_valid, ps_speed, pos_at_sample, ps_speed_q, theta_at_sample,
                     pwm_fault_latched, mode_eff, adc_busy, adc_trig_miss, oc_ch, core_busy, core_du, core_u_raw,
-                    core_wn, core_latency, core_boot_ok, theta_trig, cnt_idx[7:4]};
+                    core_wn, core_latency, core_boot_ok, theta_trig, seg_off[7:3], ref_busy, st_id, st_iq};
 endmodule
 `default_nettype wire

@@ -1,220 +1,336 @@
 // ref_gen: reference generator (paper 000 sec. V-A): time-parameterised
 // polynomial segments evaluated once per control period by exact integer
-// forward differences (no multipliers).
+// forward differences (no multipliers), on a bit-serial engine.
 //
-// 16 segment slots, written by the CPU (the register file gathers SEG_LEN,
-// SEG_R0_LO/HI, SEG_D1_LO/HI, SEG_D2 and stores them with SEG_FLAGS):
+// 16 segment slots in one block RAM, written and read by the CPU one 32-bit
+// field at a time (port A: seg_we / seg_re, slot seg_slot, field seg_field:
+// 0 len, 1 r0[31:0], 2 r0[63:32], 3 d1[31:0], 4 d1[63:32], 5 d2, 6 flags):
 //   len   [31:0]  control periods (0 = the segment never ends)
 //   r0    [63:0]  start value, Q.32 of the output unit (32 integer + 32 fraction bits)
 //   d1    [63:0]  first forward difference per period, Q.32
 //   d2    [31:0]  signed second forward difference per period, Q.32
-//   relative      start from the current value instead of r0
-//   last          hold at the end of this segment (else go on with slot + 1 mod 16)
-// State: head (= w_{k+N}), d1, d2, remaining, and the active segment's
-// "ends" (len != 0), "last" and slot number.  Per `advance`:
+//   flags [1:0]   bit 0 relative: start from the current value instead of r0;
+//                 bit 1 last: hold at the end of this segment (else go on with slot + 1 mod 16)
+// A write lands at once (no staging: the CPU must not rewrite a slot that an advance
+// may load meanwhile, i.e. the active slot's successor or a pending start slot).
+// State: head (= w_{k+N}), d1, d2, remaining, and the active segment's "ends"
+// (len != 0), "last" and slot number.  Per executed advance:
 //   h1 = head + d1; d1' = d1 + sext(d2); remaining' = remaining - 1 (if the segment ends)
-//   - start pending (or `start` in this clock): load slot start_slot
-//   - else remaining' == 0 and last: hold: head = h1, d1 = d2 = 0, no further end
-//   - else remaining' == 0: load slot (slot + 1) mod 16
+//   - start pending: load slot start_slot
+//   - else remaining == 1 (the segment ends now) and last: hold: head = h1, d1 = d2 = 0,
+//     no further end
+//   - else remaining == 1: load slot (slot + 1) mod 16
 //   - else head = h1, d1 = d1', remaining = remaining'
 //   load(s): head = relative[s] ? h1 : r0[s]; d1, d2, remaining = d1[s], d2[s], len[s]
-// A segment of length L that is followed by an absolute one therefore shows
-// r0, r0+d1, ... for exactly L periods; the next (relative) segment starts
-// from the exact value r(L) = r0 + L d1 + L(L-1)/2 d2.
-// `sync` sets head to sync_value with zero differences and hold; the delay
-// line is then refilled by N shifts of the synced head in the N clocks after
-// the sync (no data multiplexer on the 64*N delay-line flops), so w_k..w_{k+N}
-// all equal sync_value N clocks after the sync.  An advance in the clock of a
-// sync or during the fill is deferred and executed in the clock after the
-// fill (so it acts on the synced state, exactly as if it came after the sync);
-// a pending start survives a sync.  `start` in the same clock as an executed
-// advance is taken by it; otherwise it stays pending until the next advance.
-// `seg_we` in the same clock as a load of that slot: the load sees the old
-// contents.
-// Output: an N+1 deep delay line w_k .. w_{k+N} (w_{k+N} = head), flattened
-// w[64*j +: 64] = w_{k+j}, updated by each advance and valid in the clock after.
-// Arithmetic is modular 2^64 (no saturation): for a position unit (encoder
-// counts) the integer part wraps modulo 2^32 like the encoder counter, by
-// design, and consumers take differences modulo 2^32 of the integer part; for
-// a speed unit (counts per Ts) the CPU must keep the profile within +-2^31
-// counts/Ts (the generator does not saturate).
+// `sync` sets head and the whole delay line to the sync value (read bit by bit through
+// sync_idx / sync_bit while the sync runs), zero differences, hold
+// (a pending start survives a sync).
+// Operations are queued and executed one at a time by the engine: advance, start
+// and sync strobes set pending flags; when idle the engine runs a pending sync
+// first, then a pending advance (several advance strobes before it runs count once).
+// A start is taken by the first advance that begins after it (a start in the clock
+// an advance begins stays pending for the next one).
+// Engine (one bit per clock, LSB first; every pass has one lead clock for the block
+// RAM's read latency):
+//   advance, no load:  one 64-clock pass: the new head bit (h1 = head + d1, or h1 with
+//                      d1 = 0 for a hold) is shifted into the delay line while d1, d2
+//                      and remaining are updated in the same pass
+//   advance with load: flags (2 clocks), head pass (64: h1 or r0 from the RAM), then
+//                      d1 (64), d2 (32), len (32) read from the RAM into the state
+//   sync:              N+1 passes of 64: the sync value, then N copies of the head
+// Delay line: w_k .. w_{k+N} in one shift register ((N+1)*64 bits, SRL LUT-RAM): each
+// pass shifts in a new head word; the old head is read at a fixed tap (bit 63).
+// Readout: rd_q = bit rd_bit of w_{k+N-rd_age} (combinational, any time w_ok = 1).
+// Arithmetic is modular 2^64 (no saturation): for a position unit (encoder counts)
+// the integer part wraps modulo 2^32 like the encoder counter, by design, and
+// consumers take differences modulo 2^32 of the integer part; for a speed unit
+// (counts per Ts) the CPU must keep the profile within +-2^31 counts/Ts.
 //
 // Ports:
 //   clk, rst                  clock, synchronous active-high reset
-//   seg_we, seg_addr[3:0]     store {seg_len, seg_r0, seg_d1, seg_d2, seg_relative, seg_last} into slot seg_addr
+//   seg_we, seg_re, seg_slot[3:0], seg_field[2:0], seg_wdata[31:0]
+//                             CPU field write / read of the slot memory
+//   seg_rdata[31:0]           field read, valid the clock after seg_re (0 in other clocks);
+//                             flags read back as written in bits 1:0, the rest 0
 //   start, start_slot[3:0]    begin the profile at start_slot at the next advance
-//   sync, sync_value[63:0]    set all outputs to sync_value (within N clocks), zero differences, hold
+//   sync                      set all outputs to the sync value, zero differences, hold
+//   sync_idx[5:0], sync_bit   the sync value, bit by bit: sync_bit = bit sync_idx of the value
+//                             (combinational; the value must stay constant until busy falls)
 //   advance                   pulse once per control period
-//   w[(N+1)*64-1:0]           w_k .. w_{k+N} (Q.32, modular)
+//   rd_age, rd_bit[5:0], rd_q reference readout (rd_age 0 = w_{k+N} .. N = w_k)
+//   w_ok                      the delay line is current: no sync or advance is pending or
+//                             shifting (an advance with a load is done with the delay line
+//                             after its head pass)
+//   busy                      an operation is running or pending
 // Parameters:
 //   N                         prediction horizon (delay line N+1 deep), >= 1
-// Latency: 1 clock from advance to w (up to N+1 clocks if the advance came in
-//   the clock of a sync or during the following N-clock fill); head 1 clock and
-//   the whole delay line N clocks after sync.  Consumers (ctrl_seq) read w
-//   microseconds after the advance (after the ADC conversion).
-// Reset: head, delay line, differences 0, hold, no start/advance pending, slot 0.
-//   The slot memory is not reset (LUT RAM): it is 0 after configuration
-//   and keeps its contents over rst.
-// Resources (Yosys xc6s, N = 4): slot memory 16 x 194 bit distributed RAM
-//   (33 RAM32M = 132 SLICEM LUTs), ~460 flip-flops, ~400 logic LUTs (two
-//   64-bit adders, one 32-bit decrementer, the head and difference muxes);
-//   no DSP, no BRAM.
+// Latency: advance strobe -> w_ok: 66 clocks (no load), 69 (load; busy 199); sync ->
+//   w_ok (N+1)*65 clocks (+ a running operation).  Consumers (ctrl_seq) wait for w_ok.
+// Reset: differences 0, hold, no start/advance pending, slot 0; the delay line (no
+//   reset pins) is cleared by a sync to 0 that starts with rst (busy for (N+1)*65 clocks).
+//   The slot memory is not reset (0 after configuration, kept over rst).
+// Resources (Yosys xc6s, N = 4): 1 RAMB16 (slot memory, ports x32 / x1), delay line
+//   in SRLC32E, 192 state flip-flops; no DSP.
 `default_nettype none
 `include "empc_formats.vh"
 module ref_gen #(
-    parameter integer N = `EMPC_N
+    parameter integer N = `EMPC_N,
+    parameter integer AW = (N < 2) ? 1 : $clog2(N + 1)
 ) (
     input  wire                clk,
     input  wire                rst,
     input  wire                seg_we,
-    input  wire [3:0]          seg_addr,
-    input  wire [31:0]         seg_len,
-    input  wire [63:0]         seg_r0,
-    input  wire [63:0]         seg_d1,
-    input  wire [31:0]         seg_d2,
-    input  wire                seg_relative,
-    input  wire                seg_last,
+    input  wire                seg_re,
+    input  wire [3:0]          seg_slot,
+    input  wire [2:0]          seg_field,
+    input  wire [31:0]         seg_wdata,
+    output reg  [31:0]         seg_rdata,
     input  wire                start,
     input  wire [3:0]          start_slot,
     input  wire                sync,
-    input  wire [63:0]         sync_value,
+    output wire [5:0]          sync_idx,
+    input  wire                sync_bit,
     input  wire                advance,
-    output wire [(N+1)*64-1:0] w
+    input  wire [AW-1:0]       rd_age,
+    input  wire [5:0]          rd_bit,
+    output wire                rd_q,
+    output wire                w_ok,
+    output wire                busy
 );
-    localparam integer NSLOT = 16;
-    localparam integer SLW = 32 + 64 + 64 + 32 + 2;     // slot word width
+    localparam [2:0] F_LEN = 3'd0, F_R0 = 3'd1, F_D1 = 3'd3, F_D2 = 3'd5, F_FLAGS = 3'd6;
 
-    // ---------------- slot memory (distributed RAM, async read) ----------------
-    reg [SLW-1:0] mem [0:NSLOT-1];
+    // ---------------- slot memory: block RAM, port A x32 (CPU), port B x1 (engine) ----------------
+    reg  mem [0:4095];
     integer mi;
     initial begin
-        for (mi = 0; mi < NSLOT; mi = mi + 1) mem[mi] = {SLW{1'b0}};
+        for (mi = 0; mi < 4096; mi = mi + 1) mem[mi] = 1'b0;
     end
+    wire is_flags = (seg_field == F_FLAGS);
     always @(posedge clk) begin
         if (seg_we)
-            mem[seg_addr] <= {seg_last, seg_relative, seg_d2, seg_d1, seg_r0, seg_len};
+            for (mi = 0; mi < 32; mi = mi + 1)
+                if (mi < 8 || !is_flags)               // flags: byte 0 only, bits 7:2 written 0
+                    mem[{seg_slot, seg_field, mi[4:0]}] <= (mi >= 2 && is_flags) ? 1'b0 : seg_wdata[mi];
+        if (!seg_re)
+            seg_rdata <= 32'd0;
+        else
+            for (mi = 0; mi < 32; mi = mi + 1) seg_rdata[mi] <= mem[{seg_slot, seg_field, mi[4:0]}];
     end
+    reg  [11:0] rb_addr;                               // port B: {slot, field, bit}
+    reg         rb_q;
+    always @(posedge clk) rb_q <= mem[rb_addr];
 
-    // ---------------- generator state ----------------
-    localparam integer FW = $clog2(N + 1);
-    localparam [FW-1:0] FILL_N = N[FW-1:0];
-    reg  [63:0] head;
-    reg  [63:0] d1;
-    reg  [31:0] d2;
-    reg  [31:0] rem;
-    reg         ends;           // active segment has len != 0
-    reg         last_r;         // active segment is the last one
-    reg  [3:0]  slot;
+    // ---------------- delay line (SRL) ----------------
+    localparam integer DL = (N + 1) * 64;
+    reg  [DL-1:0] dl;
+    reg           dl_sh;
+    reg           dl_in;
+    always @(posedge clk) if (dl_sh) dl <= {dl[DL-2:0], dl_in};
+    // one read port: bit 63 (the old head bit j in clock j of a pass) while the delay
+    // line shifts, else bit 63 - rd_bit of word rd_age (64 * age + 63 - bit)
+    wire          dl_busy;
+    wire [AW+5:0] rd_idx = dl_busy ? {{AW{1'b0}}, 6'd63} : {rd_age, ~rd_bit};
+    wire          tap = dl[rd_idx];
+    assign rd_q = tap;
+
+    // ---------------- engine ----------------
+    localparam [2:0] K_FLG = 3'd0, K_HEAD = 3'd1, K_D1 = 3'd2, K_D2 = 3'd3, K_LEN = 3'd4, K_SYNC = 3'd5;
+    reg         run;                                   // a pass is running
+    reg  [2:0]  kind;
+    reg         act;                                   // past the lead clock
+    reg  [5:0]  t;                                     // bit issued (address) in this clock
+    reg  [5:0]  jc;                                    // bit consumed in this clock (act = 1)
+    reg  [AW-1:0] cp;                                  // sync: copies still to run
+    reg         m_load, m_hold, m_rel;
+    reg         adv_pend, sync_pend, rst_sync;
     reg         pend;
-    reg  [3:0]  pend_slot;
-    reg  [FW-1:0] fill;         // delay-line shifts left after a sync
-    reg         adv_pend;       // advance deferred by a sync fill
-    reg  [63:0] dl [0:N-1];     // w_k .. w_{k+N-1}
+    reg  [3:0]  pend_slot, slot, ld_slot;
+    reg  [63:0] d1;
+    reg  [31:0] d2, rem;
+    reg         ends, last_r, last_nx, rem_one, one_acc;
+    reg         ch, cd, br, d2s;
 
-    wire        filling  = (fill != {FW{1'b0}});
-    wire        adv      = (advance || adv_pend) && !filling && !sync;   // executed advance
-    wire        shift    = (adv || filling) && !sync;
+    wire [5:0]  jlast = (kind == K_FLG) ? 6'd1 : (kind == K_D2 || kind == K_LEN) ? 6'd31 : 6'd63;
+    wire        last_bit = act && (jc == jlast);
+    wire        seg_end  = ends && rem_one;
+    // field of the bit issued in this clock
+    wire [2:0]  fld = (kind == K_FLG) ? F_FLAGS : (kind == K_HEAD) ? (F_R0 + {2'b00, t[5]}) :
+                      (kind == K_D1) ? (F_D1 + {2'b00, t[5]}) : (kind == K_D2) ? F_D2 : F_LEN;
 
-    wire [63:0] h1       = head + d1;
-    wire [63:0] d1n      = d1 + {{32{d2[31]}}, d2};
-    wire        seg_end  = ends && (rem == 32'd1);
-    wire        do_start = start || pend;
-    wire [3:0]  ld_slot  = start ? start_slot : pend ? pend_slot : slot + 4'd1;
-    wire        do_load  = do_start || (seg_end && !last_r);
-    wire        do_hold  = !do_start && seg_end && last_r;
-    wire        zero_dif = rst || sync || (adv && do_hold);  // differences -> 0 (FF reset pins)
+    // head pass arithmetic (bit jc)
+    wire        d1b  = d1[0];
+    wire        d2x  = (jc[5] ? d2s : d2[0]);
+    wire        h1   = tap ^ d1b ^ ch;
+    wire        d1n  = d1b ^ d2x ^ cd;
+    wire        remn = rem[0] ^ br;
+    assign      sync_idx = jc;
+    wire        sync_in  = !rst_sync && sync_bit;
+    wire        in_head = (kind == K_SYNC) ? ((cp == N[AW-1:0]) ? sync_in : tap) :
+                          (m_load && !m_rel) ? rb_q : h1;
+    wire        dl_pass = run && act && (kind == K_HEAD || kind == K_SYNC);
+    wire        normal  = !m_load && !m_hold;
 
-    wire [SLW-1:0] rd    = mem[ld_slot];
-    wire [31:0] rd_len   = rd[31:0];
-    wire [63:0] rd_r0    = rd[95:32];
-    wire [63:0] rd_d1    = rd[159:96];
-    wire [31:0] rd_d2    = rd[191:160];
-    wire        rd_rel   = rd[192];
-    wire        rd_last  = rd[193];
-
-    wire [63:0] head_next = (do_load && !rd_rel) ? rd_r0 : h1;
-
-    // delay line: shift only (clock enable), no data mux: a sync refills it
-    // by N shifts of the synced head
-    integer j;
-    always @(posedge clk) begin
-        if (rst) begin
-            for (j = 0; j < N; j = j + 1) dl[j] <= 64'd0;
-        end else if (shift) begin
-            for (j = 0; j < N - 1; j = j + 1) dl[j] <= dl[j+1];
-            dl[N-1] <= head;
-        end
+    always @(*) begin
+        dl_sh = dl_pass;
+        dl_in = in_head;
+        rb_addr = {ld_slot, fld, t[4:0]};
     end
 
+    assign dl_busy = run && (kind == K_HEAD || kind == K_SYNC);
+    assign busy = run || adv_pend || sync_pend;
+    assign w_ok = !adv_pend && !sync_pend && !(run && (kind == K_FLG || kind == K_HEAD || kind == K_SYNC));
+
+    // operation start (engine idle)
+    wire        go_sync = !run && sync_pend;
+    wire        go_adv  = !run && !sync_pend && adv_pend;
+    wire        g_load  = pend || (seg_end && !last_r);
+    wire        g_hold  = !pend && seg_end && last_r;
+    wire        zero_dif = rst || go_sync || (run && m_hold && kind == K_HEAD && last_bit);
+
     always @(posedge clk) begin
         if (rst) begin
-            head <= 64'd0;
-            fill <= {FW{1'b0}};
+            run <= 1'b1;                               // clear the delay line: sync to 0
+            kind <= K_SYNC;
+            act <= 1'b0;
+            t <= 6'd0;
+            jc <= 6'd0;
+            cp <= N[AW-1:0];
+            rst_sync <= 1'b1;
             adv_pend <= 1'b0;
-        end else if (sync) begin
-            head <= sync_value;
-            fill <= FILL_N;
-            adv_pend <= adv_pend || advance;
+            sync_pend <= 1'b0;
+            pend <= 1'b0;
+            pend_slot <= 4'd0;
+            slot <= 4'd0;
+            ld_slot <= 4'd0;
+            m_load <= 1'b0;
+            m_hold <= 1'b0;
+            m_rel <= 1'b0;
+            last_r <= 1'b0;
+            last_nx <= 1'b0;
+            rem_one <= 1'b0;
+            one_acc <= 1'b0;
+            ch <= 1'b0;
+            cd <= 1'b0;
+            br <= 1'b0;
+            d2s <= 1'b0;
         end else begin
-            if (filling)
-                fill <= fill - {{(FW-1){1'b0}}, 1'b1};
-            if (adv) begin
-                head <= head_next;
-                adv_pend <= 1'b0;
-            end else if (advance) begin
-                adv_pend <= 1'b1;
+            if (advance) adv_pend <= 1'b1;
+            if (sync) sync_pend <= 1'b1;
+            if (start) begin
+                pend <= 1'b1;
+                pend_slot <= start_slot;
+            end
+            if (!run) begin
+                t <= 6'd0;
+                act <= 1'b0;
+                if (go_sync) begin
+                    sync_pend <= sync;                 // a sync in this clock runs again after
+                    run <= 1'b1;
+                    kind <= K_SYNC;
+                    cp <= N[AW-1:0];
+                    rst_sync <= 1'b0;
+                    last_r <= 1'b0;
+                end else if (go_adv) begin
+                    adv_pend <= advance;
+                    run <= 1'b1;
+                    m_load <= g_load;
+                    m_hold <= g_hold;
+                    m_rel <= 1'b0;
+                    ld_slot <= pend ? pend_slot : slot + 4'd1;
+                    if (pend && !start) pend <= 1'b0;
+                    kind <= g_load ? K_FLG : K_HEAD;
+                end
+            end else begin
+                // bit counters: t issues, jc = t delayed
+                t <= t + 6'd1;
+                jc <= t;
+                act <= 1'b1;
+                if (act) begin
+                    case (kind)
+                        K_FLG: begin
+                            if (jc == 6'd0) m_rel <= rb_q;
+                            else last_nx <= rb_q;
+                        end
+                        K_HEAD: if (normal) begin
+                            if (jc == 6'd31) d2s <= d2[0];
+                        end
+                        K_LEN: begin
+                            if (jc == 6'd0) one_acc <= rb_q;
+                            else if (rb_q) one_acc <= 1'b0;
+                        end
+                        default: ;
+                    endcase
+                    // carries (cleared at the lead clock below)
+                    ch <= (tap & d1b) | (ch & (tap ^ d1b));
+                    cd <= (d1b & d2x) | (cd & (d1b ^ d2x));
+                    br <= br & !rem[0];
+                    if (kind == K_HEAD && normal && !jc[5]) begin
+                        if (jc == 6'd0) one_acc <= remn;
+                        else if (remn) one_acc <= 1'b0;
+                    end
+                end else begin
+                    ch <= 1'b0;
+                    cd <= 1'b0;
+                    br <= ends;
+                end
+                if (last_bit) begin
+                    t <= 6'd0;
+                    act <= 1'b0;
+                    case (kind)
+                        K_FLG: kind <= K_HEAD;
+                        K_HEAD: begin
+                            if (m_load) kind <= K_D1;
+                            else begin
+                                run <= 1'b0;
+                                if (normal) rem_one <= ends && one_acc;
+                                else rem_one <= 1'b0;
+                            end
+                        end
+                        K_D1: kind <= K_D2;
+                        K_D2: kind <= K_LEN;
+                        K_LEN: begin
+                            run <= 1'b0;
+                            rem_one <= one_acc && !rb_q;   // len == 1 (bit 31 is this clock's)
+                            last_r <= last_nx;
+                            slot <= ld_slot;
+                        end
+                        default: begin                 // K_SYNC
+                            if (cp == {AW{1'b0}}) run <= 1'b0;
+                            else cp <= cp - {{(AW-1){1'b0}}, 1'b1};
+                        end
+                    endcase
+                end
             end
         end
     end
 
+    // state shift registers (d1 64, d2 32, rem 32: LSB out first)
     always @(posedge clk) begin
         if (zero_dif) begin
             d1 <= 64'd0;
             d2 <= 32'd0;
             rem <= 32'd0;
             ends <= 1'b0;
-        end else if (adv) begin
-            if (do_load) begin
-                d1 <= rd_d1;
-                d2 <= rd_d2;
-                rem <= rd_len;
-                ends <= (rd_len != 32'd0);
-            end else begin
-                d1 <= d1n;
-                if (ends) rem <= rem - 32'd1;
-            end
+        end else if (run && act) begin
+            case (kind)
+                K_HEAD: begin
+                    d1 <= {normal ? d1n : 1'b0, d1[63:1]};
+                    if (normal && !jc[5]) begin
+                        d2 <= {d2[0], d2[31:1]};
+                        rem <= {remn, rem[31:1]};
+                    end
+                end
+                K_D1: d1 <= {rb_q, d1[63:1]};
+                K_D2: d2 <= {rb_q, d2[31:1]};
+                K_LEN: begin
+                    rem <= {rb_q, rem[31:1]};
+                    if (jc == 6'd0) ends <= rb_q;
+                    else if (rb_q) ends <= 1'b1;
+                end
+                default: ;
+            endcase
         end
     end
-
-    always @(posedge clk) begin
-        if (rst || sync) begin
-            last_r <= 1'b0;
-        end else if (adv && do_load) begin
-            last_r <= rd_last;
-        end
-    end
-
-    always @(posedge clk) begin
-        if (rst) begin
-            slot <= 4'd0;
-            pend <= 1'b0;
-            pend_slot <= 4'd0;
-        end else if (adv) begin
-            pend <= 1'b0;
-            if (do_load) slot <= ld_slot;
-        end else if (start) begin
-            pend <= 1'b1;
-            pend_slot <= start_slot;
-        end
-    end
-
-    genvar g;
-    generate
-        for (g = 0; g < N; g = g + 1) begin : g_w
-            assign w[g*64 +: 64] = dl[g];
-        end
-    endgenerate
-    assign w[N*64 +: 64] = head;
 
 `ifndef SYNTHESIS
     initial begin

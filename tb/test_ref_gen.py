@@ -1,20 +1,30 @@
 """cocotb tests of ref_gen against empc.rtlmodel.ref_gen.
 
-* closed_form (model-independent): one quadratic segment run for 3000
-  periods equals r0 + p d1 + p(p-1)/2 d2 mod 2**64 every period; its
+The RTL is a bit-serial engine: every operation (advance, sync) takes tens to
+hundreds of clocks.  The delay line w_k..w_{k+N} is observed inside the DUT (the
+shift register ``dl``) whenever the engine reports ``w_ok``, and through the
+readout port (rd_age, rd_bit -> rd_q).
+
+* closed_form (model-independent): quadratic segments run for 3000
+  periods (1000 in the N = 1 run) equals r0 + p d1 + p(p-1)/2 d2 mod 2**64 every period; its
   delay line equals the head of N..1 periods before; a `last` segment holds
-  at r(L); len = 0 never ends; the position integer part wraps through
-  2**32 (and the 64-bit word through 2**64) exactly;
+  at r(L); len = 0 never ends; slot 15 -> 0 wraps; the position integer part
+  wraps through 2**32 (and the 64-bit word through 2**64) exactly;
+* (in closed_form) sync: head and delay line = the sync value, differences 0;
+  an advance and a start in the sync clock run right after it;
+* readout (in closed_form and random): random rd_age / rd_bit reads equal the
+  model's w bits; every slot field read back (seg_re) equals what was written;
 * profile (model-independent): slots from segments_from_points (steps and
-  exact ramps, SI units) loaded through the ports hit every breakpoint value
+  exact ramps, SI units) written field by field hit every breakpoint value
   exactly (Q.32 of the SI value) at the right period;
-* (in closed_form) sync: head at once, delay line refilled in N clocks, an
-  advance (and start) in the sync clock executed right after the fill;
 * random_vs_model: random segment programs (lengths 0..20 and long, random
-  64-bit r0/d1, signed d2, relative/last flags), advances every 1-4 clocks,
-  start/sync in the middle of segments, slot writes while running and all
-  same-clock combinations (start+advance, sync+advance, sync+start, write of
-  the slot being loaded) compared bit-exact with the model every clock.
+  64-bit r0/d1, signed d2, relative/last flags), advances every 1-300 clocks
+  (so they also arrive while the engine runs), starts and syncs in the middle
+  of segments and of running operations, field writes while running (never to
+  the slot an advance in progress is loading), the same-clock combinations
+  start+advance, sync+advance, sync+start, a write of the slot that an advance
+  beginning in that clock loads; busy / w_ok and (when w_ok) the whole delay
+  line compared bit-exact with the clock-level model every clock.
 """
 from __future__ import annotations
 
@@ -24,12 +34,17 @@ import random
 
 import cocotb
 from cocotb.clock import Clock
-from cocotb.triggers import FallingEdge
+from cocotb.triggers import ClockCycles, FallingEdge, Timer
 
-from empc.rtlmodel.ref_gen import M64, NSLOT, RefGen, Slot, q32, s64, segments_from_points
+from empc.rtlmodel.ref_gen import (FIELDS, M32, M64, NSLOT, RefGen, Slot, q32, s64, segments_from_points,
+                                   slot_field)
 
 DEFAULT_SEED = 20240
 PARAMS = {"N": 4}
+
+
+def _rev64(x: int) -> int:
+    return int(f"{x:064b}"[::-1], 2)
 
 
 class Env:
@@ -42,80 +57,138 @@ class Env:
         self.model = RefGen(self.N)
         self.n = 0
         self.n_adv = 0
+        self.n_w = 0          # delay-line comparisons
+        self.n_rd = 0         # readout-port checks
+        self.n_seg = 0        # field read-backs
         dut._log.info("params %s seed %d (EMPC_SEED)", self.p, self.seed)
+
+    async def sync_driver(self):
+        """The value source: sync_bit = bit sync_idx of the current sync value, every clock."""
+        d = self.dut
+        while True:
+            await FallingEdge(d.clk)
+            d.sync_bit.value = (getattr(self, "sync_value", 0) >> int(d.sync_idx.value)) & 1
 
     async def start(self):
         d = self.dut
         Clock(d.clk, 10, unit="ns").start()
+        d.sync_bit.value = 0
+        cocotb.start_soon(self.sync_driver())
         d.rst.value = 1
         self._idle()
         for _ in range(3):
             await FallingEdge(d.clk)
         d.rst.value = 0
-        self.model.reset()
+        self.model.reset()                 # the RTL clears its delay line after rst (sync to 0)
+        await self.wait_idle()
         self.check()
 
     def _idle(self):
         d = self.dut
-        for s in ("seg_we", "start", "sync", "advance", "seg_relative", "seg_last"):
+        for s in ("seg_we", "seg_re", "start", "sync", "advance"):
             getattr(d, s).value = 0
-        d.seg_addr.value = 0
-        d.seg_len.value = 0
-        d.seg_r0.value = 0
-        d.seg_d1.value = 0
-        d.seg_d2.value = 0
+        d.seg_slot.value = 0
+        d.seg_field.value = 0
+        d.seg_wdata.value = 0
         d.start_slot.value = 0
-        d.sync_value.value = 0
+        d.rd_age.value = 0
+        d.rd_bit.value = 0
 
     def w(self) -> list[int]:
-        v = int(self.dut.w.value)
-        return [(v >> (64 * j)) & M64 for j in range(self.N + 1)]
+        """w_k .. w_{k+N} from the DUT's delay line (bit 64*age + 63 - b = bit b of w_{k+N-age})."""
+        v = int(self.dut.dl.value)
+        return [_rev64((v >> (64 * (self.N - m))) & M64) for m in range(self.N + 1)]
 
     def check(self):
-        got = self.w()
-        exp = self.model.w
-        assert got == exp, (f"clock {self.n} (advance {self.n_adv}): w mismatch\n"
-                            f"  rtl   {[hex(x) for x in got]}\n  model {[hex(x) for x in exp]}")
+        d, m = self.dut, self.model
+        assert int(d.busy.value) == m.busy and int(d.w_ok.value) == m.w_ok, \
+            (f"clock {self.n}: busy/w_ok rtl {int(d.busy.value)}/{int(d.w_ok.value)} model {m.busy}/{m.w_ok} "
+             f"(rtl run {d.run.value} kind {d.kind.value} adv_pend {d.adv_pend.value}; model op {m._op and {k: v for k, v in m._op.items() if k != 'result'}} adv_pend {m.adv_pend})")
+        if m.w_ok:
+            got, exp = self.w(), m.w
+            assert got == exp, (f"clock {self.n} (advance {self.n_adv}): w mismatch\n"
+                                f"  rtl   {[hex(x) for x in got]}\n  model {[hex(x) for x in exp]}")
+            self.n_w += 1
 
-    async def cycle(self, seg_addr=None, seg=None, start_slot=None, sync_value=None, advance=False):
-        """One clock with the given inputs (None = not asserted), then compare with the model."""
+    async def cycle(self, seg=None, seg_read=None, start_slot=None, sync_value=None, advance=False,
+                    sync_hold=None, check=True):
+        """One clock with the given inputs (None = not asserted), then compare with the model.
+        seg = (slot, field, value) writes a field; seg_read = (slot, field) reads one back."""
         d = self.dut
         self._idle()
         if seg is not None:
-            s = seg.normalised()
             d.seg_we.value = 1
-            d.seg_addr.value = seg_addr
-            d.seg_len.value = s.length
-            d.seg_r0.value = s.r0
-            d.seg_d1.value = s.d1
-            d.seg_d2.value = s.d2 & 0xFFFFFFFF
-            d.seg_relative.value = int(s.relative)
-            d.seg_last.value = int(s.last)
+            d.seg_slot.value, d.seg_field.value, d.seg_wdata.value = seg[0], seg[1], seg[2] & M32
+        if seg_read is not None:
+            d.seg_re.value = 1
+            d.seg_slot.value, d.seg_field.value = seg_read
+            exp_rd = self.model.read_field(*seg_read)
         if start_slot is not None:
             d.start.value = 1
             d.start_slot.value = start_slot
         if sync_value is not None:
             d.sync.value = 1
-            d.sync_value.value = sync_value & M64
+            self.sync_value = sync_value & M64
         d.advance.value = int(advance)
-        self.model.step(seg_we=seg is not None, seg_addr=seg_addr or 0, seg=seg,
-                        start=start_slot is not None, start_slot=start_slot or 0,
-                        sync=sync_value is not None, sync_value=sync_value or 0, advance=advance)
+        self.model.step(seg_we=seg is not None, seg_slot=seg[0] if seg else 0, seg_field=seg[1] if seg else 0,
+                        seg_wdata=seg[2] if seg else 0, start=start_slot is not None, start_slot=start_slot or 0,
+                        sync=sync_value is not None, sync_value=getattr(self, "sync_value", 0),
+                        advance=advance)
         await FallingEdge(d.clk)
         self.n += 1
         self.n_adv += int(advance)
-        self.check()
-        return self.w()
+        if seg_read is not None:
+            got = int(d.seg_rdata.value)
+            assert got == exp_rd, f"clock {self.n}: slot {seg_read[0]} field {FIELDS[seg_read[1]]} read {got:#x} " \
+                                  f"expected {exp_rd:#x}"
+            self.n_seg += 1
+        elif int(d.seg_rdata.value) != 0:
+            raise AssertionError(f"clock {self.n}: seg_rdata {int(d.seg_rdata.value):#x} without a read")
+        if check:
+            self.check()
 
-    async def program(self, slots, base=0):
+    async def wait_idle(self, limit=10000):
+        """Clocks without inputs until the engine is idle (model and RTL), checked at the end."""
+        n = 0
+        while self.model.busy:
+            self.model.step()
+            n += 1
+            assert n < limit, "engine does not finish"
+        self._idle()
+        if n:
+            await ClockCycles(self.dut.clk, n, rising=False)
+            self.n += n
+        self.check()
+
+    async def readout(self, count):
+        """Random readout-port reads (the delay line must be current); no clock edge passes."""
+        d, m = self.dut, self.model
+        assert m.w_ok
+        w = m.w
+        for _ in range(count):
+            age, b = self.rng.randrange(self.N + 1), self.rng.randrange(64)
+            d.rd_age.value, d.rd_bit.value = age, b
+            await Timer(10, unit="ps")          # stays inside the low clock phase
+            exp = (w[self.N - age] >> b) & 1
+            assert int(d.rd_q.value) == exp, f"readout age {age} bit {b}: {int(d.rd_q.value)} != {exp}"
+            self.n_rd += 1
+
+    async def program(self, slots, base=0, readback=True):
         for i, s in enumerate(slots):
-            await self.cycle(seg_addr=(base + i) % NSLOT, seg=s)
+            s = s.normalised()
+            idx = (base + i) % NSLOT
+            for f in range(len(FIELDS)):
+                await self.cycle(seg=(idx, f, slot_field(s, f)))
+            if readback:
+                for f in range(len(FIELDS)):
+                    await self.cycle(seg_read=(idx, f))
 
     async def advance(self, gap=0):
-        w = await self.cycle(advance=True)
+        await self.cycle(advance=True)
+        await self.wait_idle()
         for _ in range(gap):
             await self.cycle()
-        return w
+        return self.w()
 
 
 @cocotb.test()
@@ -125,6 +198,7 @@ async def closed_form(dut):
     N = env.N
     rng = env.rng
     checks = 0
+    n_periods = int(os.environ.get("EMPC_REFGEN_PERIODS", 3000))
     # quadratic segment through the 64-bit wrap and the 2**32 integer wrap
     for r0, d1, d2 in ((0xFFFFFFF0_00000000, 0x0000_0001_2345_6789, -0x1234_5678),
                        (0x7FFF_FFFF_8000_0000, -0x0000_0003_0000_0001, 0x7FFF_FFFF),
@@ -133,7 +207,7 @@ async def closed_form(dut):
         await env.cycle(start_slot=5)
         heads = []
         wrapped32 = wrapped64 = False
-        for p in range(3000):
+        for p in range(n_periods):
             w = await env.advance()
             exp = (r0 + p * d1 + p * (p - 1) // 2 * d2) & M64
             assert w[N] == exp, f"period {p}: head {w[N]:#x} closed form {exp:#x}"
@@ -144,9 +218,11 @@ async def closed_form(dut):
             if p:
                 wrapped32 |= (heads[p] >> 32) < (heads[p - 1] >> 32) if d1 > 0 else (heads[p] >> 32) > (heads[p - 1] >> 32)
                 wrapped64 |= abs(s64(heads[p]) - s64(heads[p - 1])) > (1 << 62)
+            if p % 500 == 0:
+                await env.readout(20)
             checks += 1
-        dut._log.info("closed form r0=%#x d1=%#x d2=%d: 3000 periods ok (integer part wrapped mod 2**32: %s, "
-                      "signed 64-bit overflow: %s)", r0, d1 & M64, d2, wrapped32, wrapped64)
+        dut._log.info("closed form r0=%#x d1=%#x d2=%d: %d periods ok (integer part wrapped mod 2**32: %s, "
+                      "signed 64-bit overflow: %s)", r0, d1 & M64, d2, n_periods, wrapped32, wrapped64)
     # last: hold at r(L); then nothing changes
     L = 37
     r0, d1, d2 = 0x1_0000_0000, 0x2345_6789, -0x1111
@@ -165,22 +241,28 @@ async def closed_form(dut):
     vals = [(await env.advance())[N] >> 32 for _ in range(6)]
     assert vals == [0x10, 0x11, 0x12, 0x99, 0x99, 0x99], f"slot 15 -> 0 sequence {vals}"
     checks += 1
-    # sync: head at once, delay line filled in N clocks; an advance in the sync clock (with a
-    # start in the same clock) is executed in the clock after the fill
+    # sync: head and delay line = the value, differences 0; an advance and a start in the sync
+    # clock run right after the sync
     sv, r0, d1 = 0xABCD_0000_1234_5678, 0x0000_0042_8000_0000, 0x1_0000_0000
     await env.program([Slot(0, r0, d1, 0)], base=3)
-    old = env.w()
-    w = await env.cycle(sync_value=sv, start_slot=3, advance=True)
-    assert w[N] == sv and w[:N] == old[:N], "sync clock: head only"
-    for k in range(1, N + 1):
-        w = await env.cycle()
-        assert w[N] == sv and w[N - k:N] == [sv] * k and w[:N - k] == old[k:N], f"fill clock {k}: {w}"
-    w = await env.cycle()
-    assert w[N] == r0 and w[:N] == [sv] * N, "deferred advance must run right after the fill"
+    await env.cycle(sync_value=sv, start_slot=3, advance=True)
+    assert int(dut.busy.value) == 1 and int(dut.w_ok.value) == 0
+    n_sync = 0
+    while env.model._op is None or env.model._op["kind"] == "sync":
+        await env.cycle()
+        n_sync += 1
+    w = env.model.w
+    assert w == [sv] * (N + 1), "sync: every word = the sync value"
+    assert env.w() == w
+    await env.wait_idle()
+    w = env.w()
+    assert w[N] == r0 and w[:N] == [sv] * N, "the advance of the sync clock must run right after the sync"
     w = await env.advance()
     assert w[N] == (r0 + d1) & M64 and w[N - 1] == r0 and w[:N - 1] == [sv] * (N - 1)
-    checks += N + 3
-    dut._log.info("closed_form: %d period checks, %d clocks", checks, env.n)
+    await env.readout(200)
+    checks += 3
+    dut._log.info("closed_form: %d period checks, %d clocks (sync %d clocks), %d delay-line compares, "
+                  "%d readout bits, %d field read-backs", checks, env.n, n_sync, env.n_w, env.n_rd, env.n_seg)
 
 
 @cocotb.test()
@@ -196,8 +278,7 @@ async def profile(dut):
     slots = segments_from_points(pts, unit, Ts, v0=1.5)
     await env.program(slots)
     await env.cycle(sync_value=0x1234_5678_9ABC_DEF0)
-    for _ in range(N):                              # delay-line fill
-        await env.cycle()
+    await env.wait_idle()
     await env.cycle(start_slot=0)
     n = int(round(0.07 / Ts))
     heads = [(await env.advance(gap=env.rng.randrange(3)))[N] for _ in range(n)]
@@ -234,37 +315,55 @@ async def random_vs_model(dut):
     env = Env(dut)
     await env.start()
     rng = env.rng
-    await env.program([rand_slot(rng) for _ in range(NSLOT)])
+    m = env.model
+    await env.program([rand_slot(rng) for _ in range(NSLOT)], readback=False)
     await env.cycle(start_slot=rng.randrange(NSLOT))
-    n_clocks = 24000
-    stats = dict(start=0, sync=0, write=0, start_adv=0, sync_adv=0, write_load=0, deferred=0)
+    n_clocks = int(os.environ.get("EMPC_REFGEN_CLOCKS", 60000))
+    stats = dict(advance=0, start=0, sync=0, write=0, read=0, start_adv=0, sync_adv=0, sync_start=0,
+                 write_load=0, adv_busy=0, readouts=0)
+    next_adv = 0
     while env.n < n_clocks:
-        adv = rng.random() < 0.35
-        kw = {"advance": adv}
+        kw = {}
+        if env.n >= next_adv:
+            kw["advance"] = True
+            stats["advance"] += 1
+            stats["adv_busy"] += int(m.busy)
+            next_adv = env.n + rng.choice([1, 2, 3, 30, 70, 150, 200, 300])
         r = rng.random()
-        if r < 0.01:
+        if r < 0.004:
             kw["start_slot"] = rng.randrange(NSLOT)
             stats["start"] += 1
-            stats["start_adv"] += adv
-        elif r < 0.016:
+            stats["start_adv"] += int("advance" in kw)
+        elif r < 0.006 and not m.sync_pend and not (m._op is not None and m._op["kind"] == "sync"):
             kw["sync_value"] = rng.getrandbits(64)
             stats["sync"] += 1
-            stats["sync_adv"] += adv
+            stats["sync_adv"] += int("advance" in kw)
             if rng.random() < 0.3:
                 kw["start_slot"] = rng.randrange(NSLOT)
-        if rng.random() < 0.02:
-            # often hit the slot that this advance would load
-            m = env.model
-            nxt = kw.get("start_slot", m.pend_slot if m.pend else (m.slot + 1) % NSLOT)
+                stats["sync_start"] += 1
+        r = rng.random()
+        begins = m._op is None and not m.sync_pend and m.adv_pend      # an advance begins in this clock
+        if r < 0.03 or (begins and r < 0.4):
+            # a field write: often to the slot an advance beginning now loads; never to the
+            # slot of an advance in progress
+            nxt = m.pend_slot if m.pend else (m.slot + 1) % NSLOT
             a = nxt if rng.random() < 0.5 else rng.randrange(NSLOT)
-            kw["seg_addr"], kw["seg"] = a, rand_slot(rng)
-            stats["write"] += 1
-            stats["write_load"] += int(adv and a == nxt)
-        stats["deferred"] += int(adv and (env.model.fill != 0 or "sync_value" in kw))
+            if a != m.loading_slot:
+                s = rand_slot(rng).normalised()
+                f = rng.randrange(len(FIELDS))
+                kw["seg"] = (a, f, slot_field(s, f))
+                stats["write"] += 1
+                stats["write_load"] += int(begins and a == nxt)
+        elif r < 0.045:
+            kw["seg_read"] = (rng.randrange(NSLOT), rng.randrange(len(FIELDS)))
+            stats["read"] += 1
         await env.cycle(**kw)
-    assert stats["deferred"] > 10 and stats["write_load"] > 10 and stats["start_adv"] > 10
-    dut._log.info("random: %d clocks, %d advances bit-exact vs model (seed %d); %s",
-                  env.n, env.n_adv, env.seed, stats)
+        if m.w_ok and rng.random() < 0.01:
+            await env.readout(8)
+            stats["readouts"] += 1
+    assert stats["adv_busy"] > 50 and stats["write_load"] > 3 and stats["start_adv"] > 0 and stats["sync_adv"] >= 0
+    dut._log.info("random: %d clocks, %d advances, %d delay-line compares, %d readout bits, %d field read-backs "
+                  "bit-exact vs model (seed %d); %s", env.n, env.n_adv, env.n_w, env.n_rd, env.n_seg, env.seed, stats)
 
 
 def test_ref_gen():
@@ -276,5 +375,6 @@ def test_ref_gen():
 def test_ref_gen_n1():
     from runner import run
     p = {"N": 1}
-    run(toplevel="ref_gen", test_module="test_ref_gen", parameters=p, extra_env={"TB_PARAMS": json.dumps(p)},
+    run(toplevel="ref_gen", test_module="test_ref_gen", parameters=p,
+        extra_env={"TB_PARAMS": json.dumps(p), "EMPC_REFGEN_PERIODS": "1000", "EMPC_REFGEN_CLOCKS": "30000"},
         testcase=["closed_form", "random_vs_model"], name="test_ref_gen_n1")

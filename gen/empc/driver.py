@@ -74,7 +74,7 @@ class Drive:
     async def program_profile(self, slots: list[Slot], start_slot: int = 0, start: bool = True) -> None:
         for i, s in enumerate(slots):
             await self.write("SEG_ADDR", start_slot + i)
-            for name, v in s.regs().items():          # SEG_FLAGS last: it stores the slot
+            for name, v in s.regs().items():          # each field goes straight into slot SEG_ADDR
                 await self.write(name, v)
         if start:
             await self.write("SEG_START", start_slot)

@@ -113,14 +113,17 @@ AXIS = (
         Field("kacc", 0, 18, "signed gain"), Field("shift", 24, 5, "right shift"))),
     Reg("ID_REF", 0x11, "RW", 0, "d-current reference, ADC LSB Q.4 (signed 18 bit).", width=18),
     Reg("IQ_REF", 0x12, "RW", 0, "q-current reference (feed-forward), ADC LSB Q.4 (signed 18 bit).", width=18),
-    Reg("SEG_ADDR", 0x13, "RW", 0, "Reference segment slot (0..15) that SEG_* writes address.", width=4),
-    Reg("SEG_LEN", 0x14, "RW", 0, "Segment length in control periods (0 = hold forever).", width=32),
+    Reg("SEG_ADDR", 0x13, "RW", 0, "Reference segment slot (0..15) that the SEG_LEN .. SEG_FLAGS fields access. "
+        "Each field write goes straight into the slot (no staging): do not rewrite a slot that the "
+        "next control period may load (the active slot's successor or a pending SEG_START slot).", width=4),
+    Reg("SEG_LEN", 0x14, "RW", 0, "Segment length in control periods (0 = hold forever); field of slot SEG_ADDR "
+        "(SEG_* reads return the field of slot SEG_ADDR).", width=32),
     Reg("SEG_R0_LO", 0x15, "RW", 0, "Segment start value, low word (task output, 64-bit Q.32: counts or counts/Ts)."),
     Reg("SEG_R0_HI", 0x16, "RW", 0, "Segment start value, high word."),
     Reg("SEG_D1_LO", 0x17, "RW", 0, "First forward difference per control period, low word (64-bit Q.32)."),
     Reg("SEG_D1_HI", 0x18, "RW", 0, "First forward difference, high word."),
     Reg("SEG_D2", 0x19, "RW", 0, "Second forward difference (signed 32-bit Q.32 of the output unit)."),
-    Reg("SEG_FLAGS", 0x1a, "RW", 0, "Segment flags; writing this register stores the slot.", (
+    Reg("SEG_FLAGS", 0x1a, "RW", 0, "Segment flags of slot SEG_ADDR.", (
         Field("relative", 0, 1, "start from the current reference value instead of R0"),
         Field("last", 1, 1, "hold at the end of this segment instead of moving to the next slot"))),
     Reg("SEG_START", 0x1b, "WO", 0, "Write a slot number to start the profile there at the next control period."),
@@ -131,13 +134,15 @@ AXIS = (
     Reg("I_Q", 0x24, "RO", 0, "i_q at the last control period, ADC LSB Q.4 (signed).", width=18),
     Reg("U_D", 0x25, "RO", 0, "u_d applied, PWM ticks Q16.8 (signed 24 bit).", width=24),
     Reg("U_Q", 0x26, "RO", 0, "u_q applied, PWM ticks Q16.8 (signed 24 bit).", width=24),
-    Reg("REF", 0x27, "RO", 0, "Task-output reference w_k (low 32 bits of the core format: Q16.16 speed / Q24.8 position)."),
+    Reg("REF", 0x27, "RO", 0, "Task-output reference w_k of the last control period (bits 47:16 speed, Q16.16 / "
+        "39:8 position, Q24.8 of the generator value)."),
     Reg("IABC0", 0x28, "RO", 0, "Last raw ADC codes phases A (11:0) and B (27:16).", width=28),
     Reg("IABC1", 0x29, "RO", 0, "Last raw ADC code phase C (11:0).", width=12),
     Reg("LATENCY", 0x2a, "RO", 0, "Clocks from the ADC trigger to the new PWM compare values of the last control period."),
     Reg("PERIODS", 0x2b, "RO", 0, "Control periods run since enable."),
     Reg("SAT_OPERAND", 0x30, "RO", 0, "Saturation counter: core operand. SAT_* and CNT_OVERRUN count control "
-        "periods in which the event happened (32-bit, saturating)."),
+        "periods in which the event happened (32-bit, saturating; updated after the control period's "
+        "modulation)."),
     Reg("SAT_GAIN", 0x31, "RO", 0, "Saturation counter: gain polynomial."),
     Reg("SAT_TERM", 0x32, "RO", 0, "Saturation counter: product term."),
     Reg("SAT_ACC", 0x33, "RO", 0, "Saturation counter: accumulator."),

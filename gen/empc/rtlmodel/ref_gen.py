@@ -16,8 +16,10 @@ Per advance (see the RTL header for the exact rules)::
     load(s): head = h1 if relative[s] else r0[s]; d1, d2, remaining = d1[s], d2[s], len[s]
 
 ``w`` is the delay line w_k .. w_{k+N} (``w[N]`` = head).  A sync sets the head
-at once and refills the delay line by N shifts in the following N clocks; an
-advance in the sync clock or during that fill is deferred to the clock after it.
+and the whole delay line.  The RTL is a bit-serial engine that executes one
+queued operation at a time (sync before advance); :meth:`RefGen.step` models its
+timing clock by clock, the other methods act at once.  Slots are written one
+32-bit field at a time (:meth:`RefGen.write_field`, fields :data:`FIELDS`).
 
 :func:`segments_from_points` turns a step/ramp profile in SI units into slots.
 """
@@ -62,29 +64,69 @@ class Slot:
         return Slot(self.length, self.r0 & M64, self.d1 & M64, _s32(self.d2), bool(self.relative), bool(self.last))
 
     def regs(self) -> dict:
-        """Register words (gen/empc/regmap.py AXIS SEG_*) that program this slot; write SEG_FLAGS last."""
+        """Register words (gen/empc/regmap.py AXIS SEG_*) that program this slot (each write goes
+        straight into slot SEG_ADDR; the order does not matter)."""
         s = self.normalised()
         return {"SEG_LEN": s.length, "SEG_R0_LO": s.r0 & M32, "SEG_R0_HI": s.r0 >> 32,
                 "SEG_D1_LO": s.d1 & M32, "SEG_D1_HI": s.d1 >> 32, "SEG_D2": s.d2 & M32,
                 "SEG_FLAGS": int(s.relative) | (int(s.last) << 1)}
 
 
+FIELDS = ("len", "r0_lo", "r0_hi", "d1_lo", "d1_hi", "d2", "flags")   # seg_field 0..6 (SEG_LEN .. SEG_FLAGS)
+
+
+def slot_field(s: Slot, field: int) -> int:
+    """32-bit word of field ``field`` (0..6, see :data:`FIELDS`) of a normalised slot, as read back."""
+    return [s.length, s.r0 & M32, s.r0 >> 32, s.d1 & M32, s.d1 >> 32, s.d2 & M32,
+            int(s.relative) | (int(s.last) << 1)][field]
+
+
+def with_field(s: Slot, field: int, value: int) -> Slot:
+    """``s`` with field ``field`` replaced by the 32-bit word ``value`` (a CPU field write)."""
+    v = value & M32
+    if field == 0:
+        return Slot(v, s.r0, s.d1, s.d2, s.relative, s.last)
+    if field in (1, 2):
+        r0 = (s.r0 & ~M32 | v) if field == 1 else (s.r0 & M32 | v << 32)
+        return Slot(s.length, r0, s.d1, s.d2, s.relative, s.last)
+    if field in (3, 4):
+        d1 = (s.d1 & ~M32 | v) if field == 3 else (s.d1 & M32 | v << 32)
+        return Slot(s.length, s.r0, d1, s.d2, s.relative, s.last)
+    if field == 5:
+        return Slot(s.length, s.r0, s.d1, _s32(v), s.relative, s.last)
+    if field == 6:
+        return Slot(s.length, s.r0, s.d1, s.d2, bool(v & 1), bool(v & 2))
+    raise ValueError(f"field {field} out of 0..6")
+
+
+# engine timing of rtl/ref_gen.v (clocks per pass include the lead clock of the block RAM read)
+PASS_CLOCKS = {"flags": 3, "head": 65, "d1": 65, "d2": 33, "len": 33, "sync": 65}
+
+
 class RefGen:
     """One ``ref_gen`` instance.
 
-    Operation-level API: :meth:`write_slot`, :meth:`start`, :meth:`sync`,
-    :meth:`advance` (each as if it happened alone in one clock).  Clock-level
-    API: :meth:`step` (all inputs of one clock, with the RTL's priorities).
+    Operation-level API: :meth:`write_slot` / :meth:`write_field`, :meth:`start`,
+    :meth:`sync`, :meth:`advance` (each as if the engine ran it to completion at once).
+    Clock-level API: :meth:`step` (the inputs of one clock) with the RTL engine's
+    timing: strobes set pending flags; an idle engine begins a pending sync first,
+    then a pending advance; an operation's effect on the delay line (``w``) shows at
+    the end of its head / last sync pass (``w_ok``), on the differences at its end
+    (``busy`` falls).  The slot memory is read when an advance begins: the RTL reads
+    the slot fields during the operation, so the CPU must not write the slot being
+    loaded (:attr:`loading_slot`) while the operation runs.
     """
 
     def __init__(self, N: int = 4):
         if N < 1:
             raise ValueError("N must be >= 1")
         self.N = N
-        self.mem = [Slot()] * NSLOT        # not cleared by reset (LUT RAM)
-        self.reset()
+        self.mem = [Slot()] * NSLOT        # not cleared by reset (block RAM)
+        self.reset(settled=True)
 
-    def reset(self) -> None:
+    def reset(self, settled: bool = False) -> None:
+        """rst: state cleared; the RTL clears its delay line with a sync to 0 that runs
+        (N+1) passes after rst (``settled=True`` skips that wait: the state after it)."""
         self.head = 0
         self.d1 = 0
         self.d2 = 0
@@ -94,87 +136,55 @@ class RefGen:
         self.slot = 0
         self.pend = False
         self.pend_slot = 0
-        self.fill = 0
         self.adv_pend = False
+        self.sync_pend = False
         self.dl = [0] * self.N
+        self._op = None                    # running operation: dict(kind, clocks left, ...)
+        self._sync_value = 0
+        if not settled:
+            self._begin_sync(0)
 
     @property
     def w(self) -> list[int]:
         """w_k .. w_{k+N} (unsigned 64-bit words)."""
         return self.dl + [self.head]
 
-    def w_bus(self) -> int:
-        """The flattened RTL output bus ``w`` ((N+1) x 64 bit, w_k at the LSBs)."""
-        v = 0
-        for j, x in enumerate(self.w):
-            v |= x << (64 * j)
-        return v
-
-    # ---- operations ----
+    # ---- operation level ----
     def write_slot(self, idx: int, slot: Slot) -> None:
         self.mem[idx % NSLOT] = slot.normalised()
 
+    def write_field(self, idx: int, field: int, value: int) -> None:
+        self.mem[idx % NSLOT] = with_field(self.mem[idx % NSLOT], field, value)
+
+    def read_field(self, idx: int, field: int) -> int:
+        return slot_field(self.mem[idx % NSLOT], field)
+
     def start(self, slot: int) -> None:
-        self.step(start=True, start_slot=slot)
+        self.pend, self.pend_slot = True, slot % NSLOT
 
     def sync(self, value: int) -> None:
-        """Sync and the N clocks of delay-line fill (all of w equal ``value`` afterwards)."""
-        self.step(sync=True, sync_value=value)
-        for _ in range(self.N):
-            self.step()
+        """Head and the whole delay line = ``value``, differences 0, hold (a pending start survives)."""
+        v = value & M64
+        self.head = v
+        self.dl = [v] * self.N
+        self.d1 = self.d2 = self.rem = 0
+        self.ends = self.last = False
 
     def advance(self) -> list[int]:
-        self.step(advance=True)
+        self._advance()
         return self.w
 
     def load_program(self, slots, base: int = 0) -> None:
         for i, s in enumerate(slots):
             self.write_slot(base + i, s)
 
-    # ---- one clock ----
-    def step(self, seg_we: bool = False, seg_addr: int = 0, seg: Slot | None = None,
-             start: bool = False, start_slot: int = 0, sync: bool = False, sync_value: int = 0,
-             advance: bool = False) -> None:
-        """One rising clock edge with the given inputs, with the RTL's priorities: sync first
-        (an advance in its clock or in the N fill clocks after it is deferred to the clock
-        after the fill); a start in the clock of an executed advance is taken by it, else
-        it stays pending; the slot write lands after the clock's load (a load of the slot
-        being written sees the old contents)."""
-        start_slot %= NSLOT
-        if sync:
-            v = sync_value & M64
-            self.head = v
-            self.fill = self.N
-            self.adv_pend = self.adv_pend or advance
-            self.d1 = self.d2 = self.rem = 0
-            self.ends = self.last = False
-            if start:
-                self.pend, self.pend_slot = True, start_slot
-        else:
-            filling = self.fill != 0
-            adv = (advance or self.adv_pend) and not filling
-            old_head = self.head
-            if adv:
-                self._advance(start, start_slot)
-                self.adv_pend = False
-            else:
-                if advance:
-                    self.adv_pend = True
-                if start:
-                    self.pend, self.pend_slot = True, start_slot
-            if filling:
-                self.fill -= 1
-            if adv or filling:
-                self.dl = self.dl[1:] + [old_head]
-        if seg_we:
-            self.write_slot(seg_addr, seg if seg is not None else Slot())
-
-    def _advance(self, start: bool, start_slot: int) -> None:
+    def _advance(self) -> None:
+        old_head = self.head
         h1 = (self.head + self.d1) & M64
         d1n = (self.d1 + self.d2) & M64
         seg_end = self.ends and self.rem == 1
-        do_start = start or self.pend
-        ld = start_slot if start else self.pend_slot if self.pend else (self.slot + 1) % NSLOT
+        do_start = self.pend
+        ld = self.pend_slot if self.pend else (self.slot + 1) % NSLOT
         self.pend = False
         if do_start or (seg_end and not self.last):
             s = self.mem[ld]
@@ -190,6 +200,88 @@ class RefGen:
             self.d1 = d1n
             if self.ends:
                 self.rem -= 1
+        self.dl = self.dl[1:] + [old_head]
+
+    # ---- clock level (RTL engine timing) ----
+    @property
+    def busy(self) -> bool:
+        return self._op is not None or self.adv_pend or self.sync_pend
+
+    @property
+    def w_ok(self) -> bool:
+        """The delay line is current (RTL ``w_ok``): nothing pending, no head / sync pass running."""
+        return not self.adv_pend and not self.sync_pend and (self._op is None or self._op["w_done"])
+
+    @property
+    def loading_slot(self):
+        """Slot an advance in progress loads (None if none)."""
+        return self._op["slot"] if self._op is not None and self._op.get("load") else None
+
+    def _begin_sync(self, value: int) -> None:
+        self._op = {"kind": "sync", "left": (self.N + 1) * PASS_CLOCKS["sync"], "w_left": None,
+                    "w_done": False, "value": value & M64}
+        self.d1 = self.d2 = self.rem = 0          # cleared when the sync begins
+        self.ends = self.last = False
+
+    def _begin_advance(self) -> None:
+        seg_end = self.ends and self.rem == 1
+        load = self.pend or (seg_end and not self.last)
+        ld = self.pend_slot if self.pend else (self.slot + 1) % NSLOT
+        snap = RefGen.__new__(RefGen)              # the result, applied in two steps
+        snap.__dict__.update({k: v for k, v in self.__dict__.items() if k != "_op"})
+        snap.dl = list(self.dl)
+        snap._advance()
+        if load:
+            clocks = sum(PASS_CLOCKS[k] for k in ("flags", "head", "d1", "d2", "len"))
+            w_left = PASS_CLOCKS["flags"] + PASS_CLOCKS["head"]
+        else:
+            clocks = w_left = PASS_CLOCKS["head"]
+        self.pend = False                          # consumed (a start in this clock re-pends)
+        self._op = {"kind": "advance", "left": clocks, "w_left": w_left, "w_done": False,
+                    "load": load, "slot": ld, "result": snap}
+
+    def step(self, seg_we: bool = False, seg_slot: int = 0, seg_field: int = 0, seg_wdata: int = 0,
+             start: bool = False, start_slot: int = 0, sync: bool = False, sync_value: int = 0,
+             advance: bool = False) -> None:
+        """One rising clock edge with the given inputs (RTL priorities and timing).
+        ``sync_value`` is sampled when the sync's first pass runs: keep it constant from the
+        strobe until the sync has run (as the RTL requires); here it is taken at the strobe.  A field write
+        lands before an advance that begins in the same clock reads the slot; the CPU must not
+        write :attr:`loading_slot` while that advance runs (undefined in the RTL)."""
+        if seg_we:                                 # port A write: seen by an advance beginning now
+            self.write_field(seg_slot, seg_field, seg_wdata)
+        op = self._op
+        if op is not None:                         # the running operation advances one clock
+            op["left"] -= 1
+            if op["w_left"] is not None and not op["w_done"]:
+                op["w_left"] -= 1
+                if op["w_left"] == 0:
+                    r = op["result"]
+                    self.head, self.dl = r.head, list(r.dl)
+                    op["w_done"] = True
+            if op["left"] == 0:
+                if op["kind"] == "sync":
+                    v = op["value"]
+                    self.head, self.dl = v, [v] * self.N
+                else:
+                    r = op["result"]
+                    for k in ("d1", "d2", "rem", "ends", "last", "slot"):
+                        setattr(self, k, getattr(r, k))
+                self._op = None
+        elif self.sync_pend:                       # idle: begin an operation
+            self.sync_pend = False
+            self._begin_sync(self._sync_value)
+        elif self.adv_pend:
+            self.adv_pend = False
+            self._begin_advance()
+        # strobes of this clock
+        if advance:
+            self.adv_pend = True
+        if sync:
+            self.sync_pend = True
+            self._sync_value = sync_value & M64
+        if start:
+            self.pend, self.pend_slot = True, start_slot % NSLOT
 
 
 def q32(value: float) -> int:
