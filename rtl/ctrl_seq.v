@@ -186,6 +186,7 @@ module ctrl_seq #(
     localparam integer PCI_STAT = 64, PCI_RSTZ = 67, PCI_CNT = 73;     // entry points
     localparam [6:0]   PC_STAT = PCI_STAT[6:0], PC_RSTZ = PCI_RSTZ[6:0], PC_CNT = PCI_CNT[6:0];
     localparam integer NCNT = 14;   // SAT_OPERAND .. CNT_OVERRUN, PERIODS
+    reg [17:0] ucode [0:127];      // (initial values only: copied into crom)
     function [17:0] uword;
         input [3:0] op;
         input [3:0] src;
@@ -193,9 +194,73 @@ module ctrl_seq #(
         input [2:0] m;
         uword = {1'b0, m, wa, src, op};
     endfunction
-    (* rom_style = "block" *) reg [17:0] ucode [0:127];
-    integer ui, ua;
+    // Pass control table, one word per (pass kind, bit j): which registers shift, when the
+    // pass ends, sign holds, flag strobes (PC_* bits below); kinds PK_*.
+    localparam [3:0] PK_POS = 4'd0, PK_REFP0 = 4'd1, PK_REFP = 4'd2, PK_REFS0 = 4'd3, PK_REFS = 4'd4,
+                     PK_DIFF = 4'd5, PK_OM = 4'd6, PK_FIX3 = 4'd7, PK_W6 = 4'd8, PK_STAT = 4'd9,
+                     PK_CNT = 4'd10;
+    localparam integer PC_XS = 0, PC_PE = 1, PC_SS = 2, PC_HA = 3, PC_HB = 4, PC_CA = 5, PC_CB = 6,
+                       PC_R1 = 7, PC_R2 = 8, PC_R3 = 9, PC_AL = 10, PC_L31 = 11, PC_L16 = 12, PC_F1 = 13,
+                       PC_F2 = 14, PC_F3 = 15, PC_W0 = 16;
+    function [17:0] pctl;
+        input [3:0] k;
+        input integer b;
+        reg [17:0] w;
+        reg refp, refs, m0k;
+        begin
+            w = 18'd0;
+            refp = (k == PK_REFP0) || (k == PK_REFP);
+            refs = (k == PK_REFS0) || (k == PK_REFS);
+            m0k  = (k == PK_REFP0) || (k == PK_REFS0);
+            case (k)
+                PK_POS: begin                                   // dpos = count - count_prev (32 bits)
+                    w[PC_XS] = 1'b1; w[PC_R1] = 1'b1; w[PC_R3] = 1'b1; w[PC_AL] = 1'b1;
+                    w[PC_PE] = (b == 31); w[PC_F1] = (b == 15); w[PC_F2] = (b > 15); w[PC_F3] = (b == 31);
+                end
+                PK_DIFF: begin                                  // y (copy) at bit 0, dx = y - y_prev
+                    w[PC_XS] = 1'b1; w[PC_AL] = 1'b1; w[PC_SS] = (b < 32); w[PC_HB] = (b > 17);
+                    w[PC_CB] = (b == 17); w[PC_R1] = (b < 18); w[PC_W0] = (b == 0); w[PC_PE] = (b == 39);
+                end
+                PK_OM: begin                                    // omega (raw) = spd + ka
+                    w[PC_AL] = 1'b1; w[PC_HA] = (b > 31); w[PC_CA] = (b == 31); w[PC_R2] = (b < 32);
+                    w[PC_R3] = (b >= 16 && b < 32); w[PC_L31] = (b < 31); w[PC_L16] = (b < 16);
+                    w[PC_F1] = (b == 31); w[PC_F2] = (b > 31); w[PC_F3] = (b == 39); w[PC_PE] = (b == 39);
+                end
+                PK_FIX3: begin                                  // omega saturated -> X, om, SPEED
+                    w[PC_XS] = 1'b1; w[PC_AL] = 1'b1; w[PC_SS] = (b < 32); w[PC_HA] = (b > 31);
+                    w[PC_CA] = (b == 31); w[PC_R2] = (b < 32); w[PC_L31] = (b < 31); w[PC_PE] = (b == 39);
+                end
+                PK_W6: begin                                    // dx2 = omega - omega_prev
+                    w[PC_XS] = 1'b1; w[PC_AL] = 1'b1; w[PC_HA] = (b > 31); w[PC_CA] = (b == 31);
+                    w[PC_HB] = (b > 31); w[PC_CB] = (b == 31); w[PC_R1] = (b < 32); w[PC_R2] = (b < 32);
+                    w[PC_PE] = (b == 39);
+                end
+                PK_STAT: begin                                  // a status word out of X
+                    w[PC_XS] = 1'b1; w[PC_AL] = 1'b1; w[PC_SS] = (b < 32); w[PC_PE] = (b == 32);
+                end
+                PK_CNT: begin                                   // counter + event, 32 bits
+                    w[PC_AL] = 1'b1; w[PC_SS] = (b < 32); w[PC_CA] = (b == 31); w[PC_PE] = (b == 32);
+                end
+                default: begin
+                    if (refp) begin                             // (w - count << 32) >> 24 + w[23]
+                        w[PC_AL] = (b >= 24); w[PC_XS] = (b >= 24); w[PC_R1] = (b >= 32);
+                        w[PC_F1] = (b == 23); w[PC_F2] = (b >= 24); w[PC_SS] = m0k && b >= 8 && b < 40;
+                        w[PC_PE] = (b == 63);
+                    end else if (refs) begin                    // (w >> 16) + w[15]
+                        w[PC_AL] = (b >= 16); w[PC_XS] = (b >= 16 && b < 56); w[PC_F1] = (b == 55);
+                        w[PC_F2] = (b > 55); w[PC_SS] = m0k && b >= 16 && b < 48; w[PC_PE] = (b == 63);
+                    end
+                end
+            endcase
+            pctl = w;
+        end
+    endfunction
+    (* rom_style = "block" *) reg [17:0] crom [0:1023];     // 0..767 pass table, 896.. microprogram
+    integer ui, ua, uk;
     initial begin
+        for (ui = 0; ui < 1024; ui = ui + 1) crom[ui] = 18'd0;
+        for (uk = 0; uk < 12; uk = uk + 1)
+            for (ui = 0; ui < 64; ui = ui + 1) crom[64 * uk + ui] = pctl(uk[3:0], ui);
         for (ui = 0; ui < 128; ui = ui + 1) ucode[ui] = uword(OP_SEND, 4'd0, 6'd0, 3'd0);
         ucode[0] = uword(OP_POS, SRC_POS, `EMPC_IN_DX + 6'd3, 3'd0);      // dx3 = dpos << 8
         ucode[1] = uword(OP_ZERO, 4'd0, `EMPC_IN_DX + 6'd4, 3'd0);        // dx4 = 0
@@ -237,6 +302,7 @@ module ctrl_seq #(
         end
         ucode[PCI_CNT + NCNT - 1] = uword(OP_CNT, 4'd13, `EMPC_A_PERIODS, 3'd0);
         ucode[PCI_CNT + NCNT] = uword(OP_CEND, 4'd0, 6'd0, 3'd0);
+        for (ui = 0; ui < 128; ui = ui + 1) crom[896 + ui] = ucode[ui];
     end
     reg  [6:0]  pc;
     reg  [6:0]  pc_next;
@@ -315,61 +381,56 @@ module ctrl_seq #(
     reg           c0, c1;           // carry 0..2
     reg           sd, spd_ovf, om_ovf, om_sgn, rnd, nz, r_ref, ref_ovf, ref_sgn;
 
-    // reference pass: first bit j0, ALU from ja, X takes 40 result bits from ja
+    // reference pass: first bit j0 (the REF window of w_k for m = 0, else the rounding bit)
     wire [5:0] ref_j0  = task_pos ? (m0 ? 6'd8 : 6'd23) : 6'd15;
-    wire [5:0] ref_ja  = task_pos ? 6'd24 : 6'd16;
-    wire       ref_alu = (j >= ref_ja);
-    wire       ref_x   = ref_alu && (task_pos || j < 6'd56);
-    wire       ref_win = m0 && (task_pos ? (j >= 6'd8 && j < 6'd40) : (j >= 6'd16 && j < 6'd48));
+    wire       p_xs  = pw[PC_XS], p_pe = pw[PC_PE], p_ss = pw[PC_SS], p_ha = pw[PC_HA], p_hb = pw[PC_HB];
+    wire       p_ca  = pw[PC_CA], p_cb = pw[PC_CB], p_r1 = pw[PC_R1], p_r2 = pw[PC_R2], p_r3 = pw[PC_R3];
+    wire       p_al  = pw[PC_AL], p_l31 = pw[PC_L31], p_l16 = pw[PC_L16], p_f1 = pw[PC_F1], p_f2 = pw[PC_F2];
+    wire       p_f3  = pw[PC_F3], p_w0 = pw[PC_W0];
     assign ref_age = N[AW-1:0] - u_m[AW-1:0];
     assign ref_bit = j;
 
     // A operand
-    wire spd_raw = spd_ovf ? ((j < 6'd31) ? ~sd : sd) : (j < 6'd16) ? 1'b0 : dp[0];
+    wire spd_raw = spd_ovf ? (p_l31 ? ~sd : sd) : p_l16 ? 1'b0 : dp[0];
     reg  a_raw;
     always @(*) begin
         if (is_ref) a_raw = ref_q;
         else if (is_cnt) a_raw = cnt_q;
         else if (is_om) a_raw = spd_raw;
-        else if (is_fix3) a_raw = om_ovf ? ((j < 6'd31) ? ~om_sgn : om_sgn) : om[0];
+        else if (is_fix3) a_raw = om_ovf ? (p_l31 ? ~om_sgn : om_sgn) : om[0];
         else if (is_w6) a_raw = om[0];
         else a_raw = x[0];
     end
-    wire a_hold = (is_om || is_fix3 || is_w6) && (j > 6'd31);
-    wire a_bit  = a_hold ? a_h : a_raw;
+    wire a_bit  = p_ha ? a_h : a_raw;
     // B operand
     reg  b_raw;
     always @(*) begin
         if (is_pos) b_raw = pp[0];
-        else if (is_ref) b_raw = task_pos && j >= 6'd32 && pp[0];
+        else if (is_ref) b_raw = p_r1 && pp[0];
         else if (is_diff) b_raw = diff_q ? iqp[0] : idp[0];
         else if (is_om) b_raw = ka[1];
         else if (is_w6) b_raw = omp[0];
         else b_raw = 1'b0;
     end
-    wire [5:0] b_hw   = is_diff ? 6'd17 : 6'd31;
-    wire       b_hold = (is_diff || is_w6) && (j > b_hw);
-    wire       b_bit  = b_hold ? b_h : b_raw;
+    wire       b_bit  = p_hb ? b_h : b_raw;
     wire       sub    = is_pos || is_diff || is_w6 || (is_ref && task_pos);
     wire       b_eff  = b_bit ^ sub;
     wire       r      = a_bit ^ b_eff ^ c0;
     wire       maj    = (a_bit & b_eff) | (c0 & (a_bit ^ b_eff));
-    wire       r_fix  = (j == 6'd39) ? ref_sgn : ~ref_sgn;    // saturated reference, 40 bits
+    wire       fix_end = (est == E_FIX) && (j == 6'd39);
+    wire       r_fix  = fix_end ? ref_sgn : ~ref_sgn;        // saturated reference, 40 bits
 
-    // pass control
-    // status / counter passes: 32 bits, the word written in the clock after the last bit
-    wire [5:0] pass_last = is_pos ? 6'd31 : (is_stat || is_cnt) ? 6'd32 : is_ref ? 6'd63 : 6'd39;
-    wire       pass_end  = in_pass && (j == pass_last);
-    wire       fix_end   = (est == E_FIX) && (j == 6'd39);
+    // pass control (status / counter passes: 32 bits, the word written one clock after the last)
+    wire       pass_end  = in_pass && p_pe;
     // reference overflow including this clock's bit (used at j = 63)
     wire       ref_ovf_now = task_pos ? (rnd && !nz && r) : (ref_ovf || (r != r_ref));
-    wire       x_shift = (in_pass && (!is_ref || ref_x) && !is_om && !is_cnt) || (est == E_FIX);
+    wire       x_shift = (in_pass && p_xs) || (est == E_FIX);
     wire       x_in    = (est == E_FIX) ? r_fix : r;
     wire       x_load  = (est == E_LD);
     wire       x_clr   = (est == E_WR && !(is_fix3 && !task_pos)) || (est == E_WR2) ||
                          (pass_end && ((is_ref && ref_ovf_now) || is_stat));
     wire       wr_zero = (est == E_OP) && ((u_op == OP_ZERO) || (u_op == OP_ZPOS && task_pos));
-    assign core_in_we   = (est == E_WR) || (est == E_WR2) || wr_zero || (in_pass && is_diff && j == 6'd0);
+    assign core_in_we   = (est == E_WR) || (est == E_WR2) || wr_zero || (in_pass && p_w0);
     assign core_in_addr = (est == E_WR2) ? `EMPC_IN_Y + 6'd2 :
                           (est == E_WR && is_diff) ? u_wa + 6'd4 : u_wa;
 
@@ -379,13 +440,12 @@ module ctrl_seq #(
     // saturating (no write if it was 2^32-1; PERIODS wraps); all 0 in a zero sweep
     reg        cz;                  // zero sweep
     reg        csat;                // the counter was 2^32-1 (carry out of bit 31, registered)
-    wire st_pass = in_pass && ((is_diff || is_fix3 || is_stat || is_cnt) ? (j < 6'd32) : (is_ref && ref_win));
-    assign st_sh   = st_pass;
+    assign st_sh   = in_pass && p_ss;
     assign st_d    = is_fix3 ? r : is_cnt ? (r && !cz && u_src != 4'd15) : a_raw;
     assign st_wr   = pass_end && ((is_ref && m0) || is_diff || is_fix3 || is_stat || (is_cnt && !csat));
     localparam [5:0] ST_REF = `EMPC_A_REF, ST_I_D = `EMPC_A_I_D, ST_SPEED = `EMPC_A_SPEED;
     assign st_addr = is_ref ? ST_REF : is_diff ? (ST_I_D + {5'd0, diff_q}) : is_fix3 ? ST_SPEED : u_wa;
-    assign st_bit  = in_pass ? j[4:0] + 5'd1 : 5'd0;            // the counter bit needed next clock
+    assign st_bit  = j_nx[4:0];                                 // the counter bit needed next clock
     wire [15:0] ev16 = {2'b00, cnt_ev};
     wire   ev_k    = ev16[u_src] && !cz;
 
@@ -419,8 +479,30 @@ module ctrl_seq #(
         else if (step) pc_next = pc + 7'd1;
         else pc_next = pc;
     end
+    reg  [17:0] pw;                 // pass control word of (pass kind, j)
+    reg  [5:0]  j_nx;
+    reg  [3:0]  pk;
+    always @(*) begin
+        case (u_op)
+            OP_POS: pk = PK_POS;
+            OP_REF: pk = task_pos ? (m0 ? PK_REFP0 : PK_REFP) : (m0 ? PK_REFS0 : PK_REFS);
+            OP_DIFF: pk = PK_DIFF;
+            OP_OM: pk = PK_OM;
+            OP_FIX3: pk = PK_FIX3;
+            OP_W6: pk = PK_W6;
+            OP_STAT: pk = PK_STAT;
+            default: pk = PK_CNT;
+        endcase
+    end
+    always @(*) begin
+        j_nx = j;
+        if (est == E_OP) j_nx = (u_op == OP_REF) ? ref_j0 : 6'd0;
+        else if (in_pass) j_nx = pass_end ? 6'd0 : j + 6'd1;
+        else if (est == E_FIX) j_nx = fix_end ? 6'd0 : j + 6'd1;
+    end
     always @(posedge clk) begin
-        uw <= ucode[pc_next];
+        uw <= crom[{3'b111, pc_next}];
+        pw <= crom[{pk, j_nx}];
     end
 
     always @(posedge clk) begin
@@ -564,6 +646,7 @@ module ctrl_seq #(
             end
 
             // ---- microprogram ----
+            j <= j_nx;
             if (go_stat) est <= E_OP;
             // counter sweep after the modulation of a control period; zero sweep (status words
             // too after rst) while the counters are hidden.  A trigger interrupts a zero sweep,
@@ -585,15 +668,11 @@ module ctrl_seq #(
             case (est)
                 E_IDLE: ;
                 E_OP: begin
-                    j <= 6'd0;
                     begin
                         case (u_op)
                             OP_POS, OP_COPY, OP_STAT: est <= E_STG;
                             OP_DIFF: if (front_done) est <= E_STG;
-                            OP_REF: if (ref_ok) begin
-                                est <= E_PASS;
-                                j <= ref_j0;
-                            end
+                            OP_REF: if (ref_ok) est <= E_PASS;
                             OP_OM: if (!mrun) est <= E_PASS;
                             OP_FIX3: begin
                                 est <= E_PASS;
@@ -612,19 +691,14 @@ module ctrl_seq #(
                 E_STG: est <= E_LD;
                 E_LD: est <= (u_op == OP_COPY) ? E_WR : E_PASS;
                 E_PASS: begin
-                    j <= j + 6'd1;
                     if (pass_end) begin
-                        j <= 6'd0;
                         if (is_om || is_stat || is_cnt) est <= E_OP;
                         else if (is_ref && ref_ovf_now) est <= E_FIX;
                         else est <= E_WR;
                         if (is_fix3) omega <= om;           // complete since bit 31
                     end
                 end
-                E_FIX: begin
-                    j <= j + 6'd1;
-                    if (fix_end) est <= E_WR;
-                end
+                E_FIX: if (fix_end) est <= E_WR;
                 E_WR: est <= (is_fix3 && !task_pos) ? E_WR2 : E_OP;
                 default: est <= E_OP;                       // E_WR2
             endcase
@@ -662,7 +736,7 @@ module ctrl_seq #(
             x <= {x_shift & x_in, x[SW-1:IW+1], {IW{1'b0}}} | g_all;     // x[IW:1] is in g_lo
         // ALU carry: before the first ALU bit 1 (subtract), rnd (speed reference, OM: ka rounding
         // bit) or 1 + rnd (position reference: subtract and round)
-        if (!in_pass || (is_ref && !ref_alu)) begin
+        if (!in_pass || !p_al) begin
             if (is_ref) begin
                 c0 <= task_pos ? ~a_raw : a_raw;       // the value of the clock j = ja - 1 stays
                 c1 <= task_pos & a_raw;
@@ -674,52 +748,49 @@ module ctrl_seq #(
             c0 <= maj ^ c1;
             c1 <= maj & c1;
         end
-        if (in_pass && j == 6'd31) a_h <= a_raw;
-        if (in_pass && j == 6'd31) csat <= maj && !cz && u_src != 4'd13 && u_src != 4'd15;
-        if (in_pass && j == b_hw) b_h <= b_raw;
+        if (in_pass && p_ca) a_h <= a_raw;                   // sign of a 32-bit A (bit 31)
+        if (in_pass && p_ca) csat <= maj && !cz && u_src != 4'd13 && u_src != 4'd15;
+        if (in_pass && p_cb) b_h <= b_raw;                   // sign of B (bit 17 or 31)
         // POS pass: dpos sign sd, spd = dpos << 16 overflows if dpos bits 31..15 are not all equal
         if (in_pass && is_pos) begin
-            if (j == 6'd15) begin
+            if (p_f1) begin                                   // bit 15
                 sd <= r;
                 spd_ovf <= 1'b0;
-            end else if (j > 6'd15 && r != sd) spd_ovf <= 1'b1;
-            if (j == 6'd31) sd <= r;
+            end else if (p_f2 && r != sd) spd_ovf <= 1'b1;
+            if (p_f3) sd <= r;                                // bit 31
         end
         // OM pass: omega overflows if result bits 39..31 are not all equal; om_sgn = bit 39
         if (in_pass && is_om) begin
-            if (j == 6'd31) begin
+            if (p_f1) begin                                   // bit 31
                 om_ovf <= 1'b0;
                 om_sgn <= r;
-            end else if (j > 6'd31) begin
-                if (r != om_sgn) om_ovf <= 1'b1;
-                if (j == 6'd39) om_sgn <= r;
-            end
+            end else if (p_f2 && r != om_sgn) om_ovf <= 1'b1;
+            if (p_f3) om_sgn <= r;                            // bit 39
         end
         // reference pass: rounding bit, overflow
         if (in_pass && is_ref) begin
             if (task_pos) begin                       // (rel >> 24) + rnd overflows only to +2^39
-                if (j == 6'd23) begin
+                if (p_f1) begin                               // bit 23
                     rnd <= a_raw;
                     nz <= 1'b0;
-                end else if (j >= 6'd24 && r) nz <= 1'b1;
+                end else if (p_f2 && r) nz <= 1'b1;
                 ref_sgn <= 1'b0;
             end else begin                            // (w >> 16) + rnd: bits 55..63 not all equal
-                if (j == 6'd55) begin
+                if (p_f1) begin                               // bit 55
                     r_ref <= r;
                     ref_ovf <= 1'b0;
-                end else if (j > 6'd55 && r != r_ref) ref_ovf <= 1'b1;
+                end else if (p_f2 && r != r_ref) ref_ovf <= 1'b1;
                 ref_sgn <= a_raw;                     // w[63] at j = 63
             end
         end
-        // rings
-        if (in_pass && is_pos) pp <= {a_bit, pp[PW-1:1]};
-        else if (in_pass && is_ref && task_pos && j >= 6'd32) pp <= {pp[0], pp[PW-1:1]};
-        if (in_pass && is_pos) dp <= {r, dp[PW-1:1]};
-        else if (in_pass && is_om && j >= 6'd16 && j < 6'd32) dp <= {1'b0, dp[PW-1:1]};
-        if (in_pass && is_diff && !diff_q && j < 6'd18) idp <= {a_bit, idp[IW-1:1]};
-        if (in_pass && is_diff && diff_q && j < 6'd18) iqp <= {a_bit, iqp[IW-1:1]};
-        if (in_pass && is_w6 && j < 6'd32) omp <= {a_bit, omp[WW-1:1]};
-        if (in_pass && (is_om || is_fix3 || is_w6) && j < 6'd32) om <= {r, om[WW-1:1]};
+        // rings (shift windows from the pass table)
+        if (in_pass && p_r1 && is_pos) pp <= {a_bit, pp[PW-1:1]};
+        else if (in_pass && p_r1 && is_ref) pp <= {pp[0], pp[PW-1:1]};
+        if (in_pass && p_r3) dp <= {is_pos & r, dp[PW-1:1]};
+        if (in_pass && p_r1 && is_diff && !diff_q) idp <= {a_bit, idp[IW-1:1]};
+        if (in_pass && p_r1 && is_diff && diff_q) iqp <= {a_bit, iqp[IW-1:1]};
+        if (in_pass && p_r1 && is_w6) omp <= {a_bit, omp[WW-1:1]};
+        if (in_pass && p_r2) om <= {r, om[WW-1:1]};
         // multiplier: s + 40 steps through ka, which keeps the last 41 product bits
         if (m_start) begin
             mk <= 7'd0;
