@@ -137,7 +137,8 @@ module ctrl_seq #(
     localparam integer PW = `EMPC_POS_W;     // 32
 
     generate if (SW != 40 || UW != 24 || IW != 18 || WW != 32 || PW != 32 || AB != 16 ||
-                 `EMPC_W_FRAC != 16 || `EMPC_TH_FRAC != 8 || N > 8 || THETA_LAT < 1 || THETA_LAT > 8)
+                 `EMPC_W_FRAC != 16 || `EMPC_TH_FRAC != 8 || N > 8 || THETA_LAT < 1 || THETA_LAT > 8 ||
+                 `EMPC_IN_Y != 0 || `EMPC_IN_OMEGA != 3 || `EMPC_IN_DX != 4)
     begin : g_bad_params
         ctrl_seq_unsupported_parameters u_error ();   // no such module: elaboration stops here
     end endgenerate
@@ -167,9 +168,8 @@ module ctrl_seq #(
     assign cmp = {cmp_c, cmp_b, cmp_a};
 
     // ---------------- theta unit (own 1-bit adder) ----------------
-    reg  [2:0]  th_wait;            // clocks until theta belongs to the latched count
     reg         th_wait_run, th_run, th_done, ang_run, ang_done;
-    reg  [3:0]  jt;
+    reg  [3:0]  jt;                 // theta wait (16 - THETA_LAT .. 15), then bit of the pass
     reg  [AB-1:0] tp, tm;           // theta_prev, theta_mod (shift registers)
     reg         ta_d, tc;           // theta bit jt-1 (2 theta), carry
     wire        ta  = theta_trig[jt];
@@ -431,8 +431,8 @@ module ctrl_seq #(
                          (pass_end && ((is_ref && ref_ovf_now) || is_stat));
     wire       wr_zero = (est == E_OP) && ((u_op == OP_ZERO) || (u_op == OP_ZPOS && task_pos));
     assign core_in_we   = (est == E_WR) || (est == E_WR2) || wr_zero || (in_pass && p_w0);
-    assign core_in_addr = (est == E_WR2) ? `EMPC_IN_Y + 6'd2 :
-                          (est == E_WR && is_diff) ? u_wa + 6'd4 : u_wa;
+    // (dx0, dx1 at y0 + 4, y1 + 4; the second FIX3 write: y2 = omega, at omega - 1)
+    assign core_in_addr = {u_wa[5:3], u_wa[2] | (est == E_WR && is_diff), u_wa[1], u_wa[0] & (est != E_WR2)};
 
     // status streams: REF (w_k window, reference pass m = 0), I_D / I_Q (W4 / W5 passes,
     // A = i_d / i_q), SPEED (FIX3 pass, result), U_D / U_Q (status passes, A = u)
@@ -453,9 +453,11 @@ module ctrl_seq #(
     reg         mrun, msg;
     reg  [6:0]  mk;
     reg  signed [18:0] ms;
-    wire        mb   = (mk < 7'd18) ? a_bit : msg;            // i_q bit mk (the W5 pass's A), then its sign
+    // steps: mk = -39 .. s (7-bit two's complement); the first 18 take i_q bit j of the W5
+    // pass (A), the rest its sign msg (captured at bit 17)
+    wire        mb   = (in_pass && is_diff && p_r1) ? x[0] : msg;   // (A of the W5 pass is x[0])
     wire signed [18:0] msum = ms + (mb ? {kacc[17], kacc} : 19'sd0);
-    wire        m_end = (mk == {2'b00, kacc_shift} + 7'd39);
+    wire        m_end = (mk[6:5] == 2'b00) && (mk[4:0] == kacc_shift);
     wire        m_start = (est == E_LD) && is_diff && diff_q;
 
     // ---------------- sequencer ----------------
@@ -527,7 +529,6 @@ module ctrl_seq #(
             pos_trig <= {PW{1'b0}};
             theta_trig <= {AB{1'b0}};
             zeroed <= 1'b1;
-            th_wait <= 3'd0;
             th_wait_run <= 1'b0;
             th_run <= 1'b0;
             th_done <= 1'b0;
@@ -562,7 +563,7 @@ module ctrl_seq #(
                 first <= 1'b0;
                 busy_period <= 1'b1;
                 lat_cnt <= 16'd0;
-                th_wait <= THETA_LAT[2:0] - 3'd1;
+                jt <= 4'd0 - THETA_LAT[3:0];
                 th_wait_run <= 1'b1;
                 th_done <= 1'b0;
                 ang_done <= 1'b0;
@@ -584,18 +585,14 @@ module ctrl_seq #(
             end
 
             // ---- theta: latch (THETA_LAT clocks after the count), theta_mod pass, angle register ----
-            if (th_wait_run) begin
-                if (th_wait == 3'd0) begin
+            if (th_wait_run || th_run || ang_run) begin        // (jt wraps from 15 to 0)
+                jt <= jt + 4'd1;
+                if (th_wait_run && jt == 4'd15) begin
                     theta_trig <= theta;
                     th_wait_run <= 1'b0;
                     th_run <= 1'b1;
-                    jt <= 4'd0;
-                end else
-                    th_wait <= th_wait - 3'd1;
-            end
-            if (th_run || ang_run) begin
-                jt <= jt + 4'd1;
-                if (jt == 4'd15) begin
+                end
+                if (!th_wait_run && jt == 4'd15) begin
                     th_run <= 1'b0;
                     ang_run <= 1'b0;
                     th_done <= th_done | th_run;
@@ -603,10 +600,8 @@ module ctrl_seq #(
                 end
             end
             // theta_mod into the angle register once the front (if any) has sampled theta_trig
-            if (th_done && !ang_done && !ang_run && (!is_control || front_done || xf_busy)) begin
-                ang_run <= 1'b1;
-                jt <= 4'd0;
-            end
+            if (th_done && !ang_done && !ang_run && (!is_control || front_done || xf_busy))
+                ang_run <= 1'b1;                                  // (jt is 0 after the theta pass)
 
             // ---- ADC, front ----
             if (busy_period && adc_valid) adc_seen <= 1'b1;
@@ -793,7 +788,7 @@ module ctrl_seq #(
         if (in_pass && p_r2) om <= {r, om[WW-1:1]};
         // multiplier: s + 40 steps through ka, which keeps the last 41 product bits
         if (m_start) begin
-            mk <= 7'd0;
+            mk <= 7'd89;                                     // -39
             ms <= 19'sd0;
             ka <= 41'd0;
         end else if (mrun) begin
@@ -803,7 +798,7 @@ module ctrl_seq #(
         end else if (in_pass && is_om) begin
             ka <= {1'b0, ka[40:1]};
         end
-        if (mrun && mk == 7'd17) msg <= mb;
+        if (in_pass && is_diff && p_cb) msg <= x[0];        // i_q sign (bit 17 of the W5 pass)
         // theta_mod pass and the angle register
         if (th_run) begin
             ta_d <= ta;

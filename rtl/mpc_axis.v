@@ -77,6 +77,9 @@ module mpc_axis #(
     reg  [11:0] c_off_wdata;
 
 
+    // write decode: one enable per register from a shared predecode (offsets 0x00..0x1f)
+    wire        wr_lo = reg_wr && (reg_addr[7:5] == 3'd0);
+    localparam [7:0] W_ADC_OFF0 = `EMPC_A_ADC_OFF0, W_ADC_OFF1 = `EMPC_A_ADC_OFF1, W_ADC_OFF2 = `EMPC_A_ADC_OFF2, W_ANGLE_CAL = `EMPC_A_ANGLE_CAL, W_CMD = `EMPC_A_CMD, W_CTRL = `EMPC_A_CTRL, W_DEAD_TIME = `EMPC_A_DEAD_TIME, W_FAULT_MASK = `EMPC_A_FAULT_MASK, W_HALL_OFFSET = `EMPC_A_HALL_OFFSET, W_ID_REF = `EMPC_A_ID_REF, W_IQ_REF = `EMPC_A_IQ_REF, W_KACC = `EMPC_A_KACC, W_KDC = `EMPC_A_KDC, W_OC_THRESH = `EMPC_A_OC_THRESH, W_SEG_ADDR = `EMPC_A_SEG_ADDR, W_SEG_START = `EMPC_A_SEG_START, W_UDC = `EMPC_A_UDC, W_UDC_MAX = `EMPC_A_UDC_MAX, W_UDC_MIN = `EMPC_A_UDC_MIN;
     always @(posedge clk) begin
         c_ref_sync_d <= c_ref_sync && !rst;     // sync after the value latch
         c_fault_clear <= 1'b0;
@@ -108,16 +111,16 @@ module mpc_axis #(
             r_seg_addr <= 4'd0;
             c_seg_start_slot <= 4'd0;
             c_off_wdata <= 12'd0;
-        end else if (reg_wr) begin
-            case (reg_addr)
-                `EMPC_A_CTRL: begin
+        end else if (wr_lo) begin
+            case (reg_addr[4:0])
+                W_CTRL[4:0]: begin
                     r_enable <= reg_wdata[`EMPC_A_CTRL_ENABLE];
                     r_run <= reg_wdata[`EMPC_A_CTRL_RUN];
                     r_compl <= reg_wdata[`EMPC_A_CTRL_COMPLEMENTARY];
                     r_ppc <= (reg_wdata[`EMPC_A_CTRL_PWM_PER_CONTROL +: 8] == 8'd0) ? 8'd1
                              : reg_wdata[`EMPC_A_CTRL_PWM_PER_CONTROL +: 8];
                 end
-                `EMPC_A_CMD: begin
+                W_CMD[4:0]: begin
                     c_fault_clear <= reg_wdata[`EMPC_A_CMD_FAULT_CLEAR];
                     c_adc_cal <= reg_wdata[`EMPC_A_CMD_ADC_CAL];
                     c_ref_sync <= reg_wdata[`EMPC_A_CMD_REF_SYNC];
@@ -125,26 +128,26 @@ module mpc_axis #(
                     c_clear_cnt <= reg_wdata[`EMPC_A_CMD_CLEAR_COUNTERS];
                     c_align_clear <= reg_wdata[`EMPC_A_CMD_ALIGN_CLEAR];
                 end
-                `EMPC_A_FAULT_MASK: r_fault_mask <= reg_wdata[6:0];
-                `EMPC_A_DEAD_TIME: r_dead <= reg_wdata[7:0];
-                `EMPC_A_KDC: r_kdc <= reg_wdata[17:0];
-                `EMPC_A_UDC: r_udc <= reg_wdata[15:0];
-                `EMPC_A_UDC_MIN: r_udc_min <= reg_wdata[15:0];
-                `EMPC_A_UDC_MAX: r_udc_max <= reg_wdata[15:0];
-                `EMPC_A_OC_THRESH: r_oc_thresh <= reg_wdata[11:0];
-                `EMPC_A_ADC_OFF0: begin c_off_we <= 3'b001; c_off_wdata <= reg_wdata[11:0]; end
-                `EMPC_A_ADC_OFF1: begin c_off_we <= 3'b010; c_off_wdata <= reg_wdata[11:0]; end
-                `EMPC_A_ADC_OFF2: begin c_off_we <= 3'b100; c_off_wdata <= reg_wdata[11:0]; end
-                `EMPC_A_ANGLE_CAL: r_angle_cal <= reg_wdata[15:0];
-                `EMPC_A_HALL_OFFSET: r_hall_offset <= reg_wdata[15:0];
-                `EMPC_A_KACC: begin
+                W_FAULT_MASK[4:0]: r_fault_mask <= reg_wdata[6:0];
+                W_DEAD_TIME[4:0]: r_dead <= reg_wdata[7:0];
+                W_KDC[4:0]: r_kdc <= reg_wdata[17:0];
+                W_UDC[4:0]: r_udc <= reg_wdata[15:0];
+                W_UDC_MIN[4:0]: r_udc_min <= reg_wdata[15:0];
+                W_UDC_MAX[4:0]: r_udc_max <= reg_wdata[15:0];
+                W_OC_THRESH[4:0]: r_oc_thresh <= reg_wdata[11:0];
+                W_ADC_OFF0[4:0]: begin c_off_we <= 3'b001; c_off_wdata <= reg_wdata[11:0]; end
+                W_ADC_OFF1[4:0]: begin c_off_we <= 3'b010; c_off_wdata <= reg_wdata[11:0]; end
+                W_ADC_OFF2[4:0]: begin c_off_we <= 3'b100; c_off_wdata <= reg_wdata[11:0]; end
+                W_ANGLE_CAL[4:0]: r_angle_cal <= reg_wdata[15:0];
+                W_HALL_OFFSET[4:0]: r_hall_offset <= reg_wdata[15:0];
+                W_KACC[4:0]: begin
                     r_kacc <= reg_wdata[17:0];
                     r_kacc_shift <= reg_wdata[`EMPC_A_KACC_SHIFT +: 5];
                 end
-                `EMPC_A_ID_REF: r_id_ref <= reg_wdata[17:0];
-                `EMPC_A_IQ_REF: r_iq_ref <= reg_wdata[17:0];
-                `EMPC_A_SEG_ADDR: r_seg_addr <= reg_wdata[3:0];
-                `EMPC_A_SEG_START: begin c_seg_start <= 1'b1; c_seg_start_slot <= reg_wdata[3:0]; end
+                W_ID_REF[4:0]: r_id_ref <= reg_wdata[17:0];
+                W_IQ_REF[4:0]: r_iq_ref <= reg_wdata[17:0];
+                W_SEG_ADDR[4:0]: r_seg_addr <= reg_wdata[3:0];
+                W_SEG_START[4:0]: begin c_seg_start <= 1'b1; c_seg_start_slot <= reg_wdata[3:0]; end
                 default: ;
             endcase
         end

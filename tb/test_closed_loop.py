@@ -53,6 +53,12 @@ COSIM = {
 }
 
 
+def _sext(v: int, bits: int) -> int:
+    """Register read format of a signed field: sign-extended to 32 bits (as an unsigned word)."""
+    v &= (1 << bits) - 1
+    return (v - (1 << bits) if v >> (bits - 1) else v) & 0xFFFFFFFF
+
+
 def hall_code(theta_e: float) -> int:
     s = int((theta_e % (2 * math.pi)) // (math.pi / 3))
     return DEFAULT_SEQUENCE[s]
@@ -91,6 +97,9 @@ class CoSim:
         self.t = 0.0
         self.inject = False
         self.started = False       # SEG_START written: the next control period takes the profile
+        self.last_control = None   # model outputs of the last control period (status words)
+        self.u_applied = (0, 0)
+        self.reg_checks = 0
         self.t_profile0 = None     # sim time of profile time 0 (see pwm_period)
 
     # ------------------------------------------------------------------ pins
@@ -131,6 +140,9 @@ class CoSim:
         theta16 = pos_sense.angle(count, self.cfg.sensors.encoder_cpr, self.cfg.motor.p, base=0)
         off = self.cfg.sensors.adc_offset
         out = self.seq.period(theta16, count & 0xFFFFFFFF, tuple(c - off for c in codes), self.regs, ref_w)
+        if control:
+            self.last_control = dict(out, ref_w0=self.ref.w[0])
+        self.u_applied = self.seq.u
         await RisingEdge(dut.dbg_cmp_load)
         await ReadOnly()
         lat = round((get_sim_time("ps") - t_trig) / self.clk_ps)
@@ -237,11 +249,37 @@ async def run_cosim(dut, name: str) -> dict:
         await drv.command(ref_sync=1)         # head = measured position (0) / speed (0)
         cs.ref.sync(0)
     plan.append([ref_setup])
+
+    async def regcheck():
+        # RW registers read back in their format (width mask, sign extension, pwm_per_control
+        # 0 -> 1): random words written and read back, then the run's values restored (all
+        # before this period's trigger; these registers do not stop the drive)
+        rng = np.random.default_rng(cs.period + 17)
+        fmt = {"DEAD_TIME": lambda v: v & 0xFF, "KDC": lambda v: v & 0x3FFFF,
+               "ID_REF": lambda v: _sext(v, 18), "IQ_REF": lambda v: _sext(v, 18),
+               "KACC": lambda v: v & 0x1F03FFFF, "SEG_ADDR": lambda v: v & 0xF}
+        keep = {}
+        for n in fmt:
+            keep[n] = await drv.read(n)
+        for n, f in fmt.items():
+            for v in [0xFFFFFFFF, 0x0002FF00, int(rng.integers(0, 2**32))]:
+                await w(n, v)
+                got = await drv.read(n)
+                assert got == f(v), f"{n}: wrote {v:#x}, read {got:#x}, expected {f(v):#x}"
+                cs.reg_checks += 1
+            await w(n, keep[n])
+            assert await drv.read(n) == keep[n]
+        assert keep["KDC"] == 1 << 16 and keep["ID_REF"] == 0 and keep["DEAD_TIME"] == 50, keep
+    plan.append([regcheck])
     for i, s in enumerate(cs.slots):
         async def wslot(i=i, s=s):
             await w("SEG_ADDR", i)
             for n, v in s.regs().items():
                 await w(n, v)
+            for n, v in s.regs().items():         # each field reads back from slot SEG_ADDR
+                got = await drv.read(n)
+                assert got == v, f"slot {i} {n}: read {got:#x}, wrote {v:#x}"
+                cs.reg_checks += 1
             cs.ref.write_slot(i, s)
         plan.append([wslot])
 
@@ -288,6 +326,23 @@ async def run_cosim(dut, name: str) -> dict:
     status = {n: await drv.read(n) for n in ("STATUS", "FAULT", "LATENCY", "PERIODS", "SAT_LIMIT", "SAT_EBAR_INC",
                                               "SAT_WN", "SAT_OPERAND", "SAT_TERM", "SAT_ACC", "SAT_DU", "SAT_U",
                                               "SAT_FRONT", "CNT_ADC_MISS", "CNT_ENC_ERR", "CNT_OVERRUN")}
+    # status words of the last control period (and the u applied) against the model
+    lc = cs.last_control
+    m32 = 0xFFFFFFFF
+    ref_sh = 8 if cs.sc.task == "position" else 16
+    exp = {"I_D": lc["i_d"] & m32, "I_Q": lc["i_q"] & m32, "SPEED": lc["omega"] & m32,
+           "U_D": cs.u_applied[0] & m32, "U_Q": cs.u_applied[1] & m32, "REF": (lc["ref_w0"] >> ref_sh) & m32}
+    got = {n: await drv.read(n) for n in exp}
+    assert got == exp, f"status words {got} model {exp}"
+    cs.reg_checks += len(exp)
+    # CMD.clear_counters: the counters read 0 at once (and stay 0 once zeroed)
+    await drv.command(clear_counters=1)
+    for n in ("PERIODS", "SAT_OPERAND", "SAT_EBAR_INC", "SAT_LIMIT"):
+        assert await drv.read(n) == 0, f"{n} not cleared"
+    await ClockCycles(dut.clk, 4000)
+    for n in ("PERIODS", "SAT_OPERAND", "SAT_EBAR_INC", "SAT_LIMIT", "CNT_OVERRUN"):
+        assert await drv.read(n) < 2, f"{n} not zeroed"
+    cs.reg_checks += 9
     return {"cs": cs, "wall": wall, "status": status, "fault_seen": fault_seen}
 
 
@@ -311,12 +366,14 @@ async def closed_loop(dut, name: str):
     res = await run_cosim(dut, name)
     cs = res["cs"]
     sim_ms = cs.period * cs.Tpwm * 1e3
-    dut._log.info("%s: %d PWM periods (%.1f ms simulated) in %.1f s wall; %d compare sets checked, %d mismatches",
-                  name, cs.period, sim_ms, res["wall"], cs.checked, len(cs.mismatches))
+    dut._log.info("%s: %d PWM periods (%.1f ms simulated) in %.1f s wall; %d compare sets checked, %d mismatches; "
+                  "%d register read-backs checked", name, cs.period, sim_ms, res["wall"], cs.checked,
+                  len(cs.mismatches), cs.reg_checks)
     report = {"scenario": name, "paper_scenario": cs.sc.name, "fault_injection": cs.fault,
               "pwm_periods": cs.period, "simulated_ms": sim_ms, "wall_s": res["wall"],
               "sim_ms_per_wall_s": sim_ms / res["wall"], "compare_sets_checked": cs.checked,
               "mismatches_vs_bit_accurate_model": len(cs.mismatches),
+              "register_readbacks_checked": cs.reg_checks,
               "first_mismatches": [list(map(list, [[m[0]], m[1], m[2]])) for m in cs.mismatches[:5]],
               "status_registers": res["status"],
               "latency_adc_trigger_to_pwm_update_cycles": res["status"]["LATENCY"],

@@ -63,17 +63,25 @@ class Env:
         dut._log.info("params %s seed %d (EMPC_SEED)", self.p, self.seed)
 
     async def sync_driver(self):
-        """The value source: sync_bit = bit sync_idx of the current sync value, every clock."""
+        """The value source: sync_bit = bit sync_idx of the current sync value, every clock
+        while a sync is pending or running (started with each sync)."""
         d = self.dut
+        self.driving = True
         while True:
             await FallingEdge(d.clk)
             d.sync_bit.value = (getattr(self, "sync_value", 0) >> int(d.sync_idx.value)) & 1
+            if not int(d.busy.value):                      # (the sync has run)
+                self.driving = False
+                return
+
+    def drive_sync(self):
+        if not getattr(self, "driving", False):
+            cocotb.start_soon(self.sync_driver())
 
     async def start(self):
         d = self.dut
         Clock(d.clk, 10, unit="ns").start()
         d.sync_bit.value = 0
-        cocotb.start_soon(self.sync_driver())
         d.rst.value = 1
         self._idle()
         for _ in range(3):
@@ -129,6 +137,7 @@ class Env:
         if sync_value is not None:
             d.sync.value = 1
             self.sync_value = sync_value & M64
+            self.drive_sync()
         d.advance.value = int(advance)
         self.model.step(seg_we=seg is not None, seg_slot=seg[0] if seg else 0, seg_field=seg[1] if seg else 0,
                         seg_wdata=seg[2] if seg else 0, start=start_slot is not None, start_slot=start_slot or 0,
