@@ -53,8 +53,9 @@
 // Latency: adc_trig -> cmp_load is reported on `latency` (clocks) every period; it must
 // end before the next period boundary (PWM_HALF_PERIOD clocks after the trigger), else
 // `overrun` pulses at the boundary (a trigger while a period is still running is ignored).
-// Modulation period: ADC conversion + 84 (xform mod) + 3 clocks; control period: about
-// 750 clocks for N = 4 (see docs/blocks/ctrl_seq.md).
+// Modulation period: ADC conversion + 84 (xform mod) + 3 clocks (155 in the co-simulation);
+// control period: 708 clocks in the co-simulation for N = 4, then the counter sweep (about
+// 500 clocks, after cmp_load; see docs/blocks/ctrl_seq.md).
 // Reset: idle, u = 0, previous-sample registers 0, first-period flag set.
 `default_nettype none
 `include "empc_formats.vh"
