@@ -3,11 +3,12 @@
 // Write port: one 32-bit image word per clock (we, wbank, waddr = word address of the
 // image layout, wdata).  Decoded as it is written:
 //   A_CFG        algorithm[14:13], task[12] (1 = position), N[11:8], ncols[6:0] -> registers
-//   A_WS .. A_EBAR+2  header LUT RAM, one 33-bit entry per field (sign-extended value):
-//                field 0 ws = wdata[4:0];  1 / 2 wn_min / wn_max: signed 32 -> clamped to
-//                +-(2^17-1);  3 u_max: unsigned 32 -> min(u_max, 2^17-1);  4..6 ebar_lim[o]:
-//                unsigned 32 (bit 32 = 0).  Field f is image word A_WS + f.
-//   A_COLS + j   column j {shift[12:8], sig[5:0]}   -> descriptor memory
+//   A_WS .. A_EBAR+2  header LUT RAM, one SIG_W-bit entry per field (sign-extended value):
+//                field 0 ws = wdata[SIG_SHIFT_BITS-1:0];  1 / 2 wn_min / wn_max: signed 32 ->
+//                clamped to +-(2^17-1);  3 u_max: unsigned 32 -> min(u_max, 2^17-1);
+//                4..6 ebar_lim[o]: unsigned 32 -> min(ebar_lim, 2^(SIG_W-1)-1).
+//                Field f is image word A_WS + f.
+//   A_COLS + j   column j {shift[SIG_SHIFT_BITS+7:8], sig[5:0]}   -> descriptor memory
 //   A_GAINS + 4 (64 i + j) + k   row i, column j: k = 0..2 p0, p1, p2 (signed 32, saturated
 //                to 18 bit), k = 3 product shift [3:0]  -> coefficient / shift memories
 //   other addresses (magic, used, checksum, unused) are ignored.
@@ -16,15 +17,16 @@
 // desc at ra_desc, p2 / p1 at ra_c, p0 at ra_p0, the product shifts at ra_s (s_clr reads 0 instead);
 // the header entry hdr_field is read asynchronously (hdr); the CFG fields are
 // combinational outputs of the bank registers.
-// Storage: block RAM (p0/p1/p2 x rows: 2 x 64 x 18 each; descriptors 2 x 64 x 11; shifts
-// 2 x 64 x {4, 4}); header: LUT RAM 2 x 8 x 33; CFG fields: registers.
+// Storage: block RAM (p0/p1/p2 x rows: 2 x 64 x 18 each; descriptors 2 x 64 x 10; shifts
+// 2 x 64 x {4, 4}); header: LUT RAM 2 x 8 x SIG_W; CFG fields: registers.
 // Parameters: N (horizon inputs of the core, <= EMPC_N_MAX).
 // Reset: CFG registers of both banks clear to 0 (ncols = 0: an empty bank gives du = 0);
 // memories are not reset (LUT RAM initial contents 0); read registers clear to 0.
 `default_nettype none
 `include "empc_formats.vh"
 module mpc_coef_mem #(
-    parameter integer N = `EMPC_N
+    parameter integer N = `EMPC_N,
+    parameter integer DW = `EMPC_SIG_SHIFT_BITS + 6     // descriptor {c, sig}
 ) (
     input  wire                        clk,
     input  wire                        rst,
@@ -38,7 +40,7 @@ module mpc_coef_mem #(
     input  wire [5:0]                  ra_p0,
     input  wire [5:0]                  ra_s,
     input  wire                        s_clr,
-    output reg  [10:0]                 desc,
+    output reg  [DW-1:0]               desc,
     output reg  signed [`EMPC_OPW-1:0] p2_d,
     output reg  signed [`EMPC_OPW-1:0] p2_q,
     output reg  signed [`EMPC_OPW-1:0] p1_d,
@@ -52,9 +54,11 @@ module mpc_coef_mem #(
     output wire [6:0]                  ncols,
     output wire [3:0]                  neff,
     input  wire [2:0]                  hdr_field,
-    output wire [32:0]                 hdr
+    output wire signed [`EMPC_SIG_W-1:0] hdr
 );
     localparam integer OPW   = `EMPC_OPW;
+    localparam integer SW    = `EMPC_SIG_W;
+    localparam integer CB    = `EMPC_SIG_SHIFT_BITS;
     localparam integer MAXC  = `EMPC_MAX_COLS;     // 64
     localparam integer NEFF  = (N < `EMPC_N_MAX) ? N : `EMPC_N_MAX;
     localparam [9:0] A_CFG   = `EMPC_IMG_A_CFG;
@@ -83,16 +87,17 @@ module mpc_coef_mem #(
     // signed 32 -> sat18
     wire s_ok = (&wdata[31:OPW-1]) | ~(|wdata[31:OPW-1]);
     wire signed [OPW-1:0] wsat = s_ok ? wdata[OPW-1:0] : (wdata[31] ? ~OMAX : OMAX);
-    // header entry (33 bit, sign-extended)
+    // header entry (SW bit, sign-extended)
     wire signed [OPW-1:0] wclamp = (wsat == ~OMAX) ? -$signed(OMAX) : wsat;     // +-(2^17-1)
     wire [OPW-1:0] wumax = (|wdata[31:OPW-1]) ? OMAX : {1'b0, wdata[OPW-2:0]};
-    reg  [32:0] h_wd;
+    wire [SW-2:0]  welim = (|wdata[31:SW-1]) ? {(SW-1){1'b1}} : wdata[SW-2:0];   // 0 .. 2^(SW-1)-1
+    reg  [SW-1:0]  h_wd;
     always @* begin
         case (h_f)
-            F_WS:    h_wd = {28'd0, wdata[4:0]};
-            F_WNMIN, F_WNMAX: h_wd = {{(33-OPW){wclamp[OPW-1]}}, wclamp};
-            F_UMAX:  h_wd = {{(33-OPW){1'b0}}, wumax};
-            default: h_wd = {1'b0, wdata};
+            F_WS:    h_wd = {{(SW-CB){1'b0}}, wdata[CB-1:0]};
+            F_WNMIN, F_WNMAX: h_wd = {{(SW-OPW){wclamp[OPW-1]}}, wclamp};
+            F_UMAX:  h_wd = {{(SW-OPW){1'b0}}, wumax};
+            default: h_wd = {1'b0, welim};
         endcase
     end
     // CFG fields
@@ -127,15 +132,15 @@ module mpc_coef_mem #(
     assign neff  = neff_b[rbank];
 
     // ---- header LUT RAM: address {bank, field} ----
-    reg [32:0] m_hdr [0:15];
+    reg [SW-1:0] m_hdr [0:15];
     integer hi;
-    initial for (hi = 0; hi < 16; hi = hi + 1) m_hdr[hi] = 33'd0;
+    initial for (hi = 0; hi < 16; hi = hi + 1) m_hdr[hi] = {SW{1'b0}};
     always @(posedge clk)
         if (w_hdr) m_hdr[{wbank, h_f}] <= h_wd;
     assign hdr = m_hdr[{rbank, hdr_field}];
 
     // ---- block memories: address {bank, column} ----
-    (* ram_style = "block" *) reg [10:0]    m_desc [0:2*MAXC-1];
+    (* ram_style = "block" *) reg [DW-1:0]  m_desc [0:2*MAXC-1];
     (* ram_style = "block" *) reg [OPW-1:0] m_p0d [0:2*MAXC-1];
     (* ram_style = "block" *) reg [OPW-1:0] m_p1d [0:2*MAXC-1];
     (* ram_style = "block" *) reg [OPW-1:0] m_p2d [0:2*MAXC-1];
@@ -145,7 +150,7 @@ module mpc_coef_mem #(
     (* ram_style = "block" *) reg [8:0]     m_s   [0:2*MAXC-1];     // {s_q, 1'b0, s_d}
 
     always @(posedge clk) begin
-        if (w_col) m_desc[wa_col] <= {wdata[12:8], wdata[5:0]};
+        if (w_col) m_desc[wa_col] <= {wdata[CB+7:8], wdata[5:0]};
         if (w_gain && !g_row && g_k == 2'd0) m_p0d[wa_gain] <= wsat;
         if (w_gain && !g_row && g_k == 2'd1) m_p1d[wa_gain] <= wsat;
         if (w_gain && !g_row && g_k == 2'd2) m_p2d[wa_gain] <= wsat;
@@ -161,7 +166,7 @@ module mpc_coef_mem #(
     assign s_q = s_r[8:5];
     always @(posedge clk) begin
         if (rst) begin
-            desc <= 11'd0;
+            desc <= {DW{1'b0}};
             p2_d <= {OPW{1'b0}}; p2_q <= {OPW{1'b0}};
             p1_d <= {OPW{1'b0}}; p1_q <= {OPW{1'b0}};
             p0_d <= {OPW{1'b0}}; p0_q <= {OPW{1'b0}};

@@ -221,13 +221,13 @@ module mpc_core #(
     end
 
     // ---- coefficient banks ----
-    wire [10:0] desc;
+    wire [`EMPC_SIG_SHIFT_BITS+5:0] desc;
     wire signed [OPW-1:0] p2_d, p2_q, p1_d, p1_q, p0_d, p0_q;
     wire [3:0] s_d, s_q;
     wire alg2, pos;
     wire [3:0] neff;
     wire [2:0] hdr_field;
-    wire [32:0] hdr;
+    wire signed [SW-1:0] hdr;
     assign task_pos = pos;
     mpc_coef_mem #(.N(N)) u_mem (
         .clk(clk), .rst(rst),

@@ -1,28 +1,28 @@
 // mpc_operand: the MPC core's input buffer and operand ALU (model steps 1-3, the operand of
 // step 4, u_raw of step 5 and the limiter's operands).
 //
-// Input buffer: 64 x 40-bit LUT RAM written through in_we / in_addr / in_wdata (word map
+// Input buffer: 64 x SIG_W-bit LUT RAM written through in_we / in_addr / in_wdata (word map
 // EMPC_IN_*: y[o] at IN_Y + o, omega, dx[n], u_prev[i], ebar_prev[o], wref[m][o] at
 // IN_WREF + 3 m + o).  It is read (not copied) during the update: the writer keeps it
-// stable from start to done.  Scratch RAM: 16 x 40-bit LUT RAM written by the ALU
+// stable from start to done.  Scratch RAM: 16 x SIG_W-bit LUT RAM written by the ALU
 // (y[o] copies at 0..2, the eq. 25 increments inc[o] at 4..6).
 // ALU, one item per clock (kinds in mpc_items.vh), item token at O0:
 //   O0  decode (columns: descriptor {c, sig} from the coefficient memory, read one cycle
 //       ahead) -> registers
 //   O1  read A = buffer word or 0, B = scratch word / header field / du[i] / 0 -> registers
 //       (the ebar_lim clamp of EBAR columns / EBB items is applied here)
-//   O2  D = A + B or A - B (41 bit)
-//   O3  S = sat40(D); Y1 = (S << 1) >>> (16 c[4]); scratch write (YC, EBA), EBA clamp
-//       decision, EBB ebar, UR u_raw = sat24(D)
+//   O2  D = A + B or A - B (SIG_W + 1 bit)
+//   O3  S = satSW(D); Y1 = S << 1; scratch write (YC, EBA), EBA clamp decision, EBB ebar,
+//       UR u_raw = sat24(D)
 //   O4  op = sat18(rshift_round(S, c)) from Y1 (shifts 4 c[3:2], c[1:0], round, saturate);
 //       op_next = f instead when sel_f (limiter)
 //   O5  op valid; WN / LO / HI: wn register (clamp steps), UMX: wn_s = wn, wn = op
 // Items: YC o (copy y[o]), EBA o (inc = w_k[o] - y[o], clamp = |inc| > ebar_lim[o]),
 //   WN (omega >> ws), LO / HI (op = wn_min / wn_max; wn = max(wn, lo), then min(wn, hi)),
 //   COL (W_rel, E, Y, EBAR, DX per the signal layout SIG_*; m > neff and indices 59..63 read
-//   0; EBAR[o] = sat40(ebar_prev[o] + clamp(inc[o])) recomputed), UR i (u_prev[i] + du[i],
+//   0; EBAR[o] = satSW(ebar_prev[o] + clamp(inc[o])) recomputed), UR i (u_prev[i] + du[i],
 //   c = U_FRAC - V_FRAC: op = u18[i]), UMX / NUMX (op = +-u_max), EBB o (ebar[o]).
-// Flags (sticky, cleared by clr): f_signal (a column's signal saturated to 40 bit),
+// Flags (sticky, cleared by clr): f_signal (a column's signal saturated to SIG_W bit),
 //   f_operand, f_wn (wn != unsaturated rshift_round(omega, ws)), f_ebar, f_ebar_inc, f_u.
 // Parameters: none (widths and the word map from empc_formats.vh).
 // Reset: registers 0 (the buffers are LUT RAM: not reset, initial contents 0).
@@ -40,13 +40,13 @@ module mpc_operand (
     // item token at O0
     input  wire [3:0]                    kind,
     input  wire [1:0]                    idx,        // o (YC, EBA, EBB) or row i (UR)
-    input  wire [10:0]                   desc,       // {c, sig} of the column, valid at O0
+    input  wire [`EMPC_SIG_SHIFT_BITS+5:0] desc,     // {c, sig} of the column, valid at O0
     // fields of the running coefficient bank (stable during an update)
     input  wire                          alg2,
     input  wire                          pos,
     input  wire [3:0]                    neff,       // min(N_img, N, N_MAX)
     output reg  [2:0]                    hdr_field,  // header entry read at O1
-    input  wire [32:0]                   hdr,
+    input  wire signed [`EMPC_SIG_W-1:0] hdr,       // header field, sign-extended (ebar_lim >= 0)
     // lanes / limiter
     input  wire signed [`EMPC_U_W-1:0]   du_d,       // at O1 of UR items
     input  wire signed [`EMPC_U_W-1:0]   du_q,
@@ -66,11 +66,14 @@ module mpc_operand (
     output reg                           f_ebar_inc,
     output reg                           f_u
 );
-    localparam integer SW   = `EMPC_SIG_W;            // 40
+    localparam integer SW   = `EMPC_SIG_W;            // 32
     localparam integer OPW  = `EMPC_OPW;              // 18
     localparam integer UW   = `EMPC_U_W;              // 24
-    localparam integer CB   = `EMPC_SIG_SHIFT_BITS;   // 5
+    localparam integer CB   = `EMPC_SIG_SHIFT_BITS;   // 4 (operand shift 0..15)
     localparam [CB-1:0] C_UR = `EMPC_U_FRAC - `EMPC_V_FRAC;
+    generate if (CB != 4 || SW < OPW + 4 || SW > OPW + 22) begin : g_bad_params
+        mpc_operand_unsupported_parameters u_error ();   // no such module: elaboration stops here
+    end endgenerate
     localparam signed [OPW-1:0] OMAX = {1'b0, {(OPW-1){1'b1}}};
     localparam signed [OPW-1:0] OMIN = {1'b1, {(OPW-1){1'b0}}};
     localparam signed [UW-1:0]  UMAXV = {1'b0, {(UW-1){1'b1}}};
@@ -242,13 +245,13 @@ module mpc_operand (
     always @* begin
         case (b_sel)
             B_SCR:   b_rd = s_rd;
-            B_HDR:   b_rd = {{(SW-33){hdr[32]}}, hdr};
+            B_HDR:   b_rd = hdr;
             B_DUD:   b_rd = {{(SW-UW){du_d[UW-1]}}, du_d};
             default: b_rd = {{(SW-UW){du_q[UW-1]}}, du_q};
         endcase
     end
     reg signed [SW-1:0] av, bv;
-    reg  [31:0]   lim2, lim3;           // ebar_lim[o] of an EBA item (O2, O3)
+    reg  [SW-2:0] lim2, lim3;           // ebar_lim[o] of an EBA item (O2, O3), < 2^(SW-1)
 
     // ---- O2: D = A +- B ----
     reg  [3:0]   kind1, kind2, kind3, kind4, kind5;
@@ -260,32 +263,32 @@ module mpc_operand (
     wire [SW:0]  d0 = d0x[SW+1:1];
     reg  [SW:0]  dv;
 
-    // ---- O3: S = sat40(D), Y1 = {S, 0} >>> 16 c[4] ----
+    // ---- O3: S = satSW(D), Y1 = {S, 0} ----
     wire         d_sgn = dv[SW];
     wire         d_ovf = dv[SW] ^ dv[SW-1];
     wire [SW-1:0] sv   = d_ovf ? {d_sgn, {(SW-1){~d_sgn}}} : dv[SW-1:0];
     wire [SW:0]  w1    = {sv, 1'b0};
-    wire [SW:0]  y1    = c3[4] ? {{16{sv[SW-1]}}, w1[SW:16]} : w1;
+    wire [SW:0]  y1    = w1;
     reg  [SW:0]  y1r;
     wire [SW-1:0] s_y1 = y1[SW:1];       // S (items with c = 0: scratch / ebar writes)
-    // EBA: clamp = |inc| > lim:  |D| >= 2^32 (top bits not all sign), else the sign of
-    // D - lim - 1 (D >= 0) or D + lim (D < 0), formed on 34 bits
-    wire         d_top = ~((&dv[SW:33]) | ~(|dv[SW:33]));
-    wire [34:0]  ccmpx = {dv[33:0], 1'b0} - {({2'b00, lim3} ^ {34{d_sgn}}), 1'b1};   // D + (lim ^ ~sgn)
-    wire [33:0]  ccmp  = ccmpx[34:1];
-    wire         clamp = d_top | (ccmp[33] ^ ~d_sgn);
+    // EBA: clamp = |inc| > lim: the sign of D - lim - 1 (D >= 0) or D + lim (D < 0), i.e.
+    // D - (lim ^ sgn) - 1 on SW + 2 bits (one carry chain: the -1 enters as an extra LSB)
+    wire [SW+1:0] lx    = {d_sgn, {2'b00, lim3} ^ {(SW+1){d_sgn}}};
+    wire [SW+2:0] ccmpx = {dv[SW], dv, 1'b0} - {lx, 1'b1};
+    wire          clamp = ccmpx[SW+2] ^ ~d_sgn;
     // UR: u_raw = sat24(D)
     wire         u_fit = (&dv[SW:UW-1]) | ~(|dv[SW:UW-1]);
     wire [UW-1:0] u_s  = u_fit ? dv[UW-1:0] : (d_sgn ? UMINV : UMAXV);
 
-    // ---- O4: op = sat18(rshift_round(S, c)) ----
+    // ---- O4: op = sat18(rshift_round(S, c)), c = 4 c[3:2] + c[1:0] ----
     wire         y_sgn = y1r[SW];
     wire [SW:0]  y2    = $signed(y1r) >>> {c4[3:2], 2'b00};
     wire [OPW+3:0] y3w = y2[OPW+3:0] >> c4[1:0];
     wire [OPW:0] y3    = y3w[OPW:0];
-    // the result fits 18 bit iff Y1 bits [39 : 18 + c[3:0]] equal the sign: bits above the
-    // y2 window (>= 22 + 4 c[3:2]) by groups of 4, the rest in y2 (>= 18 + c[1:0])
-    wire [21:0]  y_x   = y1r[SW-1:OPW] ^ {22{y_sgn}};    // positions 18..39
+    // the result fits 18 bit iff Y1 bits [SW-1 : 18 + c] equal the sign (Y1 bit p = S bit p-1):
+    // bits above the y2 window (>= 22 + 4 c[3:2]) by groups of 4, the rest in y2 (>= 18 + c[1:0]);
+    // y_x holds positions 18..39, zero (= equal to the sign) above SW-1
+    wire [21:0]  y_x   = {{(22-SW+OPW){1'b0}}, y1r[SW-1:OPW] ^ {(SW-OPW){y_sgn}}};
     wire         g22   = |y_x[7:4];
     wire         g26   = |y_x[11:8];
     wire         g30   = |y_x[15:12];
@@ -321,7 +324,7 @@ module mpc_operand (
             c2 <= {CB{1'b0}}; c3 <= {CB{1'b0}}; c4 <= {CB{1'b0}};
             av <= {SW{1'b0}};
             bv <= {SW{1'b0}};
-            lim2 <= 32'd0; lim3 <= 32'd0;
+            lim2 <= {(SW-1){1'b0}}; lim3 <= {(SW-1){1'b0}};
             dv <= {(SW+1){1'b0}};
             y1r <= {(SW+1){1'b0}};
             op <= {OPW{1'b0}};
@@ -358,7 +361,7 @@ module mpc_operand (
             sub2 <= sub1;
             nosig2 <= nosig1;
             c2 <= c1;
-            lim2 <= hdr[31:0];
+            lim2 <= hdr[SW-2:0];
             // O2 -> O3
             dv <= d0;
             c3 <= c2;
@@ -408,6 +411,6 @@ module mpc_operand (
         end
     end
 
-    wire unused_ok = &{1'b0, y2[SW:OPW+4], y3w[OPW+3:OPW+1], y_x[3:0], ccmp[32:0], ccmpx[0], c4[4], d0x[0], wdx[0], wd[OPW-1:0]};
+    wire unused_ok = &{1'b0, y2[SW:OPW+4], y3w[OPW+3:OPW+1], ccmpx[SW+1:0], d0x[0], wdx[0], wd[OPW-1:0], hdr[SW-1], y_x[3:0]};
 endmodule
 `default_nettype wire

@@ -237,7 +237,7 @@ def random_inputs(rng, n: int, p: core.Params, N: int) -> dict:
         x["y"][:, o] = pick(_smag(rng, n, 14), OPW)
     x["omega"] = pick(rng.integers(-w_top, w_top + 1, n), F.W_W)
     if pos:
-        x["y"][:, 2] = pick(rng.integers(-(1 << 38), 1 << 38, n), SW)
+        x["y"][:, 2] = pick(rng.integers(-(1 << (SW - 2)), 1 << (SW - 2), n), SW)
     else:
         x["y"][:, 2] = pick(x["omega"] + _smag(rng, n, 12), F.W_W)
     for m in range(N + 1):
@@ -256,7 +256,7 @@ def random_inputs(rng, n: int, p: core.Params, N: int) -> dict:
 def corner_inputs(p: core.Params, N: int, rng) -> tuple[dict, list[str]]:
     """Named corner vectors: zero, full scale of every field, speeds, limiter circle, ebar clamps."""
     vecs, names = [], []
-    maxv = {"y": [(1 << 17) - 1, (1 << 17) - 1, (1 << 39) - 1], "omega": (1 << 31) - 1}
+    maxv = {"y": [(1 << 17) - 1, (1 << 17) - 1, (1 << (SW - 1)) - 1], "omega": (1 << 31) - 1}
 
     def add(name, **kw):
         x = empty_inputs(1, N)
@@ -266,8 +266,8 @@ def corner_inputs(p: core.Params, N: int, rng) -> tuple[dict, list[str]]:
         names.append(name)
 
     add("zero")
-    fs = {"y": maxv["y"], "omega": maxv["omega"], "dx": [(1 << 39) - 1] * 5,
-          "wref": [[(1 << 39) - 1] * 3] * (N + 1), "u_prev": [(1 << 23) - 1] * 2, "ebar_prev": [(1 << 39) - 1] * 3}
+    fs = {"y": maxv["y"], "omega": maxv["omega"], "dx": [(1 << (SW - 1)) - 1] * 5,
+          "wref": [[(1 << (SW - 1)) - 1] * 3] * (N + 1), "u_prev": [(1 << 23) - 1] * 2, "ebar_prev": [(1 << (SW - 1)) - 1] * 3}
     for sgn, nm in ((1, "+fs"), (-1, "-fs")):
         def scale(v, s=sgn):
             a = np.array(v, np.int64)
@@ -299,9 +299,9 @@ def corner_inputs(p: core.Params, N: int, rng) -> tuple[dict, list[str]]:
     for o in range(3):
         for s in (1, -1):
             wr = np.zeros((N + 1, 3), np.int64)
-            wr[0, o] = s * ((1 << 39) - 1)
+            wr[0, o] = s * ((1 << (SW - 1)) - 1)
             eb = np.zeros(3, np.int64)
-            eb[o] = s * ((1 << 39) - 1)
+            eb[o] = s * ((1 << (SW - 1)) - 1)
             add(f"ebar_inc[{o}]{s:+d}", wref=wr)
             add(f"ebar_sat[{o}]{s:+d}", wref=wr, ebar_prev=eb)
             lim = p.ebar_lim[o]

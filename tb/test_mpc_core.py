@@ -387,7 +387,8 @@ def write_stream(path: Path, jobs: list[dict], N: int) -> None:
             fh.write(b"s")
             addrs, vals = V.input_word_arrays(job["x"], N)
             n, nw = vals.shape
-            u = (vals & ((1 << SW) - 1)).astype(">u8").view(np.uint8).reshape(n, nw, 8)[:, :, 8 - SW // 8:]
+            # fixed 6-byte word record {addr, value[39:0]} (sim/mpc_core_stream.v takes value[SW-1:0])
+            u = (vals & ((1 << 40) - 1)).astype(">u8").view(np.uint8).reshape(n, nw, 8)[:, :, 3:]
             a = np.broadcast_to(np.array(addrs, np.uint8)[None, :, None], (n, nw, 1))
             words = np.concatenate([a, u], axis=2).reshape(n, -1)
             head = np.tile(np.array([ord("v"), nw], np.uint8), (n, 1))
@@ -632,7 +633,7 @@ def test_input_words():
     for n_ref in range(core.N_MAX + 1):
         x = V.empty_inputs(1, n_ref)
         for k in x:
-            x[k][...] = rng.integers(-(1 << 39), 1 << 39, x[k].shape)
+            x[k][...] = rng.integers(-(1 << (SW - 1)), 1 << (SW - 1), x[k].shape)
         inp = V.to_inputs(x, 0)
         w = core.input_words(inp)
         assert sorted(w) == list(range(14)) + list(range(core.IN_WREF, core.IN_WREF + 3 * (n_ref + 1))), sorted(w)
@@ -646,9 +647,9 @@ def test_input_words():
     x = V.empty_inputs(1, N)
     with pytest.raises(ValueError):
         core.input_words(V.to_inputs(x, 0), N + 1)            # more references than given
-    x["omega"][0] = 1 << 39
+    x["omega"][0] = 1 << (SW - 1)
     with pytest.raises(ValueError):
-        core.input_words(V.to_inputs(x, 0), N)                # does not fit 40 bit
+        core.input_words(V.to_inputs(x, 0), N)                # does not fit SW bit
     print(f"input word map: header EMPC_IN_* == model, {n_checked} layouts (N = 0..{core.N_MAX}) checked")
 
 

@@ -43,7 +43,7 @@ KDC_W = 18
 # MPC core (see mpc_fixed.py)
 COEF_W = OPW        # polynomial coefficient mantissa
 WN_FRAC = OPW - 1   # normalised scheduling speed, Q1.17
-SIG_SHIFT_BITS = 5  # per-column signal right shift 0..31
+SIG_SHIFT_BITS = 4  # per-column signal right shift 0..15 (enough for any 32-bit signal)
 PROD_SHIFT_BITS = 4 # per-gain product left shift 0..15
 ACC_FRAC = 32         # accumulator LSB = 2**-32 PWM ticks: small gains keep 18-bit mantissas; range +-2**15 ticks
 

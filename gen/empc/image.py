@@ -5,16 +5,17 @@ what the CPU uploads through the register bus to swap tunings at run time.
 Addresses (words):
   0x000 magic 'EMPC'
   0x001 {layout[31:24], algorithm[14:13], task[12] (1 = position), N[11:8], ncols[6:0]}
-  0x002 ws (scheduling speed shift)      0x003 wn_min    0x004 wn_max
+  0x002 ws (scheduling speed shift, < 2^SIG_SHIFT_BITS)   0x003 wn_min    0x004 wn_max
   0x005 u_max (Q14.4 PWM ticks)          0x006..0x008 ebar_lim[0..2]
   0x009 number of used words             0x00a checksum (sum of words 0..0x2ff except 0x00a, mod 2^32)
-  0x040 + j            column j: {shift[12:8], sig[5:0]}
+  0x040 + j            column j: {shift[11:8], sig[5:0]}  (shift < 2^SIG_SHIFT_BITS; higher bits ignored)
   0x100 + 4(64 i + j)  gain (row i, column j): p0, p1, p2 (sign-extended 18 bit), product shift
 """
 from __future__ import annotations
 
 from pathlib import Path
 
+from . import formats as F
 from .rtlmodel import mpc_core as core
 
 MAGIC = 0x454D5043
@@ -47,6 +48,8 @@ def encode(p: core.Params) -> list[int]:
     w = [0] * DEPTH
     w[A_MAGIC] = MAGIC
     w[A_CFG] = (LAYOUT << 24) | (p.algorithm << 13) | ((1 if p.task == "position" else 0) << 12) | (p.N << 8) | p.ncols
+    if not 0 <= p.ws < (1 << F.SIG_SHIFT_BITS):
+        raise ValueError(f"ws={p.ws} does not fit {F.SIG_SHIFT_BITS} bits")
     w[A_WS] = p.ws
     w[A_WNMIN] = _u32(p.wn_min)
     w[A_WNMAX] = _u32(p.wn_max)
@@ -57,6 +60,8 @@ def encode(p: core.Params) -> list[int]:
         w[A_EBAR + o] = p.ebar_lim[o]
     w[A_USED] = USED
     for j in range(p.ncols):
+        if not 0 <= p.col_shift[j] < (1 << F.SIG_SHIFT_BITS):
+            raise ValueError(f"column {j}: operand shift {p.col_shift[j]} does not fit {F.SIG_SHIFT_BITS} bits")
         w[A_COLS + j] = (p.col_shift[j] << 8) | p.col_sig[j]
         for i in range(2):
             p0, p1, p2, s = p.coef[i][j]
@@ -86,10 +91,10 @@ def decode(w: list[int]) -> core.Params:
             coef[i].append((_s32(w[base]), _s32(w[base + 1]), _s32(w[base + 2]), w[base + 3] & 0xF))
     return core.Params(
         algorithm=(cfgw >> 13) & 3, task="position" if (cfgw >> 12) & 1 else "speed", N=(cfgw >> 8) & 0xF,
-        ws=w[A_WS] & 0x1F, wn_min=_s32(w[A_WNMIN]), wn_max=_s32(w[A_WNMAX]), u_max=w[A_UMAX],
+        ws=w[A_WS] & ((1 << F.SIG_SHIFT_BITS) - 1), wn_min=_s32(w[A_WNMIN]), wn_max=_s32(w[A_WNMAX]), u_max=w[A_UMAX],
         ebar_lim=tuple(w[A_EBAR + o] for o in range(3)),
         col_sig=[w[A_COLS + j] & 0x3F for j in range(ncols)],
-        col_shift=[(w[A_COLS + j] >> 8) & 0x1F for j in range(ncols)], coef=coef)
+        col_shift=[(w[A_COLS + j] >> 8) & ((1 << F.SIG_SHIFT_BITS) - 1) for j in range(ncols)], coef=coef)
 
 
 def write_hex(words: list[int], path: Path, digits: int = 8) -> None:

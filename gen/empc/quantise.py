@@ -97,6 +97,9 @@ def build(cfg, algorithm: int | None = None, task: str | None = None, gain_fit=N
     if c.N > core.N_MAX:
         raise QuantisationError(f"control.N={c.N} exceeds the core's N_MAX={core.N_MAX}")
     ws = ws_for(cfg)
+    if ws > MAX_SIG_SHIFT:
+        raise QuantisationError(f"scheduling shift ws={ws} exceeds {MAX_SIG_SHIFT} (|omega| over Omega_e does not fit "
+                                f"{F.W_W}-bit Q.{F.W_FRAC}: reduce control.omega_max/omega_min)")
     wnorm = w_norm_rtl(cfg, ws)
     gf = gain_fit or fit_mod.fit(cfg, algorithm, task, w_norm=wnorm)
     if abs(gf.w_norm - wnorm) > 1e-9 * wnorm:

@@ -112,7 +112,12 @@ class CtrlSeq:
             else:
                 w3 = F.sat(F.rshift_round(_signed(wv, 64), 32 - F.W_FRAC), sw)
             wref.append((regs.id_ref, regs.iq_ref, w3))
-        dx = (i_d - self.id_prev, i_q - self.iq_prev, omega - self.omega_prev, dpos << F.TH_FRAC, 0)
+        # dx in the core's SIG_W-bit words: the speed and angle increments saturate (only for
+        # impossible jumps: 2^15 counts/Ts of speed change, 2^23 counts per Ts)
+        dom = F.sat(omega - self.omega_prev, sw)
+        dth = F.sat(dpos << F.TH_FRAC, sw)
+        out["front_sat"] |= bool(dom != omega - self.omega_prev or dth != dpos << F.TH_FRAC)
+        dx = (i_d - self.id_prev, i_q - self.iq_prev, dom, dth, 0)
         x = core.Inputs(y=(i_d, i_q, 0 if task_pos else omega), omega=omega, dx=dx, wref=tuple(wref),
                         u_prev=self.u, ebar_prev=self.ebar)
         self.id_prev, self.iq_prev, self.omega_prev, self.pos_prev = i_d, i_q, omega, pos

@@ -3,8 +3,8 @@
 The RTL must match :func:`update` bit for bit.  The RTL reads its inputs from an input
 buffer of 40-bit signed words (written before ``start``, word map ``IN_*`` below,
 :func:`input_words` builds it from :class:`Inputs`); every input is used at the full
-SIG_W = 40 bit, so the model below is exact for any field value in the signed 40-bit
-range (the writer sign-extends: i_d, i_q 18 bit, omega 32 bit, u_prev 24 bit in practice).
+SIG_W = 32 bit, so the model below is exact for any field value in the signed 32-bit
+range (the writer sign-extends: i_d, i_q 18 bit, u_prev 24 bit in practice).
 One update, in this order:
 
 1. Scheduling speed: ``wn = clamp(sat18(rshift_round(omega, WS)), wn_min, wn_max)``
@@ -39,7 +39,7 @@ One update, in this order:
 Saturation events are reported per kind in ``flags`` (bit names in ``FLAG_BITS``).
 
 Image fields are used as the RTL stores them (``effective``): p0, p1, p2 saturated to
-18 bit, wn_min / wn_max clamped to +-OP_MAX, u_max to 0..OP_MAX, ncols to MAX_COLS.
+18 bit, wn_min / wn_max clamped to +-OP_MAX, u_max to 0..OP_MAX, ebar_lim to 0..EBAR_LIM_MAX, ncols to MAX_COLS.
 Generated images are unaffected (they are always inside these ranges).
 """
 from __future__ import annotations
@@ -49,7 +49,7 @@ from dataclasses import dataclass, field
 
 from ..formats import (ACC_FRAC, ACCW, OPW, U_FRAC, U_W, V_FRAC, rshift_round, sat)
 
-SIG_W = 40
+SIG_W = 32
 N_MAX = 8
 SIG_WREL = 0            # + 3*(m-1) + o, m = 1..N
 SIG_E = 3 * N_MAX       # 24
@@ -61,6 +61,7 @@ N_SIG_INDEX = 64        # col_sig is 6 bit; indices N_SIGNALS..63 read 0
 MAX_COLS = 64
 RSQRT_BITS = 10
 OP_MAX = (1 << (OPW - 1)) - 1
+EBAR_LIM_MAX = (1 << (SIG_W - 1)) - 1   # ebar_lim is stored clamped to this (a SIG_W-bit operand)
 
 # input buffer word map of rtl/mpc_core.v (in_we / in_addr / in_wdata; `empc roms` writes EMPC_IN_*)
 IN_Y = 0                # y[o] at IN_Y + o (i_d, i_q, speed or angle)
@@ -203,7 +204,7 @@ def update(p: Params, x: Inputs) -> Outputs:
         nb = []
         for o in range(3):
             inc = x.wref[0][o] - x.y[o]
-            lim = p.ebar_lim[o]
+            lim = min(p.ebar_lim[o], EBAR_LIM_MAX)
             inc_c = min(max(inc, -lim), lim)
             _count(counts, "ebar_inc", inc_c != inc)
             v = x.ebar_prev[o] + inc_c
