@@ -13,7 +13,8 @@
 //   omega = sat32(sat32((pos_trig - pos_prev) << 16) + rshift_round(kacc * i_q, kacc_shift))
 //           (eq. 37 in counts per Ts, plus the (Ts/2) acceleration term)
 //   core inputs (raw units), written one word per clock into the core's input buffer:
-//   y = (i_d, i_q, omega | 0), omega, dx = x_k - x_{k-1}, u_prev, ebar_prev, and the
+//   y = (i_d, i_q, omega | 0), omega, dx = x_k - x_{k-1} (dx2 = omega - omega_prev and
+//   dx3 = dpos << 8 saturated to SIG_W, front_sat), u_prev, ebar_prev, and the
 //   references w_k..w_{k+N} read bit by bit from ref_gen (Q.32) -> Q16.16 speed or, for
 //   the position task, Q32.8 relative to the measured count (modulo 2^32, so the
 //   encoder wrap is harmless; the core's own translation then subtracts 0), rounded
@@ -23,14 +24,15 @@
 // Bit-exact to gen/empc/rtlmodel/ctrl_seq.py (CtrlSeq.period) with mpc_core.py.
 //
 // Datapath (LSB first, one bit per clock; no multiplier, no wide adder):
-//   X        40-bit word register = the core's in_wdata.  A word to copy (i_d, i_q,
+//   X        40-bit word register, X[SIG_W-1:0] = the core's in_wdata.  A word to copy (i_d, i_q,
 //            id_ref, iq_ref, u_prev, ebar_prev, the count) is loaded in parallel as the OR
 //            of "stage" registers, each a copy of its source that is held at 0 (flip-flop
 //            reset) except in the one clock it is selected; a computed word is shifted in
 //            at the top while the operand leaves at the bottom (X[0]).
 //   ALU      one serial adder A + (B or ~B) + carry (0..2: subtract with rounding), sign
 //            extension of narrow operands by holding their top bit, overflow flags and a
-//            saturation pattern for the words that saturate (omega, references).
+//            saturation pattern for the words that saturate (omega; references, dx2, dx3 to
+//            SIG_W: a word whose 40-bit result does not fit is rewritten in X, state E_FIX).
 //   rings    shift registers holding the previous i_d, i_q, omega, count (B operands,
 //            refilled from the A stream in the same pass), dpos, omega (result), the
 //            acceleration term ka and the angle words; none needs a data multiplexer.
@@ -130,14 +132,15 @@ module ctrl_seq #(
     output wire                           cnt_hide,        // counters are being zeroed (read them as 0)
     output wire                           st_hide          // status words are being zeroed (after rst)
 );
-    localparam integer SW = `EMPC_SIG_W;     // 40
+    localparam integer SW = `EMPC_SIG_W;     // 32: core input words (X[SW-1:0])
+    localparam integer XW = 40;              // X: the passes form 40-bit words, saturated to SW
     localparam integer UW = `EMPC_U_W;       // 24
     localparam integer IW = `EMPC_I_W;       // 18
     localparam integer WW = `EMPC_W_W;       // 32
     localparam integer AB = `EMPC_ANGLE_BITS; // 16
     localparam integer PW = `EMPC_POS_W;     // 32
 
-    generate if (SW != 40 || UW != 24 || IW != 18 || WW != 32 || PW != 32 || AB != 16 ||
+    generate if (SW != 32 || UW != 24 || IW != 18 || WW != 32 || PW != 32 || AB != 16 ||
                  `EMPC_W_FRAC != 16 || `EMPC_TH_FRAC != 8 || N > 8 || THETA_LAT < 1 || THETA_LAT > 8 ||
                  `EMPC_IN_Y != 0 || `EMPC_IN_OMEGA != 3 || `EMPC_IN_DX != 4)
     begin : g_bad_params
@@ -202,7 +205,7 @@ module ctrl_seq #(
                      PK_CNT = 4'd10;
     localparam integer PC_XS = 0, PC_PE = 1, PC_SS = 2, PC_HA = 3, PC_HB = 4, PC_CA = 5, PC_CB = 6,
                        PC_R1 = 7, PC_R2 = 8, PC_R3 = 9, PC_AL = 10, PC_L31 = 11, PC_L16 = 12, PC_F1 = 13,
-                       PC_F2 = 14, PC_F3 = 15, PC_W0 = 16;
+                       PC_F2 = 14, PC_F3 = 15, PC_W0 = 16, PC_G = 17;
     function [17:0] pctl;
         input [3:0] k;
         input integer b;
@@ -217,6 +220,7 @@ module ctrl_seq #(
                 PK_POS: begin                                   // dpos = count - count_prev (32 bits)
                     w[PC_XS] = 1'b1; w[PC_R1] = 1'b1; w[PC_R3] = 1'b1; w[PC_AL] = 1'b1;
                     w[PC_PE] = (b == 31); w[PC_F1] = (b == 15); w[PC_F2] = (b > 15); w[PC_F3] = (b == 31);
+                    w[PC_G] = (b == 23);
                 end
                 PK_DIFF: begin                                  // y (copy) at bit 0, dx = y - y_prev
                     w[PC_XS] = 1'b1; w[PC_AL] = 1'b1; w[PC_SS] = (b < 32); w[PC_HB] = (b > 17);
@@ -234,7 +238,7 @@ module ctrl_seq #(
                 PK_W6: begin                                    // dx2 = omega - omega_prev
                     w[PC_XS] = 1'b1; w[PC_AL] = 1'b1; w[PC_HA] = (b > 31); w[PC_CA] = (b == 31);
                     w[PC_HB] = (b > 31); w[PC_CB] = (b == 31); w[PC_R1] = (b < 32); w[PC_R2] = (b < 32);
-                    w[PC_PE] = (b == 39);
+                    w[PC_PE] = (b == 39); w[PC_G] = (b == 31);
                 end
                 PK_STAT: begin                                  // a status word out of X
                     w[PC_XS] = 1'b1; w[PC_AL] = 1'b1; w[PC_SS] = (b < 32); w[PC_PE] = (b == 32);
@@ -246,10 +250,10 @@ module ctrl_seq #(
                     if (refp) begin                             // (w - count << 32) >> 24 + w[23]
                         w[PC_AL] = (b >= 24); w[PC_XS] = (b >= 24); w[PC_R1] = (b >= 32);
                         w[PC_F1] = (b == 23); w[PC_F2] = (b >= 24); w[PC_SS] = m0k && b >= 8 && b < 40;
-                        w[PC_PE] = (b == 63);
+                        w[PC_PE] = (b == 63); w[PC_G] = (b == 55);
                     end else if (refs) begin                    // (w >> 16) + w[15]
-                        w[PC_AL] = (b >= 16); w[PC_XS] = (b >= 16 && b < 56); w[PC_F1] = (b == 55);
-                        w[PC_F2] = (b > 55); w[PC_SS] = m0k && b >= 16 && b < 48; w[PC_PE] = (b == 63);
+                        w[PC_AL] = (b >= 16); w[PC_XS] = (b >= 16 && b < 56);
+                        w[PC_SS] = m0k && b >= 16 && b < 48; w[PC_PE] = (b == 63); w[PC_G] = (b == 47);
                     end
                 end
             endcase
@@ -335,7 +339,7 @@ module ctrl_seq #(
     // ---------------- stage registers and X ----------------
     // Each stage register holds its source in the clock after its select and is 0 otherwise
     // (the select drives the flip-flops' reset); X loads the OR of all stages.
-    reg  [SW-1:0] x;
+    reg  [XW-1:0] x;
     reg  [PW-1:0] g_pos;
     reg  [IW-1:0] g_id, g_iq, g_idr, g_iqr;
     reg  [SW-1:0] g_e0, g_e1, g_e2;
@@ -364,12 +368,13 @@ module ctrl_seq #(
     // 17:0 have 11 inputs with X's own shift: split 6 + 5 so that each is one LUT6
     (* keep *) wire [IW-1:0] g_lo = x[IW:1] | g_pos[IW-1:0] | g_e0[IW-1:0] | g_e1[IW-1:0] | g_e2[IW-1:0] |
                                     g_u0[IW-1:0];
-    wire [SW-1:0] g_all = {{(SW-PW){1'b0}}, g_pos[PW-1:IW], {IW{1'b0}}} |
-                          {g_e0[SW-1:IW], {IW{1'b0}}} | {g_e1[SW-1:IW], {IW{1'b0}}} | {g_e2[SW-1:IW], {IW{1'b0}}} |
-                          {{(SW-UW){g_s24}}, {(UW-IW){g_s18}}, g_id | g_iq | g_idr | g_iqr} |
-                          {{(SW-UW){1'b0}}, g_u0[UW-1:IW], {IW{1'b0}}} | {{(SW-IW){1'b0}}, g_u1[IW-1:0] | g_lo} |
-                          {{(SW-UW){1'b0}}, g_u1[UW-1:IW], {IW{1'b0}}};
-    assign core_in_wdata = x;
+    // (bits SW..XW-1 of a copied word are never written to the core: left 0 / unextended)
+    wire [XW-1:0] g_all = {{(XW-PW){1'b0}}, g_pos[PW-1:IW], {IW{1'b0}}} |
+                          {{(XW-SW){1'b0}}, g_e0[SW-1:IW] | g_e1[SW-1:IW] | g_e2[SW-1:IW], {IW{1'b0}}} |
+                          {{(XW-SW){1'b0}}, {(SW-UW){g_s24}}, {(UW-IW){g_s18}}, g_id | g_iq | g_idr | g_iqr} |
+                          {{(XW-UW){1'b0}}, g_u0[UW-1:IW], {IW{1'b0}}} | {{(XW-IW){1'b0}}, g_u1[IW-1:0] | g_lo} |
+                          {{(XW-UW){1'b0}}, g_u1[UW-1:IW], {IW{1'b0}}};
+    assign core_in_wdata = x[SW-1:0];
 
     // ---------------- serial operands ----------------
     reg  [IW-1:0] idp, iqp;         // previous i_d, i_q
@@ -380,7 +385,8 @@ module ctrl_seq #(
     reg  [40:0]   ka;               // product stream: ka = ka[40:1], rounding bit ka[0]
     reg           a_h, b_h;         // held sign bits
     reg           c0, c1;           // carry 0..2
-    reg           sd, spd_ovf, om_ovf, om_sgn, rnd, nz, r_ref, ref_ovf, ref_sgn;
+    reg           sd, spd_ovf, om_ovf, om_sgn, rnd, nz;
+    reg           w_trk, w_r, w_ovf, fix_sgn;   // SW-bit saturation of the word in X (from bit G)
 
     // reference pass: first bit j0 (the REF window of w_k for m = 0, else the rounding bit)
     wire [5:0] ref_j0  = task_pos ? (m0 ? 6'd8 : 6'd23) : 6'd15;
@@ -419,17 +425,23 @@ module ctrl_seq #(
     wire       r      = a_bit ^ b_eff ^ c0;
     wire       maj    = (a_bit & b_eff) | (c0 & (a_bit ^ b_eff));
     wire       fix_end = (est == E_FIX) && (j == 6'd39);
-    wire       r_fix  = fix_end ? ref_sgn : ~ref_sgn;        // saturated reference, 40 bits
+    wire       r_fix  = (j[5] || j[4:0] == 5'd31) ? fix_sgn : ~fix_sgn;   // X = satSW pattern, sign-extended
 
     // pass control (status / counter passes: 32 bits, the word written one clock after the last)
     wire       pass_end  = in_pass && p_pe;
     // reference overflow including this clock's bit (used at j = 63)
-    wire       ref_ovf_now = task_pos ? (rnd && !nz && r) : (ref_ovf || (r != r_ref));
+    // the word formed in X does not fit SW bits: result bits SW-1 .. XW-1 (pass bits G .. end) not
+    // all equal, including this clock's bit (used at the pass end); its sign: the computed top bit,
+    // the reference sign for a speed reference (w[63]), and + for the one position-reference
+    // wrap (rel + 2^23 carried into bit 63: rnd, bits 24..62 zero)
+    wire       is_sat  = is_ref || is_pos || is_w6;
+    wire       ovf_now = w_ovf || (w_trk && (r != w_r));
+    wire       sgn_now = (is_ref && !task_pos) ? a_raw : (r && !(is_ref && rnd && !nz));
     wire       x_shift = (in_pass && p_xs) || (est == E_FIX);
     wire       x_in    = (est == E_FIX) ? r_fix : r;
     wire       x_load  = (est == E_LD);
     wire       x_clr   = (est == E_WR && !(is_fix3 && !task_pos)) || (est == E_WR2) ||
-                         (pass_end && ((is_ref && ref_ovf_now) || is_stat));
+                         (pass_end && ((is_sat && ovf_now) || is_stat));
     wire       wr_zero = (est == E_OP) && ((u_op == OP_ZERO) || (u_op == OP_ZPOS && task_pos));
     assign core_in_we   = (est == E_WR) || (est == E_WR2) || wr_zero || (in_pass && p_w0);
     // (dx0, dx1 at y0 + 4, y1 + 4; the second FIX3 write: y2 = omega, at omega - 1)
@@ -689,7 +701,10 @@ module ctrl_seq #(
                 E_PASS: begin
                     if (pass_end) begin
                         if (is_om || is_stat || is_cnt) est <= E_OP;
-                        else if (is_ref && ref_ovf_now) est <= E_FIX;
+                        else if (is_sat && ovf_now) begin
+                            est <= E_FIX;
+                            if (!is_ref) front_sat <= 1'b1;   // dx2, dx3 saturated (model: front_sat)
+                        end
                         else est <= E_WR;
                         if (is_fix3) omega <= om;           // complete since bit 31
                     end
@@ -727,9 +742,9 @@ module ctrl_seq #(
     always @(posedge clk) begin
         // X: shift / parallel load (the OR of the stages; X is 0 before a load)
         if (x_clr || rst)
-            x <= {SW{1'b0}};
+            x <= {XW{1'b0}};
         else if (x_shift || x_load)
-            x <= {x_shift & x_in, x[SW-1:IW+1], {IW{1'b0}}} | g_all;     // x[IW:1] is in g_lo
+            x <= {x_shift & x_in, x[XW-1:IW+1], {IW{1'b0}}} | g_all;     // x[IW:1] is in g_lo
         // ALU carry: before the first ALU bit 1 (subtract), rnd (speed reference, OM: ka rounding
         // bit) or 1 + rnd (position reference: subtract and round)
         if (!in_pass || !p_al) begin
@@ -763,22 +778,24 @@ module ctrl_seq #(
             end else if (p_f2 && r != om_sgn) om_ovf <= 1'b1;
             if (p_f3) om_sgn <= r;                            // bit 39
         end
-        // reference pass: rounding bit, overflow
-        if (in_pass && is_ref) begin
-            if (task_pos) begin                       // (rel >> 24) + rnd overflows only to +2^39
-                if (p_f1) begin                               // bit 23
-                    rnd <= a_raw;
-                    nz <= 1'b0;
-                end else if (p_f2 && r) nz <= 1'b1;
-                ref_sgn <= 1'b0;
-            end else begin                            // (w >> 16) + rnd: bits 55..63 not all equal
-                if (p_f1) begin                               // bit 55
-                    r_ref <= r;
-                    ref_ovf <= 1'b0;
-                end else if (p_f2 && r != r_ref) ref_ovf <= 1'b1;
-                ref_sgn <= a_raw;                     // w[63] at j = 63
-            end
+        // position reference pass: rounding bit (bit 23), any result bit 24.. set (wrap detection)
+        if (in_pass && is_ref && task_pos) begin
+            if (p_f1) begin
+                rnd <= a_raw;
+                nz <= 1'b0;
+            end else if (p_f2 && r) nz <= 1'b1;
         end
+        // SW-bit saturation of the word in X: reference bit G at result bit SW-1, then compare
+        if (!in_pass) begin
+            w_trk <= 1'b0;
+            w_ovf <= 1'b0;
+        end else if (pw[PC_G]) begin
+            w_trk <= 1'b1;
+            w_r <= r;
+        end else if (w_trk && r != w_r) begin
+            w_ovf <= 1'b1;
+        end
+        if (pass_end) fix_sgn <= sgn_now;
         // rings (shift windows from the pass table)
         if (in_pass && p_r1 && is_pos) pp <= {a_bit, pp[PW-1:1]};
         else if (in_pass && p_r1 && is_ref) pp <= {pp[0], pp[PW-1:1]};

@@ -5,3 +5,4 @@ sim/mpc_core_stream.v
 sim/emc_regs_tb.v
 sim/quad_gen.v
 sim/cosim_top.v
+sim/ctrl_seq_tb.v
