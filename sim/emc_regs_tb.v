@@ -25,6 +25,7 @@ module emc_regs_tb #(
     input  wire [31:0]   cpu_d,
     input  wire          cpu_d_oe,
     output wire          contention,
+    output wire          bus_driven,     // some driver on emc_d (2-state simulators read an undriven bus as 0)
     output reg  [31:0]   n_wr,
     output reg  [31:0]   n_rd,
     output reg  [31:0]   n_err_wr,
@@ -36,6 +37,7 @@ module emc_regs_tb #(
     assign emc_d = cpu_d_oe ? cpu_d : 32'bz;
     assign emc_d = fpga_d_oe ? fpga_d_out : 32'bz;
     assign contention = cpu_d_oe && fpga_d_oe;
+    assign bus_driven = cpu_d_oe || fpga_d_oe;
 
     wire          reg_wr, reg_rd, err_wr_short, err_rd_short;
     wire [AW-1:0] reg_addr;

@@ -75,7 +75,7 @@ class EmcTiming:
 
 
 DEFAULT_PINS = dict(cs_n="cpu_cs_n", oe_n="cpu_oe_n", we_n="cpu_we_n", a="cpu_a", d="cpu_d",
-                    d_oe="cpu_d_oe", bus="emc_d")
+                    d_oe="cpu_d_oe", bus="emc_d", driven="bus_driven")
 
 
 class EmcBfm:
@@ -91,6 +91,8 @@ class EmcBfm:
         self.d = getattr(dut, p["d"])
         self.d_oe = getattr(dut, p["d_oe"])
         self.bus = getattr(dut, p["bus"])
+        # optional "some driver on the bus" flag: Verilator is 2-state and reads an undriven bus as 0
+        self.driven = getattr(dut, p["driven"], None) if p.get("driven") else None
         self.timing = timing or EmcTiming()
         self.aw = aw
         self.rng = rng or random.Random(0)
@@ -160,7 +162,8 @@ class EmcBfm:
         self.cs_n.value = 0
         t_rise = t.t_cs_oe + t.t_oe
         ev = [(t.t_cs_oe, "oe0", lambda: setattr(self.oe_n, "value", 0)),
-              (t_rise - t.t_su, "sample", lambda: self.bus.value),
+              (t_rise - t.t_su, "sample", lambda: (self.bus.value,
+                                                   None if self.driven is None else int(self.driven.value))),
               (t_rise, "oe1", lambda: setattr(self.oe_n, "value", 1)),
               (t_rise + t.t_rd_hold, "hold", lambda: self._junk_a())]
         if not t.keep_cs:
@@ -169,7 +172,7 @@ class EmcBfm:
         ev.append((end + t.t_gap, "end", lambda: None))
         out = await self._run(ev)
         self.n_rd += 1
-        v = out["sample"]
-        if not v.is_resolvable:
-            raise EmcBusError(f"read {addr:#x}: data bus {v} at the sampling point")
+        v, driven = out["sample"]
+        if driven == 0 or not v.is_resolvable:
+            raise EmcBusError(f"read {addr:#x}: data bus {v} (driven={driven}) at the sampling point")
         return int(v)
