@@ -86,6 +86,7 @@ class CoSim:
         self.seq = CtrlSeq(params=self.boot, N=c.N)
         self.ref = RefGen(c.N)
         unit = 1.0 / (self.cfg.rad_per_count if self.sc.task == "position" else self.cfg.rad_s_per_count_ts)
+        self.ref_unit = unit
         self.slots = segments_from_points(scenarios.POINTS[self.sc.name], unit, c.Ts)
         self.cmp_rtl = (0, 0, 0)
         self.mismatches = []
@@ -172,6 +173,8 @@ class CoSim:
                            ("u_d", self.seq.u[0] * vpu), ("u_q", self.seq.u[1] * vpu)):
                 self.rec[k].append(val)
             self.rec["ipk"].append(float(np.max(np.abs(self.plant.phase_currents()))))
+            w0 = self.ref.w[0]
+            self.rec["ref"].append((w0 - (1 << 64) if w0 >> 63 else w0) / 2.0 ** 32 / self.ref_unit)
         self.period += 1
 
     def _plant_half(self, duties):
@@ -348,10 +351,21 @@ async def run_cosim(dut, name: str) -> dict:
 
 def metrics_report(cs: CoSim, res: dict) -> dict:
     rec = {k: np.array(v) for k, v in cs.rec.items()}
-    t = rec["t"] - cs.t_profile0
+    # Control samples lie on the Ts grid of the profile; rounding removes the float error of the
+    # accumulated simulation time, which would otherwise decide on which side of a step edge
+    # (steps sit on grid points) a sample falls.
+    Ts = cs.cfg.control.Ts
+    t = np.round((rec["t"] - cs.t_profile0) / Ts) * Ts
     sel = t >= 0
     prof = cs.sc.profile
     ref = np.array([prof(x) for x in t[sel]])
+    # The task-output reference is the w_k the RTL's reference generator actually applied; it
+    # must equal the profile except at step edges (one sample each, by the same rounding).
+    applied = rec["ref"][sel]
+    off = np.abs(applied - ref[:, 2]) > 1e-6 * max(1.0, float(np.max(np.abs(ref[:, 2]))))
+    n_steps = sum(1 for p in scenarios.POINTS[cs.sc.name] if p[2] == "step")
+    assert off.sum() <= n_steps, f"applied reference differs from the profile in {off.sum()} samples"
+    ref[:, 2] = applied
     tr = cl.Trace(t[sel], ref, rec["i_d"][sel], rec["i_q"][sel], rec["w_e"][sel], rec["theta_e"][sel],
                   rec["u_d"][sel], rec["u_q"][sel], rec["ipk"][sel], np.zeros(sel.sum()), np.zeros(sel.sum()))
     sc = cs.sc
