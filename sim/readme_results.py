@@ -8,7 +8,7 @@ A block in README.md is ``<!-- BEGIN NAME -->`` ... ``<!-- END NAME -->`` (NAME 
 reports do not exist yet is left as it is (the script says which command produces them).
 Producers: `make sim` (sim_*.json, closed_loop_short/fault json, mpc_core.json vectors),
 `make sim-full` (closed_loop_<paper scenario>.json), `make bench` (mpc_core.json resources),
-`make synth` (synth.json), `empc compare` (compare/compare.json; `--quick` in make sim).
+`make synth` (synth.json), `empc compare` (compare.json; `--quick` in make sim: compare_quick/).
 """
 from __future__ import annotations
 
@@ -78,14 +78,16 @@ def core_table() -> str | None:
 
 
 def compare_table() -> str | None:
-    for d in ("compare", "compare_quick"):
-        r = _load(R / d / "compare.json")
+    # `empc compare` writes build/reports/compare.json (full); make sim's quick run a subdirectory
+    for d in ("", "compare/", "compare_quick/"):
+        r = _load(R / f"{d}compare.json")
         if r is not None:
             break
     else:
         return None
     cases = r["cases"]
-    rows = [f"From `build/reports/{d}/compare.json` ({'quick' if r.get('quick') else 'full'} run).", "",
+    rows = [f"From `build/reports/{d}compare.json` ({'quick' if r.get('quick') else 'full'} run, "
+            f"`empc compare{' --quick' if r.get('quick') else ''}`).", "",
             "| case | controller | rise ms | overshoot % | ss error | ripple d / q A | flops per step (mean) |",
             "| --- | --- | --- | --- | --- | --- | --- |"]
     for key in ("s2_iq_step", "mismatch_p30", "s1_speed", "000_speed_steps"):
