@@ -491,9 +491,18 @@ def test_closed_loop():
         extra_env={"EMPC_COSIM_SET": "ci"})
 
 
+# two groups of about equal wall time, one per xdist worker (one simulator build each)
+FULL_GROUPS = ("position_alg2,load_step", "position_alg1,speed_steps")
+
+
 @pytest.mark.full
-def test_closed_loop_full():
-    """Paper-length scenarios (make sim-full)."""
+@pytest.mark.parametrize("group", FULL_GROUPS)
+def test_closed_loop_full(group):
+    """Paper-length scenarios (make sim-full; EMPC_COSIM_FULL=a,b runs just those, in the first group)."""
     from runner import run
-    run(toplevel="cosim_top", test_module="test_closed_loop", sim="verilator", name="cosim_full",
-        extra_env={"EMPC_COSIM_SET": "full"})
+    chosen = os.environ.get("EMPC_COSIM_FULL")
+    if chosen and group != FULL_GROUPS[0]:
+        pytest.skip(f"EMPC_COSIM_FULL={chosen} runs in the first group")
+    run(toplevel="cosim_top", test_module="test_closed_loop", sim="verilator",
+        name=f"cosim_full_{group.split(',')[0]}",
+        extra_env={"EMPC_COSIM_SET": "full", "EMPC_COSIM_FULL": chosen or group})
