@@ -48,7 +48,7 @@ sim: $(STAMP) check-tools roms ## the regression (CI): model tests, every block'
 	$(PY) -m pytest -n $(JOBS) -q -m "not full"
 
 sim-full: $(STAMP) check-tools roms ## paper-length closed-loop scenarios on Verilator
-	EMPC_FULL=1 $(PY) -m pytest -n $(JOBS) -q -m full tb
+	EMPC_FULL=1 $(PY) -m pytest -n $(JOBS) --dist worksteal -q -m full tb
 
 lint: $(STAMP) roms ## verilator --lint-only -Wall on every RTL module as its own top, zero warnings
 	$(PY) sim/lint.py

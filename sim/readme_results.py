@@ -9,11 +9,13 @@ reports do not exist yet is left as it is (the script says which command produce
 Producers: `make sim` (sim_*.json, closed_loop_short/fault json, mpc_core.json vectors),
 `make sim-full` (closed_loop_<paper scenario>.json), `make bench` (mpc_core.json resources),
 `make synth` (synth.json), `empc compare` (compare.json; `--quick` in make sim: compare_quick/).
+`--write` also copies the PNG figures the README shows (docs/img/NAME.png) from build/reports/NAME.png.
 """
 from __future__ import annotations
 
 import json
 import re
+import shutil
 import sys
 from pathlib import Path
 
@@ -145,6 +147,22 @@ def write_readme(path: Path = ROOT / "README.md") -> list[str]:
         text = pat.sub(lambda m: m.group(1) + body + "\n" + m.group(2), text)
         done.append(name)
     path.write_text(text)
+    done += copy_figures(text)
+    return done
+
+
+def copy_figures(text: str) -> list[str]:
+    """The README's figures live in docs/img (committed); copy the ones build/reports has."""
+    done = []
+    for rel in re.findall(r"!\[[^\]]*\]\((docs/img/[^)]+\.png)\)", text):
+        src = R / Path(rel).name
+        if src.exists():
+            dst = ROOT / rel
+            dst.parent.mkdir(parents=True, exist_ok=True)
+            shutil.copyfile(src, dst)
+            done.append(rel)
+        else:
+            print(f"{rel}: no {src.relative_to(ROOT)} yet, left as it is", file=sys.stderr)
     return done
 
 
