@@ -47,8 +47,9 @@ roms: $(STAMP) ## coefficient ROMs, Verilog header and manifest for CONFIG (defa
 sim: $(STAMP) check-tools roms ## the regression (CI): model tests, every block's cocotb test, formal proofs (tb/test_formal.py), short closed loop
 	$(PY) -m pytest -n $(JOBS) -q -m "not full"
 
-sim-full: $(STAMP) check-tools roms ## paper-length closed-loop scenarios on Verilator
-	EMPC_FULL=1 $(PY) -m pytest -n $(JOBS) --dist worksteal -q -m full tb
+sim-full: $(STAMP) check-tools roms ## long tests, then the paper-length co-simulations (two groups, one per core)
+	EMPC_FULL=1 $(PY) -m pytest -n $(JOBS) -q -m full tb --deselect tb/test_closed_loop.py::test_closed_loop_full
+	EMPC_FULL=1 $(PY) -m pytest -n $(JOBS) -q -m full tb/test_closed_loop.py
 
 lint: $(STAMP) roms ## verilator --lint-only -Wall on every RTL module as its own top, zero warnings
 	$(PY) sim/lint.py
