@@ -188,7 +188,9 @@ module ctrl_seq #(
     localparam [3:0] SRC_POS = 4'd0, SRC_E0 = 4'd1, SRC_E1 = 4'd2, SRC_E2 = 4'd3, SRC_U0 = 4'd4,
                      SRC_U1 = 4'd5, SRC_IDR = 4'd6, SRC_IQR = 4'd7, SRC_ID = 4'd8, SRC_IQ = 4'd9;
     localparam integer NUC = 14 + 3 * (N + 1);
-    localparam integer PCI_STAT = 64, PCI_RSTZ = 67, PCI_CNT = 73;     // entry points
+    localparam integer PCI_STAT = 64;                  // entry points: status program (3 words),
+    localparam integer PCI_RSTZ = PCI_STAT + 3;        // reset zeroing (6 words, falls through into)
+    localparam integer PCI_CNT  = PCI_RSTZ + 6;        // the counter sweep
     localparam [6:0]   PC_STAT = PCI_STAT[6:0], PC_RSTZ = PCI_RSTZ[6:0], PC_CNT = PCI_CNT[6:0];
     localparam integer NCNT = 14;   // SAT_OPERAND .. CNT_OVERRUN, PERIODS
     reg [17:0] ucode [0:127];      // (initial values only: copied into crom)

@@ -5,7 +5,7 @@
 // polynomials k = p0 + wn (p1 + p2 wn) and accumulating k * a << s over the image's columns,
 // du, u_raw = u_prev + du and the circle voltage limiter (RSQRT table, vector scaling).
 //
-// Inputs: a 64 x 40-bit input buffer written through in_we / in_addr / in_wdata (one word
+// Inputs: a 64 x SIG_W-bit input buffer written through in_we / in_addr / in_wdata (one word
 // per clock, signed, sign-extended by the writer) before start; word map EMPC_IN_* of the
 // header / IN_* of the model (y[o] at 0..2, omega 3, dx[n] 4..8, u_prev[i] 9..10,
 // ebar_prev[o] 11..13, wref[m][o] at 16 + 3 m + o for m = 0..N).  The core reads the buffer

@@ -217,7 +217,7 @@ def random_inputs(rng, n: int, p: core.Params, N: int) -> dict:
     independently realistic, log-uniform magnitude, uniform full range or an extreme (port
     min / max);  log-uniform: sign * U(0, 2^b), b uniform over the port width;  full: uniform
     over the port range.  Position task: y2 and the angle references are multi-turn Q32.8
-    counts; speed task: Q16.16 speeds (32 bit) sign-extended to 40 bit.
+    counts (saturated to SIG_W); speed task: Q16.16 speeds (32 bit).
     """
     pos = p.task == "position"
     x = empty_inputs(n, N)

@@ -31,6 +31,7 @@ from cocotb.utils import get_sim_time
 
 from empc import closedloop as cl
 from empc import config, driver, header, image, pmsm, regmap, scenarios
+from empc import formats as F
 from empc.rtlmodel import pos_sense
 from empc.rtlmodel.ctrl_seq import CtrlSeq, Regs
 from empc.rtlmodel.hall_decoder import DEFAULT_SEQUENCE
@@ -51,12 +52,6 @@ COSIM = {
     "speed_steps": ("speed_steps", 0.40, None),
     "load_step": ("load_step", 0.30, None),
 }
-
-
-def _sext(v: int, bits: int) -> int:
-    """Register read format of a signed field: sign-extended to 32 bits (as an unsigned word)."""
-    v &= (1 << bits) - 1
-    return (v - (1 << bits) if v >> (bits - 1) else v) & 0xFFFFFFFF
 
 
 def hall_code(theta_e: float) -> int:
@@ -254,25 +249,25 @@ async def run_cosim(dut, name: str) -> dict:
     plan.append([ref_setup])
 
     async def regcheck():
-        # RW registers read back in their format (width mask, sign extension, pwm_per_control
-        # 0 -> 1): random words written and read back, then the run's values restored (all
+        # RW registers read back in the format of the register map (width mask, sign extension,
+        # fields): random words written and read back, then the run's values restored (all
         # before this period's trigger; these registers do not stop the drive)
         rng = np.random.default_rng(cs.period + 17)
-        fmt = {"DEAD_TIME": lambda v: v & 0xFF, "KDC": lambda v: v & 0x3FFFF,
-               "ID_REF": lambda v: _sext(v, 18), "IQ_REF": lambda v: _sext(v, 18),
-               "KACC": lambda v: v & 0x1F03FFFF, "SEG_ADDR": lambda v: v & 0xF}
+        names = ("DEAD_TIME", "KDC", "ID_REF", "IQ_REF", "KACC", "SEG_ADDR")
         keep = {}
-        for n in fmt:
+        for n in names:
             keep[n] = await drv.read(n)
-        for n, f in fmt.items():
+        for n in names:
+            reg = regmap.axis_reg(n)
             for v in [0xFFFFFFFF, 0x0002FF00, int(rng.integers(0, 2**32))]:
                 await w(n, v)
                 got = await drv.read(n)
-                assert got == f(v), f"{n}: wrote {v:#x}, read {got:#x}, expected {f(v):#x}"
+                assert got == reg.readback(v), f"{n}: wrote {v:#x}, read {got:#x}, expected {reg.readback(v):#x}"
                 cs.reg_checks += 1
             await w(n, keep[n])
             assert await drv.read(n) == keep[n]
-        assert keep["KDC"] == 1 << 16 and keep["ID_REF"] == 0 and keep["DEAD_TIME"] == 50, keep
+        # the co-simulation never writes these three: they still hold their reset values
+        assert all(keep[n] == regmap.axis_reg(n).reset for n in ("KDC", "ID_REF", "DEAD_TIME")), keep
     plan.append([regcheck])
     for i, s in enumerate(cs.slots):
         async def wslot(i=i, s=s):
@@ -332,7 +327,7 @@ async def run_cosim(dut, name: str) -> dict:
     # status words of the last control period (and the u applied) against the model
     lc = cs.last_control
     m32 = 0xFFFFFFFF
-    ref_sh = 8 if cs.sc.task == "position" else 16
+    ref_sh = 32 - (F.TH_FRAC if cs.sc.task == "position" else F.W_FRAC)   # REF: the Q.32 word in the core's unit
     exp = {"I_D": lc["i_d"] & m32, "I_Q": lc["i_q"] & m32, "SPEED": lc["omega"] & m32,
            "U_D": cs.u_applied[0] & m32, "U_Q": cs.u_applied[1] & m32, "REF": (lc["ref_w0"] >> ref_sh) & m32}
     got = {n: await drv.read(n) for n in exp}
@@ -477,9 +472,13 @@ async def cosim_fault_watchdog(dut):
     await closed_loop(dut, "watchdog")
 
 
+# two groups of about equal wall time, one per xdist worker (one simulator build each)
+FULL_GROUPS = ("position_alg2,load_step", "position_alg1,speed_steps")
+
+
 @cocotb.test(skip=os.environ.get("EMPC_COSIM_SET", "ci") != "full")
 async def cosim_full(dut):
-    for name in os.environ.get("EMPC_COSIM_FULL", "position_alg1,position_alg2,speed_steps,load_step").split(","):
+    for name in os.environ.get("EMPC_COSIM_FULL", ",".join(FULL_GROUPS)).split(","):
         await closed_loop(dut, name)
 
 
@@ -489,10 +488,6 @@ def test_closed_loop():
     from runner import run
     run(toplevel="cosim_top", test_module="test_closed_loop", sim="verilator", name="cosim",
         extra_env={"EMPC_COSIM_SET": "ci"})
-
-
-# two groups of about equal wall time, one per xdist worker (one simulator build each)
-FULL_GROUPS = ("position_alg2,load_step", "position_alg1,speed_steps")
 
 
 @pytest.mark.full

@@ -42,6 +42,17 @@ class Reg:
     doc: str
     fields: tuple = field(default_factory=tuple)
     width: int = 32
+    signed: bool = False     # a width < 32 value reads back sign-extended to 32 bits
+
+    def readback(self, value: int) -> int:
+        """What an RW register reads after ``value`` was written: the fields (or the low
+        ``width`` bits, sign-extended if ``signed``) of the word, other bits 0."""
+        if self.fields:
+            return sum(value & (((1 << f.width) - 1) << f.lsb) for f in self.fields)
+        v = value & ((1 << self.width) - 1)
+        if self.signed and v >> (self.width - 1):
+            v -= 1 << self.width
+        return v & 0xFFFFFFFF
 
 
 GLOBAL = (
@@ -111,8 +122,8 @@ AXIS = (
     Reg("KACC", 0x10, "RW", 0, "Speed-estimate acceleration term: omega += (KACC * i_q) >> KACC_SHIFT "
         "(reset from the header; 0 = plain eq. 37).", (
         Field("kacc", 0, 18, "signed gain"), Field("shift", 24, 5, "right shift"))),
-    Reg("ID_REF", 0x11, "RW", 0, "d-current reference, ADC LSB Q.4 (signed 18 bit).", width=18),
-    Reg("IQ_REF", 0x12, "RW", 0, "q-current reference (feed-forward), ADC LSB Q.4 (signed 18 bit).", width=18),
+    Reg("ID_REF", 0x11, "RW", 0, "d-current reference, ADC LSB Q.4 (signed 18 bit).", width=18, signed=True),
+    Reg("IQ_REF", 0x12, "RW", 0, "q-current reference (feed-forward), ADC LSB Q.4 (signed 18 bit).", width=18, signed=True),
     Reg("SEG_ADDR", 0x13, "RW", 0, "Reference segment slot (0..15) that the SEG_LEN .. SEG_FLAGS fields access. "
         "Each field write goes straight into the slot (no staging): do not rewrite a slot that the "
         "next control period may load (the active slot's successor or a pending SEG_START slot).", width=4),
@@ -130,10 +141,10 @@ AXIS = (
     Reg("POS", 0x20, "RO", 0, "Encoder count (x4, modular 32 bit)."),
     Reg("SPEED", 0x21, "RO", 0, "Speed estimate at the last control period, counts per Ts, signed Q16.16."),
     Reg("THETA", 0x22, "RO", 0, "Electrical angle (2^16 = one turn).", width=16),
-    Reg("I_D", 0x23, "RO", 0, "i_d at the last control period, ADC LSB Q.4 (signed).", width=18),
-    Reg("I_Q", 0x24, "RO", 0, "i_q at the last control period, ADC LSB Q.4 (signed).", width=18),
-    Reg("U_D", 0x25, "RO", 0, "u_d applied, PWM ticks Q16.8 (signed 24 bit).", width=24),
-    Reg("U_Q", 0x26, "RO", 0, "u_q applied, PWM ticks Q16.8 (signed 24 bit).", width=24),
+    Reg("I_D", 0x23, "RO", 0, "i_d at the last control period, ADC LSB Q.4 (signed).", width=18, signed=True),
+    Reg("I_Q", 0x24, "RO", 0, "i_q at the last control period, ADC LSB Q.4 (signed).", width=18, signed=True),
+    Reg("U_D", 0x25, "RO", 0, "u_d applied, PWM ticks Q16.8 (signed 24 bit).", width=24, signed=True),
+    Reg("U_Q", 0x26, "RO", 0, "u_q applied, PWM ticks Q16.8 (signed 24 bit).", width=24, signed=True),
     Reg("REF", 0x27, "RO", 0, "Task-output reference w_k of the last control period (bits 47:16 speed, Q16.16 / "
         "39:8 position, Q24.8 of the generator value)."),
     Reg("IABC0", 0x28, "RO", 0, "Last raw ADC codes phases A (11:0) and B (27:16).", width=28),
@@ -159,6 +170,14 @@ AXIS = (
         "CMD.clear_counters).", width=8),
     Reg("CNT_ENC_ERR", 0x3e, "RO", 0, "Illegal quadrature transitions (16-bit, saturating).", width=16),
 )
+
+
+def axis_reg(name: str) -> Reg:
+    """The axis register ``name`` (KeyError if there is none)."""
+    for r in AXIS:
+        if r.name == name:
+            return r
+    raise KeyError(name)
 
 
 def all_registers(naxes: int = 1) -> list[tuple[str, int, Reg]]:

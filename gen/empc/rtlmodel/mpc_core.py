@@ -1,7 +1,7 @@
 """Bit-accurate model of the explicit-MPC core (rtl/mpc_core.v).
 
 The RTL must match :func:`update` bit for bit.  The RTL reads its inputs from an input
-buffer of 40-bit signed words (written before ``start``, word map ``IN_*`` below,
+buffer of SIG_W-bit signed words (written before ``start``, word map ``IN_*`` below,
 :func:`input_words` builds it from :class:`Inputs`); every input is used at the full
 SIG_W = 32 bit, so the model below is exact for any field value in the signed 32-bit
 range (the writer sign-extends: i_d, i_q 18 bit, u_prev 24 bit in practice).
