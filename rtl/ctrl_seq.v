@@ -46,7 +46,7 @@
 //            program from the trigger of a control period, a status program (U_D, U_Q)
 //            at every modulation start.
 //   status   the words I_D, I_Q, SPEED, REF (w_k in the task window: bits 47:16 speed,
-//            39:8 position), U_D, U_Q leave bit-serially (st_*) while they pass through
+//            55:24 position), U_D, U_Q leave bit-serially (st_*) while they pass through
 //            the datapath; the register file assembles and stores them.
 //
 // Ports: see below; formats are those of empc_formats.vh.  References: ref_ok (ref_gen
@@ -252,7 +252,7 @@ module ctrl_seq #(
                 default: begin
                     if (refp) begin                             // (w - count << 32) >> 24 + w[23]
                         w[PC_AL] = (b >= 24); w[PC_XS] = (b >= 24); w[PC_R1] = (b >= 32);
-                        w[PC_F1] = (b == 23); w[PC_F2] = (b >= 24); w[PC_SS] = m0k && b >= 8 && b < 40;
+                        w[PC_F1] = (b == 23); w[PC_F2] = (b >= 24); w[PC_SS] = m0k && b >= 24 && b < 56;
                         w[PC_PE] = (b == 63); w[PC_G] = (b == 55);
                     end else if (refs) begin                    // (w >> 16) + w[15]
                         w[PC_AL] = (b >= 16); w[PC_XS] = (b >= 16 && b < 56);
@@ -391,8 +391,8 @@ module ctrl_seq #(
     reg           sd, spd_ovf, om_ovf, om_sgn, rnd, nz;
     reg           w_trk, w_r, w_ovf, fix_sgn;   // SW-bit saturation of the word in X (from bit G)
 
-    // reference pass: first bit j0 (the REF window of w_k for m = 0, else the rounding bit)
-    wire [5:0] ref_j0  = task_pos ? (m0 ? 6'd8 : 6'd23) : 6'd15;
+    // reference pass: first bit j0 = the rounding bit (the REF window of w_k lies above it)
+    wire [5:0] ref_j0  = task_pos ? 6'd23 : 6'd15;
     wire       p_xs  = pw[PC_XS], p_pe = pw[PC_PE], p_ss = pw[PC_SS], p_ha = pw[PC_HA], p_hb = pw[PC_HB];
     wire       p_ca  = pw[PC_CA], p_cb = pw[PC_CB], p_r1 = pw[PC_R1], p_r2 = pw[PC_R2], p_r3 = pw[PC_R3];
     wire       p_al  = pw[PC_AL], p_l31 = pw[PC_L31], p_l16 = pw[PC_L16], p_f1 = pw[PC_F1], p_f2 = pw[PC_F2];

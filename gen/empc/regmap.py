@@ -146,7 +146,7 @@ AXIS = (
     Reg("U_D", 0x25, "RO", 0, "u_d applied, PWM ticks Q16.8 (signed 24 bit).", width=24, signed=True),
     Reg("U_Q", 0x26, "RO", 0, "u_q applied, PWM ticks Q16.8 (signed 24 bit).", width=24, signed=True),
     Reg("REF", 0x27, "RO", 0, "Task-output reference w_k of the last control period (bits 47:16 speed, Q16.16 / "
-        "39:8 position, Q24.8 of the generator value)."),
+        "55:24 position, Q24.8 of the generator value)."),
     Reg("IABC0", 0x28, "RO", 0, "Last raw ADC codes phases A (11:0) and B (27:16).", width=28),
     Reg("IABC1", 0x29, "RO", 0, "Last raw ADC code phase C (11:0).", width=12),
     Reg("LATENCY", 0x2a, "RO", 0, "Clocks from the ADC trigger to the new PWM compare values of the last control period."),
