@@ -56,9 +56,9 @@
 // end before the next period boundary (PWM_HALF_PERIOD clocks after the trigger), else
 // `overrun` pulses at the boundary (a trigger while a period is still running is ignored).
 // Modulation period: ADC conversion + 84 (xform mod) + 3 clocks (155 in the co-simulation);
-// control period: 708-728 clocks in the co-simulations for N = 4 (data-dependent: ref_ok
-// waits, E_FIX rewrites), then the counter sweep (about 500 clocks, after cmp_load; see
-// docs/blocks/ctrl_seq.md).
+// control period: 693 (position task) / 728 (speed task) clocks in the co-simulations for
+// N = 4, +40 per saturated word (E_FIX) and any ref_ok wait, then the counter sweep (about
+// 500 clocks, after cmp_load; see docs/blocks/ctrl_seq.md).
 // Reset: idle, u = 0, previous-sample registers 0, first-period flag set.
 `default_nettype none
 `include "empc_formats.vh"
