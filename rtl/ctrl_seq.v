@@ -327,15 +327,32 @@ module ctrl_seq #(
     reg         prog_done, front_done, adc_seen, core_run, core_fin;
     reg  [5:0]  j;                  // bit of the pass
 
-    wire is_pos  = (u_op == OP_POS);
-    wire is_ref  = (u_op == OP_REF);
-    wire is_diff = (u_op == OP_DIFF);
-    wire is_om   = (u_op == OP_OM);
-    wire is_fix3 = (u_op == OP_FIX3);
-    wire is_w6   = (u_op == OP_W6);
-    wire is_stat = (u_op == OP_STAT);
-    wire is_cnt  = (u_op == OP_CNT);
-    wire diff_q  = u_src[0];        // SRC_IQ (9) vs SRC_ID (8)
+    // The op decoded from uw, registered: uw comes out of block RAM (about 2 ns clock-to-out), and
+    // decoding it in front of the serial ALU made the pass datapath 9 LUT levels deep (93.5 MHz
+    // proxy).  uw changes only together with pc, which always enters E_OP for at least one clock,
+    // so the registered flags are valid from the clock after E_OP on: in every state where the
+    // pass datapath acts.  What acts in E_OP itself (next state, pass table and status
+    // addresses, ALU carry preset, zero writes) uses the unregistered op_* decode.
+    wire op_ref  = (u_op == OP_REF);
+    wire op_diff = (u_op == OP_DIFF);
+    wire op_fix3 = (u_op == OP_FIX3);
+    wire op_om   = (u_op == OP_OM);
+    wire op_cnt  = (u_op == OP_CNT);
+    wire op_sub  = (u_op == OP_POS) || op_diff || (u_op == OP_W6) || (op_ref && task_pos);
+    reg  is_pos, is_ref, is_diff, is_om, is_fix3, is_w6, is_stat, is_cnt, diff_q, sub, is_sat;
+    always @(posedge clk) begin
+        is_pos  <= (u_op == OP_POS);
+        is_ref  <= op_ref;
+        is_diff <= op_diff;
+        is_om   <= op_om;
+        is_fix3 <= op_fix3;
+        is_w6   <= (u_op == OP_W6);
+        is_stat <= (u_op == OP_STAT);
+        is_cnt  <= op_cnt;
+        diff_q  <= u_src[0];        // SRC_IQ (9) vs SRC_ID (8)
+        sub     <= op_sub;          // the pass subtracts B
+        is_sat  <= (u_op == OP_POS) || op_ref || (u_op == OP_W6);   // result saturated to SW bits
+    end
     wire m0      = (u_m == 3'd0);
     wire in_pass = (est == E_PASS);
 
@@ -423,7 +440,6 @@ module ctrl_seq #(
         else b_raw = 1'b0;
     end
     wire       b_bit  = p_hb ? b_h : b_raw;
-    wire       sub    = is_pos || is_diff || is_w6 || (is_ref && task_pos);
     wire       b_eff  = b_bit ^ sub;
     wire       r      = a_bit ^ b_eff ^ c0;
     wire       maj    = (a_bit & b_eff) | (c0 & (a_bit ^ b_eff));
@@ -437,7 +453,6 @@ module ctrl_seq #(
     // all equal, including this clock's bit (used at the pass end); its sign: the computed top bit,
     // the reference sign for a speed reference (w[63]), and + for the one position-reference
     // wrap (rel + 2^23 carried into bit 63: rnd, bits 24..62 zero)
-    wire       is_sat  = is_ref || is_pos || is_w6;
     wire       ovf_now = w_ovf || (w_trk && (r != w_r));
     wire       sgn_now = (is_ref && !task_pos) ? a_raw : (r && !(is_ref && rnd && !nz));
     wire       x_shift = (in_pass && p_xs) || (est == E_FIX);
@@ -460,7 +475,7 @@ module ctrl_seq #(
     assign st_d    = is_fix3 ? r : is_cnt ? (r && !cz && u_src != 4'd15) : a_raw;
     assign st_wr   = pass_end && ((is_ref && m0) || is_diff || is_fix3 || is_stat || (is_cnt && !csat));
     localparam [5:0] ST_REF = `EMPC_A_REF, ST_I_D = `EMPC_A_I_D, ST_SPEED = `EMPC_A_SPEED;
-    assign st_addr = is_ref ? ST_REF : is_diff ? (ST_I_D + {5'd0, diff_q}) : is_fix3 ? ST_SPEED : u_wa;
+    assign st_addr = op_ref ? ST_REF : op_diff ? (ST_I_D + {5'd0, u_src[0]}) : op_fix3 ? ST_SPEED : u_wa;
     assign st_bit  = j_nx[4:0];                                 // the counter bit needed next clock
     wire [15:0] ev16 = {2'b00, cnt_ev};
     wire   ev_k    = ev16[u_src] && !cz;
@@ -751,11 +766,11 @@ module ctrl_seq #(
         // ALU carry: before the first ALU bit 1 (subtract), rnd (speed reference, OM: ka rounding
         // bit) or 1 + rnd (position reference: subtract and round)
         if (!in_pass || !p_al) begin
-            if (is_ref) begin
-                c0 <= task_pos ? ~a_raw : a_raw;       // the value of the clock j = ja - 1 stays
-                c1 <= task_pos & a_raw;
+            if (op_ref) begin
+                c0 <= task_pos ? ~ref_q : ref_q;       // the value of the clock j = ja - 1 stays
+                c1 <= task_pos & ref_q;
             end else begin
-                c0 <= sub | (is_om & ka[0]) | (is_cnt & ev_k);
+                c0 <= op_sub | (op_om & ka[0]) | (op_cnt & ev_k);
                 c1 <= 1'b0;
             end
         end else begin

@@ -325,6 +325,9 @@ def _pin_class(cell: dict) -> tuple[str, object]:
     return "other", None
 
 
+TOP_ENDPOINTS = 12
+
+
 def timing_proxy(mod: dict) -> dict:
     """Longest register-to-register path of a flattened mapped xc6s module, by the rough
     delay model DELAY_NS, and the largest number of LUT levels between two registers.
@@ -477,6 +480,7 @@ def timing_proxy(mod: dict) -> dict:
 
     worst = None
     worst_lut = 0
+    per_end: dict[str, tuple[float, int]] = {}     # endpoint register -> (ns, LUT levels)
     for cname, pin, setup in endpoints:
         c = cells[cname]
         for b in c["connections"].get(pin, []):
@@ -486,6 +490,9 @@ def timing_proxy(mod: dict) -> dict:
                 if worst is None or tt > worst[0]:
                     worst = (tt, a[1], a[2], b, (cname, pin))
                 worst_lut = max(worst_lut, maxlut[b])
+                q = _reg_name(c, bitname, cname)
+                if q not in per_end or tt > per_end[q][0]:
+                    per_end[q] = (tt, a[1])
     out = {"model": "unplaced proxy: rough Spartan-6 -2 cell delays + %.2f ns per net (DELAY_NS in sim/synth.py)" % D["net"],
            "reg_to_reg_paths": worst is not None, "combinational_loops": loops,
            "max_lut_levels": worst_lut}
@@ -503,8 +510,14 @@ def timing_proxy(mod: dict) -> dict:
     path.reverse()
     ecell, epin = worst[4]
     ec = cells[ecell]
-    qname = next((bitname[b] for p, d in ec.get("port_directions", {}).items() if d == "output"
-                  for b in ec["connections"].get(p, []) if isinstance(b, int) and b in bitname), ecell)
+    qname = _reg_name(ec, bitname, ecell)
+    # the next paths after the worst one, by register (bus bits merged): what a fix must also clear
+    by_reg: dict[str, tuple[float, int]] = {}
+    for q, v in per_end.items():
+        k = re.sub(r"\[\d+\]$", "", q)
+        if k not in by_reg or v[0] > by_reg[k][0]:
+            by_reg[k] = v
+    top = sorted(by_reg.items(), key=lambda kv: -kv[1][0])[:TOP_ENDPOINTS]
     out.update({
         "worst_path_ns": round(worst[0], 2),
         "worst_path_lut_levels": worst[1],
@@ -512,8 +525,15 @@ def timing_proxy(mod: dict) -> dict:
         "worst_path_endpoint": f"{ec['type']}.{epin} of {qname}",
         "est_fmax_mhz": round(1000.0 / worst[0], 1),
         "worst_path": path,
+        "worst_endpoints": [{"reg": k, "ns": round(v[0], 2), "lut_levels": v[1],
+                             "est_fmax_mhz": round(1000.0 / v[0], 1)} for k, v in top],
     })
     return out
+
+
+def _reg_name(cell: dict, bitname: dict, default: str) -> str:
+    return next((bitname[b] for p, d in cell.get("port_directions", {}).items() if d == "output"
+                 for b in cell["connections"].get(p, []) if isinstance(b, int) and b in bitname), default)
 
 
 def synth_stats(top: str, out_dir: Path | str = SYNTH_DIR, *, package: str = DEFAULT_PACKAGE,

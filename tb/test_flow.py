@@ -249,6 +249,10 @@ def test_timing_proxy_levels_and_delay():
     assert t["worst_path_ns"] == pytest.approx(expect, abs=0.011)
     assert t["est_fmax_mhz"] == pytest.approx(1000 / expect, rel=1e-2)
     assert t["combinational_loops"] == 0
+    # endpoints ranked by their worst path: f1 (3 levels) before f2 (1 level)
+    ends = t["worst_endpoints"]
+    assert [e["lut_levels"] for e in ends] == [3, 1]
+    assert ends[0]["ns"] == pytest.approx(expect, abs=0.011) and ends[1]["ns"] < ends[0]["ns"]
     # a combinational loop is reported, not looped over forever
     cells += [_lut("la", [30, 10], 31), _lut("lb", [31], 30)]
     t = synth.timing_proxy(_netlist(cells)["modules"]["t"])
