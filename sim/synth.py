@@ -577,13 +577,21 @@ def load_budget(top: str, path: Path = BUDGET_FILE, params: dict | None = None) 
 
 
 def check_budget(stats: dict, budget: dict | None) -> list[str]:
-    """Reasons ``stats`` exceeds ``budget`` ({resource: max}; empty list: within budget)."""
+    """Reasons ``stats`` exceeds ``budget`` ({resource: max}, and ``fmax_mhz``: the least timing-proxy
+    estimate; empty list: within budget)."""
     if not budget:
         return []
     res = stats["resources"]
     out = []
     for k, lim in budget.items():
-        if k not in res:
+        if k == "fmax_mhz":
+            est = (stats.get("timing") or {}).get("est_fmax_mhz")
+            if est is None:
+                out.append("fmax_mhz: no timing proxy estimate (no register-to-register path?)")
+            elif est < lim:
+                end = stats["timing"].get("worst_path_endpoint", "?")
+                out.append(f"fmax_mhz: timing proxy {est:g} MHz < budget {lim:g} (worst path ends at {end})")
+        elif k not in res:
             out.append(f"budget names unknown resource {k!r}")
         elif res[k] > lim:
             out.append(f"{k}: {res[k]:g} > budget {lim}")
@@ -616,7 +624,8 @@ def format_table(stats: dict, budget: dict | None = None) -> str:
             lines.append(f"  timing proxy: worst reg->reg {t['worst_path_ns']} ns "
                          f"({t['worst_path_lut_levels']} LUT / {t['worst_path_logic_levels']} logic levels, "
                          f"end {t['worst_path_endpoint']}), est. fmax {t['est_fmax_mhz']} MHz "
-                         f"(target {TARGET_MHZ:g}); max LUT levels reg->reg {t['max_lut_levels']}")
+                         f"(target {TARGET_MHZ:g}, budget {budget.get('fmax_mhz', '-')}); "
+                         f"max LUT levels reg->reg {t['max_lut_levels']}")
         else:
             lines.append("  timing proxy: no register-to-register path")
         if t.get("combinational_loops"):
