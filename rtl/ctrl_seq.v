@@ -731,6 +731,11 @@ module ctrl_seq #(
                 E_WR: est <= (is_fix3 && !task_pos) ? E_WR2 : E_OP;
                 default: est <= E_OP;                       // E_WR2
             endcase
+            // A control trigger that interrupts a zero sweep starts the control program even in
+            // the sweep's E_OP clock, whose own next state would otherwise win: a counter op
+            // entered its pass with the first control instruction, the end marker dropped to
+            // E_IDLE and the control period stalled (overrun).
+            if (go_ctl) est <= E_OP;
 
             // ---- multiplier: starts with the W5 pass (step mk = pass bit j) ----
             if (m_start)

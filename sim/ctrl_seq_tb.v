@@ -14,6 +14,7 @@ module ctrl_seq_tb (
     input  wire seg_we, input wire [3:0] seg_slot, input wire [2:0] seg_field, input wire [31:0] seg_wdata,
     input  wire start, input wire [3:0] start_slot, input wire sync, input wire sync_bit, output wire [5:0] sync_idx,
     input  wire cfg_we, input wire [9:0] cfg_addr, input wire [31:0] cfg_wdata, input wire cfg_swap,
+    input  wire cnt_clear,
     output wire cmp_load, output wire [35:0] cmp, output wire ref_busy, output wire [15:0] latency,
     output wire front_sat, output wire task_pos, output wire core_ready, output wire swap_pending,
     output wire st_wr, output wire [5:0] st_addr, output wire st_sh, output wire st_d, output wire control_done
@@ -39,7 +40,7 @@ module ctrl_seq_tb (
         .core_ebar(core_ebar), .cmp(cmp), .cmp_load(cmp_load), .control_done(control_done), .overrun(overrun),
         .front_sat(front_sat), .latency(latency), .i_d(i_d), .i_q(i_q), .omega(omega), .theta_trig(theta_trig),
         .st_sh(st_sh), .st_d(st_d), .st_wr(st_wr), .st_addr(st_addr), .st_bit(st_bit), .cnt_q(cnt_q),
-        .cnt_ev(14'd0), .cnt_clear(1'b0), .cnt_done(cnt_done), .cnt_hide(cnt_hide), .st_hide(st_hide));
+        .cnt_ev(14'd0), .cnt_clear(cnt_clear), .cnt_done(cnt_done), .cnt_hide(cnt_hide), .st_hide(st_hide));
     mpc_core #(.N(4)) u_core (.clk(clk), .rst(rst), .start(core_start), .in_we(core_in_we), .in_addr(core_in_addr),
         .in_wdata(core_in_wdata), .busy(core_busy), .done(core_done), .u(core_u), .du(core_du), .u_raw(core_u_raw),
         .ebar(core_ebar), .wn(core_wn), .flags(core_flags), .latency(core_latency), .cfg_we(cfg_we),

@@ -14,7 +14,11 @@ from what a running motor produces:
   64-bit slots, relative / last segments, syncs, and references that saturate in the core format
   (position task: rel >> 24 at +-2^31 and the +2^39 wrap case);
 * both tasks: speed (boot image) and position (algorithm 2 image uploaded through the core's
-  configuration port and swapped in).
+  configuration port and swapped in);
+* counter clears (CMD.clear_counters) just before a trigger, so that the trigger interrupts the
+  zero sweep: at a random clock, or in a clock where the sweep is in E_OP (a counter op or the
+  sweep's end marker); that period must still match the model, and the zero sweep must complete
+  after it.
 """
 from __future__ import annotations
 
@@ -33,6 +37,7 @@ from empc.rtlmodel.ctrl_seq import CtrlSeq, Regs, _signed
 from empc.rtlmodel.ref_gen import FIELDS, RefGen, Slot, slot_field
 
 DEFAULT_SEED = 777
+E_OP, OP_CNT, OP_CEND = 1, 12, 13       # ctrl_seq: engine state E_OP, counter-sweep ops (uw[3:0])
 N = 4
 PERIODS = int(os.environ.get("EMPC_CS_PERIODS", "400"))
 
@@ -56,7 +61,7 @@ async def random_periods(dut):
     Clock(dut.clk, 10, unit="ns").start()
     for n in ("adc_trig", "period_start", "run", "adc_valid", "seg_we", "start", "sync", "sync_bit", "cfg_we",
               "cfg_swap", "seg_slot", "seg_field", "seg_wdata", "start_slot", "cfg_addr", "cfg_wdata", "theta", "pos",
-              "cur0", "cur1", "cur2", "kacc", "kacc_shift", "id_ref", "iq_ref"):
+              "cur0", "cur1", "cur2", "kacc", "kacc_shift", "id_ref", "iq_ref", "cnt_clear"):
         getattr(dut, n).value = 0
     dut.ppc.value = 1
     dut.kdc.value = 1 << F.KDC_FRAC
@@ -114,7 +119,7 @@ async def random_periods(dut):
     sw = core.SIG_W
     pos = rng.getrandbits(32)
     st = dict(periods=0, control=0, core_checked=0, run0=0, spd_sat=0, dth_sat=0, dom_sat=0, ref_sat=0,
-              front_sat=0)
+              front_sat=0, int_op=0, int_cend=0, int_any=0)
     for k in range(PERIODS):
         await FallingEdge(dut.clk)
         if rng.random() < 0.5 or task != "position":
@@ -186,6 +191,30 @@ async def random_periods(dut):
         if control:
             st["dom_sat"] += int(F.sat(out["omega"] - omega_prev, sw) != out["omega"] - omega_prev)
         fs_seen[0] = False
+        # CMD.clear_counters shortly before the trigger: the zero sweep it starts is interrupted by
+        # the trigger, in half of the cases in a clock where the sweep is in E_OP (counter op or its
+        # end marker), where the trigger must still start the control program
+        interrupted = rng.random() < 0.12
+        if interrupted:
+            dut.cnt_clear.value = 1
+            await FallingEdge(dut.clk)
+            dut.cnt_clear.value = 0
+            if rng.random() < 0.5:
+                skip, seen, n = rng.randrange(16), 0, 0
+                while True:
+                    await FallingEdge(dut.clk)
+                    op = int(dut.u_seq.uw.value) & 0xF
+                    if int(dut.u_seq.est.value) == E_OP and op in (OP_CNT, OP_CEND):
+                        if seen == skip or op == OP_CEND:
+                            break
+                        seen += 1
+                    n += 1
+                    assert n < 2000, "no zero sweep after cnt_clear"
+                st["int_op"] += 1
+                st["int_cend"] += int(op == OP_CEND)
+            else:
+                await ClockCycles(dut.clk, rng.randrange(1, 600), rising=False)
+                st["int_any"] += 1
         dut.adc_trig.value = 1
         await FallingEdge(dut.clk)
         dut.adc_trig.value = 0
@@ -220,9 +249,11 @@ async def random_periods(dut):
         st["control"] += int(control)
         st["run0"] += int(not regs.run)
         await ClockCycles(dut.clk, 700, rising=False)        # counter sweep, settle
+        if interrupted:     # the interrupted zero sweep ran again after the period and completed
+            assert int(dut.u_seq.hide_cnt.value) == 0, f"period {k}: zero sweep not completed"
     dut._log.info("ctrl_seq %s: seed %d, %s (all compare values, core outputs and front_sat pulses "
                   "bit-exact with the model)", task, seed, st)
-    for key in ("dth_sat", "dom_sat", "ref_sat", "spd_sat", "run0", "core_checked"):
+    for key in ("dth_sat", "dom_sat", "ref_sat", "spd_sat", "run0", "core_checked", "int_op", "int_cend", "int_any"):
         assert st[key] > 0, f"no period exercised {key}: {st}"
 
 
