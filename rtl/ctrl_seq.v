@@ -333,25 +333,22 @@ module ctrl_seq #(
     // so the registered flags are valid from the clock after E_OP on: in every state where the
     // pass datapath acts.  What acts in E_OP itself (next state, pass table and status
     // addresses, ALU carry preset, zero writes) uses the unregistered op_* decode.
+    wire op_pos  = (u_op == OP_POS);
     wire op_ref  = (u_op == OP_REF);
     wire op_diff = (u_op == OP_DIFF);
-    wire op_fix3 = (u_op == OP_FIX3);
     wire op_om   = (u_op == OP_OM);
+    wire op_fix3 = (u_op == OP_FIX3);
+    wire op_w6   = (u_op == OP_W6);
+    wire op_stat = (u_op == OP_STAT);
     wire op_cnt  = (u_op == OP_CNT);
-    wire op_sub  = (u_op == OP_POS) || op_diff || (u_op == OP_W6) || (op_ref && task_pos);
+    wire op_sub  = op_pos || op_diff || op_w6 || (op_ref && task_pos);     // the pass subtracts B
     reg  is_pos, is_ref, is_diff, is_om, is_fix3, is_w6, is_stat, is_cnt, diff_q, sub, is_sat;
     always @(posedge clk) begin
-        is_pos  <= (u_op == OP_POS);
-        is_ref  <= op_ref;
-        is_diff <= op_diff;
-        is_om   <= op_om;
-        is_fix3 <= op_fix3;
-        is_w6   <= (u_op == OP_W6);
-        is_stat <= (u_op == OP_STAT);
-        is_cnt  <= op_cnt;
+        {is_pos, is_ref, is_diff, is_om, is_fix3, is_w6, is_stat, is_cnt} <=
+            {op_pos, op_ref, op_diff, op_om, op_fix3, op_w6, op_stat, op_cnt};
         diff_q  <= u_src[0];        // SRC_IQ (9) vs SRC_ID (8)
-        sub     <= op_sub;          // the pass subtracts B
-        is_sat  <= (u_op == OP_POS) || op_ref || (u_op == OP_W6);   // result saturated to SW bits
+        sub     <= op_sub;
+        is_sat  <= op_pos || op_ref || op_w6;       // result saturated to SW bits
     end
     wire m0      = (u_m == 3'd0);
     wire in_pass = (est == E_PASS);
@@ -529,7 +526,7 @@ module ctrl_seq #(
     end
     always @(*) begin
         j_nx = j;
-        if (est == E_OP) j_nx = (u_op == OP_REF) ? ref_j0 : 6'd0;
+        if (est == E_OP) j_nx = op_ref ? ref_j0 : 6'd0;
         else if (in_pass) j_nx = pass_end ? 6'd0 : j + 6'd1;
         else if (est == E_FIX) j_nx = fix_end ? 6'd0 : j + 6'd1;
     end
@@ -608,7 +605,6 @@ module ctrl_seq #(
                     pos_sample <= 1'b1;
                     ref_advance <= 1'b1;
                     pos_trig <= pos;
-                    est <= E_OP;
                 end else begin
                     per_cnt <= per_cnt + 8'd1;
                     is_control <= 1'b0;
@@ -673,12 +669,10 @@ module ctrl_seq #(
 
             // ---- microprogram ----
             j <= j_nx;
-            if (go_stat) est <= E_OP;
             // counter sweep after the modulation of a control period; zero sweep (status words
             // too after rst) while the counters are hidden.  A trigger interrupts a zero sweep,
             // which then starts again (it cannot meet a normal sweep, which ends well before).
             if (go_rstz || go_cnt) begin
-                est <= E_OP;
                 cz <= hide_cnt;
                 cnt_pend <= 1'b0;
             end
@@ -731,11 +725,12 @@ module ctrl_seq #(
                 E_WR: est <= (is_fix3 && !task_pos) ? E_WR2 : E_OP;
                 default: est <= E_OP;                       // E_WR2
             endcase
-            // A control trigger that interrupts a zero sweep starts the control program even in
-            // the sweep's E_OP clock, whose own next state would otherwise win: a counter op
-            // entered its pass with the first control instruction, the end marker dropped to
-            // E_IDLE and the control period stalled (overrun).
-            if (go_ctl) est <= E_OP;
+            // Program entry (pc_next jumps): after the step states, so that it wins over them.
+            // go_stat / go_rstz / go_cnt start from E_IDLE only; a control trigger may interrupt
+            // a zero sweep in any clock, including its E_OP clocks, whose own next state once won
+            // here (a counter op entered its pass with the first control instruction; the end
+            // marker dropped to E_IDLE and the control period stalled into an overrun).
+            if (go_ctl || go_stat || go_rstz || go_cnt) est <= E_OP;
 
             // ---- multiplier: starts with the W5 pass (step mk = pass bit j) ----
             if (m_start)

@@ -123,7 +123,7 @@ def synth_table() -> str | None:
     if t:
         out += (f"\n\nTiming proxy (no placement, rough -2 delays): worst register-to-register path "
                 f"{fmt(t.get('worst_path_ns'))} ns ({t.get('worst_path_lut_levels')} LUT levels, end "
-                f"`{t.get('worst_path_endpoint')}`), est. fmax {fmt(t.get('est_fmax_mhz'))} MHz (target 100, "
+                f"`{t.get('worst_path_endpoint')}`), est. fmax {fmt(t.get('est_fmax_mhz'))} MHz (target {fmt(t.get('target_mhz'))}, "
                 f"budget {(r.get('budget') or {}).get('fmax_mhz', '-')}); "
                 f"max LUT levels register to register {t.get('max_lut_levels')}.")
     return out

@@ -554,7 +554,7 @@ def synth_stats(top: str, out_dir: Path | str = SYNTH_DIR, *, package: str = DEF
     stats = {"top": top, "device": DEVICE, "package": package, "resources": res,
              "capacity": cap, "utilisation_pct": util}
     if with_timing:
-        stats["timing"] = timing_proxy(mod)
+        stats["timing"] = {**timing_proxy(mod), "target_mhz": TARGET_MHZ}
     return stats
 
 

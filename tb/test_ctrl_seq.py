@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import os
 import random
+import re
 from pathlib import Path
 
 import cocotb
@@ -37,7 +38,21 @@ from empc.rtlmodel.ctrl_seq import CtrlSeq, Regs, _signed
 from empc.rtlmodel.ref_gen import FIELDS, RefGen, Slot, slot_field
 
 DEFAULT_SEED = 777
-E_OP, OP_CNT, OP_CEND = 1, 12, 13       # ctrl_seq: engine state E_OP, counter-sweep ops (uw[3:0])
+
+
+def _rtl_consts(*names: str) -> list[int]:
+    """Sized decimal localparams of rtl/ctrl_seq.v, which defines them (no copy here)."""
+    text = (Path(__file__).resolve().parents[1] / "rtl" / "ctrl_seq.v").read_text()
+    out = []
+    for n in names:
+        m = re.search(rf"\b{n}\s*=\s*\d+'d(\d+)", text)
+        assert m, f"localparam {n} not found in rtl/ctrl_seq.v"
+        out.append(int(m.group(1)))
+    return out
+
+
+# engine state E_OP and the counter-sweep ops (uw[3:0]), for timing triggers onto sweep E_OP clocks
+E_OP, OP_CNT, OP_CEND = _rtl_consts("E_OP", "OP_CNT", "OP_CEND")
 N = 4
 PERIODS = int(os.environ.get("EMPC_CS_PERIODS", "400"))
 
