@@ -74,7 +74,6 @@ module lx_rocon_top #(
     wire [31:0] addr32 = {{(32-EMC_AW){1'b0}}, reg_addr};
     wire in_global = addr32 < AXIS_BASE;
     wire in_coef = addr32 >= COEF_BASE;
-    wire in_axes = !in_global && !in_coef && (addr32 < AXIS_BASE + 256 * NAXES);
     /* verilator lint_off UNUSEDSIGNAL */ // the axis / window index bits are decoded by compares
     wire [EMC_AW-1:0] axis_off = reg_addr - AXIS_BASE[EMC_AW-1:0];
     wire [EMC_AW-1:0] coef_off = reg_addr - COEF_BASE[EMC_AW-1:0];
@@ -125,28 +124,29 @@ module lx_rocon_top #(
 
     // ---------------- read path ----------------
     // Global read data is sampled at reg_rd into g_rdata (zero unless a global read;
-    // TIME, WDOG_TIMEOUT, IRQ_* and the constants), SCRATCH and the axis data are
-    // selected in the final OR: reg_rdata is valid (and non-zero) only in the clock
-    // after reg_rd, as emc_bus expects (RD_LAT = 1).
+    // TIME, WDOG_TIMEOUT, IRQ_* and the constants) and q_scratch; the axes' read data is
+    // zero unless the axis was read, so reg_rdata is a plain OR: valid (and non-zero) only
+    // in the clock after reg_rd, as emc_bus expects (RD_LAT = 1).
     localparam [7:0] CAP_PPC = `EMPC_PWM_PER_CONTROL;
     localparam [7:0] CAP_LAYOUT = `EMPC_IMG_LAYOUT;
     localparam [3:0] CAP_N = `EMPC_N;
     localparam [31:0] NAXES_W = NAXES;
     localparam [3:0] CAP_NAXES = NAXES_W[3:0];
     localparam [31:0] PWM_HALF_W = `EMPC_PWM_HALF_PERIOD;
-    reg [31:0] g_rdata;
-    reg        rd_scratch, rd_axis;
-    reg [EMC_AW-9:0] rd_axis_sel;
+    reg [31:0] g_rdata, q_scratch;
     // all global offsets are below 16 in the current map: decode 4 bits, gate with [7:4] == 0
     localparam G_NARROW = (`EMPC_G_ID < 16) && (`EMPC_G_VERSION < 16) && (`EMPC_G_CAPS < 16)
                           && (`EMPC_G_PWM_HALF < 16) && (`EMPC_G_SCRATCH < 16) && (`EMPC_G_WDOG_TIMEOUT < 16)
                           && (`EMPC_G_TIME < 16) && (`EMPC_G_IRQ_STATUS < 16) && (`EMPC_G_IRQ_ENABLE < 16);
     wire       g_rd = reg_rd && in_global && (!G_NARROW || reg_addr[7:4] == 4'd0);
     wire [7:0] g_idx = G_NARROW ? {4'd0, reg_addr[3:0]} : reg_addr[7:0];
+    // SCRATCH has its own gated copy (zero unless read, cleared through the flip-flop reset) so
+    // that the final OR needs no select per bit
     always @(posedge clk) begin
-        rd_scratch <= g_rd && g_idx == `EMPC_G_SCRATCH;
-        rd_axis <= reg_rd && in_axes;
-        rd_axis_sel <= axis_off[EMC_AW-1:8];
+        if (rst || !(g_rd && g_idx == `EMPC_G_SCRATCH))
+            q_scratch <= 32'd0;
+        else
+            q_scratch <= scratch;
         if (rst || !g_rd) begin
             g_rdata <= 32'd0;
         end else begin
@@ -159,13 +159,8 @@ module lx_rocon_top #(
                 `EMPC_G_TIME: g_rdata <= time_cnt;
                 `EMPC_G_IRQ_STATUS: g_rdata <= {30'd0, irq_status};
                 `EMPC_G_IRQ_ENABLE: g_rdata <= {30'd0, irq_enable};
-                default: g_rdata <= 32'd0;     // SCRATCH: in the final OR
+                default: g_rdata <= 32'd0;     // SCRATCH: q_scratch
             endcase
-        end
-        if (rst) begin
-            rd_scratch <= 1'b0;
-            rd_axis <= 1'b0;
-            rd_axis_sel <= {(EMC_AW-8){1'b0}};
         end
     end
 
@@ -193,16 +188,15 @@ module lx_rocon_top #(
     assign adc_sclk = sclk_ax[0];
     assign adc_cs_n = cs_ax[0];
 
-    wire [31:0] a_sel;
-    generate
-        if (NAXES == 1) begin : g_rd1
-            assign a_sel = a_rdata;
-        end else begin : g_rdn
-            assign a_sel = a_rdata[32*rd_axis_sel +: 32];
-        end
-    endgenerate
-    always @(*) reg_rdata = g_rdata | (rd_scratch ? scratch : 32'd0) | (rd_axis ? a_sel : 32'd0);
+    // every axis' read data is 0 unless that axis was read (gated copies, see mpc_axis): OR them
+    reg [31:0] a_or;
+    integer ai;
+    always @(*) begin
+        a_or = 32'd0;
+        for (ai = 0; ai < NAXES; ai = ai + 1) a_or = a_or | a_rdata[32*ai +: 32];
+    end
+    always @(*) reg_rdata = g_rdata | q_scratch | a_or;
 
-    wire unused = &{1'b0, locked, err_wr_short, err_rd_short, sclk_ax, cs_ax, sync_out, rd_axis_sel};
+    wire unused = &{1'b0, locked, err_wr_short, err_rd_short, sclk_ax, cs_ax, sync_out};
 endmodule
 `default_nettype wire

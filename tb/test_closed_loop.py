@@ -186,6 +186,32 @@ class CoSim:
         self.t += 0.5 * self.Tpwm
 
 
+async def check_global_regs(dut, bus, drv) -> None:
+    """Global register read path (lx_rocon_top): constants, RW readback, TIME, and that the
+    axis and coefficient-window addresses do not leak into a global read."""
+    roms = Path(os.environ.get("EMPC_ROMS", ROOT / "build" / "roms" / "default"))
+    h = header.read(roms / "empc_formats.vh")
+    assert await drv.read("VERSION") == regmap.VERSION
+    caps = 1 | (h["N"] << 4) | (h["IMG_LAYOUT"] << 8) | (h["PWM_PER_CONTROL"] << 16)
+    assert await drv.read("CAPS") == caps
+    assert await drv.read("PWM_HALF") == h["PWM_HALF_PERIOD"]
+    assert await drv.read("WDOG_TIMEOUT") == next(r.reset for r in regmap.GLOBAL if r.name == "WDOG_TIMEOUT")
+    rng = np.random.default_rng(2026)
+    for v in (0xFFFFFFFF, 0x0, int(rng.integers(0, 2**32)), 0xA5A5A5A5):
+        await drv.write("SCRATCH", v)
+        assert await drv.read("SCRATCH") == v
+        assert await drv.read("ID") == regmap.ID_MAGIC          # no SCRATCH bits in another read
+    await drv.write("SCRATCH", 0)
+    for v in (3, 1, 2):
+        await drv.write("IRQ_ENABLE", v | 0xFFFFFFFC)
+        assert await drv.read("IRQ_ENABLE") == v
+    await drv.write("IRQ_ENABLE", 0)
+    t0 = await drv.read("TIME")
+    await ClockCycles(dut.clk, 2 * 2 * h["PWM_HALF_PERIOD"])
+    assert (await drv.read("TIME") - t0) in (2, 3), "TIME counts PWM periods"
+    assert await bus.read(regmap.COEF_BASE) == 0, "the coefficient window is write-only (reads 0)"
+
+
 async def run_cosim(dut, name: str) -> dict:
     cs = CoSim(dut, name)
     from emc_bfm import EmcBfm
@@ -209,6 +235,7 @@ async def run_cosim(dut, name: str) -> dict:
     await ClockCycles(dut.clk, 3000)
     dut.idx_enable.value = 1
     assert await drv.read("ID") == regmap.ID_MAGIC, "bus or bitstream: ID register"
+    await check_global_regs(dut, bus, drv)
     wall0 = time.perf_counter()
     # lockstep from the first PWM period after alignment: the sequencer's state so far is known
     # (disabled, zero currents: every control period just shifted its counter), take it over
