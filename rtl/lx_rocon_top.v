@@ -67,17 +67,31 @@ module lx_rocon_top #(
         .reg_addr(reg_addr), .reg_wdata(reg_wdata), .reg_rdata(reg_rdata), .err_wr_short(err_wr_short),
         .err_rd_short(err_rd_short));
 
-    // address decode with constant compares only (no subtractors): axis n owns
-    // [AXIS_BASE + 0x100 n, +0x100), its coefficient window [COEF_BASE + 0x400 n, +0x400)
+    // Address decode by page equality (no magnitude compares: those map onto carry chains that
+    // ABC cannot merge with the logic behind them, the bus decode was the deepest path): axis n
+    // owns page AXIS_PAGE + n of 256 words, its coefficient window page COEF_PAGE + n of 1024.
     localparam integer AXIS_BASE = `EMPC_REG_AXIS_BASE;
     localparam integer COEF_BASE = `EMPC_REG_COEF_BASE;
-    wire [31:0] addr32 = {{(32-EMC_AW){1'b0}}, reg_addr};
-    wire in_global = addr32 < AXIS_BASE;
-    wire in_coef = addr32 >= COEF_BASE;
-    /* verilator lint_off UNUSEDSIGNAL */ // the axis / window index bits are decoded by compares
-    wire [EMC_AW-1:0] axis_off = reg_addr - AXIS_BASE[EMC_AW-1:0];
-    wire [EMC_AW-1:0] coef_off = reg_addr - COEF_BASE[EMC_AW-1:0];
-    /* verilator lint_on UNUSEDSIGNAL */
+    localparam integer AXIS_PAGE = AXIS_BASE / 256;
+    localparam integer COEF_PAGE = COEF_BASE / 1024;
+    localparam integer NAPAGES = 1 << (EMC_AW - 8);
+    localparam integer NCPAGES = 1 << (EMC_AW - 10);
+    generate if (AXIS_BASE % 256 != 0 || COEF_BASE % 1024 != 0 || AXIS_BASE + 256 * NAXES > COEF_BASE
+                 || COEF_PAGE + NAXES > NCPAGES || EMC_AW < 10) begin : g_bad_map
+        lx_rocon_top_unsupported_register_map u_error ();   // no such module: elaboration stops here
+    end endgenerate
+    function [NAPAGES-1:0] below;                // bit k set iff page k < n
+        input integer n;
+        integer k;
+        begin
+            below = {NAPAGES{1'b0}};
+            for (k = 0; k < NAPAGES; k = k + 1) if (k < n) below[k] = 1'b1;
+        end
+    endfunction
+    localparam [NAPAGES-1:0] GLOBAL_PAGES = below(AXIS_PAGE);
+    wire [EMC_AW-9:0]  apage = reg_addr[EMC_AW-1:8];
+    wire [EMC_AW-11:0] cpage = reg_addr[EMC_AW-1:10];
+    wire in_global = GLOBAL_PAGES[apage];
 
     // ---------------- global registers ----------------
     reg  [31:0] scratch;
@@ -171,12 +185,14 @@ module lx_rocon_top #(
     genvar n;
     generate
         for (n = 0; n < NAXES; n = n + 1) begin : g_axis
-            wire sel = !in_coef && (addr32 >= AXIS_BASE + 256 * n) && (addr32 < AXIS_BASE + 256 * (n + 1));
-            wire csel = (addr32 >= COEF_BASE + 1024 * n) && (addr32 < COEF_BASE + 1024 * (n + 1));
+            localparam [31:0] AP = AXIS_PAGE + n;
+            localparam [31:0] CP = COEF_PAGE + n;
+            wire sel = (apage == AP[EMC_AW-9:0]);
+            wire csel = (cpage == CP[EMC_AW-11:0]);
             mpc_axis #(.BOOT_FILE(BOOT_FILE), .RSQRT_FILE(RSQRT_FILE)) u_axis (
                 .clk(clk), .rst(rst),
-                .reg_wr(reg_wr && sel), .reg_rd(reg_rd && sel), .reg_addr(axis_off[7:0]), .reg_wdata(reg_wdata),
-                .reg_rdata(a_rdata[32*n +: 32]), .coef_we(reg_wr && csel), .coef_addr(coef_off[9:0]),
+                .reg_wr(reg_wr && sel), .reg_rd(reg_rd && sel), .reg_addr(reg_addr[7:0]), .reg_wdata(reg_wdata),
+                .reg_rdata(a_rdata[32*n +: 32]), .coef_we(reg_wr && csel), .coef_addr(reg_addr[9:0]),
                 .watchdog_expired(wdog_expired), .pwm_sync_in(n == 0 ? 1'b0 : sync_out[0]),
                 .pwm_sync_out(sync_out[n]),
                 .irc_a(irc_a[n]), .irc_b(irc_b[n]), .irc_idx(irc_idx[n]), .irc_mark(irc_mark[n]),

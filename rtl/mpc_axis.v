@@ -77,6 +77,20 @@ module mpc_axis #(
     reg  [11:0] c_off_wdata;
 
 
+    // Address ranges as 256-entry tables (LUTs) rather than magnitude compares: constant
+    // compares map onto carry chains that ABC cannot merge with the decode behind them.
+    function [255:0] words;                       // bit a set iff lo <= a <= hi or a == one
+        input integer lo, hi, one;
+        integer a;
+        begin
+            words = 256'd0;
+            for (a = 0; a < 256; a = a + 1) if ((a >= lo && a <= hi) || a == one) words[a] = 1'b1;
+        end
+    endfunction
+    localparam [255:0] SEG_WORDS  = words(`EMPC_A_SEG_LEN, `EMPC_A_SEG_LEN + 6, -1);
+    localparam [255:0] CNT_WORDS  = words(`EMPC_A_SAT_OPERAND, `EMPC_A_CNT_OVERRUN, `EMPC_A_PERIODS);
+    localparam [255:0] STAT_WORDS = words(`EMPC_A_I_D, `EMPC_A_REF, `EMPC_A_SPEED);
+
     // write decode: one enable per register from a shared predecode (offsets 0x00..0x1f)
     wire        wr_lo = reg_wr && (reg_addr[7:5] == 3'd0);
     localparam [7:0] W_ADC_OFF0 = `EMPC_A_ADC_OFF0, W_ADC_OFF1 = `EMPC_A_ADC_OFF1, W_ADC_OFF2 = `EMPC_A_ADC_OFF2, W_ANGLE_CAL = `EMPC_A_ANGLE_CAL, W_CMD = `EMPC_A_CMD, W_CTRL = `EMPC_A_CTRL, W_DEAD_TIME = `EMPC_A_DEAD_TIME, W_FAULT_MASK = `EMPC_A_FAULT_MASK, W_HALL_OFFSET = `EMPC_A_HALL_OFFSET, W_ID_REF = `EMPC_A_ID_REF, W_IQ_REF = `EMPC_A_IQ_REF, W_KACC = `EMPC_A_KACC, W_KDC = `EMPC_A_KDC, W_OC_THRESH = `EMPC_A_OC_THRESH, W_SEG_ADDR = `EMPC_A_SEG_ADDR, W_SEG_START = `EMPC_A_SEG_START, W_UDC = `EMPC_A_UDC, W_UDC_MAX = `EMPC_A_UDC_MAX, W_UDC_MIN = `EMPC_A_UDC_MIN;
@@ -235,7 +249,7 @@ module mpc_axis #(
     wire              task_pos;
     wire signed [`EMPC_W_W-1:0] omega;
     wire [7:0]        seg_off = reg_addr - `EMPC_A_SEG_LEN;
-    wire              seg_sel = (seg_off < 8'd7);
+    wire              seg_sel = SEG_WORDS[reg_addr];
     wire [31:0]       seg_rdata;
     // sync value (task_pos ? {pos, 32'd0} : {sext(omega), 16'd0}), latched with the
     // command and read bit by bit while the sync runs
@@ -352,9 +366,8 @@ module mpc_axis #(
         w_def <= st_wr && reg_rd && !rst;
         w_def_a <= st_addr;
     end
-    wire s_cnt  = (reg_addr == `EMPC_A_PERIODS) ||
-                  (reg_addr >= `EMPC_A_SAT_OPERAND && reg_addr <= `EMPC_A_CNT_OVERRUN);
-    wire s_stat = (reg_addr == `EMPC_A_SPEED) || (reg_addr >= `EMPC_A_I_D && reg_addr <= `EMPC_A_REF);
+    wire s_cnt  = CNT_WORDS[reg_addr];
+    wire s_stat = STAT_WORDS[reg_addr];
     wire s_rd   = reg_rd && ((s_cnt && !cnt_hide) || (s_stat && !st_hide));
     wire [5:0]  pa = w_go ? w_a : reg_addr[5:0];   // (a write never meets a read)
     always @(posedge clk) begin
