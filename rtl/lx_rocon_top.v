@@ -80,18 +80,16 @@ module lx_rocon_top #(
                  || COEF_PAGE + NAXES > NCPAGES || EMC_AW < 10) begin : g_bad_map
         lx_rocon_top_unsupported_register_map u_error ();   // no such module: elaboration stops here
     end endgenerate
-    function [NAPAGES-1:0] below;                // bit k set iff page k < n
-        input integer n;
-        integer k;
-        begin
-            below = {NAPAGES{1'b0}};
-            for (k = 0; k < NAPAGES; k = k + 1) if (k < n) below[k] = 1'b1;
+    wire [NAPAGES-1:0] global_pages;             // bit k: page k holds global registers
+    genvar gp;
+    generate
+        for (gp = 0; gp < NAPAGES; gp = gp + 1) begin : g_gpage
+            assign global_pages[gp] = (gp < AXIS_PAGE);
         end
-    endfunction
-    localparam [NAPAGES-1:0] GLOBAL_PAGES = below(AXIS_PAGE);
+    endgenerate
     wire [EMC_AW-9:0]  apage = reg_addr[EMC_AW-1:8];
     wire [EMC_AW-11:0] cpage = reg_addr[EMC_AW-1:10];
-    wire in_global = GLOBAL_PAGES[apage];
+    wire in_global = global_pages[apage];
 
     // ---------------- global registers ----------------
     reg  [31:0] scratch;
