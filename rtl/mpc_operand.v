@@ -12,10 +12,10 @@
 //   O1  read A = buffer word or 0, B = scratch word / header field / du[i] / 0 -> registers
 //       (the ebar_lim clamp of EBAR columns / EBB items is applied here)
 //   O2  D = A + B or A - B (SIG_W + 1 bit)
-//   O3  S = satSW(D); Y1 = S << 1; scratch write (YC, EBA), EBA clamp decision, EBB ebar,
-//       UR u_raw = sat24(D)
-//   O4  op = sat18(rshift_round(S, c)) from Y1 (shifts 4 c[3:2], c[1:0], round, saturate);
-//       op_next = f instead when sel_f (limiter)
+//   O3  S = satSW(D) (UR: sat24(D), also u_raw); Y1 = S << 1 >>> 4 c[3:2]; scratch write
+//       (YC, EBA), EBA clamp decision, EBB ebar
+//   O4  op = sat18(rshift_round(S, c)): Y1 >> c[1:0], round, saturate; op_next = f instead
+//       when sel_f (limiter)
 //   O5  op valid; WN / LO / HI: wn register (clamp steps), UMX: wn_s = wn, wn = op
 // Items: YC o (copy y[o]), EBA o (inc = w_k[o] - y[o], clamp = |inc| > ebar_lim[o]),
 //   WN (omega >> ws), LO / HI (op = wn_min / wn_max; wn = max(wn, lo), then min(wn, hi)),
@@ -71,13 +71,11 @@ module mpc_operand (
     localparam integer UW   = `EMPC_U_W;              // 24
     localparam integer CB   = `EMPC_SIG_SHIFT_BITS;   // 4 (operand shift 0..15)
     localparam [CB-1:0] C_UR = `EMPC_U_FRAC - `EMPC_V_FRAC;
-    generate if (CB != 4 || SW < OPW + 4 || SW > OPW + 22) begin : g_bad_params
+    generate if (CB != 4 || SW < OPW + 4 || SW > OPW + 22 || `EMPC_U_FRAC - `EMPC_V_FRAC > UW - OPW) begin : g_bad_params
         mpc_operand_unsupported_parameters u_error ();   // no such module: elaboration stops here
     end endgenerate
     localparam signed [OPW-1:0] OMAX = {1'b0, {(OPW-1){1'b1}}};
     localparam signed [OPW-1:0] OMIN = {1'b1, {(OPW-1){1'b0}}};
-    localparam signed [UW-1:0]  UMAXV = {1'b0, {(UW-1){1'b1}}};
-    localparam signed [UW-1:0]  UMINV = {1'b1, {(UW-1){1'b0}}};
     localparam [5:0] IN_Y = `EMPC_IN_Y, IN_OMEGA = `EMPC_IN_OMEGA, IN_UPREV = `EMPC_IN_UPREV,
                      IN_EBAR = `EMPC_IN_EBAR, IN_WREF = `EMPC_IN_WREF, IN_DX = `EMPC_IN_DX;
     // header fields (mpc_coef_mem)
@@ -257,49 +255,84 @@ module mpc_operand (
     reg  [3:0]   kind1, kind2, kind3, kind4, kind5;
     reg  [1:0]   idx2, idx3;
     reg          sub2, nosig2, nosig3;
-    reg  [CB-1:0] c2, c3, c4;
+    reg  [CB-1:0] c2, c3;
+    reg          ur3;
     // A + (B ^ sub) + sub, the carry-in as an extra LSB (keeps A on the carry chain's DI inputs)
     wire [SW+1:0] d0x = {av[SW-1], av, 1'b1} + {({bv[SW-1], bv} ^ {(SW+1){sub2}}), sub2};
     wire [SW:0]  d0 = d0x[SW+1:1];
     reg  [SW:0]  dv;
 
-    // ---- O3: S = satSW(D), Y1 = {S, 0} ----
+    // ---- O3: S = satSW(D) (sat24(D) for UR items), Y1 = {S, 0}, first shift stage ----
     wire         d_sgn = dv[SW];
     wire         d_ovf = dv[SW] ^ dv[SW-1];
-    wire [SW-1:0] sv   = d_ovf ? {d_sgn, {(SW-1){~d_sgn}}} : dv[SW-1:0];
-    wire [SW:0]  w1    = {sv, 1'b0};
-    wire [SW:0]  y1    = w1;
-    reg  [SW:0]  y1r;
-    wire [SW-1:0] s_y1 = y1[SW:1];       // S (items with c = 0: scratch / ebar writes)
+    wire         u_fit = (&dv[SW:UW-1]) | ~(|dv[SW:UW-1]);
+    // One saturation serves the scratch / ebar writes (satSW) and u_raw (sat24, sign-extended):
+    // for UR items the operand u18 = sat18(rshift_round(S, C_UR)) is the same from either,
+    // because |sat24(D)| >= 2^(UW-1) saturates 18 bit as well for C_UR <= UW - OPW.
+    wire         s_fit = ur3 ? u_fit : ~d_ovf;
+    wire [SW-1:0] s_sat = ur3 ? {{(SW-UW+1){d_sgn}}, {(UW-1){~d_sgn}}} : {d_sgn, {(SW-1){~d_sgn}}};
+    wire [SW-1:0] sv   = s_fit ? dv[SW-1:0] : s_sat;
+    wire [SW-1:0] s_y1 = sv;             // S (items with c = 0: scratch / ebar writes)
+    wire [UW-1:0] u_s  = sv[UW-1:0];    // UR: u_raw = sat24(D)
     // EBA: clamp = |inc| > lim: the sign of D - lim - 1 (D >= 0) or D + lim (D < 0), i.e.
     // D - (lim ^ sgn) - 1 on SW + 2 bits (one carry chain: the -1 enters as an extra LSB)
     wire [SW+1:0] lx    = {d_sgn, {2'b00, lim3} ^ {(SW+1){d_sgn}}};
     wire [SW+2:0] ccmpx = {dv[SW], dv, 1'b0} - {lx, 1'b1};
     wire          clamp = ccmpx[SW+2] ^ ~d_sgn;
-    // UR: u_raw = sat24(D)
-    wire         u_fit = (&dv[SW:UW-1]) | ~(|dv[SW:UW-1]);
-    wire [UW-1:0] u_s  = u_fit ? dv[UW-1:0] : (d_sgn ? UMINV : UMAXV);
-
-    // ---- O4: op = sat18(rshift_round(S, c)), c = 4 c[3:2] + c[1:0] ----
-    wire         y_sgn = y1r[SW];
-    wire [SW:0]  y2    = $signed(y1r) >>> {c4[3:2], 2'b00};
-    wire [OPW+3:0] y3w = y2[OPW+3:0] >> c4[1:0];
-    wire [OPW:0] y3    = y3w[OPW:0];
+    // op = sat18(rshift_round(S, c)), c = 4 c[3:2] + c[1:0]: Y1 >>> 4 c[3:2] here (a 4:1
+    // multiplexer per bit), >> c[1:0], rounding and saturation at O4
+    wire [SW+12:0] y1e = {{12{d_sgn}}, sv, 1'b0};
+    reg  [OPW+3:0] y2;                  // Y1 >>> 4 c[3:2], positions 0..21
+    always @* begin
+        case (c3[3:2])
+            2'd0:    y2 = y1e[OPW+3:0];
+            2'd1:    y2 = y1e[OPW+7:4];
+            2'd2:    y2 = y1e[OPW+11:8];
+            default: y2 = y1e[OPW+15:12];
+        endcase
+    end
     // the result fits 18 bit iff Y1 bits [SW-1 : 18 + c] equal the sign (Y1 bit p = S bit p-1):
     // bits above the y2 window (>= 22 + 4 c[3:2]) by groups of 4, the rest in y2 (>= 18 + c[1:0]);
     // y_x holds positions 18..39, zero (= equal to the sign) above SW-1
-    wire [21:0]  y_x   = {{(22-SW+OPW){1'b0}}, y1r[SW-1:OPW] ^ {(SW-OPW){y_sgn}}};
+    wire [21:0]  y_x   = {{(22-SW+OPW){1'b0}}, y1e[SW-1:OPW] ^ {(SW-OPW){d_sgn}}};
     wire         g22   = |y_x[7:4];
     wire         g26   = |y_x[11:8];
     wire         g30   = |y_x[15:12];
     wire         g34   = |y_x[21:16];
-    wire         nf_hi = g34 | (c4[3:2] < 2'd3 && g30) | (c4[3:2] < 2'd2 && g26) | (c4[3:2] == 2'd0 && g22);
-    wire [3:0]   y2x   = y2[OPW+3:OPW] ^ {4{y_sgn}};      // y2 positions 18..21
-    wire         nf_lo = y2x[3] | (c4[1:0] < 2'd3 && y2x[2]) | (c4[1:0] < 2'd2 && y2x[1]) | (c4[1:0] == 2'd0 && y2x[0]);
-    wire         nfit  = nf_hi | nf_lo;
-    wire [OPW:0] a1    = {y3[OPW], y3[OPW:1]} + {{OPW{1'b0}}, y3[0]};
-    wire         a_sat = nfit | (a1[OPW] ^ a1[OPW-1]);
-    wire signed [OPW-1:0] a_s = a_sat ? (y_sgn ? OMIN : OMAX) : a1[OPW-1:0];
+    wire         nf_hi = g34 | (c3[3:2] < 2'd3 && g30) | (c3[3:2] < 2'd2 && g26) | (c3[3:2] == 2'd0 && g22);
+    reg  [OPW+3:0] y2r;
+    reg          nf_hr, y_sgn;
+
+    // ---- O4: >> c[1:0] (a 4:1 multiplexer per bit, also the rounding incrementer's input) ----
+    // c[1:0] is registered in three encodings, one per output bit i mod 3: with a select of
+    // its own per class no two bits within a distance of 2 share a 2:1 half of their
+    // multiplexers, so that each bit maps to one LUT6 (instead of a shared LUT3 + a LUT5).
+    reg  [1:0]   c4a, c4b, c4c;         // {c1, c0}, {~c1, c1 ^ c0}, {~(c1 ^ c0), ~c0}
+    reg  [OPW:0] y3;                    // S >>> (c - 1): y3[0] is the rounding bit
+    reg  [1:0]   c4i;
+    integer      bi3;
+    always @* begin
+        for (bi3 = 0; bi3 <= OPW; bi3 = bi3 + 1) begin
+            case (bi3 % 3)
+                0:       c4i = c4a;
+                1:       c4i = {~c4b[1], ~c4b[1] ^ c4b[0]};
+                default: c4i = {c4c[1] ^ c4c[0], ~c4c[0]};
+            endcase
+            case (c4i)
+                2'd0:    y3[bi3] = y2r[bi3];
+                2'd1:    y3[bi3] = y2r[bi3 + 1];
+                2'd2:    y3[bi3] = y2r[bi3 + 2];
+                default: y3[bi3] = y2r[bi3 + 3];
+            endcase
+        end
+    end
+    // a1 = y3 >> 1 + y3[0] (the carry-in as an extra LSB); it can only overflow upwards
+    wire [OPW:0] a1x   = {y3[OPW:1], y3[0]} + {{OPW{1'b0}}, y3[0]};
+    wire [OPW-1:0] a1  = a1x[OPW:1];
+    wire [3:0]   y2x   = y2r[OPW+3:OPW] ^ {4{y_sgn}};     // y2 positions 18..21
+    wire         nf_lo = y2x[3] | (c4a < 2'd3 && y2x[2]) | (c4a < 2'd2 && y2x[1]) | (c4a == 2'd0 && y2x[0]);
+    wire         a_sat = nf_hr | nf_lo | (a1[OPW-1] & ~y3[OPW]);
+    wire signed [OPW-1:0] a_s = a_sat ? (y_sgn ? OMIN : OMAX) : a1;
     assign op_next = sel_f ? f : a_s;
     reg          sat5;
 
@@ -321,12 +354,12 @@ module mpc_operand (
             a_addr <= 6'd0; a_zero <= 1'b1; b_zero <= 1'b1; sub1r <= 1'b0; nosig1 <= 1'b0; ebar1 <= 1'b0;
             ws1 <= 1'b0; s_addr <= 4'd0; b_sel1 <= B_SCR; eo1 <= 2'd0; hf1 <= F_WS; c1r <= {CB{1'b0}};
             sub2 <= 1'b0; nosig2 <= 1'b0; nosig3 <= 1'b0;
-            c2 <= {CB{1'b0}}; c3 <= {CB{1'b0}}; c4 <= {CB{1'b0}};
+            c2 <= {CB{1'b0}}; c3 <= {CB{1'b0}}; c4a <= 2'd0; c4b <= 2'd2; c4c <= 2'd3; ur3 <= 1'b0;
             av <= {SW{1'b0}};
             bv <= {SW{1'b0}};
             lim2 <= {(SW-1){1'b0}}; lim3 <= {(SW-1){1'b0}};
             dv <= {(SW+1){1'b0}};
-            y1r <= {(SW+1){1'b0}};
+            y2r <= {(OPW+4){1'b0}}; nf_hr <= 1'b0; y_sgn <= 1'b0;
             op <= {OPW{1'b0}};
             sat5 <= 1'b0;
             wn <= {OPW{1'b0}};
@@ -364,12 +397,17 @@ module mpc_operand (
             lim2 <= hdr[SW-2:0];
             // O2 -> O3
             dv <= d0;
+            ur3 <= (kind2 == `MPC_K_UR);
             c3 <= c2;
             nosig3 <= nosig2;
             lim3 <= lim2;
             // O3 -> O4
-            y1r <= y1;
-            c4 <= c3;
+            y2r <= y2;
+            nf_hr <= nf_hi;
+            y_sgn <= d_sgn;
+            c4a <= c3[1:0];
+            c4b <= {~c3[1], c3[1] ^ c3[0]};
+            c4c <= {~(c3[1] ^ c3[0]), ~c3[0]};
             if (kind3 == `MPC_K_EBA) begin
                 clamp_o[idx3] <= clamp;
                 neg_o[idx3] <= d_sgn;
@@ -411,6 +449,6 @@ module mpc_operand (
         end
     end
 
-    wire unused_ok = &{1'b0, y2[SW:OPW+4], y3w[OPW+3:OPW+1], ccmpx[SW+1:0], d0x[0], wdx[0], wd[OPW-1:0], hdr[SW-1], y_x[3:0]};
+    wire unused_ok = &{1'b0, y1e[SW+12:OPW+16], a1x[0], ccmpx[SW+1:0], d0x[0], wdx[0], wd[OPW-1:0], hdr[SW-1], y_x[3:0]};
 endmodule
 `default_nettype wire
