@@ -84,6 +84,9 @@ module mpc_operand (
     localparam [1:0] B_SCR = 2'd0, B_HDR = 2'd1, B_DUD = 2'd2, B_DUQ = 2'd3;
     // scratch RAM slots
     localparam [3:0] R_Y = 4'd0, R_INC = 4'd4;
+    generate if (F_LIM[1:0] != 2'd0 || R_Y[1:0] != 2'd0 || R_INC[1:0] != 2'd0) begin : g_bad_slots
+        mpc_operand_unsupported_slots u_error ();         // o is ORed into these (no adder)
+    end endgenerate
     // column decode table: sig -> {cat[2:0], m1[2:0], o[1:0], A word[5:0]}
     localparam [2:0] CT_ZERO = 3'd0, CT_WREL = 3'd1, CT_E = 3'd2, CT_Y = 3'd3, CT_EBAR = 3'd4, CT_DX = 3'd5;
     localparam integer TE = 14;
@@ -130,42 +133,50 @@ module mpc_operand (
     wire [1:0] e_o   = ent[7:6];
     wire [5:0] e_aa  = ent[5:0];
     wire       e_inh = {1'b0, e_m1} < neff;
+    // buffer word base + idx, as a table on idx (constants only, no adder)
+    function [5:0] base_idx;
+        input [5:0] base;
+        input [1:0] i;
+        begin
+            case (i)
+                2'd0:    base_idx = base;
+                2'd1:    base_idx = base + 6'd1;
+                2'd2:    base_idx = base + 6'd2;
+                default: base_idx = base + 6'd3;
+            endcase
+        end
+    endfunction
     reg  [5:0]  a_addr0;
-    reg         a_zero0, b_zero0, sub0, nosig0, ebar0, ws0;
-    reg  [3:0]  s_addr0;
-    reg  [1:0]  b_sel0, eo0;
+    reg         a_zero0, b_zero0, sub0, nosig0, ebar0;
+    reg  [1:0]  b_sel0;
     reg  [2:0]  hf0;
-    reg  [CB-1:0] c0;
     always @* begin
-        a_addr0 = 6'd0;
+        // x = don't care, the value is not used: a_addr when A = 0, b_sel when B = 0, nosig for
+        // other kinds than COL (sub with B = 0 does not matter either: A + ~0 + 1 = A)
+        a_addr0 = {6{1'bx}};
         a_zero0 = 1'b1;
         b_zero0 = 1'b1;
-        b_sel0  = B_SCR;
-        s_addr0 = 4'd0;
+        b_sel0  = 2'bxx;
         sub0    = 1'b0;
-        nosig0  = 1'b0;
-        c0      = {CB{1'b0}};
-        hf0     = F_LIM + {1'b0, idx};
-        eo0     = idx;
+        nosig0  = 1'bx;
+        hf0     = F_LIM | {1'b0, idx};
         ebar0   = 1'b0;
-        ws0     = 1'b0;
         case (kind)
             `MPC_K_YC: begin
-                a_addr0 = IN_Y + {4'd0, idx};
+                a_addr0 = base_idx(IN_Y, idx);
                 a_zero0 = 1'b0;
             end
             `MPC_K_EBA: begin
-                a_addr0 = IN_WREF + {4'd0, idx};
+                a_addr0 = base_idx(IN_WREF, idx);
                 a_zero0 = 1'b0;
                 b_zero0 = 1'b0;
-                s_addr0 = R_Y + {2'd0, idx};
+                b_sel0  = B_SCR;            // y[o] at R_Y + o
                 sub0    = 1'b1;
             end
             `MPC_K_WN: begin
                 a_addr0 = IN_OMEGA;
                 a_zero0 = 1'b0;
                 hf0     = F_WS;
-                ws0     = 1'b1;
             end
             `MPC_K_LO, `MPC_K_HI, `MPC_K_UMX, `MPC_K_NUMX: begin
                 b_zero0 = 1'b0;
@@ -174,36 +185,31 @@ module mpc_operand (
                 sub0    = (kind == `MPC_K_NUMX);
             end
             `MPC_K_UR: begin
-                a_addr0 = IN_UPREV + {4'd0, idx};
+                a_addr0 = base_idx(IN_UPREV, idx);
                 a_zero0 = 1'b0;
                 b_zero0 = 1'b0;
                 b_sel0  = idx[0] ? B_DUQ : B_DUD;
-                c0      = C_UR;
+                sub0    = 1'b0;
             end
             `MPC_K_EBB: begin
-                a_addr0 = IN_EBAR + {4'd0, idx};
+                a_addr0 = base_idx(IN_EBAR, idx);
                 a_zero0 = 1'b0;
                 ebar0   = 1'b1;
             end
             `MPC_K_COL: begin
-                c0 = desc[CB+5:6];
                 a_addr0 = e_aa;
-                eo0 = e_o;
-                hf0 = F_LIM + {1'b0, e_o};
+                hf0     = F_LIM | {1'b0, e_o};
+                b_sel0  = B_SCR;            // y[o] at R_Y + o
+                sub0    = 1'b1;
+                nosig0  = 1'b0;
                 case (e_cat)
-                    CT_WREL: if (e_inh) begin
-                        a_zero0 = 1'b0;
-                        if (pos && e_o == 2'd2) begin
-                            b_zero0 = 1'b0;
-                            s_addr0 = R_Y + 4'd2;
-                            sub0    = 1'b1;
-                        end
+                    CT_WREL: begin
+                        a_zero0 = !e_inh;
+                        b_zero0 = !(e_inh && pos && e_o == 2'd2);
                     end
-                    CT_E: if (e_inh) begin
-                        a_zero0 = 1'b0;
-                        b_zero0 = 1'b0;
-                        s_addr0 = R_Y + {2'd0, e_o};
-                        sub0    = 1'b1;
+                    CT_E: begin
+                        a_zero0 = !e_inh;
+                        b_zero0 = !e_inh;
                     end
                     CT_Y:    a_zero0 = pos && e_o == 2'd2;
                     CT_EBAR: begin
@@ -221,21 +227,33 @@ module mpc_operand (
         // ebar_prev[o] + inc[o] (algorithm 2, no clamp; the clamp is patched in at O1)
         if (ebar0 && alg2) begin
             b_zero0 = 1'b0;
-            s_addr0 = R_INC + {2'd0, eo0};
+            b_sel0  = B_SCR;                // inc[o] at R_INC + o
+            sub0    = 1'b0;
         end
     end
 
     // ---- O1: clamp patch (EBA results of the same update may arrive at O1), read ----
+    // o of the item = hdr_field[1:0] wherever it is used (F_LIM + o: EBB, EBAR, EBA, E), so the
+    // scratch address R_Y + o / R_INC + o and the clamp patch take o from there
     reg  [5:0]  a_addr;
-    reg         a_zero, b_zero, sub1r, nosig1, ebar1, ws1;
-    reg  [3:0]  s_addr;
-    reg  [1:0]  b_sel1, eo1;
+    reg         a_zero, b_zero, sub1r, nosig1, ebar1;
+    reg  [1:0]  b_sel1;
     reg  [2:0]  hf1;
-    reg  [CB-1:0] c1r;
+    reg  [CB-1:0] cd1;                  // desc c of the item (used for COL)
+    wire [1:0]  eo1   = hf1[1:0];
+    wire [3:0]  s_addr = (ebar1 ? R_INC : R_Y) | {2'd0, eo1};
     wire        cl1   = ebar1 && alg2 && clamp_o[eo1];
     wire [1:0]  b_sel = cl1 ? B_HDR : b_sel1;
     wire        sub1  = cl1 ? neg_o[eo1] : sub1r;
-    wire [CB-1:0] c1  = ws1 ? hdr[CB-1:0] : c1r;
+    reg  [CB-1:0] c1;
+    always @* begin
+        case (kind1)
+            `MPC_K_WN:  c1 = hdr[CB-1:0];
+            `MPC_K_COL: c1 = cd1;
+            `MPC_K_UR:  c1 = C_UR;
+            default:    c1 = {CB{1'b0}};
+        endcase
+    end
     always @* hdr_field = hf1;
     wire [SW-1:0] a_rd = abuf[a_addr];
     wire [SW-1:0] s_rd = sbuf[s_addr];
@@ -352,7 +370,7 @@ module mpc_operand (
             kind4 <= `MPC_K_NONE; kind5 <= `MPC_K_NONE;
             idx1 <= 2'd0; idx2 <= 2'd0; idx3 <= 2'd0;
             a_addr <= 6'd0; a_zero <= 1'b1; b_zero <= 1'b1; sub1r <= 1'b0; nosig1 <= 1'b0; ebar1 <= 1'b0;
-            ws1 <= 1'b0; s_addr <= 4'd0; b_sel1 <= B_SCR; eo1 <= 2'd0; hf1 <= F_WS; c1r <= {CB{1'b0}};
+            b_sel1 <= B_SCR; hf1 <= F_WS; cd1 <= {CB{1'b0}};
             sub2 <= 1'b0; nosig2 <= 1'b0; nosig3 <= 1'b0;
             c2 <= {CB{1'b0}}; c3 <= {CB{1'b0}}; c4a <= 2'd0; c4b <= 2'd2; c4c <= 2'd3; ur3 <= 1'b0;
             av <= {SW{1'b0}};
@@ -382,12 +400,9 @@ module mpc_operand (
             sub1r  <= sub0;
             nosig1 <= nosig0;
             ebar1  <= ebar0;
-            ws1    <= ws0;
-            s_addr <= s_addr0;
             b_sel1 <= b_sel0;
-            eo1    <= eo0;
             hf1    <= hf0;
-            c1r    <= c0;
+            cd1    <= desc[CB+5:6];
             // O1 -> O2
             av <= a_zero ? {SW{1'b0}} : a_rd;
             bv <= b_zero ? {SW{1'b0}} : b_rd;
