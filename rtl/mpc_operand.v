@@ -310,9 +310,12 @@ module mpc_operand (
         endcase
     end
     // the result fits 18 bit iff Y1 bits [SW-1 : 18 + c] equal the sign (Y1 bit p = S bit p-1):
-    // bits above the y2 window (>= 22 + 4 c[3:2]) by groups of 4, the rest in y2 (>= 18 + c[1:0]);
-    // y_x holds positions 18..39, zero (= equal to the sign) above SW-1
-    wire [21:0]  y_x   = {{(22-SW+OPW){1'b0}}, y1e[SW-1:OPW] ^ {(SW-OPW){d_sgn}}};
+    // bits above the y2 window (>= 22 + 4 c[3:2]) by groups of 4, the rest in y2 (>= 18 + c[1:0])
+    // at O4; y_x holds positions 18..39, zero (= equal to the sign) above SW-1.  It is taken
+    // from D (S bit = D bit unless D overflows SW bit: then all differ from the sign), which
+    // keeps it off the saturation logic.  For UR items (S = sat24(D), c = C_UR) this can only
+    // differ when D does not fit 24 bit; the operand then saturates anyway (nf_lo sees it).
+    wire [21:0]  y_x   = {{(22-SW+OPW){1'b0}}, (dv[SW-2:OPW-1] ^ {(SW-OPW){d_sgn}}) | {(SW-OPW){d_ovf}}};
     wire         g22   = |y_x[7:4];
     wire         g26   = |y_x[11:8];
     wire         g30   = |y_x[15:12];
@@ -322,10 +325,17 @@ module mpc_operand (
     reg          nf_hr, y_sgn;
 
     // ---- O4: >> c[1:0] (a 4:1 multiplexer per bit, also the rounding incrementer's input) ----
-    // c[1:0] is registered in three encodings, one per output bit i mod 3: with a select of
-    // its own per class no two bits within a distance of 2 share a 2:1 half of their
-    // multiplexers, so that each bit maps to one LUT6 (instead of a shared LUT3 + a LUT5).
-    reg  [1:0]   c4a, c4b, c4c;         // {c1, c0}, {~c1, c1 ^ c0}, {~(c1 ^ c0), ~c0}
+    // c[1:0] is registered three times, one copy per output bit i mod 3: with a select of its
+    // own per class no two bits within a distance of 2 share a 2:1 half of their multiplexers,
+    // so that each bit maps to one LUT6 (instead of a shared LUT3 + a LUT5).  The copies differ
+    // in their reset (0, 1, none) only, so that synthesis keeps them apart; y2r = 0 after reset,
+    // hence y3 = 0 whatever the copies hold.
+    reg  [1:0]   c4a, c4b, c4c;
+    always @(posedge clk) begin
+        if (rst) c4b <= 2'b11;
+        else     c4b <= c3[1:0];
+        c4c <= c3[1:0];
+    end
     reg  [OPW:0] y3;                    // S >>> (c - 1): y3[0] is the rounding bit
     reg  [1:0]   c4i;
     integer      bi3;
@@ -333,8 +343,8 @@ module mpc_operand (
         for (bi3 = 0; bi3 <= OPW; bi3 = bi3 + 1) begin
             case (bi3 % 3)
                 0:       c4i = c4a;
-                1:       c4i = {~c4b[1], ~c4b[1] ^ c4b[0]};
-                default: c4i = {c4c[1] ^ c4c[0], ~c4c[0]};
+                1:       c4i = c4b;
+                default: c4i = c4c;
             endcase
             case (c4i)
                 2'd0:    y3[bi3] = y2r[bi3];
@@ -372,7 +382,7 @@ module mpc_operand (
             a_addr <= 6'd0; a_zero <= 1'b1; b_zero <= 1'b1; sub1r <= 1'b0; nosig1 <= 1'b0; ebar1 <= 1'b0;
             b_sel1 <= B_SCR; hf1 <= F_WS; cd1 <= {CB{1'b0}};
             sub2 <= 1'b0; nosig2 <= 1'b0; nosig3 <= 1'b0;
-            c2 <= {CB{1'b0}}; c3 <= {CB{1'b0}}; c4a <= 2'd0; c4b <= 2'd2; c4c <= 2'd3; ur3 <= 1'b0;
+            c2 <= {CB{1'b0}}; c3 <= {CB{1'b0}}; c4a <= 2'd0; ur3 <= 1'b0;
             av <= {SW{1'b0}};
             bv <= {SW{1'b0}};
             lim2 <= {(SW-1){1'b0}}; lim3 <= {(SW-1){1'b0}};
@@ -421,8 +431,6 @@ module mpc_operand (
             nf_hr <= nf_hi;
             y_sgn <= d_sgn;
             c4a <= c3[1:0];
-            c4b <= {~c3[1], c3[1] ^ c3[0]};
-            c4c <= {~(c3[1] ^ c3[0]), ~c3[0]};
             if (kind3 == `MPC_K_EBA) begin
                 clamp_o[idx3] <= clamp;
                 neg_o[idx3] <= d_sgn;
