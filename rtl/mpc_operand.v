@@ -274,7 +274,9 @@ module mpc_operand (
     reg  [1:0]   idx2, idx3;
     reg          sub2, nosig2, nosig3;
     reg  [CB-1:0] c2, c3;
-    reg          ur3;
+    // O3 item decode, registered at O2 (one flip-flop per use instead of kind3 / idx3 logic)
+    reg          yc3, eba3, ur3;
+    reg  [2:0]   eba3_o;                // EBA item for o
     // A + (B ^ sub) + sub, the carry-in as an extra LSB (keeps A on the carry chain's DI inputs)
     wire [SW+1:0] d0x = {av[SW-1], av, 1'b1} + {({bv[SW-1], bv} ^ {(SW+1){sub2}}), sub2};
     wire [SW:0]  d0 = d0x[SW+1:1];
@@ -298,16 +300,39 @@ module mpc_operand (
     wire [SW+2:0] ccmpx = {dv[SW], dv, 1'b0} - {lx, 1'b1};
     wire          clamp = ccmpx[SW+2] ^ ~d_sgn;
     // op = sat18(rshift_round(S, c)), c = 4 c[3:2] + c[1:0]: Y1 >>> 4 c[3:2] here (a 4:1
-    // multiplexer per bit), >> c[1:0], rounding and saturation at O4
+    // multiplexer per bit), >> c[1:0], rounding and saturation at O4.  The shift takes the
+    // unsaturated D (SW + 1 bit; Y1 = D << 1), which keeps the multiplexers off the saturation
+    // logic: when D overflows SW bit, S and D give the same result for c <= 13 and for c = 14,
+    // D > 0 (saturated); for c = 14, D < 0 (OMIN) and c = 15 (+-2^16), both not saturated,
+    // O4 overrides it (o_k, o_15).  For UR items (S = sat24(D), c = C_UR) D gives the same
+    // operand too: both saturate when D does not fit 24 bit.
     wire [SW+12:0] y1e = {{12{d_sgn}}, sv, 1'b0};
+    // c[3:2] in three copies, one per output bit group (i / 4) mod 3, for the same reason as
+    // c[1:0] at O4 (bits 4 and 8 apart would share 2:1 halves): c3[3:2] and two more that
+    // differ in their reset only (dv = 0 after reset, so y2 = 0 whatever they hold)
+    reg  [1:0]   c3b, c3c;
+    always @(posedge clk) begin
+        if (rst) c3b <= 2'b11;
+        else     c3b <= c2[3:2];
+        c3c <= c2[3:2];
+    end
     reg  [OPW+3:0] y2;                  // Y1 >>> 4 c[3:2], positions 0..21
+    reg  [1:0]   c3i;
+    integer      bi2;
     always @* begin
-        case (c3[3:2])
-            2'd0:    y2 = y1e[OPW+3:0];
-            2'd1:    y2 = y1e[OPW+7:4];
-            2'd2:    y2 = y1e[OPW+11:8];
-            default: y2 = y1e[OPW+15:12];
-        endcase
+        for (bi2 = 0; bi2 <= OPW + 3; bi2 = bi2 + 1) begin
+            case ((bi2 / 4) % 3)
+                0:       c3i = c3[3:2];
+                1:       c3i = c3b;
+                default: c3i = c3c;
+            endcase
+            case (c3i)
+                2'd0:    y2[bi2] = y1e[bi2];
+                2'd1:    y2[bi2] = y1e[bi2 + 4];
+                2'd2:    y2[bi2] = y1e[bi2 + 8];
+                default: y2[bi2] = y1e[bi2 + 12];
+            endcase
+        end
     end
     // the result fits 18 bit iff Y1 bits [SW-1 : 18 + c] equal the sign (Y1 bit p = S bit p-1):
     // bits above the y2 window (>= 22 + 4 c[3:2]) by groups of 4, the rest in y2 (>= 18 + c[1:0])
@@ -373,8 +398,8 @@ module mpc_operand (
     integer o;
     always @(posedge clk) begin
         // scratch RAM write (O3)
-        if (kind3 == `MPC_K_YC || kind3 == `MPC_K_EBA)
-            sbuf[(kind3 == `MPC_K_YC ? R_Y : R_INC) + {2'd0, idx3}] <= s_y1;
+        if (yc3 || eba3)
+            sbuf[(eba3 ? R_INC : R_Y) | {2'd0, idx3}] <= s_y1;
         if (rst) begin
             kind1 <= `MPC_K_NONE; kind2 <= `MPC_K_NONE; kind3 <= `MPC_K_NONE;
             kind4 <= `MPC_K_NONE; kind5 <= `MPC_K_NONE;
@@ -382,7 +407,7 @@ module mpc_operand (
             a_addr <= 6'd0; a_zero <= 1'b1; b_zero <= 1'b1; sub1r <= 1'b0; nosig1 <= 1'b0; ebar1 <= 1'b0;
             b_sel1 <= B_SCR; hf1 <= F_WS; cd1 <= {CB{1'b0}};
             sub2 <= 1'b0; nosig2 <= 1'b0; nosig3 <= 1'b0;
-            c2 <= {CB{1'b0}}; c3 <= {CB{1'b0}}; c4a <= 2'd0; ur3 <= 1'b0;
+            c2 <= {CB{1'b0}}; c3 <= {CB{1'b0}}; c4a <= 2'd0; yc3 <= 1'b0; eba3 <= 1'b0; ur3 <= 1'b0; eba3_o <= 3'd0;
             av <= {SW{1'b0}};
             bv <= {SW{1'b0}};
             lim2 <= {(SW-1){1'b0}}; lim3 <= {(SW-1){1'b0}};
@@ -422,7 +447,11 @@ module mpc_operand (
             lim2 <= hdr[SW-2:0];
             // O2 -> O3
             dv <= d0;
+            yc3 <= (kind2 == `MPC_K_YC);
+            eba3 <= (kind2 == `MPC_K_EBA);
             ur3 <= (kind2 == `MPC_K_UR);
+            for (o = 0; o < 3; o = o + 1)
+                eba3_o[o] <= (kind2 == `MPC_K_EBA && idx2 == o[1:0]);
             c3 <= c2;
             nosig3 <= nosig2;
             lim3 <= lim2;
@@ -431,14 +460,15 @@ module mpc_operand (
             nf_hr <= nf_hi;
             y_sgn <= d_sgn;
             c4a <= c3[1:0];
-            if (kind3 == `MPC_K_EBA) begin
-                clamp_o[idx3] <= clamp;
-                neg_o[idx3] <= d_sgn;
-            end
+            for (o = 0; o < 3; o = o + 1)
+                if (eba3_o[o]) begin
+                    clamp_o[o] <= clamp;
+                    neg_o[o] <= d_sgn;
+                end
             if (kind3 == `MPC_K_EBB)
                 for (o = 0; o < 3; o = o + 1)
                     if (idx3 == o[1:0]) ebar_s[o*SW +: SW] <= s_y1;
-            if (kind3 == `MPC_K_UR) begin
+            if (ur3) begin
                 if (idx3[0]) ur_q <= u_s;
                 else         ur_d <= u_s;
             end
@@ -462,9 +492,9 @@ module mpc_operand (
                 f_u <= 1'b0;
             end else begin
                 if (kind3 == `MPC_K_COL && d_ovf && !nosig3) f_signal <= 1'b1;
-                if (kind3 == `MPC_K_EBA && alg2 && clamp) f_ebar_inc <= 1'b1;
+                if (eba3 && alg2 && clamp) f_ebar_inc <= 1'b1;
                 if (kind3 == `MPC_K_EBB && alg2 && d_ovf) f_ebar <= 1'b1;
-                if (kind3 == `MPC_K_UR && !u_fit) f_u <= 1'b1;
+                if (ur3 && !u_fit) f_u <= 1'b1;
                 if (kind4 == `MPC_K_COL && a_sat) f_operand <= 1'b1;
                 if ((kind5 == `MPC_K_WN && sat5) || (kind5 == `MPC_K_LO && w_lt) || (kind5 == `MPC_K_HI && !w_lt))
                     f_wn <= 1'b1;
