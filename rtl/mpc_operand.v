@@ -12,8 +12,8 @@
 //   O1  read A = buffer word or 0, B = scratch word / header field / du[i] / 0 -> registers
 //       (the ebar_lim clamp of EBAR columns / EBB items is applied here)
 //   O2  D = A + B or A - B (SIG_W + 1 bit)
-//   O3  S = satSW(D) (UR: sat24(D), also u_raw); Y1 = S << 1 >>> 4 c[3:2]; scratch write
-//       (YC, EBA), EBA clamp decision, EBB ebar
+//   O3  S = satSW(D) (UR: sat24(D), also u_raw); scratch write (YC, EBA), EBA clamp
+//       decision, EBB ebar; operand: Y1 = D << 1 >>> 4 c[3:2], fit test above that window
 //   O4  op = sat18(rshift_round(S, c)): Y1 >> c[1:0], round, saturate; op_next = f instead
 //       when sel_f (limiter)
 //   O5  op valid; WN / LO / HI: wn register (clamp steps), UMX: wn_s = wn, wn = op
@@ -25,7 +25,9 @@
 // Flags (sticky, cleared by clr): f_signal (a column's signal saturated to SIG_W bit),
 //   f_operand, f_wn (wn != unsaturated rshift_round(omega, ws)), f_ebar, f_ebar_inc, f_u.
 // Parameters: none (widths and the word map from empc_formats.vh).
-// Reset: registers 0 (the buffers are LUT RAM: not reset, initial contents 0).
+// Reset: registers 0 (the buffers are LUT RAM: not reset, initial contents 0), except two
+//   copies each of c[3:2] (O3) and c[1:0] (O4) that reset to 3 or not at all: they only
+//   select among zeros until an item arrives.
 `default_nettype none
 `include "empc_formats.vh"
 `include "mpc_items.vh"
@@ -151,14 +153,13 @@ module mpc_operand (
     reg  [1:0]  b_sel0;
     reg  [2:0]  hf0;
     always @* begin
-        // x = don't care, the value is not used: a_addr when A = 0, b_sel when B = 0, nosig for
-        // other kinds than COL (sub with B = 0 does not matter either: A + ~0 + 1 = A)
-        a_addr0 = {6{1'bx}};
+        // sub does not matter when B = 0 (A + ~0 + 1 = A): 1 for all columns
+        a_addr0 = 6'd0;
         a_zero0 = 1'b1;
         b_zero0 = 1'b1;
-        b_sel0  = 2'bxx;
+        b_sel0  = B_SCR;                    // y[o] (R_Y + o) / inc[o] (R_INC + o)
         sub0    = 1'b0;
-        nosig0  = 1'bx;
+        nosig0  = 1'b0;
         hf0     = F_LIM | {1'b0, idx};
         ebar0   = 1'b0;
         case (kind)
@@ -170,7 +171,6 @@ module mpc_operand (
                 a_addr0 = base_idx(IN_WREF, idx);
                 a_zero0 = 1'b0;
                 b_zero0 = 1'b0;
-                b_sel0  = B_SCR;            // y[o] at R_Y + o
                 sub0    = 1'b1;
             end
             `MPC_K_WN: begin
@@ -199,9 +199,7 @@ module mpc_operand (
             `MPC_K_COL: begin
                 a_addr0 = e_aa;
                 hf0     = F_LIM | {1'b0, e_o};
-                b_sel0  = B_SCR;            // y[o] at R_Y + o
                 sub0    = 1'b1;
-                nosig0  = 1'b0;
                 case (e_cat)
                     CT_WREL: begin
                         a_zero0 = !e_inh;
@@ -227,7 +225,6 @@ module mpc_operand (
         // ebar_prev[o] + inc[o] (algorithm 2, no clamp; the clamp is patched in at O1)
         if (ebar0 && alg2) begin
             b_zero0 = 1'b0;
-            b_sel0  = B_SCR;                // inc[o] at R_INC + o
             sub0    = 1'b0;
         end
     end
@@ -306,7 +303,7 @@ module mpc_operand (
     // D > 0 (saturated); for c = 14, D < 0 (OMIN) and c = 15 (+-2^16), both not saturated,
     // O4 overrides it (o_k, o_15).  For UR items (S = sat24(D), c = C_UR) D gives the same
     // operand too: both saturate when D does not fit 24 bit.
-    wire [SW+12:0] y1e = {{12{d_sgn}}, sv, 1'b0};
+    wire [SW+13:0] y1e = {{12{d_sgn}}, dv, 1'b0};
     // c[3:2] in three copies, one per output bit group (i / 4) mod 3, for the same reason as
     // c[1:0] at O4 (bits 4 and 8 apart would share 2:1 halves): c3[3:2] and two more that
     // differ in their reset only (dv = 0 after reset, so y2 = 0 whatever they hold)
@@ -347,7 +344,7 @@ module mpc_operand (
     wire         g34   = |y_x[21:16];
     wire         nf_hi = g34 | (c3[3:2] < 2'd3 && g30) | (c3[3:2] < 2'd2 && g26) | (c3[3:2] == 2'd0 && g22);
     reg  [OPW+3:0] y2r;
-    reg          nf_hr, y_sgn;
+    reg          nf_hr, y_sgn, o_k, o_15;
 
     // ---- O4: >> c[1:0] (a 4:1 multiplexer per bit, also the rounding incrementer's input) ----
     // c[1:0] is registered three times, one copy per output bit i mod 3: with a select of its
@@ -384,8 +381,8 @@ module mpc_operand (
     wire [OPW-1:0] a1  = a1x[OPW:1];
     wire [3:0]   y2x   = y2r[OPW+3:OPW] ^ {4{y_sgn}};     // y2 positions 18..21
     wire         nf_lo = y2x[3] | (c4a < 2'd3 && y2x[2]) | (c4a < 2'd2 && y2x[1]) | (c4a == 2'd0 && y2x[0]);
-    wire         a_sat = nf_hr | nf_lo | (a1[OPW-1] & ~y3[OPW]);
-    wire signed [OPW-1:0] a_s = a_sat ? (y_sgn ? OMIN : OMAX) : a1;
+    wire         a_sat = ~o_k & (nf_hr | nf_lo | (a1[OPW-1] & ~y3[OPW]));
+    wire signed [OPW-1:0] a_s = o_k ? {y_sgn, o_15, {(OPW-2){1'b0}}} : a_sat ? (y_sgn ? OMIN : OMAX) : a1;
     assign op_next = sel_f ? f : a_s;
     reg          sat5;
 
@@ -412,7 +409,7 @@ module mpc_operand (
             bv <= {SW{1'b0}};
             lim2 <= {(SW-1){1'b0}}; lim3 <= {(SW-1){1'b0}};
             dv <= {(SW+1){1'b0}};
-            y2r <= {(OPW+4){1'b0}}; nf_hr <= 1'b0; y_sgn <= 1'b0;
+            y2r <= {(OPW+4){1'b0}}; nf_hr <= 1'b0; y_sgn <= 1'b0; o_k <= 1'b0; o_15 <= 1'b0;
             op <= {OPW{1'b0}};
             sat5 <= 1'b0;
             wn <= {OPW{1'b0}};
@@ -458,6 +455,8 @@ module mpc_operand (
             // O3 -> O4
             y2r <= y2;
             nf_hr <= nf_hi;
+            o_k <= d_ovf && (c3 == 4'd15 || (c3 == 4'd14 && d_sgn));
+            o_15 <= d_ovf && c3 == 4'd15;
             y_sgn <= d_sgn;
             c4a <= c3[1:0];
             for (o = 0; o < 3; o = o + 1)
@@ -502,6 +501,6 @@ module mpc_operand (
         end
     end
 
-    wire unused_ok = &{1'b0, y1e[SW+12:OPW+16], a1x[0], ccmpx[SW+1:0], d0x[0], wdx[0], wd[OPW-1:0], hdr[SW-1], y_x[3:0]};
+    wire unused_ok = &{1'b0, y1e[SW+13:OPW+16], a1x[0], ccmpx[SW+1:0], d0x[0], wdx[0], wd[OPW-1:0], hdr[SW-1], y_x[3:0]};
 endmodule
 `default_nettype wire
