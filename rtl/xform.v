@@ -182,8 +182,10 @@ module xform #(
     // ---------------- stage 0 -> 1: operand registers ----------------
     // Each is cleared (synchronous reset: no LUT) unless it is this row's source, so the
     // A operand is the OR of the A-side registers and the B operand the sum D + B0.
-    reg  [W-1:0] rf_a [0:15];
-    reg  [W-1:0] rf_b [0:15];
+    // register files in block RAM (write port: write-back; read port: the registered operand
+    // fetch with its clear as the output reset), not LUT-RAM: 24 LUTs less, block RAMs are spare
+    (* ram_style = "block" *) reg [W-1:0] rf_a [0:15];
+    (* ram_style = "block" *) reg [W-1:0] rf_b [0:15];
     initial begin
         for (k = 0; k < 16; k = k + 1) rf_b[k] = RFB_INIT[k*W +: W];
     end
