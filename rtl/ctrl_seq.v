@@ -149,7 +149,8 @@ module ctrl_seq #(
     end endgenerate
 
     // ---------------- per-period bookkeeping ----------------
-    reg  [7:0]  per_cnt;            // PWM periods since the last control period
+    reg  [7:0]  per_nx;             // PWM periods since the last control period, + 1 (mod 256):
+                                    // held incremented so that the compare needs no adder in front
     reg         is_control;
     reg         first, mfirst;
     reg  [15:0] lat_cnt;
@@ -158,7 +159,7 @@ module ctrl_seq #(
     reg  signed [UW-1:0] u_st0, u_st1;
     reg         zeroed;             // run was low since the last core update: u_prev = ebar_prev = 0
     wire        trig = adc_trig && !busy_period;
-    wire        ctl_now = (per_cnt + 8'd1 >= pwm_per_control);
+    wire        ctl_now = (per_nx >= pwm_per_control);
 
     // ---------------- transform chain: one microprogrammed MAC (xform) ----------------
     reg  xf_front, xf_mod;
@@ -547,7 +548,6 @@ module ctrl_seq #(
         overrun <= 1'b0;
         front_sat <= 1'b0;
         if (rst) begin
-            per_cnt <= 8'd0;
             is_control <= 1'b0;
             first <= 1'b1;
             mfirst <= 1'b1;
@@ -600,13 +600,11 @@ module ctrl_seq #(
                 prog_done <= 1'b0;
                 core_fin <= 1'b0;
                 if (ctl_now) begin
-                    per_cnt <= 8'd0;
                     is_control <= 1'b1;
                     pos_sample <= 1'b1;
                     ref_advance <= 1'b1;
                     pos_trig <= pos;
                 end else begin
-                    per_cnt <= per_cnt + 8'd1;
                     is_control <= 1'b0;
                 end
             end
@@ -738,6 +736,15 @@ module ctrl_seq #(
             else if (mrun && m_end)
                 mrun <= 1'b0;
         end
+    end
+
+    // period count: its own block, so that the restart is the flip-flops' set/reset and the
+    // trigger their enable (no multiplexer in front of the incrementer)
+    always @(posedge clk) begin
+        if (rst || go_ctl)
+            per_nx <= 8'd1;
+        else if (trig)
+            per_nx <= per_nx + 8'd1;
     end
 
     // held u: loaded at core_done, 0 while run is low (flip-flop reset and enable, no mux)
