@@ -552,7 +552,6 @@ module ctrl_seq #(
             first <= 1'b1;
             mfirst <= 1'b1;
             busy_period <= 1'b0;
-            lat_cnt <= 16'd0;
             latency <= 16'd0;
             pos_trig <= {PW{1'b0}};
             theta_trig <= {AB{1'b0}};
@@ -562,7 +561,6 @@ module ctrl_seq #(
             th_done <= 1'b0;
             ang_run <= 1'b0;
             ang_done <= 1'b0;
-            jt <= 4'd0;
             pc <= 7'd0;
             est <= E_IDLE;
             cnt_pend <= 1'b0;
@@ -579,8 +577,6 @@ module ctrl_seq #(
             mrun <= 1'b0;
         end else begin
             pc <= pc_next;
-            if (busy_period)
-                lat_cnt <= lat_cnt + 16'd1;
             if (period_start && busy_period)
                 overrun <= 1'b1;
             zeroed <= core_done ? 1'b0 : (!run ? 1'b1 : zeroed);
@@ -590,8 +586,6 @@ module ctrl_seq #(
                 mfirst <= first;
                 first <= 1'b0;
                 busy_period <= 1'b1;
-                lat_cnt <= 16'd0;
-                jt <= 4'd0 - THETA_LAT[3:0];
                 th_wait_run <= 1'b1;
                 th_done <= 1'b0;
                 ang_done <= 1'b0;
@@ -611,7 +605,6 @@ module ctrl_seq #(
 
             // ---- theta: latch (THETA_LAT clocks after the count), theta_mod pass, angle register ----
             if (th_wait_run || th_run || ang_run) begin        // (jt wraps from 15 to 0)
-                jt <= jt + 4'd1;
                 if (th_wait_run && jt == 4'd15) begin
                     theta_trig <= theta;
                     th_wait_run <= 1'b0;
@@ -747,6 +740,20 @@ module ctrl_seq #(
             per_nx <= per_nx + 8'd1;
     end
 
+    // latency and theta counters: restarted by the trigger (flip-flop set/reset), counting as
+    // enable.  Not reset by rst: both are restarted by the trigger before they are read, and
+    // they never count when the trigger comes (busy_period low: no theta pass in flight)
+    always @(posedge clk) begin
+        if (trig)
+            lat_cnt <= 16'd0;
+        else if (busy_period)
+            lat_cnt <= lat_cnt + 16'd1;
+        if (trig)
+            jt <= 4'd0 - THETA_LAT[3:0];
+        else if (th_wait_run || th_run || ang_run)
+            jt <= jt + 4'd1;
+    end
+
     // held u: loaded at core_done, 0 while run is low (flip-flop reset and enable, no mux)
     always @(posedge clk) begin
         if (rst || (!run && !core_done)) begin
@@ -829,7 +836,8 @@ module ctrl_seq #(
         if (in_pass && p_r1 && is_diff && diff_q) iqp <= {a_bit, iqp[IW-1:1]};
         if (in_pass && p_r1 && is_w6) omp <= {a_bit, omp[WW-1:1]};
         if (in_pass && p_r2) om <= {r, om[WW-1:1]};
-        // multiplier: s + 40 steps through ka, which keeps the last 41 product bits
+        // multiplier: s + 40 steps through ka, which keeps the last 41 product bits (mk, ms: not
+        // reset by rst, m_start loads them before mrun rises)
         if (m_start) begin
             mk <= 7'd89;                                     // -39
             ms <= 19'sd0;
@@ -864,8 +872,6 @@ module ctrl_seq #(
             omp <= {WW{1'b0}};
             tp <= {AB{1'b0}};
             ang <= {AB{1'b0}};
-            mk <= 7'd0;
-            ms <= 19'sd0;
         end
     end
 
