@@ -194,19 +194,46 @@ module ctrl_seq #(
     localparam integer PCI_CNT  = PCI_RSTZ + 6;        // the counter sweep
     localparam [6:0]   PC_STAT = PCI_STAT[6:0], PC_RSTZ = PCI_RSTZ[6:0], PC_CNT = PCI_CNT[6:0];
     localparam integer NCNT = 14;   // SAT_OPERAND .. CNT_OVERRUN, PERIODS
-    reg [17:0] ucode [0:127];      // (initial values only: copied into crom)
-    function [17:0] uword;
+    // Pass kinds PK_*: the non-reference kinds are 0..6 (PK_CNT also for the ops without a pass),
+    // the reference kinds {1, 0, task_pos, m == 0}, so that the microword holds the kind but
+    // for the one bit that task_pos decides.
+    localparam [3:0] PK_POS = 4'd0, PK_DIFF = 4'd1, PK_OM = 4'd2, PK_FIX3 = 4'd3, PK_W6 = 4'd4,
+                     PK_STAT = 4'd5, PK_CNT = 4'd6, PK_REFS = 4'd8, PK_REFS0 = 4'd9, PK_REFP = 4'd10,
+                     PK_REFP0 = 4'd11;
+    localparam [5:0] ST_REF = `EMPC_A_REF, ST_I_D = `EMPC_A_I_D, ST_SPEED = `EMPC_A_SPEED;
+    // Microword, 36 bits: the fields op, src, wa (core address), m (reference age) and what is
+    // decoded from them once, here, instead of in logic behind the block RAM: m == 0, the status
+    // address, one flag per pass op (registered as is_*), "subtracts" (but for the reference,
+    // whose sign task_pos decides) and the pass kind (its bit 1 for a reference: task_pos).
+    localparam integer UW_M0 = 17, UW_ST = 18, UW_F = 24, UW_SUB = 32, UW_PK = 33;
+    reg [35:0] ucode [0:127];      // (initial values only: copied into urom)
+    function [35:0] uword;
         input [3:0] op;
         input [3:0] src;
         input [5:0] wa;
         input [2:0] m;
-        uword = {1'b0, m, wa, src, op};
+        reg   [5:0] st;
+        reg   [2:0] k;         // pass kind, bits 2:0 (bit 3: op == OP_REF)
+        begin
+            st = (op == OP_REF) ? ST_REF : (op == OP_DIFF) ? (ST_I_D + {5'd0, src[0]}) :
+                 (op == OP_FIX3) ? ST_SPEED : wa;
+            case (op)
+                OP_POS: k = PK_POS[2:0];
+                OP_REF: k = (m == 3'd0) ? PK_REFS0[2:0] : PK_REFS[2:0];
+                OP_DIFF: k = PK_DIFF[2:0];
+                OP_OM: k = PK_OM[2:0];
+                OP_FIX3: k = PK_FIX3[2:0];
+                OP_W6: k = PK_W6[2:0];
+                OP_STAT: k = PK_STAT[2:0];
+                default: k = PK_CNT[2:0];
+            endcase
+            uword = {k, (op == OP_POS) || (op == OP_DIFF) || (op == OP_W6),
+                     op == OP_CNT, op == OP_STAT, op == OP_W6, op == OP_FIX3, op == OP_OM,
+                     op == OP_DIFF, op == OP_REF, op == OP_POS, st, m == 3'd0, m, wa, src, op};
+        end
     endfunction
     // Pass control table, one word per (pass kind, bit j): which registers shift, when the
-    // pass ends, sign holds, flag strobes (PC_* bits below); kinds PK_*.
-    localparam [3:0] PK_POS = 4'd0, PK_REFP0 = 4'd1, PK_REFP = 4'd2, PK_REFS0 = 4'd3, PK_REFS = 4'd4,
-                     PK_DIFF = 4'd5, PK_OM = 4'd6, PK_FIX3 = 4'd7, PK_W6 = 4'd8, PK_STAT = 4'd9,
-                     PK_CNT = 4'd10;
+    // pass ends, sign holds, flag strobes (PC_* bits below).
     localparam integer PC_XS = 0, PC_PE = 1, PC_SS = 2, PC_HA = 3, PC_HB = 4, PC_CA = 5, PC_CB = 6,
                        PC_R1 = 7, PC_R2 = 8, PC_R3 = 9, PC_AL = 10, PC_L31 = 11, PC_L16 = 12, PC_F1 = 13,
                        PC_F2 = 14, PC_F3 = 15, PC_W0 = 16, PC_G = 17;
@@ -264,7 +291,8 @@ module ctrl_seq #(
             pctl = w;
         end
     endfunction
-    (* rom_style = "block" *) reg [17:0] crom [0:1023];     // 0..767 pass table, 896.. microprogram
+    (* rom_style = "block" *) reg [17:0] crom [0:1023];     // pass table (kinds 0..11, 64 bits each)
+    (* rom_style = "block" *) reg [35:0] urom [0:127];      // microprogram
     integer ui, ua, uk;
     initial begin
         for (ui = 0; ui < 1024; ui = ui + 1) crom[ui] = 18'd0;
@@ -311,11 +339,11 @@ module ctrl_seq #(
         end
         ucode[PCI_CNT + NCNT - 1] = uword(OP_CNT, 4'd13, `EMPC_A_PERIODS, 3'd0);
         ucode[PCI_CNT + NCNT] = uword(OP_CEND, 4'd0, 6'd0, 3'd0);
-        for (ui = 0; ui < 128; ui = ui + 1) crom[896 + ui] = ucode[ui];
+        for (ui = 0; ui < 128; ui = ui + 1) urom[ui] = ucode[ui];
     end
     reg  [6:0]  pc;
     reg  [6:0]  pc_next;
-    reg  [17:0] uw;                 // ucode[pc]
+    reg  [35:0] uw;                 // ucode[pc]
     wire [3:0]  u_op  = uw[3:0];
     wire [3:0]  u_src = uw[7:4];
     wire [5:0]  u_wa  = uw[13:8];
@@ -334,15 +362,15 @@ module ctrl_seq #(
     // so the registered flags are valid from the clock after E_OP on: in every state where the
     // pass datapath acts.  What acts in E_OP itself (next state, pass table and status
     // addresses, ALU carry preset, zero writes) uses the unregistered op_* decode.
-    wire op_pos  = (u_op == OP_POS);
-    wire op_ref  = (u_op == OP_REF);
-    wire op_diff = (u_op == OP_DIFF);
-    wire op_om   = (u_op == OP_OM);
-    wire op_fix3 = (u_op == OP_FIX3);
-    wire op_w6   = (u_op == OP_W6);
-    wire op_stat = (u_op == OP_STAT);
-    wire op_cnt  = (u_op == OP_CNT);
-    wire op_sub  = op_pos || op_diff || op_w6 || (op_ref && task_pos);     // the pass subtracts B
+    wire op_pos  = uw[UW_F + 0];
+    wire op_ref  = uw[UW_F + 1];
+    wire op_diff = uw[UW_F + 2];
+    wire op_om   = uw[UW_F + 3];
+    wire op_fix3 = uw[UW_F + 4];
+    wire op_w6   = uw[UW_F + 5];
+    wire op_stat = uw[UW_F + 6];
+    wire op_cnt  = uw[UW_F + 7];
+    wire op_sub  = uw[UW_SUB] || (op_ref && task_pos);     // the pass subtracts B
     reg  is_pos, is_ref, is_diff, is_om, is_fix3, is_w6, is_stat, is_cnt, diff_q, sub, is_sat;
     always @(posedge clk) begin
         {is_pos, is_ref, is_diff, is_om, is_fix3, is_w6, is_stat, is_cnt} <=
@@ -351,7 +379,7 @@ module ctrl_seq #(
         sub     <= op_sub;
         is_sat  <= op_pos || op_ref || op_w6;       // result saturated to SW bits
     end
-    wire m0      = (u_m == 3'd0);
+    wire m0      = uw[UW_M0];
     wire in_pass = (est == E_PASS);
 
     // ---------------- stage registers and X ----------------
@@ -472,8 +500,7 @@ module ctrl_seq #(
     assign st_sh   = in_pass && p_ss;
     assign st_d    = is_fix3 ? r : is_cnt ? (r && !cz && u_src != 4'd15) : a_raw;
     assign st_wr   = pass_end && ((is_ref && m0) || is_diff || is_fix3 || is_stat || (is_cnt && !csat));
-    localparam [5:0] ST_REF = `EMPC_A_REF, ST_I_D = `EMPC_A_I_D, ST_SPEED = `EMPC_A_SPEED;
-    assign st_addr = op_ref ? ST_REF : op_diff ? (ST_I_D + {5'd0, u_src[0]}) : op_fix3 ? ST_SPEED : u_wa;
+    assign st_addr = uw[UW_ST +: 6];
     assign st_bit  = j_nx[4:0];                                 // the counter bit needed next clock
     wire [15:0] ev16 = {2'b00, cnt_ev};
     wire   ev_k    = ev16[u_src] && !cz;
@@ -512,19 +539,7 @@ module ctrl_seq #(
     end
     reg  [17:0] pw;                 // pass control word of (pass kind, j)
     reg  [5:0]  j_nx;
-    reg  [3:0]  pk;
-    always @(*) begin
-        case (u_op)
-            OP_POS: pk = PK_POS;
-            OP_REF: pk = task_pos ? (m0 ? PK_REFP0 : PK_REFP) : (m0 ? PK_REFS0 : PK_REFS);
-            OP_DIFF: pk = PK_DIFF;
-            OP_OM: pk = PK_OM;
-            OP_FIX3: pk = PK_FIX3;
-            OP_W6: pk = PK_W6;
-            OP_STAT: pk = PK_STAT;
-            default: pk = PK_CNT;
-        endcase
-    end
+    wire [3:0]  pk = {op_ref, uw[UW_PK + 2], uw[UW_PK + 1] | (op_ref & task_pos), uw[UW_PK]};
     always @(*) begin
         j_nx = j;
         if (est == E_OP) j_nx = op_ref ? ref_j0 : 6'd0;
@@ -532,7 +547,7 @@ module ctrl_seq #(
         else if (est == E_FIX) j_nx = fix_end ? 6'd0 : j + 6'd1;
     end
     always @(posedge clk) begin
-        uw <= crom[{3'b111, pc_next}];
+        uw <= urom[pc_next];
         pw <= crom[{pk, j_nx}];
     end
 
@@ -875,6 +890,5 @@ module ctrl_seq #(
         end
     end
 
-    wire unused = &{1'b0, uw[17]};
 endmodule
 `default_nettype wire
