@@ -205,9 +205,36 @@ module ctrl_seq #(
     // decoded from them once, here, instead of in logic behind the block RAM: m == 0, the status
     // address, one flag per pass op (registered as is_*), "subtracts" (but for the reference,
     // whose sign task_pos decides) and the pass kind (its bit 1 for a reference: task_pos).
+    // A second 36-bit word per step (ub, the block RAM's second port) holds the engine's decode:
+    // the stage selects (active low, one per source SRC_*), the next-state classes of E_OP (to
+    // E_STG, to E_PASS, to E_IDLE; the waits are the op flags), the zero writes, the end markers,
+    // "back to E_OP after the pass", "saturated to SW bits" and the counter source checks.
     localparam integer UW_M0 = 17, UW_ST = 18, UW_F = 24, UW_SUB = 32, UW_PK = 33;
-    reg [35:0] ucode [0:127];      // (initial values only: copied into urom)
-    function [35:0] uword;
+    localparam integer UB_NSEL = 0, UB_STG = 10, UB_PASS = 11, UB_ZERO = 12, UB_IDLE = 13, UB_END = 14,
+                       UB_CEND = 15, UB_COPY = 16, UB_WZ = 17, UB_ZPOS = 18, UB_BACK = 19, UB_SAT = 20,
+                       UB_CSOK = 21, UB_STOK = 22;
+    localparam integer NSRC = 10;  // SRC_POS .. SRC_IQ
+    reg [71:0] ucode [0:127];      // (initial values only: copied into urom as {ub, uw})
+    function [35:0] uwordb;
+        input [3:0] op;
+        input [3:0] src;
+        reg   [NSRC-1:0] ns;
+        begin
+            ns = {src != SRC_IQ, src != SRC_ID, src != SRC_IQR, src != SRC_IDR, src != SRC_U1,
+                  src != SRC_U0, src != SRC_E2, src != SRC_E1, src != SRC_E0, src != SRC_POS};
+            uwordb = {13'd0, src != 4'd15, (src != 4'd13) && (src != 4'd15),
+                      (op == OP_POS) || (op == OP_REF) || (op == OP_W6),
+                      (op == OP_OM) || (op == OP_STAT) || (op == OP_CNT),
+                      op == OP_ZPOS, op == OP_ZERO, op == OP_COPY, op == OP_CEND, op == OP_END,
+                      !((op == OP_POS) || (op == OP_COPY) || (op == OP_STAT) || (op == OP_DIFF) ||
+                        (op == OP_REF) || (op == OP_OM) || (op == OP_FIX3) || (op == OP_W6) ||
+                        (op == OP_CNT) || (op == OP_ZERO) || (op == OP_ZPOS)),
+                      (op == OP_ZERO) || (op == OP_ZPOS),
+                      (op == OP_FIX3) || (op == OP_W6) || (op == OP_CNT),
+                      (op == OP_POS) || (op == OP_COPY) || (op == OP_STAT), ns};
+        end
+    endfunction
+    function [35:0] uworda;
         input [3:0] op;
         input [3:0] src;
         input [5:0] wa;
@@ -227,10 +254,17 @@ module ctrl_seq #(
                 OP_STAT: k = PK_STAT[2:0];
                 default: k = PK_CNT[2:0];
             endcase
-            uword = {k, (op == OP_POS) || (op == OP_DIFF) || (op == OP_W6),
+            uworda = {k, (op == OP_POS) || (op == OP_DIFF) || (op == OP_W6),
                      op == OP_CNT, op == OP_STAT, op == OP_W6, op == OP_FIX3, op == OP_OM,
                      op == OP_DIFF, op == OP_REF, op == OP_POS, st, m == 3'd0, m, wa, src, op};
         end
+    endfunction
+    function [71:0] uword;
+        input [3:0] op;
+        input [3:0] src;
+        input [5:0] wa;
+        input [2:0] m;
+        uword = {uwordb(op, src), uworda(op, src, wa, m)};
     endfunction
     // Pass control table, one word per (pass kind, bit j): which registers shift, when the
     // pass ends, sign holds, flag strobes (PC_* bits below).
@@ -292,7 +326,7 @@ module ctrl_seq #(
         end
     endfunction
     (* rom_style = "block" *) reg [17:0] crom [0:1023];     // pass table (kinds 0..11, 64 bits each)
-    (* rom_style = "block" *) reg [35:0] urom [0:127];      // microprogram
+    (* rom_style = "block" *) reg [35:0] urom [0:255];      // microprogram: uw at pc, ub at 128 + pc
     integer ui, ua, uk;
     initial begin
         for (ui = 0; ui < 1024; ui = ui + 1) crom[ui] = 18'd0;
@@ -339,11 +373,14 @@ module ctrl_seq #(
         end
         ucode[PCI_CNT + NCNT - 1] = uword(OP_CNT, 4'd13, `EMPC_A_PERIODS, 3'd0);
         ucode[PCI_CNT + NCNT] = uword(OP_CEND, 4'd0, 6'd0, 3'd0);
-        for (ui = 0; ui < 128; ui = ui + 1) urom[ui] = ucode[ui];
+        for (ui = 0; ui < 128; ui = ui + 1) begin
+            urom[ui] = ucode[ui][35:0];
+            urom[128 + ui] = ucode[ui][71:36];
+        end
     end
     reg  [6:0]  pc;
     reg  [6:0]  pc_next;
-    reg  [35:0] uw;                 // ucode[pc]
+    reg  [35:0] uw, ub;             // ucode[pc]
     wire [3:0]  u_op  = uw[3:0];
     wire [3:0]  u_src = uw[7:4];
     wire [5:0]  u_wa  = uw[13:8];
@@ -371,13 +408,14 @@ module ctrl_seq #(
     wire op_stat = uw[UW_F + 6];
     wire op_cnt  = uw[UW_F + 7];
     wire op_sub  = uw[UW_SUB] || (op_ref && task_pos);     // the pass subtracts B
-    reg  is_pos, is_ref, is_diff, is_om, is_fix3, is_w6, is_stat, is_cnt, diff_q, sub, is_sat;
+    reg  is_pos, is_ref, is_diff, is_om, is_fix3, is_w6, is_stat, is_cnt, diff_q, sub, is_sat, is_back;
     always @(posedge clk) begin
         {is_pos, is_ref, is_diff, is_om, is_fix3, is_w6, is_stat, is_cnt} <=
             {op_pos, op_ref, op_diff, op_om, op_fix3, op_w6, op_stat, op_cnt};
         diff_q  <= u_src[0];        // SRC_IQ (9) vs SRC_ID (8)
         sub     <= op_sub;
-        is_sat  <= op_pos || op_ref || op_w6;       // result saturated to SW bits
+        is_sat  <= ub[UB_SAT];      // result saturated to SW bits (POS, REF, W6)
+        is_back <= ub[UB_BACK];     // back to E_OP at the pass end (OM, STAT, CNT)
     end
     wire m0      = uw[UW_M0];
     wire in_pass = (est == E_PASS);
@@ -390,26 +428,31 @@ module ctrl_seq #(
     reg  [IW-1:0] g_id, g_iq, g_idr, g_iqr;
     reg  [SW-1:0] g_e0, g_e1, g_e2;
     reg  [UW-1:0] g_u0, g_u1;
-    reg           g_s18, g_s24;    // sign of the staged 18-bit source / of any 18- or 24-bit source
-    wire          sel = (est == E_STG);
-    wire          src18 = (u_src == SRC_ID) || (u_src == SRC_IQ) || (u_src == SRC_IDR) || (u_src == SRC_IQR);
-    wire          sgn18 = (u_src == SRC_ID) ? i_d[IW-1] : (u_src == SRC_IQ) ? i_q[IW-1] :
-                          (u_src == SRC_IDR) ? id_ref[IW-1] : iq_ref[IW-1];
-    wire          sgn24 = (u_src == SRC_U0) ? u_st0[UW-1] : u_st1[UW-1];
+    // The selects are registered in the E_OP clock that enters E_STG (the step word ub cannot
+    // change before E_LD), active low so that they drive the stage flip-flops' reset directly;
+    // ebar_prev is selected unless zeroed is set in the E_STG clock (zeroed's next value).
+    reg  [NSRC-1:0] nsel;
+    wire          to_stg = !rst && (est == E_OP) && !go_ctl && (ub[UB_STG] || (op_diff && front_done));
+    wire          zeroed_nx = rst || (!core_done && (!run || zeroed));
     always @(posedge clk) begin
-        g_pos <= (sel && u_src == SRC_POS) ? pos_trig : {PW{1'b0}};
-        g_id  <= (sel && u_src == SRC_ID)  ? i_d : {IW{1'b0}};
-        g_iq  <= (sel && u_src == SRC_IQ)  ? i_q : {IW{1'b0}};
-        g_idr <= (sel && u_src == SRC_IDR) ? id_ref : {IW{1'b0}};
-        g_iqr <= (sel && u_src == SRC_IQR) ? iq_ref : {IW{1'b0}};
-        g_e0  <= (sel && u_src == SRC_E0 && !zeroed) ? core_ebar[0*SW +: SW] : {SW{1'b0}};
-        g_e1  <= (sel && u_src == SRC_E1 && !zeroed) ? core_ebar[1*SW +: SW] : {SW{1'b0}};
-        g_e2  <= (sel && u_src == SRC_E2 && !zeroed) ? core_ebar[2*SW +: SW] : {SW{1'b0}};
-        g_u0  <= (sel && u_src == SRC_U0) ? u_st0 : {UW{1'b0}};
-        g_u1  <= (sel && u_src == SRC_U1) ? u_st1 : {UW{1'b0}};
-        g_s18 <= sel && src18 && sgn18;
-        g_s24 <= sel && (src18 ? sgn18 : (u_src == SRC_U0 || u_src == SRC_U1) && sgn24);
+        nsel <= to_stg ? ub[UB_NSEL +: NSRC] : {NSRC{1'b1}};
+        if (zeroed_nx) nsel[SRC_E2:SRC_E0] <= 3'b111;
     end
+    always @(posedge clk) begin
+        g_pos <= nsel[SRC_POS] ? {PW{1'b0}} : pos_trig;
+        g_id  <= nsel[SRC_ID]  ? {IW{1'b0}} : i_d;
+        g_iq  <= nsel[SRC_IQ]  ? {IW{1'b0}} : i_q;
+        g_idr <= nsel[SRC_IDR] ? {IW{1'b0}} : id_ref;
+        g_iqr <= nsel[SRC_IQR] ? {IW{1'b0}} : iq_ref;
+        g_e0  <= nsel[SRC_E0]  ? {SW{1'b0}} : core_ebar[0*SW +: SW];
+        g_e1  <= nsel[SRC_E1]  ? {SW{1'b0}} : core_ebar[1*SW +: SW];
+        g_e2  <= nsel[SRC_E2]  ? {SW{1'b0}} : core_ebar[2*SW +: SW];
+        g_u0  <= nsel[SRC_U0]  ? {UW{1'b0}} : u_st0;
+        g_u1  <= nsel[SRC_U1]  ? {UW{1'b0}} : u_st1;
+    end
+    // sign of the staged 18-bit source / of any 18- or 24-bit source (unselected stages are 0)
+    wire          g_s18 = g_id[IW-1] | g_iq[IW-1] | g_idr[IW-1] | g_iqr[IW-1];
+    wire          g_s24 = g_s18 | g_u0[UW-1] | g_u1[UW-1];
     // the OR of the stages, sign-extended through the two registered sign bits; bits
     // 17:0 have 11 inputs with X's own shift: split 6 + 5 so that each is one LUT6
     (* keep *) wire [IW-1:0] g_lo = x[IW:1] | g_pos[IW-1:0] | g_e0[IW-1:0] | g_e1[IW-1:0] | g_e2[IW-1:0] |
@@ -486,7 +529,7 @@ module ctrl_seq #(
     wire       x_load  = (est == E_LD);
     wire       x_clr   = (est == E_WR && !(is_fix3 && !task_pos)) || (est == E_WR2) ||
                          (pass_end && ((is_sat && ovf_now) || is_stat));
-    wire       wr_zero = (est == E_OP) && ((u_op == OP_ZERO) || (u_op == OP_ZPOS && task_pos));
+    wire       wr_zero = (est == E_OP) && (ub[UB_WZ] || (ub[UB_ZPOS] && task_pos));
     assign core_in_we   = (est == E_WR) || (est == E_WR2) || wr_zero || (in_pass && p_w0);
     // (dx0, dx1 at y0 + 4, y1 + 4; the second FIX3 write: y2 = omega, at omega - 1)
     assign core_in_addr = {u_wa[5:3], u_wa[2] | (est == E_WR && is_diff), u_wa[1], u_wa[0] & (est != E_WR2)};
@@ -498,7 +541,7 @@ module ctrl_seq #(
     reg        cz;                  // zero sweep
     reg        csat;                // the counter was 2^32-1 (carry out of bit 31, registered)
     assign st_sh   = in_pass && p_ss;
-    assign st_d    = is_fix3 ? r : is_cnt ? (r && !cz && u_src != 4'd15) : a_raw;
+    assign st_d    = is_fix3 ? r : is_cnt ? (r && !cz && ub[UB_STOK]) : a_raw;
     assign st_wr   = pass_end && ((is_ref && m0) || is_diff || is_fix3 || is_stat || (is_cnt && !csat));
     assign st_addr = uw[UW_ST +: 6];
     assign st_bit  = j_nx[4:0];                                 // the counter bit needed next clock
@@ -523,12 +566,12 @@ module ctrl_seq #(
     wire quiet   = (est == E_IDLE) && !busy_period && !xf_mod && !trig;
     wire go_rstz = quiet && hide_st;
     wire go_cnt  = quiet && !hide_st && (hide_cnt || cnt_pend);
-    assign cnt_done = (est == E_OP) && (u_op == OP_CEND);
+    assign cnt_done = (est == E_OP) && ub[UB_CEND];
     assign cnt_hide = hide_cnt;
     assign st_hide  = hide_st;
-    wire step    = (est == E_OP && (u_op == OP_ZERO || u_op == OP_ZPOS)) ||
+    wire step    = (est == E_OP && ub[UB_ZERO]) ||
                    (est == E_WR && !(is_fix3 && !task_pos)) || (est == E_WR2) ||
-                   (pass_end && (is_om || is_stat || is_cnt));
+                   (pass_end && is_back);
     always @(*) begin
         if (go_ctl) pc_next = 7'd0;
         else if (go_stat) pc_next = PC_STAT;
@@ -547,7 +590,8 @@ module ctrl_seq #(
         else if (est == E_FIX) j_nx = fix_end ? 6'd0 : j + 6'd1;
     end
     always @(posedge clk) begin
-        uw <= urom[pc_next];
+        uw <= urom[{1'b0, pc_next}];
+        ub <= urom[{1'b1, pc_next}];
         pw <= crom[{pk, j_nx}];
     end
 
@@ -694,31 +738,20 @@ module ctrl_seq #(
             case (est)
                 E_IDLE: ;
                 E_OP: begin
-                    begin
-                        case (u_op)
-                            OP_POS, OP_COPY, OP_STAT: est <= E_STG;
-                            OP_DIFF: if (front_done) est <= E_STG;
-                            OP_REF: if (ref_ok) est <= E_PASS;
-                            OP_OM: if (!mrun) est <= E_PASS;
-                            OP_FIX3: begin
-                                est <= E_PASS;
-                                if (spd_ovf || om_ovf) front_sat <= 1'b1;
-                            end
-                            OP_W6, OP_CNT: est <= E_PASS;
-                            OP_ZERO, OP_ZPOS: ;                  // written in this clock (pc + 1)
-                            OP_END: begin
-                                est <= E_IDLE;
-                                prog_done <= 1'b1;
-                            end
-                            default: est <= E_IDLE;              // OP_SEND, OP_CEND
-                        endcase
-                    end
+                    // POS, COPY, STAT; DIFF when the front is done / REF when the references are
+                    // current, OM when the product is ready; FIX3, W6, CNT / END, SEND, CEND;
+                    // ZERO, ZPOS stay (written in this clock, pc + 1)
+                    if (ub[UB_STG] || (op_diff && front_done)) est <= E_STG;
+                    else if (ub[UB_PASS] || (op_ref && ref_ok) || (op_om && !mrun)) est <= E_PASS;
+                    else if (ub[UB_IDLE]) est <= E_IDLE;
+                    if (op_fix3 && (spd_ovf || om_ovf)) front_sat <= 1'b1;
+                    if (ub[UB_END]) prog_done <= 1'b1;
                 end
                 E_STG: est <= E_LD;
-                E_LD: est <= (u_op == OP_COPY) ? E_WR : E_PASS;
+                E_LD: est <= ub[UB_COPY] ? E_WR : E_PASS;
                 E_PASS: begin
                     if (pass_end) begin
-                        if (is_om || is_stat || is_cnt) est <= E_OP;
+                        if (is_back) est <= E_OP;
                         else if (is_sat && ovf_now) begin
                             est <= E_FIX;
                             if (!is_ref) front_sat <= 1'b1;   // dx2, dx3 saturated (model: front_sat)
@@ -807,7 +840,7 @@ module ctrl_seq #(
             c1 <= maj & c1;
         end
         if (in_pass && p_ca) a_h <= a_raw;                   // sign of a 32-bit A (bit 31)
-        if (in_pass && p_ca) csat <= maj && !cz && u_src != 4'd13 && u_src != 4'd15;
+        if (in_pass && p_ca) csat <= maj && !cz && ub[UB_CSOK];
         if (in_pass && p_cb) b_h <= b_raw;                   // sign of B (bit 17 or 31)
         // POS pass: dpos sign sd, spd = dpos << 16 overflows if dpos bits 31..15 are not all equal
         if (in_pass && is_pos) begin
@@ -890,5 +923,8 @@ module ctrl_seq #(
         end
     end
 
+    // the op code stays in the microword (decoded at build time into the flags and ub; the test
+    // bench reads it), ub's top bits are spare
+    wire unused = &{1'b0, u_op, ub[35:UB_STOK+1]};
 endmodule
 `default_nettype wire
