@@ -134,14 +134,14 @@ module xform #(
     wire [4:0]     u_dst  = uc[17:13];
 
     // pipeline control: valid, accumulator load, trig sign, destination
-    reg        v1, v2, v3, v4;
+    reg        v1, v2, v3;
+    reg        h1, h2, h3, h4;                  // valid and with a write-back (dst != D_NONE)
     reg [1:0]  c1, c2, c3;
     reg        n1, n2, n3;
     reg [4:0]  d1, d2, d3, d4;
-    wire       pend  = (v1 && d1 != D_NONE) || (v2 && d2 != D_NONE) || (v3 && d3 != D_NONE) ||
-                       (v4 && d4 != D_NONE);
+    wire       pend  = h1 || h2 || h3 || h4;
     wire       issue = run && !(u_wait && pend);
-    wire       fin   = v4 && (d4 == D_IQ || d4 == D_CMPC);            // final write-back
+    wire       fin   = h4 && (d4 == D_IQ || d4 == D_CMPC);            // final write-back
     wire [PCW-1:0] pc_next = acc_front ? PC_FRONT : acc_mod ? PC_MOD : pc + {{(PCW-1){1'b0}}, issue};
 
     always @(posedge clk) begin
@@ -200,26 +200,27 @@ module xform #(
     reg  [SH-1:0]      k_q;                                            // kdc >> 4 or (kdc & 15) << 12
     wire [W-KLB-1:0]   kh = r_kdc[W-1:KLB];
     wire [KLB-1:0]     kl = r_kdc[KLB-1:0];
+    // (no rst: a row's operands are used only if it was issued, and v1 is reset)
     always @(posedge clk) begin
-        rfa_q <= (rst || u_a[4])      ? {W{1'b0}}    : rf_a[ra];
-        rom_q <= (rst || !is_rom)     ? {(W-1){1'b0}} : rom[rom_addr][W-2:0];
-        xa_q  <= (rst || u_a != A_IA16) ? {IN_W{1'b0}} : r_ia;
-        xb_q  <= (rst || u_a != A_IB4)  ? {IN_W{1'b0}} : r_ib;
-        xc_q  <= (rst || u_a != A_IC4)  ? {IN_W{1'b0}} : r_ic;
-        xdh_q <= (rst || u_a != A_UHD)  ? {W{1'b0}}    : r_ud[UW-1:ULB];
-        xqh_q <= (rst || u_a != A_UHQ)  ? {W{1'b0}}    : r_uq[UW-1:ULB];
-        xdl_q <= (rst || u_a != A_ULD)  ? {ULB{1'b0}}  : r_ud[ULB-1:0];
-        xql_q <= (rst || u_a != A_ULQ)  ? {ULB{1'b0}}  : r_uq[ULB-1:0];
-        rfb_q <= (rst || u_b[4])      ? {W{1'b0}}    : rf_b[u_b[3:0]];
-        f_q   <= (rst || u_b != B_F)  ? {(FB+2){1'b0}} : fs;
-        k_q   <= (rst || u_b == B_F || !u_b[4]) ? {SH{1'b0}} :
+        rfa_q <= u_a[4]              ? {W{1'b0}}    : rf_a[ra];
+        rom_q <= !is_rom             ? {(W-1){1'b0}} : rom[rom_addr][W-2:0];
+        xa_q  <= (u_a != A_IA16)     ? {IN_W{1'b0}} : r_ia;
+        xb_q  <= (u_a != A_IB4)      ? {IN_W{1'b0}} : r_ib;
+        xc_q  <= (u_a != A_IC4)      ? {IN_W{1'b0}} : r_ic;
+        xdh_q <= (u_a != A_UHD)      ? {W{1'b0}}    : r_ud[UW-1:ULB];
+        xqh_q <= (u_a != A_UHQ)      ? {W{1'b0}}    : r_uq[UW-1:ULB];
+        xdl_q <= (u_a != A_ULD)      ? {ULB{1'b0}}  : r_ud[ULB-1:0];
+        xql_q <= (u_a != A_ULQ)      ? {ULB{1'b0}}  : r_uq[ULB-1:0];
+        rfb_q <= u_b[4]              ? {W{1'b0}}    : rf_b[u_b[3:0]];
+        f_q   <= (u_b != B_F)        ? {(FB+2){1'b0}} : fs;
+        k_q   <= (u_b == B_F || !u_b[4]) ? {SH{1'b0}} :
                  (u_b == B_KH) ? {{(SH-W+KLB){1'b0}}, kh} : {kl, {(SH-KLB){1'b0}}};
     end
     always @(posedge clk) begin
         if (rst) begin
-            v1 <= 1'b0; c1 <= C_ACC; n1 <= 1'b0; d1 <= D_NONE;
+            v1 <= 1'b0; h1 <= 1'b0; c1 <= C_ACC; n1 <= 1'b0; d1 <= D_NONE;
         end else begin
-            v1 <= issue; c1 <= u_csel; n1 <= neg; d1 <= u_dst;
+            v1 <= issue; h1 <= issue && (u_dst != D_NONE); c1 <= u_csel; n1 <= neg; d1 <= u_dst;
         end
     end
 
@@ -251,10 +252,10 @@ module xform #(
     end
     always @(posedge clk) begin
         if (rst) begin
-            v2 <= 1'b0; v3 <= 1'b0; v4 <= 1'b0; c2 <= C_ACC; c3 <= C_ACC; n2 <= 1'b0; n3 <= 1'b0;
+            v2 <= 1'b0; v3 <= 1'b0; h2 <= 1'b0; h3 <= 1'b0; h4 <= 1'b0; c2 <= C_ACC; c3 <= C_ACC; n2 <= 1'b0; n3 <= 1'b0;
             d2 <= D_NONE; d3 <= D_NONE; d4 <= D_NONE;
         end else begin
-            v2 <= v1; v3 <= v2; v4 <= v3;
+            v2 <= v1; v3 <= v2; h2 <= h1; h3 <= h2; h4 <= h3;
             c2 <= c1; c3 <= c2; n2 <= n1; n3 <= n2;
             d2 <= d1; d3 <= d2; d4 <= d3;
         end
@@ -270,7 +271,7 @@ module xform #(
     wire         is_cmp = (d4 == D_CMPA) || (d4 == D_CMPB) || (d4 == D_CMPC);
     wire         clamp  = is_cmp && (r_win > HPW);                     // compare values are >= 0
     wire [W-1:0] y      = ovf ? {p_neg, {(W-1){~p_neg}}} : clamp ? HPW : r_win;
-    wire         wb     = v4 && d4 != D_NONE;
+    wire         wb     = h4;
     wire         flag   = (d4 == D_FLAG1) || (d4 == D_FLAG2);
     reg  [W-1:0]  id_st;
     reg  [CW-1:0] ca_st, cb_st;
@@ -295,16 +296,16 @@ module xform #(
                 sat_acc <= 1'b0;
             else if (wb && !flag && d4[4:1] != D_UDV[4:1])          // not u_to_v (UDV, UQV)
                 sat_acc <= sat_acc || ovf || clamp;
-            if (v4 && d4 == D_FLAG1) sel_m1 <= p_neg ? A_UA[3:0] : A_PB[3:0];   // u_A < u_B
-            if (v4 && d4 == D_FLAG2) sel_m  <= p_neg ? sel_m1 : A_PC[3:0];      // min(u_A, u_B) < u_C
-            if (v4 && d4 == D_ID) id_st <= y;
-            if (v4 && d4 == D_IQ) begin
+            if (h4 && d4 == D_FLAG1) sel_m1 <= p_neg ? A_UA[3:0] : A_PB[3:0];   // u_A < u_B
+            if (h4 && d4 == D_FLAG2) sel_m  <= p_neg ? sel_m1 : A_PC[3:0];      // min(u_A, u_B) < u_C
+            if (h4 && d4 == D_ID) id_st <= y;
+            if (h4 && d4 == D_IQ) begin
                 i_d <= id_st;
                 i_q <= y;
             end
-            if (v4 && d4 == D_CMPA) ca_st <= y[CW-1:0];
-            if (v4 && d4 == D_CMPB) cb_st <= y[CW-1:0];
-            if (v4 && d4 == D_CMPC) begin
+            if (h4 && d4 == D_CMPA) ca_st <= y[CW-1:0];
+            if (h4 && d4 == D_CMPB) cb_st <= y[CW-1:0];
+            if (h4 && d4 == D_CMPC) begin
                 cmp_a <= ca_st;
                 cmp_b <= cb_st;
                 cmp_c <= y[CW-1:0];
