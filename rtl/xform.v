@@ -138,10 +138,10 @@ module xform #(
     reg        h1, h2, h3, h4;                  // valid and with a write-back (dst != D_NONE)
     reg [1:0]  c1, c2, c3;
     reg        n1, n2, n3;
-    reg [4:0]  d1, d2, d3, d4;
+    reg [4:0]  d1, d2, d3;
     wire       pend  = h1 || h2 || h3 || h4;
     wire       issue = run && !(u_wait && pend);
-    wire       fin   = h4 && (d4 == D_IQ || d4 == D_CMPC);            // final write-back
+    wire       fin;                                                    // final write-back
     wire [PCW-1:0] pc_next = acc_front ? PC_FRONT : acc_mod ? PC_MOD : pc + {{(PCW-1){1'b0}}, issue};
 
     always @(posedge clk) begin
@@ -253,13 +253,47 @@ module xform #(
     always @(posedge clk) begin
         if (rst) begin
             v2 <= 1'b0; v3 <= 1'b0; h2 <= 1'b0; h3 <= 1'b0; h4 <= 1'b0; c2 <= C_ACC; c3 <= C_ACC; n2 <= 1'b0; n3 <= 1'b0;
-            d2 <= D_NONE; d3 <= D_NONE; d4 <= D_NONE;
+            d2 <= D_NONE; d3 <= D_NONE;
         end else begin
             v2 <= v1; v3 <= v2; h2 <= h1; h3 <= h2; h4 <= h3;
             c2 <= c1; c3 <= c2; n2 <= n1; n3 <= n2;
-            d2 <= d1; d3 <= d2; d4 <= d3;
+            d2 <= d1; d3 <= d2;
         end
     end
+
+    // ---------------- stage 4: destination decode ----------------
+    // A 32-entry table (block RAM) read with d3: its output register is the stage-4 decode of
+    // the destination, reset unless the row has a write-back (h3), so that every strobe below is
+    // one table bit, without decode logic.  Bits DQ_*; the RF_A / RF_B address is d[3:0].
+    localparam integer DQ_AD = 0, DQ_WA = 4, DQ_WB = 5, DQ_F1 = 6, DQ_F2 = 7, DQ_ID = 8, DQ_IQ = 9,
+                       DQ_CA = 10, DQ_CB = 11, DQ_CC = 12, DQ_CMP = 13, DQ_FIN = 14, DQ_SACC = 15;
+    function [W-1:0] dclass;
+        input [4:0] d;
+        begin
+            dclass = {W{1'b0}};
+            dclass[DQ_AD +: 4] = d[3:0];
+            dclass[DQ_WA] = !d[4];                                                 // RF_A
+            dclass[DQ_WB] = (d[4:2] == 3'b100) && (d[1:0] != 2'b00);               // RF_B: S, C, MS
+            dclass[DQ_F1] = (d == D_FLAG1);
+            dclass[DQ_F2] = (d == D_FLAG2);
+            dclass[DQ_ID] = (d == D_ID);
+            dclass[DQ_IQ] = (d == D_IQ);
+            dclass[DQ_CA] = (d == D_CMPA);
+            dclass[DQ_CB] = (d == D_CMPB);
+            dclass[DQ_CC] = (d == D_CMPC);
+            dclass[DQ_CMP] = (d == D_CMPA) || (d == D_CMPB) || (d == D_CMPC);
+            dclass[DQ_FIN] = (d == D_IQ) || (d == D_CMPC);
+            // counts for sat: not a flag, not u_to_v (UDV, UQV)
+            dclass[DQ_SACC] = (d != D_FLAG1) && (d != D_FLAG2) && (d[4:1] != D_UDV[4:1]);
+        end
+    endfunction
+    (* rom_style = "block" *) reg [W-1:0] dtab [0:31];
+    initial begin
+        for (k = 0; k < 32; k = k + 1) dtab[k] = dclass(k[4:0]);
+    end
+    reg  [W-1:0] dq;
+    always @(posedge clk) dq <= (rst || !h3) ? {W{1'b0}} : dtab[d3];
+    assign fin = dq[DQ_FIN];
 
     // ---------------- stage 4: window, saturation, write-back ----------------
     /* verilator lint_off UNUSEDSIGNAL */  // p_r[SH-1:0] is below the output window
@@ -268,18 +302,16 @@ module xform #(
     /* verilator lint_on UNUSEDSIGNAL */
     // the window is out of range iff bits AW-1 .. SH+W-1 are not all equal
     wire         ovf    = ~(&p_r[AW-1:SH+W-1] | ~|p_r[AW-1:SH+W-1]);
-    wire         is_cmp = (d4 == D_CMPA) || (d4 == D_CMPB) || (d4 == D_CMPC);
+    wire         is_cmp = dq[DQ_CMP];
     wire         clamp  = is_cmp && (r_win > HPW);                     // compare values are >= 0
     wire [W-1:0] y      = ovf ? {p_neg, {(W-1){~p_neg}}} : clamp ? HPW : r_win;
-    wire         wb     = h4;
-    wire         flag   = (d4 == D_FLAG1) || (d4 == D_FLAG2);
     reg  [W-1:0]  id_st;
     reg  [CW-1:0] ca_st, cb_st;
     reg           sat_acc;
 
     always @(posedge clk) begin
-        if (wb && !d4[4]) rf_a[d4[3:0]] <= y;
-        if (wb && d4[4:2] == 3'b100 && d4[1:0] != 2'b00) rf_b[{2'b00, d4[1:0]}] <= y;
+        if (dq[DQ_WA]) rf_a[dq[DQ_AD +: 4]] <= y;
+        if (dq[DQ_WB]) rf_b[{2'b00, dq[DQ_AD +: 2]}] <= y;
     end
 
     always @(posedge clk) begin
@@ -294,18 +326,18 @@ module xform #(
             sat  <= fin && (sat_acc || ovf || clamp);
             if (acc_front || acc_mod)
                 sat_acc <= 1'b0;
-            else if (wb && !flag && d4[4:1] != D_UDV[4:1])          // not u_to_v (UDV, UQV)
+            else if (dq[DQ_SACC])
                 sat_acc <= sat_acc || ovf || clamp;
-            if (h4 && d4 == D_FLAG1) sel_m1 <= p_neg ? A_UA[3:0] : A_PB[3:0];   // u_A < u_B
-            if (h4 && d4 == D_FLAG2) sel_m  <= p_neg ? sel_m1 : A_PC[3:0];      // min(u_A, u_B) < u_C
-            if (h4 && d4 == D_ID) id_st <= y;
-            if (h4 && d4 == D_IQ) begin
+            if (dq[DQ_F1]) sel_m1 <= p_neg ? A_UA[3:0] : A_PB[3:0];   // u_A < u_B
+            if (dq[DQ_F2]) sel_m  <= p_neg ? sel_m1 : A_PC[3:0];      // min(u_A, u_B) < u_C
+            if (dq[DQ_ID]) id_st <= y;
+            if (dq[DQ_IQ]) begin
                 i_d <= id_st;
                 i_q <= y;
             end
-            if (h4 && d4 == D_CMPA) ca_st <= y[CW-1:0];
-            if (h4 && d4 == D_CMPB) cb_st <= y[CW-1:0];
-            if (h4 && d4 == D_CMPC) begin
+            if (dq[DQ_CA]) ca_st <= y[CW-1:0];
+            if (dq[DQ_CB]) cb_st <= y[CW-1:0];
+            if (dq[DQ_CC]) begin
                 cmp_a <= ca_st;
                 cmp_b <= cb_st;
                 cmp_c <= y[CW-1:0];
