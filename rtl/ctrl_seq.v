@@ -209,20 +209,24 @@ module ctrl_seq #(
     // the stage selects (active low, one per source SRC_*), the next-state classes of E_OP (to
     // E_STG, to E_PASS, to E_IDLE; the waits are the op flags), the zero writes, the end markers,
     // "back to E_OP after the pass", "saturated to SW bits" and the counter source checks.
-    localparam integer UW_M0 = 17, UW_ST = 18, UW_F = 24, UW_SUB = 32, UW_PK = 33;
+    localparam integer UW_AGE = 14, UW_ST = 18, UW_F = 24, UW_SUB = 32, UW_PK = 33;
     localparam integer UB_NSEL = 0, UB_STG = 10, UB_PASS = 11, UB_ZERO = 12, UB_IDLE = 13, UB_END = 14,
                        UB_CEND = 15, UB_COPY = 16, UB_WZ = 17, UB_ZPOS = 18, UB_BACK = 19, UB_SAT = 20,
-                       UB_CSOK = 21, UB_STOK = 22;
+                       UB_CSOK = 21, UB_STOK = 22, UB_STW = 23;
     localparam integer NSRC = 10;  // SRC_POS .. SRC_IQ
     reg [71:0] ucode [0:127];      // (initial values only: copied into urom as {ub, uw})
     function [35:0] uwordb;
         input [3:0] op;
         input [3:0] src;
+        input [2:0] m;
         reg   [NSRC-1:0] ns;
         begin
             ns = {src != SRC_IQ, src != SRC_ID, src != SRC_IQR, src != SRC_IDR, src != SRC_U1,
                   src != SRC_U0, src != SRC_E2, src != SRC_E1, src != SRC_E0, src != SRC_POS};
-            uwordb = {13'd0, src != 4'd15, (src != 4'd13) && (src != 4'd15),
+            uwordb = {12'd0,
+                      // status word out of this pass: REF (m = 0), I_D / I_Q, SPEED, U_D / U_Q
+                      ((op == OP_REF) && (m == 3'd0)) || (op == OP_DIFF) || (op == OP_FIX3) || (op == OP_STAT),
+                      src != 4'd15, (src != 4'd13) && (src != 4'd15),
                       (op == OP_POS) || (op == OP_REF) || (op == OP_W6),
                       (op == OP_OM) || (op == OP_STAT) || (op == OP_CNT),
                       op == OP_ZPOS, op == OP_ZERO, op == OP_COPY, op == OP_CEND, op == OP_END,
@@ -241,7 +245,9 @@ module ctrl_seq #(
         input [2:0] m;
         reg   [5:0] st;
         reg   [2:0] k;         // pass kind, bits 2:0 (bit 3: op == OP_REF)
+        reg   [3:0] age;       // ref_age = N - m
         begin
+            age = N[3:0] - {1'b0, m};
             st = (op == OP_REF) ? ST_REF : (op == OP_DIFF) ? (ST_I_D + {5'd0, src[0]}) :
                  (op == OP_FIX3) ? ST_SPEED : wa;
             case (op)
@@ -256,7 +262,7 @@ module ctrl_seq #(
             endcase
             uworda = {k, (op == OP_POS) || (op == OP_DIFF) || (op == OP_W6),
                      op == OP_CNT, op == OP_STAT, op == OP_W6, op == OP_FIX3, op == OP_OM,
-                     op == OP_DIFF, op == OP_REF, op == OP_POS, st, m == 3'd0, m, wa, src, op};
+                     op == OP_DIFF, op == OP_REF, op == OP_POS, st, age, wa, src, op};
         end
     endfunction
     function [71:0] uword;
@@ -264,7 +270,7 @@ module ctrl_seq #(
         input [3:0] src;
         input [5:0] wa;
         input [2:0] m;
-        uword = {uwordb(op, src), uworda(op, src, wa, m)};
+        uword = {uwordb(op, src, m), uworda(op, src, wa, m)};
     endfunction
     // Pass control table, one word per (pass kind, bit j): which registers shift, when the
     // pass ends, sign holds, flag strobes (PC_* bits below).
@@ -384,7 +390,6 @@ module ctrl_seq #(
     wire [3:0]  u_op  = uw[3:0];
     wire [3:0]  u_src = uw[7:4];
     wire [5:0]  u_wa  = uw[13:8];
-    wire [2:0]  u_m   = uw[16:14];
 
     // engine states
     localparam [2:0] E_IDLE = 3'd0, E_OP = 3'd1, E_STG = 3'd2, E_LD = 3'd3, E_PASS = 3'd4,
@@ -408,7 +413,7 @@ module ctrl_seq #(
     wire op_stat = uw[UW_F + 6];
     wire op_cnt  = uw[UW_F + 7];
     wire op_sub  = uw[UW_SUB] || (op_ref && task_pos);     // the pass subtracts B
-    reg  is_pos, is_ref, is_diff, is_om, is_fix3, is_w6, is_stat, is_cnt, diff_q, sub, is_sat, is_back;
+    reg  is_pos, is_ref, is_diff, is_om, is_fix3, is_w6, is_stat, is_cnt, diff_q, sub, is_sat, is_back, is_stw;
     always @(posedge clk) begin
         {is_pos, is_ref, is_diff, is_om, is_fix3, is_w6, is_stat, is_cnt} <=
             {op_pos, op_ref, op_diff, op_om, op_fix3, op_w6, op_stat, op_cnt};
@@ -416,8 +421,8 @@ module ctrl_seq #(
         sub     <= op_sub;
         is_sat  <= ub[UB_SAT];      // result saturated to SW bits (POS, REF, W6)
         is_back <= ub[UB_BACK];     // back to E_OP at the pass end (OM, STAT, CNT)
+        is_stw  <= ub[UB_STW];      // writes a status word at the pass end (counters: unless saturated)
     end
-    wire m0      = uw[UW_M0];
     wire in_pass = (est == E_PASS);
 
     // ---------------- stage registers and X ----------------
@@ -483,7 +488,7 @@ module ctrl_seq #(
     wire       p_ca  = pw[PC_CA], p_cb = pw[PC_CB], p_r1 = pw[PC_R1], p_r2 = pw[PC_R2], p_r3 = pw[PC_R3];
     wire       p_al  = pw[PC_AL], p_l31 = pw[PC_L31], p_l16 = pw[PC_L16], p_f1 = pw[PC_F1], p_f2 = pw[PC_F2];
     wire       p_f3  = pw[PC_F3], p_w0 = pw[PC_W0];
-    assign ref_age = N[AW-1:0] - u_m[AW-1:0];
+    assign ref_age = uw[UW_AGE +: AW];
     assign ref_bit = j;
 
     // A operand
@@ -542,7 +547,7 @@ module ctrl_seq #(
     reg        csat;                // the counter was 2^32-1 (carry out of bit 31, registered)
     assign st_sh   = in_pass && p_ss;
     assign st_d    = is_fix3 ? r : is_cnt ? (r && !cz && ub[UB_STOK]) : a_raw;
-    assign st_wr   = pass_end && ((is_ref && m0) || is_diff || is_fix3 || is_stat || (is_cnt && !csat));
+    assign st_wr   = pass_end && (is_stw || (is_cnt && !csat));
     assign st_addr = uw[UW_ST +: 6];
     assign st_bit  = j_nx[4:0];                                 // the counter bit needed next clock
     wire [15:0] ev16 = {2'b00, cnt_ev};
@@ -925,6 +930,6 @@ module ctrl_seq #(
 
     // the op code stays in the microword (decoded at build time into the flags and ub; the test
     // bench reads it), ub's top bits are spare
-    wire unused = &{1'b0, u_op, ub[35:UB_STOK+1]};
+    wire unused = &{1'b0, u_op, uw[UW_AGE + 3], ub[35:UB_STW+1]};   // (age bit 3: N = 8 only)
 endmodule
 `default_nettype wire
