@@ -42,7 +42,8 @@
 //            rounding bit product[s-1] in bit 0 (0 for s = 0).
 //   theta    own 1-bit adder: theta_mod = 2 theta_trig - theta_prev (theta_trig if first),
 //            written into the xform angle register after the front has started.
-//   sequence a microprogram (one word per core-input step, block RAM), the control
+//   sequence a microprogram (two 36-bit words per core-input step, block RAM, with the
+//            decode precomputed at elaboration; pass table in a second one), the control
 //            program from the trigger of a control period, a status program (U_D, U_Q)
 //            at every modulation start.
 //   status   the words I_D, I_Q, SPEED, REF (w_k in the task window: bits 47:16 speed,
@@ -160,6 +161,7 @@ module ctrl_seq #(
     reg         zeroed;             // run was low since the last core update: u_prev = ebar_prev = 0
     wire        trig = adc_trig && !busy_period;
     wire        ctl_now = (per_nx >= pwm_per_control);
+    wire [7:0]  per_cnt = per_nx - 8'd1;    // (read by sim/cosim_top.v only: no logic in synthesis)
 
     // ---------------- transform chain: one microprogrammed MAC (xform) ----------------
     reg  xf_front, xf_mod;
@@ -201,14 +203,15 @@ module ctrl_seq #(
                      PK_STAT = 4'd5, PK_CNT = 4'd6, PK_REFS = 4'd8, PK_REFS0 = 4'd9, PK_REFP = 4'd10,
                      PK_REFP0 = 4'd11;
     localparam [5:0] ST_REF = `EMPC_A_REF, ST_I_D = `EMPC_A_I_D, ST_SPEED = `EMPC_A_SPEED;
-    // Microword, 36 bits: the fields op, src, wa (core address), m (reference age) and what is
-    // decoded from them once, here, instead of in logic behind the block RAM: m == 0, the status
+    // Microword, 36 bits: the fields op, src, wa (core address), ref_age (N - m) and what is
+    // decoded from them once, here, instead of in logic behind the block RAM: the status
     // address, one flag per pass op (registered as is_*), "subtracts" (but for the reference,
     // whose sign task_pos decides) and the pass kind (its bit 1 for a reference: task_pos).
     // A second 36-bit word per step (ub, the block RAM's second port) holds the engine's decode:
     // the stage selects (active low, one per source SRC_*), the next-state classes of E_OP (to
     // E_STG, to E_PASS, to E_IDLE; the waits are the op flags), the zero writes, the end markers,
-    // "back to E_OP after the pass", "saturated to SW bits" and the counter source checks.
+    // "back to E_OP after the pass", "saturated to SW bits", "writes a status word" and the
+    // counter source checks.
     localparam integer UW_AGE = 14, UW_ST = 18, UW_F = 24, UW_SUB = 32, UW_PK = 33;
     localparam integer UB_NSEL = 0, UB_STG = 10, UB_PASS = 11, UB_ZERO = 12, UB_IDLE = 13, UB_END = 14,
                        UB_CEND = 15, UB_COPY = 16, UB_WZ = 17, UB_ZPOS = 18, UB_BACK = 19, UB_SAT = 20,
@@ -398,12 +401,12 @@ module ctrl_seq #(
     reg         prog_done, front_done, adc_seen, core_run, core_fin;
     reg  [5:0]  j;                  // bit of the pass
 
-    // The op decoded from uw, registered: uw comes out of block RAM (about 2 ns clock-to-out), and
+    // The op flags of uw, registered: uw comes out of block RAM (about 2 ns clock-to-out), and
     // decoding it in front of the serial ALU made the pass datapath 9 LUT levels deep (93.5 MHz
     // proxy).  uw changes only together with pc, which always enters E_OP for at least one clock,
     // so the registered flags are valid from the clock after E_OP on: in every state where the
     // pass datapath acts.  What acts in E_OP itself (next state, pass table and status
-    // addresses, ALU carry preset, zero writes) uses the unregistered op_* decode.
+    // addresses, ALU carry preset, zero writes) uses the unregistered op_* bits.
     wire op_pos  = uw[UW_F + 0];
     wire op_ref  = uw[UW_F + 1];
     wire op_diff = uw[UW_F + 2];
@@ -930,6 +933,6 @@ module ctrl_seq #(
 
     // the op code stays in the microword (decoded at build time into the flags and ub; the test
     // bench reads it), ub's top bits are spare
-    wire unused = &{1'b0, u_op, uw[UW_AGE + 3], ub[35:UB_STW+1]};   // (age bit 3: N = 8 only)
+    wire unused = &{1'b0, u_op, uw[UW_AGE + 3], ub[35:UB_STW+1], per_cnt};   // (age bit 3: N = 8 only)
 endmodule
 `default_nettype wire

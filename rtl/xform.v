@@ -10,13 +10,14 @@
 //
 // Datapath, one microword (18 bit) per clock from the block RAM's second port:
 //   stage 0  microword -> operand fetch into registers that are cleared unless selected:
-//            RF_A (LUT-RAM, results), RF_B (LUT-RAM: sin, cos, -sin and constants), sine
+//            RF_A (block RAM, results), RF_B (block RAM: sin, cos, -sin and constants), sine
 //            nodes (block RAM port A), the sampled inputs, +-f (interpolation), kdc parts
 //   stage 1  A = OR of the A-side registers, B = D + B0 (DSP pre-adder; one of them is 0)
 //   stage 2  product register
 //   stage 3  accumulator (48 bit in the DSP, 38 used): acc = (load ? C : acc) + product
 //   stage 4  write-back: y = sat18(acc >>> 16), compare values min(acc >>> 16, HP), into
-//            RF_A / RF_B / the minimum-select flags / the outputs
+//            RF_A / RF_B / the minimum-select flags / the outputs (strobes from a destination
+//            table in block RAM read at stage 3)
 //   A1REG, B1REG, pre-adder, MREG, post-adder with the C/P select and PREG are one DSP48A1.
 //   A row marked `wait` issues only when no pass is in flight (no result pending).
 //
@@ -38,10 +39,12 @@
 //   cmp_a..c         unsigned CW-bit compare values 0..PWM_HALF_PERIOD; only by a mod done
 // Parameters: IN_W (13, at most 14), PWM_HALF_PERIOD, CW (as pwm_center).
 // Latency (start cycle -> done cycle): front 23, mod 84 cycles (xform.latency(), tested).
-// Resources: 1 DSP48A1, 1 RAMB16 (sine nodes + microprogram), 6 RAM32M register files.
+// Resources: 1 DSP48A1, 1 RAMB16 (sine nodes + microprogram), 3 RAMB8 (RF_A, RF_B, destination
+//   table).
 // Reset: control, pipeline and output registers clear (outputs 0, not busy; an operation in
 //   flight is dropped).  The register files are not reset: every entry an operation reads is
-//   written by that operation first, or is a constant (RF_B initial contents).
+//   written by that operation first, or is a constant (RF_B initial contents).  Neither are the
+//   operand registers: a row's operands count only if it was issued (v1 is reset).
 `default_nettype none
 `include "empc_formats.vh"
 module xform #(
@@ -183,7 +186,8 @@ module xform #(
     // Each is cleared (synchronous reset: no LUT) unless it is this row's source, so the
     // A operand is the OR of the A-side registers and the B operand the sum D + B0.
     // register files in block RAM (write port: write-back; read port: the registered operand
-    // fetch with its clear as the output reset), not LUT-RAM: 24 LUTs less, block RAMs are spare
+    // fetch with its clear as the output reset), not LUT-RAM (24 LUTs).  No read ever meets a
+    // write of the same entry (xform.schedule()), so the ports' collision mode does not matter.
     (* ram_style = "block" *) reg [W-1:0] rf_a [0:15];
     (* ram_style = "block" *) reg [W-1:0] rf_b [0:15];
     initial begin
