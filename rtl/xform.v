@@ -139,8 +139,8 @@ module xform #(
     // pipeline control: valid, accumulator load, trig sign, destination
     reg        v1, v2, v3;
     reg        h1, h2, h3, h4;                  // valid and with a write-back (dst != D_NONE)
-    reg [1:0]  c1, c2, c3;
-    reg        n1, n2, n3;
+    reg [1:0]  c1, c2;
+    reg        n1, n2;
     reg [4:0]  d1, d2, d3;
     wire       pend  = h1 || h2 || h3 || h4;
     wire       issue = run && !(u_wait && pend);
@@ -242,8 +242,11 @@ module xform #(
     reg  signed [PW-1:0] prod_r;
     reg  signed [AW-1:0] p_r;
     // C: 0, 2^15 (round half up), 2^15 - 2^11 (negative sine, see xform.py)
-    wire signed [AW-1:0] c_val = {{(AW-SH){1'b0}}, c3 == C_RND || (c3 == C_TRIG && !n3),
-                                  {4{c3 == C_TRIG && n3}}, {(SH-5){1'b0}}};
+    // (load, bit 15, bits 14..11 of C) for the stage-3 row: the table's second half, read with
+    // (c2, n2) on its second port (the register is stage 3; only used while v3 is set)
+    reg  [2:0]           cq;
+    wire                 c_load = cq[2];
+    wire signed [AW-1:0] c_val = {{(AW-SH){1'b0}}, cq[1], {4{cq[0]}}, {(SH-5){1'b0}}};
     always @(posedge clk) begin
         if (rst) begin
             a_r <= {W{1'b0}}; b_r <= {W{1'b0}}; prod_r <= {PW{1'b0}}; p_r <= {AW{1'b0}};
@@ -251,16 +254,16 @@ module xform #(
             a_r    <= a_in;                                            // A1REG
             b_r    <= d_in + b_in;                                     // pre-adder, B1REG
             prod_r <= a_r * b_r;                                       // MREG
-            if (v3) p_r <= ((c3 != C_ACC) ? c_val : p_r) + {{(AW-PW){prod_r[PW-1]}}, prod_r};  // post-adder, PREG
+            if (v3) p_r <= (c_load ? c_val : p_r) + {{(AW-PW){prod_r[PW-1]}}, prod_r};  // post-adder, PREG
         end
     end
     always @(posedge clk) begin
         if (rst) begin
-            v2 <= 1'b0; v3 <= 1'b0; h2 <= 1'b0; h3 <= 1'b0; h4 <= 1'b0; c2 <= C_ACC; c3 <= C_ACC; n2 <= 1'b0; n3 <= 1'b0;
+            v2 <= 1'b0; v3 <= 1'b0; h2 <= 1'b0; h3 <= 1'b0; h4 <= 1'b0; c2 <= C_ACC; n2 <= 1'b0;
             d2 <= D_NONE; d3 <= D_NONE;
         end else begin
             v2 <= v1; v3 <= v2; h2 <= h1; h3 <= h2; h4 <= h3;
-            c2 <= c1; c3 <= c2; n2 <= n1; n3 <= n2;
+            c2 <= c1; n2 <= n1;
             d2 <= d1; d3 <= d2;
         end
     end
@@ -291,12 +294,22 @@ module xform #(
             dclass[DQ_SACC] = (d != D_FLAG1) && (d != D_FLAG2) && (d[4:1] != D_UDV[4:1]);
         end
     endfunction
-    (* rom_style = "block" *) reg [W-1:0] dtab [0:31];
+    // C select: load (c != C_ACC), C bit 15 (round half up: RND, or TRIG positive), C bits
+    // 14..11 (TRIG negative: 2^15 - 2^11)
+    function [W-1:0] cclass;
+        input [1:0] c;
+        input       n;
+        cclass = {{(W-3){1'b0}}, c != C_ACC, (c == C_RND) || (c == C_TRIG && !n), c == C_TRIG && n};
+    endfunction
+    (* rom_style = "block" *) reg [W-1:0] dtab [0:63];     // 0..31 destinations, 32..39 C select
     initial begin
-        for (k = 0; k < 32; k = k + 1) dtab[k] = dclass(k[4:0]);
+        for (k = 0; k < 64; k = k + 1) dtab[k] = (k < 32) ? dclass(k[4:0]) : cclass(k[2:1], k[0]);
     end
     reg  [W-1:0] dq;
-    always @(posedge clk) dq <= (rst || !h3) ? {W{1'b0}} : dtab[d3];
+    always @(posedge clk) begin
+        dq <= (rst || !h3) ? {W{1'b0}} : dtab[{1'b0, d3}];
+        cq <= dtab[{3'b100, c2, n2}][2:0];
+    end
     assign fin = dq[DQ_FIN];
 
     // ---------------- stage 4: window, saturation, write-back ----------------
