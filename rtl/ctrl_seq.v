@@ -200,7 +200,7 @@ module ctrl_seq #(
     // the reference kinds {1, 0, task_pos, m == 0}, so that the microword holds the kind but
     // for the one bit that task_pos decides.
     localparam [3:0] PK_POS = 4'd0, PK_DIFF = 4'd1, PK_OM = 4'd2, PK_FIX3 = 4'd3, PK_W6 = 4'd4,
-                     PK_STAT = 4'd5, PK_CNT = 4'd6, PK_REFS = 4'd8, PK_REFS0 = 4'd9, PK_REFP = 4'd10,
+                     PK_STAT = 4'd5, PK_CNT = 4'd6, PK_FIX = 4'd7, PK_REFS = 4'd8, PK_REFS0 = 4'd9, PK_REFP = 4'd10,
                      PK_REFP0 = 4'd11;
     localparam [5:0] ST_REF = `EMPC_A_REF, ST_I_D = `EMPC_A_I_D, ST_SPEED = `EMPC_A_SPEED;
     // Microword, 36 bits: the fields op, src, wa (core address), ref_age (N - m) and what is
@@ -319,6 +319,9 @@ module ctrl_seq #(
                 end
                 PK_CNT: begin                                   // counter + event, 32 bits
                     w[PC_AL] = 1'b1; w[PC_SS] = (b < 32); w[PC_CA] = (b == 31); w[PC_PE] = (b == 32);
+                end
+                PK_FIX: begin                                   // E_FIX (second port, pwf): end, bits
+                    w[PC_PE] = (b == 39); w[PC_XS] = (b >= 31); //   31.. of the saturation pattern
                 end
                 default: begin
                     if (refp) begin                             // (w - count << 32) >> 24 + w[23]
@@ -520,8 +523,9 @@ module ctrl_seq #(
     wire       b_eff  = b_bit ^ sub;
     wire       r      = a_bit ^ b_eff ^ c0;
     wire       maj    = (a_bit & b_eff) | (c0 & (a_bit ^ b_eff));
-    wire       fix_end = (est == E_FIX) && (j == 6'd39);
-    wire       r_fix  = (j[5] || j[4:0] == 5'd31) ? fix_sgn : ~fix_sgn;   // X = satSW pattern, sign-extended
+    reg  [17:0] pwf;                // E_FIX table word of j (kind PK_FIX, second port of the pass table)
+    wire       fix_end = (est == E_FIX) && pwf[PC_PE];
+    wire       r_fix  = pwf[PC_XS] ? fix_sgn : ~fix_sgn;       // X = satSW pattern, sign-extended
 
     // pass control (status / counter passes: 32 bits, the word written one clock after the last)
     wire       pass_end  = in_pass && p_pe;
@@ -601,6 +605,7 @@ module ctrl_seq #(
         uw <= urom[{1'b0, pc_next}];
         ub <= urom[{1'b1, pc_next}];
         pw <= crom[{pk, j_nx}];
+        pwf <= crom[{PK_FIX, j_nx}];
     end
 
     always @(posedge clk) begin
