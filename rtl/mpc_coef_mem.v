@@ -69,7 +69,6 @@ module mpc_coef_mem #(
     localparam [9:0] A_GEND  = `EMPC_IMG_A_GAINS + 8 * `EMPC_MAX_COLS;
     localparam [9:0] A_CEND  = `EMPC_IMG_A_COLS + `EMPC_MAX_COLS;
     localparam [2:0] F_WS = 3'd0, F_WNMIN = 3'd1, F_WNMAX = 3'd2, F_UMAX = 3'd3;
-    localparam [OPW-1:0] OMAX = {1'b0, {(OPW-1){1'b1}}};
 
     // ---- write decode ----
     wire [9:0] coff = waddr - A_COLS;
@@ -77,29 +76,48 @@ module mpc_coef_mem #(
     wire [9:0] hoff = waddr - A_WS;
     wire w_col  = we && waddr >= A_COLS  && waddr < A_CEND;
     wire w_gain = we && waddr >= A_GAINS && waddr < A_GEND;
-    wire w_hdr  = we && waddr >= A_WS    && waddr < A_HEND;
+    wire w_hdr_a = waddr >= A_WS && waddr < A_HEND;
+    wire w_hdr  = we && w_hdr_a;
     wire [6:0] wa_col  = {wbank, coff[5:0]};
     wire [6:0] wa_gain = {wbank, goff[7:2]};
     wire g_row = goff[8];
     wire [1:0] g_k = goff[1:0];
     wire [2:0] h_f = hoff[2:0];
 
-    // signed 32 -> sat18
-    wire s_ok = (&wdata[31:OPW-1]) | ~(|wdata[31:OPW-1]);
-    wire signed [OPW-1:0] wsat = s_ok ? wdata[OPW-1:0] : (wdata[31] ? ~OMAX : OMAX);
-    // header entry (SW bit, sign-extended)
-    wire signed [OPW-1:0] wclamp = (wsat == ~OMAX) ? -$signed(OMAX) : wsat;     // +-(2^17-1)
-    wire [OPW-1:0] wumax = (|wdata[31:OPW-1]) ? OMAX : {1'b0, wdata[OPW-2:0]};
-    wire [SW-2:0]  welim = (|wdata[31:SW-1]) ? {(SW-1){1'b1}} : wdata[SW-2:0];   // 0 .. 2^(SW-1)-1
-    reg  [SW-1:0]  h_wd;
+    // One clamped word dd serves the gain memories (sat18) and the header (per field), so the
+    // per-bit logic is a single 3-input function dd[i] = keep ? wdata[i] : fill.
+    //   gains, wn_min / wn_max: signed 32 -> sat18, sign-extended (the wn fields then map
+    //                           -2^17 to -(2^17-1): bit 0 set when the saturated value is OMIN)
+    //   u_max: unsigned 32 -> min(., 2^17-1);  ebar_lim: unsigned 32 -> min(., 2^(SW-1)-1)
+    //   ws: wdata[CB-1:0] zero-extended
+    wire hi_any = |wdata[31:OPW-1];
+    wire s_ok   = (&wdata[31:OPW-1]) | ~hi_any;          // fits 18 bit signed
+    wire w31    = wdata[31];
+    wire m_ws   = w_hdr_a && h_f == F_WS;
+    wire m_um   = w_hdr_a && h_f == F_UMAX;
+    wire m_el   = w_hdr_a && h_f > F_UMAX;
+    wire m_sg   = !(m_ws | m_um | m_el);                 // gains (any non-header word), wn limits
+    wire m_wn   = w_hdr_a && (h_f == F_WNMIN || h_f == F_WNMAX);
+    wire keep_l = (m_sg & s_ok) | (m_um & ~hi_any) | (m_el & ~w31) | m_ws;   // bits 0 .. CB-1
+    wire keep_m = (m_sg & s_ok) | (m_um & ~hi_any) | (m_el & ~w31);          // bits CB .. OPW-2
+    wire fill_l = m_sg ? ~w31 : (m_um | m_el);
+    wire keep_h = m_el & ~w31;                                               // bits OPW-1 .. SW-2
+    wire fill_h = w31 & ~(m_ws | m_um);
+    wire fill_s = w31 & m_sg;                                                // bit SW-1
+    // wn limit -2^17 -> -(2^17-1): saturated value OMIN <=> w31 and (in range, low bits 0, or below)
+    wire wn_min1 = m_wn & w31 & (~s_ok | ~(|wdata[OPW-2:0]));
+    reg  [SW-1:0] dd;
+    integer di;
     always @* begin
-        case (h_f)
-            F_WS:    h_wd = {{(SW-CB){1'b0}}, wdata[CB-1:0]};
-            F_WNMIN, F_WNMAX: h_wd = {{(SW-OPW){wclamp[OPW-1]}}, wclamp};
-            F_UMAX:  h_wd = {{(SW-OPW){1'b0}}, wumax};
-            default: h_wd = {1'b0, welim};
-        endcase
+        for (di = 0; di < SW; di = di + 1) begin
+            if (di < CB)            dd[di] = keep_l ? wdata[di] : fill_l;
+            else if (di < OPW - 1)  dd[di] = keep_m ? wdata[di] : fill_l;
+            else if (di < SW - 1)   dd[di] = keep_h ? wdata[di] : fill_h;
+            else                    dd[di] = fill_s;
+        end
+        dd[0] = dd[0] | wn_min1;
     end
+    wire signed [OPW-1:0] wsat = dd[OPW-1:0];
     // CFG fields
     wire [3:0] w_n   = wdata[11:8];
     wire [3:0] w_ne  = (w_n > NEFF[3:0]) ? NEFF[3:0] : w_n;
@@ -136,7 +154,7 @@ module mpc_coef_mem #(
     integer hi;
     initial for (hi = 0; hi < 16; hi = hi + 1) m_hdr[hi] = {SW{1'b0}};
     always @(posedge clk)
-        if (w_hdr) m_hdr[{wbank, h_f}] <= h_wd;
+        if (w_hdr) m_hdr[{wbank, h_f}] <= dd;
     assign hdr = m_hdr[{rbank, hdr_field}];
 
     // ---- block memories: address {bank, column} ----
