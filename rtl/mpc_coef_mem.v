@@ -91,7 +91,8 @@ module mpc_coef_mem #(
     //   u_max: unsigned 32 -> min(., 2^17-1);  ebar_lim: unsigned 32 -> min(., 2^(SW-1)-1)
     //   ws: wdata[CB-1:0] zero-extended
     wire hi_any = |wdata[31:OPW-1];
-    wire s_ok   = (&wdata[31:OPW-1]) | ~hi_any;          // fits 18 bit signed
+    wire hi_all = &wdata[31:OPW-1];
+    wire s_ok   = hi_all | ~hi_any;                      // fits 18 bit signed
     wire w31    = wdata[31];
     wire m_ws   = w_hdr_a && h_f == F_WS;
     wire m_um   = w_hdr_a && h_f == F_UMAX;

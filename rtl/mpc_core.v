@@ -98,32 +98,21 @@ module mpc_core #(
                        U_EBB = 13, U_ULD0 = 12, U_M3U0 = 13, U_CLR = 14, U_ACCX = 16, U_LDR = 18,
                        U_LDLIM = 20, U_M2T = 20, U_SELF = 22, U_M3RND = 23, U_FIRE = 25;
 
-    // ---- boot stream and write port ----
-    wire        b_we;
-    wire [9:0]  b_addr;
-    wire [31:0] b_data;
-    wire        b_done;
-    mpc_boot #(.BOOT_FILE(BOOT_FILE)) u_boot (
-        .clk(clk), .rst(rst), .we(b_we), .addr(b_addr), .data(b_data), .done(b_done), .ok(boot_ok)
-    );
-    reg ready_r;
+    // ---- write port (registered): boot stream, then the CPU; a CPU word goes to the bank that
+    // is inactive in the cycle of the request ----
+    wire        w_we;
+    wire [9:0]  w_addr;
+    wire [31:0] w_data;
+    wire        ready_r;
+    reg         w_bank;
     assign ready = ready_r;
-    // write port, registered: a word goes to the bank that is inactive in the cycle of the request
-    reg         w_we, w_bank;
-    reg  [9:0]  w_addr;
-    reg  [31:0] w_data;
+    mpc_boot #(.BOOT_FILE(BOOT_FILE)) u_boot (
+        .clk(clk), .rst(rst), .cfg_we(cfg_we), .cfg_addr(cfg_addr), .cfg_wdata(cfg_wdata),
+        .we(w_we), .addr(w_addr), .data(w_data), .ready(ready_r), .ok(boot_ok)
+    );
     always @(posedge clk) begin
-        if (rst) begin
-            w_we   <= 1'b0;
-            w_bank <= 1'b0;
-            w_addr <= 10'd0;
-            w_data <= 32'd0;
-        end else begin
-            w_we   <= ready_r ? cfg_we : b_we;
-            w_bank <= ready_r ? ~bank : 1'b0;
-            w_addr <= ready_r ? cfg_addr : b_addr;
-            w_data <= ready_r ? cfg_wdata : b_data;
-        end
+        if (rst) w_bank <= 1'b0;
+        else     w_bank <= ready_r & ~bank;
     end
 
     // ---- sequencing: one-hot pre-phase and tail, column counter ----
@@ -145,7 +134,6 @@ module mpc_core #(
 
     always @(posedge clk) begin
         if (rst) begin
-            ready_r <= 1'b0;
             busy <= 1'b0;
             pre <= {(NPRE+2){1'b0}};
             tl <= {NTAIL{1'b0}};
@@ -156,7 +144,6 @@ module mpc_core #(
             bank <= 1'b0;
             swap_pending <= 1'b0;
         end else begin
-            if (b_done) ready_r <= 1'b1;
             pre <= pre_n;
             tl <= tl_n;
             if (pre[T_COL-1] && ncols != 7'd0) begin
