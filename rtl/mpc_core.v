@@ -89,6 +89,7 @@ module mpc_core #(
     localparam integer UW   = `EMPC_U_W;
     localparam integer SW   = `EMPC_SIG_W;
     localparam integer ACCW = `EMPC_ACCW;
+    localparam integer VSH  = `EMPC_U_FRAC - `EMPC_V_FRAC;   // u = scaled value << VSH
     localparam integer T_COL = 11;            // first column item
     localparam integer NPRE  = 9;             // pre-phase items at cycles 0..8
     localparam integer NTAIL = 26;            // tail steps u = 0..25
@@ -231,12 +232,17 @@ module mpc_core #(
     wire signed [OPW-1:0] op, op_next, wn_c, wn_s, lim_t, lim_f;
     wire fg_d, ft_d, fa_d, fd_d, fg_q, ft_q, fa_q, fd_q;
     wire m3u = |tl[U_M3RND:U_M3U0];
+    // limiter inactive: mul3 passes u_raw (u = lim ? scaled : u_raw without a multiplexer)
+    wire lim;
+    wire m3ur = tl[U_M3RND] & ~lim;
+    wire signed [UW-1:0] ur_d, ur_q;
     mpc_lane u_lane_d (
         .clk(clk), .rst(rst), .clr(start_ok), .wn(wn_c), .cv(colv[1]),
         .p2(p2_d), .p1(p1_d), .p0(p0_d), .a(op), .a_next(op_next), .s(s_d),
         .rnd(tl[U_RND]), .acc_clr(tl[U_CLR]), .acc_x(tl[U_ACCX] | tl[U_ACCX+1] | tl[U_ACCX+3]),
         .m2_t(tl[U_M2T]), .t(lim_t),
         .u_ld(tl[U_ULD0] | tl[U_ULD0+1] | tl[U_ULD0+2] | tl[U_ULD0+4]), .m3_u(m3u), .m3_rnd(tl[U_M3RND]),
+        .m3_ur(m3ur), .ur(ur_d),
         .prod2(prod2_d), .acc(acc_d), .u_lim(ul_d),
         .f_gain(fg_d), .f_term(ft_d), .f_acc(fa_d), .f_du(fd_d)
     );
@@ -245,7 +251,7 @@ module mpc_core #(
         .p2(p2_q), .p1(p1_q), .p0(p0_q), .a(op), .a_next(op_next), .s(s_q),
         .rnd(tl[U_RND]), .acc_clr(1'b0), .acc_x(1'b0),
         .m2_t(1'b0), .t(lim_t),
-        .u_ld(tl[U_ULD0+1]), .m3_u(m3u), .m3_rnd(tl[U_M3RND]),
+        .u_ld(tl[U_ULD0+1]), .m3_u(m3u), .m3_rnd(tl[U_M3RND]), .m3_ur(m3ur), .ur(ur_q),
         .prod2(prod2_q), .acc(acc_q), .u_lim(ul_q),
         .f_gain(fg_q), .f_term(ft_q), .f_acc(fa_q), .f_du(fd_q)
     );
@@ -253,7 +259,6 @@ module mpc_core #(
     wire signed [UW-1:0] dun_q = acc_q[ACCW-1:ACCW-UW];
 
     // ---- operand ALU ----
-    wire signed [UW-1:0] ur_d, ur_q;
     wire [3*SW-1:0] ebar_c;
     wire f_signal, f_operand, f_wn, f_ebar, f_ebar_inc, f_u;
     mpc_operand u_op (
@@ -267,7 +272,6 @@ module mpc_core #(
     );
 
     // ---- limiter ----
-    wire lim;
     mpc_limiter #(.RSQRT_FILE(RSQRT_FILE)) u_lim (
         .clk(clk), .rst(rst), .acc(acc_d), .ld_r(tl[U_LDR]), .ld_lim(tl[U_LDLIM]), .ut(prod2_d),
         .lim(lim), .t(lim_t), .f(lim_f)
@@ -289,7 +293,7 @@ module mpc_core #(
             if (tl[U_DU]) du_s <= {dun_q, dun_d};
             done <= tl[U_FIRE];
             if (tl[U_FIRE]) begin
-                u     <= lim ? {ul_q, ul_d} : {ur_q, ur_d};
+                u     <= {ul_q, ul_d};
                 du    <= du_s;
                 u_raw <= {ur_q, ur_d};
                 ebar  <= ebar_c;
@@ -297,6 +301,11 @@ module mpc_core #(
                 flags <= {f_signal, f_wn, lim, f_ebar_inc, f_ebar, f_u, fd_d | fd_q,
                           fa_d | fa_q, ft_d | ft_q, fg_d | fg_q, f_operand};
             end
+        end
+        // scaled u (lim): its low VSH bits are 0 (mul3 leaves fraction bits there): flip-flop reset
+        if (rst || (tl[U_FIRE] && lim)) begin
+            u[VSH-1:0]       <= {VSH{1'b0}};
+            u[UW +: VSH]     <= {VSH{1'b0}};
         end
     end
 
