@@ -122,27 +122,33 @@ module mpc_coef_mem #(
     // CFG fields
     wire [3:0] w_n   = wdata[11:8];
     wire [3:0] w_ne  = (w_n > NEFF[3:0]) ? NEFF[3:0] : w_n;
-    wire [6:0] w_nc  = (wdata[6:0] > MAXC[6:0]) ? MAXC[6:0] : wdata[6:0];
 
     // ---- per-bank CFG registers ----
+    // ncols = min(wdata[6:0], MAXC = 64): wdata[6] set clears bits 5:0 through the reset
+    generate if (MAXC != 64) begin : g_bad_maxc
+        mpc_coef_mem_unsupported_parameters u_error ();  // no such module: elaboration stops here
+    end endgenerate
     reg        alg2_b [0:1];
     reg        pos_b  [0:1];
     reg [6:0]  ncols_b [0:1];
     reg [3:0]  neff_b [0:1];
+    wire       w_cfg = we && waddr == A_CFG;
     integer b;
     always @(posedge clk) begin
-        if (rst) begin
-            for (b = 0; b < 2; b = b + 1) begin
-                alg2_b[b]  <= 1'b0;
-                pos_b[b]   <= 1'b0;
-                ncols_b[b] <= 7'd0;
-                neff_b[b]  <= 4'd0;
+        for (b = 0; b < 2; b = b + 1) begin
+            if (rst) begin
+                alg2_b[b]       <= 1'b0;
+                pos_b[b]        <= 1'b0;
+                ncols_b[b][6]   <= 1'b0;
+                neff_b[b]       <= 4'd0;
+            end else if (w_cfg && wbank == b[0]) begin
+                alg2_b[b]       <= (wdata[14:13] == 2'd2);
+                pos_b[b]        <= wdata[12];
+                ncols_b[b][6]   <= wdata[6];
+                neff_b[b]       <= w_ne;
             end
-        end else if (we && waddr == A_CFG) begin
-            alg2_b[wbank]  <= (wdata[14:13] == 2'd2);
-            pos_b[wbank]   <= wdata[12];
-            ncols_b[wbank] <= w_nc;
-            neff_b[wbank]  <= w_ne;
+            if (rst || (w_cfg && wbank == b[0] && wdata[6])) ncols_b[b][5:0] <= 6'd0;
+            else if (w_cfg && wbank == b[0])                  ncols_b[b][5:0] <= wdata[5:0];
         end
     end
     assign alg2  = alg2_b[rbank];

@@ -121,9 +121,10 @@ module mpc_core #(
     reg  [NPRE+1:0]  pre;         // pre[k]: cycle k (k = 0 .. T_COL-1)
     reg  [NTAIL-1:0] tl;          // tl[u]: tail step u
     reg              col_run;
-    reg  [5:0]       jc;          // column at O0
+    reg  [5:0]       jc;          // column at O0; all ones when no column runs
     wire [6:0]       ncols;
-    wire             last_col = col_run && ({1'b0, jc} == ncols - 7'd1);
+    wire [6:0]       jn = {1'b0, jc} + 7'd1;     // next column; [5:0] = 0 when idle: descriptor read address
+    wire             last_col = col_run && (jn == ncols);
     // next state of the sequencer
     wire [NPRE+1:0]  pre_n  = {pre[NPRE:0], start_ok};
     wire             tail_go = last_col || (pre[T_COL-1] && ncols == 7'd0);
@@ -139,7 +140,6 @@ module mpc_core #(
             pre <= {(NPRE+2){1'b0}};
             tl <= {NTAIL{1'b0}};
             col_run <= 1'b0;
-            jc <= 6'd0;
             colv <= 6'd0;
             j1 <= 6'd0; j2 <= 6'd0; j3 <= 6'd0; j4 <= 6'd0; j5 <= 6'd0; j6 <= 6'd0;
             bank <= 1'b0;
@@ -147,13 +147,8 @@ module mpc_core #(
         end else begin
             pre <= pre_n;
             tl <= tl_n;
-            if (pre[T_COL-1] && ncols != 7'd0) begin
-                col_run <= 1'b1;
-                jc <= 6'd0;
-            end else if (col_run) begin
-                jc <= jc + 6'd1;
-                if (last_col) col_run <= 1'b0;
-            end
+            if (pre[T_COL-1] && ncols != 7'd0) col_run <= 1'b1;
+            else if (last_col)                  col_run <= 1'b0;
             colv <= {colv[5:1], col_run};
             {j6, j5, j4, j3, j2, j1} <= {j5, j4, j3, j2, j1, jc};
             if (start_ok) busy <= 1'b1;
@@ -166,6 +161,12 @@ module mpc_core #(
                 swap_pending <= 1'b1;
             end
         end
+    end
+
+    // column counter: counts from all ones (idle) through 0 .. ncols-1 back to all ones (set)
+    always @(posedge clk) begin
+        if (rst || !col_n) jc <= 6'h3f;
+        else               jc <= jn[5:0];
     end
 
     // item token at O0, registered: decoded from the next state of the one-hot sequencer
@@ -220,7 +221,7 @@ module mpc_core #(
     mpc_coef_mem #(.N(N)) u_mem (
         .clk(clk), .rst(rst),
         .we(w_we), .wbank(w_bank), .waddr(w_addr), .wdata(w_data),
-        .rbank(bank), .ra_desc(col_run ? jc + 6'd1 : 6'd0), .ra_c(jc), .ra_p0(j2), .ra_s(j6), .s_clr(!colv[6]),
+        .rbank(bank), .ra_desc(jn[5:0]), .ra_c(jc), .ra_p0(j2), .ra_s(j6), .s_clr(!colv[6]),
         .desc(desc), .p2_d(p2_d), .p2_q(p2_q), .p1_d(p1_d), .p1_q(p1_q), .p0_d(p0_d), .p0_q(p0_q),
         .s_d(s_d), .s_q(s_q),
         .alg2(alg2), .pos(pos), .ncols(ncols), .neff(neff), .hdr_field(hdr_field), .hdr(hdr)
