@@ -169,36 +169,19 @@ module mpc_core #(
         else               jc <= jn[5:0];
     end
 
-    // item token at O0, registered: decoded from the next state of the one-hot sequencer
-    reg  [3:0] kind_n, kind0;
-    reg  [1:0] idx_n, idx0;
-    always @* begin
-        kind_n = `MPC_K_NONE;
-        idx_n  = 2'd0;
-        if (pre_n[0] | pre_n[1] | pre_n[2]) begin
-            kind_n = `MPC_K_YC;
-            idx_n  = {pre_n[2], pre_n[1]};
-        end
-        if (pre_n[3]) kind_n = `MPC_K_WN;
-        if (pre_n[4]) kind_n = `MPC_K_LO;
-        if (pre_n[5]) kind_n = `MPC_K_HI;
-        if (pre_n[6] | pre_n[7] | pre_n[8]) begin
-            kind_n = `MPC_K_EBA;
-            idx_n  = {pre_n[8], pre_n[7]};
-        end
-        if (col_n) kind_n = `MPC_K_COL;
-        if (tl_n[U_UR0] | tl_n[U_UR0B]) kind_n = `MPC_K_UR;
-        if (tl_n[U_UR1]) begin
-            kind_n = `MPC_K_UR;
-            idx_n  = 2'd1;
-        end
-        if (tl_n[U_UMX]) kind_n = `MPC_K_UMX;
-        if (tl_n[U_NUMX]) kind_n = `MPC_K_NUMX;
-        if (tl_n[U_EBB] | tl_n[U_EBB+1] | tl_n[U_EBB+2]) begin
-            kind_n = `MPC_K_EBB;
-            idx_n  = {tl_n[U_EBB+2], tl_n[U_EBB+1]};
-        end
-    end
+    // item token at O0, registered: decoded from the next state of the one-hot sequencer (the
+    // item slots never overlap, so the token is an OR of the slots' codes)
+    wire i_yc  = |pre_n[2:0];
+    wire i_eba = |pre_n[8:6];
+    wire i_ur  = tl_n[U_UR0] | tl_n[U_UR1] | tl_n[U_UR0B];
+    wire i_ebb = |tl_n[U_EBB+2:U_EBB];
+    reg  [3:0] kind0;
+    reg  [1:0] idx0;
+    wire [3:0] kind_n = ({4{i_yc}} & `MPC_K_YC) | ({4{pre_n[3]}} & `MPC_K_WN) | ({4{pre_n[4]}} & `MPC_K_LO) |
+                        ({4{pre_n[5]}} & `MPC_K_HI) | ({4{i_eba}} & `MPC_K_EBA) | ({4{col_n}} & `MPC_K_COL) |
+                        ({4{i_ur}} & `MPC_K_UR) | ({4{tl_n[U_UMX]}} & `MPC_K_UMX) |
+                        ({4{tl_n[U_NUMX]}} & `MPC_K_NUMX) | ({4{i_ebb}} & `MPC_K_EBB);
+    wire [1:0] idx_n  = {pre_n[2] | pre_n[8] | tl_n[U_EBB+2], pre_n[1] | pre_n[7] | tl_n[U_EBB+1] | tl_n[U_UR1]};
     always @(posedge clk) begin
         if (rst) begin
             kind0 <= `MPC_K_NONE;
@@ -245,7 +228,7 @@ module mpc_core #(
         .u_ld(tl[U_ULD0] | tl[U_ULD0+1] | tl[U_ULD0+2] | tl[U_ULD0+4]), .m3_u(m3u), .m3_rnd(tl[U_M3RND]),
         .m3_ur(m3ur), .ur(ur_d),
         .prod2(prod2_d), .acc(acc_d), .u_lim(ul_d),
-        .f_gain(fg_d), .f_term(ft_d), .f_acc(fa_d), .f_du(fd_d)
+        .f_gain(fg_d), .f_term(ft_d), .f_acc(fa_d), .f_du(fd_d), .f_or(3'b000)
     );
     mpc_lane u_lane_q (
         .clk(clk), .rst(rst), .clr(start_ok), .wn(wn_c), .cv(colv[1]),
@@ -254,7 +237,7 @@ module mpc_core #(
         .m2_t(1'b0), .t(lim_t),
         .u_ld(tl[U_ULD0+1]), .m3_u(m3u), .m3_rnd(tl[U_M3RND]), .m3_ur(m3ur), .ur(ur_q),
         .prod2(prod2_q), .acc(acc_q), .u_lim(ul_q),
-        .f_gain(fg_q), .f_term(ft_q), .f_acc(fa_q), .f_du(fd_q)
+        .f_gain(fg_q), .f_term(ft_q), .f_acc(fa_q), .f_du(fd_q), .f_or({fd_d, fa_d, ft_d})
     );
     wire signed [UW-1:0] dun_d = acc_d[ACCW-1:ACCW-UW];       // du after the round step
     wire signed [UW-1:0] dun_q = acc_q[ACCW-1:ACCW-UW];
@@ -299,8 +282,8 @@ module mpc_core #(
                 u_raw <= {ur_q, ur_d};
                 ebar  <= ebar_c;
                 wn    <= wn_s;
-                flags <= {f_signal, f_wn, lim, f_ebar_inc, f_ebar, f_u, fd_d | fd_q,
-                          fa_d | fa_q, ft_d | ft_q, fg_d | fg_q, f_operand};
+                flags <= {f_signal, f_wn, lim, f_ebar_inc, f_ebar, f_u, fd_q,      // fd/fa/ft_q include lane d's
+                          fa_q, ft_q, fg_d | fg_q, f_operand};
             end
         end
         // scaled u (lim): its low VSH bits are 0 (mul3 leaves fraction bits there): flip-flop reset

@@ -21,7 +21,8 @@
 // in G1+4, s in G1+6; acc includes the column from G1+8 (rnd: asserted in G1+4 of the
 // step after the last column, when mul3 would sample its operands; s must read 0 in G1+6).
 // mul products appear 2 cycles after their operands.
-// Ports: see the port list; f_* are sticky saturation flags (cleared by clr).
+// Ports: see the port list; f_* are sticky saturation flags (cleared by clr); f_or sets f_term,
+// f_acc, f_du as well (the core chains the other lane's flags in: one clock later, long before done).
 // Parameters: none (widths from empc_formats.vh).
 // Reset / clr: flags clear to 0; clr / acc_clr make the next accumulation start from 0
 // (the acc register itself resets to AMAX, a don't-care value).
@@ -55,7 +56,8 @@ module mpc_lane (
     output reg                             f_gain,
     output reg                             f_term,
     output reg                             f_acc,
-    output reg                             f_du
+    output reg                             f_du,
+    input  wire [2:0]                      f_or       // {f_du, f_acc, f_term} of the other lane: ORed in
 );
     localparam integer OPW  = `EMPC_OPW;                 // 18
     localparam integer PW   = 2 * OPW;                   // 36 product
@@ -193,9 +195,9 @@ module mpc_lane (
             end else begin
                 if (cvp[2] && h_sat) f_gain <= 1'b1;
                 if (cvp[4] && k_sat) f_gain <= 1'b1;
-                if (cvp[6] && t_ovf) f_term <= 1'b1;
-                if (cvp[7] && a_ovf) f_acc <= 1'b1;
-                if (rnd8 && a_ovf) f_du <= 1'b1;
+                if ((cvp[6] && t_ovf) || f_or[0]) f_term <= 1'b1;
+                if ((cvp[7] && a_ovf) || f_or[1]) f_acc <= 1'b1;
+                if ((rnd8 && a_ovf) || f_or[2]) f_du <= 1'b1;
             end
         end
     end
