@@ -90,23 +90,27 @@ module mpc_coef_mem #(
     //                           -2^17 to -(2^17-1): bit 0 set when the saturated value is OMIN)
     //   u_max: unsigned 32 -> min(., 2^17-1);  ebar_lim: unsigned 32 -> min(., 2^(SW-1)-1)
     //   ws: wdata[CB-1:0] zero-extended
-    wire hi_any = |wdata[31:OPW-1];
-    wire hi_all = &wdata[31:OPW-1];
-    wire s_ok   = hi_all | ~hi_any;                      // fits 18 bit signed
+    // The data comes straight from a block RAM output (slow clock-to-out): the wide tests are
+    // kept as explicit two-level trees (keep), so that the mapper cannot chain them.
+    (* keep *) wire [2:0] hg_one = {&wdata[31:27], &wdata[26:22], &wdata[21:OPW-1]};
+    (* keep *) wire [2:0] hg_any = {|wdata[31:27], |wdata[26:22], |wdata[21:OPW-1]};
+    (* keep *) wire [2:0] lg_any = {|wdata[OPW-2:12], |wdata[11:6], |wdata[5:0]};
+    (* keep *) wire hi_any = |hg_any;
+    (* keep *) wire s_ok   = (&hg_one) | ~hi_any;                 // fits 18 bit signed
     wire w31    = wdata[31];
     wire m_ws   = w_hdr_a && h_f == F_WS;
     wire m_um   = w_hdr_a && h_f == F_UMAX;
     wire m_el   = w_hdr_a && h_f > F_UMAX;
     wire m_sg   = !(m_ws | m_um | m_el);                 // gains (any non-header word), wn limits
     wire m_wn   = w_hdr_a && (h_f == F_WNMIN || h_f == F_WNMAX);
-    wire keep_l = (m_sg & s_ok) | (m_um & ~hi_any) | (m_el & ~w31) | m_ws;   // bits 0 .. CB-1
-    wire keep_m = (m_sg & s_ok) | (m_um & ~hi_any) | (m_el & ~w31);          // bits CB .. OPW-2
-    wire fill_l = m_sg ? ~w31 : (m_um | m_el);
-    wire keep_h = m_el & ~w31;                                               // bits OPW-1 .. SW-2
-    wire fill_h = w31 & ~(m_ws | m_um);
+    (* keep *) wire keep_l = (m_sg & s_ok) | (m_um & ~hi_any) | (m_el & ~w31) | m_ws;   // bits 0 .. CB-1
+    (* keep *) wire keep_m = (m_sg & s_ok) | (m_um & ~hi_any) | (m_el & ~w31);          // bits CB .. OPW-2
+    (* keep *) wire fill_l = m_sg ? ~w31 : (m_um | m_el);
+    (* keep *) wire keep_h = m_el & ~w31;                                               // bits OPW-1 .. SW-2
+    (* keep *) wire fill_h = w31 & ~(m_ws | m_um);
     wire fill_s = w31 & m_sg;                                                // bit SW-1
     // wn limit -2^17 -> -(2^17-1): saturated value OMIN <=> w31 and (in range, low bits 0, or below)
-    wire wn_min1 = m_wn & w31 & (~s_ok | ~(|wdata[OPW-2:0]));
+    (* keep *) wire wn_min1 = m_wn & w31 & (~s_ok | ~(|lg_any));
     reg  [SW-1:0] dd;
     integer di;
     always @* begin
