@@ -36,7 +36,6 @@ module mpc_boot #(
     output reg         ready,
     output reg         ok
 );
-    localparam [9:0] A_MAGIC = 10'd0;
     localparam [9:0] A_CSUM  = `EMPC_IMG_A_CSUM;
     localparam [9:0] LAST    = USED[9:0] - 10'd1;
     localparam [9:0] A_RST   = 10'd0 - 10'd2;          // addr after reset: word 0 is written in clock 2
@@ -48,46 +47,52 @@ module mpc_boot #(
     reg [31:0] rom [0:DEPTH-1];
     initial $readmemh(BOOT_FILE, rom);
 
+    reg        boot;                                  // = !ready (its own flip-flop: no inverter)
     // next write address: the CPU's (ready) or the boot counter
     wire [9:0] a_sel  = ready ? cfg_addr : addr;
-    wire [9:0] a_next = a_sel + {9'd0, ~ready};
+    wire [9:0] a_next = a_sel + {9'd0, boot};
     // ROM port address: the next boot word, or (ready) a scratch word in the top quarter
     wire [9:0] ra     = {a_next[9:8] | {2{ready}}, a_next[7:0]};
 
     always @(posedge clk) begin
-        if (rst) begin
-            data <= 32'd0;
-        end else begin
-            if (ready) rom[ra] <= cfg_wdata;
-            data <= ready ? cfg_wdata : rom[ra];      // WRITE_FIRST: the CPU word once ready
-        end
+        if (ready) rom[ra] <= cfg_wdata;
+        if (rst) data <= 32'd0;
+        else     data <= ready ? cfg_wdata : rom[ra];  // WRITE_FIRST: the CPU word once ready
     end
 
     // checksum: acc = sum of the words except the checksum word, minus the checksum word
     reg  [31:0] acc;
-    reg         magic_ok;
+    reg         magic_ok, first, last;
     reg         csw;                                  // addr == A_CSUM (registered: one shared net)
     // acc + (data ^ csw) + csw, the carry-in as an extra LSB (keeps acc on the carry chain's DI inputs)
     wire [32:0] acc_nx = {acc, 1'b1} + {data ^ {32{csw}}, csw};
     wire [31:0] acc_n = acc_nx[32:1];
-    wire        bw   = we && !ready;                  // boot word in the write port
+    wire        bw   = we && boot;                    // boot word in the write port
     always @(posedge clk) begin
         if (rst) begin
             addr  <= A_RST;
             we    <= 1'b0;
             ready <= 1'b0;
+            boot  <= 1'b1;
             ok    <= 1'b0;
             acc   <= 32'd0;
             magic_ok <= 1'b0;
+            first <= 1'b1;
+            last  <= 1'b0;
             csw   <= 1'b0;
         end else begin
             addr  <= a_next;
             csw   <= (a_next == A_CSUM);
             we    <= ready ? cfg_we : (a_next < USED[9:0]);
-            if (addr == USED[9:0]) ready <= 1'b1;
+            last  <= bw && (addr == LAST);
+            if (last) begin                           // the clock after the last boot word
+                ready <= 1'b1;
+                boot  <= 1'b0;
+            end
             if (bw) begin
-                acc <= acc_n;
-                if (addr == A_MAGIC) magic_ok <= (data == MAGIC);
+                acc   <= acc_n;
+                first <= 1'b0;
+                if (first) magic_ok <= (data == MAGIC);          // the magic is word 0
                 if (addr == LAST) ok <= magic_ok && (acc_n == 32'd0);
             end
         end

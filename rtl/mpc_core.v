@@ -212,7 +212,7 @@ module mpc_core #(
 
     // ---- lanes ----
     wire signed [ACCW-1:0] prod2_d, prod2_q, acc_d, acc_q;
-    wire signed [UW-1:0] ul_d, ul_q;
+    wire signed [UW-VSH-1:0] ul_d, ul_q;                       // scaled u >> VSH (or u_raw >> VSH)
     wire signed [OPW-1:0] op, op_next, wn_c, wn_s, lim_t, lim_f;
     wire fg_d, ft_d, fa_d, fd_d, fg_q, ft_q, fa_q, fd_q;
     wire m3u = |tl[U_M3RND:U_M3U0];
@@ -277,7 +277,7 @@ module mpc_core #(
             if (tl[U_DU]) du_s <= {dun_q, dun_d};
             done <= tl[U_FIRE];
             if (tl[U_FIRE]) begin
-                u     <= {ul_q, ul_d};
+                u     <= {ul_q, ur_q[VSH-1:0], ul_d, ur_d[VSH-1:0]};
                 du    <= du_s;
                 u_raw <= {ur_q, ur_d};
                 ebar  <= ebar_c;
@@ -286,7 +286,7 @@ module mpc_core #(
                           fa_q, ft_q, fg_d | fg_q, f_operand};
             end
         end
-        // scaled u (lim): its low VSH bits are 0 (mul3 leaves fraction bits there): flip-flop reset
+        // scaled u (lim): its low VSH bits are 0 (flip-flop reset), else those of u_raw
         if (rst || (tl[U_FIRE] && lim)) begin
             u[VSH-1:0]       <= {VSH{1'b0}};
             u[UW +: VSH]     <= {VSH{1'b0}};

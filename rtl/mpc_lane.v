@@ -13,9 +13,9 @@
 //   sat24(rshift_round(acc, ACC_FRAC - U_FRAC)) (flag f_du if that step saturated).
 // Limiter support (sequenced by mpc_core): mul3 multiplies u18 (register loaded from the
 // operand bus, u_ld) by the operand bus (m3_u), optionally accumulated (acc_x, shift 0);
-// m3_rnd adds 2^17 - 1 for u18 < 0, so u_lim[UW-1:VSH] = prod3 >>> 17 = trunc0(u18 f / 2^17) (the
-// caller clears u_lim[VSH-1:0]); with m3_ur as well, mul3 = ur << 13 instead and u_lim = ur: the
-// limiter's output multiplexer u = lim ? scaled : u_raw is mul3 (m3_ur = !lim).
+// m3_rnd adds 2^17 - 1 for u18 < 0, so u_lim = prod3 >>> 17 = trunc0(u18 f / 2^17) (u = u_lim << 4);
+// with m3_ur as well, mul3 = (ur >>> 4) << 17 instead and u_lim = ur[UW-1:VSH]: the limiter's output
+// multiplexer u = lim ? scaled : u_raw is mul3 (m3_ur = !lim; the caller takes u[3:0] from ur).
 // m2_t (lane d): mul2 = t * wn (the core loads u_max into wn) with no post-add.
 // Timing (G1 = cycle in which cv, p2 and p1 are valid): p0 valid in G1+2, a (operand bus)
 // in G1+4, s in G1+6; acc includes the column from G1+8 (rnd: asserted in G1+4 of the
@@ -48,11 +48,11 @@ module mpc_lane (
     input  wire                            u_ld,      // u18 = a_next
     input  wire                            m3_u,      // mul3 = u18 * a
     input  wire                            m3_rnd,    // mul3 post-add 2^17 - 1 if u18 < 0
-    input  wire                            m3_ur,     // mul3 = 0 * 0 + (ur << 13) instead (with m3_rnd)
+    input  wire                            m3_ur,     // mul3 = 0 * 0 + ((ur >>> 4) << 17) instead (with m3_rnd)
     input  wire signed [`EMPC_U_W-1:0]     ur,        // u_raw
     output wire signed [`EMPC_ACCW-1:0]    prod2,     // mul2 result
     output reg  signed [`EMPC_ACCW-1:0]    acc,
-    output wire signed [`EMPC_U_W-1:0]     u_lim,     // from prod3 (m3_rnd + 2): see m3_ur
+    output wire signed [`EMPC_U_W-`EMPC_U_FRAC+`EMPC_V_FRAC-1:0] u_lim,  // prod3 >>> 17 (m3_rnd + 2): see m3_ur
     output reg                             f_gain,
     output reg                             f_term,
     output reg                             f_acc,
@@ -98,17 +98,16 @@ module mpc_lane (
     wire signed [OPW-1:0] k = sat_hi(prod2[ACCW-1:FR]);              // G1+4
     wire k_sat = ~((&prod2[ACCW-1:PW-2]) | ~(|prod2[ACCW-1:PW-2]));
 
-    // ---- mul3: k * a  (or u18 * a [+ 2^17 - 1], or 0 * 0 + (ur << 13)) ----
+    // ---- mul3: k * a  (or u18 * a [+ 2^17 - 1], or 0 * 0 + ((ur >>> 4) << 17)) ----
     reg  signed [OPW-1:0] u18;
     wire signed [ACCW-1:0] prod3;
     wire m3_c = m3_rnd & ~m3_ur & u18[OPW-1];
     // c of mul3, registered in fabric: the ur field is cleared through the flip-flops' reset;
-    // only the bits shared with the constants need a gate.  Round step: prod3 = 0 * 0 + 2^(DSH-1).
-    localparam integer UL = FR - VSH;                    // 13: LSB of u in prod3
+    // it shares only the round bit with the constants.  Round step: prod3 = 0 * 0 + 2^(DSH-1).
     reg  [ACCW-1:0] c3u, c3k;
     always @(posedge clk) begin
         if (rst || !m3_ur) c3u <= {ACCW{1'b0}};
-        else               c3u <= {{(ACCW-UW-UL){ur[UW-1]}}, ur, {UL{1'b0}}};
+        else               c3u <= {{(ACCW-UW+VSH-FR){ur[UW-1]}}, ur[UW-1:VSH], {FR{1'b0}}};
         if (rst) c3k <= {ACCW{1'b0}};
         else     c3k <= {{(ACCW-DSH){1'b0}}, rnd, {(DSH-1-FR){1'b0}}, {FR{m3_c}}};
     end
@@ -116,7 +115,7 @@ module mpc_lane (
         .clk(clk), .rst(rst), .a(m3_u ? u18 : k), .b(a), .c(c3u | c3k), .c_clr(1'b0), .ab_clr(rnd | m3_ur),
         .p(prod3)
     );
-    assign u_lim = prod3[FR+UW-VSH-1:UL];
+    assign u_lim = prod3[FR+UW-VSH-1:FR];
 
     // ---- stage a (G1+6): prod3 << s[1:0]; term overflow (s >= 13) ----
     wire signed [PW-1:0] p3 = prod3[PW-1:0];
@@ -225,6 +224,6 @@ module mpc_lane (
     end
 
     // rounding remainders and the upper product bits are dropped by design
-    wire unused_ok = &{1'b0, sumx[0], prod1[FR-1:0], prod2[FR-1:0], prod3[ACCW-1:FR+UW-VSH], prod3[UL-1:0]};
+    wire unused_ok = &{1'b0, sumx[0], prod1[FR-1:0], prod2[FR-1:0], prod3[ACCW-1:FR+UW-VSH], prod3[FR-1:0], ur[VSH-1:0]};
 endmodule
 `default_nettype wire
