@@ -233,6 +233,21 @@ module pos_sense #(
     localparam [POS_W*MW-1:0] C_TAB = pow_tab(0);
     localparam integer KW = (clog2(POS_W) < 1) ? 1 : clog2(POS_W);
 
+    // Both tables in one block RAM (ROM, two read ports, registered outputs), so that
+    // neither costs LUTs: C_TAB at addresses 0.. (port B, read with the next k: c is the
+    // entry of the current k), HALL_TAB at 2**TA + {sector, kind} (port A: its output
+    // register is base_rel, loaded at a HALL event and cleared by the index / align_clear).
+    localparam integer TW = (MW > ANGLE_BITS) ? MW : ANGLE_BITS;       // ROM word
+    localparam integer TA = (KW > 5) ? KW : 5;                          // address = {half, TA bits}
+    localparam [TA:0]  HALL_BASE = {1'b1, {TA{1'b0}}};
+    (* rom_style = "block" *) reg [TW-1:0] trom [0:2*(2**TA)-1];
+    integer ti;
+    initial begin
+        for (ti = 0; ti < 2 * (2**TA); ti = ti + 1) trom[ti] = {TW{1'b0}};
+        for (ti = 0; ti < POS_W; ti = ti + 1) trom[ti][MW-1:0] = C_TAB[ti*MW +: MW];
+        for (ti = 0; ti < 32; ti = ti + 1) trom[2**TA + ti][ANGLE_BITS-1:0] = HALL_TAB[ti*ANGLE_BITS +: ANGLE_BITS];
+    end
+
     // ---------------- state ----------------
     reg [POS_W-1:0]      last_pos;   // count already handed to the reducer
     reg [POS_W-1:0]      r;          // remaining jump (signed), shifted right per clock
@@ -243,7 +258,10 @@ module pos_sense #(
     reg                  rel_cal;    // not aligned, but base_rel is relative to cal_offset (align_clear)
     reg                  hall_init;
     reg [2:0]            last_sector;
-    reg [ANGLE_BITS-1:0] base_rel;   // angle added to f(m), relative to the offset in use
+    /* verilator lint_off UNUSEDSIGNAL */ // ROM word bits above ANGLE_BITS
+    reg [TW-1:0]         base_r;     // ROM port A: angle added to f(m), relative to the offset in use
+    /* verilator lint_on UNUSEDSIGNAL */
+    wire [ANGLE_BITS-1:0] base_rel = base_r[ANGLE_BITS-1:0];
 
     assign pos_mod = m;
 
@@ -255,7 +273,7 @@ module pos_sense #(
     wire hall_bwd = (last_sector == s_next(hall_sector));
     // kind of angle: centre at HALL init, else the edge crossed (centre after a jump)
     wire [1:0] hall_kind = ev_hall_init ? 2'd1 : hall_fwd ? 2'd0 : hall_bwd ? 2'd2 : 2'd1;
-    wire [ANGLE_BITS-1:0] hall_base = HALL_TAB[{hall_sector, hall_kind}*ANGLE_BITS +: ANGLE_BITS];
+    wire [TA:0] hall_addr = HALL_BASE | {{(TA-4){1'b0}}, hall_sector, hall_kind};
     // index alignment: the first index after reset / align_clear (every index if REALIGN)
     wire ev_index = index_event && (!al || align_clear || (REALIGN != 0));
     wire ev_any = ev_index || ev_hall;
@@ -263,16 +281,47 @@ module pos_sense #(
     // ---------------- bit-serial modular accumulation ----------------
     // d: the new counts (pos - last_pos), or at an index event the lag pos - index_pos
     // (m restarts at 0 = index_pos and the reducer adds the counts since the index)
-    wire [POS_W-1:0] d = pos - (ev_index ? index_pos : last_pos);
+    wire [POS_W-1:0] d_ref = ev_index ? index_pos : last_pos;
+    wire [POS_W-1:0] d = pos - d_ref;
+    // d == 0 without an OR tree over d: pos ~^ d_ref (the subtractor's own propagate LUTs)
+    // all ones, as the carry out of +1 on a carry chain
+    wire [POS_W:0]   d_eqc = {1'b0, pos ~^ d_ref} + {{POS_W{1'b0}}, 1'b1};
+    wire             d_zero = d_eqc[POS_W];
     wire [POS_W-1:0] r_sh = {r[POS_W-1], r[POS_W-1:1]};
-    wire r_hi0 = ~|r[POS_W-1:1];
-    wire r_hi1 = &r[POS_W-1:1];
-    wire r_neg1 = r_hi1 & r[0];                 // remainder -1: subtract 2**k, done
-    wire r_done = r_hi0 | r_neg1;               // last bit of the jump
+    // r[POS_W-1:1] all 0 or all 1 = r[POS_W-2:1] all equal to the sign r[POS_W-1]: groups of
+    // 5 bits (one LUT6 each with the sign), ANDed on a carry chain (carry out of +1)
+    localparam integer UG = (POS_W + 2) / 5;                          // ceil((POS_W - 2) / 5)
+    localparam integer UEW = (5 * UG + 1 > POS_W) ? 5 * UG + 1 : POS_W;
+    /* verilator lint_off UNUSEDSIGNAL */ // bit 0 and (UEW > 5*UG+1) top sign copies unused
+    wire [UEW-1:0] r_ext = {{(UEW - POS_W + 1){r[POS_W-1]}}, r[POS_W-2:0]};
+    /* verilator lint_on UNUSEDSIGNAL */
+    wire [UG-1:0]  r_gu;
+    genvar gi;
+    generate
+        for (gi = 0; gi < UG; gi = gi + 1) begin : g_uni
+            assign r_gu[gi] = (r_ext[5*gi+1 +: 5] == {5{r[POS_W-1]}});
+        end
+    endgenerate
+    wire [UG:0] r_unc = {1'b0, r_gu} + {{UG{1'b0}}, 1'b1};
+    wire r_uni = r_unc[UG];                     // r[POS_W-1:1] is 0 or -1
+    wire r_neg1 = r_uni & r[POS_W-1] & r[0];    // remainder -1: subtract 2**k, done
+    wire r_done = r_uni & (~r[POS_W-1] | r[0]); // last bit of the jump
     wire load = !busy || ev_any;                // r <= d (ignored when d = 0 or at a HALL event)
     // m +- c (c = 2**k mod CPR), then back into [0, CPR): + CPR if negative (subtract),
     // - CPR if >= CPR (add).  s is in (-CPR, 2*CPR); the reduced value's top bit is 0.
-    wire [MW-1:0] c = C_TAB[k*MW +: MW];
+    // c = C_TAB[k]: ROM port B read with k's next value
+    wire [KW-1:0] k_nx = (rst || load) ? {KW{1'b0}} : k + 1'b1;
+    /* verilator lint_off UNUSEDSIGNAL */ // ROM word bits above MW
+    reg  [TW-1:0] c_r;
+    /* verilator lint_on UNUSEDSIGNAL */
+    always @(posedge clk) c_r <= trom[{{(TA+1-KW){1'b0}}, k_nx}];
+    wire [MW-1:0] c = c_r[MW-1:0];
+    always @(posedge clk) begin
+        if (rst || ev_index || (align_clear && al))
+            base_r <= {TW{1'b0}};
+        else if (ev_hall)
+            base_r <= trom[hall_addr];
+    end
     wire [MW+1:0] s = {2'b0, m} + ({2'b0, c} ^ {(MW+2){r_neg1}}) + {{(MW+1){1'b0}}, r_neg1};
     wire s_neg = s[MW+1];
     wire s_ge = !s_neg && (s[MW:0] >= CPR_C);
@@ -291,7 +340,6 @@ module pos_sense #(
             rel_cal     <= 1'b0;
             hall_init   <= 1'b0;
             last_sector <= 3'd0;
-            base_rel    <= {ANGLE_BITS{1'b0}};
         end else begin
             // reducer
             if (load) begin
@@ -309,21 +357,19 @@ module pos_sense #(
             if (ev_hall && !ev_index)
                 busy <= 1'b0;
             else if (load)
-                busy <= (d != {POS_W{1'b0}});
+                busy <= !d_zero;
             else if (r_done)
                 busy <= 1'b0;
 
             // alignment state
+            // (base_rel: ROM port A above, same priority)
             if (ev_index) begin
                 al       <= 1'b1;
-                base_rel <= {ANGLE_BITS{1'b0}};
             end else if (align_clear && al) begin
                 al       <= 1'b0;
                 rel_cal  <= 1'b1;
-                base_rel <= {ANGLE_BITS{1'b0}};
             end else if (ev_hall) begin
                 rel_cal  <= 1'b0;
-                base_rel <= hall_base;
             end
             if (hall_valid && (!hall_init || hall_change)) begin
                 hall_init   <= 1'b1;
@@ -364,6 +410,12 @@ module pos_sense #(
     localparam [2*POS_W*ACC_W-1:0] S_TAB = stab(0);
     /* verilator lint_on UNUSEDPARAM */
     reg  [ANGLE_BITS-1:0] base_d;
+    // base_rel + offset as {base_rel, 0} - {~offset, 1} (>> 1): the offset multiplexer then
+    // folds into the adder's LUTs (base_rel, the ROM output, is the carry chain's DI)
+    wire [ANGLE_BITS-1:0] off_sel = (al || rel_cal) ? cal_offset : hall_offset;
+    /* verilator lint_off UNUSEDSIGNAL */ // bit 0 is the carry-in position only
+    wire [ANGLE_BITS:0]   base_sum = {base_rel, 1'b0} - {~off_sel, 1'b1};
+    /* verilator lint_on UNUSEDSIGNAL */
     reg                   v1, al1;
     always @(posedge clk) begin
         if (rst) begin
@@ -373,7 +425,7 @@ module pos_sense #(
             valid   <= 1'b0;
             aligned <= 1'b0;
         end else begin
-            base_d  <= base_rel + ((al || rel_cal) ? cal_offset : hall_offset);
+            base_d  <= base_sum[ANGLE_BITS:1];
             v1      <= al | hall_init;
             al1     <= al;
             valid   <= v1;
