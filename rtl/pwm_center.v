@@ -116,6 +116,11 @@ module pwm_center #(
     wire bnd_edge = (~dir & (cnt <= ONE)) | sync_rise;   // next cycle is a boundary
     wire ok = enable & ~fault & ~fault_latched;
     wire alive = run & ok;
+    // decodes from the previous clock instead of counter compares: the boundary state
+    // (counter 0, up) is exactly the clock after bnd_edge (or rst), the centre (counter P,
+    // down) exactly the clock after dir turned 1 -> 0
+    reg  at_bnd;
+    reg  dir_prev;
 
     // Values > P are stored unclipped: the counter never leaves [0, P] (up 0..P-1,
     // down P..1), so cnt < c / cnt <= c give the same command for any c >= P as for
@@ -131,6 +136,8 @@ module pwm_center #(
     always @(posedge clk) begin
         if (rst) begin
             sync_prev     <= 1'b0;
+            at_bnd        <= 1'b1;
+            dir_prev      <= 1'b1;
             cnt           <= {CW{1'b0}};
             dir           <= 1'b1;
             shadow        <= {(NCH*CW){1'b0}};
@@ -141,6 +148,8 @@ module pwm_center #(
             cmp_clip      <= 1'b0;
         end else begin
             sync_prev <= sync_s;
+            at_bnd    <= bnd_edge;
+            dir_prev  <= dir;
             // one adder: +1 up, -1 down (P-1 -> P at the turn round); 0 at the boundary
             if (bnd_edge) begin
                 cnt <= {CW{1'b0}};
@@ -170,18 +179,40 @@ module pwm_center #(
             sync_out     <= 1'b0;
             mode_eff     <= MODE_COMPL;
         end else begin
-            period_start <= dir & (cnt == {CW{1'b0}});
-            adc_trig     <= ~dir & (cnt == P);
+            period_start <= at_bnd;                        // dir & (cnt == 0)
+            adc_trig     <= ~dir & dir_prev;                // ~dir & (cnt == P)
             sync_out     <= (dir == LEAD_DIR) & (cnt == LEAD);
             mode_eff     <= mode_act;
         end
     end
 
-    genvar i;
+    // counter in groups of 3 bits (one LUT6 per group compares it with a compare value)
+    localparam integer NG = (CW + 2) / 3;
+    /* verilator lint_off UNUSEDSIGNAL */ // top bit: padding only
+    wire [3*NG:0] cnt_x = {{(3*NG - CW + 1){1'b0}}, cnt};
+    /* verilator lint_on UNUSEDSIGNAL */
+
+    genvar i, g;
     generate
         for (i = 0; i < NCH; i = i + 1) begin : g_ch
             wire [CW-1:0] c = cmp_act[i*CW +: CW];
-            wire h = dir ? (cnt < c) : (cnt <= c);     // ideal high-side command
+            // ideal high-side command h = dir ? (cnt < c) : (cnt <= c), built from the previous
+            // clock's h and one equality (~4 LUTs instead of a magnitude compare): c is constant
+            // between boundaries and cnt steps by 1 (0 at a boundary, up 0..P-1, P, down
+            // P-1..1), so h changes only where cnt == c.  Up-count: h = (boundary or h_prev) &
+            // (cnt != c) (at the boundary h = 0 < c = c != 0); down-count: h = h_prev | (cnt == c)
+            // (also at the turn P-1 -> P, where P-1 < c <=> P <= c).
+            /* verilator lint_off UNUSEDSIGNAL */ // top bit: padding only
+            wire [3*NG:0] c_x = {{(3*NG - CW + 1){1'b0}}, c};
+            /* verilator lint_on UNUSEDSIGNAL */
+            wire [NG-1:0] eqg;                         // per group cnt == c
+            for (g = 0; g < NG; g = g + 1) begin : g_eq
+                assign eqg[g] = (cnt_x[3*g +: 3] == c_x[3*g +: 3]);
+            end
+            wire [NG:0] eqc = {1'b0, eqg} + {{NG{1'b0}}, 1'b1};   // AND of the groups on a carry chain
+            wire eq = eqc[NG];
+            reg  h_prev;
+            wire h = dir ? (~eq & (h_prev | at_bnd)) : (h_prev | eq);
             reg  [DEAD_W-1:0] q;                       // clocks with hi = lo = 0
             wire q_ok = (q >= dead);
             reg  hi_n, lo_n;
@@ -201,10 +232,12 @@ module pwm_center #(
                 if (rst) begin
                     hi[i] <= 1'b0;
                     lo[i] <= 1'b0;
+                    h_prev <= 1'b0;
                     q     <= {DEAD_W{1'b0}};
                 end else begin
                     hi[i] <= hi_n;
                     lo[i] <= lo_n;
+                    h_prev <= h;
                     if (hi_n | lo_n) q <= {DEAD_W{1'b0}};
                     else if (q != Q_MAX) q <= q + 1'b1;
                 end
