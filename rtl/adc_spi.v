@@ -371,18 +371,14 @@ module adc_spi #(
 
     // ---------------------- stage B: saturation, overcurrent, valid pulse
     // |d| > thr on the registered difference: e = d ^ sign (= |d| - sign), so
-    // |d| > thr <=> (d >= 0) ? e > thr : e >= thr <=> no carry out of thr + ~e + ~sign
-    // (thr - e - 1 + ~sign < 0): one adder per channel, thr on the carry chain's DI and
-    // d, sign, thr in one LUT per bit
+    // |d| > thr <=> (d >= 0) ? e > thr : e >= thr
     function oc_f;
         input [D_W-1:0] d;
         input [ADC_BITS-1:0] thr;
         reg [ADC_BITS-1:0] e;
-        reg [ADC_BITS:0] t;
         begin
             e = d[ADC_BITS-1:0] ^ {ADC_BITS{d[D_W-1]}};
-            t = {1'b0, thr} + {1'b0, ~e} + {{ADC_BITS{1'b0}}, ~d[D_W-1]};
-            oc_f = ~t[ADC_BITS];
+            oc_f = d[D_W-1] ? (e >= thr) : (e > thr);
         end
     endfunction
     wire [2:0] oc_now = {oc_f(diff2, oc_thr), oc_f(diff1, oc_thr), oc_f(diff0, oc_thr)};
