@@ -73,7 +73,7 @@
 // Parameters: CPR, POLE_PAIRS, POS_W, ANGLE_BITS, MUL_W, ANGLE_MUL_SHIFT (-1 =
 //   auto), W_W, W_FRAC (>= 1), REALIGN (0/1, see above), ANGLE_DSP (1 = the
 //   product on a DSP48A1; 0 = m * ANGLE_MUL tracked in fabric next to m, same
-//   outputs and latency, about 100 LUTs more, no DSP).  MW = clog2(CPR).
+//   outputs and latency, about 90 LUTs more, no DSP).  MW = clog2(CPR).
 //   2 <= CPR < 2**17 keeps the product in one DSP (larger works, more DSPs).
 // Latency: pos step -> pos_mod 2 clocks (+1 per extra bit of a jump);
 //   pos_mod -> theta 2 clocks (DSP M register, then the DSP post-adder adds
@@ -81,9 +81,9 @@
 //   a +-1 count reaches theta 4 clocks after pos.  valid/aligned are delayed
 //   with theta.  sample -> speed/... 1 clock.
 // Reset: m = 0, not aligned, no HALL init, theta valid = 0, speed 0.
-// Resources (Yosys synth_xilinx xc6s, default): 1 DSP48A1, ~215 FFs,
-//   ~250 LUTs (~180 LUTs / ~110 FFs when the speed/sample outputs are left
-//   open, as in mpc_axis), no BRAM.
+// Resources (Yosys synth_xilinx xc6s, default): 1 DSP48A1, 1 RAMB8BWER (the
+//   c_k and HALL angle tables as a ROM), ~195 FFs, ~220 LUTs (~130 LUTs / ~95 FFs
+//   when the speed/sample outputs are left open, as in mpc_axis).
 `default_nettype none
 `include "empc_formats.vh"
 module pos_sense #(

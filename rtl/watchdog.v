@@ -21,8 +21,8 @@
 //   TW         width of timeout and of the tick counter (16 for WDOG_TIMEOUT)
 // Latency: expired rises 1 clock after the timeout-th tick; falls 1 clock after kick.
 // Reset: count 0, expired 0.
-// Resources: TW+1 flip-flops, one TW-bit incrementer and two
-//   magnitude compares on carry chains (30 LUTs, 8 CARRY4 for TW = 16); no DSP/BRAM.
+// Resources: TW+1 flip-flops, one TW-bit incrementer and one
+//   magnitude compare on carry chains (24 LUTs, 9 CARRY4 for TW = 16); no DSP/BRAM.
 `default_nettype none
 module watchdog #(
     parameter integer TW = 16
