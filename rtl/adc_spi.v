@@ -57,7 +57,7 @@
 // Parameters: ADC_BITS, FRAME_BITS, LEAD_ZEROS (>= 1), SCLK_DIV (>= 1),
 //   SAMPLE_DELAY (>= 3), CS_QUIET (>= 1), CAL_LOG2 (>= 1), CUR_W (>= 2),
 //   MISS_W, OFFSET_RESET.
-// Resources (Yosys synth_xilinx xc6s, defaults): ~160 LUT, ~290 FF, no DSP, no BRAM.
+// Resources (Yosys synth_xilinx xc6s, defaults): ~155 LUT, ~290 FF, no DSP, no BRAM.
 // Reset (synchronous, rst): cs_n = 1, sclk = 1, idle, all outputs 0,
 //   offsets = OFFSET_RESET, calibration idle, cal_done = 0, miss_cnt = 0.
 `default_nettype none
@@ -371,14 +371,19 @@ module adc_spi #(
 
     // ---------------------- stage B: saturation, overcurrent, valid pulse
     // |d| > thr on the registered difference: e = d ^ sign (= |d| - sign), so
-    // |d| > thr <=> (d >= 0) ? e > thr : e >= thr
+    // |d| > thr <=> (d >= 0) ? e > thr : e >= thr <=> thr - e - 1 + ~sign < 0, i.e. no
+    // carry out of thr + ~e + ~sign.  Written as one two-operand adder
+    // {thr, 1} + {~e, ~sign} (the carry-in in bit 0): thr is the carry chain's DI and
+    // d, sign, thr fit one LUT per bit (a three-operand form cost ~30 LUTs more in the top)
     function oc_f;
         input [D_W-1:0] d;
         input [ADC_BITS-1:0] thr;
         reg [ADC_BITS-1:0] e;
+        reg [ADC_BITS+1:0] t;
         begin
             e = d[ADC_BITS-1:0] ^ {ADC_BITS{d[D_W-1]}};
-            oc_f = d[D_W-1] ? (e >= thr) : (e > thr);
+            t = {1'b0, thr, 1'b1} + {1'b0, ~e, ~d[D_W-1]};
+            oc_f = ~t[ADC_BITS+1];
         end
     endfunction
     wire [2:0] oc_now = {oc_f(diff2, oc_thr), oc_f(diff1, oc_thr), oc_f(diff0, oc_thr)};
