@@ -82,7 +82,7 @@
 //   with theta.  sample -> speed/... 1 clock.
 // Reset: m = 0, not aligned, no HALL init, theta valid = 0, speed 0.
 // Resources (Yosys synth_xilinx xc6s, default): 1 DSP48A1, 1 RAMB8BWER (the
-//   c_k and HALL angle tables as a ROM), ~195 FFs, ~220 LUTs (~130 LUTs / ~95 FFs
+//   c_k and HALL angle tables as a ROM), ~195 FFs, ~215 LUTs (~125 LUTs / ~95 FFs
 //   when the speed/sample outputs are left open, as in mpc_axis).
 `default_nettype none
 `include "empc_formats.vh"
@@ -235,17 +235,27 @@ module pos_sense #(
 
     // Both tables in one block RAM (ROM, two read ports, registered outputs), so that
     // neither costs LUTs: C_TAB at addresses 0.. (port B, read with the next k: c is the
-    // entry of the current k), HALL_TAB at 2**TA + {sector, kind} (port A: its output
-    // register is base_rel, loaded at a HALL event and cleared by the index / align_clear).
+    // entry of the current k); at 2**TA + {hall_init, last_sector, sector} the HALL angle
+    // of a HALL event in that state (port A: its output register is base_rel, loaded at a
+    // HALL event and cleared by the index / align_clear).  The kind of angle: the centre
+    // at HALL init (hall_init = 0), else the edge crossed (start of the new sector moving
+    // up one sector, its end moving down one), the centre after a jump.
     localparam integer TW = (MW > ANGLE_BITS) ? MW : ANGLE_BITS;       // ROM word
-    localparam integer TA = (KW > 5) ? KW : 5;                          // address = {half, TA bits}
+    localparam integer TA = (KW > 7) ? KW : 7;                          // address = {half, TA bits}
     localparam [TA:0]  HALL_BASE = {1'b1, {TA{1'b0}}};
     (* rom_style = "block" *) reg [TW-1:0] trom [0:2*(2**TA)-1];
     integer ti;
+    reg [2:0] t_hs, t_ls;
+    reg [1:0] t_kd;
     initial begin
         for (ti = 0; ti < 2 * (2**TA); ti = ti + 1) trom[ti] = {TW{1'b0}};
         for (ti = 0; ti < POS_W; ti = ti + 1) trom[ti][MW-1:0] = C_TAB[ti*MW +: MW];
-        for (ti = 0; ti < 32; ti = ti + 1) trom[2**TA + ti][ANGLE_BITS-1:0] = HALL_TAB[ti*ANGLE_BITS +: ANGLE_BITS];
+        for (ti = 0; ti < 128; ti = ti + 1) begin
+            t_hs = ti[2:0];
+            t_ls = ti[5:3];
+            t_kd = (ti < 64) ? 2'd1 : (t_hs == s_next(t_ls)) ? 2'd0 : (t_ls == s_next(t_hs)) ? 2'd2 : 2'd1;
+            trom[2**TA + ti][ANGLE_BITS-1:0] = HALL_TAB[{t_hs, t_kd}*ANGLE_BITS +: ANGLE_BITS];
+        end
     end
 
     // ---------------- state ----------------
@@ -269,11 +279,8 @@ module pos_sense #(
     wire ev_hall_init = !al && !hall_init && hall_valid;
     wire ev_hall_chg  = !al && hall_init && hall_valid && hall_change;
     wire ev_hall = ev_hall_init || ev_hall_chg;
-    wire hall_fwd = (hall_sector == s_next(last_sector));
-    wire hall_bwd = (last_sector == s_next(hall_sector));
-    // kind of angle: centre at HALL init, else the edge crossed (centre after a jump)
-    wire [1:0] hall_kind = ev_hall_init ? 2'd1 : hall_fwd ? 2'd0 : hall_bwd ? 2'd2 : 2'd1;
-    wire [TA:0] hall_addr = HALL_BASE | {{(TA-4){1'b0}}, hall_sector, hall_kind};
+    // ROM address of the HALL angle (hall_init = 0 there at the HALL init event)
+    wire [TA:0] hall_addr = HALL_BASE | {{(TA-6){1'b0}}, hall_init, last_sector, hall_sector};
     // index alignment: the first index after reset / align_clear (every index if REALIGN)
     wire ev_index = index_event && (!al || align_clear || (REALIGN != 0));
     wire ev_any = ev_index || ev_hall;
