@@ -128,7 +128,6 @@ module adc_spi #(
     localparam [DIV_W-1:0]  DIV_LAST   = DIV_LAST_I[DIV_W-1:0];
     localparam [Q_W-1:0]    Q_LAST     = Q_LAST_I[Q_W-1:0];
     localparam [CAL_LOG2-1:0] CAL_LAST = {CAL_LOG2{1'b1}};
-    localparam [MISS_W-1:0] MISS_MAX  = {MISS_W{1'b1}};
 
     localparam [1:0] S_IDLE = 2'd0, S_XFER = 2'd1, S_WAIT = 2'd2, S_QUIET = 2'd3;
 
@@ -159,6 +158,8 @@ module adc_spi #(
     wire cap_last = lpipe[PIPE_N-1];
     wire accept  = trig & ~busy;
     wire [HB_W-1:0] hb_n = hb + 1'b1;
+    // saturating miss counter: the incrementer's carry out is miss_cnt == MISS_MAX
+    wire [MISS_W:0] miss_p1 = {1'b0, miss_cnt} + {{MISS_W{1'b0}}, 1'b1};
 
     assign busy = (st != S_IDLE) | capdone | st_a;
 
@@ -178,8 +179,8 @@ module adc_spi #(
             lstb      <= 1'b0;
             llast     <= 1'b0;
             trig_miss <= trig & busy;
-            if (trig & busy && miss_cnt != MISS_MAX)
-                miss_cnt <= miss_cnt + 1'b1;
+            if (trig & busy && !miss_p1[MISS_W])
+                miss_cnt <= miss_p1[MISS_W-1:0];
             case (st)
                 S_IDLE: if (accept) begin
                     cs_n <= 1'b0;                   // conversion start, bit 0 launched

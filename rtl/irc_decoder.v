@@ -127,6 +127,8 @@ module irc_decoder #(
     // one adder, +1 / -1 / 0 (no multiplexer after the carry chain)
     wire [POS_W-1:0] pos_next = pos + {{(POS_W-1){step_dn}}, step_up | step_dn};
     wire dir_next = step_up ? 1'b1 : step_dn ? 1'b0 : dir;
+    // saturating error counter: the incrementer's carry out is err_cnt == all ones
+    wire [ERR_W:0] err_p1 = {1'b0, err_cnt} + {{ERR_W{1'b0}}, 1'b1};
 
     always @(posedge clk) begin
         if (rst) begin
@@ -167,8 +169,8 @@ module irc_decoder #(
             err_flag  <= step_bad | (err_flag & ~err_clear);
             if (err_clear)
                 err_cnt <= {{(ERR_W-1){1'b0}}, step_bad};
-            else if (step_bad && (err_cnt != {ERR_W{1'b1}}))
-                err_cnt <= err_cnt + {{(ERR_W-1){1'b0}}, 1'b1};
+            else if (step_bad && !err_p1[ERR_W])
+                err_cnt <= err_p1[ERR_W-1:0];
         end
     end
 endmodule

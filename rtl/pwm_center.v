@@ -90,7 +90,6 @@ module pwm_center #(
     localparam [CW-1:0] ONE = {{(CW-1){1'b0}}, 1'b1};
     localparam [CW-1:0] LEAD = SYNC_LEAD[CW-1:0];
     localparam          LEAD_DIR = (SYNC_LEAD == 0) ? 1'b1 : 1'b0;
-    localparam [DEAD_W-1:0] Q_MAX = {DEAD_W{1'b1}};
     localparam          MODE_COMPL = 1'b0;
 
     // ---- sync input: optional synchroniser, rising-edge detect ----------------
@@ -214,6 +213,8 @@ module pwm_center #(
             reg  h_prev;
             wire h = dir ? (~eq & (h_prev | at_bnd)) : (h_prev | eq);
             reg  [DEAD_W-1:0] q;                       // clocks with hi = lo = 0
+            // saturating at 2**DEAD_W-1: the incrementer's carry out is q == Q_MAX
+            wire [DEAD_W:0]   q_p1 = {1'b0, q} + {{DEAD_W{1'b0}}, 1'b1};
             wire q_ok = (q >= dead);
             reg  hi_n, lo_n;
             always @(*) begin
@@ -239,7 +240,7 @@ module pwm_center #(
                     lo[i] <= lo_n;
                     h_prev <= h;
                     if (hi_n | lo_n) q <= {DEAD_W{1'b0}};
-                    else if (q != Q_MAX) q <= q + 1'b1;
+                    else if (!q_p1[DEAD_W]) q <= q_p1[DEAD_W-1:0];
                 end
             end
         end
