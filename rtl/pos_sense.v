@@ -241,7 +241,8 @@ module pos_sense #(
     // at HALL init (hall_init = 0), else the edge crossed (start of the new sector moving
     // up one sector, its end moving down one), the centre after a jump.
     localparam integer TW = (MW > ANGLE_BITS) ? MW : ANGLE_BITS;       // ROM word
-    localparam integer TA = (KW > 7) ? KW : 7;                          // address = {half, TA bits}
+    localparam integer HA = 7;                                          // {hall_init, last_sector, sector}
+    localparam integer TA = (KW > HA) ? KW : HA;                        // address = {half, TA bits}
     localparam [TA:0]  HALL_BASE = {1'b1, {TA{1'b0}}};
     (* rom_style = "block" *) reg [TW-1:0] trom [0:2*(2**TA)-1];
     integer ti;
@@ -250,10 +251,10 @@ module pos_sense #(
     initial begin
         for (ti = 0; ti < 2 * (2**TA); ti = ti + 1) trom[ti] = {TW{1'b0}};
         for (ti = 0; ti < POS_W; ti = ti + 1) trom[ti][MW-1:0] = C_TAB[ti*MW +: MW];
-        for (ti = 0; ti < 128; ti = ti + 1) begin
+        for (ti = 0; ti < 2**HA; ti = ti + 1) begin
             t_hs = ti[2:0];
             t_ls = ti[5:3];
-            t_kd = (ti < 64) ? 2'd1 : (t_hs == s_next(t_ls)) ? 2'd0 : (t_ls == s_next(t_hs)) ? 2'd2 : 2'd1;
+            t_kd = (ti < 2**(HA-1)) ? 2'd1 : (t_hs == s_next(t_ls)) ? 2'd0 : (t_ls == s_next(t_hs)) ? 2'd2 : 2'd1;
             trom[2**TA + ti][ANGLE_BITS-1:0] = HALL_TAB[{t_hs, t_kd}*ANGLE_BITS +: ANGLE_BITS];
         end
     end
@@ -280,7 +281,7 @@ module pos_sense #(
     wire ev_hall_chg  = !al && hall_init && hall_valid && hall_change;
     wire ev_hall = ev_hall_init || ev_hall_chg;
     // ROM address of the HALL angle (hall_init = 0 there at the HALL init event)
-    wire [TA:0] hall_addr = HALL_BASE | {{(TA-6){1'b0}}, hall_init, last_sector, hall_sector};
+    wire [TA:0] hall_addr = HALL_BASE | {{(TA+1-HA){1'b0}}, hall_init, last_sector, hall_sector};
     // index alignment: the first index after reset / align_clear (every index if REALIGN)
     wire ev_index = index_event && (!al || align_clear || (REALIGN != 0));
     wire ev_any = ev_index || ev_hall;
@@ -296,17 +297,18 @@ module pos_sense #(
     wire             d_zero = d_eqc[POS_W];
     wire [POS_W-1:0] r_sh = {r[POS_W-1], r[POS_W-1:1]};
     // r[POS_W-1:1] all 0 or all 1 = r[POS_W-2:1] all equal to the sign r[POS_W-1]: groups of
-    // 5 bits (one LUT6 each with the sign), ANDed on a carry chain (carry out of +1)
-    localparam integer UG = (POS_W + 2) / 5;                          // ceil((POS_W - 2) / 5)
-    localparam integer UEW = (5 * UG + 1 > POS_W) ? 5 * UG + 1 : POS_W;
-    /* verilator lint_off UNUSEDSIGNAL */ // bit 0 and (UEW > 5*UG+1) top sign copies unused
+    // UGS bits (one LUT6 each with the sign), ANDed on a carry chain (carry out of +1)
+    localparam integer UGS = 5;
+    localparam integer UG = (POS_W - 2 + UGS - 1) / UGS;
+    localparam integer UEW = (UGS * UG + 1 > POS_W) ? UGS * UG + 1 : POS_W;
+    /* verilator lint_off UNUSEDSIGNAL */ // bit 0 and the top sign copies (padding) unused
     wire [UEW-1:0] r_ext = {{(UEW - POS_W + 1){r[POS_W-1]}}, r[POS_W-2:0]};
     /* verilator lint_on UNUSEDSIGNAL */
     wire [UG-1:0]  r_gu;
     genvar gi;
     generate
         for (gi = 0; gi < UG; gi = gi + 1) begin : g_uni
-            assign r_gu[gi] = (r_ext[5*gi+1 +: 5] == {5{r[POS_W-1]}});
+            assign r_gu[gi] = (r_ext[UGS*gi+1 +: UGS] == {UGS{r[POS_W-1]}});
         end
     endgenerate
     wire [UG:0] r_unc = {1'b0, r_gu} + {{UG{1'b0}}, 1'b1};

@@ -185,10 +185,11 @@ module pwm_center #(
         end
     end
 
-    // counter in groups of 3 bits (one LUT6 per group compares it with a compare value)
-    localparam integer NG = (CW + 2) / 3;
+    // counter in groups of EG bits (one LUT6 per group compares it with a compare value)
+    localparam integer EG = 3;
+    localparam integer NG = (CW + EG - 1) / EG;
     /* verilator lint_off UNUSEDSIGNAL */ // top bit: padding only
-    wire [3*NG:0] cnt_x = {{(3*NG - CW + 1){1'b0}}, cnt};
+    wire [EG*NG:0] cnt_x = {{(EG*NG - CW + 1){1'b0}}, cnt};
     /* verilator lint_on UNUSEDSIGNAL */
 
     genvar i, g;
@@ -202,11 +203,11 @@ module pwm_center #(
             // (cnt != c) (at the boundary h = 0 < c = c != 0); down-count: h = h_prev | (cnt == c)
             // (also at the turn P-1 -> P, where P-1 < c <=> P <= c).
             /* verilator lint_off UNUSEDSIGNAL */ // top bit: padding only
-            wire [3*NG:0] c_x = {{(3*NG - CW + 1){1'b0}}, c};
+            wire [EG*NG:0] c_x = {{(EG*NG - CW + 1){1'b0}}, c};
             /* verilator lint_on UNUSEDSIGNAL */
             wire [NG-1:0] eqg;                         // per group cnt == c
             for (g = 0; g < NG; g = g + 1) begin : g_eq
-                assign eqg[g] = (cnt_x[3*g +: 3] == c_x[3*g +: 3]);
+                assign eqg[g] = (cnt_x[EG*g +: EG] == c_x[EG*g +: EG]);
             end
             wire [NG:0] eqc = {1'b0, eqg} + {{NG{1'b0}}, 1'b1};   // AND of the groups on a carry chain
             wire eq = eqc[NG];
