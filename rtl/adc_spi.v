@@ -57,7 +57,7 @@
 // Parameters: ADC_BITS, FRAME_BITS, LEAD_ZEROS (>= 1), SCLK_DIV (>= 1),
 //   SAMPLE_DELAY (>= 3), CS_QUIET (>= 1), CAL_LOG2 (>= 1), CUR_W (>= 2),
 //   MISS_W, OFFSET_RESET.
-// Resources (Yosys synth_xilinx xc6s, defaults): ~160 LUT, ~290 FF, no DSP, no BRAM.
+// Resources (Yosys synth_xilinx xc6s, defaults): ~155 LUT, ~290 FF, no DSP, no BRAM.
 // Reset (synchronous, rst): cs_n = 1, sclk = 1, idle, all outputs 0,
 //   offsets = OFFSET_RESET, calibration idle, cal_done = 0, miss_cnt = 0.
 `default_nettype none
@@ -128,7 +128,6 @@ module adc_spi #(
     localparam [DIV_W-1:0]  DIV_LAST   = DIV_LAST_I[DIV_W-1:0];
     localparam [Q_W-1:0]    Q_LAST     = Q_LAST_I[Q_W-1:0];
     localparam [CAL_LOG2-1:0] CAL_LAST = {CAL_LOG2{1'b1}};
-    localparam [MISS_W-1:0] MISS_MAX  = {MISS_W{1'b1}};
 
     localparam [1:0] S_IDLE = 2'd0, S_XFER = 2'd1, S_WAIT = 2'd2, S_QUIET = 2'd3;
 
@@ -159,6 +158,8 @@ module adc_spi #(
     wire cap_last = lpipe[PIPE_N-1];
     wire accept  = trig & ~busy;
     wire [HB_W-1:0] hb_n = hb + 1'b1;
+    // saturating miss counter: the incrementer's carry out is miss_cnt == MISS_MAX
+    wire [MISS_W:0] miss_p1 = {1'b0, miss_cnt} + {{MISS_W{1'b0}}, 1'b1};
 
     assign busy = (st != S_IDLE) | capdone | st_a;
 
@@ -178,8 +179,8 @@ module adc_spi #(
             lstb      <= 1'b0;
             llast     <= 1'b0;
             trig_miss <= trig & busy;
-            if (trig & busy && miss_cnt != MISS_MAX)
-                miss_cnt <= miss_cnt + 1'b1;
+            if (trig & busy && !miss_p1[MISS_W])
+                miss_cnt <= miss_p1[MISS_W-1:0];
             case (st)
                 S_IDLE: if (accept) begin
                     cs_n <= 1'b0;                   // conversion start, bit 0 launched
@@ -371,14 +372,19 @@ module adc_spi #(
 
     // ---------------------- stage B: saturation, overcurrent, valid pulse
     // |d| > thr on the registered difference: e = d ^ sign (= |d| - sign), so
-    // |d| > thr <=> (d >= 0) ? e > thr : e >= thr
+    // |d| > thr <=> (d >= 0) ? e > thr : e >= thr <=> thr - e - 1 + ~sign < 0, i.e. no
+    // carry out of thr + ~e + ~sign.  Written as one two-operand adder
+    // {thr, 1} + {~e, ~sign} (the carry-in in bit 0): thr is the carry chain's DI and
+    // d, sign, thr fit one LUT per bit (a three-operand form cost ~30 LUTs more in the top)
     function oc_f;
         input [D_W-1:0] d;
         input [ADC_BITS-1:0] thr;
         reg [ADC_BITS-1:0] e;
+        reg [ADC_BITS+1:0] t;
         begin
             e = d[ADC_BITS-1:0] ^ {ADC_BITS{d[D_W-1]}};
-            oc_f = d[D_W-1] ? (e >= thr) : (e > thr);
+            t = {1'b0, thr, 1'b1} + {1'b0, ~e, ~d[D_W-1]};
+            oc_f = ~t[ADC_BITS+1];
         end
     endfunction
     wire [2:0] oc_now = {oc_f(diff2, oc_thr), oc_f(diff1, oc_thr), oc_f(diff0, oc_thr)};

@@ -42,7 +42,8 @@
 //            rounding bit product[s-1] in bit 0 (0 for s = 0).
 //   theta    own 1-bit adder: theta_mod = 2 theta_trig - theta_prev (theta_trig if first),
 //            written into the xform angle register after the front has started.
-//   sequence a microprogram (one word per core-input step, block RAM), the control
+//   sequence a microprogram (two 36-bit words per core-input step, block RAM, with the
+//            decode precomputed at elaboration; pass table in a second one), the control
 //            program from the trigger of a control period, a status program (U_D, U_Q)
 //            at every modulation start.
 //   status   the words I_D, I_Q, SPEED, REF (w_k in the task window: bits 47:16 speed,
@@ -149,7 +150,8 @@ module ctrl_seq #(
     end endgenerate
 
     // ---------------- per-period bookkeeping ----------------
-    reg  [7:0]  per_cnt;            // PWM periods since the last control period
+    reg  [7:0]  per_nx;             // PWM periods since the last control period, + 1 (mod 256):
+                                    // held incremented so that the compare needs no adder in front
     reg         is_control;
     reg         first, mfirst;
     reg  [15:0] lat_cnt;
@@ -158,7 +160,8 @@ module ctrl_seq #(
     reg  signed [UW-1:0] u_st0, u_st1;
     reg         zeroed;             // run was low since the last core update: u_prev = ebar_prev = 0
     wire        trig = adc_trig && !busy_period;
-    wire        ctl_now = (per_cnt + 8'd1 >= pwm_per_control);
+    wire        ctl_now = (per_nx >= pwm_per_control);
+    wire [7:0]  per_cnt = per_nx - 8'd1;    // (read by sim/cosim_top.v only: no logic in synthesis)
 
     // ---------------- transform chain: one microprogrammed MAC (xform) ----------------
     reg  xf_front, xf_mod;
@@ -193,19 +196,87 @@ module ctrl_seq #(
     localparam integer PCI_CNT  = PCI_RSTZ + 6;        // the counter sweep
     localparam [6:0]   PC_STAT = PCI_STAT[6:0], PC_RSTZ = PCI_RSTZ[6:0], PC_CNT = PCI_CNT[6:0];
     localparam integer NCNT = 14;   // SAT_OPERAND .. CNT_OVERRUN, PERIODS
-    reg [17:0] ucode [0:127];      // (initial values only: copied into crom)
-    function [17:0] uword;
+    // Pass kinds PK_*: the non-reference kinds are 0..6 (PK_CNT also for the ops without a pass),
+    // the reference kinds {1, 0, task_pos, m == 0}, so that the microword holds the kind but
+    // for the one bit that task_pos decides.
+    localparam [3:0] PK_POS = 4'd0, PK_DIFF = 4'd1, PK_OM = 4'd2, PK_FIX3 = 4'd3, PK_W6 = 4'd4,
+                     PK_STAT = 4'd5, PK_CNT = 4'd6, PK_FIX = 4'd7, PK_REFS = 4'd8, PK_REFS0 = 4'd9, PK_REFP = 4'd10,
+                     PK_REFP0 = 4'd11;
+    localparam [5:0] ST_REF = `EMPC_A_REF, ST_I_D = `EMPC_A_I_D, ST_SPEED = `EMPC_A_SPEED;
+    // Microword, 36 bits: the fields op, src, wa (core address), ref_age (N - m) and what is
+    // decoded from them once, here, instead of in logic behind the block RAM: the status
+    // address, one flag per pass op (registered as is_*), "subtracts" (but for the reference,
+    // whose sign task_pos decides) and the pass kind (its bit 1 for a reference: task_pos).
+    // A second 36-bit word per step (ub, the block RAM's second port) holds the engine's decode:
+    // the stage selects (active low, one per source SRC_*), the next-state classes of E_OP (to
+    // E_STG, to E_PASS, to E_IDLE; the waits are the op flags), the zero writes, the end markers,
+    // "back to E_OP after the pass", "saturated to SW bits", "writes a status word" and the
+    // counter source checks.
+    localparam integer UW_AGE = 14, UW_ST = 18, UW_F = 24, UW_SUB = 32, UW_PK = 33;
+    localparam integer UB_NSEL = 0, UB_STG = 10, UB_PASS = 11, UB_ZERO = 12, UB_IDLE = 13, UB_END = 14,
+                       UB_CEND = 15, UB_COPY = 16, UB_WZ = 17, UB_ZPOS = 18, UB_BACK = 19, UB_SAT = 20,
+                       UB_CSOK = 21, UB_STOK = 22, UB_STW = 23;
+    localparam integer NSRC = 10;  // SRC_POS .. SRC_IQ
+    reg [71:0] ucode [0:127];      // (initial values only: copied into urom as {ub, uw})
+    function [35:0] uwordb;
+        input [3:0] op;
+        input [3:0] src;
+        input [2:0] m;
+        reg   [NSRC-1:0] ns;
+        begin
+            ns = {src != SRC_IQ, src != SRC_ID, src != SRC_IQR, src != SRC_IDR, src != SRC_U1,
+                  src != SRC_U0, src != SRC_E2, src != SRC_E1, src != SRC_E0, src != SRC_POS};
+            uwordb = {12'd0,
+                      // status word out of this pass: REF (m = 0), I_D / I_Q, SPEED, U_D / U_Q
+                      ((op == OP_REF) && (m == 3'd0)) || (op == OP_DIFF) || (op == OP_FIX3) || (op == OP_STAT),
+                      src != 4'd15, (src != 4'd13) && (src != 4'd15),
+                      (op == OP_POS) || (op == OP_REF) || (op == OP_W6),
+                      (op == OP_OM) || (op == OP_STAT) || (op == OP_CNT),
+                      op == OP_ZPOS, op == OP_ZERO, op == OP_COPY, op == OP_CEND, op == OP_END,
+                      !((op == OP_POS) || (op == OP_COPY) || (op == OP_STAT) || (op == OP_DIFF) ||
+                        (op == OP_REF) || (op == OP_OM) || (op == OP_FIX3) || (op == OP_W6) ||
+                        (op == OP_CNT) || (op == OP_ZERO) || (op == OP_ZPOS)),
+                      (op == OP_ZERO) || (op == OP_ZPOS),
+                      (op == OP_FIX3) || (op == OP_W6) || (op == OP_CNT),
+                      (op == OP_POS) || (op == OP_COPY) || (op == OP_STAT), ns};
+        end
+    endfunction
+    function [35:0] uworda;
         input [3:0] op;
         input [3:0] src;
         input [5:0] wa;
         input [2:0] m;
-        uword = {1'b0, m, wa, src, op};
+        reg   [5:0] st;
+        reg   [2:0] k;         // pass kind, bits 2:0 (bit 3: op == OP_REF)
+        reg   [3:0] age;       // ref_age = N - m
+        begin
+            age = N[3:0] - {1'b0, m};
+            st = (op == OP_REF) ? ST_REF : (op == OP_DIFF) ? (ST_I_D + {5'd0, src[0]}) :
+                 (op == OP_FIX3) ? ST_SPEED : wa;
+            case (op)
+                OP_POS: k = PK_POS[2:0];
+                OP_REF: k = (m == 3'd0) ? PK_REFS0[2:0] : PK_REFS[2:0];
+                OP_DIFF: k = PK_DIFF[2:0];
+                OP_OM: k = PK_OM[2:0];
+                OP_FIX3: k = PK_FIX3[2:0];
+                OP_W6: k = PK_W6[2:0];
+                OP_STAT: k = PK_STAT[2:0];
+                default: k = PK_CNT[2:0];
+            endcase
+            uworda = {k, (op == OP_POS) || (op == OP_DIFF) || (op == OP_W6),
+                     op == OP_CNT, op == OP_STAT, op == OP_W6, op == OP_FIX3, op == OP_OM,
+                     op == OP_DIFF, op == OP_REF, op == OP_POS, st, age, wa, src, op};
+        end
+    endfunction
+    function [71:0] uword;
+        input [3:0] op;
+        input [3:0] src;
+        input [5:0] wa;
+        input [2:0] m;
+        uword = {uwordb(op, src, m), uworda(op, src, wa, m)};
     endfunction
     // Pass control table, one word per (pass kind, bit j): which registers shift, when the
-    // pass ends, sign holds, flag strobes (PC_* bits below); kinds PK_*.
-    localparam [3:0] PK_POS = 4'd0, PK_REFP0 = 4'd1, PK_REFP = 4'd2, PK_REFS0 = 4'd3, PK_REFS = 4'd4,
-                     PK_DIFF = 4'd5, PK_OM = 4'd6, PK_FIX3 = 4'd7, PK_W6 = 4'd8, PK_STAT = 4'd9,
-                     PK_CNT = 4'd10;
+    // pass ends, sign holds, flag strobes (PC_* bits below).
     localparam integer PC_XS = 0, PC_PE = 1, PC_SS = 2, PC_HA = 3, PC_HB = 4, PC_CA = 5, PC_CB = 6,
                        PC_R1 = 7, PC_R2 = 8, PC_R3 = 9, PC_AL = 10, PC_L31 = 11, PC_L16 = 12, PC_F1 = 13,
                        PC_F2 = 14, PC_F3 = 15, PC_W0 = 16, PC_G = 17;
@@ -249,6 +320,9 @@ module ctrl_seq #(
                 PK_CNT: begin                                   // counter + event, 32 bits
                     w[PC_AL] = 1'b1; w[PC_SS] = (b < 32); w[PC_CA] = (b == 31); w[PC_PE] = (b == 32);
                 end
+                PK_FIX: begin                                   // E_FIX (second port, pwf): end, bits
+                    w[PC_PE] = (b == 39); w[PC_XS] = (b >= 31); //   31.. of the saturation pattern
+                end
                 default: begin
                     if (refp) begin                             // (w - count << 32) >> 24 + w[23]
                         w[PC_AL] = (b >= 24); w[PC_XS] = (b >= 24); w[PC_R1] = (b >= 32);
@@ -263,7 +337,8 @@ module ctrl_seq #(
             pctl = w;
         end
     endfunction
-    (* rom_style = "block" *) reg [17:0] crom [0:1023];     // 0..767 pass table, 896.. microprogram
+    (* rom_style = "block" *) reg [17:0] crom [0:1023];     // pass table (kinds 0..11, 64 bits each)
+    (* rom_style = "block" *) reg [35:0] urom [0:255];      // microprogram: uw at pc, ub at 128 + pc
     integer ui, ua, uk;
     initial begin
         for (ui = 0; ui < 1024; ui = ui + 1) crom[ui] = 18'd0;
@@ -310,15 +385,17 @@ module ctrl_seq #(
         end
         ucode[PCI_CNT + NCNT - 1] = uword(OP_CNT, 4'd13, `EMPC_A_PERIODS, 3'd0);
         ucode[PCI_CNT + NCNT] = uword(OP_CEND, 4'd0, 6'd0, 3'd0);
-        for (ui = 0; ui < 128; ui = ui + 1) crom[896 + ui] = ucode[ui];
+        for (ui = 0; ui < 128; ui = ui + 1) begin
+            urom[ui] = ucode[ui][35:0];
+            urom[128 + ui] = ucode[ui][71:36];
+        end
     end
     reg  [6:0]  pc;
     reg  [6:0]  pc_next;
-    reg  [17:0] uw;                 // ucode[pc]
+    reg  [35:0] uw, ub;             // ucode[pc]
     wire [3:0]  u_op  = uw[3:0];
     wire [3:0]  u_src = uw[7:4];
     wire [5:0]  u_wa  = uw[13:8];
-    wire [2:0]  u_m   = uw[16:14];
 
     // engine states
     localparam [2:0] E_IDLE = 3'd0, E_OP = 3'd1, E_STG = 3'd2, E_LD = 3'd3, E_PASS = 3'd4,
@@ -327,30 +404,31 @@ module ctrl_seq #(
     reg         prog_done, front_done, adc_seen, core_run, core_fin;
     reg  [5:0]  j;                  // bit of the pass
 
-    // The op decoded from uw, registered: uw comes out of block RAM (about 2 ns clock-to-out), and
+    // The op flags of uw, registered: uw comes out of block RAM (about 2 ns clock-to-out), and
     // decoding it in front of the serial ALU made the pass datapath 9 LUT levels deep (93.5 MHz
     // proxy).  uw changes only together with pc, which always enters E_OP for at least one clock,
     // so the registered flags are valid from the clock after E_OP on: in every state where the
     // pass datapath acts.  What acts in E_OP itself (next state, pass table and status
-    // addresses, ALU carry preset, zero writes) uses the unregistered op_* decode.
-    wire op_pos  = (u_op == OP_POS);
-    wire op_ref  = (u_op == OP_REF);
-    wire op_diff = (u_op == OP_DIFF);
-    wire op_om   = (u_op == OP_OM);
-    wire op_fix3 = (u_op == OP_FIX3);
-    wire op_w6   = (u_op == OP_W6);
-    wire op_stat = (u_op == OP_STAT);
-    wire op_cnt  = (u_op == OP_CNT);
-    wire op_sub  = op_pos || op_diff || op_w6 || (op_ref && task_pos);     // the pass subtracts B
-    reg  is_pos, is_ref, is_diff, is_om, is_fix3, is_w6, is_stat, is_cnt, diff_q, sub, is_sat;
+    // addresses, ALU carry preset, zero writes) uses the unregistered op_* bits.
+    wire op_pos  = uw[UW_F + 0];
+    wire op_ref  = uw[UW_F + 1];
+    wire op_diff = uw[UW_F + 2];
+    wire op_om   = uw[UW_F + 3];
+    wire op_fix3 = uw[UW_F + 4];
+    wire op_w6   = uw[UW_F + 5];
+    wire op_stat = uw[UW_F + 6];
+    wire op_cnt  = uw[UW_F + 7];
+    wire op_sub  = uw[UW_SUB] || (op_ref && task_pos);     // the pass subtracts B
+    reg  is_pos, is_ref, is_diff, is_om, is_fix3, is_w6, is_stat, is_cnt, diff_q, sub, is_sat, is_back, is_stw;
     always @(posedge clk) begin
         {is_pos, is_ref, is_diff, is_om, is_fix3, is_w6, is_stat, is_cnt} <=
             {op_pos, op_ref, op_diff, op_om, op_fix3, op_w6, op_stat, op_cnt};
         diff_q  <= u_src[0];        // SRC_IQ (9) vs SRC_ID (8)
         sub     <= op_sub;
-        is_sat  <= op_pos || op_ref || op_w6;       // result saturated to SW bits
+        is_sat  <= ub[UB_SAT];      // result saturated to SW bits (POS, REF, W6)
+        is_back <= ub[UB_BACK];     // back to E_OP at the pass end (OM, STAT, CNT)
+        is_stw  <= ub[UB_STW];      // writes a status word at the pass end (counters: unless saturated)
     end
-    wire m0      = (u_m == 3'd0);
     wire in_pass = (est == E_PASS);
 
     // ---------------- stage registers and X ----------------
@@ -361,26 +439,31 @@ module ctrl_seq #(
     reg  [IW-1:0] g_id, g_iq, g_idr, g_iqr;
     reg  [SW-1:0] g_e0, g_e1, g_e2;
     reg  [UW-1:0] g_u0, g_u1;
-    reg           g_s18, g_s24;    // sign of the staged 18-bit source / of any 18- or 24-bit source
-    wire          sel = (est == E_STG);
-    wire          src18 = (u_src == SRC_ID) || (u_src == SRC_IQ) || (u_src == SRC_IDR) || (u_src == SRC_IQR);
-    wire          sgn18 = (u_src == SRC_ID) ? i_d[IW-1] : (u_src == SRC_IQ) ? i_q[IW-1] :
-                          (u_src == SRC_IDR) ? id_ref[IW-1] : iq_ref[IW-1];
-    wire          sgn24 = (u_src == SRC_U0) ? u_st0[UW-1] : u_st1[UW-1];
+    // The selects are registered in the E_OP clock that enters E_STG (the step word ub cannot
+    // change before E_LD), active low so that they drive the stage flip-flops' reset directly;
+    // ebar_prev is selected unless zeroed is set in the E_STG clock (zeroed's next value).
+    reg  [NSRC-1:0] nsel;
+    wire          to_stg = !rst && (est == E_OP) && !go_ctl && (ub[UB_STG] || (op_diff && front_done));
+    wire          zeroed_nx = rst || (!core_done && (!run || zeroed));
     always @(posedge clk) begin
-        g_pos <= (sel && u_src == SRC_POS) ? pos_trig : {PW{1'b0}};
-        g_id  <= (sel && u_src == SRC_ID)  ? i_d : {IW{1'b0}};
-        g_iq  <= (sel && u_src == SRC_IQ)  ? i_q : {IW{1'b0}};
-        g_idr <= (sel && u_src == SRC_IDR) ? id_ref : {IW{1'b0}};
-        g_iqr <= (sel && u_src == SRC_IQR) ? iq_ref : {IW{1'b0}};
-        g_e0  <= (sel && u_src == SRC_E0 && !zeroed) ? core_ebar[0*SW +: SW] : {SW{1'b0}};
-        g_e1  <= (sel && u_src == SRC_E1 && !zeroed) ? core_ebar[1*SW +: SW] : {SW{1'b0}};
-        g_e2  <= (sel && u_src == SRC_E2 && !zeroed) ? core_ebar[2*SW +: SW] : {SW{1'b0}};
-        g_u0  <= (sel && u_src == SRC_U0) ? u_st0 : {UW{1'b0}};
-        g_u1  <= (sel && u_src == SRC_U1) ? u_st1 : {UW{1'b0}};
-        g_s18 <= sel && src18 && sgn18;
-        g_s24 <= sel && (src18 ? sgn18 : (u_src == SRC_U0 || u_src == SRC_U1) && sgn24);
+        nsel <= to_stg ? ub[UB_NSEL +: NSRC] : {NSRC{1'b1}};
+        if (zeroed_nx) nsel[SRC_E2:SRC_E0] <= 3'b111;
     end
+    always @(posedge clk) begin
+        g_pos <= nsel[SRC_POS] ? {PW{1'b0}} : pos_trig;
+        g_id  <= nsel[SRC_ID]  ? {IW{1'b0}} : i_d;
+        g_iq  <= nsel[SRC_IQ]  ? {IW{1'b0}} : i_q;
+        g_idr <= nsel[SRC_IDR] ? {IW{1'b0}} : id_ref;
+        g_iqr <= nsel[SRC_IQR] ? {IW{1'b0}} : iq_ref;
+        g_e0  <= nsel[SRC_E0]  ? {SW{1'b0}} : core_ebar[0*SW +: SW];
+        g_e1  <= nsel[SRC_E1]  ? {SW{1'b0}} : core_ebar[1*SW +: SW];
+        g_e2  <= nsel[SRC_E2]  ? {SW{1'b0}} : core_ebar[2*SW +: SW];
+        g_u0  <= nsel[SRC_U0]  ? {UW{1'b0}} : u_st0;
+        g_u1  <= nsel[SRC_U1]  ? {UW{1'b0}} : u_st1;
+    end
+    // sign of the staged 18-bit source / of any 18- or 24-bit source (unselected stages are 0)
+    wire          g_s18 = g_id[IW-1] | g_iq[IW-1] | g_idr[IW-1] | g_iqr[IW-1];
+    wire          g_s24 = g_s18 | g_u0[UW-1] | g_u1[UW-1];
     // the OR of the stages, sign-extended through the two registered sign bits; bits
     // 17:0 have 11 inputs with X's own shift: split 6 + 5 so that each is one LUT6
     (* keep *) wire [IW-1:0] g_lo = x[IW:1] | g_pos[IW-1:0] | g_e0[IW-1:0] | g_e1[IW-1:0] | g_e2[IW-1:0] |
@@ -411,7 +494,7 @@ module ctrl_seq #(
     wire       p_ca  = pw[PC_CA], p_cb = pw[PC_CB], p_r1 = pw[PC_R1], p_r2 = pw[PC_R2], p_r3 = pw[PC_R3];
     wire       p_al  = pw[PC_AL], p_l31 = pw[PC_L31], p_l16 = pw[PC_L16], p_f1 = pw[PC_F1], p_f2 = pw[PC_F2];
     wire       p_f3  = pw[PC_F3], p_w0 = pw[PC_W0];
-    assign ref_age = N[AW-1:0] - u_m[AW-1:0];
+    assign ref_age = uw[UW_AGE +: AW];
     assign ref_bit = j;
 
     // A operand
@@ -440,8 +523,9 @@ module ctrl_seq #(
     wire       b_eff  = b_bit ^ sub;
     wire       r      = a_bit ^ b_eff ^ c0;
     wire       maj    = (a_bit & b_eff) | (c0 & (a_bit ^ b_eff));
-    wire       fix_end = (est == E_FIX) && (j == 6'd39);
-    wire       r_fix  = (j[5] || j[4:0] == 5'd31) ? fix_sgn : ~fix_sgn;   // X = satSW pattern, sign-extended
+    reg  [17:0] pwf;                // E_FIX table word of j (kind PK_FIX, second port of the pass table)
+    wire       fix_end = (est == E_FIX) && pwf[PC_PE];
+    wire       r_fix  = pwf[PC_XS] ? fix_sgn : ~fix_sgn;       // X = satSW pattern, sign-extended
 
     // pass control (status / counter passes: 32 bits, the word written one clock after the last)
     wire       pass_end  = in_pass && p_pe;
@@ -457,7 +541,7 @@ module ctrl_seq #(
     wire       x_load  = (est == E_LD);
     wire       x_clr   = (est == E_WR && !(is_fix3 && !task_pos)) || (est == E_WR2) ||
                          (pass_end && ((is_sat && ovf_now) || is_stat));
-    wire       wr_zero = (est == E_OP) && ((u_op == OP_ZERO) || (u_op == OP_ZPOS && task_pos));
+    wire       wr_zero = (est == E_OP) && (ub[UB_WZ] || (ub[UB_ZPOS] && task_pos));
     assign core_in_we   = (est == E_WR) || (est == E_WR2) || wr_zero || (in_pass && p_w0);
     // (dx0, dx1 at y0 + 4, y1 + 4; the second FIX3 write: y2 = omega, at omega - 1)
     assign core_in_addr = {u_wa[5:3], u_wa[2] | (est == E_WR && is_diff), u_wa[1], u_wa[0] & (est != E_WR2)};
@@ -469,10 +553,9 @@ module ctrl_seq #(
     reg        cz;                  // zero sweep
     reg        csat;                // the counter was 2^32-1 (carry out of bit 31, registered)
     assign st_sh   = in_pass && p_ss;
-    assign st_d    = is_fix3 ? r : is_cnt ? (r && !cz && u_src != 4'd15) : a_raw;
-    assign st_wr   = pass_end && ((is_ref && m0) || is_diff || is_fix3 || is_stat || (is_cnt && !csat));
-    localparam [5:0] ST_REF = `EMPC_A_REF, ST_I_D = `EMPC_A_I_D, ST_SPEED = `EMPC_A_SPEED;
-    assign st_addr = op_ref ? ST_REF : op_diff ? (ST_I_D + {5'd0, u_src[0]}) : op_fix3 ? ST_SPEED : u_wa;
+    assign st_d    = is_fix3 ? r : is_cnt ? (r && !cz && ub[UB_STOK]) : a_raw;
+    assign st_wr   = pass_end && (is_stw || (is_cnt && !csat));
+    assign st_addr = uw[UW_ST +: 6];
     assign st_bit  = j_nx[4:0];                                 // the counter bit needed next clock
     wire [15:0] ev16 = {2'b00, cnt_ev};
     wire   ev_k    = ev16[u_src] && !cz;
@@ -495,12 +578,12 @@ module ctrl_seq #(
     wire quiet   = (est == E_IDLE) && !busy_period && !xf_mod && !trig;
     wire go_rstz = quiet && hide_st;
     wire go_cnt  = quiet && !hide_st && (hide_cnt || cnt_pend);
-    assign cnt_done = (est == E_OP) && (u_op == OP_CEND);
+    assign cnt_done = (est == E_OP) && ub[UB_CEND];
     assign cnt_hide = hide_cnt;
     assign st_hide  = hide_st;
-    wire step    = (est == E_OP && (u_op == OP_ZERO || u_op == OP_ZPOS)) ||
+    wire step    = (est == E_OP && ub[UB_ZERO]) ||
                    (est == E_WR && !(is_fix3 && !task_pos)) || (est == E_WR2) ||
-                   (pass_end && (is_om || is_stat || is_cnt));
+                   (pass_end && is_back);
     always @(*) begin
         if (go_ctl) pc_next = 7'd0;
         else if (go_stat) pc_next = PC_STAT;
@@ -511,19 +594,7 @@ module ctrl_seq #(
     end
     reg  [17:0] pw;                 // pass control word of (pass kind, j)
     reg  [5:0]  j_nx;
-    reg  [3:0]  pk;
-    always @(*) begin
-        case (u_op)
-            OP_POS: pk = PK_POS;
-            OP_REF: pk = task_pos ? (m0 ? PK_REFP0 : PK_REFP) : (m0 ? PK_REFS0 : PK_REFS);
-            OP_DIFF: pk = PK_DIFF;
-            OP_OM: pk = PK_OM;
-            OP_FIX3: pk = PK_FIX3;
-            OP_W6: pk = PK_W6;
-            OP_STAT: pk = PK_STAT;
-            default: pk = PK_CNT;
-        endcase
-    end
+    wire [3:0]  pk = {op_ref, uw[UW_PK + 2], uw[UW_PK + 1] | (op_ref & task_pos), uw[UW_PK]};
     always @(*) begin
         j_nx = j;
         if (est == E_OP) j_nx = op_ref ? ref_j0 : 6'd0;
@@ -531,8 +602,10 @@ module ctrl_seq #(
         else if (est == E_FIX) j_nx = fix_end ? 6'd0 : j + 6'd1;
     end
     always @(posedge clk) begin
-        uw <= crom[{3'b111, pc_next}];
+        uw <= urom[{1'b0, pc_next}];
+        ub <= urom[{1'b1, pc_next}];
         pw <= crom[{pk, j_nx}];
+        pwf <= crom[{PK_FIX, j_nx}];
     end
 
     always @(posedge clk) begin
@@ -547,12 +620,10 @@ module ctrl_seq #(
         overrun <= 1'b0;
         front_sat <= 1'b0;
         if (rst) begin
-            per_cnt <= 8'd0;
             is_control <= 1'b0;
             first <= 1'b1;
             mfirst <= 1'b1;
             busy_period <= 1'b0;
-            lat_cnt <= 16'd0;
             latency <= 16'd0;
             pos_trig <= {PW{1'b0}};
             theta_trig <= {AB{1'b0}};
@@ -562,7 +633,6 @@ module ctrl_seq #(
             th_done <= 1'b0;
             ang_run <= 1'b0;
             ang_done <= 1'b0;
-            jt <= 4'd0;
             pc <= 7'd0;
             est <= E_IDLE;
             cnt_pend <= 1'b0;
@@ -579,8 +649,6 @@ module ctrl_seq #(
             mrun <= 1'b0;
         end else begin
             pc <= pc_next;
-            if (busy_period)
-                lat_cnt <= lat_cnt + 16'd1;
             if (period_start && busy_period)
                 overrun <= 1'b1;
             zeroed <= core_done ? 1'b0 : (!run ? 1'b1 : zeroed);
@@ -590,8 +658,6 @@ module ctrl_seq #(
                 mfirst <= first;
                 first <= 1'b0;
                 busy_period <= 1'b1;
-                lat_cnt <= 16'd0;
-                jt <= 4'd0 - THETA_LAT[3:0];
                 th_wait_run <= 1'b1;
                 th_done <= 1'b0;
                 ang_done <= 1'b0;
@@ -600,20 +666,17 @@ module ctrl_seq #(
                 prog_done <= 1'b0;
                 core_fin <= 1'b0;
                 if (ctl_now) begin
-                    per_cnt <= 8'd0;
                     is_control <= 1'b1;
                     pos_sample <= 1'b1;
                     ref_advance <= 1'b1;
                     pos_trig <= pos;
                 end else begin
-                    per_cnt <= per_cnt + 8'd1;
                     is_control <= 1'b0;
                 end
             end
 
             // ---- theta: latch (THETA_LAT clocks after the count), theta_mod pass, angle register ----
             if (th_wait_run || th_run || ang_run) begin        // (jt wraps from 15 to 0)
-                jt <= jt + 4'd1;
                 if (th_wait_run && jt == 4'd15) begin
                     theta_trig <= theta;
                     th_wait_run <= 1'b0;
@@ -688,31 +751,20 @@ module ctrl_seq #(
             case (est)
                 E_IDLE: ;
                 E_OP: begin
-                    begin
-                        case (u_op)
-                            OP_POS, OP_COPY, OP_STAT: est <= E_STG;
-                            OP_DIFF: if (front_done) est <= E_STG;
-                            OP_REF: if (ref_ok) est <= E_PASS;
-                            OP_OM: if (!mrun) est <= E_PASS;
-                            OP_FIX3: begin
-                                est <= E_PASS;
-                                if (spd_ovf || om_ovf) front_sat <= 1'b1;
-                            end
-                            OP_W6, OP_CNT: est <= E_PASS;
-                            OP_ZERO, OP_ZPOS: ;                  // written in this clock (pc + 1)
-                            OP_END: begin
-                                est <= E_IDLE;
-                                prog_done <= 1'b1;
-                            end
-                            default: est <= E_IDLE;              // OP_SEND, OP_CEND
-                        endcase
-                    end
+                    // POS, COPY, STAT; DIFF when the front is done / REF when the references are
+                    // current, OM when the product is ready; FIX3, W6, CNT / END, SEND, CEND;
+                    // ZERO, ZPOS stay (written in this clock, pc + 1)
+                    if (ub[UB_STG] || (op_diff && front_done)) est <= E_STG;
+                    else if (ub[UB_PASS] || (op_ref && ref_ok) || (op_om && !mrun)) est <= E_PASS;
+                    else if (ub[UB_IDLE]) est <= E_IDLE;
+                    if (op_fix3 && (spd_ovf || om_ovf)) front_sat <= 1'b1;
+                    if (ub[UB_END]) prog_done <= 1'b1;
                 end
                 E_STG: est <= E_LD;
-                E_LD: est <= (u_op == OP_COPY) ? E_WR : E_PASS;
+                E_LD: est <= ub[UB_COPY] ? E_WR : E_PASS;
                 E_PASS: begin
                     if (pass_end) begin
-                        if (is_om || is_stat || is_cnt) est <= E_OP;
+                        if (is_back) est <= E_OP;
                         else if (is_sat && ovf_now) begin
                             est <= E_FIX;
                             if (!is_ref) front_sat <= 1'b1;   // dx2, dx3 saturated (model: front_sat)
@@ -738,6 +790,29 @@ module ctrl_seq #(
             else if (mrun && m_end)
                 mrun <= 1'b0;
         end
+    end
+
+    // period count: its own block, so that the restart is the flip-flops' set/reset and the
+    // trigger their enable (no multiplexer in front of the incrementer)
+    always @(posedge clk) begin
+        if (rst || go_ctl)
+            per_nx <= 8'd1;
+        else if (trig)
+            per_nx <= per_nx + 8'd1;
+    end
+
+    // latency and theta counters: restarted by the trigger (flip-flop set/reset), counting as
+    // enable.  Not reset by rst: both are restarted by the trigger before they are read, and
+    // they never count when the trigger comes (busy_period low: no theta pass in flight)
+    always @(posedge clk) begin
+        if (trig)
+            lat_cnt <= 16'd0;
+        else if (busy_period)
+            lat_cnt <= lat_cnt + 16'd1;
+        if (trig)
+            jt <= 4'd0 - THETA_LAT[3:0];
+        else if (th_wait_run || th_run || ang_run)
+            jt <= jt + 4'd1;
     end
 
     // held u: loaded at core_done, 0 while run is low (flip-flop reset and enable, no mux)
@@ -778,7 +853,7 @@ module ctrl_seq #(
             c1 <= maj & c1;
         end
         if (in_pass && p_ca) a_h <= a_raw;                   // sign of a 32-bit A (bit 31)
-        if (in_pass && p_ca) csat <= maj && !cz && u_src != 4'd13 && u_src != 4'd15;
+        if (in_pass && p_ca) csat <= maj && !cz && ub[UB_CSOK];
         if (in_pass && p_cb) b_h <= b_raw;                   // sign of B (bit 17 or 31)
         // POS pass: dpos sign sd, spd = dpos << 16 overflows if dpos bits 31..15 are not all equal
         if (in_pass && is_pos) begin
@@ -822,7 +897,8 @@ module ctrl_seq #(
         if (in_pass && p_r1 && is_diff && diff_q) iqp <= {a_bit, iqp[IW-1:1]};
         if (in_pass && p_r1 && is_w6) omp <= {a_bit, omp[WW-1:1]};
         if (in_pass && p_r2) om <= {r, om[WW-1:1]};
-        // multiplier: s + 40 steps through ka, which keeps the last 41 product bits
+        // multiplier: s + 40 steps through ka, which keeps the last 41 product bits (mk, ms: not
+        // reset by rst, m_start loads them before mrun rises)
         if (m_start) begin
             mk <= 7'd89;                                     // -39
             ms <= 19'sd0;
@@ -857,11 +933,11 @@ module ctrl_seq #(
             omp <= {WW{1'b0}};
             tp <= {AB{1'b0}};
             ang <= {AB{1'b0}};
-            mk <= 7'd0;
-            ms <= 19'sd0;
         end
     end
 
-    wire unused = &{1'b0, uw[17]};
+    // the op code stays in the microword (decoded at build time into the flags and ub; the test
+    // bench reads it), ub's top bits are spare
+    wire unused = &{1'b0, u_op, uw[UW_AGE + 3], ub[35:UB_STW+1], per_cnt};   // (age bit 3: N = 8 only)
 endmodule
 `default_nettype wire

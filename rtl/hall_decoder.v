@@ -71,10 +71,12 @@ module hall_decoder #(
         .clk(clk), .rst(rst), .d(hall), .q(synced)
     );
 
-    localparam integer INIT_W = 4;
-    localparam [INIT_W-1:0] INIT_LOAD = SYNC_STAGES[INIT_W-1:0];
-    reg [INIT_W-1:0] init_cnt;
-    wire filt_load = !ready && (init_cnt == INIT_LOAD);
+    // start-up sequencer: a shift register of ones (flip-flops instead of a counter and its
+    // compares): init_ge[j] = 1 from the j-th clock after reset on; the filters load in
+    // clock SYNC_STAGES, ready rises in clock SYNC_STAGES + 2
+    reg  [SYNC_STAGES:0]   init_sh;
+    wire [SYNC_STAGES+1:0] init_ge = {init_sh, 1'b1};
+    wire filt_load = init_ge[SYNC_STAGES] && !init_ge[SYNC_STAGES+1];
 
     glitch_filter #(.WIDTH(3), .FILTER_LEN(DEBOUNCE), .LEN_W(LEN_W)) u_filt (
         .clk(clk), .rst(rst), .load(filt_load), .len({LEN_W{1'b0}}), .d(synced), .q(code)
@@ -87,7 +89,7 @@ module hall_decoder #(
 
     always @(posedge clk) begin
         if (rst) begin
-            init_cnt    <= {INIT_W{1'b0}};
+            init_sh     <= {(SYNC_STAGES+1){1'b0}};
             ready       <= 1'b0;
             sector      <= 3'd0;
             valid       <= 1'b0;
@@ -96,8 +98,8 @@ module hall_decoder #(
             fault       <= 1'b0;
             bad         <= 1'b0;
         end else if (!ready) begin
-            init_cnt <= init_cnt + {{(INIT_W-1){1'b0}}, 1'b1};
-            if (init_cnt == INIT_LOAD + {{(INIT_W-1){1'b0}}, 1'b1}) ready <= 1'b1;
+            init_sh <= init_ge[SYNC_STAGES:0];
+            ready   <= init_sh[SYNC_STAGES];
         end else begin
             valid       <= legal;
             change      <= legal && (sector != 3'd0) && (s_new != sector);

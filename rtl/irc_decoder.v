@@ -100,11 +100,12 @@ module irc_decoder #(
         .clk(clk), .rst(rst), .d(pins), .q(synced)
     );
 
-    // start-up sequencer: init_cnt counts 0 .. SYNC_STAGES+1 then ready
-    localparam integer INIT_W = 4;
-    localparam [INIT_W-1:0] INIT_LOAD = SYNC_STAGES[INIT_W-1:0];
-    reg [INIT_W-1:0] init_cnt;
-    wire filt_load = !ready && (init_cnt == INIT_LOAD);
+    // start-up sequencer: a shift register of ones (flip-flops instead of a counter and its
+    // compares): init_ge[j] = 1 from the j-th clock after reset on; the filters load in
+    // clock SYNC_STAGES, ready rises in clock SYNC_STAGES + 2
+    reg  [SYNC_STAGES:0]   init_sh;
+    wire [SYNC_STAGES+1:0] init_ge = {init_sh, 1'b1};
+    wire filt_load = init_ge[SYNC_STAGES] && !init_ge[SYNC_STAGES+1];
 
     glitch_filter #(.WIDTH(4), .FILTER_LEN(FILTER_LEN), .LEN_W(LEN_W)) u_filt (
         .clk(clk), .rst(rst), .load(filt_load), .len(filt_len), .d(synced), .q(filt)
@@ -126,10 +127,12 @@ module irc_decoder #(
     // one adder, +1 / -1 / 0 (no multiplexer after the carry chain)
     wire [POS_W-1:0] pos_next = pos + {{(POS_W-1){step_dn}}, step_up | step_dn};
     wire dir_next = step_up ? 1'b1 : step_dn ? 1'b0 : dir;
+    // saturating error counter: the incrementer's carry out is err_cnt == all ones
+    wire [ERR_W:0] err_p1 = {1'b0, err_cnt} + {{ERR_W{1'b0}}, 1'b1};
 
     always @(posedge clk) begin
         if (rst) begin
-            init_cnt    <= {INIT_W{1'b0}};
+            init_sh     <= {(SYNC_STAGES+1){1'b0}};
             ready       <= 1'b0;
             prev        <= 4'b0000;
             pos         <= {POS_W{1'b0}};
@@ -145,10 +148,8 @@ module irc_decoder #(
             err_flag    <= 1'b0;
             err_cnt     <= {ERR_W{1'b0}};
         end else begin
-            if (!ready) begin
-                init_cnt <= init_cnt + {{(INIT_W-1){1'b0}}, 1'b1};
-                if (init_cnt == INIT_LOAD + {{(INIT_W-1){1'b0}}, 1'b1}) ready <= 1'b1;
-            end
+            init_sh <= init_ge[SYNC_STAGES:0];
+            ready   <= init_sh[SYNC_STAGES];
             prev <= filt;
             pos  <= pos_next;
             dir  <= dir_next;
@@ -168,8 +169,8 @@ module irc_decoder #(
             err_flag  <= step_bad | (err_flag & ~err_clear);
             if (err_clear)
                 err_cnt <= {{(ERR_W-1){1'b0}}, step_bad};
-            else if (step_bad && (err_cnt != {ERR_W{1'b1}}))
-                err_cnt <= err_cnt + {{(ERR_W-1){1'b0}}, 1'b1};
+            else if (step_bad && !err_p1[ERR_W])
+                err_cnt <= err_p1[ERR_W-1:0];
         end
     end
 endmodule

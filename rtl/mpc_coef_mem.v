@@ -69,7 +69,6 @@ module mpc_coef_mem #(
     localparam [9:0] A_GEND  = `EMPC_IMG_A_GAINS + 8 * `EMPC_MAX_COLS;
     localparam [9:0] A_CEND  = `EMPC_IMG_A_COLS + `EMPC_MAX_COLS;
     localparam [2:0] F_WS = 3'd0, F_WNMIN = 3'd1, F_WNMAX = 3'd2, F_UMAX = 3'd3;
-    localparam [OPW-1:0] OMAX = {1'b0, {(OPW-1){1'b1}}};
 
     // ---- write decode ----
     wire [9:0] coff = waddr - A_COLS;
@@ -77,53 +76,83 @@ module mpc_coef_mem #(
     wire [9:0] hoff = waddr - A_WS;
     wire w_col  = we && waddr >= A_COLS  && waddr < A_CEND;
     wire w_gain = we && waddr >= A_GAINS && waddr < A_GEND;
-    wire w_hdr  = we && waddr >= A_WS    && waddr < A_HEND;
+    wire w_hdr_a = waddr >= A_WS && waddr < A_HEND;
+    wire w_hdr  = we && w_hdr_a;
     wire [6:0] wa_col  = {wbank, coff[5:0]};
     wire [6:0] wa_gain = {wbank, goff[7:2]};
     wire g_row = goff[8];
     wire [1:0] g_k = goff[1:0];
     wire [2:0] h_f = hoff[2:0];
 
-    // signed 32 -> sat18
-    wire s_ok = (&wdata[31:OPW-1]) | ~(|wdata[31:OPW-1]);
-    wire signed [OPW-1:0] wsat = s_ok ? wdata[OPW-1:0] : (wdata[31] ? ~OMAX : OMAX);
-    // header entry (SW bit, sign-extended)
-    wire signed [OPW-1:0] wclamp = (wsat == ~OMAX) ? -$signed(OMAX) : wsat;     // +-(2^17-1)
-    wire [OPW-1:0] wumax = (|wdata[31:OPW-1]) ? OMAX : {1'b0, wdata[OPW-2:0]};
-    wire [SW-2:0]  welim = (|wdata[31:SW-1]) ? {(SW-1){1'b1}} : wdata[SW-2:0];   // 0 .. 2^(SW-1)-1
-    reg  [SW-1:0]  h_wd;
+    // One clamped word dd serves the gain memories (sat18) and the header (per field), so the
+    // per-bit logic is a single 3-input function dd[i] = keep ? wdata[i] : fill.
+    //   gains, wn_min / wn_max: signed 32 -> sat18, sign-extended (the wn fields then map
+    //                           -2^17 to -(2^17-1): bit 0 set when the saturated value is OMIN)
+    //   u_max: unsigned 32 -> min(., 2^17-1);  ebar_lim: unsigned 32 -> min(., 2^(SW-1)-1)
+    //   ws: wdata[CB-1:0] zero-extended
+    // The data comes straight from a block RAM output (slow clock-to-out): the wide tests are
+    // kept as explicit two-level trees (keep), so that the mapper cannot chain them.
+    (* keep *) wire [2:0] hg_one = {&wdata[31:27], &wdata[26:22], &wdata[21:OPW-1]};
+    (* keep *) wire [2:0] hg_any = {|wdata[31:27], |wdata[26:22], |wdata[21:OPW-1]};
+    (* keep *) wire [2:0] lg_any = {|wdata[OPW-2:12], |wdata[11:6], |wdata[5:0]};
+    (* keep *) wire hi_any = |hg_any;
+    (* keep *) wire s_ok   = (&hg_one) | ~hi_any;                 // fits 18 bit signed
+    wire w31    = wdata[31];
+    wire m_ws   = w_hdr_a && h_f == F_WS;
+    wire m_um   = w_hdr_a && h_f == F_UMAX;
+    wire m_el   = w_hdr_a && h_f > F_UMAX;
+    wire m_sg   = !(m_ws | m_um | m_el);                 // gains (any non-header word), wn limits
+    wire m_wn   = w_hdr_a && (h_f == F_WNMIN || h_f == F_WNMAX);
+    (* keep *) wire keep_l = (m_sg & s_ok) | (m_um & ~hi_any) | (m_el & ~w31) | m_ws;   // bits 0 .. CB-1
+    (* keep *) wire keep_m = (m_sg & s_ok) | (m_um & ~hi_any) | (m_el & ~w31);          // bits CB .. OPW-2
+    (* keep *) wire fill_l = m_sg ? ~w31 : (m_um | m_el);
+    (* keep *) wire keep_h = m_el & ~w31;                                               // bits OPW-1 .. SW-2
+    (* keep *) wire fill_h = w31 & ~(m_ws | m_um);
+    wire fill_s = w31 & m_sg;                                                // bit SW-1
+    // wn limit -2^17 -> -(2^17-1): saturated value OMIN <=> w31 and (in range, low bits 0, or below)
+    (* keep *) wire wn_min1 = m_wn & w31 & (~s_ok | ~(|lg_any));
+    reg  [SW-1:0] dd;
+    integer di;
     always @* begin
-        case (h_f)
-            F_WS:    h_wd = {{(SW-CB){1'b0}}, wdata[CB-1:0]};
-            F_WNMIN, F_WNMAX: h_wd = {{(SW-OPW){wclamp[OPW-1]}}, wclamp};
-            F_UMAX:  h_wd = {{(SW-OPW){1'b0}}, wumax};
-            default: h_wd = {1'b0, welim};
-        endcase
+        for (di = 0; di < SW; di = di + 1) begin
+            if (di < CB)            dd[di] = keep_l ? wdata[di] : fill_l;
+            else if (di < OPW - 1)  dd[di] = keep_m ? wdata[di] : fill_l;
+            else if (di < SW - 1)   dd[di] = keep_h ? wdata[di] : fill_h;
+            else                    dd[di] = fill_s;
+        end
+        dd[0] = dd[0] | wn_min1;
     end
+    wire signed [OPW-1:0] wsat = dd[OPW-1:0];
     // CFG fields
     wire [3:0] w_n   = wdata[11:8];
     wire [3:0] w_ne  = (w_n > NEFF[3:0]) ? NEFF[3:0] : w_n;
-    wire [6:0] w_nc  = (wdata[6:0] > MAXC[6:0]) ? MAXC[6:0] : wdata[6:0];
 
     // ---- per-bank CFG registers ----
+    // ncols = min(wdata[6:0], MAXC = 64): wdata[6] set clears bits 5:0 through the reset
+    generate if (MAXC != 64) begin : g_bad_maxc
+        mpc_coef_mem_unsupported_parameters u_error ();  // no such module: elaboration stops here
+    end endgenerate
     reg        alg2_b [0:1];
     reg        pos_b  [0:1];
     reg [6:0]  ncols_b [0:1];
     reg [3:0]  neff_b [0:1];
+    wire       w_cfg = we && waddr == A_CFG;
     integer b;
     always @(posedge clk) begin
-        if (rst) begin
-            for (b = 0; b < 2; b = b + 1) begin
-                alg2_b[b]  <= 1'b0;
-                pos_b[b]   <= 1'b0;
-                ncols_b[b] <= 7'd0;
-                neff_b[b]  <= 4'd0;
+        for (b = 0; b < 2; b = b + 1) begin
+            if (rst) begin
+                alg2_b[b]       <= 1'b0;
+                pos_b[b]        <= 1'b0;
+                ncols_b[b][6]   <= 1'b0;
+                neff_b[b]       <= 4'd0;
+            end else if (w_cfg && wbank == b[0]) begin
+                alg2_b[b]       <= (wdata[14:13] == 2'd2);
+                pos_b[b]        <= wdata[12];
+                ncols_b[b][6]   <= wdata[6];
+                neff_b[b]       <= w_ne;
             end
-        end else if (we && waddr == A_CFG) begin
-            alg2_b[wbank]  <= (wdata[14:13] == 2'd2);
-            pos_b[wbank]   <= wdata[12];
-            ncols_b[wbank] <= w_nc;
-            neff_b[wbank]  <= w_ne;
+            if (rst || (w_cfg && wbank == b[0] && wdata[6])) ncols_b[b][5:0] <= 6'd0;
+            else if (w_cfg && wbank == b[0])                  ncols_b[b][5:0] <= wdata[5:0];
         end
     end
     assign alg2  = alg2_b[rbank];
@@ -136,7 +165,7 @@ module mpc_coef_mem #(
     integer hi;
     initial for (hi = 0; hi < 16; hi = hi + 1) m_hdr[hi] = {SW{1'b0}};
     always @(posedge clk)
-        if (w_hdr) m_hdr[{wbank, h_f}] <= h_wd;
+        if (w_hdr) m_hdr[{wbank, h_f}] <= dd;
     assign hdr = m_hdr[{rbank, hdr_field}];
 
     // ---- block memories: address {bank, column} ----

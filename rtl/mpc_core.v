@@ -89,6 +89,7 @@ module mpc_core #(
     localparam integer UW   = `EMPC_U_W;
     localparam integer SW   = `EMPC_SIG_W;
     localparam integer ACCW = `EMPC_ACCW;
+    localparam integer VSH  = `EMPC_U_FRAC - `EMPC_V_FRAC;   // u = scaled value << VSH
     localparam integer T_COL = 11;            // first column item
     localparam integer NPRE  = 9;             // pre-phase items at cycles 0..8
     localparam integer NTAIL = 26;            // tail steps u = 0..25
@@ -98,32 +99,21 @@ module mpc_core #(
                        U_EBB = 13, U_ULD0 = 12, U_M3U0 = 13, U_CLR = 14, U_ACCX = 16, U_LDR = 18,
                        U_LDLIM = 20, U_M2T = 20, U_SELF = 22, U_M3RND = 23, U_FIRE = 25;
 
-    // ---- boot stream and write port ----
-    wire        b_we;
-    wire [9:0]  b_addr;
-    wire [31:0] b_data;
-    wire        b_done;
-    mpc_boot #(.BOOT_FILE(BOOT_FILE)) u_boot (
-        .clk(clk), .rst(rst), .we(b_we), .addr(b_addr), .data(b_data), .done(b_done), .ok(boot_ok)
-    );
-    reg ready_r;
+    // ---- write port (registered): boot stream, then the CPU; a CPU word goes to the bank that
+    // is inactive in the cycle of the request ----
+    wire        w_we;
+    wire [9:0]  w_addr;
+    wire [31:0] w_data;
+    wire        ready_r;
+    reg         w_bank;
     assign ready = ready_r;
-    // write port, registered: a word goes to the bank that is inactive in the cycle of the request
-    reg         w_we, w_bank;
-    reg  [9:0]  w_addr;
-    reg  [31:0] w_data;
+    mpc_boot #(.BOOT_FILE(BOOT_FILE)) u_boot (
+        .clk(clk), .rst(rst), .cfg_we(cfg_we), .cfg_addr(cfg_addr), .cfg_wdata(cfg_wdata),
+        .we(w_we), .addr(w_addr), .data(w_data), .ready(ready_r), .ok(boot_ok)
+    );
     always @(posedge clk) begin
-        if (rst) begin
-            w_we   <= 1'b0;
-            w_bank <= 1'b0;
-            w_addr <= 10'd0;
-            w_data <= 32'd0;
-        end else begin
-            w_we   <= ready_r ? cfg_we : b_we;
-            w_bank <= ready_r ? ~bank : 1'b0;
-            w_addr <= ready_r ? cfg_addr : b_addr;
-            w_data <= ready_r ? cfg_wdata : b_data;
-        end
+        if (rst) w_bank <= 1'b0;
+        else     w_bank <= ready_r & ~bank;
     end
 
     // ---- sequencing: one-hot pre-phase and tail, column counter ----
@@ -131,9 +121,10 @@ module mpc_core #(
     reg  [NPRE+1:0]  pre;         // pre[k]: cycle k (k = 0 .. T_COL-1)
     reg  [NTAIL-1:0] tl;          // tl[u]: tail step u
     reg              col_run;
-    reg  [5:0]       jc;          // column at O0
+    reg  [5:0]       jc;          // column at O0; all ones when no column runs
     wire [6:0]       ncols;
-    wire             last_col = col_run && ({1'b0, jc} == ncols - 7'd1);
+    wire [6:0]       jn = {1'b0, jc} + 7'd1;     // next column; [5:0] = 0 when idle: descriptor read address
+    wire             last_col = col_run && (jn == ncols);
     // next state of the sequencer
     wire [NPRE+1:0]  pre_n  = {pre[NPRE:0], start_ok};
     wire             tail_go = last_col || (pre[T_COL-1] && ncols == 7'd0);
@@ -145,27 +136,19 @@ module mpc_core #(
 
     always @(posedge clk) begin
         if (rst) begin
-            ready_r <= 1'b0;
             busy <= 1'b0;
             pre <= {(NPRE+2){1'b0}};
             tl <= {NTAIL{1'b0}};
             col_run <= 1'b0;
-            jc <= 6'd0;
             colv <= 6'd0;
             j1 <= 6'd0; j2 <= 6'd0; j3 <= 6'd0; j4 <= 6'd0; j5 <= 6'd0; j6 <= 6'd0;
             bank <= 1'b0;
             swap_pending <= 1'b0;
         end else begin
-            if (b_done) ready_r <= 1'b1;
             pre <= pre_n;
             tl <= tl_n;
-            if (pre[T_COL-1] && ncols != 7'd0) begin
-                col_run <= 1'b1;
-                jc <= 6'd0;
-            end else if (col_run) begin
-                jc <= jc + 6'd1;
-                if (last_col) col_run <= 1'b0;
-            end
+            if (pre[T_COL-1] && ncols != 7'd0) col_run <= 1'b1;
+            else if (last_col)                  col_run <= 1'b0;
             colv <= {colv[5:1], col_run};
             {j6, j5, j4, j3, j2, j1} <= {j5, j4, j3, j2, j1, jc};
             if (start_ok) busy <= 1'b1;
@@ -180,36 +163,25 @@ module mpc_core #(
         end
     end
 
-    // item token at O0, registered: decoded from the next state of the one-hot sequencer
-    reg  [3:0] kind_n, kind0;
-    reg  [1:0] idx_n, idx0;
-    always @* begin
-        kind_n = `MPC_K_NONE;
-        idx_n  = 2'd0;
-        if (pre_n[0] | pre_n[1] | pre_n[2]) begin
-            kind_n = `MPC_K_YC;
-            idx_n  = {pre_n[2], pre_n[1]};
-        end
-        if (pre_n[3]) kind_n = `MPC_K_WN;
-        if (pre_n[4]) kind_n = `MPC_K_LO;
-        if (pre_n[5]) kind_n = `MPC_K_HI;
-        if (pre_n[6] | pre_n[7] | pre_n[8]) begin
-            kind_n = `MPC_K_EBA;
-            idx_n  = {pre_n[8], pre_n[7]};
-        end
-        if (col_n) kind_n = `MPC_K_COL;
-        if (tl_n[U_UR0] | tl_n[U_UR0B]) kind_n = `MPC_K_UR;
-        if (tl_n[U_UR1]) begin
-            kind_n = `MPC_K_UR;
-            idx_n  = 2'd1;
-        end
-        if (tl_n[U_UMX]) kind_n = `MPC_K_UMX;
-        if (tl_n[U_NUMX]) kind_n = `MPC_K_NUMX;
-        if (tl_n[U_EBB] | tl_n[U_EBB+1] | tl_n[U_EBB+2]) begin
-            kind_n = `MPC_K_EBB;
-            idx_n  = {tl_n[U_EBB+2], tl_n[U_EBB+1]};
-        end
+    // column counter: counts from all ones (idle) through 0 .. ncols-1 back to all ones (set)
+    always @(posedge clk) begin
+        if (rst || !col_n) jc <= 6'h3f;
+        else               jc <= jn[5:0];
     end
+
+    // item token at O0, registered: decoded from the next state of the one-hot sequencer (the
+    // item slots never overlap, so the token is an OR of the slots' codes)
+    wire i_yc  = |pre_n[2:0];
+    wire i_eba = |pre_n[8:6];
+    wire i_ur  = tl_n[U_UR0] | tl_n[U_UR1] | tl_n[U_UR0B];
+    wire i_ebb = |tl_n[U_EBB+2:U_EBB];
+    reg  [3:0] kind0;
+    reg  [1:0] idx0;
+    wire [3:0] kind_n = ({4{i_yc}} & `MPC_K_YC) | ({4{pre_n[3]}} & `MPC_K_WN) | ({4{pre_n[4]}} & `MPC_K_LO) |
+                        ({4{pre_n[5]}} & `MPC_K_HI) | ({4{i_eba}} & `MPC_K_EBA) | ({4{col_n}} & `MPC_K_COL) |
+                        ({4{i_ur}} & `MPC_K_UR) | ({4{tl_n[U_UMX]}} & `MPC_K_UMX) |
+                        ({4{tl_n[U_NUMX]}} & `MPC_K_NUMX) | ({4{i_ebb}} & `MPC_K_EBB);
+    wire [1:0] idx_n  = {pre_n[2] | pre_n[8] | tl_n[U_EBB+2], pre_n[1] | pre_n[7] | tl_n[U_EBB+1] | tl_n[U_UR1]};
     always @(posedge clk) begin
         if (rst) begin
             kind0 <= `MPC_K_NONE;
@@ -232,7 +204,7 @@ module mpc_core #(
     mpc_coef_mem #(.N(N)) u_mem (
         .clk(clk), .rst(rst),
         .we(w_we), .wbank(w_bank), .waddr(w_addr), .wdata(w_data),
-        .rbank(bank), .ra_desc(col_run ? jc + 6'd1 : 6'd0), .ra_c(jc), .ra_p0(j2), .ra_s(j6), .s_clr(!colv[6]),
+        .rbank(bank), .ra_desc(jn[5:0]), .ra_c(jc), .ra_p0(j2), .ra_s(j6), .s_clr(!colv[6]),
         .desc(desc), .p2_d(p2_d), .p2_q(p2_q), .p1_d(p1_d), .p1_q(p1_q), .p0_d(p0_d), .p0_q(p0_q),
         .s_d(s_d), .s_q(s_q),
         .alg2(alg2), .pos(pos), .ncols(ncols), .neff(neff), .hdr_field(hdr_field), .hdr(hdr)
@@ -240,33 +212,37 @@ module mpc_core #(
 
     // ---- lanes ----
     wire signed [ACCW-1:0] prod2_d, prod2_q, acc_d, acc_q;
-    wire signed [UW-1:0] ul_d, ul_q;
+    wire signed [UW-VSH-1:0] ul_d, ul_q;                       // scaled u >> VSH (or u_raw >> VSH)
     wire signed [OPW-1:0] op, op_next, wn_c, wn_s, lim_t, lim_f;
     wire fg_d, ft_d, fa_d, fd_d, fg_q, ft_q, fa_q, fd_q;
     wire m3u = |tl[U_M3RND:U_M3U0];
+    // limiter inactive: mul3 passes u_raw (u = lim ? scaled : u_raw without a multiplexer)
+    wire lim;
+    wire m3ur = tl[U_M3RND] & ~lim;
+    wire signed [UW-1:0] ur_d, ur_q;
     mpc_lane u_lane_d (
         .clk(clk), .rst(rst), .clr(start_ok), .wn(wn_c), .cv(colv[1]),
         .p2(p2_d), .p1(p1_d), .p0(p0_d), .a(op), .a_next(op_next), .s(s_d),
         .rnd(tl[U_RND]), .acc_clr(tl[U_CLR]), .acc_x(tl[U_ACCX] | tl[U_ACCX+1] | tl[U_ACCX+3]),
         .m2_t(tl[U_M2T]), .t(lim_t),
         .u_ld(tl[U_ULD0] | tl[U_ULD0+1] | tl[U_ULD0+2] | tl[U_ULD0+4]), .m3_u(m3u), .m3_rnd(tl[U_M3RND]),
+        .m3_ur(m3ur), .ur(ur_d),
         .prod2(prod2_d), .acc(acc_d), .u_lim(ul_d),
-        .f_gain(fg_d), .f_term(ft_d), .f_acc(fa_d), .f_du(fd_d)
+        .f_gain(fg_d), .f_term(ft_d), .f_acc(fa_d), .f_du(fd_d), .f_or(3'b000)
     );
     mpc_lane u_lane_q (
         .clk(clk), .rst(rst), .clr(start_ok), .wn(wn_c), .cv(colv[1]),
         .p2(p2_q), .p1(p1_q), .p0(p0_q), .a(op), .a_next(op_next), .s(s_q),
         .rnd(tl[U_RND]), .acc_clr(1'b0), .acc_x(1'b0),
         .m2_t(1'b0), .t(lim_t),
-        .u_ld(tl[U_ULD0+1]), .m3_u(m3u), .m3_rnd(tl[U_M3RND]),
+        .u_ld(tl[U_ULD0+1]), .m3_u(m3u), .m3_rnd(tl[U_M3RND]), .m3_ur(m3ur), .ur(ur_q),
         .prod2(prod2_q), .acc(acc_q), .u_lim(ul_q),
-        .f_gain(fg_q), .f_term(ft_q), .f_acc(fa_q), .f_du(fd_q)
+        .f_gain(fg_q), .f_term(ft_q), .f_acc(fa_q), .f_du(fd_q), .f_or({fd_d, fa_d, ft_d})
     );
     wire signed [UW-1:0] dun_d = acc_d[ACCW-1:ACCW-UW];       // du after the round step
     wire signed [UW-1:0] dun_q = acc_q[ACCW-1:ACCW-UW];
 
     // ---- operand ALU ----
-    wire signed [UW-1:0] ur_d, ur_q;
     wire [3*SW-1:0] ebar_c;
     wire f_signal, f_operand, f_wn, f_ebar, f_ebar_inc, f_u;
     mpc_operand u_op (
@@ -280,7 +256,6 @@ module mpc_core #(
     );
 
     // ---- limiter ----
-    wire lim;
     mpc_limiter #(.RSQRT_FILE(RSQRT_FILE)) u_lim (
         .clk(clk), .rst(rst), .acc(acc_d), .ld_r(tl[U_LDR]), .ld_lim(tl[U_LDLIM]), .ut(prod2_d),
         .lim(lim), .t(lim_t), .f(lim_f)
@@ -302,14 +277,19 @@ module mpc_core #(
             if (tl[U_DU]) du_s <= {dun_q, dun_d};
             done <= tl[U_FIRE];
             if (tl[U_FIRE]) begin
-                u     <= lim ? {ul_q, ul_d} : {ur_q, ur_d};
+                u     <= {ul_q, ur_q[VSH-1:0], ul_d, ur_d[VSH-1:0]};
                 du    <= du_s;
                 u_raw <= {ur_q, ur_d};
                 ebar  <= ebar_c;
                 wn    <= wn_s;
-                flags <= {f_signal, f_wn, lim, f_ebar_inc, f_ebar, f_u, fd_d | fd_q,
-                          fa_d | fa_q, ft_d | ft_q, fg_d | fg_q, f_operand};
+                flags <= {f_signal, f_wn, lim, f_ebar_inc, f_ebar, f_u, fd_q,      // fd/fa/ft_q include lane d's
+                          fa_q, ft_q, fg_d | fg_q, f_operand};
             end
+        end
+        // scaled u (lim): its low VSH bits are 0 (flip-flop reset), else those of u_raw
+        if (rst || (tl[U_FIRE] && lim)) begin
+            u[VSH-1:0]       <= {VSH{1'b0}};
+            u[UW +: VSH]     <= {VSH{1'b0}};
         end
     end
 

@@ -13,13 +13,16 @@
 //   sat24(rshift_round(acc, ACC_FRAC - U_FRAC)) (flag f_du if that step saturated).
 // Limiter support (sequenced by mpc_core): mul3 multiplies u18 (register loaded from the
 // operand bus, u_ld) by the operand bus (m3_u), optionally accumulated (acc_x, shift 0);
-// m3_rnd adds 2^17 - 1 for u18 < 0, so u_lim = (prod3 >>> 17) << 4 = trunc0(u18 f / 2^17) << 4;
+// m3_rnd adds 2^17 - 1 for u18 < 0, so u_lim = prod3 >>> 17 = trunc0(u18 f / 2^17) (u = u_lim << 4);
+// with m3_ur as well, mul3 = (ur >>> 4) << 17 instead and u_lim = ur[UW-1:VSH]: the limiter's output
+// multiplexer u = lim ? scaled : u_raw is mul3 (m3_ur = !lim; the caller takes u[3:0] from ur).
 // m2_t (lane d): mul2 = t * wn (the core loads u_max into wn) with no post-add.
 // Timing (G1 = cycle in which cv, p2 and p1 are valid): p0 valid in G1+2, a (operand bus)
 // in G1+4, s in G1+6; acc includes the column from G1+8 (rnd: asserted in G1+4 of the
 // step after the last column, when mul3 would sample its operands; s must read 0 in G1+6).
 // mul products appear 2 cycles after their operands.
-// Ports: see the port list; f_* are sticky saturation flags (cleared by clr).
+// Ports: see the port list; f_* are sticky saturation flags (cleared by clr); f_or sets f_term,
+// f_acc, f_du as well (the core chains the other lane's flags in: one clock later, long before done).
 // Parameters: none (widths from empc_formats.vh).
 // Reset / clr: flags clear to 0; clr / acc_clr make the next accumulation start from 0
 // (the acc register itself resets to AMAX, a don't-care value).
@@ -45,13 +48,16 @@ module mpc_lane (
     input  wire                            u_ld,      // u18 = a_next
     input  wire                            m3_u,      // mul3 = u18 * a
     input  wire                            m3_rnd,    // mul3 post-add 2^17 - 1 if u18 < 0
+    input  wire                            m3_ur,     // mul3 = 0 * 0 + ((ur >>> 4) << 17) instead (with m3_rnd)
+    input  wire signed [`EMPC_U_W-1:0]     ur,        // u_raw
     output wire signed [`EMPC_ACCW-1:0]    prod2,     // mul2 result
     output reg  signed [`EMPC_ACCW-1:0]    acc,
-    output wire signed [`EMPC_U_W-1:0]     u_lim,     // from prod3 (m3_rnd + 2)
+    output wire signed [`EMPC_U_W-`EMPC_U_FRAC+`EMPC_V_FRAC-1:0] u_lim,  // prod3 >>> 17 (m3_rnd + 2): see m3_ur
     output reg                             f_gain,
     output reg                             f_term,
     output reg                             f_acc,
-    output reg                             f_du
+    output reg                             f_du,
+    input  wire [2:0]                      f_or       // {f_du, f_acc, f_term} of the other lane: ORed in
 );
     localparam integer OPW  = `EMPC_OPW;                 // 18
     localparam integer PW   = 2 * OPW;                   // 36 product
@@ -92,16 +98,24 @@ module mpc_lane (
     wire signed [OPW-1:0] k = sat_hi(prod2[ACCW-1:FR]);              // G1+4
     wire k_sat = ~((&prod2[ACCW-1:PW-2]) | ~(|prod2[ACCW-1:PW-2]));
 
-    // ---- mul3: k * a  (or u18 * a [+ 2^17 - 1]) ----
+    // ---- mul3: k * a  (or u18 * a [+ 2^17 - 1], or 0 * 0 + ((ur >>> 4) << 17)) ----
     reg  signed [OPW-1:0] u18;
     wire signed [ACCW-1:0] prod3;
-    wire m3_c = m3_rnd & u18[OPW-1];
-    // round step: prod3 = 0 * 0 + 2^(DSH-1)
-    wire [ACCW-1:0] c3 = {{(ACCW-DSH){1'b0}}, rnd, {(DSH-1-FR){1'b0}}, {FR{m3_c}}};
-    mpc_mul18 u_mul3 (
-        .clk(clk), .rst(rst), .a(m3_u ? u18 : k), .b(a), .c(c3), .c_clr(1'b0), .ab_clr(rnd), .p(prod3)
+    wire m3_c = m3_rnd & ~m3_ur & u18[OPW-1];
+    // c of mul3, registered in fabric: the ur field is cleared through the flip-flops' reset;
+    // it shares only the round bit with the constants.  Round step: prod3 = 0 * 0 + 2^(DSH-1).
+    reg  [ACCW-1:0] c3u, c3k;
+    always @(posedge clk) begin
+        if (rst || !m3_ur) c3u <= {ACCW{1'b0}};
+        else               c3u <= {{(ACCW-UW+VSH-FR){ur[UW-1]}}, ur[UW-1:VSH], {FR{1'b0}}};
+        if (rst) c3k <= {ACCW{1'b0}};
+        else     c3k <= {{(ACCW-DSH){1'b0}}, rnd, {(DSH-1-FR){1'b0}}, {FR{m3_c}}};
+    end
+    mpc_mul18 #(.CREG(0)) u_mul3 (
+        .clk(clk), .rst(rst), .a(m3_u ? u18 : k), .b(a), .c(c3u | c3k), .c_clr(1'b0), .ab_clr(rnd | m3_ur),
+        .p(prod3)
     );
-    assign u_lim = {prod3[FR+UW-VSH-1:FR], {VSH{1'b0}}};
+    assign u_lim = prod3[FR+UW-VSH-1:FR];
 
     // ---- stage a (G1+6): prod3 << s[1:0]; term overflow (s >= 13) ----
     wire signed [PW-1:0] p3 = prod3[PW-1:0];
@@ -180,9 +194,9 @@ module mpc_lane (
             end else begin
                 if (cvp[2] && h_sat) f_gain <= 1'b1;
                 if (cvp[4] && k_sat) f_gain <= 1'b1;
-                if (cvp[6] && t_ovf) f_term <= 1'b1;
-                if (cvp[7] && a_ovf) f_acc <= 1'b1;
-                if (rnd8 && a_ovf) f_du <= 1'b1;
+                if ((cvp[6] && t_ovf) || f_or[0]) f_term <= 1'b1;
+                if ((cvp[7] && a_ovf) || f_or[1]) f_acc <= 1'b1;
+                if ((rnd8 && a_ovf) || f_or[2]) f_du <= 1'b1;
             end
         end
     end
@@ -210,6 +224,6 @@ module mpc_lane (
     end
 
     // rounding remainders and the upper product bits are dropped by design
-    wire unused_ok = &{1'b0, sumx[0], prod1[FR-1:0], prod2[FR-1:0], prod3[ACCW-1:FR+UW-VSH], prod3[FR-1:0]};
+    wire unused_ok = &{1'b0, sumx[0], prod1[FR-1:0], prod2[FR-1:0], prod3[ACCW-1:FR+UW-VSH], prod3[FR-1:0], ur[VSH-1:0]};
 endmodule
 `default_nettype wire

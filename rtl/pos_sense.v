@@ -73,7 +73,7 @@
 // Parameters: CPR, POLE_PAIRS, POS_W, ANGLE_BITS, MUL_W, ANGLE_MUL_SHIFT (-1 =
 //   auto), W_W, W_FRAC (>= 1), REALIGN (0/1, see above), ANGLE_DSP (1 = the
 //   product on a DSP48A1; 0 = m * ANGLE_MUL tracked in fabric next to m, same
-//   outputs and latency, about 100 LUTs more, no DSP).  MW = clog2(CPR).
+//   outputs and latency, about 90 LUTs more, no DSP).  MW = clog2(CPR).
 //   2 <= CPR < 2**17 keeps the product in one DSP (larger works, more DSPs).
 // Latency: pos step -> pos_mod 2 clocks (+1 per extra bit of a jump);
 //   pos_mod -> theta 2 clocks (DSP M register, then the DSP post-adder adds
@@ -81,9 +81,9 @@
 //   a +-1 count reaches theta 4 clocks after pos.  valid/aligned are delayed
 //   with theta.  sample -> speed/... 1 clock.
 // Reset: m = 0, not aligned, no HALL init, theta valid = 0, speed 0.
-// Resources (Yosys synth_xilinx xc6s, default): 1 DSP48A1, ~215 FFs,
-//   ~250 LUTs (~180 LUTs / ~110 FFs when the speed/sample outputs are left
-//   open, as in mpc_axis), no BRAM.
+// Resources (Yosys synth_xilinx xc6s, default): 1 DSP48A1, 1 RAMB8BWER (the
+//   c_k and HALL angle tables as a ROM), ~195 FFs, ~215 LUTs (~125 LUTs / ~95 FFs
+//   when the speed/sample outputs are left open, as in mpc_axis).
 `default_nettype none
 `include "empc_formats.vh"
 module pos_sense #(
@@ -233,6 +233,32 @@ module pos_sense #(
     localparam [POS_W*MW-1:0] C_TAB = pow_tab(0);
     localparam integer KW = (clog2(POS_W) < 1) ? 1 : clog2(POS_W);
 
+    // Both tables in one block RAM (ROM, two read ports, registered outputs), so that
+    // neither costs LUTs: C_TAB at addresses 0.. (port B, read with the next k: c is the
+    // entry of the current k); at 2**TA + {hall_init, last_sector, sector} the HALL angle
+    // of a HALL event in that state (port A: its output register is base_rel, loaded at a
+    // HALL event and cleared by the index / align_clear).  The kind of angle: the centre
+    // at HALL init (hall_init = 0), else the edge crossed (start of the new sector moving
+    // up one sector, its end moving down one), the centre after a jump.
+    localparam integer TW = (MW > ANGLE_BITS) ? MW : ANGLE_BITS;       // ROM word
+    localparam integer HA = 7;                                          // {hall_init, last_sector, sector}
+    localparam integer TA = (KW > HA) ? KW : HA;                        // address = {half, TA bits}
+    localparam [TA:0]  HALL_BASE = {1'b1, {TA{1'b0}}};
+    (* rom_style = "block" *) reg [TW-1:0] trom [0:2*(2**TA)-1];
+    integer ti;
+    reg [2:0] t_hs, t_ls;
+    reg [1:0] t_kd;
+    initial begin
+        for (ti = 0; ti < 2 * (2**TA); ti = ti + 1) trom[ti] = {TW{1'b0}};
+        for (ti = 0; ti < POS_W; ti = ti + 1) trom[ti][MW-1:0] = C_TAB[ti*MW +: MW];
+        for (ti = 0; ti < 2**HA; ti = ti + 1) begin
+            t_hs = ti[2:0];
+            t_ls = ti[5:3];
+            t_kd = (ti < 2**(HA-1)) ? 2'd1 : (t_hs == s_next(t_ls)) ? 2'd0 : (t_ls == s_next(t_hs)) ? 2'd2 : 2'd1;
+            trom[2**TA + ti][ANGLE_BITS-1:0] = HALL_TAB[{t_hs, t_kd}*ANGLE_BITS +: ANGLE_BITS];
+        end
+    end
+
     // ---------------- state ----------------
     reg [POS_W-1:0]      last_pos;   // count already handed to the reducer
     reg [POS_W-1:0]      r;          // remaining jump (signed), shifted right per clock
@@ -243,7 +269,10 @@ module pos_sense #(
     reg                  rel_cal;    // not aligned, but base_rel is relative to cal_offset (align_clear)
     reg                  hall_init;
     reg [2:0]            last_sector;
-    reg [ANGLE_BITS-1:0] base_rel;   // angle added to f(m), relative to the offset in use
+    /* verilator lint_off UNUSEDSIGNAL */ // ROM word bits above ANGLE_BITS
+    reg [TW-1:0]         base_r;     // ROM port A: angle added to f(m), relative to the offset in use
+    /* verilator lint_on UNUSEDSIGNAL */
+    wire [ANGLE_BITS-1:0] base_rel = base_r[ANGLE_BITS-1:0];
 
     assign pos_mod = m;
 
@@ -251,11 +280,8 @@ module pos_sense #(
     wire ev_hall_init = !al && !hall_init && hall_valid;
     wire ev_hall_chg  = !al && hall_init && hall_valid && hall_change;
     wire ev_hall = ev_hall_init || ev_hall_chg;
-    wire hall_fwd = (hall_sector == s_next(last_sector));
-    wire hall_bwd = (last_sector == s_next(hall_sector));
-    // kind of angle: centre at HALL init, else the edge crossed (centre after a jump)
-    wire [1:0] hall_kind = ev_hall_init ? 2'd1 : hall_fwd ? 2'd0 : hall_bwd ? 2'd2 : 2'd1;
-    wire [ANGLE_BITS-1:0] hall_base = HALL_TAB[{hall_sector, hall_kind}*ANGLE_BITS +: ANGLE_BITS];
+    // ROM address of the HALL angle (hall_init = 0 there at the HALL init event)
+    wire [TA:0] hall_addr = HALL_BASE | {{(TA+1-HA){1'b0}}, hall_init, last_sector, hall_sector};
     // index alignment: the first index after reset / align_clear (every index if REALIGN)
     wire ev_index = index_event && (!al || align_clear || (REALIGN != 0));
     wire ev_any = ev_index || ev_hall;
@@ -263,16 +289,48 @@ module pos_sense #(
     // ---------------- bit-serial modular accumulation ----------------
     // d: the new counts (pos - last_pos), or at an index event the lag pos - index_pos
     // (m restarts at 0 = index_pos and the reducer adds the counts since the index)
-    wire [POS_W-1:0] d = pos - (ev_index ? index_pos : last_pos);
+    wire [POS_W-1:0] d_ref = ev_index ? index_pos : last_pos;
+    wire [POS_W-1:0] d = pos - d_ref;
+    // d == 0 without an OR tree over d: pos ~^ d_ref (the subtractor's own propagate LUTs)
+    // all ones, as the carry out of +1 on a carry chain
+    wire [POS_W:0]   d_eqc = {1'b0, pos ~^ d_ref} + {{POS_W{1'b0}}, 1'b1};
+    wire             d_zero = d_eqc[POS_W];
     wire [POS_W-1:0] r_sh = {r[POS_W-1], r[POS_W-1:1]};
-    wire r_hi0 = ~|r[POS_W-1:1];
-    wire r_hi1 = &r[POS_W-1:1];
-    wire r_neg1 = r_hi1 & r[0];                 // remainder -1: subtract 2**k, done
-    wire r_done = r_hi0 | r_neg1;               // last bit of the jump
+    // r[POS_W-1:1] all 0 or all 1 = r[POS_W-2:1] all equal to the sign r[POS_W-1]: groups of
+    // UGS bits (one LUT6 each with the sign), ANDed on a carry chain (carry out of +1)
+    localparam integer UGS = 5;
+    localparam integer UG = (POS_W - 2 + UGS - 1) / UGS;
+    localparam integer UEW = (UGS * UG + 1 > POS_W) ? UGS * UG + 1 : POS_W;
+    /* verilator lint_off UNUSEDSIGNAL */ // bit 0 and the top sign copies (padding) unused
+    wire [UEW-1:0] r_ext = {{(UEW - POS_W + 1){r[POS_W-1]}}, r[POS_W-2:0]};
+    /* verilator lint_on UNUSEDSIGNAL */
+    wire [UG-1:0]  r_gu;
+    genvar gi;
+    generate
+        for (gi = 0; gi < UG; gi = gi + 1) begin : g_uni
+            assign r_gu[gi] = (r_ext[UGS*gi+1 +: UGS] == {UGS{r[POS_W-1]}});
+        end
+    endgenerate
+    wire [UG:0] r_unc = {1'b0, r_gu} + {{UG{1'b0}}, 1'b1};
+    wire r_uni = r_unc[UG];                     // r[POS_W-1:1] is 0 or -1
+    wire r_neg1 = r_uni & r[POS_W-1] & r[0];    // remainder -1: subtract 2**k, done
+    wire r_done = r_uni & (~r[POS_W-1] | r[0]); // last bit of the jump
     wire load = !busy || ev_any;                // r <= d (ignored when d = 0 or at a HALL event)
     // m +- c (c = 2**k mod CPR), then back into [0, CPR): + CPR if negative (subtract),
     // - CPR if >= CPR (add).  s is in (-CPR, 2*CPR); the reduced value's top bit is 0.
-    wire [MW-1:0] c = C_TAB[k*MW +: MW];
+    // c = C_TAB[k]: ROM port B read with k's next value
+    wire [KW-1:0] k_nx = (rst || load) ? {KW{1'b0}} : k + 1'b1;
+    /* verilator lint_off UNUSEDSIGNAL */ // ROM word bits above MW
+    reg  [TW-1:0] c_r;
+    /* verilator lint_on UNUSEDSIGNAL */
+    always @(posedge clk) c_r <= trom[{{(TA+1-KW){1'b0}}, k_nx}];
+    wire [MW-1:0] c = c_r[MW-1:0];
+    always @(posedge clk) begin
+        if (rst || ev_index || (align_clear && al))
+            base_r <= {TW{1'b0}};
+        else if (ev_hall)
+            base_r <= trom[hall_addr];
+    end
     wire [MW+1:0] s = {2'b0, m} + ({2'b0, c} ^ {(MW+2){r_neg1}}) + {{(MW+1){1'b0}}, r_neg1};
     wire s_neg = s[MW+1];
     wire s_ge = !s_neg && (s[MW:0] >= CPR_C);
@@ -291,7 +349,6 @@ module pos_sense #(
             rel_cal     <= 1'b0;
             hall_init   <= 1'b0;
             last_sector <= 3'd0;
-            base_rel    <= {ANGLE_BITS{1'b0}};
         end else begin
             // reducer
             if (load) begin
@@ -309,21 +366,19 @@ module pos_sense #(
             if (ev_hall && !ev_index)
                 busy <= 1'b0;
             else if (load)
-                busy <= (d != {POS_W{1'b0}});
+                busy <= !d_zero;
             else if (r_done)
                 busy <= 1'b0;
 
             // alignment state
+            // (base_rel: ROM port A above, same priority)
             if (ev_index) begin
                 al       <= 1'b1;
-                base_rel <= {ANGLE_BITS{1'b0}};
             end else if (align_clear && al) begin
                 al       <= 1'b0;
                 rel_cal  <= 1'b1;
-                base_rel <= {ANGLE_BITS{1'b0}};
             end else if (ev_hall) begin
                 rel_cal  <= 1'b0;
-                base_rel <= hall_base;
             end
             if (hall_valid && (!hall_init || hall_change)) begin
                 hall_init   <= 1'b1;
@@ -364,6 +419,12 @@ module pos_sense #(
     localparam [2*POS_W*ACC_W-1:0] S_TAB = stab(0);
     /* verilator lint_on UNUSEDPARAM */
     reg  [ANGLE_BITS-1:0] base_d;
+    // base_rel + offset as {base_rel, 0} - {~offset, 1} (>> 1): the offset multiplexer then
+    // folds into the adder's LUTs (base_rel, the ROM output, is the carry chain's DI)
+    wire [ANGLE_BITS-1:0] off_sel = (al || rel_cal) ? cal_offset : hall_offset;
+    /* verilator lint_off UNUSEDSIGNAL */ // bit 0 is the carry-in position only
+    wire [ANGLE_BITS:0]   base_sum = {base_rel, 1'b0} - {~off_sel, 1'b1};
+    /* verilator lint_on UNUSEDSIGNAL */
     reg                   v1, al1;
     always @(posedge clk) begin
         if (rst) begin
@@ -373,7 +434,7 @@ module pos_sense #(
             valid   <= 1'b0;
             aligned <= 1'b0;
         end else begin
-            base_d  <= base_rel + ((al || rel_cal) ? cal_offset : hall_offset);
+            base_d  <= base_sum[ANGLE_BITS:1];
             v1      <= al | hall_init;
             al1     <= al;
             valid   <= v1;

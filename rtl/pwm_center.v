@@ -90,7 +90,6 @@ module pwm_center #(
     localparam [CW-1:0] ONE = {{(CW-1){1'b0}}, 1'b1};
     localparam [CW-1:0] LEAD = SYNC_LEAD[CW-1:0];
     localparam          LEAD_DIR = (SYNC_LEAD == 0) ? 1'b1 : 1'b0;
-    localparam [DEAD_W-1:0] Q_MAX = {DEAD_W{1'b1}};
     localparam          MODE_COMPL = 1'b0;
 
     // ---- sync input: optional synchroniser, rising-edge detect ----------------
@@ -116,6 +115,11 @@ module pwm_center #(
     wire bnd_edge = (~dir & (cnt <= ONE)) | sync_rise;   // next cycle is a boundary
     wire ok = enable & ~fault & ~fault_latched;
     wire alive = run & ok;
+    // decodes from the previous clock instead of counter compares: the boundary state
+    // (counter 0, up) is exactly the clock after bnd_edge (or rst), the centre (counter P,
+    // down) exactly the clock after dir turned 1 -> 0
+    reg  at_bnd;
+    reg  dir_prev;
 
     // Values > P are stored unclipped: the counter never leaves [0, P] (up 0..P-1,
     // down P..1), so cnt < c / cnt <= c give the same command for any c >= P as for
@@ -131,6 +135,8 @@ module pwm_center #(
     always @(posedge clk) begin
         if (rst) begin
             sync_prev     <= 1'b0;
+            at_bnd        <= 1'b1;
+            dir_prev      <= 1'b1;
             cnt           <= {CW{1'b0}};
             dir           <= 1'b1;
             shadow        <= {(NCH*CW){1'b0}};
@@ -141,6 +147,8 @@ module pwm_center #(
             cmp_clip      <= 1'b0;
         end else begin
             sync_prev <= sync_s;
+            at_bnd    <= bnd_edge;
+            dir_prev  <= dir;
             // one adder: +1 up, -1 down (P-1 -> P at the turn round); 0 at the boundary
             if (bnd_edge) begin
                 cnt <= {CW{1'b0}};
@@ -170,19 +178,44 @@ module pwm_center #(
             sync_out     <= 1'b0;
             mode_eff     <= MODE_COMPL;
         end else begin
-            period_start <= dir & (cnt == {CW{1'b0}});
-            adc_trig     <= ~dir & (cnt == P);
+            period_start <= at_bnd;                        // dir & (cnt == 0)
+            adc_trig     <= ~dir & dir_prev;                // ~dir & (cnt == P)
             sync_out     <= (dir == LEAD_DIR) & (cnt == LEAD);
             mode_eff     <= mode_act;
         end
     end
 
-    genvar i;
+    // counter in groups of EG bits (one LUT6 per group compares it with a compare value)
+    localparam integer EG = 3;
+    localparam integer NG = (CW + EG - 1) / EG;
+    /* verilator lint_off UNUSEDSIGNAL */ // top bit: padding only
+    wire [EG*NG:0] cnt_x = {{(EG*NG - CW + 1){1'b0}}, cnt};
+    /* verilator lint_on UNUSEDSIGNAL */
+
+    genvar i, g;
     generate
         for (i = 0; i < NCH; i = i + 1) begin : g_ch
             wire [CW-1:0] c = cmp_act[i*CW +: CW];
-            wire h = dir ? (cnt < c) : (cnt <= c);     // ideal high-side command
+            // ideal high-side command h = dir ? (cnt < c) : (cnt <= c), built from the previous
+            // clock's h and one equality (~4 LUTs instead of a magnitude compare): c is constant
+            // between boundaries and cnt steps by 1 (0 at a boundary, up 0..P-1, P, down
+            // P-1..1), so h changes only where cnt == c.  Up-count: h = (boundary or h_prev) &
+            // (cnt != c) (at the boundary h = 0 < c = c != 0); down-count: h = h_prev | (cnt == c)
+            // (also at the turn P-1 -> P, where P-1 < c <=> P <= c).
+            /* verilator lint_off UNUSEDSIGNAL */ // top bit: padding only
+            wire [EG*NG:0] c_x = {{(EG*NG - CW + 1){1'b0}}, c};
+            /* verilator lint_on UNUSEDSIGNAL */
+            wire [NG-1:0] eqg;                         // per group cnt == c
+            for (g = 0; g < NG; g = g + 1) begin : g_eq
+                assign eqg[g] = (cnt_x[EG*g +: EG] == c_x[EG*g +: EG]);
+            end
+            wire [NG:0] eqc = {1'b0, eqg} + {{NG{1'b0}}, 1'b1};   // AND of the groups on a carry chain
+            wire eq = eqc[NG];
+            reg  h_prev;
+            wire h = dir ? (~eq & (h_prev | at_bnd)) : (h_prev | eq);
             reg  [DEAD_W-1:0] q;                       // clocks with hi = lo = 0
+            // saturating at 2**DEAD_W-1: the incrementer's carry out is q == Q_MAX
+            wire [DEAD_W:0]   q_p1 = {1'b0, q} + {{DEAD_W{1'b0}}, 1'b1};
             wire q_ok = (q >= dead);
             reg  hi_n, lo_n;
             always @(*) begin
@@ -201,12 +234,14 @@ module pwm_center #(
                 if (rst) begin
                     hi[i] <= 1'b0;
                     lo[i] <= 1'b0;
+                    h_prev <= 1'b0;
                     q     <= {DEAD_W{1'b0}};
                 end else begin
                     hi[i] <= hi_n;
                     lo[i] <= lo_n;
+                    h_prev <= h;
                     if (hi_n | lo_n) q <= {DEAD_W{1'b0}};
-                    else if (q != Q_MAX) q <= q + 1'b1;
+                    else if (!q_p1[DEAD_W]) q <= q_p1[DEAD_W-1:0];
                 end
             end
         end

@@ -21,8 +21,8 @@
 //   TW         width of timeout and of the tick counter (16 for WDOG_TIMEOUT)
 // Latency: expired rises 1 clock after the timeout-th tick; falls 1 clock after kick.
 // Reset: count 0, expired 0.
-// Resources: TW+1 flip-flops, one TW-bit incrementer and two
-//   magnitude compares on carry chains (30 LUTs, 8 CARRY4 for TW = 16); no DSP/BRAM.
+// Resources: TW+1 flip-flops, one TW-bit incrementer and one
+//   magnitude compare on carry chains (24 LUTs, 9 CARRY4 for TW = 16); no DSP/BRAM.
 `default_nettype none
 module watchdog #(
     parameter integer TW = 16
@@ -35,15 +35,18 @@ module watchdog #(
     output reg           expired
 );
     reg  [TW-1:0] count;
-    // count_n = count + (tick && !expired); count_n >= timeout without building count_n:
-    // (count >= timeout) || (tick && count + 1 >= timeout)   (count + 1 cannot wrap below
-    // timeout: count = 2**TW-1 is >= timeout already).  While expired the term is unused.
-    // Both terms are magnitude compares on purpose: they map onto carry chains, where an
-    // equality count + 1 == timeout became a 16-bit LUT chain after the incrementer (8 LUT
-    // levels, the worst path of the top).  For count < timeout, count + 1 >= timeout is the
-    // same as count + 1 == timeout.
+    // count_n = count + (tick && !expired); reach = count_n >= timeout, while not expired
+    // (while expired the term is unused).  One magnitude compare on a carry chain: no carry
+    // out of timeout + ~count_n (timeout - count_n - 1 < 0), with the tick multiplexer in
+    // the same LUT per bit; count_n = count + tick, the incrementer is a carry chain too (an
+    // equality count + 1 == timeout became a 16-bit LUT chain after the incrementer, 8 LUT
+    // levels, the worst path of the top).  The wrap of count + 1 at count = 2**TW-1 is
+    // harmless: count only gets there by an increment, which sets expired (2**TW-1 >=
+    // timeout), and stays there only while expired.
     wire [TW-1:0] count_p1 = count + {{(TW-1){1'b0}}, 1'b1};
-    wire          reach = (count >= timeout) || (tick && count_p1 >= timeout);
+    wire [TW-1:0] count_n = tick ? count_p1 : count;
+    wire [TW:0]   lt_c = {1'b0, timeout} + {1'b0, ~count_n};
+    wire          reach = ~lt_c[TW];
 
     always @(posedge clk) begin
         if (rst || kick || timeout == {TW{1'b0}}) begin

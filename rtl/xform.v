@@ -10,13 +10,14 @@
 //
 // Datapath, one microword (18 bit) per clock from the block RAM's second port:
 //   stage 0  microword -> operand fetch into registers that are cleared unless selected:
-//            RF_A (LUT-RAM, results), RF_B (LUT-RAM: sin, cos, -sin and constants), sine
+//            RF_A (block RAM, results), RF_B (block RAM: sin, cos, -sin and constants), sine
 //            nodes (block RAM port A), the sampled inputs, +-f (interpolation), kdc parts
 //   stage 1  A = OR of the A-side registers, B = D + B0 (DSP pre-adder; one of them is 0)
 //   stage 2  product register
 //   stage 3  accumulator (48 bit in the DSP, 38 used): acc = (load ? C : acc) + product
 //   stage 4  write-back: y = sat18(acc >>> 16), compare values min(acc >>> 16, HP), into
-//            RF_A / RF_B / the minimum-select flags / the outputs
+//            RF_A / RF_B / the minimum-select flags / the outputs (strobes from a destination
+//            table in block RAM read at stage 3)
 //   A1REG, B1REG, pre-adder, MREG, post-adder with the C/P select and PREG are one DSP48A1.
 //   A row marked `wait` issues only when no pass is in flight (no result pending).
 //
@@ -38,10 +39,12 @@
 //   cmp_a..c         unsigned CW-bit compare values 0..PWM_HALF_PERIOD; only by a mod done
 // Parameters: IN_W (13, at most 14), PWM_HALF_PERIOD, CW (as pwm_center).
 // Latency (start cycle -> done cycle): front 23, mod 84 cycles (xform.latency(), tested).
-// Resources: 1 DSP48A1, 1 RAMB16 (sine nodes + microprogram), 6 RAM32M register files.
+// Resources: 1 DSP48A1, 1 RAMB16 (sine nodes + microprogram), 3 RAMB8 (RF_A, RF_B, destination
+//   table).
 // Reset: control, pipeline and output registers clear (outputs 0, not busy; an operation in
 //   flight is dropped).  The register files are not reset: every entry an operation reads is
-//   written by that operation first, or is a constant (RF_B initial contents).
+//   written by that operation first, or is a constant (RF_B initial contents).  Neither are the
+//   operand registers: a row's operands count only if it was issued (v1 is reset).
 `default_nettype none
 `include "empc_formats.vh"
 module xform #(
@@ -134,14 +137,14 @@ module xform #(
     wire [4:0]     u_dst  = uc[17:13];
 
     // pipeline control: valid, accumulator load, trig sign, destination
-    reg        v1, v2, v3, v4;
-    reg [1:0]  c1, c2, c3;
-    reg        n1, n2, n3;
-    reg [4:0]  d1, d2, d3, d4;
-    wire       pend  = (v1 && d1 != D_NONE) || (v2 && d2 != D_NONE) || (v3 && d3 != D_NONE) ||
-                       (v4 && d4 != D_NONE);
+    reg        v1, v2, v3;
+    reg        h1, h2, h3, h4;                  // valid and with a write-back (dst != D_NONE)
+    reg [1:0]  c1, c2;
+    reg        n1, n2;
+    reg [4:0]  d1, d2, d3;
+    wire       pend  = h1 || h2 || h3 || h4;
     wire       issue = run && !(u_wait && pend);
-    wire       fin   = v4 && (d4 == D_IQ || d4 == D_CMPC);            // final write-back
+    wire       fin;                                                    // final write-back
     wire [PCW-1:0] pc_next = acc_front ? PC_FRONT : acc_mod ? PC_MOD : pc + {{(PCW-1){1'b0}}, issue};
 
     always @(posedge clk) begin
@@ -182,8 +185,11 @@ module xform #(
     // ---------------- stage 0 -> 1: operand registers ----------------
     // Each is cleared (synchronous reset: no LUT) unless it is this row's source, so the
     // A operand is the OR of the A-side registers and the B operand the sum D + B0.
-    reg  [W-1:0] rf_a [0:15];
-    reg  [W-1:0] rf_b [0:15];
+    // register files in block RAM (write port: write-back; read port: the registered operand
+    // fetch with its clear as the output reset), not LUT-RAM (24 LUTs).  No read ever meets a
+    // write of the same entry (xform.schedule()), so the ports' collision mode does not matter.
+    (* ram_style = "block" *) reg [W-1:0] rf_a [0:15];
+    (* ram_style = "block" *) reg [W-1:0] rf_b [0:15];
     initial begin
         for (k = 0; k < 16; k = k + 1) rf_b[k] = RFB_INIT[k*W +: W];
     end
@@ -198,26 +204,27 @@ module xform #(
     reg  [SH-1:0]      k_q;                                            // kdc >> 4 or (kdc & 15) << 12
     wire [W-KLB-1:0]   kh = r_kdc[W-1:KLB];
     wire [KLB-1:0]     kl = r_kdc[KLB-1:0];
+    // (no rst: a row's operands are used only if it was issued, and v1 is reset)
     always @(posedge clk) begin
-        rfa_q <= (rst || u_a[4])      ? {W{1'b0}}    : rf_a[ra];
-        rom_q <= (rst || !is_rom)     ? {(W-1){1'b0}} : rom[rom_addr][W-2:0];
-        xa_q  <= (rst || u_a != A_IA16) ? {IN_W{1'b0}} : r_ia;
-        xb_q  <= (rst || u_a != A_IB4)  ? {IN_W{1'b0}} : r_ib;
-        xc_q  <= (rst || u_a != A_IC4)  ? {IN_W{1'b0}} : r_ic;
-        xdh_q <= (rst || u_a != A_UHD)  ? {W{1'b0}}    : r_ud[UW-1:ULB];
-        xqh_q <= (rst || u_a != A_UHQ)  ? {W{1'b0}}    : r_uq[UW-1:ULB];
-        xdl_q <= (rst || u_a != A_ULD)  ? {ULB{1'b0}}  : r_ud[ULB-1:0];
-        xql_q <= (rst || u_a != A_ULQ)  ? {ULB{1'b0}}  : r_uq[ULB-1:0];
-        rfb_q <= (rst || u_b[4])      ? {W{1'b0}}    : rf_b[u_b[3:0]];
-        f_q   <= (rst || u_b != B_F)  ? {(FB+2){1'b0}} : fs;
-        k_q   <= (rst || u_b == B_F || !u_b[4]) ? {SH{1'b0}} :
+        rfa_q <= u_a[4]              ? {W{1'b0}}    : rf_a[ra];
+        rom_q <= !is_rom             ? {(W-1){1'b0}} : rom[rom_addr][W-2:0];
+        xa_q  <= (u_a != A_IA16)     ? {IN_W{1'b0}} : r_ia;
+        xb_q  <= (u_a != A_IB4)      ? {IN_W{1'b0}} : r_ib;
+        xc_q  <= (u_a != A_IC4)      ? {IN_W{1'b0}} : r_ic;
+        xdh_q <= (u_a != A_UHD)      ? {W{1'b0}}    : r_ud[UW-1:ULB];
+        xqh_q <= (u_a != A_UHQ)      ? {W{1'b0}}    : r_uq[UW-1:ULB];
+        xdl_q <= (u_a != A_ULD)      ? {ULB{1'b0}}  : r_ud[ULB-1:0];
+        xql_q <= (u_a != A_ULQ)      ? {ULB{1'b0}}  : r_uq[ULB-1:0];
+        rfb_q <= u_b[4]              ? {W{1'b0}}    : rf_b[u_b[3:0]];
+        f_q   <= (u_b != B_F)        ? {(FB+2){1'b0}} : fs;
+        k_q   <= (u_b == B_F || !u_b[4]) ? {SH{1'b0}} :
                  (u_b == B_KH) ? {{(SH-W+KLB){1'b0}}, kh} : {kl, {(SH-KLB){1'b0}}};
     end
     always @(posedge clk) begin
         if (rst) begin
-            v1 <= 1'b0; c1 <= C_ACC; n1 <= 1'b0; d1 <= D_NONE;
+            v1 <= 1'b0; h1 <= 1'b0; c1 <= C_ACC; n1 <= 1'b0; d1 <= D_NONE;
         end else begin
-            v1 <= issue; c1 <= u_csel; n1 <= neg; d1 <= u_dst;
+            v1 <= issue; h1 <= issue && (u_dst != D_NONE); c1 <= u_csel; n1 <= neg; d1 <= u_dst;
         end
     end
 
@@ -235,8 +242,11 @@ module xform #(
     reg  signed [PW-1:0] prod_r;
     reg  signed [AW-1:0] p_r;
     // C: 0, 2^15 (round half up), 2^15 - 2^11 (negative sine, see xform.py)
-    wire signed [AW-1:0] c_val = {{(AW-SH){1'b0}}, c3 == C_RND || (c3 == C_TRIG && !n3),
-                                  {4{c3 == C_TRIG && n3}}, {(SH-5){1'b0}}};
+    // (load, bit 15, bits 14..11 of C) for the stage-3 row: the table's second half, read with
+    // (c2, n2) on its second port (the register is stage 3; only used while v3 is set)
+    reg  [2:0]           cq;
+    wire                 c_load = cq[2];
+    wire signed [AW-1:0] c_val = {{(AW-SH){1'b0}}, cq[1], {4{cq[0]}}, {(SH-5){1'b0}}};
     always @(posedge clk) begin
         if (rst) begin
             a_r <= {W{1'b0}}; b_r <= {W{1'b0}}; prod_r <= {PW{1'b0}}; p_r <= {AW{1'b0}};
@@ -244,19 +254,63 @@ module xform #(
             a_r    <= a_in;                                            // A1REG
             b_r    <= d_in + b_in;                                     // pre-adder, B1REG
             prod_r <= a_r * b_r;                                       // MREG
-            if (v3) p_r <= ((c3 != C_ACC) ? c_val : p_r) + {{(AW-PW){prod_r[PW-1]}}, prod_r};  // post-adder, PREG
+            if (v3) p_r <= (c_load ? c_val : p_r) + {{(AW-PW){prod_r[PW-1]}}, prod_r};  // post-adder, PREG
         end
     end
     always @(posedge clk) begin
         if (rst) begin
-            v2 <= 1'b0; v3 <= 1'b0; v4 <= 1'b0; c2 <= C_ACC; c3 <= C_ACC; n2 <= 1'b0; n3 <= 1'b0;
-            d2 <= D_NONE; d3 <= D_NONE; d4 <= D_NONE;
+            v2 <= 1'b0; v3 <= 1'b0; h2 <= 1'b0; h3 <= 1'b0; h4 <= 1'b0; c2 <= C_ACC; n2 <= 1'b0;
+            d2 <= D_NONE; d3 <= D_NONE;
         end else begin
-            v2 <= v1; v3 <= v2; v4 <= v3;
-            c2 <= c1; c3 <= c2; n2 <= n1; n3 <= n2;
-            d2 <= d1; d3 <= d2; d4 <= d3;
+            v2 <= v1; v3 <= v2; h2 <= h1; h3 <= h2; h4 <= h3;
+            c2 <= c1; n2 <= n1;
+            d2 <= d1; d3 <= d2;
         end
     end
+
+    // ---------------- stage 4: destination decode ----------------
+    // A 32-entry table (block RAM) read with d3: its output register is the stage-4 decode of
+    // the destination, reset unless the row has a write-back (h3), so that every strobe below is
+    // one table bit, without decode logic.  Bits DQ_*; the RF_A / RF_B address is d[3:0].
+    localparam integer DQ_AD = 0, DQ_WA = 4, DQ_WB = 5, DQ_F1 = 6, DQ_F2 = 7, DQ_ID = 8, DQ_IQ = 9,
+                       DQ_CA = 10, DQ_CB = 11, DQ_CC = 12, DQ_CMP = 13, DQ_FIN = 14, DQ_SACC = 15;
+    function [W-1:0] dclass;
+        input [4:0] d;
+        begin
+            dclass = {W{1'b0}};
+            dclass[DQ_AD +: 4] = d[3:0];
+            dclass[DQ_WA] = !d[4];                                                 // RF_A
+            dclass[DQ_WB] = (d[4:2] == 3'b100) && (d[1:0] != 2'b00);               // RF_B: S, C, MS
+            dclass[DQ_F1] = (d == D_FLAG1);
+            dclass[DQ_F2] = (d == D_FLAG2);
+            dclass[DQ_ID] = (d == D_ID);
+            dclass[DQ_IQ] = (d == D_IQ);
+            dclass[DQ_CA] = (d == D_CMPA);
+            dclass[DQ_CB] = (d == D_CMPB);
+            dclass[DQ_CC] = (d == D_CMPC);
+            dclass[DQ_CMP] = (d == D_CMPA) || (d == D_CMPB) || (d == D_CMPC);
+            dclass[DQ_FIN] = (d == D_IQ) || (d == D_CMPC);
+            // counts for sat: not a flag, not u_to_v (UDV, UQV)
+            dclass[DQ_SACC] = (d != D_FLAG1) && (d != D_FLAG2) && (d[4:1] != D_UDV[4:1]);
+        end
+    endfunction
+    // C select: load (c != C_ACC), C bit 15 (round half up: RND, or TRIG positive), C bits
+    // 14..11 (TRIG negative: 2^15 - 2^11)
+    function [W-1:0] cclass;
+        input [1:0] c;
+        input       n;
+        cclass = {{(W-3){1'b0}}, c != C_ACC, (c == C_RND) || (c == C_TRIG && !n), c == C_TRIG && n};
+    endfunction
+    (* rom_style = "block" *) reg [W-1:0] dtab [0:63];     // 0..31 destinations, 32..39 C select
+    initial begin
+        for (k = 0; k < 64; k = k + 1) dtab[k] = (k < 32) ? dclass(k[4:0]) : cclass(k[2:1], k[0]);
+    end
+    reg  [W-1:0] dq;
+    always @(posedge clk) begin
+        dq <= (rst || !h3) ? {W{1'b0}} : dtab[{1'b0, d3}];
+        cq <= dtab[{3'b100, c2, n2}][2:0];
+    end
+    assign fin = dq[DQ_FIN];
 
     // ---------------- stage 4: window, saturation, write-back ----------------
     /* verilator lint_off UNUSEDSIGNAL */  // p_r[SH-1:0] is below the output window
@@ -265,18 +319,16 @@ module xform #(
     /* verilator lint_on UNUSEDSIGNAL */
     // the window is out of range iff bits AW-1 .. SH+W-1 are not all equal
     wire         ovf    = ~(&p_r[AW-1:SH+W-1] | ~|p_r[AW-1:SH+W-1]);
-    wire         is_cmp = (d4 == D_CMPA) || (d4 == D_CMPB) || (d4 == D_CMPC);
+    wire         is_cmp = dq[DQ_CMP];
     wire         clamp  = is_cmp && (r_win > HPW);                     // compare values are >= 0
     wire [W-1:0] y      = ovf ? {p_neg, {(W-1){~p_neg}}} : clamp ? HPW : r_win;
-    wire         wb     = v4 && d4 != D_NONE;
-    wire         flag   = (d4 == D_FLAG1) || (d4 == D_FLAG2);
     reg  [W-1:0]  id_st;
     reg  [CW-1:0] ca_st, cb_st;
     reg           sat_acc;
 
     always @(posedge clk) begin
-        if (wb && !d4[4]) rf_a[d4[3:0]] <= y;
-        if (wb && d4[4:2] == 3'b100 && d4[1:0] != 2'b00) rf_b[{2'b00, d4[1:0]}] <= y;
+        if (dq[DQ_WA]) rf_a[dq[DQ_AD +: 4]] <= y;
+        if (dq[DQ_WB]) rf_b[{2'b00, dq[DQ_AD +: 2]}] <= y;
     end
 
     always @(posedge clk) begin
@@ -291,18 +343,18 @@ module xform #(
             sat  <= fin && (sat_acc || ovf || clamp);
             if (acc_front || acc_mod)
                 sat_acc <= 1'b0;
-            else if (wb && !flag && d4[4:1] != D_UDV[4:1])          // not u_to_v (UDV, UQV)
+            else if (dq[DQ_SACC])
                 sat_acc <= sat_acc || ovf || clamp;
-            if (v4 && d4 == D_FLAG1) sel_m1 <= p_neg ? A_UA[3:0] : A_PB[3:0];   // u_A < u_B
-            if (v4 && d4 == D_FLAG2) sel_m  <= p_neg ? sel_m1 : A_PC[3:0];      // min(u_A, u_B) < u_C
-            if (v4 && d4 == D_ID) id_st <= y;
-            if (v4 && d4 == D_IQ) begin
+            if (dq[DQ_F1]) sel_m1 <= p_neg ? A_UA[3:0] : A_PB[3:0];   // u_A < u_B
+            if (dq[DQ_F2]) sel_m  <= p_neg ? sel_m1 : A_PC[3:0];      // min(u_A, u_B) < u_C
+            if (dq[DQ_ID]) id_st <= y;
+            if (dq[DQ_IQ]) begin
                 i_d <= id_st;
                 i_q <= y;
             end
-            if (v4 && d4 == D_CMPA) ca_st <= y[CW-1:0];
-            if (v4 && d4 == D_CMPB) cb_st <= y[CW-1:0];
-            if (v4 && d4 == D_CMPC) begin
+            if (dq[DQ_CA]) ca_st <= y[CW-1:0];
+            if (dq[DQ_CB]) cb_st <= y[CW-1:0];
+            if (dq[DQ_CC]) begin
                 cmp_a <= ca_st;
                 cmp_b <= cb_st;
                 cmp_c <= y[CW-1:0];
