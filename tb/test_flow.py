@@ -345,9 +345,9 @@ def test_committed_budget_one_axis_under_half():
     b = synth.load_budget("lx_rocon_top")
     assert b is not None, "constraints/resource_budget.json needs an lx_rocon_top entry"
     cap = synth.CAPACITY
-    # Two axes' worth of LUTs must fit the device (measured 49.3 %; the 45 % goal of issue 6
-    # needs a shared multi-axis MPC engine, see docs/synthesis.md "Area").
-    assert b["lut"] < 0.5 * cap["lut"], "one axis must stay under half the LUTs"
+    # Issue 6: one axis well under half the LUTs (goal 45 %; measured 41.8 %), so that a second
+    # axis fits with room for placement.
+    assert b["lut"] < 0.45 * cap["lut"], "one axis must stay under 45 % of the LUTs"
     assert b["dsp48a1"] <= cap["dsp48a1"] // 2 and b["ramb16"] <= cap["ramb16"] // 2
     assert set(b) <= set(synth.resource_counts({"cells": {}, "ports": {}})) | {"iob", "fmax_mhz"}
     # the timing proxy must meet the 100 MHz fabric clock
