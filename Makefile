@@ -54,25 +54,25 @@ sim-full: $(STAMP) check-tools roms ## long tests, then the paper-length co-simu
 	EMPC_FULL=1 $(PY) -m pytest -n $(JOBS) -q -m full tb/test_closed_loop.py
 
 lint: $(STAMP) roms ## verilator --lint-only -Wall on every RTL module as its own top, zero warnings
-	$(PY) sim/lint.py
+	$(PY) flow/lint.py
 
 formal: $(STAMP) ## SymbiYosys proofs (PWM safety)
-	$(PY) sim/formal.py
+	$(PY) flow/formal.py
 
 synth: $(STAMP) roms ## Yosys synth_xilinx -family xc6s on lx_rocon_top: EDIF + build/reports/synth.json
-	$(PY) sim/synth.py $(SYNTH_ARGS)
+	$(PY) flow/synth.py $(SYNTH_ARGS)
 
 bitstream: synth ## ISE 14.7 ngdbuild/map/par/trce/bitgen (needs ISE on PATH and every pin LOC'd)
-	$(PY) sim/bitstream.py
+	$(PY) flow/bitstream.py
 
 bench: $(STAMP) roms ## benchmark reports: MPC core alone through Yosys -> build/reports/mpc_core.json (+ vectors of the last stream test)
-	$(PY) sim/bench_mpc_core.py
+	$(PY) flow/bench_mpc_core.py
 
 readme: $(STAMP) ## refresh the README's results tables from build/reports (run after sim, synth, bench, compare)
-	$(PY) sim/readme_results.py --write
+	$(PY) flow/readme_results.py --write
 
 core: $(STAMP) ## regenerate the FuseSoC core empc.core from rtl/rtl_files.f
-	$(PY) sim/gen_core.py
+	$(PY) flow/gen_core.py
 
 clean:
 	rm -rf build sim_build results.xml

@@ -161,7 +161,7 @@ module ctrl_seq #(
     reg         zeroed;             // run was low since the last core update: u_prev = ebar_prev = 0
     wire        trig = adc_trig && !busy_period;
     wire        ctl_now = (per_nx >= pwm_per_control);
-    wire [7:0]  per_cnt = per_nx - 8'd1;    // (read by sim/cosim_top.v only: no logic in synthesis)
+    wire [7:0]  per_cnt = per_nx - 8'd1;    // (read by tb/hdl/cosim_top.v only: no logic in synthesis)
 
     // ---------------- transform chain: one microprogrammed MAC (xform) ----------------
     reg  xf_front, xf_mod;

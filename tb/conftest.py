@@ -1,9 +1,9 @@
-"""pytest configuration for the cocotb testbenches: makes sim/ (runner) and tb/ importable."""
+"""pytest configuration for the cocotb testbenches: makes tb/ (runner), flow/ (flow tools) and gen/ importable."""
 import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-for p in (ROOT / "sim", ROOT / "tb", ROOT / "gen"):
+for p in (ROOT / "flow", ROOT / "tb", ROOT / "gen"):
     if str(p) not in sys.path:
         sys.path.insert(0, str(p))
 

@@ -25,7 +25,7 @@ Between accesses the address and (while the master drives it) the data carry
 random garbage, so the DUT cannot depend on values outside the hold windows.
 ``keep_cs`` keeps CS low between accesses (only the strobes toggle).
 
-Pins are looked up by name on the DUT handle (defaults match sim/emc_regs_tb.v);
+Pins are looked up by name on the DUT handle (defaults match tb/hdl/emc_regs_tb.v);
 the data bus is modelled as master output + output enable (``d``, ``d_oe``) and
 the resolved bus (``bus``) that the master samples on reads.  A read that samples
 X or Z raises :class:`EmcBusError`.

@@ -1,6 +1,6 @@
 """cocotb tests of adc_spi (SPI master, current ADC) against empc.rtlmodel.adc_spi.
 
-Toplevel is sim/adc_spi_tb.v: the master wired pin-to-pin to sim/adc_spi_slave.v (three
+Toplevel is tb/hdl/adc_spi_tb.v: the master wired pin-to-pin to tb/hdl/adc_spi_slave.v (three
 ADC models with a configurable output delay / invalid window, so a wrong sample
 instant reads 'x' and fails the comparison).  Every conversion is compared
 bit-exact with the Python model: raw codes, corrected currents, saturation,

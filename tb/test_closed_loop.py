@@ -1,8 +1,8 @@
 """RTL-in-the-loop motor co-simulation of the whole drive (lx_rocon_top, one axis).
 
-The Python PMSM model (gen/empc/pmsm.py) drives the encoder (sim/quad_gen.v,
+The Python PMSM model (gen/empc/pmsm.py) drives the encoder (tb/hdl/quad_gen.v,
 a target count per half PWM period), the HALL pins and the ADC SPI slave
-(sim/adc_spi_slave.v, phase-current codes per period), and reads the compare
+(tb/hdl/adc_spi_slave.v, phase-current codes per period), and reads the compare
 values the drive loads every PWM period.  The CPU side is the EMC bus-functional
 model (tb/emc_bfm.py) through the register-map driver (gen/empc/driver.py).
 

@@ -1,6 +1,6 @@
 """cocotb block test of ctrl_seq (with ref_gen and mpc_core) against CtrlSeq / RefGen / mpc_core models.
 
-sim/ctrl_seq_tb.v wires ctrl_seq to ref_gen and mpc_core; the test drives the PWM timing, the
+tb/hdl/ctrl_seq_tb.v wires ctrl_seq to ref_gen and mpc_core; the test drives the PWM timing, the
 encoder count and angle, the ADC samples and the registers itself, so every period can be far
 from what a running motor produces:
 

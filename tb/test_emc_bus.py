@@ -7,7 +7,7 @@ Toplevel ``emc_bus`` (clocked logic, pins changed at the falling clock edge):
   address/data changing inside and outside the strobes, random reg_rdata)
   compared bit-exact with empc.rtlmodel.emc_bus.EmcBus every clock.
 
-Toplevel ``emc_regs_tb`` (sim/emc_regs_tb.v: 64 RW registers behind the port,
+Toplevel ``emc_regs_tb`` (tb/hdl/emc_regs_tb.v: 64 RW registers behind the port,
 the data bus a resolved tristate net) driven by the LPC4088 bus-functional
 model tb/emc_bfm.py with timing in ns independent of the clock:
 

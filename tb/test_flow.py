@@ -1,9 +1,9 @@
 """Tests of the implementation flow scripts (no Yosys, no ISE: fast).
 
-sim/synth.py      resource counting, timing proxy, fit and budget checks, EDIF clean-up
-sim/bitstream.py  UCF pin check (refuses while LOCs are missing), ISE tool detection,
+flow/synth.py      resource counting, timing proxy, fit and budget checks, EDIF clean-up
+flow/bitstream.py  UCF pin check (refuses while LOCs are missing), ISE tool detection,
                   ISE command sequence (with fake ngdbuild/map/par/trce/bitgen scripts)
-sim/gen_core.py   empc.core is in sync with rtl/rtl_files.f
+flow/gen_core.py   empc.core is in sync with rtl/rtl_files.f
 The real synthesis runs in `make synth`.
 """
 from __future__ import annotations
@@ -400,7 +400,7 @@ def test_core_matches_filelist():
     files = gen_core.rtl_files()
     text = gen_core.core_text(files, gen_core.include_files())
     committed = (ROOT / "empc.core").read_text()
-    assert committed == text, "empc.core is stale: run `python sim/gen_core.py`"
+    assert committed == text, "empc.core is stale: run `python flow/gen_core.py`"
     for f in files:
         assert f"      - {f}\n" in committed and (ROOT / f).exists()
     assert committed.startswith("CAPI=2:\n")

@@ -4,7 +4,7 @@ pytest entries:
   test_mpc_core          Icarus, ports driven directly: boot, a few hundred vectors over the 4 generated
                          images (inputs written through the input buffer, garbage in the words the core
                          must not read; CPU upload + atomic swap during an update), latency, handshake.
-  test_mpc_core_stream   Verilator, sim/mpc_core_stream.v: >= 100k random vectors per generated image
+  test_mpc_core_stream   Verilator, tb/hdl/mpc_core_stream.v: >= 100k random vectors per generated image
                          plus corner cases plus random (out-of-range) images, compared with the model.
   test_input_words       the input-buffer word map: header EMPC_IN_* == model IN_*, core.input_words.
   test_batch_model       the numpy twin used for the stream comparison == the scalar model.
@@ -300,7 +300,7 @@ try:
 
     @cocotb.test()
     async def stream(dut):
-        """Streaming harness (sim/mpc_core_stream.v): many vectors back to back on Verilator."""
+        """Streaming harness (tb/hdl/mpc_core_stream.v): many vectors back to back on Verilator."""
         if not hasattr(dut, "go"):
             return
         from cocotb.clock import Clock
@@ -373,7 +373,7 @@ def _lines(cols: list[np.ndarray]) -> bytes:
 
 
 def write_stream(path: Path, jobs: list[dict], N: int) -> None:
-    """Binary command file for sim/mpc_core_stream.v: 'w' cfg write, 's' swap, 'v' update, 'e' end.
+    """Binary command file for tb/hdl/mpc_core_stream.v: 'w' cfg write, 's' swap, 'v' update, 'e' end.
 
     'v' n {addr, 40-bit value} x n: the input-buffer words of one update (V.input_word_arrays,
     the model's word map), written by the harness before start.
@@ -387,7 +387,7 @@ def write_stream(path: Path, jobs: list[dict], N: int) -> None:
             fh.write(b"s")
             addrs, vals = V.input_word_arrays(job["x"], N)
             n, nw = vals.shape
-            # fixed 6-byte word record {addr, value[39:0]} (sim/mpc_core_stream.v takes value[SW-1:0])
+            # fixed 6-byte word record {addr, value[39:0]} (tb/hdl/mpc_core_stream.v takes value[SW-1:0])
             u = (vals & ((1 << 40) - 1)).astype(">u8").view(np.uint8).reshape(n, nw, 8)[:, :, 3:]
             a = np.broadcast_to(np.array(addrs, np.uint8)[None, :, None], (n, nw, 1))
             words = np.concatenate([a, u], axis=2).reshape(n, -1)
@@ -655,7 +655,7 @@ def test_input_words():
 
 @pytest.mark.full
 def test_bench_mpc_core():
-    """Synthesis benchmark (sim/bench_mpc_core.py, ~1 min of Yosys): 6 DSP48A1, report written."""
+    """Synthesis benchmark (flow/bench_mpc_core.py, ~1 min of Yosys): 6 DSP48A1, report written."""
     import bench_mpc_core
     assert bench_mpc_core.main() == 0
     rep = json.loads(bench_mpc_core.REPORT.read_text())

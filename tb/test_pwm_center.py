@@ -8,7 +8,7 @@ Builds (pytest entries at the bottom):
   main     NCH=3 P=13 DEAD_W=4 SYNC_STAGES=0 SYNC_LEAD=2: random + directed corners
   small    NCH=1 P=2  DEAD_W=2 SYNC_STAGES=2 SYNC_LEAD=0: random (smallest period)
   default  header defaults (P=EMPC_PWM_HALF_PERIOD=2500, NCH=3, DEAD_W=8): duty corners
-  sync2    sim/pwm_center_sync2.v, master -> slave (SYNC_STAGES=2, lead 4): phase lock
+  sync2    tb/hdl/pwm_center_sync2.v, master -> slave (SYNC_STAGES=2, lead 4): phase lock
 Seed: EMPC_SEED (default below), printed by every test.
 """
 from __future__ import annotations

@@ -16,7 +16,7 @@ import numpy as np
 
 from . import closedloop as cl
 from . import formats as F
-from . import header, pmsm, roms
+from . import design as design_mod, header, pmsm
 from .rtlmodel import pos_sense
 from .rtlmodel.ctrl_seq import CtrlSeq, Regs
 
@@ -41,7 +41,7 @@ def simulate(cfg, scenario: cl.Scenario, params=None, seed: int = 0, substeps: i
     references of control period k (default: the scenario profile sampled and rounded)."""
     c = cfg.control
     alg_task = (c.algorithm, scenario.task)
-    params = params or roms.design(cfg.with_control(task=scenario.task), *alg_task)["params"]
+    params = params or design_mod.design(cfg.with_control(task=scenario.task), *alg_task)["params"]
     M = cfg.pwm_per_control
     P = cfg.pwm_half_period
     Tpwm = 1.0 / cfg.inverter.f_pwm

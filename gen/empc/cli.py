@@ -41,11 +41,11 @@ def cmd_gains(args) -> int:
 
 
 def cmd_fit(args) -> int:
-    from . import quantise, roms
+    from . import design as design_mod
     cfg = _load(args)
     alg = args.algorithm or cfg.control.algorithm
     task = args.task or cfg.control.task
-    d = roms.design(cfg, alg, task)
+    d = design_mod.design(cfg, alg, task)
     gf, rep = d["fit"], d["report"]
     out = {"algorithm": alg, "task": task, "N": gf.N, "omega_range": [float(gf.omega_grid[0]), float(gf.omega_grid[-1])],
            "variable": f"s = omega_e / {gf.w_norm:.6g} rad/s; k(s) = p0 + s (p1 + p2 s)",
@@ -83,7 +83,7 @@ def cmd_simulate(args) -> int:
 
 
 def cmd_compare(args) -> int:
-    from . import compare
+    from .papers import compare
     rep = compare.run(quick=args.quick, out=Path(args.out), only=args.only or None)
     print(f"wrote {args.out}/compare.json, compare.md and {len(rep['cases'])} plots in {rep['wall_s']:.0f} s")
     return 0

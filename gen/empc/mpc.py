@@ -155,3 +155,22 @@ def spectral_radius(motor, ctrl, omega_e: float, algorithm: int | None = None, t
                     g: dict | None = None) -> float:
     T = closed_loop_matrix(motor, ctrl, omega_e, algorithm, task, g)
     return float(np.max(np.abs(np.linalg.eigvals(T))))
+
+
+def ebar_step_limits(cfg, task: str) -> np.ndarray:
+    """Clamp of the error increments of eq. 25 per output (SI units).
+
+    Configured values > 0 are used as given; 0 selects the default: i_max for the
+    currents, 5 % of max|Omega_e| for the speed, and the angle covered in one
+    period at max|Omega_e| for the position.  Outputs that are not integrated
+    (``integrate``) get 0, so their ebar stays 0 (the RTL needs nothing else).
+    """
+    c = cfg.control
+    w_top = max(abs(c.omega_min), abs(c.omega_max))
+    defaults = np.array([c.i_max, c.i_max, 0.05 * w_top if task == "speed" else w_top * c.Ts])
+    w = c.weights[(2, task)] if (2, task) in c.weights else None
+    clamp = np.array(w.ebar_step_max if w else (0, 0, 0), dtype=float)
+    lim = np.where(clamp > 0, clamp, defaults)
+    if w is not None:
+        lim = lim * np.asarray(w.integrate, dtype=float)   # outputs without the integrator: ebar stays 0
+    return lim

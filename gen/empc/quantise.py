@@ -17,7 +17,7 @@ import numpy as np
 
 from . import fit as fit_mod
 from . import formats as F
-from .controllers.explicit import ebar_step_limits
+from .mpc import ebar_step_limits
 from .rtlmodel import mpc_core as core
 
 MAX_PROD_SHIFT = (1 << F.PROD_SHIFT_BITS) - 1

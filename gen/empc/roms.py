@@ -14,55 +14,9 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-import numpy as np
-
-from . import __version__, config as config_mod, fit as fit_mod, formats, header, image, mpc, quantise, regmap
+from . import __version__, config as config_mod, formats, header, image, mpc, regmap
+from .design import design, designs_of
 from .rtlmodel import mpc_core as core
-
-
-class DesignError(config_mod.ConfigError):
-    pass
-
-
-def check_stability(cfg, algorithm: int, task: str, gf=None, points: int = 25) -> dict:
-    """Spectral radius of the frozen-speed loop on a grid over Omega_e, exact and fitted gains."""
-    c = cfg.control
-    grid = np.linspace(c.omega_min, c.omega_max, points)
-    worst = {"exact": 0.0, "fitted": 0.0}
-    for w in grid:
-        rho = mpc.spectral_radius(cfg.motor, c, float(w), algorithm, task)
-        worst["exact"] = max(worst["exact"], rho)
-        if rho >= 1.0:
-            raise DesignError(
-                f"algorithm {algorithm} / {task}: closed loop unstable at omega_e={w:.1f} rad/s "
-                f"(spectral radius {rho:.4f} >= 1) with weights.alg{algorithm}.{task} = "
-                f"{c.weights_for(algorithm, task)}")
-        if gf is not None:
-            g = gf.evaluate(float(w))
-            rho_f = mpc.spectral_radius(cfg.motor, c, float(w), algorithm, task, g=g)
-            worst["fitted"] = max(worst["fitted"], rho_f)
-            if rho_f >= 1.0:
-                raise DesignError(
-                    f"algorithm {algorithm} / {task}: loop with the fitted polynomial gains unstable at "
-                    f"omega_e={w:.1f} rad/s (spectral radius {rho_f:.4f})")
-    worst["grid_points"] = points
-    return worst
-
-
-def design(cfg, algorithm: int, task: str) -> dict:
-    ws = quantise.ws_for(cfg)
-    gf = fit_mod.fit(cfg, algorithm, task, w_norm=quantise.w_norm_rtl(cfg, ws))
-    stab = check_stability(cfg, algorithm, task, gf)
-    params, rep, gf = quantise.build(cfg, algorithm, task, gain_fit=gf)
-    return {"params": params, "report": rep, "fit": gf, "stability": stab}
-
-
-def designs_of(cfg, all_designs: bool) -> list[tuple[int, str]]:
-    boot = (cfg.control.algorithm, cfg.control.task)
-    out = [boot]
-    if all_designs:
-        out += [k for k in sorted(cfg.control.weights) if k != boot]
-    return out
 
 
 def generate(cfg, out: Path, all_designs: bool = True) -> dict:

@@ -2,7 +2,7 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-for p in (ROOT / "sim", ROOT / "gen"):
+for p in (ROOT / "flow", ROOT / "tb", ROOT / "gen"):
     if str(p) not in sys.path:
         sys.path.insert(0, str(p))
 

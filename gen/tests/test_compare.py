@@ -20,7 +20,7 @@ from pathlib import Path
 
 import pytest
 
-from empc import compare
+from empc.papers import compare
 
 # quick results go beside the full report, not over it (`empc compare` writes build/reports/compare.*)
 OUT = Path(os.environ.get("EMPC_COMPARE_OUT", "build/reports/compare_quick"))

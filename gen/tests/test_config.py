@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from empc import config, roms
+from empc import config, design, roms
 
 DEFAULT = tomllib.loads(config.DEFAULT_CONFIG.read_text())
 
@@ -44,7 +44,7 @@ def test_bad_values_name_the_parameter(dotted, value, needle, shown):
 def test_unstable_design_is_rejected_and_nothing_written(tmp_path):
     cfg = config.load(config.DEFAULT_CONFIG.with_name("paper_tables.toml"))
     out = tmp_path / "roms"
-    with pytest.raises(roms.DesignError) as e:
+    with pytest.raises(design.DesignError) as e:
         roms.generate(cfg, out)
     msg = str(e.value)
     assert "algorithm 2" in msg and "spectral radius" in msg

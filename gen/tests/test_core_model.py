@@ -4,12 +4,12 @@ import os
 import numpy as np
 import pytest
 
-from empc import config, fit, formats as F, image, mpc, quantise, roms
+from empc import config, design, fit, formats as F, image, mpc, quantise
 from empc.rtlmodel import mpc_core as core
 
 SEED = int(os.environ.get("EMPC_SEED", "7"))
 CFG = config.default()
-DESIGNS = {k: roms.design(CFG, *k) for k in [(1, "speed"), (1, "position"), (2, "speed"), (2, "position")]}
+DESIGNS = {k: design.design(CFG, *k) for k in [(1, "speed"), (1, "position"), (2, "speed"), (2, "position")]}
 
 
 @pytest.mark.parametrize("key", list(DESIGNS))

@@ -27,12 +27,12 @@ osqp = pytest.importorskip("osqp")
 import scipy.sparse as sp  # noqa: E402
 
 from empc import closedloop as cl  # noqa: E402
-from empc import compare  # noqa: E402
-from empc.controllers.ccs_mpcc import CcsMPCC  # noqa: E402
-from empc.controllers.online_mpc_gi import OnlineMPC  # noqa: E402
-from empc.qp import goldfarb_idnani as gi  # noqa: E402
-from empc.qp import ipm  # noqa: E402
-from empc.qp.opcount import OpCount  # noqa: E402
+from empc.papers import compare  # noqa: E402
+from empc.papers.ccs_mpcc import CcsMPCC  # noqa: E402
+from empc.papers.online_mpc_gi import OnlineMPC  # noqa: E402
+from empc.papers.qp import goldfarb_idnani as gi  # noqa: E402
+from empc.papers.qp import ipm  # noqa: E402
+from empc.papers.qp.opcount import OpCount  # noqa: E402
 
 SEED = int(os.environ.get("EMPC_SEED", "7"))
 
@@ -253,7 +253,7 @@ def test_gi_on_online_mpc_problems():
             return u
     case = compare.case_fw(True)
     cfg = case.cfg
-    from empc.controllers.cascade import Cascade
+    from empc.papers.cascade import Cascade
     fw = case.controllers[0][1]().fw
     ctl = Cascade(Rec(cfg), cfg, T_slow=1e-3, field_weakening=fw)
     sc = cl.Scenario("fw_short", "speed", 0.1, case.scenario.profile)

@@ -44,7 +44,7 @@ class ExplicitMPC(Controller):
 
     def _ebar_clamp(self) -> np.ndarray:
         c = self.cfg.control
-        return ebar_step_limits(self.cfg, self.task)
+        return mpc.ebar_step_limits(self.cfg, self.task)
 
     def reset(self) -> None:
         super().reset()
@@ -106,22 +106,3 @@ def exact_table(cfg, algorithm: int, task: str):
         grid = np.linspace(cfg.control.omega_min, cfg.control.omega_max, EXACT_POINTS)
         _TABLES[key] = fit_mod.profiles(cfg, algorithm, task, grid=grid)
     return _TABLES[key]
-
-
-def ebar_step_limits(cfg, task: str) -> np.ndarray:
-    """Clamp of the error increments of eq. 25 per output (SI units).
-
-    Configured values > 0 are used as given; 0 selects the default: i_max for the
-    currents, 5 % of max|Omega_e| for the speed, and the angle covered in one
-    period at max|Omega_e| for the position.  Outputs that are not integrated
-    (``integrate``) get 0, so their ebar stays 0 (the RTL needs nothing else).
-    """
-    c = cfg.control
-    w_top = max(abs(c.omega_min), abs(c.omega_max))
-    defaults = np.array([c.i_max, c.i_max, 0.05 * w_top if task == "speed" else w_top * c.Ts])
-    w = c.weights[(2, task)] if (2, task) in c.weights else None
-    clamp = np.array(w.ebar_step_max if w else (0, 0, 0), dtype=float)
-    lim = np.where(clamp > 0, clamp, defaults)
-    if w is not None:
-        lim = lim * np.asarray(w.integrate, dtype=float)   # outputs without the integrator: ebar stays 0
-    return lim

@@ -13,7 +13,7 @@ re-runs <task> with <file> (path relative to formal/) textually mutated
 (<find> must occur exactly once) and must end in ``DONE (FAIL`` - i.e. the
 properties catch the bug.
 
-Usage: python sim/formal.py [--no-mutants] [name-or-name/task ...]
+Usage: python flow/formal.py [--no-mutants] [name-or-name/task ...]
 Exit status 0 only if every proof passed and every mutant was caught.
 Solvers: the yowasp-* tools (Yosys, smtbmc) and z3 from the venv (or PATH).
 """

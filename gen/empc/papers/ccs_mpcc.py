@@ -29,8 +29,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..qp import ipm
-from ..qp.opcount import OpCount
+from .qp import ipm
+from .qp.opcount import OpCount
 from .common import CurrentLoop
 
 

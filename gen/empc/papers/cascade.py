@@ -31,8 +31,8 @@ import math
 
 import numpy as np
 
-from ..qp.opcount import OpCount
-from .base import Controller
+from .qp.opcount import OpCount
+from ..controllers.base import Controller
 
 
 @dataclasses.dataclass

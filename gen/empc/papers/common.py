@@ -15,7 +15,7 @@ the measured state to t_k + t_d with the psi-free incremental predictor
 (first order in Ts; exact in a steady state, so it adds no offset of its own),
 the standard delay compensation of predictive current control; without it the
 incremental laws of 001 oscillate at 10 kHz with one PWM period per sample
-(see the report).  Outer loops (controllers/cascade.py) overwrite the
+(see the report).  Outer loops (papers/cascade.py) overwrite the
 references.  Every controller counts its arithmetic per step in ``self.ops``
 (an :class:`~empc.qp.opcount.OpCount`), summarised in ``op_stats()``.
 """
@@ -25,8 +25,8 @@ import math
 
 import numpy as np
 
-from ..qp.opcount import OpCount
-from .base import Controller
+from .qp.opcount import OpCount
+from ..controllers.base import Controller
 
 
 class CurrentLoop(Controller):

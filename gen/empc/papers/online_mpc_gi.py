@@ -39,7 +39,7 @@ import math
 import numpy as np
 from scipy.linalg import solve_discrete_are
 
-from ..qp import goldfarb_idnani as gi
+from .qp import goldfarb_idnani as gi
 from .common import CurrentLoop
 
 M_OCT = math.sqrt(2.0) + 1.0

