@@ -239,9 +239,13 @@ module axis_regs (
     reg  [7:0]   q_cnt_adc_miss;
     reg  [15:0]  q_cnt_enc_err;
     always @(posedge clk) begin
-        q_ctrl <= (rd_p0 && reg_addr[4:0] == 5'h0) ? {ctrl_pwm_per_control, ctrl_complementary, ctrl_run, ctrl_enable} : 11'd0;
-        q_status <= (rd_p0 && reg_addr[4:0] == 5'h2) ? {status_fault, status_swap_pending, status_coef_bank, status_core_ready, status_adc_cal_done, status_adc_cal_busy, status_aligned, status_bridges_on, status_running} : 9'd0;
-        q_fault <= (rd_p0 && reg_addr[4:0] == 5'h3) ? {fault_adc, fault_overrun, fault_dclink, fault_watchdog, fault_encoder, fault_hall, fault_overcurrent} : 7'd0;
+        q_ctrl <= (rd_p0 && reg_addr[4:0] == 5'h0) ? {ctrl_pwm_per_control, ctrl_complementary, ctrl_run,
+            ctrl_enable} : 11'd0;
+        q_status <= (rd_p0 && reg_addr[4:0] == 5'h2) ? {status_fault, status_swap_pending, status_coef_bank,
+            status_core_ready, status_adc_cal_done, status_adc_cal_busy, status_aligned, status_bridges_on,
+            status_running} : 9'd0;
+        q_fault <= (rd_p0 && reg_addr[4:0] == 5'h3) ? {fault_adc, fault_overrun, fault_dclink, fault_watchdog,
+            fault_encoder, fault_hall, fault_overcurrent} : 7'd0;
         q_fault_mask <= (rd_p0 && reg_addr[4:0] == 5'h4) ? fault_mask : 7'd0;
         q_dead_time <= (rd_p0 && reg_addr[4:0] == 5'h5) ? dead_time : 8'd0;
         q_kdc <= (rd_p0 && reg_addr[4:0] == 5'h6) ? kdc : 18'd0;

@@ -69,7 +69,7 @@ module mpc_axis #(
     wire [`EMPC_A_UDC_MIN_W-1:0]             udc_min;
     wire [`EMPC_A_UDC_MAX_W-1:0]             udc_max;
     wire [`EMPC_A_OC_THRESH_W-1:0]           oc_thresh;
-    wire [2:0]                               adc_off_we;       // phases A, B, C
+    wire [`EMPC_A_ADC_OFF_N-1:0]             adc_off_we;       // phases A, B, C
     wire [`EMPC_A_ADC_OFF0_W-1:0]            adc_off_wdata;
     wire [`EMPC_A_ANGLE_CAL_W-1:0]           angle_cal;
     wire [`EMPC_A_HALL_OFFSET_W-1:0]         hall_offset;
@@ -79,7 +79,7 @@ module mpc_axis #(
     wire signed [`EMPC_A_IQ_REF_W-1:0]       iq_ref;
     wire [`EMPC_A_SEG_ADDR_W-1:0]            seg_addr;
     wire                                     seg_we, seg_re;   // SEG_LEN .. SEG_FLAGS window
-    wire [2:0]                               seg_idx;
+    wire [`EMPC_A_SEG_IDX_W-1:0]             seg_idx;
     wire                                     seg_start;
     wire [`EMPC_A_SEG_START_W-1:0]           seg_start_data;
     wire                                     stat_re, cnt_re;  // status words / counters (block RAM)

@@ -36,8 +36,10 @@ typedef struct {
     uint32_t ofs, access, reset, reset_mask, bits, sign;
 } empc_host_reg;
 
-#define ROW_G(N, O, A, R, RM, B, S) {#N, 0u, O, A, R, RM, B, S},
-#define ROW_A(N, O, A, R, RM, B, S) {#N, 1u, O, A, R, RM, B, S},
+#define ROW_G(N) {#N, 0u, EMPC_G_##N, EMPC_G_##N##_ACCESS, EMPC_G_##N##_RESET, EMPC_G_##N##_RESET_MASK, \
+                  EMPC_G_##N##_BITS, EMPC_G_##N##_SIGNED},
+#define ROW_A(N) {#N, 1u, EMPC_A_##N, EMPC_A_##N##_ACCESS, EMPC_A_##N##_RESET, EMPC_A_##N##_RESET_MASK, \
+                  EMPC_A_##N##_BITS, EMPC_A_##N##_SIGNED},
 const empc_host_reg empc_host_regs[] = {EMPC_GLOBAL_REGS(ROW_G) EMPC_AXIS_REGS(ROW_A)};
 const uint32_t empc_host_nregs = (uint32_t)(sizeof(empc_host_regs) / sizeof(empc_host_regs[0]));
 

@@ -84,6 +84,18 @@ def expected_macros() -> dict[str, int]:
     return out
 
 
+def _comment(text: str, width: int = 104) -> list[str]:
+    """A C comment wrapped at ``width`` columns."""
+    words, lines, line = text.split(), [], "/*"
+    for w in words:
+        if len(line) + 1 + len(w) > width:
+            lines.append(line)
+            line = "  "
+        line += " " + w
+    lines.append(line + " */")
+    return lines
+
+
 def render() -> str:
     expected_macros()                     # refuses name clashes
     L = [_HDR, "/*",
@@ -102,8 +114,8 @@ def render() -> str:
          " * _RESET defines: 0 for live values; build-dependent fields, e.g. CTRL.pwm_per_control, are",
          " * left out: read them from CAPS), _BITS (bits it stores or reports), _SIGNED (reads back",
          " * sign-extended).  Per field: _SHIFT, _MASK (in place), _WIDTH; EMPC_FIELD / EMPC_GET.",
-         " * EMPC_GLOBAL_REGS(X) / EMPC_AXIS_REGS(X) call X(NAME, OFS, ACCESS, RESET, RESET_MASK, BITS,",
-         " * SIGNED) for every register (tables, dumps, tests).",
+         " * EMPC_GLOBAL_REGS(X) / EMPC_AXIS_REGS(X) call X(NAME) for every register (tables, dumps,",
+         " * tests: paste EMPC_G_##NAME, EMPC_A_##NAME##_RESET, ...).",
          " */",
          "#ifndef EMPC_REGS_H", "#define EMPC_REGS_H", "", "#include <stdint.h>", ""]
     w = max(len(n) for n, *_ in constants())
@@ -111,10 +123,10 @@ def render() -> str:
         L.append(f"#define {n:<{w}} {t:<12} /* {c} */")
     L += ["",
           "#define EMPC_GLOBAL_ADDR(ofs)   (EMPC_EMC_BASE + (uint32_t)(ofs))",
-          "#define EMPC_AXIS_ADDR(n, ofs)  (EMPC_EMC_BASE + EMPC_AXIS_BASE + (uint32_t)(n) * EMPC_AXIS_STRIDE "
-          "+ (uint32_t)(ofs))",
-          "#define EMPC_COEF_ADDR(n, w)    (EMPC_EMC_BASE + EMPC_COEF_BASE + (uint32_t)(n) * EMPC_COEF_STRIDE "
-          "+ EMPC_WORD_BYTES * (uint32_t)(w))",
+          "#define EMPC_AXIS_ADDR(n, ofs)  (EMPC_EMC_BASE + EMPC_AXIS_BASE + (uint32_t)(n) * EMPC_AXIS_STRIDE \\",
+          "                                 + (uint32_t)(ofs))",
+          "#define EMPC_COEF_ADDR(n, w)    (EMPC_EMC_BASE + EMPC_COEF_BASE + (uint32_t)(n) * EMPC_COEF_STRIDE \\",
+          "                                 + EMPC_WORD_BYTES * (uint32_t)(w))",
           "/* field F of a register word: EMPC_FIELD(EMPC_A_CTRL_RUN, 1), EMPC_GET(EMPC_A_STATUS_FAULT, st) */",
           "#define EMPC_FIELD(F, v)        ((((uint32_t)(v)) << F##_SHIFT) & F##_MASK)",
           "#define EMPC_GET(F, word)       ((((uint32_t)(word)) & F##_MASK) >> F##_SHIFT)", ""]
@@ -124,18 +136,23 @@ def render() -> str:
         L.append(f"/* ---------------- {title} ---------------- */")
         for r in b.regs:
             doc = r.doc.replace("*/", "* /")
-            L.append(f"/* {r.name} ({r.access}{', ' + r.attrs if r.attrs else ''}): {doc} */")
+            L += _comment(f"{r.name} ({r.access}{', ' + r.attrs if r.attrs else ''}): {doc}")
             ms = reg_macros(b.scope, r)
             w = max(len(n) for n, *_ in ms)
             L += [f"#define {n:<{w}} {t}" for n, t, _ in ms]
         L.append("")
         tab = "EMPC_GLOBAL_REGS" if b.scope == "G" else "EMPC_AXIS_REGS"
-        L.append(f"/* X(NAME, OFS, ACCESS, RESET, RESET_MASK, BITS, SIGNED) for every {b.module[:-5]} register */")
+        L.append(f"/* X(NAME) for every {b.module[:-5]} register: EMPC_{b.scope}_##NAME, "
+                 f"EMPC_{b.scope}_##NAME##_ACCESS, ... */")
         L.append(f"#define {tab}(X) \\")
-        rows = []
+        rows, line = [], "   "
         for r in b.regs:
-            p = f"EMPC_{b.scope}_{r.name}"
-            rows.append(f"    X({r.name}, {p}, {p}_ACCESS, {p}_RESET, {p}_RESET_MASK, {p}_BITS, {p}_SIGNED)")
+            item = f" X({r.name})"
+            if len(line) + len(item) > 100:
+                rows.append(line)
+                line = "   "
+            line += item
+        rows.append(line)
         L += [row + " \\" for row in rows[:-1]] + [rows[-1], ""]
     L += ["#endif /* EMPC_REGS_H */", ""]
     return "\n".join(L)

@@ -40,7 +40,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .regmap import Block, Field, Reg, check
+from .regmap import Block, Field, Reg, check, idx_bits
 
 _HDR = "// Generated from gen/empc/regmap.py by gen/empc/regblock.py (python -m empc.regmap --all). Do not edit."
 
@@ -248,7 +248,7 @@ class _Gen:
         return next((m.guard for m in self.members(ext_name) if m.access != "RO"), "")
 
     def idx_bits(self, mem: list[Reg]) -> int:
-        return max(1, (len(mem) - 1).bit_length())
+        return idx_bits(len(mem))
 
     # ------------------------------------------------------------------ text
     def render(self) -> str:
@@ -459,8 +459,20 @@ class _Gen:
         L.append("    always @(posedge clk) begin")
         for r in copies:
             v, w = self.value_expr(r)
-            L.append(f"        {qn[r.name]} <= (rd_p{self.page(r.offset)} && reg_addr[{self.pb - 1}:0] == "
-                     f"{self.low(r.offset)}) ? {v} : {_vlit(w, 0)};")
+            head = f"        {qn[r.name]} <= (rd_p{self.page(r.offset)} && reg_addr[{self.pb - 1}:0] == " \
+                   f"{self.low(r.offset)}) ?"
+            if len(head) + len(v) + len(_vlit(w, 0)) + 6 <= 118:
+                L.append(f"{head} {v} : {_vlit(w, 0)};")
+            else:                                  # long concatenation: wrapped
+                items = v[1:-1].split(", ")
+                lines, line = [], f"{head} {{"
+                for i, it in enumerate(items):
+                    piece = it + ("," if i < len(items) - 1 else f"}} : {_vlit(w, 0)};")
+                    if len(line) + len(piece) + 1 > 112:
+                        lines.append(line.rstrip())
+                        line = "            "
+                    line += piece + " "
+                L += lines + [line.rstrip()]
         if muxed:
             mp = sorted({self.page(r.offset) for r in muxed})
             if len(mp) == 1:

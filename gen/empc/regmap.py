@@ -485,8 +485,19 @@ def _reset_text(r: Reg) -> str:
     return ", ".join(parts)
 
 
-def _macros(scope: str, regs) -> list[tuple[str, object]]:
+def idx_bits(n: int) -> int:
+    """Bits of the word index of a window of n registers."""
+    return max(1, (n - 1).bit_length())
+
+
+def _macros(scope: str, regs, ext=EXT) -> list[tuple[str, object]]:
     out = []
+    for e in ext:                            # port widths of the ext groups
+        n = sum(r.ext == e.name for r in regs)
+        if n and e.kind == "strobe":
+            out.append((f"EMPC_{scope}_{e.name.upper()}_N", n))
+        if n and e.kind == "window" and e.idx:
+            out.append((f"EMPC_{scope}_{e.name.upper()}_IDX_W", idx_bits(n)))
     for r in regs:
         out.append((f"EMPC_{scope}_{r.name}", r.offset))
         out.append((f"EMPC_{scope}_{r.name}_RESET", r.reset if isinstance(r.reset, str) else r.reset_int()))
@@ -500,7 +511,8 @@ def _macros(scope: str, regs) -> list[tuple[str, object]]:
 
 def render_vh() -> str:
     """empc_regs.vh: word offsets, reset values (build-dependent ones as the macro), data
-    widths (_W) and field positions of every register, for hand-written RTL."""
+    widths (_W) and field positions of every register, and the widths of the ext ports
+    (_N: registers of a strobe group, _IDX_W: window index), for hand-written RTL."""
     lines = ["// Generated from gen/empc/regmap.py (python -m empc.regmap / empc roms). Do not edit.",
              "`ifndef EMPC_REGS_VH", "`define EMPC_REGS_VH",
              f"`define EMPC_REG_AXIS_BASE {AXIS_BASE}", f"`define EMPC_REG_AXIS_STRIDE {AXIS_STRIDE}",
@@ -509,7 +521,7 @@ def render_vh() -> str:
              f"`define EMPC_WDOG_KEY {WDOG_KEY}"]
     names = set()
     for b in BLOCKS:
-        for name, v in _macros(b.scope, b.regs):
+        for name, v in _macros(b.scope, b.regs, b.ext):
             if name in names:
                 raise MapError(f"empc_regs.vh: macro {name} defined twice (rename a register or field)")
             names.add(name)
@@ -545,13 +557,13 @@ def render_md() -> str:
            "configure the LPC4088 static-memory wait states for >= 80 ns read access (WAITOEN/WAITRD) and a "
            ">= 40 ns write pulse (WAITWEN/WAITWR) with >= 20 ns between accesses (WAITTURN).", "",
            "## Columns", "",
-           "Offset: word offset (emc_a); byte: CPU byte offset (`fw/empc_regs.h`).  Access: RO read-only, RW read/write, WO write pulses (read 0), W1C sticky bits cleared by writing 1.  "
+           "Offset: word offset (emc_a); byte: CPU byte offset (`fw/empc_regs.h`).  Access: RO read-only, "
+           "RW read/write, WO write pulses (read 0), W1C sticky bits cleared by writing 1.  "
            "Reset: the value after reset (`-`: a live value; an `EMPC_*` name: the macro of `empc_formats.vh` "
            "of the build, also readable in CAPS where it matters).  Bits: the data bits (`s`: signed, reads back "
            "sign-extended).  Attributes: `in X` the storage lives in block X; `key` a write acts only with this "
            "value; `below F stored as F`; `refused while G` (guard) and `legal` values (other writes are "
            "refused and counted); `constant`.", ""]
-    exts = {e.name: e for e in EXT}
     for b, title in zip(BLOCKS, ("Global", "Axis (offset from the axis base)")):
         out += [f"## {title}", "", "| offset | byte | name | access | reset | bits | attributes | description |",
                 "| --- | --- | --- | --- | --- | --- | --- | --- |"]
@@ -561,7 +573,8 @@ def render_md() -> str:
                 desc += " " + "; ".join(f"[{f.lsb + f.width - 1}:{f.lsb}] {f.name}: {f.doc}" if f.width > 1
                                         else f"[{f.lsb}] {f.name}: {f.doc}" for f in r.fields)
             bits = f"{r.bits}{'s' if r.signed else ''}"
-            out.append(f"| {r.offset:#05x} | {r.offset * WORD_BYTES:#05x} | {r.name} | {r.access} | {_reset_text(r)} | {bits} | {_cell(r.attrs)} "
+            out.append(f"| {r.offset:#05x} | {r.offset * WORD_BYTES:#05x} | {r.name} | {r.access} | "
+                       f"{_reset_text(r)} | {bits} | {_cell(r.attrs)} "
                        f"| {_cell(desc)} |")
         out.append("")
     out += ["## Blocks that keep register storage (`ext`)", "", "| name | kind | what |", "| --- | --- | --- |"]
