@@ -7,6 +7,7 @@
 // is and the rules: gen/empc/regblock.py, docs/registers.md).  Ports: a stored register
 // or field is an output named after it, a read-only value an input of the same name.
 // Read path: one shared read register (a case), plus per-register exceptions.
+// Parameters: none (build-dependent reset values are empc_formats.vh macros).
 // Latency: writes act in the clock after reg_wr (window strobes: combinational);
 // reg_rdata is valid the clock after reg_rd and 0 in every other clock.
 // Reset: synchronous (rst); stored registers to the map's reset values, pulses and read

@@ -264,6 +264,7 @@ class _Gen:
              "// Read path: " + ("gated copies (0 unless read) ORed" if b.read == "copy" else
                                  "one shared read register (a case)")
              + (", plus per-register exceptions" if any(r.read for r in self.regs) else "") + ".",
+             "// Parameters: none (build-dependent reset values are empc_formats.vh macros).",
              "// Latency: writes act in the clock after reg_wr (window strobes: combinational);",
              "// reg_rdata is valid the clock after reg_rd and 0 in every other clock.",
              "// Reset: synchronous (rst); stored registers to the map's reset values, pulses and read",
