@@ -114,6 +114,12 @@ class _Gen:
     def members(self, ext_name: str) -> list[Reg]:
         return sorted((r for r in self.regs if r.ext == ext_name), key=lambda r: r.offset)
 
+    def each_part(self, regs):
+        """(register, kind, field, port) for every field of ``regs``."""
+        for r in regs:
+            for f in r.parts():
+                yield r, self.k[r.name], f, r.part_port(f)
+
     def page(self, off: int) -> int:
         return off >> self.pb
 
@@ -322,31 +328,24 @@ class _Gen:
         for p in pages:
             L.append(f"    wire wr_p{p} = reg_wr && (reg_addr[{self.aw - 1}:{self.pb}] == {_vlit(hb, p)});")
         L.append("    always @(posedge clk) begin")
-        # pulses default to 0
-        for r in wregs:
-            k = self.k[r.name]
-            for f in r.parts():
-                p = r.part_port(f)
-                if k.pulses:
-                    L.append(f"        {p} <= {_vlit(f.width, 0)};")
-                elif k.key or k.wodata:
-                    L.append(f"        {p} <= 1'b0;")
+        for r, k, f, p in self.each_part(wregs):         # pulses default to 0
+            if k.pulses:
+                L.append(f"        {p} <= {_vlit(f.width, 0)};")
+            elif k.key or k.wodata:
+                L.append(f"        {p} <= 1'b0;")
         for e in self.strobes:
             L.append(f"        {e.name}_we <= {_vlit(len(self.members(e.name)), 0)};")
         if self.refuse:
             L.append("        wr_refused <= 1'b0;")
         L.append("        if (rst) begin")
-        for r in wregs:
-            k = self.k[r.name]
-            for f in r.parts():
-                p = r.part_port(f)
-                if k.stored:
-                    rv = (f"`{f.reset}" if isinstance(f.reset, str) else
-                          _vlit(f.width, f.reset if f.reset is not None and r.fields else
-                                (r.reset >> f.lsb) & ((1 << f.width) - 1)))
-                    L.append(f"            {p} <= {rv};")
-                elif k.wodata:
-                    L.append(f"            {p}_data <= {_vlit(f.width, 0)};")
+        for r, k, f, p in self.each_part(wregs):
+            if k.stored:
+                rv = (f"`{f.reset}" if isinstance(f.reset, str) else
+                      _vlit(f.width, f.reset if f.reset is not None and r.fields else
+                            (r.reset >> f.lsb) & ((1 << f.width) - 1)))
+                L.append(f"            {p} <= {rv};")
+            elif k.wodata:
+                L.append(f"            {p}_data <= {_vlit(f.width, 0)};")
         for e in self.strobes:
             L.append(f"            {e.name}_wdata <= {_vlit(max(m.width for m in self.members(e.name)), 0)};")
         L.append("        end else begin")
@@ -583,11 +582,9 @@ class Model:
         for d, n, w, _, _ in self.ports:
             if d == "output" and self.g.is_reg_out(n):
                 self.state[n] = 0
-        for r in self.g.regs:
-            k = self.g.k[r.name]
+        for r, k, f, p in self.g.each_part(self.g.regs):
             if k.stored:
-                for f in r.parts():
-                    self.state[r.part_port(f)] = self._reset_of(r, f)
+                self.state[p] = self._reset_of(r, f)
         self.q = 0
 
     def _value(self, r: Reg, ins: dict) -> int:
@@ -642,12 +639,9 @@ class Model:
             for r in g.regs:
                 if g.k[r.name].readable and r.offset == addr:
                     q = self._value(r, ins)
-        # pulses drop
-        for r in g.regs:
-            k = g.k[r.name]
-            for f in r.parts():
-                if k.pulses or k.key or k.wodata:
-                    s[r.part_port(f)] = 0
+        for r, k, f, p in g.each_part(g.regs):        # pulses drop
+            if k.pulses or k.key or k.wodata:
+                s[p] = 0
         for e in g.strobes:
             s[f"{e.name}_we"] = 0
         if g.refuse:
@@ -657,11 +651,9 @@ class Model:
             return
         self.q = q
         old = dict(s)                   # W1C: a write clears from the value before this clock's set
-        for r in g.regs:
-            if g.k[r.name].w1c:
-                for f in r.parts():
-                    if ins[f"{r.part_port(f)}_set"]:
-                        s[r.part_port(f)] = 1
+        for r, k, f, p in g.each_part(g.regs):
+            if k.w1c and ins[f"{p}_set"]:
+                s[p] = 1
         if ins["reg_wr"]:
             for e in g.windows:
                 gd = g.window_guard(e.name)
