@@ -6,7 +6,8 @@
  * LPC408x/407x user manual (UM10562) maps at 0x80000000.  Configure EMCStaticConfig0.MW = 2
  * (32 bit) and leave SCS.EMCSC = 0 (static addresses shifted to the bus width): the pins
  * EMC_A[13:0], wired to the FPGA's emc_a[13:0], then carry CPU byte-address bits [15:2], so
- * FPGA word w is the 32-bit location at EMPC_EMC_BASE + 4 w.  Use 32-bit accesses only.
+ * FPGA word w is the 32-bit location at EMPC_EMC_BASE + 4 w.  Use 32-bit accesses only.  (The LX_CPU
+ * board code of NuttX, lpc17_40_fpgainitialize.c, sets STATICCONFIG0 = 0x2 and clears SCS.EMCSC.)
  * Every offset below is in BYTES:
  *   EMPC_G_<REG>        byte offset of a global register: address EMPC_GLOBAL_ADDR(EMPC_G_<REG>)
  *   EMPC_A_<REG>        byte offset in an axis block: address EMPC_AXIS_ADDR(n, EMPC_A_<REG>)

@@ -550,7 +550,11 @@ def render_md() -> str:
            "(EMCStaticConfig0.MW = 2) and the EMC shifts static addresses to the bus width (SCS.EMCSC = 0), so "
            "the pins EMC_A[13:0], wired to the FPGA's `emc_a[13:0]`, carry CPU byte-address bits [15:2]: word w "
            f"is the 32-bit location at byte address **{EMC_CS0_BASE:#010x} + 4 w** (always 32-bit accesses; "
-           "byte lanes are not decoded).  `fw/empc_regs.h` gives byte addresses: `EMPC_G_<REG>` and "
+           "byte lanes are not decoded).  The LX_CPU board code of NuttX "
+           "(`boards/arm/lpc17xx_40xx/lx_cpu/src/lpc17_40_fpgainitialize.c`) sets up CS0 for this FPGA exactly so "
+           "(EMCStaticConfig0 = 0x2, SCS.EMCSC cleared: \"shift addresses by 2 (32-bit bus)\"); its LPC178x/40xx "
+           "memory map lists CS0 at 0x80000000, up to 64 MB.  `fw/empc_regs.h` gives byte addresses: "
+           "`EMPC_G_<REG>` and "
            "`EMPC_A_<REG>` are byte offsets, `EMPC_GLOBAL_ADDR(ofs)`, `EMPC_AXIS_ADDR(n, ofs)` and "
            "`EMPC_COEF_ADDR(n, word)` the CPU addresses.", "",
            "Bus timing: the EMC strobes are synchronised into the 100 MHz fabric clock (2 flip-flops), so "
