@@ -26,7 +26,7 @@ export EMPC_PACKAGE := $(PACKAGE)
 export EMPC_PART    := xc6slx9-$(SPEED)-$(PACKAGE)
 SYNTH_ARGS ?=
 
-.PHONY: all venv check-tools roms sim sim-full lint formal synth bitstream bench readme core clean distclean
+.PHONY: all venv check-tools roms regs sim sim-full lint formal synth bitstream bench readme core clean distclean
 
 all: roms lint synth ## main job: coefficient ROMs, lint, netlist + resource report
 	@echo "ROMs in $(ROMS), netlist and reports in build/synth and build/reports."
@@ -45,6 +45,9 @@ check-tools:
 
 roms: $(STAMP) ## coefficient ROMs, Verilog header and manifest for CONFIG (default: BLWR233D, paper 000)
 	$(EMPC) roms $(CONFIG_ARG) --out $(ROMS)
+
+regs: $(STAMP) ## regenerate the files generated from the register map (rtl/*_regs.v, fw/empc_regs.h, docs/registers.md)
+	$(PY) -m empc.regmap --all
 
 sim: $(STAMP) check-tools roms ## the regression (CI): model tests, every block's cocotb test, formal proofs (tb/test_formal.py), short closed loop
 	$(PY) -m pytest -n $(JOBS) -q -m "not full"

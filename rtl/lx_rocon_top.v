@@ -11,6 +11,8 @@
 // (WDOG_TIMEOUT PWM periods, on by default) latches a fault on every axis when the
 // CPU stops writing WDOG_KICK; any latched, unmasked fault switches the bridges of
 // its axis off in the clock the cause is registered.
+// Global registers: global_regs (generated from gen/empc/regmap.py); TIME, the interrupt
+// output and the LEDs are kept here.
 // Reset: rst_n_in (asynchronous, synchronised in clk_gen) and PLL lock.
 `default_nettype none
 `include "empc_formats.vh"
@@ -91,90 +93,50 @@ module lx_rocon_top #(
     wire [EMC_AW-11:0] cpage = reg_addr[EMC_AW-1:10];
     wire in_global = global_pages[apage];
 
-    // ---------------- global registers ----------------
-    reg  [31:0] scratch;
-    reg  [15:0] wdog_timeout;
-    reg  [31:0] time_cnt;
-    reg  [1:0]  irq_status, irq_enable;
-    reg         wdog_kick;
+    // ---------------- global registers (generated: rtl/global_regs.v) ----------------
+    wire [31:0] g_rdata;
+    wire [`EMPC_G_SCRATCH_W-1:0] scratch;                  // read back only
+    wire [`EMPC_G_WDOG_TIMEOUT_W-1:0] wdog_timeout;
+    wire        wdog_kick, irq_period, irq_fault;
+    wire [`EMPC_G_IRQ_ENABLE_W-1:0] irq_enable;
     wire [NAXES-1:0] period_tick, control_done, fault_any;
+    reg  [`EMPC_G_TIME_W-1:0] time_cnt;                    // TIME: PWM periods of axis 0
     reg         fault_any_d;
     wire        wdog_expired;
     watchdog u_wdog (.clk(clk), .rst(rst), .tick(period_tick[0]), .kick(wdog_kick), .timeout(wdog_timeout),
                      .expired(wdog_expired));
 
     always @(posedge clk) begin
-        wdog_kick <= 1'b0;
         if (rst) begin
-            scratch <= 32'd0;
-            wdog_timeout <= `EMPC_G_WDOG_TIMEOUT_RESET;
             time_cnt <= 32'd0;
-            irq_status <= 2'd0;
-            irq_enable <= 2'd0;
             fault_any_d <= 1'b0;
             cpu_irq <= 1'b0;
             led <= 2'b00;
         end else begin
-            if (period_tick[0]) time_cnt <= time_cnt + 32'd1;
+            if (period_tick[0]) time_cnt <= time_cnt + 1'b1;
             fault_any_d <= |fault_any;
-            if (control_done[0]) irq_status[`EMPC_G_IRQ_STATUS_PERIOD] <= 1'b1;
-            if ((|fault_any) && !fault_any_d) irq_status[`EMPC_G_IRQ_STATUS_FAULT] <= 1'b1;
-            if (reg_wr && in_global) begin
-                case (reg_addr[7:0])
-                    `EMPC_G_SCRATCH: scratch <= reg_wdata;
-                    `EMPC_G_WDOG_TIMEOUT: wdog_timeout <= reg_wdata[15:0];
-                    `EMPC_G_WDOG_KICK: wdog_kick <= (reg_wdata[15:0] == `EMPC_WDOG_KEY);
-                    `EMPC_G_IRQ_STATUS: irq_status <= irq_status & ~reg_wdata[1:0];
-                    `EMPC_G_IRQ_ENABLE: irq_enable <= reg_wdata[1:0];
-                    default: ;
-                endcase
-            end
-            cpu_irq <= |(irq_status & irq_enable);
+            cpu_irq <= (irq_period && irq_enable[`EMPC_G_IRQ_STATUS_PERIOD])
+                       || (irq_fault && irq_enable[`EMPC_G_IRQ_STATUS_FAULT]);
             led <= {|fault_any, time_cnt[13]};
         end
     end
 
-    // ---------------- read path ----------------
-    // Global read data is sampled at reg_rd into g_rdata (zero unless a global read;
-    // TIME, WDOG_TIMEOUT, IRQ_* and the constants) and q_scratch; the axes' read data is
-    // zero unless the axis was read, so reg_rdata is a plain OR: valid (and non-zero) only
-    // in the clock after reg_rd, as emc_bus expects (RD_LAT = 1).
-    localparam [7:0] CAP_PPC = `EMPC_PWM_PER_CONTROL;
-    localparam [7:0] CAP_LAYOUT = `EMPC_IMG_LAYOUT;
-    localparam [3:0] CAP_N = `EMPC_N;
+    // CAPS and PWM_HALF: build constants
     localparam [31:0] NAXES_W = NAXES;
-    localparam [3:0] CAP_NAXES = NAXES_W[3:0];
     localparam [31:0] PWM_HALF_W = `EMPC_PWM_HALF_PERIOD;
-    reg [31:0] g_rdata, q_scratch;
-    // all global offsets are below 16 in the current map: decode 4 bits, gate with [7:4] == 0
-    localparam G_NARROW = (`EMPC_G_ID < 16) && (`EMPC_G_VERSION < 16) && (`EMPC_G_CAPS < 16)
-                          && (`EMPC_G_PWM_HALF < 16) && (`EMPC_G_SCRATCH < 16) && (`EMPC_G_WDOG_TIMEOUT < 16)
-                          && (`EMPC_G_TIME < 16) && (`EMPC_G_IRQ_STATUS < 16) && (`EMPC_G_IRQ_ENABLE < 16);
-    wire       g_rd = reg_rd && in_global && (!G_NARROW || reg_addr[7:4] == 4'd0);
-    wire [7:0] g_idx = G_NARROW ? {4'd0, reg_addr[3:0]} : reg_addr[7:0];
-    // SCRATCH has its own gated copy (zero unless read, cleared through the flip-flop reset) so
-    // that the final OR needs no select per bit
-    always @(posedge clk) begin
-        if (rst || !(g_rd && g_idx == `EMPC_G_SCRATCH))
-            q_scratch <= 32'd0;
-        else
-            q_scratch <= scratch;
-        if (rst || !g_rd) begin
-            g_rdata <= 32'd0;
-        end else begin
-            case (g_idx)
-                `EMPC_G_ID: g_rdata <= `EMPC_ID_MAGIC;
-                `EMPC_G_VERSION: g_rdata <= `EMPC_VERSION;
-                `EMPC_G_CAPS: g_rdata <= {8'd0, CAP_PPC, CAP_LAYOUT, CAP_N, CAP_NAXES};
-                `EMPC_G_PWM_HALF: g_rdata <= PWM_HALF_W;
-                `EMPC_G_WDOG_TIMEOUT: g_rdata <= {16'd0, wdog_timeout};
-                `EMPC_G_TIME: g_rdata <= time_cnt;
-                `EMPC_G_IRQ_STATUS: g_rdata <= {30'd0, irq_status};
-                `EMPC_G_IRQ_ENABLE: g_rdata <= {30'd0, irq_enable};
-                default: g_rdata <= 32'd0;     // SCRATCH: q_scratch
-            endcase
-        end
-    end
+    localparam [31:0] CAP_N_W = `EMPC_N;
+    localparam [31:0] CAP_LAYOUT_W = `EMPC_IMG_LAYOUT;
+    localparam [31:0] CAP_PPC_W = `EMPC_PWM_PER_CONTROL;
+    global_regs u_gregs (
+        .clk(clk), .rst(rst), .reg_wr(reg_wr && in_global), .reg_rd(reg_rd && in_global),
+        .reg_addr(reg_addr[7:0]), .reg_wdata(reg_wdata), .reg_rdata(g_rdata),
+        .caps_naxes(NAXES_W[`EMPC_G_CAPS_NAXES_W-1:0]), .caps_horizon(CAP_N_W[`EMPC_G_CAPS_HORIZON_W-1:0]),
+        .caps_img_layout(CAP_LAYOUT_W[`EMPC_G_CAPS_IMG_LAYOUT_W-1:0]),
+        .caps_pwm_per_control(CAP_PPC_W[`EMPC_G_CAPS_PWM_PER_CONTROL_W-1:0]),
+        .pwm_half(PWM_HALF_W), .scratch(scratch), .wdog_timeout(wdog_timeout), .wdog_kick(wdog_kick),
+        .time_cnt(time_cnt), .irq_status_period(irq_period), .irq_status_period_set(control_done[0]),
+        .irq_status_fault(irq_fault), .irq_status_fault_set((|fault_any) && !fault_any_d),
+        .irq_enable(irq_enable));
 
     // ---------------- axes ----------------
     wire [32*NAXES-1:0] a_rdata;
@@ -209,8 +171,10 @@ module lx_rocon_top #(
         a_or = 32'd0;
         for (ai = 0; ai < NAXES; ai = ai + 1) a_or = a_or | a_rdata[32*ai +: 32];
     end
-    always @(*) reg_rdata = g_rdata | q_scratch | a_or;
+    // global_regs' and every axis' read data are 0 unless they were read: a plain OR, valid the
+    // clock after reg_rd as emc_bus expects (RD_LAT = 1)
+    always @(*) reg_rdata = g_rdata | a_or;
 
-    wire unused = &{1'b0, locked, err_wr_short, err_rd_short, sclk_ax, cs_ax, sync_out};
+    wire unused = &{1'b0, locked, err_wr_short, err_rd_short, sclk_ax, cs_ax, sync_out, scratch};
 endmodule
 `default_nettype wire

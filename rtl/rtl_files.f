@@ -12,9 +12,11 @@ rtl/mpc_operand.v
 rtl/mpc_coef_mem.v
 rtl/mpc_boot.v
 rtl/mpc_core.v
+rtl/global_regs.v
 rtl/lx_rocon_top.v
 rtl/ctrl_seq.v
 rtl/clk_gen.v
+rtl/axis_regs.v
 rtl/mpc_axis.v
 rtl/fault_ctrl.v
 rtl/watchdog.v

@@ -1,18 +1,39 @@
-"""CPU register map: the one source for the RTL header, the documentation and the Python driver.
+"""CPU register map: the one source for the register blocks of the RTL, the RTL header,
+the firmware's C header, the documentation and the Python driver.
 
 The LPC4088 external memory controller sees the FPGA as 32-bit static memory
 (CS0); addresses here are WORD addresses on emc_a.  Global registers sit at
 0x000..0x0ff, axis n's registers at AXIS_BASE + n * AXIS_STRIDE, axis n's
 coefficient-image window (write-only, into the inactive bank; `CMD.coef_swap`
 makes it active at the next control-period boundary) at COEF_BASE + n * COEF_STRIDE.
+The CPU sees word w at byte address EMC_CS0_BASE + 4 w (docs/registers.md).
 
-``python -m empc.regmap --vh FILE --md FILE`` writes the Verilog header and the
-markdown table; `empc roms` writes the header next to the formats header and a
-test keeps docs/registers.md in step.
+Generated from these tables (``python -m empc.regmap --all``, or ``make regs``; the
+tests in gen/tests/test_regmap.py fail when a committed file is stale):
+  rtl/global_regs.v, rtl/axis_regs.v   register blocks (gen/empc/regblock.py)
+  fw/empc_regs.h                       C header for the LPC4088 firmware (gen/empc/fwheader.py)
+  docs/registers.md                    the table for people
+and, by `empc roms`, empc_regs.vh (offsets, field positions and widths for the RTL).
+
+A register is one ``Reg`` line; the attributes say what the generator builds:
+  access    RO (input port, or ``const``), RW (stored: output port), WO (write pulses),
+            W1C (sticky bits: set input, write 1 to clear)
+  reset     reset value; a string names a macro of empc_formats.vh (build-dependent)
+  width, signed, fields    data bits (a signed register reads back sign-extended)
+  ext       the storage lives in another block (EXT): strobe/data or window ports
+  const     RO register whose value is ``reset`` (no port)
+  key       WO: one pulse, only when the written value equals key
+  floor     RW: a written value below floor is stored as floor
+  guard     writes refused (unchanged, ``wr_refused`` pulse) while this input is high
+  legal     allowed written values (range or tuple): others refuse the write
+  port      port name when the lower-case register name will not do
+  read      "copy" or "mux": read path of this register if not the block's default
+Fields take reset, floor and legal too.  Adding a register: docs/conventions.md.
 """
 from __future__ import annotations
 
 import argparse
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -23,6 +44,12 @@ AXIS_STRIDE = 0x100
 COEF_BASE = 0x1000
 COEF_STRIDE = 0x400
 WDOG_KEY = 0x5A5A
+# LPC408x/407x (UM10562) memory map: EMC static chip select 0 is 0x8000_0000..0x83FF_FFFF.
+# 32-bit static bus with SCS.EMCSC = 0 (addresses shifted to the bus width): the pins
+# EMC_A[13:0] carry CPU byte-address bits [15:2], i.e. word w is at EMC_CS0_BASE + 4 w.
+EMC_CS0_BASE = 0x80000000
+WORD_BYTES = 4
+ACCESS = ("RO", "RW", "WO", "W1C")
 
 
 @dataclass(frozen=True)
@@ -31,6 +58,36 @@ class Field:
     lsb: int
     width: int
     doc: str
+    reset: int | str | None = None      # None: the register's reset bits; str: empc_formats.vh macro
+    floor: int | None = None
+    legal: range | tuple | None = None
+
+    @property
+    def mask(self) -> int:
+        return ((1 << self.width) - 1) << self.lsb
+
+
+@dataclass(frozen=True)
+class Ext:
+    """A block that keeps the storage of the registers whose ``ext`` names it.
+
+    strobe: the register block emits a one-hot write pulse ``<name>_we`` (bit i = i-th
+            register of the group) and the written data ``<name>_wdata`` (both registered);
+            each register's value comes back on an input port named after it.
+    window: the block decodes its own words: ``<name>_we`` / ``<name>_re`` (reg_wr / reg_rd
+            and the address in the window, combinational), ``<name>_idx`` (word index in the
+            window, if ``idx``) and the read data on input ``rdata`` (default ``<name>_rdata``,
+            0 unless read; windows may share one), ORed into reg_rdata.
+    """
+    name: str
+    kind: str
+    doc: str
+    rdata: str = ""
+    idx: bool = False
+
+    @property
+    def rdata_port(self) -> str:
+        return self.rdata or f"{self.name}_rdata"
 
 
 @dataclass(frozen=True)
@@ -38,49 +95,138 @@ class Reg:
     name: str
     offset: int
     access: str          # RO, RW, WO (write pulses), W1C (sticky, write 1 to clear)
-    reset: int
+    reset: int | str
     doc: str
     fields: tuple = field(default_factory=tuple)
     width: int = 32
     signed: bool = False     # a width < 32 value reads back sign-extended to 32 bits
+    ext: str = ""
+    const: bool = False
+    key: int | None = None
+    guard: str = ""
+    legal: range | tuple | None = None
+    floor: int | None = None
+    port: str = ""
+    read: str = ""
+
+    @property
+    def base(self) -> str:
+        """Port name of the register (fields: prefix of their ports)."""
+        return self.port or self.name.lower()
+
+    def parts(self) -> tuple:
+        """The fields, or one field standing for a field-less register's data bits."""
+        if self.fields:
+            return self.fields
+        return (Field(self.base, 0, self.width, self.doc, self.reset, self.floor, self.legal),)
+
+    def part_port(self, f: Field) -> str:
+        return self.base if (not self.fields or f.name == self.base) else f"{self.base}_{f.name}"
+
+    @property
+    def bits(self) -> int:
+        """Data bits: msb + 1 of the fields, else width."""
+        return max(f.lsb + f.width for f in self.parts())
+
+    @property
+    def mask(self) -> int:
+        """Bits the register stores / reports (before sign extension)."""
+        return sum(f.mask for f in self.parts())
+
+    def reset_int(self) -> int:
+        """Reset word with build-dependent (macro) parts as 0."""
+        if not self.fields:
+            return self.reset if isinstance(self.reset, int) else 0
+        v = 0
+        for f in self.fields:
+            r = (self.reset >> f.lsb) & ((1 << f.width) - 1) if f.reset is None else f.reset
+            if isinstance(r, int):
+                v |= r << f.lsb
+        return v
+
+    def reset_build_mask(self) -> int:
+        """Bits whose reset value comes from the build (empc_formats.vh macro)."""
+        return sum(f.mask for f in self.parts() if isinstance(f.reset, str))
+
+    def reset_word(self, macros: dict) -> int:
+        """Reset word with the build's macro values (``macros``: empc.header.read, no EMPC_ prefix)."""
+        v = self.reset_int()
+        for f in self.parts():
+            if isinstance(f.reset, str):
+                v |= (macros[f.reset.removeprefix("EMPC_")] & ((1 << f.width) - 1)) << f.lsb
+        return v
 
     def readback(self, value: int) -> int:
         """What an RW register reads after ``value`` was written: the fields (or the low
-        ``width`` bits, sign-extended if ``signed``) of the word, other bits 0."""
+        ``width`` bits, sign-extended if ``signed``) of the word, other bits 0 (floor and
+        legal values aside)."""
         if self.fields:
-            return sum(value & (((1 << f.width) - 1) << f.lsb) for f in self.fields)
+            return sum(value & f.mask for f in self.fields)
         v = value & ((1 << self.width) - 1)
         if self.signed and v >> (self.width - 1):
             v -= 1 << self.width
         return v & 0xFFFFFFFF
 
+    @property
+    def attrs(self) -> str:
+        """Short text of the generator attributes (docs)."""
+        out = []
+        if self.ext:
+            out.append(f"in {self.ext}")
+        if self.const:
+            out.append("constant")
+        if self.key is not None:
+            out.append(f"key {self.key:#x}")
+        if self.guard:
+            out.append(f"refused while {self.guard}")
+        for f in self.parts():
+            n = f"{f.name} " if self.fields else ""
+            if f.floor is not None:
+                out.append(f"{n}below {f.floor} stored as {f.floor}")
+            if f.legal is not None:
+                out.append(f"{n}legal {_legal_text(f.legal)}")
+        return ", ".join(out)
+
+
+def _legal_text(legal) -> str:
+    if isinstance(legal, range):
+        return f"{legal.start}..{legal.stop - 1}"
+    return "{" + ", ".join(str(v) for v in legal) + "}"
+
 
 GLOBAL = (
-    Reg("ID", 0x000, "RO", ID_MAGIC, "Magic 'EMPC' (0x454D5043): the bus works and the FPGA is configured."),
-    Reg("VERSION", 0x001, "RO", VERSION, "IP version major.minor.patch (31:16, 15:8, 7:0)."),
+    Reg("ID", 0x000, "RO", ID_MAGIC, "Magic 'EMPC' (0x454D5043): the bus works and the FPGA is configured.",
+        const=True),
+    Reg("VERSION", 0x001, "RO", VERSION, "IP version.", (
+        Field("patch", 0, 8, "fixes"), Field("minor", 8, 8, "compatible additions"),
+        Field("major", 16, 16, "incompatible register-map changes")), const=True),
     Reg("CAPS", 0x002, "RO", 0, "Build parameters.", (
         Field("naxes", 0, 4, "axes in this bitstream"),
         Field("horizon", 4, 4, "prediction horizon N of the core"),
         Field("img_layout", 8, 8, "coefficient image layout version"),
         Field("pwm_per_control", 16, 8, "PWM periods per control period Ts (reset value)"))),
     Reg("PWM_HALF", 0x003, "RO", 0, "PWM half period in fabric clocks (centre-aligned: period = 2 x this)."),
-    Reg("SCRATCH", 0x004, "RW", 0, "Free for bus tests."),
+    Reg("SCRATCH", 0x004, "RW", 0, "Free for bus tests.", read="copy"),
     Reg("WDOG_TIMEOUT", 0x008, "RW", 400, "Watchdog timeout in PWM periods (0 disables). Expiry latches the "
         "watchdog fault on every axis (all bridges off).", width=16),
-    Reg("WDOG_KICK", 0x009, "WO", 0, f"Write {WDOG_KEY:#06x} to restart the watchdog; other values are ignored."),
-    Reg("TIME", 0x00a, "RO", 0, "Free-running PWM period counter."),
+    Reg("WDOG_KICK", 0x009, "WO", 0, f"Write {WDOG_KEY:#06x} to restart the watchdog; other values are ignored.",
+        width=16, key=WDOG_KEY),
+    Reg("TIME", 0x00a, "RO", 0, "Free-running PWM period counter.", port="time_cnt"),
     Reg("IRQ_STATUS", 0x00b, "W1C", 0, "Interrupt causes (sticky, write 1 to clear).", (
         Field("period", 0, 1, "a control period completed on axis 0"),
         Field("fault", 1, 1, "a fault latched on any axis"))),
-    Reg("IRQ_ENABLE", 0x00c, "RW", 0, "Interrupt enables (same bits as IRQ_STATUS); cpu_irq = |(status & enable)."),
+    Reg("IRQ_ENABLE", 0x00c, "RW", 0, "Interrupt enables (same bits as IRQ_STATUS); cpu_irq = OR of "
+        "(status AND enable).", width=2),
 )
 
 AXIS = (
     Reg("CTRL", 0x00, "RW", 0, "Axis control.", (
         Field("enable", 0, 1, "bridges may switch (PWM running, outputs enabled) unless a fault is latched"),
         Field("run", 1, 1, "control law active; 0 = bridges enabled with zero voltage (u and ebar held at 0)"),
-        Field("complementary", 2, 1, "bridge mode: 0 = PWM + enable (LX_PWR), 1 = complementary high/low with dead time"),
-        Field("pwm_per_control", 8, 8, "PWM periods per control period Ts (>= 1); reset from the header"))),
+        Field("complementary", 2, 1, "bridge mode: 0 = PWM + enable (LX_PWR), 1 = complementary high/low "
+              "with dead time"),
+        Field("pwm_per_control", 8, 8, "PWM periods per control period Ts (>= 1); reset from the header",
+              reset="EMPC_PWM_PER_CONTROL", floor=1))),
     Reg("CMD", 0x01, "WO", 0, "Command pulses (write 1).", (
         Field("fault_clear", 0, 1, "clear latched faults (only those whose cause has gone)"),
         Field("adc_cal", 1, 1, "start ADC offset calibration (keep enable = 0: bridges off)"),
@@ -107,69 +253,211 @@ AXIS = (
         Field("overrun", 5, 1, "the control computation did not finish before the PWM update"),
         Field("adc", 6, 1, "ADC frame error (leading zero bit read as 1)"))),
     Reg("FAULT_MASK", 0x04, "RW", 0x7f, "Fault causes that switch the bridges off (same bits as FAULT). "
-        "Masked causes are still recorded in FAULT."),
+        "Masked causes are still recorded in FAULT.", width=7),
     Reg("DEAD_TIME", 0x05, "RW", 50, "Dead time in fabric clocks (complementary mode).", width=8),
-    Reg("KDC", 0x06, "RW", 1 << 16, "DC-link compensation Udc_nominal / Udc, unsigned Q2.16 (1.0 = 0x10000).", width=18),
-    Reg("UDC", 0x07, "RW", 36000, "DC-link voltage in mV as measured by the CPU (checked against UDC_MIN..MAX).", width=16),
+    Reg("KDC", 0x06, "RW", 1 << 16, "DC-link compensation Udc_nominal / Udc, unsigned Q2.16 (1.0 = 0x10000).",
+        width=18),
+    Reg("UDC", 0x07, "RW", 36000, "DC-link voltage in mV as measured by the CPU (checked against UDC_MIN..MAX).",
+        width=16),
     Reg("UDC_MIN", 0x08, "RW", 0, "Lowest allowed DC link, mV (0 disables the lower check).", width=16),
     Reg("UDC_MAX", 0x09, "RW", 0xffff, "Highest allowed DC link, mV.", width=16),
     Reg("OC_THRESH", 0x0a, "RW", 1800, "Overcurrent threshold, ADC LSB of |code - offset| (per phase).", width=12),
-    Reg("ADC_OFF0", 0x0b, "RW", 2048, "ADC offset phase A (calibration writes it; reads the active value).", width=12),
-    Reg("ADC_OFF1", 0x0c, "RW", 2048, "ADC offset phase B.", width=12),
-    Reg("ADC_OFF2", 0x0d, "RW", 2048, "ADC offset phase C.", width=12),
+    Reg("ADC_OFF0", 0x0b, "RW", "EMPC_ADC_OFFSET", "ADC offset phase A (calibration writes it; reads the active "
+        "value).", width=12, ext="adc_off"),
+    Reg("ADC_OFF1", 0x0c, "RW", "EMPC_ADC_OFFSET", "ADC offset phase B.", width=12, ext="adc_off"),
+    Reg("ADC_OFF2", 0x0d, "RW", "EMPC_ADC_OFFSET", "ADC offset phase C.", width=12, ext="adc_off"),
     Reg("ANGLE_CAL", 0x0e, "RW", 0, "Electrical angle at the encoder index (2^16 = one electrical turn).", width=16),
     Reg("HALL_OFFSET", 0x0f, "RW", 0, "Electrical angle of the HALL sector-1 start (2^16 = one turn).", width=16),
     Reg("KACC", 0x10, "RW", 0, "Speed-estimate acceleration term: omega += (KACC * i_q) >> KACC_SHIFT "
         "(reset from the header; 0 = plain eq. 37).", (
-        Field("kacc", 0, 18, "signed gain"), Field("shift", 24, 5, "right shift"))),
+        Field("kacc", 0, 18, "signed gain", reset="EMPC_KACC"),
+        Field("shift", 24, 5, "right shift", reset="EMPC_KACC_SHIFT"))),
     Reg("ID_REF", 0x11, "RW", 0, "d-current reference, ADC LSB Q.4 (signed 18 bit).", width=18, signed=True),
-    Reg("IQ_REF", 0x12, "RW", 0, "q-current reference (feed-forward), ADC LSB Q.4 (signed 18 bit).", width=18, signed=True),
+    Reg("IQ_REF", 0x12, "RW", 0, "q-current reference (feed-forward), ADC LSB Q.4 (signed 18 bit).", width=18,
+        signed=True),
     Reg("SEG_ADDR", 0x13, "RW", 0, "Reference segment slot (0..15) that the SEG_LEN .. SEG_FLAGS fields access. "
         "Each field write goes straight into the slot (no staging): do not rewrite a slot that the "
         "next control period may load (the active slot's successor or a pending SEG_START slot).", width=4),
     Reg("SEG_LEN", 0x14, "RW", 0, "Segment length in control periods (0 = hold forever); field of slot SEG_ADDR "
-        "(SEG_* reads return the field of slot SEG_ADDR).", width=32),
-    Reg("SEG_R0_LO", 0x15, "RW", 0, "Segment start value, low word (task output, 64-bit Q.32: counts or counts/Ts)."),
-    Reg("SEG_R0_HI", 0x16, "RW", 0, "Segment start value, high word."),
-    Reg("SEG_D1_LO", 0x17, "RW", 0, "First forward difference per control period, low word (64-bit Q.32)."),
-    Reg("SEG_D1_HI", 0x18, "RW", 0, "First forward difference, high word."),
-    Reg("SEG_D2", 0x19, "RW", 0, "Second forward difference (signed 32-bit Q.32 of the output unit)."),
+        "(SEG_* reads return the field of slot SEG_ADDR).", ext="seg"),
+    Reg("SEG_R0_LO", 0x15, "RW", 0, "Segment start value, low word (task output, 64-bit Q.32: counts or counts/Ts).",
+        ext="seg"),
+    Reg("SEG_R0_HI", 0x16, "RW", 0, "Segment start value, high word.", ext="seg"),
+    Reg("SEG_D1_LO", 0x17, "RW", 0, "First forward difference per control period, low word (64-bit Q.32).",
+        ext="seg"),
+    Reg("SEG_D1_HI", 0x18, "RW", 0, "First forward difference, high word.", ext="seg"),
+    Reg("SEG_D2", 0x19, "RW", 0, "Second forward difference (signed 32-bit Q.32 of the output unit).",
+        ext="seg"),
     Reg("SEG_FLAGS", 0x1a, "RW", 0, "Segment flags of slot SEG_ADDR.", (
         Field("relative", 0, 1, "start from the current reference value instead of R0"),
-        Field("last", 1, 1, "hold at the end of this segment instead of moving to the next slot"))),
-    Reg("SEG_START", 0x1b, "WO", 0, "Write a slot number to start the profile there at the next control period."),
+        Field("last", 1, 1, "hold at the end of this segment instead of moving to the next slot")), ext="seg"),
+    Reg("SEG_START", 0x1b, "WO", 0, "Write a slot number to start the profile there at the next control period.",
+        width=4),
     Reg("POS", 0x20, "RO", 0, "Encoder count (x4, modular 32 bit)."),
-    Reg("SPEED", 0x21, "RO", 0, "Speed estimate at the last control period, counts per Ts, signed Q16.16."),
+    Reg("SPEED", 0x21, "RO", 0, "Speed estimate at the last control period, counts per Ts, signed Q16.16.",
+        ext="stat"),
     Reg("THETA", 0x22, "RO", 0, "Electrical angle (2^16 = one turn).", width=16),
-    Reg("I_D", 0x23, "RO", 0, "i_d at the last control period, ADC LSB Q.4 (signed).", width=18, signed=True),
-    Reg("I_Q", 0x24, "RO", 0, "i_q at the last control period, ADC LSB Q.4 (signed).", width=18, signed=True),
-    Reg("U_D", 0x25, "RO", 0, "u_d applied, PWM ticks Q16.8 (signed 24 bit).", width=24, signed=True),
-    Reg("U_Q", 0x26, "RO", 0, "u_q applied, PWM ticks Q16.8 (signed 24 bit).", width=24, signed=True),
+    Reg("I_D", 0x23, "RO", 0, "i_d at the last control period, ADC LSB Q.4 (signed).", width=18, signed=True,
+        ext="stat"),
+    Reg("I_Q", 0x24, "RO", 0, "i_q at the last control period, ADC LSB Q.4 (signed).", width=18, signed=True,
+        ext="stat"),
+    Reg("U_D", 0x25, "RO", 0, "u_d applied, PWM ticks Q16.8 (signed 24 bit).", width=24, signed=True, ext="stat"),
+    Reg("U_Q", 0x26, "RO", 0, "u_q applied, PWM ticks Q16.8 (signed 24 bit).", width=24, signed=True, ext="stat"),
     Reg("REF", 0x27, "RO", 0, "Task-output reference w_k of the last control period (bits 47:16 speed, Q16.16 / "
-        "55:24 position, Q24.8 of the generator value)."),
-    Reg("IABC0", 0x28, "RO", 0, "Last raw ADC codes phases A (11:0) and B (27:16).", width=28),
+        "55:24 position, Q24.8 of the generator value).", ext="stat"),
+    Reg("IABC0", 0x28, "RO", 0, "Last raw ADC codes.", (
+        Field("a", 0, 12, "phase A"), Field("b", 16, 12, "phase B"))),
     Reg("IABC1", 0x29, "RO", 0, "Last raw ADC code phase C (11:0).", width=12),
-    Reg("LATENCY", 0x2a, "RO", 0, "Clocks from the ADC trigger to the new PWM compare values of the last control period."),
-    Reg("PERIODS", 0x2b, "RO", 0, "Control periods run since enable."),
+    Reg("LATENCY", 0x2a, "RO", 0, "Clocks from the ADC trigger to the new PWM compare values of the last control "
+        "period.",
+        width=16),
+    Reg("PERIODS", 0x2b, "RO", 0, "Control periods run since enable.", ext="cnt"),
     Reg("SAT_OPERAND", 0x30, "RO", 0, "Saturation counter: core operand. SAT_* and CNT_OVERRUN count control "
         "periods in which the event happened (32-bit, saturating; updated after the control period's "
-        "modulation)."),
-    Reg("SAT_GAIN", 0x31, "RO", 0, "Saturation counter: gain polynomial."),
-    Reg("SAT_TERM", 0x32, "RO", 0, "Saturation counter: product term."),
-    Reg("SAT_ACC", 0x33, "RO", 0, "Saturation counter: accumulator."),
-    Reg("SAT_DU", 0x34, "RO", 0, "Saturation counter: du."),
-    Reg("SAT_U", 0x35, "RO", 0, "Saturation counter: u before the limiter."),
-    Reg("SAT_EBAR", 0x36, "RO", 0, "Saturation counter: ebar."),
-    Reg("SAT_EBAR_INC", 0x37, "RO", 0, "Counter: ebar increment clamped (eq. 25 anti-windup active)."),
-    Reg("SAT_LIMIT", 0x38, "RO", 0, "Counter: voltage limit active."),
-    Reg("SAT_WN", 0x39, "RO", 0, "Counter: scheduling speed clamped to Omega_e."),
-    Reg("SAT_SIGNAL", 0x3a, "RO", 0, "Saturation counter: core signal (SIG_W)."),
-    Reg("SAT_FRONT", 0x3b, "RO", 0, "Saturation counter: front end (transforms, speed, duty)."),
-    Reg("CNT_OVERRUN", 0x3c, "RO", 0, "Control computations that missed their PWM update."),
+        "modulation).", ext="cnt"),
+    Reg("SAT_GAIN", 0x31, "RO", 0, "Saturation counter: gain polynomial.", ext="cnt"),
+    Reg("SAT_TERM", 0x32, "RO", 0, "Saturation counter: product term.", ext="cnt"),
+    Reg("SAT_ACC", 0x33, "RO", 0, "Saturation counter: accumulator.", ext="cnt"),
+    Reg("SAT_DU", 0x34, "RO", 0, "Saturation counter: du.", ext="cnt"),
+    Reg("SAT_U", 0x35, "RO", 0, "Saturation counter: u before the limiter.", ext="cnt"),
+    Reg("SAT_EBAR", 0x36, "RO", 0, "Saturation counter: ebar.", ext="cnt"),
+    Reg("SAT_EBAR_INC", 0x37, "RO", 0, "Counter: ebar increment clamped (eq. 25 anti-windup active).", ext="cnt"),
+    Reg("SAT_LIMIT", 0x38, "RO", 0, "Counter: voltage limit active.", ext="cnt"),
+    Reg("SAT_WN", 0x39, "RO", 0, "Counter: scheduling speed clamped to Omega_e.", ext="cnt"),
+    Reg("SAT_SIGNAL", 0x3a, "RO", 0, "Saturation counter: core signal (SIG_W).", ext="cnt"),
+    Reg("SAT_FRONT", 0x3b, "RO", 0, "Saturation counter: front end (transforms, speed, duty).", ext="cnt"),
+    Reg("CNT_OVERRUN", 0x3c, "RO", 0, "Control computations that missed their PWM update.", ext="cnt"),
     Reg("CNT_ADC_MISS", 0x3d, "RO", 0, "ADC triggers ignored while busy (8-bit, saturating; not cleared by "
         "CMD.clear_counters).", width=8),
     Reg("CNT_ENC_ERR", 0x3e, "RO", 0, "Illegal quadrature transitions (16-bit, saturating).", width=16),
 )
+
+
+EXT = (
+    Ext("adc_off", "strobe", "adc_spi keeps the offsets (calibration writes them too)"),
+    Ext("seg", "window", "ref_gen keeps the segment table: slot SEG_ADDR, field = word - SEG_LEN", idx=True),
+    Ext("stat", "window", "status words in the block RAM of mpc_axis", rdata="smem_rdata"),
+    Ext("cnt", "window", "event counters in the block RAM of mpc_axis", rdata="smem_rdata"),
+)
+
+
+@dataclass(frozen=True)
+class Block:
+    """One generated register block: rtl/<module>.v."""
+    module: str
+    scope: str          # macro prefix in empc_regs.vh / fw/empc_regs.h: G (global) or A (axis)
+    regs: tuple
+    read: str           # read path unless a register says: "copy" (one gated copy per register,
+                        # 0 unless its word is read, ORed) or "mux" (one shared read register)
+    doc: str
+    span: int = AXIS_STRIDE
+    ext: tuple = EXT    # the blocks that keep ext storage (a test map brings its own)
+
+
+BLOCKS = (
+    Block("global_regs", "G", GLOBAL, "mux", "global registers of lx_rocon_top (watchdog, time, interrupts)"),
+    Block("axis_regs", "A", AXIS, "copy", "registers of one axis (mpc_axis)"),
+)
+
+
+class MapError(ValueError):
+    """A register map that the generators refuse (one-line message naming the register)."""
+
+
+_IDENT = re.compile(r"^[a-z][a-z0-9_]*$")
+
+
+def check(regs, span: int, ext=EXT, what: str = "map") -> None:
+    """Raise MapError (one line, naming the register) unless ``regs`` is a consistent map."""
+    exts = {e.name: e for e in ext}
+
+    def bad(r, msg):
+        raise MapError(f"{what}: {r.name}: {msg}")
+
+    seen_off, seen_name = {}, set()
+    for r in regs:
+        if r.name in seen_name:
+            bad(r, "name used twice")
+        seen_name.add(r.name)
+        if not 0 <= r.offset < span:
+            bad(r, f"offset {r.offset:#x} outside 0..{span - 1:#x}")
+        if r.offset in seen_off:
+            bad(r, f"offset {r.offset:#x} also used by {seen_off[r.offset]}")
+        seen_off[r.offset] = r.name
+        if r.access not in ACCESS:
+            bad(r, f"access {r.access!r} not one of {ACCESS}")
+        if not 1 <= r.width <= 32:
+            bad(r, f"width {r.width} outside 1..32")
+        if isinstance(r.reset, int) and not 0 <= r.reset < (1 << 32):
+            bad(r, "reset does not fit 32 bits")
+        if r.signed and r.fields:
+            bad(r, "signed applies to field-less registers only")
+        if not _IDENT.match(r.base):
+            bad(r, f"port name {r.base!r} is not a lower-case identifier")
+        if r.base in VERILOG_KEYWORDS:
+            bad(r, f"port name {r.base!r} is a Verilog keyword: set port=")
+        if r.ext and r.ext not in exts:
+            bad(r, f"ext {r.ext!r} is not in EXT")
+        if r.const and (r.access != "RO" or r.ext or not isinstance(r.reset, int)):
+            bad(r, "const needs access RO, an integer reset and no ext")
+        if r.key is not None and (r.access != "WO" or r.fields or not 0 <= r.key < (1 << r.width)):
+            bad(r, "key needs a field-less WO register and a key that fits its width")
+        if r.read not in ("", "copy", "mux"):
+            bad(r, f"read {r.read!r} not copy or mux")
+        if r.guard and (r.access == "RO" or not _IDENT.match(r.guard)):
+            bad(r, "guard needs a writable register and a lower-case identifier")
+        if r.access == "W1C" and (r.ext or any(f.width != 1 for f in r.parts())):
+            bad(r, "W1C registers are 1-bit fields stored in the block")
+        e = exts.get(r.ext)
+        if e and e.kind == "strobe" and (r.access != "RW" or r.fields):
+            bad(r, "strobe registers are field-less RW")
+        bits = 0
+        for f in r.parts():
+            if not _IDENT.match(f.name) or f.name in ("reset", "w"):
+                bad(r, f"field name {f.name!r} is not usable")
+            if f.width < 1 or f.lsb < 0 or f.lsb + f.width > 32 or bits & f.mask:
+                bad(r, f"field {f.name} overlaps or exceeds 32 bits")
+            bits |= f.mask
+            if isinstance(f.reset, int) and not 0 <= f.reset < (1 << f.width):
+                bad(r, f"reset {f.reset} of {f.name} does not fit {f.width} bits" if r.fields else
+                    f"reset {f.reset} does not fit {f.width} bits")
+            if isinstance(f.reset, str) and not re.match(r"^EMPC_[A-Z0-9_]+$", f.reset):
+                bad(r, f"reset {f.reset!r} is not an EMPC_* macro of empc_formats.vh")
+            if f.floor is not None and (r.access != "RW" or r.ext or not 0 < f.floor < (1 << f.width)):
+                bad(r, "floor applies to stored RW values and must fit the width")
+            if f.legal is not None:
+                vals = list(f.legal)
+                if r.access == "RO" or (e and e.kind == "window") or not vals:
+                    bad(r, "legal applies to writable registers stored in the block or strobed, and must allow a value")
+                if min(vals) < 0 or max(vals) >= (1 << f.width):
+                    bad(r, f"legal values of {f.name} do not fit {f.width} bits")
+                if isinstance(f.legal, range) and f.legal.step != 1:
+                    bad(r, "legal ranges must have step 1")
+                fr = f.reset if f.reset is not None and r.fields else (
+                    (r.reset >> f.lsb) & ((1 << f.width) - 1) if isinstance(r.reset, int) else None)
+                if isinstance(fr, int) and fr not in f.legal:
+                    bad(r, f"reset value {fr} of {f.name} is not a legal value")
+    for e in ext:
+        members = [r for r in regs if r.ext == e.name]
+        if e.kind not in ("strobe", "window"):
+            raise MapError(f"{what}: ext {e.name}: kind {e.kind!r} not strobe or window")
+        if e.kind == "window" and members:
+            offs = sorted(r.offset for r in members)
+            if e.idx and offs != list(range(offs[0], offs[0] + len(offs))):
+                raise MapError(f"{what}: ext {e.name}: an indexed window must be contiguous")
+            if len({r.guard for r in members if r.access != "RO"}) > 1:
+                raise MapError(f"{what}: ext {e.name}: the writable registers of a window share one guard")
+
+
+VERILOG_KEYWORDS = frozenset("""always and assign automatic begin buf bufif0 bufif1 case casex casez cell cmos config
+deassign default defparam design disable edge else end endcase endconfig endfunction endgenerate endmodule
+endprimitive endspecify endtable endtask event for force forever fork function generate genvar highz0 highz1 if
+ifnone incdir include initial inout input instance integer join large liblist library localparam macromodule
+medium module nand negedge nmos nor noshowcancelled not notif0 notif1 or output parameter pmos posedge primitive
+pull0 pull1 pulldown pullup pulsestyle_ondetect pulsestyle_onevent rcmos real realtime reg release repeat rnmos
+rpmos rtran rtranif0 rtranif1 scalared showcancelled signed small specify specparam strong0 strong1 supply0
+supply1 table task time tran tranif0 tranif1 tri tri0 tri1 triand trior trireg unsigned use uwire vectored wait
+wand weak0 weak1 while wire wor xnor xor""".split())
 
 
 def axis_reg(name: str) -> Reg:
@@ -187,59 +475,149 @@ def all_registers(naxes: int = 1) -> list[tuple[str, int, Reg]]:
     return out
 
 
+def _reset_text(r: Reg) -> str:
+    if r.access == "RO" and not r.const:
+        return "-"
+    parts = [f"{r.reset_int():#x}"] if r.fields or isinstance(r.reset, int) else []
+    for f in r.parts():
+        if isinstance(f.reset, str):
+            parts.append(f"{f.name}: {f.reset}" if r.fields else f.reset)
+    return ", ".join(parts)
+
+
+def idx_bits(n: int) -> int:
+    """Bits of the word index of a window of n registers."""
+    return max(1, (n - 1).bit_length())
+
+
+def _macros(scope: str, regs, ext=EXT) -> list[tuple[str, object]]:
+    out = []
+    for e in ext:                            # port widths of the ext groups
+        n = sum(r.ext == e.name for r in regs)
+        if n and e.kind == "strobe":
+            out.append((f"EMPC_{scope}_{e.name.upper()}_N", n))
+        if n and e.kind == "window" and e.idx:
+            out.append((f"EMPC_{scope}_{e.name.upper()}_IDX_W", idx_bits(n)))
+    for r in regs:
+        out.append((f"EMPC_{scope}_{r.name}", r.offset))
+        out.append((f"EMPC_{scope}_{r.name}_RESET", r.reset if isinstance(r.reset, str) else r.reset_int()))
+        out.append((f"EMPC_{scope}_{r.name}_W", r.bits))
+        for f in r.fields:
+            out.append((f"EMPC_{scope}_{r.name}_{f.name.upper()}", f.lsb))
+            if f.width > 1:
+                out.append((f"EMPC_{scope}_{r.name}_{f.name.upper()}_W", f.width))
+    return out
+
+
 def render_vh() -> str:
+    """empc_regs.vh: word offsets, reset values (build-dependent ones as the macro), data
+    widths (_W) and field positions of every register, and the widths of the ext ports
+    (_N: registers of a strobe group, _IDX_W: window index), for hand-written RTL."""
     lines = ["// Generated from gen/empc/regmap.py (python -m empc.regmap / empc roms). Do not edit.",
              "`ifndef EMPC_REGS_VH", "`define EMPC_REGS_VH",
              f"`define EMPC_REG_AXIS_BASE {AXIS_BASE}", f"`define EMPC_REG_AXIS_STRIDE {AXIS_STRIDE}",
              f"`define EMPC_REG_COEF_BASE {COEF_BASE}", f"`define EMPC_REG_COEF_STRIDE {COEF_STRIDE}",
              f"`define EMPC_ID_MAGIC 32'h{ID_MAGIC:08x}", f"`define EMPC_VERSION 32'h{VERSION:08x}",
              f"`define EMPC_WDOG_KEY {WDOG_KEY}"]
-    for scope, regs in (("G", GLOBAL), ("A", AXIS)):
-        for r in regs:
-            lines.append(f"`define EMPC_{scope}_{r.name} {r.offset}")
-            lines.append(f"`define EMPC_{scope}_{r.name}_RESET {r.reset}")
-            for f in r.fields:
-                lines.append(f"`define EMPC_{scope}_{r.name}_{f.name.upper()} {f.lsb}")
-                if f.width > 1:
-                    lines.append(f"`define EMPC_{scope}_{r.name}_{f.name.upper()}_W {f.width}")
+    names = set()
+    for b in BLOCKS:
+        for name, v in _macros(b.scope, b.regs, b.ext):
+            if name in names:
+                raise MapError(f"empc_regs.vh: macro {name} defined twice (rename a register or field)")
+            names.add(name)
+            lines.append(f"`define {name} " + (f"`{v}" if isinstance(v, str) else f"{v}"))
     lines.append("`endif")
     return "\n".join(lines) + "\n"
 
 
+def _cell(text: str) -> str:
+    return text.replace("|", "\\|")
+
+
 def render_md() -> str:
     out = ["# Register map", "",
-           "Generated from `gen/empc/regmap.py` (`python -m empc.regmap --md docs/registers.md`); do not edit by hand.",
-           "Word addresses on the EMC bus (CS0, 32-bit). Access: RO read-only, RW read/write, WO write pulses "
-           "(read 0), W1C sticky bits cleared by writing 1.", "",
-           f"- Global registers: 0x000..0x0ff",
+           "Generated from `gen/empc/regmap.py` (`python -m empc.regmap --all`, or `make regs`); do not edit by hand.",
+           "The same tables generate the register blocks `rtl/global_regs.v` and `rtl/axis_regs.v`, the firmware "
+           "header `fw/empc_regs.h` and `empc_regs.vh`.", "",
+           "## Addresses", "",
+           "Word addresses on the EMC bus (`emc_a[13:0]`, CS0, 32-bit data):", "",
+           "- Global registers: 0x000..0x0ff",
            f"- Axis n registers: {AXIS_BASE:#x} + n * {AXIS_STRIDE:#x} + offset",
            f"- Axis n coefficient image (write-only, inactive bank; layout in docs/blocks/mpc_core.md): "
            f"{COEF_BASE:#x} + n * {COEF_STRIDE:#x} + image word", "",
+           f"**CPU byte addresses.**  The FPGA sits on the LPC4088's EMC static chip select 0, which the "
+           f"LPC408x/407x user manual (UM10562) maps at {EMC_CS0_BASE:#010x}..0x83ffffff.  The bus is 32 bits wide "
+           "(EMCStaticConfig0.MW = 2) and the EMC shifts static addresses to the bus width (SCS.EMCSC = 0), so "
+           "the pins EMC_A[13:0], wired to the FPGA's `emc_a[13:0]`, carry CPU byte-address bits [15:2]: word w "
+           f"is the 32-bit location at byte address **{EMC_CS0_BASE:#010x} + 4 w** (always 32-bit accesses; "
+           "byte lanes are not decoded).  The LX_CPU board code of NuttX "
+           "(`boards/arm/lpc17xx_40xx/lx_cpu/src/lpc17_40_fpgainitialize.c`) sets up CS0 for this FPGA exactly so "
+           "(EMCStaticConfig0 = 0x2, SCS.EMCSC cleared: \"shift addresses by 2 (32-bit bus)\"); its LPC178x/40xx "
+           "memory map lists CS0 at 0x80000000, up to 64 MB.  `fw/empc_regs.h` gives byte addresses: "
+           "`EMPC_G_<REG>` and "
+           "`EMPC_A_<REG>` are byte offsets, `EMPC_GLOBAL_ADDR(ofs)`, `EMPC_AXIS_ADDR(n, ofs)` and "
+           "`EMPC_COEF_ADDR(n, word)` the CPU addresses.", "",
            "Bus timing: the EMC strobes are synchronised into the 100 MHz fabric clock (2 flip-flops), so "
            "configure the LPC4088 static-memory wait states for >= 80 ns read access (WAITOEN/WAITRD) and a "
-           ">= 40 ns write pulse (WAITWEN/WAITWR) with >= 20 ns between accesses (WAITTURN).", ""]
-    for title, regs, base in (("Global", GLOBAL, 0), ("Axis (offset from the axis base)", AXIS, None)):
-        out += [f"## {title}", "", "| offset | name | access | reset | description |", "| --- | --- | --- | --- | --- |"]
-        for r in regs:
+           ">= 40 ns write pulse (WAITWEN/WAITWR) with >= 20 ns between accesses (WAITTURN).", "",
+           "## Columns", "",
+           "Offset: word offset (emc_a); byte: CPU byte offset (`fw/empc_regs.h`).  Access: RO read-only, "
+           "RW read/write, WO write pulses (read 0), W1C sticky bits cleared by writing 1.  "
+           "Reset: the value after reset (`-`: a live value; an `EMPC_*` name: the macro of `empc_formats.vh` "
+           "of the build, also readable in CAPS where it matters).  Bits: the data bits (`s`: signed, reads back "
+           "sign-extended).  Attributes: `in X` the storage lives in block X; `key` a write acts only with this "
+           "value; `below F stored as F`; `refused while G` (guard) and `legal` values (other writes are "
+           "refused and counted); `constant`.", ""]
+    for b, title in zip(BLOCKS, ("Global", "Axis (offset from the axis base)")):
+        out += [f"## {title}", "", "| offset | byte | name | access | reset | bits | attributes | description |",
+                "| --- | --- | --- | --- | --- | --- | --- | --- |"]
+        for r in b.regs:
             desc = r.doc
             if r.fields:
                 desc += " " + "; ".join(f"[{f.lsb + f.width - 1}:{f.lsb}] {f.name}: {f.doc}" if f.width > 1
                                         else f"[{f.lsb}] {f.name}: {f.doc}" for f in r.fields)
-            out.append(f"| {r.offset:#05x} | {r.name} | {r.access} | {r.reset:#x} | {desc} |")
+            bits = f"{r.bits}{'s' if r.signed else ''}"
+            out.append(f"| {r.offset:#05x} | {r.offset * WORD_BYTES:#05x} | {r.name} | {r.access} | "
+                       f"{_reset_text(r)} | {bits} | {_cell(r.attrs)} "
+                       f"| {_cell(desc)} |")
         out.append("")
+    out += ["## Blocks that keep register storage (`ext`)", "", "| name | kind | what |", "| --- | --- | --- |"]
+    out += [f"| {e.name} | {e.kind} | {_cell(e.doc)} |" for e in EXT]
+    out.append("")
     return "\n".join(out)
 
 
+def generated_files(root: Path) -> dict[Path, str]:
+    """Every committed file generated from the map: path -> text."""
+    from . import fwheader, regblock
+    out = {root / "docs" / "registers.md": render_md(), root / "fw" / "empc_regs.h": fwheader.render()}
+    for b in BLOCKS:
+        out[root / "rtl" / f"{b.module}.v"] = regblock.render(b)
+    return out
+
+
 def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description="write the register map header and docs")
-    ap.add_argument("--vh")
-    ap.add_argument("--md")
+    ap = argparse.ArgumentParser(description="write the files generated from the register map")
+    ap.add_argument("--all", action="store_true", help="rewrite every committed generated file (make regs)")
+    ap.add_argument("--vh", help="write empc_regs.vh here")
+    ap.add_argument("--md", help="write the markdown table here")
     a = ap.parse_args(argv)
+    if a.all:
+        root = Path(__file__).resolve().parents[2]
+        for path, text in generated_files(root).items():
+            path.parent.mkdir(parents=True, exist_ok=True)
+            if not path.exists() or path.read_text() != text:
+                path.write_text(text)
+                print(f"wrote {path.relative_to(root)}")
     if a.vh:
         Path(a.vh).write_text(render_vh())
     if a.md:
         Path(a.md).write_text(render_md())
     return 0
+
+
+for _b in BLOCKS:
+    check(_b.regs, _b.span, _b.ext, what=_b.module)
 
 
 if __name__ == "__main__":

@@ -1,0 +1,154 @@
+/*
+ * empc_drv: see empc_drv.h.  Register names, addresses, fields and reset values come from the
+ * generated empc_regs.h only; no number of the register map is written here.
+ */
+#include "empc_drv.h"
+
+#define RD_G(reg)          empc_bus_read(EMPC_GLOBAL_ADDR(EMPC_G_##reg))
+#define WR_G(reg, v)       empc_bus_write(EMPC_GLOBAL_ADDR(EMPC_G_##reg), (v))
+#define RD_A(n, reg)       empc_bus_read(EMPC_AXIS_ADDR((n), EMPC_A_##reg))
+#define WR_A(n, reg, v)    empc_bus_write(EMPC_AXIS_ADDR((n), EMPC_A_##reg), (v))
+
+#define VERSION_MAJOR(v)   EMPC_GET(EMPC_G_VERSION_MAJOR, (v))
+
+static int write_check(uint32_t addr, uint32_t value, uint32_t bits)
+{
+    empc_bus_write(addr, value);
+    return ((empc_bus_read(addr) & bits) == (value & bits)) ? EMPC_OK : EMPC_ERR_VERIFY;
+}
+
+static uint32_t ctrl_word(uint32_t ppc, uint32_t complementary, uint32_t enable, uint32_t run)
+{
+    return EMPC_FIELD(EMPC_A_CTRL_ENABLE, enable) | EMPC_FIELD(EMPC_A_CTRL_RUN, run)
+           | EMPC_FIELD(EMPC_A_CTRL_COMPLEMENTARY, complementary)
+           | EMPC_FIELD(EMPC_A_CTRL_PWM_PER_CONTROL, ppc);
+}
+
+int empc_init(empc_caps *caps)
+{
+    uint32_t caps_word, n;
+
+    if (caps == 0)
+        return EMPC_ERR_ARG;
+    if (RD_G(ID) != EMPC_ID_MAGIC)
+        return EMPC_ERR_ID;
+    caps->version = RD_G(VERSION);
+    if (VERSION_MAJOR(caps->version) != VERSION_MAJOR(EMPC_IP_VERSION))
+        return EMPC_ERR_VERSION;
+    caps_word = RD_G(CAPS);
+    caps->naxes = EMPC_GET(EMPC_G_CAPS_NAXES, caps_word);
+    caps->horizon = EMPC_GET(EMPC_G_CAPS_HORIZON, caps_word);
+    caps->img_layout = EMPC_GET(EMPC_G_CAPS_IMG_LAYOUT, caps_word);
+    caps->pwm_per_control = EMPC_GET(EMPC_G_CAPS_PWM_PER_CONTROL, caps_word);
+    caps->pwm_half = RD_G(PWM_HALF);
+    if (caps->img_layout != EMPC_IMG_LAYOUT)
+        return EMPC_ERR_VERSION;
+    for (n = 0; n < caps->naxes; n++)
+        WR_A(n, CTRL, ctrl_word(caps->pwm_per_control, 0u, 0u, 0u));
+    WR_G(IRQ_ENABLE, 0u);
+    WR_G(IRQ_STATUS, EMPC_G_IRQ_STATUS_BITS);
+    return EMPC_OK;
+}
+
+int empc_axis_config(const empc_caps *caps, uint32_t axis, const empc_axis_cfg *cfg)
+{
+    uint32_t ppc;
+    int err = EMPC_OK;
+
+    if (caps == 0 || cfg == 0 || axis >= caps->naxes)
+        return EMPC_ERR_ARG;
+    if (EMPC_GET(EMPC_A_STATUS_BRIDGES_ON, RD_A(axis, STATUS)))
+        return EMPC_ERR_BUSY;
+    ppc = cfg->pwm_per_control ? cfg->pwm_per_control : caps->pwm_per_control;
+    if (ppc > (EMPC_A_CTRL_PWM_PER_CONTROL_MASK >> EMPC_A_CTRL_PWM_PER_CONTROL_SHIFT))
+        return EMPC_ERR_ARG;
+#define CHECK(reg, v) \
+    do { if (err == EMPC_OK) \
+             err = write_check(EMPC_AXIS_ADDR(axis, EMPC_A_##reg), (v), EMPC_A_##reg##_BITS); } while (0)
+    CHECK(CTRL, ctrl_word(ppc, cfg->complementary, 0u, 0u));
+    CHECK(FAULT_MASK, cfg->fault_mask);
+    CHECK(DEAD_TIME, cfg->dead_time);
+    CHECK(KDC, cfg->kdc);
+    CHECK(UDC_MIN, cfg->udc_min_mv);
+    CHECK(UDC_MAX, cfg->udc_max_mv);
+    CHECK(UDC, cfg->udc_mv);
+    CHECK(OC_THRESH, cfg->oc_thresh);
+    CHECK(ANGLE_CAL, cfg->angle_cal);
+    CHECK(HALL_OFFSET, cfg->hall_offset);
+#undef CHECK
+    return err;
+}
+
+int empc_coef_load(uint32_t axis, const uint32_t *image, uint32_t nwords, uint32_t max_polls)
+{
+    uint32_t w, st, bank;
+
+    if (image == 0 || nwords == 0 || nwords > EMPC_COEF_WORDS)
+        return EMPC_ERR_ARG;
+    st = RD_A(axis, STATUS);
+    if (EMPC_GET(EMPC_A_STATUS_SWAP_PENDING, st))
+        return EMPC_ERR_BUSY;
+    bank = EMPC_GET(EMPC_A_STATUS_COEF_BANK, st);
+    for (w = 0; w < nwords; w++)
+        empc_bus_write(EMPC_COEF_ADDR(axis, w), image[w]);
+    WR_A(axis, CMD, EMPC_FIELD(EMPC_A_CMD_COEF_SWAP, 1u));
+    while (max_polls--) {
+        st = RD_A(axis, STATUS);
+        if (!EMPC_GET(EMPC_A_STATUS_SWAP_PENDING, st) && EMPC_GET(EMPC_A_STATUS_COEF_BANK, st) != bank)
+            return EMPC_OK;
+    }
+    return EMPC_ERR_TIMEOUT;
+}
+
+int empc_axis_enable(const empc_caps *caps, uint32_t axis, uint32_t enable, uint32_t run)
+{
+    uint32_t ctrl;
+
+    if (caps == 0 || axis >= caps->naxes)
+        return EMPC_ERR_ARG;
+    ctrl = RD_A(axis, CTRL);
+    ctrl &= ~(EMPC_A_CTRL_ENABLE_MASK | EMPC_A_CTRL_RUN_MASK);
+    ctrl |= EMPC_FIELD(EMPC_A_CTRL_ENABLE, enable != 0u) | EMPC_FIELD(EMPC_A_CTRL_RUN, run != 0u);
+    return write_check(EMPC_AXIS_ADDR(axis, EMPC_A_CTRL), ctrl, EMPC_A_CTRL_BITS);
+}
+
+int empc_fault_clear(uint32_t axis, uint32_t *remaining)
+{
+    uint32_t f;
+
+    WR_A(axis, CMD, EMPC_FIELD(EMPC_A_CMD_FAULT_CLEAR, 1u));
+    f = RD_A(axis, FAULT) & EMPC_A_FAULT_BITS;
+    if (remaining != 0)
+        *remaining = f;
+    return f ? EMPC_ERR_FAULT : EMPC_OK;
+}
+
+int empc_status_read(uint32_t axis, empc_status *st)
+{
+    if (st == 0)
+        return EMPC_ERR_ARG;
+    st->status = RD_A(axis, STATUS);
+    st->fault = RD_A(axis, FAULT);
+    st->pos = RD_A(axis, POS);
+    st->speed = (int32_t)RD_A(axis, SPEED);
+    st->theta = RD_A(axis, THETA);
+    st->i_d = (int32_t)RD_A(axis, I_D);       /* signed registers read back sign-extended */
+    st->i_q = (int32_t)RD_A(axis, I_Q);
+    st->u_d = (int32_t)RD_A(axis, U_D);
+    st->u_q = (int32_t)RD_A(axis, U_Q);
+    st->latency = RD_A(axis, LATENCY);
+    st->periods = RD_A(axis, PERIODS);
+    return EMPC_OK;
+}
+
+int empc_wdog_set(uint32_t timeout_periods)
+{
+    if (timeout_periods > EMPC_G_WDOG_TIMEOUT_BITS)
+        return EMPC_ERR_ARG;
+    return write_check(EMPC_GLOBAL_ADDR(EMPC_G_WDOG_TIMEOUT), timeout_periods, EMPC_G_WDOG_TIMEOUT_BITS);
+}
+
+void empc_wdog_kick(void)
+{
+    WR_G(WDOG_KICK, EMPC_WDOG_KEY);
+}

@@ -1,0 +1,112 @@
+/*
+ * empc_drv: small LPC4088 driver for the empc FPGA (register map: empc_regs.h, generated from
+ * gen/empc/regmap.py; addresses and conventions: docs/registers.md).
+ *
+ * Bus access goes through exactly two functions, empc_bus_read() and empc_bus_write(), on
+ * CPU byte addresses (EMPC_GLOBAL_ADDR / EMPC_AXIS_ADDR / EMPC_COEF_ADDR).  On the target
+ * they are 32-bit volatile accesses to the EMC chip-select-0 window (below); a host build
+ * (-DEMPC_HOST) declares them and the test or simulator defines them (tb/empc_drv_host.c
+ * forwards them to the cocotb bus model of the co-simulation).
+ *
+ * The CPU board must have set up EMC CS0 first: 32-bit static memory (EMCStaticConfig0.MW = 2),
+ * SCS.EMCSC = 0 (addresses shifted to the bus width) and the wait states of docs/registers.md.
+ *
+ * Every function returns EMPC_OK (0) or a negative empc_err; none blocks longer than the
+ * poll count it is given.  Not re-entrant per axis: call from one context.
+ */
+#ifndef EMPC_DRV_H
+#define EMPC_DRV_H
+
+#include <stdint.h>
+
+#include "empc_regs.h"
+
+#ifdef EMPC_HOST
+uint32_t empc_bus_read(uint32_t addr);
+void empc_bus_write(uint32_t addr, uint32_t value);
+#else
+static inline uint32_t empc_bus_read(uint32_t addr)
+{
+    return *(volatile const uint32_t *)(uintptr_t)addr;
+}
+
+static inline void empc_bus_write(uint32_t addr, uint32_t value)
+{
+    *(volatile uint32_t *)(uintptr_t)addr = value;
+}
+#endif
+
+typedef enum {
+    EMPC_OK = 0,
+    EMPC_ERR_ID = -1,        /* ID register is not EMPC_ID_MAGIC: bus or bitstream */
+    EMPC_ERR_VERSION = -2,   /* IP major version differs from the header's */
+    EMPC_ERR_ARG = -3,       /* axis number or length out of range, NULL pointer */
+    EMPC_ERR_BUSY = -4,      /* bridges on (configuration refused) or a swap still pending */
+    EMPC_ERR_VERIFY = -5,    /* a register did not read back what was written */
+    EMPC_ERR_TIMEOUT = -6,   /* the poll count ran out */
+    EMPC_ERR_FAULT = -7      /* a fault is still latched (its cause has not gone) */
+} empc_err;
+
+/* Build parameters of the bitstream (CAPS, PWM_HALF). */
+typedef struct {
+    uint32_t version;          /* VERSION */
+    uint32_t naxes;            /* axes in the bitstream */
+    uint32_t horizon;          /* prediction horizon N */
+    uint32_t img_layout;       /* coefficient image layout (must be EMPC_IMG_LAYOUT) */
+    uint32_t pwm_per_control;  /* PWM periods per control period after reset */
+    uint32_t pwm_half;         /* PWM half period, fabric clocks */
+} empc_caps;
+
+/* Axis configuration written by empc_axis_config() (bridges must be off). */
+typedef struct {
+    uint32_t pwm_per_control;  /* >= 1; 0 = keep the build's default (CAPS) */
+    uint32_t complementary;    /* 0: PWM + enable (LX_PWR), 1: complementary with dead time */
+    uint32_t dead_time;        /* fabric clocks */
+    uint32_t fault_mask;       /* FAULT bits that switch the bridges off */
+    uint32_t kdc;              /* Udc_nominal / Udc, unsigned Q2.16 */
+    uint32_t udc_mv, udc_min_mv, udc_max_mv;
+    uint32_t oc_thresh;        /* ADC LSB */
+    uint32_t angle_cal, hall_offset;   /* 2^16 = one electrical turn */
+} empc_axis_cfg;
+
+/* Snapshot of an axis (empc_status_read). */
+typedef struct {
+    uint32_t status;           /* STATUS word (EMPC_GET(EMPC_A_STATUS_..., status)) */
+    uint32_t fault;            /* FAULT word */
+    uint32_t pos;              /* encoder count */
+    int32_t speed;             /* counts per Ts, Q16.16 */
+    uint32_t theta;            /* electrical angle, 2^16 = one turn */
+    int32_t i_d, i_q;          /* ADC LSB Q.4 */
+    int32_t u_d, u_q;          /* PWM ticks Q16.8 */
+    uint32_t latency;          /* clocks, ADC trigger -> new compare values */
+    uint32_t periods;          /* control periods since enable */
+} empc_status;
+
+/* Check ID and VERSION, read the build parameters, switch every axis off (CTRL: enable = 0,
+ * run = 0, build default PWM periods per control period), disable and clear the interrupts. */
+int empc_init(empc_caps *caps);
+
+/* Write an axis' configuration and read every register back.  Refused (EMPC_ERR_BUSY) while the
+ * axis' bridges are on: safety settings change only with the outputs off. */
+int empc_axis_config(const empc_caps *caps, uint32_t axis, const empc_axis_cfg *cfg);
+
+/* Upload a coefficient image into the inactive bank of an axis (nwords <= EMPC_COEF_WORDS), then
+ * request the bank swap (taken at the next control period) and poll STATUS up to max_polls times
+ * until it is done.  EMPC_ERR_BUSY if a swap was already pending. */
+int empc_coef_load(uint32_t axis, const uint32_t *image, uint32_t nwords, uint32_t max_polls);
+
+/* Switch the bridges on (run = 0: zero voltage, run = 1: control law) or off (enable = 0). */
+int empc_axis_enable(const empc_caps *caps, uint32_t axis, uint32_t enable, uint32_t run);
+
+/* CMD.fault_clear, then read FAULT: EMPC_OK if it is 0, else EMPC_ERR_FAULT with the causes
+ * that are still present in *remaining (may be NULL). */
+int empc_fault_clear(uint32_t axis, uint32_t *remaining);
+
+/* Read STATUS, FAULT and the measurements of the last control period. */
+int empc_status_read(uint32_t axis, empc_status *st);
+
+/* Watchdog: timeout in PWM periods (0 disables), and the kick (write EMPC_WDOG_KEY). */
+int empc_wdog_set(uint32_t timeout_periods);
+void empc_wdog_kick(void);
+
+#endif /* EMPC_DRV_H */

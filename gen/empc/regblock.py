@@ -1,0 +1,687 @@
+"""Register blocks from the register map: Verilog generator and cycle model.
+
+``render(block)`` writes the text of ``rtl/<block.module>.v`` (committed; regenerate with
+``python -m empc.regmap --all`` or ``make regs``; gen/tests/test_regmap.py checks that the
+committed files are current).  ``Model(block)`` is the cycle-accurate Python model of the
+generated module that tb/test_regblock.py compares the RTL against, clock by clock.
+
+What the generated module owns (one register = one line of gen/empc/regmap.py):
+
+* write decode from a shared page predecode (``wr_p<k> = reg_wr && reg_addr[AW-1:PB] == k``,
+  a case on ``reg_addr[PB-1:0]``; PB = the fewest low address bits that hold every
+  register the block decodes itself), stored registers with their reset values, command
+  pulses (fields of a WO register; a ``key`` register pulses only on its key; a field-less
+  WO register pulses and keeps the written data), W1C bits with set inputs (a write of the
+  register computes old AND NOT data, so a set in the clock of any write to the register is
+  lost: the behaviour of the hand code this replaced), ``floor``;
+* the read path: a "copy" register has a gated copy, loaded with its value in the clock of
+  reg_rd of its word and 0 in every other clock (cleared through the flip-flop reset, no
+  multiplexer); "mux" registers share one read register (a case, cleared when no mux
+  register is read); reg_rdata (valid the clock after reg_rd, 0 otherwise) is the OR of the
+  copies, the mux register and the read data of the windows;
+* ext storage: strobe groups (one-hot write pulse + written data, both registered; the
+  values come back on inputs read through copies) and windows (combinational
+  ``<w>_we``/``<w>_re`` from a 256-entry address table, no magnitude compares, and
+  ``<w>_idx``);
+* safety hooks (emitted only when the map uses them, so they cost nothing otherwise):
+  ``guard``: a write while the named input is high is refused; ``legal``: a write with a
+  field outside its allowed values is refused (the whole word).  A refused write changes
+  nothing and raises the ``wr_refused`` pulse (one clock, registered) for a counter.
+
+Ports: a stored register or field is an output named after it (``Reg.part_port``: the
+lower-case register name, ``<reg>_<field>`` for fields); a read-only value an input of the
+same name; W1C bits also an input ``<port>_set``; pulses outputs; ext groups as above.
+Latency: a write acts in the clock after reg_wr (registered outputs and pulses; window
+strobes are combinational, in the reg_wr clock); read data the clock after reg_rd.
+Reset (synchronous, rst): stored registers to their map reset values, pulses and read
+path to 0.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .regmap import Block, Field, Reg, check, idx_bits
+
+_HDR = "// Generated from gen/empc/regmap.py by gen/empc/regblock.py (python -m empc.regmap --all). Do not edit."
+
+
+def _vlit(width: int, value: int) -> str:
+    """Sized literal: hex for masks and powers of two, decimal otherwise."""
+    if value >= 16 and (value & (value - 1) == 0 or value & (value + 1) == 0):
+        return f"{width}'h{value:x}"
+    return f"{width}'d{value}"
+
+
+def _lo(width: int, value: int) -> str:
+    """Address literal (hex)."""
+    return f"{width}'h{value:x}"
+
+
+def _rng(width: int) -> str:
+    return "" if width == 1 else f"[{width - 1}:0]"
+
+
+def _wd(f: Field) -> str:
+    """reg_wdata bits of field f."""
+    return f"reg_wdata[{f.lsb}]" if f.width == 1 else f"reg_wdata[{f.lsb + f.width - 1}:{f.lsb}]"
+
+
+@dataclass
+class _Kind:
+    """What a register is, derived from its attributes."""
+    stored: bool        # RW or W1C in the block: output regs
+    w1c: bool
+    pulses: bool        # WO with fields: one pulse per field
+    key: bool           # WO with key: one pulse on the key
+    wodata: bool        # field-less WO without key: pulse + data
+    strobe: bool        # RW in a strobe group
+    window: bool        # in a window (decoded by its block)
+    const: bool
+    inp: bool           # RO input
+    readable: bool      # read through this block's copies / mux
+
+
+def kind(r: Reg, ext: tuple) -> _Kind:
+    e = {x.name: x for x in ext}.get(r.ext)
+    window = bool(e and e.kind == "window")
+    strobe = bool(e and e.kind == "strobe")
+    wo = r.access == "WO" and not window
+    k = _Kind(stored=r.access in ("RW", "W1C") and not r.ext, w1c=r.access == "W1C",
+              pulses=wo and bool(r.fields), key=wo and r.key is not None,
+              wodata=wo and not r.fields and r.key is None, strobe=strobe, window=window,
+              const=r.const, inp=r.access == "RO" and not r.const and not r.ext, readable=False)
+    k.readable = not window and r.access != "WO"
+    return k
+
+
+class _Gen:
+    def __init__(self, b: Block):
+        check(b.regs, b.span, b.ext, what=b.module)
+        self.b = b
+        self.aw = (b.span - 1).bit_length()
+        self.regs = list(b.regs)
+        self.k = {r.name: kind(r, b.ext) for r in self.regs}
+        dec = [r for r in self.regs if not self.k[r.name].window]
+        wr = [r for r in dec if r.access != "RO"]
+        top = max((r.offset for r in (wr or dec)), default=0)
+        self.pb = max(1, top.bit_length())             # page bits: low address bits decoded per page
+        self.windows = [e for e in b.ext if e.kind == "window" and any(r.ext == e.name for r in self.regs)]
+        self.strobes = [e for e in b.ext if e.kind == "strobe" and any(r.ext == e.name for r in self.regs)]
+        self.guards = sorted({r.guard for r in self.regs if r.guard})
+        self.refuse = bool(self.guards) or any(f.legal is not None for r in self.regs for f in r.parts())
+
+    # ------------------------------------------------------------------ helpers
+    def members(self, ext_name: str) -> list[Reg]:
+        return sorted((r for r in self.regs if r.ext == ext_name), key=lambda r: r.offset)
+
+    def each_part(self, regs):
+        """(register, kind, field, port) for every field of ``regs``."""
+        for r in regs:
+            for f in r.parts():
+                yield r, self.k[r.name], f, r.part_port(f)
+
+    def page(self, off: int) -> int:
+        return off >> self.pb
+
+    def low(self, off: int) -> str:
+        return _lo(self.pb, off & ((1 << self.pb) - 1))
+
+    def read_style(self, r: Reg) -> str:
+        return r.read or self.b.read
+
+    def value_expr(self, r: Reg) -> tuple[str, int]:
+        """(dense concatenation of the register's read value parts, msb first; its width)."""
+        k = self.k[r.name]
+        items = []
+        for f in sorted(r.parts(), key=lambda f: -f.lsb):
+            if k.const:
+                v = (r.reset >> f.lsb) & ((1 << f.width) - 1) if r.fields else r.reset
+                items.append(_vlit(f.width, v))
+            else:
+                items.append(r.part_port(f))
+        w = sum(f.width for f in r.parts())
+        return (items[0] if len(items) == 1 else "{" + ", ".join(items) + "}"), w
+
+    def word_expr(self, r: Reg, q: str) -> str:
+        """32-bit read word from the dense copy q (zero gaps, sign extension)."""
+        runs = []                                  # adjacent fields -> one slice of q
+        for f in sorted(r.parts(), key=lambda f: f.lsb):
+            if runs and runs[-1][0] + runs[-1][1] == f.lsb:
+                runs[-1][1] += f.width
+            else:
+                runs.append([f.lsb, f.width])
+        items, pos, bit = [], 0, 0
+        for lsb, width in runs:
+            if lsb > bit:
+                items.append(f"{lsb - bit}'d0")
+            items.append(f"{q}[{pos + width - 1}:{pos}]" if width > 1 else f"{q}[{pos}]")
+            pos += width
+            bit = lsb + width
+        if bit < 32:
+            if r.signed:
+                items.append(f"{{{32 - bit}{{{q}[{pos - 1}]}}}}")
+            else:
+                items.append(f"{32 - bit}'d0")
+        if len(items) == 1 and pos == 32:
+            return q
+        if len(items) == 2 and items[1] == f"{32 - pos}'d0" and items[0] == f"{q}[{pos - 1}:0]":
+            return f"{{{items[1]}, {q}}}"
+        return "{" + ", ".join(reversed(items)) + "}"
+
+    def legal_terms(self, r: Reg) -> list[str]:
+        out = []
+        for f in r.parts():
+            if f.legal is None:
+                continue
+            vals = sorted(set(f.legal))
+            if len(vals) == 1 << f.width:          # every value legal: no check
+                continue
+            v = _wd(f)
+            if f.width <= 8:
+                out.append(f"LEGAL_{r.part_port(f).upper()}[{v}]")
+            elif isinstance(f.legal, range):
+                t = []
+                if vals[0] > 0:
+                    t.append(f"({v} >= {_vlit(f.width, vals[0])})")
+                if vals[-1] < (1 << f.width) - 1:
+                    t.append(f"({v} <= {_vlit(f.width, vals[-1])})")
+                out.append(" && ".join(t))
+            else:
+                out.append("(" + " || ".join(f"({v} == {_vlit(f.width, x)})" for x in vals) + ")")
+        return out
+
+    def ok_expr(self, r: Reg) -> str:
+        t = ([f"!{r.guard}"] if r.guard else []) + self.legal_terms(r)
+        return " && ".join(t)
+
+    # ------------------------------------------------------------------ ports
+    def ports(self) -> list[tuple[str, str, int, bool, str]]:
+        """(direction, name, width, signed, comment) in map order."""
+        P = [("input", "clk", 1, False, ""), ("input", "rst", 1, False, ""),
+             ("input", "reg_wr", 1, False, "write strobe (1 clock) for a word of this block"),
+             ("input", "reg_rd", 1, False, "read strobe (1 clock)"),
+             ("input", "reg_addr", self.aw, False, "word offset in the block"),
+             ("input", "reg_wdata", 32, False, ""),
+             ("output", "reg_rdata", 32, False, "read data, the clock after reg_rd (0 otherwise)")]
+        done_ext = set()
+        for r in self.regs:
+            k = self.k[r.name]
+            if r.ext and r.ext not in done_ext:
+                done_ext.add(r.ext)
+                e = next(x for x in self.b.ext if x.name == r.ext)
+                mem = self.members(e.name)
+                if e.kind == "strobe":
+                    P.append(("output", f"{e.name}_we", len(mem), False,
+                              "write pulse, one-hot: " + ", ".join(m.name for m in mem)))
+                    P.append(("output", f"{e.name}_wdata", max(m.width for m in mem), False, "written value"))
+                else:
+                    if any(m.access != "RO" for m in mem):
+                        P.append(("output", f"{e.name}_we", 1, False, f"write of a word of window {e.name} "
+                                  "(combinational)"))
+                    P.append(("output", f"{e.name}_re", 1, False, f"read of a word of window {e.name} "
+                              "(combinational)"))
+                    if e.idx:
+                        P.append(("output", f"{e.name}_idx", self.idx_bits(mem), False,
+                                  f"word index in the window ({mem[0].name} = 0)"))
+            for f in r.parts():
+                p = r.part_port(f)
+                sg = r.signed and not r.fields
+                what = f"{r.name}.{f.name}" if r.fields else r.name
+                if k.stored:
+                    P.append(("output", p, f.width, sg, f"{what} ({r.access})"))
+                    if k.w1c:
+                        P.append(("input", f"{p}_set", 1, False, f"set {what}"))
+                elif k.pulses:
+                    P.append(("output", p, f.width, False, f"{what}: pulse"))
+                elif k.key:
+                    P.append(("output", p, 1, False, f"{what}: pulse when {r.key:#x} is written"))
+                elif k.wodata:
+                    P.append(("output", p, 1, False, f"{what}: pulse"))
+                    P.append(("output", f"{p}_data", f.width, False, f"{what}: written value"))
+                elif k.strobe or k.inp:
+                    P.append(("input", p, f.width, sg, f"{what} value"))
+        for e in self.windows:
+            if e.rdata_port not in [x[1] for x in P]:
+                P.append(("input", e.rdata_port, 32, False, "window read data (0 unless read)"))
+        for g in self.guards:
+            P.append(("input", g, 1, False, "guard: writes to its registers are refused while high"))
+        if self.refuse:
+            P.append(("output", "wr_refused", 1, False, "pulse: a write was refused (guard or illegal value)"))
+        return P
+
+    def window_guard(self, ext_name: str) -> str:
+        """The guard of a window's writable registers ("" if none)."""
+        return next((m.guard for m in self.members(ext_name) if m.access != "RO"), "")
+
+    def idx_bits(self, mem: list[Reg]) -> int:
+        return idx_bits(len(mem))
+
+    # ------------------------------------------------------------------ text
+    def render(self) -> str:
+        b = self.b
+        P = self.ports()
+        L = [_HDR, f"//",
+             f"// {b.module}: {b.doc}.",
+             "//",
+             "// Write decode, stored registers with their reset values, command pulses, W1C bits and",
+             "// the read path of the registers of this block in gen/empc/regmap.py (what each register",
+             "// is and the rules: gen/empc/regblock.py, docs/registers.md).  Ports: a stored register",
+             "// or field is an output named after it, a read-only value an input of the same name.",
+             "// Read path: " + ("gated copies (0 unless read) ORed" if b.read == "copy" else
+                                 "one shared read register (a case)")
+             + (", plus per-register exceptions" if any(r.read for r in self.regs) else "") + ".",
+             "// Parameters: none (build-dependent reset values are empc_formats.vh macros).",
+             "// Latency: writes act in the clock after reg_wr (window strobes: combinational);",
+             "// reg_rdata is valid the clock after reg_rd and 0 in every other clock.",
+             "// Reset: synchronous (rst); stored registers to the map's reset values, pulses and read",
+             "// data to 0.",
+             "`default_nettype none"]
+        if any(isinstance(f.reset, str) for r in self.regs for f in r.parts() if self.k[r.name].stored):
+            L.append('`include "empc_formats.vh"')
+        L.append(f"module {b.module} (")
+        w = max(len(_rng(p[2])) for p in P)
+        lines = []
+        for d, n, wid, sg, c in P:
+            k = "reg " if (d == "output" and self.is_reg_out(n)) else "wire"
+            t = f"    {d:<6} {k} {'signed ' if sg else ''}{_rng(wid):<{w}} {n}"
+            lines.append((t, c))
+        cw = max(len(t) for t, _ in lines) + 2
+        for i, (t, c) in enumerate(lines):
+            t += "," if i < len(lines) - 1 else ""
+            L.append(f"{t:<{cw}}// {c}" if c else t)
+        L.append(");")
+        L += self.render_legal_tables()
+        L += self.render_windows()
+        L += self.render_write()
+        L += self.render_read()
+        L += self.render_unused()
+        L += ["endmodule", "`default_nettype wire", ""]
+        return "\n".join(L)
+
+    def is_reg_out(self, name: str) -> bool:
+        return name not in ("reg_rdata",) and not any(name == f"{e.name}_{s}" for e in self.windows
+                                                     for s in ("we", "re", "idx"))
+
+    def render_legal_tables(self) -> list[str]:
+        L = []
+        for r in self.regs:
+            for f in r.parts():
+                if f.legal is None or f.width > 8 or len(set(f.legal)) == 1 << f.width:
+                    continue
+                n = 1 << f.width
+                t = sum(1 << v for v in set(f.legal))
+                L.append(f"    // legal values of {r.name}{'.' + f.name if r.fields else ''} as a table "
+                         "(one LUT, no compares)")
+                L.append(f"    localparam [{n - 1}:0] LEGAL_{r.part_port(f).upper()} = {n}'h{t:0{(n + 3) // 4}x};")
+        return L
+
+    def render_write(self) -> list[str]:
+        b = self.b
+        L = []
+        wregs = [r for r in self.regs if r.access != "RO" and not self.k[r.name].window]
+        pages = sorted({self.page(r.offset) for r in wregs})
+        hb = self.aw - self.pb
+        if not wregs and not self.refuse:
+            return L
+        L.append("")
+        L.append("    // ---------------- write decode: one predecode per page, a case on the low bits")
+        for p in pages:
+            L.append(f"    wire wr_p{p} = reg_wr && (reg_addr[{self.aw - 1}:{self.pb}] == {_vlit(hb, p)});")
+        L.append("    always @(posedge clk) begin")
+        for r, k, f, p in self.each_part(wregs):         # pulses default to 0
+            if k.pulses:
+                L.append(f"        {p} <= {_vlit(f.width, 0)};")
+            elif k.key or k.wodata:
+                L.append(f"        {p} <= 1'b0;")
+        for e in self.strobes:
+            L.append(f"        {e.name}_we <= {_vlit(len(self.members(e.name)), 0)};")
+        if self.refuse:
+            L.append("        wr_refused <= 1'b0;")
+        L.append("        if (rst) begin")
+        for r, k, f, p in self.each_part(wregs):
+            if k.stored:
+                rv = (f"`{f.reset}" if isinstance(f.reset, str) else
+                      _vlit(f.width, f.reset if f.reset is not None and r.fields else
+                            (r.reset >> f.lsb) & ((1 << f.width) - 1)))
+                L.append(f"            {p} <= {rv};")
+            elif k.wodata:
+                L.append(f"            {p}_data <= {_vlit(f.width, 0)};")
+        for e in self.strobes:
+            L.append(f"            {e.name}_wdata <= {_vlit(max(m.width for m in self.members(e.name)), 0)};")
+        L.append("        end else begin")
+        for r in wregs:
+            if self.k[r.name].w1c:
+                for f in r.parts():
+                    p = r.part_port(f)
+                    L.append(f"            if ({p}_set) {p} <= 1'b1;")
+        for p in pages:
+            L.append(f"            if (wr_p{p}) begin")
+            L.append(f"                case (reg_addr[{self.pb - 1}:0])")
+            for r in (x for x in wregs if self.page(x.offset) == p):
+                body = self.write_body(r)
+                ok = self.ok_expr(r)
+                L.append(f"                    {self.low(r.offset)}: begin   // {r.name}")
+                if ok:
+                    L.append(f"                        if ({ok}) begin")
+                    L += [f"                            {s}" for s in body]
+                    L.append("                        end else begin")
+                    L.append("                            wr_refused <= 1'b1;")
+                    L.append("                        end")
+                else:
+                    L += [f"                        {s}" for s in body]
+                L.append("                    end")
+            L.append("                    default: ;")
+            L.append("                endcase")
+            L.append("            end")
+        for e in self.windows:
+            g = self.window_guard(e.name)
+            if g:
+                L.append(f"            if (reg_wr && {e.name}_sel && {g}) wr_refused <= 1'b1;   // guarded window")
+        L.append("        end")
+        L.append("    end")
+        return L
+
+    def write_body(self, r: Reg) -> list[str]:
+        k = self.k[r.name]
+        out = []
+        if k.strobe:
+            mem = self.members(r.ext)
+            i = mem.index(r)
+            n = len(mem)
+            ww = max(m.width for m in mem)
+            out.append(f"{r.ext}_we <= {n}'b{1 << i:0{n}b};")
+            d = _wd(r.parts()[0])
+            out.append(f"{r.ext}_wdata <= {d};" if r.width == ww else
+                       f"{r.ext}_wdata <= {{{ww - r.width}'d0, {d}}};")
+            return out
+        for f in r.parts():
+            p = r.part_port(f)
+            d = _wd(f)
+            if k.w1c:
+                out.append(f"{p} <= {p} & ~{d};")
+            elif k.stored:
+                if f.floor is not None:
+                    cond = f"{d} == {_vlit(f.width, 0)}" if f.floor == 1 else f"{d} < {_vlit(f.width, f.floor)}"
+                    out.append(f"{p} <= ({cond}) ? {_vlit(f.width, f.floor)} : {d};")
+                else:
+                    out.append(f"{p} <= {d};")
+            elif k.pulses:
+                out.append(f"{p} <= {d};")
+            elif k.key:
+                out.append(f"{p} <= ({d} == {_vlit(f.width, r.key)});")
+            elif k.wodata:
+                out.append(f"{p} <= 1'b1;")
+                out.append(f"{p}_data <= {d};")
+        return out
+
+    def render_windows(self) -> list[str]:
+        L = []
+        if not self.windows:
+            return L
+        L.append("")
+        L.append("    // ---------------- windows: address tables (one LUT level, no magnitude compares)")
+        n = 1 << self.aw
+        for e in self.windows:
+            mem = self.members(e.name)
+            t = sum(1 << r.offset for r in mem)
+            L.append(f"    localparam [{n - 1}:0] {e.name.upper()}_WORDS = {n}'h{t:0{n // 4}x};")
+            L.append(f"    wire {e.name}_sel = {e.name.upper()}_WORDS[reg_addr];")
+            if any(m.access != "RO" for m in mem):
+                g = self.window_guard(e.name)
+                L.append(f"    assign {e.name}_we = reg_wr && {e.name}_sel" + (f" && !{g};" if g else ";"))
+            L.append(f"    assign {e.name}_re = reg_rd && {e.name}_sel;")
+            if e.idx:
+                ib = self.idx_bits(mem)
+                base = _vlit(ib, mem[0].offset & ((1 << ib) - 1))
+                L.append(f"    assign {e.name}_idx = reg_addr[{ib - 1}:0] - {base};"
+                         f"   // word - {mem[0].name}")
+        return L
+
+    def render_read(self) -> list[str]:
+        L = [""]
+        rregs = [r for r in self.regs if self.k[r.name].readable]
+        copies = [r for r in rregs if self.read_style(r) == "copy"]
+        muxed = [r for r in rregs if self.read_style(r) == "mux"]
+        pages = sorted({self.page(r.offset) for r in rregs})
+        hb = self.aw - self.pb
+        L.append("    // ---------------- read path: gated copies / shared read register, ORed")
+        for p in pages:
+            L.append(f"    wire rd_p{p} = reg_rd && (reg_addr[{self.aw - 1}:{self.pb}] == {_vlit(hb, p)});")
+        terms = []
+        qn = {}
+        for r in copies:
+            _, w = self.value_expr(r)
+            q = f"q_{r.name.lower()}"
+            qn[r.name] = q
+            L.append(f"    reg  {_rng(w):<7} {q};")
+        if muxed:
+            L.append("    reg  [31:0]  q_mux;")
+        L.append("    always @(posedge clk) begin")
+        for r in copies:
+            v, w = self.value_expr(r)
+            head = f"        {qn[r.name]} <= (rd_p{self.page(r.offset)} && reg_addr[{self.pb - 1}:0] == " \
+                   f"{self.low(r.offset)}) ?"
+            if len(head) + len(v) + len(_vlit(w, 0)) + 6 <= 118:
+                L.append(f"{head} {v} : {_vlit(w, 0)};")
+            else:                                  # long concatenation: wrapped
+                items = v[1:-1].split(", ")
+                lines, line = [], f"{head} {{"
+                for i, it in enumerate(items):
+                    piece = it + ("," if i < len(items) - 1 else f"}} : {_vlit(w, 0)};")
+                    if len(line) + len(piece) + 1 > 112:
+                        lines.append(line.rstrip())
+                        line = "            "
+                    line += piece + " "
+                L += lines + [line.rstrip()]
+        if muxed:
+            mp = sorted({self.page(r.offset) for r in muxed})
+            if len(mp) == 1:
+                sel, idx, iw = f"rd_p{mp[0]}", f"reg_addr[{self.pb - 1}:0]", self.pb
+            else:
+                sel, idx, iw = "reg_rd", f"reg_addr[{self.aw - 1}:0]", self.aw
+            L.append(f"        if (rst || !{sel}) begin")
+            L.append("            q_mux <= 32'd0;")
+            L.append("        end else begin")
+            L.append(f"            case ({idx})")
+            for r in muxed:
+                off = _lo(iw, r.offset & ((1 << iw) - 1))
+                L.append(f"                {off}: q_mux <= {self.mux_word(r)};   // {r.name}")
+            L.append("                default: q_mux <= 32'd0;")
+            L.append("            endcase")
+            L.append("        end")
+        if copies:
+            L.append("        if (rst) begin")
+            for r in copies:
+                _, w = self.value_expr(r)
+                L.append(f"            {qn[r.name]} <= {_vlit(w, 0)};")
+            L.append("        end")
+        L.append("    end")
+        for e in self.windows:
+            if e.rdata_port not in terms:
+                terms.append(e.rdata_port)
+        if muxed:
+            terms.append("q_mux")
+        terms += [self.word_expr(r, qn[r.name]) for r in copies]
+        L.append("    assign reg_rdata = " + "\n                     | ".join(terms) + ";")
+        return L
+
+    def render_unused(self) -> list[str]:
+        used = 0
+        for r in self.regs:
+            if r.access != "RO" and not self.k[r.name].window:
+                used |= r.mask
+        if used == 0xFFFFFFFF:
+            return []
+        sl, b = [], 31
+        while b >= 0:
+            if used >> b & 1:
+                b -= 1
+                continue
+            hi = b
+            while b >= 0 and not used >> b & 1:
+                b -= 1
+            sl.append(f"reg_wdata[{hi}:{b + 1}]" if hi > b + 1 else f"reg_wdata[{hi}]")
+        return ["    // reg_wdata bits that no register of this block stores",
+                f"    wire unused = &{{1'b0, {', '.join(sl)}}};"]
+
+    def mux_word(self, r: Reg) -> str:
+        k = self.k[r.name]
+        if k.const:
+            return f"32'h{r.reset_int():08x}"
+        parts = sorted(r.parts(), key=lambda f: f.lsb)
+        items, bit = [], 0
+        for f in parts:
+            if f.lsb > bit:
+                items.append(f"{f.lsb - bit}'d0")
+            items.append(r.part_port(f))
+            bit = f.lsb + f.width
+        if bit < 32:
+            if r.signed:
+                items.append(f"{{{32 - bit}{{{r.part_port(parts[-1])}[{parts[-1].width - 1}]}}}}")
+            else:
+                items.append(f"{32 - bit}'d0")
+        return items[0] if len(items) == 1 else "{" + ", ".join(reversed(items)) + "}"
+
+
+def render(b: Block) -> str:
+    """Text of rtl/<b.module>.v."""
+    return _Gen(b).render()
+
+
+def ports(b: Block) -> list[tuple[str, str, int, bool, str]]:
+    """(direction, name, width, signed, comment) of the generated module's ports."""
+    return _Gen(b).ports()
+
+
+# ---------------------------------------------------------------------------- cycle model
+class Model:
+    """Cycle model of the generated block.  ``macros``: empc_formats.vh values (empc.header.read)
+    for build-dependent resets.
+
+    Per clock: set ``ins`` (every input port but clk, by name), read ``comb(ins)`` (the
+    combinational outputs and reg_rdata in this clock), then ``clock(ins)`` (the rising edge);
+    ``state`` then holds every registered output."""
+
+    def __init__(self, b: Block, macros: dict | None = None):
+        self.g = _Gen(b)
+        self.b = b
+        self.macros = macros or {}
+        self.ports = self.g.ports()
+        self.state: dict[str, int] = {}
+        self.q = 0                      # read data of the copies / mux (registered)
+        self.reset()
+
+    def _reset_of(self, r: Reg, f: Field) -> int:
+        if isinstance(f.reset, str):
+            return self.macros[f.reset.removeprefix("EMPC_")] & ((1 << f.width) - 1)
+        if f.reset is not None and r.fields:
+            return f.reset
+        return (r.reset >> f.lsb) & ((1 << f.width) - 1)
+
+    def reset(self) -> None:
+        for d, n, w, _, _ in self.ports:
+            if d == "output" and self.g.is_reg_out(n):
+                self.state[n] = 0
+        for r, k, f, p in self.g.each_part(self.g.regs):
+            if k.stored:
+                self.state[p] = self._reset_of(r, f)
+        self.q = 0
+
+    def _value(self, r: Reg, ins: dict) -> int:
+        """32-bit read word of a readable register."""
+        k = self.g.k[r.name]
+        if k.const:
+            return r.reset_int()
+        v = 0
+        for f in r.parts():
+            p = r.part_port(f)
+            x = (self.state[p] if k.stored else ins[p]) & ((1 << f.width) - 1)
+            v |= x << f.lsb
+        if r.signed and not r.fields and v >> (r.width - 1):
+            v |= (0xFFFFFFFF << r.width) & 0xFFFFFFFF
+        return v
+
+    def _sel(self, e, addr: int) -> bool:
+        return any(r.offset == addr for r in self.g.members(e.name))
+
+    def comb(self, ins: dict) -> dict:
+        out = {}
+        rd = self.q
+        for e in self.g.windows:
+            mem = self.g.members(e.name)
+            sel = self._sel(e, ins["reg_addr"])
+            if any(m.access != "RO" for m in mem):
+                g = self.g.window_guard(e.name)
+                out[f"{e.name}_we"] = int(ins["reg_wr"] and sel and not (g and ins[g]))
+            out[f"{e.name}_re"] = int(ins["reg_rd"] and sel)
+            if e.idx:
+                ib = self.g.idx_bits(mem)
+                out[f"{e.name}_idx"] = (ins["reg_addr"] - mem[0].offset) & ((1 << ib) - 1)
+        for p in {e.rdata_port for e in self.g.windows}:
+            rd |= ins[p]
+        out["reg_rdata"] = rd
+        return out
+
+    def _ok(self, r: Reg, ins: dict, wd: int) -> bool:
+        if r.guard and ins[r.guard]:
+            return False
+        for f in r.parts():
+            if f.legal is not None and ((wd >> f.lsb) & ((1 << f.width) - 1)) not in set(f.legal):
+                return False
+        return True
+
+    def clock(self, ins: dict) -> None:
+        g, s = self.g, self.state
+        addr, wd = ins["reg_addr"], ins["reg_wdata"]
+        # read path: copies / mux capture the pre-edge values
+        q = 0
+        if ins["reg_rd"]:
+            for r in g.regs:
+                if g.k[r.name].readable and r.offset == addr:
+                    q = self._value(r, ins)
+        for r, k, f, p in g.each_part(g.regs):        # pulses drop
+            if k.pulses or k.key or k.wodata:
+                s[p] = 0
+        for e in g.strobes:
+            s[f"{e.name}_we"] = 0
+        if g.refuse:
+            s["wr_refused"] = 0
+        if ins["rst"]:
+            self.reset()
+            return
+        self.q = q
+        old = dict(s)                   # W1C: a write clears from the value before this clock's set
+        for r, k, f, p in g.each_part(g.regs):
+            if k.w1c and ins[f"{p}_set"]:
+                s[p] = 1
+        if ins["reg_wr"]:
+            for e in g.windows:
+                gd = g.window_guard(e.name)
+                if gd and ins[gd] and self._sel(e, addr):
+                    s["wr_refused"] = 1
+            for r in g.regs:
+                k = g.k[r.name]
+                if r.offset != addr or r.access == "RO" or k.window:
+                    continue
+                if not self._ok(r, ins, wd):
+                    s["wr_refused"] = 1
+                    continue
+                if k.strobe:
+                    mem = g.members(r.ext)
+                    s[f"{r.ext}_we"] = 1 << mem.index(r)
+                    s[f"{r.ext}_wdata"] = wd & ((1 << r.width) - 1)
+                    continue
+                for f in r.parts():
+                    p = r.part_port(f)
+                    x = (wd >> f.lsb) & ((1 << f.width) - 1)
+                    if k.w1c:
+                        s[p] = old[p] & ~x & 1
+                    elif k.stored:
+                        s[p] = f.floor if (f.floor is not None and x < f.floor) else x
+                    elif k.pulses:
+                        s[p] = x
+                    elif k.key:
+                        s[p] = int(x == r.key)
+                    elif k.wodata:
+                        s[p] = 1
+                        s[f"{p}_data"] = x

@@ -1,0 +1,333 @@
+// Generated from gen/empc/regmap.py by gen/empc/regblock.py (python -m empc.regmap --all). Do not edit.
+//
+// axis_regs: registers of one axis (mpc_axis).
+//
+// Write decode, stored registers with their reset values, command pulses, W1C bits and
+// the read path of the registers of this block in gen/empc/regmap.py (what each register
+// is and the rules: gen/empc/regblock.py, docs/registers.md).  Ports: a stored register
+// or field is an output named after it, a read-only value an input of the same name.
+// Read path: gated copies (0 unless read) ORed.
+// Parameters: none (build-dependent reset values are empc_formats.vh macros).
+// Latency: writes act in the clock after reg_wr (window strobes: combinational);
+// reg_rdata is valid the clock after reg_rd and 0 in every other clock.
+// Reset: synchronous (rst); stored registers to the map's reset values, pulses and read
+// data to 0.
+`default_nettype none
+`include "empc_formats.vh"
+module axis_regs (
+    input  wire        clk,
+    input  wire        rst,
+    input  wire        reg_wr,               // write strobe (1 clock) for a word of this block
+    input  wire        reg_rd,               // read strobe (1 clock)
+    input  wire [7:0]  reg_addr,             // word offset in the block
+    input  wire [31:0] reg_wdata,
+    output wire [31:0] reg_rdata,            // read data, the clock after reg_rd (0 otherwise)
+    output reg         ctrl_enable,          // CTRL.enable (RW)
+    output reg         ctrl_run,             // CTRL.run (RW)
+    output reg         ctrl_complementary,   // CTRL.complementary (RW)
+    output reg  [7:0]  ctrl_pwm_per_control, // CTRL.pwm_per_control (RW)
+    output reg         cmd_fault_clear,      // CMD.fault_clear: pulse
+    output reg         cmd_adc_cal,          // CMD.adc_cal: pulse
+    output reg         cmd_ref_sync,         // CMD.ref_sync: pulse
+    output reg         cmd_coef_swap,        // CMD.coef_swap: pulse
+    output reg         cmd_clear_counters,   // CMD.clear_counters: pulse
+    output reg         cmd_align_clear,      // CMD.align_clear: pulse
+    input  wire        status_running,       // STATUS.running value
+    input  wire        status_bridges_on,    // STATUS.bridges_on value
+    input  wire        status_aligned,       // STATUS.aligned value
+    input  wire        status_adc_cal_busy,  // STATUS.adc_cal_busy value
+    input  wire        status_adc_cal_done,  // STATUS.adc_cal_done value
+    input  wire        status_core_ready,    // STATUS.core_ready value
+    input  wire        status_coef_bank,     // STATUS.coef_bank value
+    input  wire        status_swap_pending,  // STATUS.swap_pending value
+    input  wire        status_fault,         // STATUS.fault value
+    input  wire        fault_overcurrent,    // FAULT.overcurrent value
+    input  wire        fault_hall,           // FAULT.hall value
+    input  wire        fault_encoder,        // FAULT.encoder value
+    input  wire        fault_watchdog,       // FAULT.watchdog value
+    input  wire        fault_dclink,         // FAULT.dclink value
+    input  wire        fault_overrun,        // FAULT.overrun value
+    input  wire        fault_adc,            // FAULT.adc value
+    output reg  [6:0]  fault_mask,           // FAULT_MASK (RW)
+    output reg  [7:0]  dead_time,            // DEAD_TIME (RW)
+    output reg  [17:0] kdc,                  // KDC (RW)
+    output reg  [15:0] udc,                  // UDC (RW)
+    output reg  [15:0] udc_min,              // UDC_MIN (RW)
+    output reg  [15:0] udc_max,              // UDC_MAX (RW)
+    output reg  [11:0] oc_thresh,            // OC_THRESH (RW)
+    output reg  [2:0]  adc_off_we,           // write pulse, one-hot: ADC_OFF0, ADC_OFF1, ADC_OFF2
+    output reg  [11:0] adc_off_wdata,        // written value
+    input  wire [11:0] adc_off0,             // ADC_OFF0 value
+    input  wire [11:0] adc_off1,             // ADC_OFF1 value
+    input  wire [11:0] adc_off2,             // ADC_OFF2 value
+    output reg  [15:0] angle_cal,            // ANGLE_CAL (RW)
+    output reg  [15:0] hall_offset,          // HALL_OFFSET (RW)
+    output reg  [17:0] kacc,                 // KACC.kacc (RW)
+    output reg  [4:0]  kacc_shift,           // KACC.shift (RW)
+    output reg  signed [17:0] id_ref,        // ID_REF (RW)
+    output reg  signed [17:0] iq_ref,        // IQ_REF (RW)
+    output reg  [3:0]  seg_addr,             // SEG_ADDR (RW)
+    output wire        seg_we,               // write of a word of window seg (combinational)
+    output wire        seg_re,               // read of a word of window seg (combinational)
+    output wire [2:0]  seg_idx,              // word index in the window (SEG_LEN = 0)
+    output reg         seg_start,            // SEG_START: pulse
+    output reg  [3:0]  seg_start_data,       // SEG_START: written value
+    input  wire [31:0] pos,                  // POS value
+    output wire        stat_re,              // read of a word of window stat (combinational)
+    input  wire [15:0] theta,                // THETA value
+    input  wire [11:0] iabc0_a,              // IABC0.a value
+    input  wire [11:0] iabc0_b,              // IABC0.b value
+    input  wire [11:0] iabc1,                // IABC1 value
+    input  wire [15:0] latency,              // LATENCY value
+    output wire        cnt_re,               // read of a word of window cnt (combinational)
+    input  wire [7:0]  cnt_adc_miss,         // CNT_ADC_MISS value
+    input  wire [15:0] cnt_enc_err,          // CNT_ENC_ERR value
+    input  wire [31:0] seg_rdata,            // window read data (0 unless read)
+    input  wire [31:0] smem_rdata            // window read data (0 unless read)
+);
+
+    // ---------------- windows: address tables (one LUT level, no magnitude compares)
+    localparam [255:0] SEG_WORDS = 256'h0000000000000000000000000000000000000000000000000000000007f00000;
+    wire seg_sel = SEG_WORDS[reg_addr];
+    assign seg_we = reg_wr && seg_sel;
+    assign seg_re = reg_rd && seg_sel;
+    assign seg_idx = reg_addr[2:0] - 3'd4;   // word - SEG_LEN
+    localparam [255:0] STAT_WORDS = 256'h000000000000000000000000000000000000000000000000000000fa00000000;
+    wire stat_sel = STAT_WORDS[reg_addr];
+    assign stat_re = reg_rd && stat_sel;
+    localparam [255:0] CNT_WORDS = 256'h0000000000000000000000000000000000000000000000001fff080000000000;
+    wire cnt_sel = CNT_WORDS[reg_addr];
+    assign cnt_re = reg_rd && cnt_sel;
+
+    // ---------------- write decode: one predecode per page, a case on the low bits
+    wire wr_p0 = reg_wr && (reg_addr[7:5] == 3'd0);
+    always @(posedge clk) begin
+        cmd_fault_clear <= 1'd0;
+        cmd_adc_cal <= 1'd0;
+        cmd_ref_sync <= 1'd0;
+        cmd_coef_swap <= 1'd0;
+        cmd_clear_counters <= 1'd0;
+        cmd_align_clear <= 1'd0;
+        seg_start <= 1'b0;
+        adc_off_we <= 3'd0;
+        if (rst) begin
+            ctrl_enable <= 1'd0;
+            ctrl_run <= 1'd0;
+            ctrl_complementary <= 1'd0;
+            ctrl_pwm_per_control <= `EMPC_PWM_PER_CONTROL;
+            fault_mask <= 7'h7f;
+            dead_time <= 8'd50;
+            kdc <= 18'h10000;
+            udc <= 16'd36000;
+            udc_min <= 16'd0;
+            udc_max <= 16'hffff;
+            oc_thresh <= 12'd1800;
+            angle_cal <= 16'd0;
+            hall_offset <= 16'd0;
+            kacc <= `EMPC_KACC;
+            kacc_shift <= `EMPC_KACC_SHIFT;
+            id_ref <= 18'd0;
+            iq_ref <= 18'd0;
+            seg_addr <= 4'd0;
+            seg_start_data <= 4'd0;
+            adc_off_wdata <= 12'd0;
+        end else begin
+            if (wr_p0) begin
+                case (reg_addr[4:0])
+                    5'h0: begin   // CTRL
+                        ctrl_enable <= reg_wdata[0];
+                        ctrl_run <= reg_wdata[1];
+                        ctrl_complementary <= reg_wdata[2];
+                        ctrl_pwm_per_control <= (reg_wdata[15:8] == 8'd0) ? 8'd1 : reg_wdata[15:8];
+                    end
+                    5'h1: begin   // CMD
+                        cmd_fault_clear <= reg_wdata[0];
+                        cmd_adc_cal <= reg_wdata[1];
+                        cmd_ref_sync <= reg_wdata[2];
+                        cmd_coef_swap <= reg_wdata[3];
+                        cmd_clear_counters <= reg_wdata[4];
+                        cmd_align_clear <= reg_wdata[5];
+                    end
+                    5'h4: begin   // FAULT_MASK
+                        fault_mask <= reg_wdata[6:0];
+                    end
+                    5'h5: begin   // DEAD_TIME
+                        dead_time <= reg_wdata[7:0];
+                    end
+                    5'h6: begin   // KDC
+                        kdc <= reg_wdata[17:0];
+                    end
+                    5'h7: begin   // UDC
+                        udc <= reg_wdata[15:0];
+                    end
+                    5'h8: begin   // UDC_MIN
+                        udc_min <= reg_wdata[15:0];
+                    end
+                    5'h9: begin   // UDC_MAX
+                        udc_max <= reg_wdata[15:0];
+                    end
+                    5'ha: begin   // OC_THRESH
+                        oc_thresh <= reg_wdata[11:0];
+                    end
+                    5'hb: begin   // ADC_OFF0
+                        adc_off_we <= 3'b001;
+                        adc_off_wdata <= reg_wdata[11:0];
+                    end
+                    5'hc: begin   // ADC_OFF1
+                        adc_off_we <= 3'b010;
+                        adc_off_wdata <= reg_wdata[11:0];
+                    end
+                    5'hd: begin   // ADC_OFF2
+                        adc_off_we <= 3'b100;
+                        adc_off_wdata <= reg_wdata[11:0];
+                    end
+                    5'he: begin   // ANGLE_CAL
+                        angle_cal <= reg_wdata[15:0];
+                    end
+                    5'hf: begin   // HALL_OFFSET
+                        hall_offset <= reg_wdata[15:0];
+                    end
+                    5'h10: begin   // KACC
+                        kacc <= reg_wdata[17:0];
+                        kacc_shift <= reg_wdata[28:24];
+                    end
+                    5'h11: begin   // ID_REF
+                        id_ref <= reg_wdata[17:0];
+                    end
+                    5'h12: begin   // IQ_REF
+                        iq_ref <= reg_wdata[17:0];
+                    end
+                    5'h13: begin   // SEG_ADDR
+                        seg_addr <= reg_wdata[3:0];
+                    end
+                    5'h1b: begin   // SEG_START
+                        seg_start <= 1'b1;
+                        seg_start_data <= reg_wdata[3:0];
+                    end
+                    default: ;
+                endcase
+            end
+        end
+    end
+
+    // ---------------- read path: gated copies / shared read register, ORed
+    wire rd_p0 = reg_rd && (reg_addr[7:5] == 3'd0);
+    wire rd_p1 = reg_rd && (reg_addr[7:5] == 3'd1);
+    reg  [10:0]  q_ctrl;
+    reg  [8:0]   q_status;
+    reg  [6:0]   q_fault;
+    reg  [6:0]   q_fault_mask;
+    reg  [7:0]   q_dead_time;
+    reg  [17:0]  q_kdc;
+    reg  [15:0]  q_udc;
+    reg  [15:0]  q_udc_min;
+    reg  [15:0]  q_udc_max;
+    reg  [11:0]  q_oc_thresh;
+    reg  [11:0]  q_adc_off0;
+    reg  [11:0]  q_adc_off1;
+    reg  [11:0]  q_adc_off2;
+    reg  [15:0]  q_angle_cal;
+    reg  [15:0]  q_hall_offset;
+    reg  [22:0]  q_kacc;
+    reg  [17:0]  q_id_ref;
+    reg  [17:0]  q_iq_ref;
+    reg  [3:0]   q_seg_addr;
+    reg  [31:0]  q_pos;
+    reg  [15:0]  q_theta;
+    reg  [23:0]  q_iabc0;
+    reg  [11:0]  q_iabc1;
+    reg  [15:0]  q_latency;
+    reg  [7:0]   q_cnt_adc_miss;
+    reg  [15:0]  q_cnt_enc_err;
+    always @(posedge clk) begin
+        q_ctrl <= (rd_p0 && reg_addr[4:0] == 5'h0) ? {ctrl_pwm_per_control, ctrl_complementary, ctrl_run,
+            ctrl_enable} : 11'd0;
+        q_status <= (rd_p0 && reg_addr[4:0] == 5'h2) ? {status_fault, status_swap_pending, status_coef_bank,
+            status_core_ready, status_adc_cal_done, status_adc_cal_busy, status_aligned, status_bridges_on,
+            status_running} : 9'd0;
+        q_fault <= (rd_p0 && reg_addr[4:0] == 5'h3) ? {fault_adc, fault_overrun, fault_dclink, fault_watchdog,
+            fault_encoder, fault_hall, fault_overcurrent} : 7'd0;
+        q_fault_mask <= (rd_p0 && reg_addr[4:0] == 5'h4) ? fault_mask : 7'd0;
+        q_dead_time <= (rd_p0 && reg_addr[4:0] == 5'h5) ? dead_time : 8'd0;
+        q_kdc <= (rd_p0 && reg_addr[4:0] == 5'h6) ? kdc : 18'd0;
+        q_udc <= (rd_p0 && reg_addr[4:0] == 5'h7) ? udc : 16'd0;
+        q_udc_min <= (rd_p0 && reg_addr[4:0] == 5'h8) ? udc_min : 16'd0;
+        q_udc_max <= (rd_p0 && reg_addr[4:0] == 5'h9) ? udc_max : 16'd0;
+        q_oc_thresh <= (rd_p0 && reg_addr[4:0] == 5'ha) ? oc_thresh : 12'd0;
+        q_adc_off0 <= (rd_p0 && reg_addr[4:0] == 5'hb) ? adc_off0 : 12'd0;
+        q_adc_off1 <= (rd_p0 && reg_addr[4:0] == 5'hc) ? adc_off1 : 12'd0;
+        q_adc_off2 <= (rd_p0 && reg_addr[4:0] == 5'hd) ? adc_off2 : 12'd0;
+        q_angle_cal <= (rd_p0 && reg_addr[4:0] == 5'he) ? angle_cal : 16'd0;
+        q_hall_offset <= (rd_p0 && reg_addr[4:0] == 5'hf) ? hall_offset : 16'd0;
+        q_kacc <= (rd_p0 && reg_addr[4:0] == 5'h10) ? {kacc_shift, kacc} : 23'd0;
+        q_id_ref <= (rd_p0 && reg_addr[4:0] == 5'h11) ? id_ref : 18'd0;
+        q_iq_ref <= (rd_p0 && reg_addr[4:0] == 5'h12) ? iq_ref : 18'd0;
+        q_seg_addr <= (rd_p0 && reg_addr[4:0] == 5'h13) ? seg_addr : 4'd0;
+        q_pos <= (rd_p1 && reg_addr[4:0] == 5'h0) ? pos : 32'd0;
+        q_theta <= (rd_p1 && reg_addr[4:0] == 5'h2) ? theta : 16'd0;
+        q_iabc0 <= (rd_p1 && reg_addr[4:0] == 5'h8) ? {iabc0_b, iabc0_a} : 24'd0;
+        q_iabc1 <= (rd_p1 && reg_addr[4:0] == 5'h9) ? iabc1 : 12'd0;
+        q_latency <= (rd_p1 && reg_addr[4:0] == 5'ha) ? latency : 16'd0;
+        q_cnt_adc_miss <= (rd_p1 && reg_addr[4:0] == 5'h1d) ? cnt_adc_miss : 8'd0;
+        q_cnt_enc_err <= (rd_p1 && reg_addr[4:0] == 5'h1e) ? cnt_enc_err : 16'd0;
+        if (rst) begin
+            q_ctrl <= 11'd0;
+            q_status <= 9'd0;
+            q_fault <= 7'd0;
+            q_fault_mask <= 7'd0;
+            q_dead_time <= 8'd0;
+            q_kdc <= 18'd0;
+            q_udc <= 16'd0;
+            q_udc_min <= 16'd0;
+            q_udc_max <= 16'd0;
+            q_oc_thresh <= 12'd0;
+            q_adc_off0 <= 12'd0;
+            q_adc_off1 <= 12'd0;
+            q_adc_off2 <= 12'd0;
+            q_angle_cal <= 16'd0;
+            q_hall_offset <= 16'd0;
+            q_kacc <= 23'd0;
+            q_id_ref <= 18'd0;
+            q_iq_ref <= 18'd0;
+            q_seg_addr <= 4'd0;
+            q_pos <= 32'd0;
+            q_theta <= 16'd0;
+            q_iabc0 <= 24'd0;
+            q_iabc1 <= 12'd0;
+            q_latency <= 16'd0;
+            q_cnt_adc_miss <= 8'd0;
+            q_cnt_enc_err <= 16'd0;
+        end
+    end
+    assign reg_rdata = seg_rdata
+                     | smem_rdata
+                     | {16'd0, q_ctrl[10:3], 5'd0, q_ctrl[2:0]}
+                     | {23'd0, q_status}
+                     | {25'd0, q_fault}
+                     | {25'd0, q_fault_mask}
+                     | {24'd0, q_dead_time}
+                     | {14'd0, q_kdc}
+                     | {16'd0, q_udc}
+                     | {16'd0, q_udc_min}
+                     | {16'd0, q_udc_max}
+                     | {20'd0, q_oc_thresh}
+                     | {20'd0, q_adc_off0}
+                     | {20'd0, q_adc_off1}
+                     | {20'd0, q_adc_off2}
+                     | {16'd0, q_angle_cal}
+                     | {16'd0, q_hall_offset}
+                     | {3'd0, q_kacc[22:18], 6'd0, q_kacc[17:0]}
+                     | {{14{q_id_ref[17]}}, q_id_ref[17:0]}
+                     | {{14{q_iq_ref[17]}}, q_iq_ref[17:0]}
+                     | {28'd0, q_seg_addr}
+                     | q_pos
+                     | {16'd0, q_theta}
+                     | {4'd0, q_iabc0[23:12], 4'd0, q_iabc0[11:0]}
+                     | {20'd0, q_iabc1}
+                     | {16'd0, q_latency}
+                     | {24'd0, q_cnt_adc_miss}
+                     | {16'd0, q_cnt_enc_err};
+    // reg_wdata bits that no register of this block stores
+    wire unused = &{1'b0, reg_wdata[31:29], reg_wdata[23:18]};
+endmodule
+`default_nettype wire

@@ -1,0 +1,250 @@
+"""The firmware driver and C header against the RTL: fw/empc_drv.c, compiled into a shared
+library (flow/fw_build.py, tb/empc_drv_host.c), drives lx_rocon_top (tb/hdl/cosim_top.v, Icarus)
+through the LPC4088 EMC bus-functional model (tb/emc_bfm.py).
+
+The driver's two bus functions are ctypes callbacks that run the BFM's coroutines
+(cocotb.task.bridge / resume: the C code runs in a thread that blocks while the simulator
+performs each access).  The callbacks translate the CPU byte address the C code computes
+into the word on the FPGA's emc_a pins as the LPC4088 EMC does (CS0 at 0x80000000, 32-bit
+bus, SCS.EMCSC = 0: emc_a = byte address bits [15:2]); any other address fails the test.
+
+* registers_vs_header: every register of the compiled C header's table (EMPC_GLOBAL_REGS,
+  EMPC_AXIS_REGS; addresses from its address macros): the names are the map's; after reset
+  it reads its _RESET in the _RESET_MASK bits (build-dependent fields: the build's value);
+  WO registers read 0; every RW register reads back a written pattern in its _BITS
+  (sign-extended if _SIGNED) and is restored.
+* driver_flow: empc_init (ID, VERSION, CAPS against empc_formats.vh), empc_axis_config
+  (read back by the driver and checked here over the bus), refused with the bridges on
+  (empc_axis_enable), empc_coef_load of another image (alg1 speed) into the inactive bank
+  and the swap (the bank's decoded configuration, seen in mpc_coef_mem, is the image's;
+  the window writes are the image words in order), empc_status_read against plain reads,
+  the watchdog fault: empc_wdog_set(1) expires it, empc_fault_clear reports the cause while
+  it is present, and clears it after empc_wdog_kick.
+"""
+from __future__ import annotations
+
+import ctypes
+import os
+from pathlib import Path
+
+import cocotb
+from cocotb.clock import Clock
+from cocotb.task import bridge, resume
+from cocotb.triggers import ClockCycles
+
+from emc_bfm import EmcBfm
+from empc import header, image, regmap
+
+ROOT = Path(__file__).resolve().parents[1]
+EMC_BASE = 0x80000000
+AW = 14
+
+
+class HostReg(ctypes.Structure):
+    _fields_ = [("name", ctypes.c_char_p), ("axis_block", ctypes.c_uint32), ("ofs", ctypes.c_uint32),
+                ("access", ctypes.c_uint32), ("reset", ctypes.c_uint32), ("reset_mask", ctypes.c_uint32),
+                ("bits", ctypes.c_uint32), ("sign", ctypes.c_uint32)]
+
+
+class Caps(ctypes.Structure):
+    _fields_ = [(n, ctypes.c_uint32) for n in ("version", "naxes", "horizon", "img_layout", "pwm_per_control",
+                                               "pwm_half")]
+
+
+class AxisCfg(ctypes.Structure):
+    _fields_ = [(n, ctypes.c_uint32) for n in ("pwm_per_control", "complementary", "dead_time", "fault_mask", "kdc",
+                                               "udc_mv", "udc_min_mv", "udc_max_mv", "oc_thresh", "angle_cal",
+                                               "hall_offset")]
+
+
+class Status(ctypes.Structure):
+    _fields_ = [("status", ctypes.c_uint32), ("fault", ctypes.c_uint32), ("pos", ctypes.c_uint32),
+                ("speed", ctypes.c_int32), ("theta", ctypes.c_uint32), ("i_d", ctypes.c_int32),
+                ("i_q", ctypes.c_int32), ("u_d", ctypes.c_int32), ("u_q", ctypes.c_int32),
+                ("latency", ctypes.c_uint32), ("periods", ctypes.c_uint32)]
+
+
+RD_FN = ctypes.CFUNCTYPE(ctypes.c_uint32, ctypes.c_uint32)
+WR_FN = ctypes.CFUNCTYPE(None, ctypes.c_uint32, ctypes.c_uint32)
+EMPC_OK, EMPC_ERR_BUSY, EMPC_ERR_FAULT = 0, -4, -7
+
+
+def _roms() -> Path:
+    return Path(os.environ.get("EMPC_ROMS", ROOT / "build" / "roms" / "default"))
+
+
+class Env:
+    """The C library with its bus callbacks on the BFM, and the header's register table."""
+
+    def __init__(self, dut):
+        self.dut = dut
+        self.lib = ctypes.CDLL(os.environ["EMPC_HOST_LIB"])
+        self.bfm = EmcBfm(dut, pins=dict(cs_n="cpu_cs_n", oe_n="cpu_oe_n", we_n="cpu_we_n", a="cpu_a", d="cpu_d",
+                                         d_oe="cpu_d_oe", bus="emc_d_seen"))
+        self.writes: list[tuple[int, int]] = []
+        self.errors: list[str] = []
+        rd, wr = resume(self.bfm.read), resume(self.bfm.write)
+
+        def word(addr: int) -> int:
+            if addr & 3 or not EMC_BASE <= addr < EMC_BASE + (4 << AW):
+                raise ValueError(f"address {addr:#010x} is not a word of the EMC CS0 window")
+            return (addr - EMC_BASE) >> 2
+
+        def cb_rd(addr):
+            try:
+                return rd(word(addr))
+            except Exception as e:           # ctypes would swallow it: keep it for the test
+                self.errors.append(f"read {addr:#x}: {e!r}")
+                return 0
+
+        def cb_wr(addr, value):
+            try:
+                self.writes.append((word(addr), value))
+                wr(word(addr), value)
+            except Exception as e:
+                self.errors.append(f"write {addr:#x}: {e!r}")
+
+        self._cbs = (RD_FN(cb_rd), WR_FN(cb_wr))      # keep the callbacks alive
+        self.lib.empc_host_set_bus(*self._cbs)
+        for f in ("empc_host_global_addr", "empc_host_axis_addr", "empc_host_coef_addr"):
+            getattr(self.lib, f).restype = ctypes.c_uint32
+        n = ctypes.c_uint32.in_dll(self.lib, "empc_host_nregs").value
+        self.regs = list((HostReg * n).in_dll(self.lib, "empc_host_regs"))
+        self.macros = header.read(_roms() / "empc_formats.vh")
+
+    def addr(self, r: HostReg) -> int:
+        return self.lib.empc_host_axis_addr(0, r.ofs) if r.axis_block else self.lib.empc_host_global_addr(r.ofs)
+
+    def reg(self, name: str) -> HostReg:
+        return next(r for r in self.regs if r.name.decode() == name)
+
+    async def read(self, name: str) -> int:
+        return await self.bfm.read((self.addr(self.reg(name)) - EMC_BASE) >> 2)
+
+    async def call(self, fname: str, *args) -> int:
+        fn = getattr(self.lib, fname)
+
+        def blocking():                      # runs in a bridge thread; the bus callbacks resume the sim
+            return fn(*args)
+        blocking.__qualname__ = fname
+        rc = await bridge(blocking)()
+        assert not self.errors, self.errors
+        return rc
+
+    async def start(self):
+        d = self.dut
+        cocotb.start_soon(Clock(d.clk, 10, unit="ns").start())
+        d.rst_n.value = 0
+        d.enc_target.value = 0
+        d.idx_enable.value = 0
+        d.mark.value = 0
+        d.enc_glitch.value = 0
+        d.hall.value = 0b001
+        for i in range(3):
+            getattr(d, f"adc_code{i}").value = self.macros["ADC_OFFSET"]
+        self.bfm.idle()
+        await ClockCycles(d.clk, 20)
+        d.rst_n.value = 1
+        await ClockCycles(d.clk, 200)
+
+
+@cocotb.test()
+async def registers_vs_header(dut):
+    env = Env(dut)
+    await env.start()
+    names = {(r.axis_block, r.name.decode()) for r in env.regs}
+    assert names == {(0, r.name) for r in regmap.GLOBAL} | {(1, r.name) for r in regmap.AXIS}, \
+        "the header's register table is not the map's"
+    by_name = {r.name: r for r in regmap.GLOBAL + regmap.AXIS}
+    n_reset = n_rw = 0
+    for r in env.regs:
+        name = r.name.decode()
+        w = (env.addr(r) - EMC_BASE) >> 2
+        v = await env.bfm.read(w)
+        assert v & r.reset_mask == r.reset, f"{name} @word {w:#x}: {v:#x} after reset, header {r.reset:#x}"
+        if r.access != 0 and r.reset_mask != 0xFFFFFFFF:           # build-dependent fields: the build's
+            want = by_name[name].reset_word(env.macros)
+            assert v == want, f"{name}: {v:#x} after reset, build value {want:#x}"
+        n_reset += 1
+        if r.access == 1 and name != "CTRL":                      # RW (CTRL would switch the bridges on)
+            for pat in (0xFFFFFFFF, 0xA5A5A5A5 ^ (w * 0x9E3779B1 & 0xFFFFFFFF)):
+                await env.bfm.write(w, pat)
+                got = await env.bfm.read(w)
+                exp = pat & r.bits
+                if r.sign and exp & (r.bits + 1) >> 1:
+                    exp |= ~r.bits & 0xFFFFFFFF
+                assert got == exp, f"{name}: wrote {pat:#x}, read {got:#x}, header says {exp:#x}"
+            await env.bfm.write(w, v)
+            assert await env.bfm.read(w) == v, f"{name}: not restored"
+            n_rw += 1
+    dut._log.info("%d registers of fw/empc_regs.h read their reset value over the bus, %d RW registers "
+                  "read back two patterns in their _BITS", n_reset, n_rw)
+    assert n_reset == len(regmap.GLOBAL) + len(regmap.AXIS) and n_rw > 20
+
+
+@cocotb.test()
+async def driver_flow(dut):
+    env = Env(dut)
+    await env.start()
+    m = env.macros
+    caps = Caps()
+    assert await env.call("empc_init", ctypes.byref(caps)) == EMPC_OK
+    assert (caps.version, caps.naxes, caps.horizon, caps.img_layout, caps.pwm_per_control, caps.pwm_half) == \
+        (regmap.VERSION, 1, m["N"], image.LAYOUT, m["PWM_PER_CONTROL"], m["PWM_HALF_PERIOD"])
+    cfg = AxisCfg(pwm_per_control=0, complementary=0, dead_time=40, fault_mask=0x7F, kdc=0x10000, udc_mv=24000,
+                  udc_min_mv=12000, udc_max_mv=40000, oc_thresh=1500, angle_cal=0x1234, hall_offset=0x4321)
+    assert await env.call("empc_axis_config", ctypes.byref(caps), 0, ctypes.byref(cfg)) == EMPC_OK
+    want = {"DEAD_TIME": 40, "FAULT_MASK": 0x7F, "KDC": 0x10000, "UDC": 24000, "UDC_MIN": 12000,
+            "UDC_MAX": 40000, "OC_THRESH": 1500, "ANGLE_CAL": 0x1234, "HALL_OFFSET": 0x4321,
+            "CTRL": m["PWM_PER_CONTROL"] << 8}
+    got = {n: await env.read(n) for n in want}
+    assert got == want, got
+    assert await env.call("empc_fault_clear", 0, None) == EMPC_OK      # UDC_MIN..MAX were inconsistent on the way
+    # bridges on: the driver refuses to change the configuration
+    assert await env.call("empc_axis_enable", ctypes.byref(caps), 0, 1, 0) == EMPC_OK
+    await ClockCycles(dut.clk, 100)
+    assert (await env.read("STATUS")) >> 1 & 1, "bridges did not come on"
+    assert await env.call("empc_axis_config", ctypes.byref(caps), 0, ctypes.byref(cfg)) == EMPC_ERR_BUSY
+    assert await env.call("empc_axis_enable", ctypes.byref(caps), 0, 0, 0) == EMPC_OK
+    assert not (await env.read("STATUS")) >> 1 & 1
+    # coefficient image: another design into the inactive bank, then the swap
+    words = image.read_hex(_roms() / "coef_alg1_speed.hex")[:image.USED]
+    params = image.decode(words + [0] * (1024 - image.USED))
+    st0 = await env.read("STATUS")
+    n0 = len(env.writes)
+    arr = (ctypes.c_uint32 * len(words))(*words)
+    assert await env.call("empc_coef_load", 0, arr, len(words), 20) == EMPC_OK
+    coef_w = [(a, v) for a, v in env.writes[n0:] if a >= regmap.COEF_BASE]
+    assert coef_w == [(regmap.COEF_BASE + i, v) for i, v in enumerate(words)], "window writes are not the image"
+    st1 = await env.read("STATUS")
+    assert (st1 >> 6 & 1) != (st0 >> 6 & 1) and not st1 >> 7 & 1, (st0, st1)
+    mem = dut.u_top.g_axis[0].u_axis.u_core.u_mem
+    assert (int(mem.ncols.value), int(mem.pos.value), int(mem.alg2.value)) == \
+        (params.ncols, int(params.task == "position"), int(params.algorithm == 2)), "active bank is not the image"
+    # status snapshot
+    st = Status()
+    assert await env.call("empc_status_read", 0, ctypes.byref(st)) == EMPC_OK
+    plain = {n: await env.read(n) for n in ("STATUS", "FAULT", "THETA", "LATENCY")}
+    assert (st.status, st.fault, st.theta, st.latency) == tuple(plain.values())
+    # watchdog fault: expires after one PWM period, the clear reports the cause until the kick
+    assert await env.call("empc_wdog_set", 1) == EMPC_OK
+    await ClockCycles(dut.clk, 4 * 2 * m["PWM_HALF_PERIOD"])
+    fault_bit = 1 << regmap.AXIS[3].fields[3].lsb
+    assert regmap.AXIS[3].fields[3].name == "watchdog"
+    rem = ctypes.c_uint32(0)
+    assert await env.call("empc_fault_clear", 0, ctypes.byref(rem)) == EMPC_ERR_FAULT
+    assert rem.value & fault_bit, rem.value
+    await env.call("empc_wdog_kick")
+    assert await env.call("empc_fault_clear", 0, ctypes.byref(rem)) == EMPC_OK and rem.value == 0
+    assert await env.call("empc_wdog_set", 400) == EMPC_OK
+    dut._log.info("driver: init, config (+ refused with bridges on), %d-word image uploaded and swapped "
+                  "(ncols %d, %s), status, watchdog fault reported and cleared; %d bus writes by the C code",
+                  len(words), params.ncols, params.task, len(env.writes))
+
+
+def test_empc_drv():
+    import fw_build
+    from runner import BUILD, run
+    lib = fw_build.build_host_lib(BUILD / "fw")
+    run(toplevel="cosim_top", test_module="test_empc_drv", name="test_empc_drv",
+        extra_env={"EMPC_HOST_LIB": str(lib)})
