@@ -144,7 +144,7 @@ module ctrl_seq #(
 
     generate if (SW != 32 || UW != 24 || IW != 18 || WW != 32 || PW != 32 || AB != 16 ||
                  `EMPC_W_FRAC != 16 || `EMPC_TH_FRAC != 8 || N > 8 || THETA_LAT < 1 || THETA_LAT > 8 ||
-                 `EMPC_IN_Y != 0 || `EMPC_IN_OMEGA != 3 || `EMPC_IN_DX != 4)
+                 `EMPC_IN_Y != 0 || `EMPC_IN_OMEGA != 3 || `EMPC_IN_DX != 4 || !UC_MAP_OK)
     begin : g_bad_params
         ctrl_seq_unsupported_parameters u_error ();   // no such module: elaboration stops here
     end endgenerate
@@ -184,218 +184,25 @@ module ctrl_seq #(
     wire        tb  = mfirst ? ta : tp[0];
     wire        tr  = ta_d ^ ~tb ^ tc;          // 2 theta - theta_prev (theta if first)
 
-    // ---------------- microprogram (one word per step, block RAM) ----------------
-    localparam [3:0] OP_POS = 4'd0, OP_ZERO = 4'd1, OP_COPY = 4'd2, OP_REF = 4'd3, OP_DIFF = 4'd4,
-                     OP_OM = 4'd5, OP_FIX3 = 4'd6, OP_W6 = 4'd7, OP_ZPOS = 4'd8, OP_END = 4'd9,
-                     OP_STAT = 4'd10, OP_SEND = 4'd11, OP_CNT = 4'd12, OP_CEND = 4'd13;
-    localparam [3:0] SRC_POS = 4'd0, SRC_E0 = 4'd1, SRC_E1 = 4'd2, SRC_E2 = 4'd3, SRC_U0 = 4'd4,
-                     SRC_U1 = 4'd5, SRC_IDR = 4'd6, SRC_IQR = 4'd7, SRC_ID = 4'd8, SRC_IQ = 4'd9;
-    localparam integer NUC = 14 + 3 * (N + 1);
-    localparam integer PCI_STAT = 64;                  // entry points: status program (3 words),
-    localparam integer PCI_RSTZ = PCI_STAT + 3;        // reset zeroing (6 words, falls through into)
-    localparam integer PCI_CNT  = PCI_RSTZ + 6;        // the counter sweep
-    localparam [6:0]   PC_STAT = PCI_STAT[6:0], PC_RSTZ = PCI_RSTZ[6:0], PC_CNT = PCI_CNT[6:0];
-    localparam integer NCNT = 14;   // SAT_OPERAND .. CNT_OVERRUN, PERIODS
-    // Pass kinds PK_*: the non-reference kinds are 0..6 (PK_CNT also for the ops without a pass),
-    // the reference kinds {1, 0, task_pos, m == 0}, so that the microword holds the kind but
-    // for the one bit that task_pos decides.
-    localparam [3:0] PK_POS = 4'd0, PK_DIFF = 4'd1, PK_OM = 4'd2, PK_FIX3 = 4'd3, PK_W6 = 4'd4,
-                     PK_STAT = 4'd5, PK_CNT = 4'd6, PK_FIX = 4'd7, PK_REFS = 4'd8, PK_REFS0 = 4'd9, PK_REFP = 4'd10,
-                     PK_REFP0 = 4'd11;
-    localparam [5:0] ST_REF = `EMPC_A_REF, ST_I_D = `EMPC_A_I_D, ST_SPEED = `EMPC_A_SPEED;
-    // Microword, 36 bits: the fields op, src, wa (core address), ref_age (N - m) and what is
-    // decoded from them once, here, instead of in logic behind the block RAM: the status
-    // address, one flag per pass op (registered as is_*), "subtracts" (but for the reference,
-    // whose sign task_pos decides) and the pass kind (its bit 1 for a reference: task_pos).
-    // A second 36-bit word per step (ub, the block RAM's second port) holds the engine's decode:
-    // the stage selects (active low, one per source SRC_*), the next-state classes of E_OP (to
-    // E_STG, to E_PASS, to E_IDLE; the waits are the op flags), the zero writes, the end markers,
-    // "back to E_OP after the pass", "saturated to SW bits", "writes a status word" and the
-    // counter source checks.
-    localparam integer UW_AGE = 14, UW_ST = 18, UW_F = 24, UW_SUB = 32, UW_PK = 33;
-    localparam integer UB_NSEL = 0, UB_STG = 10, UB_PASS = 11, UB_ZERO = 12, UB_IDLE = 13, UB_END = 14,
-                       UB_CEND = 15, UB_COPY = 16, UB_WZ = 17, UB_ZPOS = 18, UB_BACK = 19, UB_SAT = 20,
-                       UB_CSOK = 21, UB_STOK = 22, UB_STW = 23;
-    localparam integer NSRC = 10;  // SRC_POS .. SRC_IQ
-    reg [71:0] ucode [0:127];      // (initial values only: copied into urom as {ub, uw})
-    function [35:0] uwordb;
-        input [3:0] op;
-        input [3:0] src;
-        input [2:0] m;
-        reg   [NSRC-1:0] ns;
-        begin
-            ns = {src != SRC_IQ, src != SRC_ID, src != SRC_IQR, src != SRC_IDR, src != SRC_U1,
-                  src != SRC_U0, src != SRC_E2, src != SRC_E1, src != SRC_E0, src != SRC_POS};
-            uwordb = {12'd0,
-                      // status word out of this pass: REF (m = 0), I_D / I_Q, SPEED, U_D / U_Q
-                      ((op == OP_REF) && (m == 3'd0)) || (op == OP_DIFF) || (op == OP_FIX3) || (op == OP_STAT),
-                      src != 4'd15, (src != 4'd13) && (src != 4'd15),
-                      (op == OP_POS) || (op == OP_REF) || (op == OP_W6),
-                      (op == OP_OM) || (op == OP_STAT) || (op == OP_CNT),
-                      op == OP_ZPOS, op == OP_ZERO, op == OP_COPY, op == OP_CEND, op == OP_END,
-                      !((op == OP_POS) || (op == OP_COPY) || (op == OP_STAT) || (op == OP_DIFF) ||
-                        (op == OP_REF) || (op == OP_OM) || (op == OP_FIX3) || (op == OP_W6) ||
-                        (op == OP_CNT) || (op == OP_ZERO) || (op == OP_ZPOS)),
-                      (op == OP_ZERO) || (op == OP_ZPOS),
-                      (op == OP_FIX3) || (op == OP_W6) || (op == OP_CNT),
-                      (op == OP_POS) || (op == OP_COPY) || (op == OP_STAT), ns};
-        end
-    endfunction
-    function [35:0] uworda;
-        input [3:0] op;
-        input [3:0] src;
-        input [5:0] wa;
-        input [2:0] m;
-        reg   [5:0] st;
-        reg   [2:0] k;         // pass kind, bits 2:0 (bit 3: op == OP_REF)
-        reg   [3:0] age;       // ref_age = N - m
-        begin
-            age = N[3:0] - {1'b0, m};
-            st = (op == OP_REF) ? ST_REF : (op == OP_DIFF) ? (ST_I_D + {5'd0, src[0]}) :
-                 (op == OP_FIX3) ? ST_SPEED : wa;
-            case (op)
-                OP_POS: k = PK_POS[2:0];
-                OP_REF: k = (m == 3'd0) ? PK_REFS0[2:0] : PK_REFS[2:0];
-                OP_DIFF: k = PK_DIFF[2:0];
-                OP_OM: k = PK_OM[2:0];
-                OP_FIX3: k = PK_FIX3[2:0];
-                OP_W6: k = PK_W6[2:0];
-                OP_STAT: k = PK_STAT[2:0];
-                default: k = PK_CNT[2:0];
-            endcase
-            uworda = {k, (op == OP_POS) || (op == OP_DIFF) || (op == OP_W6),
-                     op == OP_CNT, op == OP_STAT, op == OP_W6, op == OP_FIX3, op == OP_OM,
-                     op == OP_DIFF, op == OP_REF, op == OP_POS, st, age, wa, src, op};
-        end
-    endfunction
-    function [71:0] uword;
-        input [3:0] op;
-        input [3:0] src;
-        input [5:0] wa;
-        input [2:0] m;
-        uword = {uwordb(op, src, m), uworda(op, src, wa, m)};
-    endfunction
-    // Pass control table, one word per (pass kind, bit j): which registers shift, when the
-    // pass ends, sign holds, flag strobes (PC_* bits below).
-    localparam integer PC_XS = 0, PC_PE = 1, PC_SS = 2, PC_HA = 3, PC_HB = 4, PC_CA = 5, PC_CB = 6,
-                       PC_R1 = 7, PC_R2 = 8, PC_R3 = 9, PC_AL = 10, PC_L31 = 11, PC_L16 = 12, PC_F1 = 13,
-                       PC_F2 = 14, PC_F3 = 15, PC_W0 = 16, PC_G = 17;
-    function [17:0] pctl;
-        input [3:0] k;
-        input integer b;
-        reg [17:0] w;
-        reg refp, refs, m0k;
-        begin
-            w = 18'd0;
-            refp = (k == PK_REFP0) || (k == PK_REFP);
-            refs = (k == PK_REFS0) || (k == PK_REFS);
-            m0k  = (k == PK_REFP0) || (k == PK_REFS0);
-            case (k)
-                PK_POS: begin                                   // dpos = count - count_prev (32 bits)
-                    w[PC_XS] = 1'b1; w[PC_R1] = 1'b1; w[PC_R3] = 1'b1; w[PC_AL] = 1'b1;
-                    w[PC_PE] = (b == 31); w[PC_F1] = (b == 15); w[PC_F2] = (b > 15); w[PC_F3] = (b == 31);
-                    w[PC_G] = (b == 23);
-                end
-                PK_DIFF: begin                                  // y (copy) at bit 0, dx = y - y_prev
-                    w[PC_XS] = 1'b1; w[PC_AL] = 1'b1; w[PC_SS] = (b < 32); w[PC_HB] = (b > 17);
-                    w[PC_CB] = (b == 17); w[PC_R1] = (b < 18); w[PC_W0] = (b == 0); w[PC_PE] = (b == 39);
-                end
-                PK_OM: begin                                    // omega (raw) = spd + ka
-                    w[PC_AL] = 1'b1; w[PC_HA] = (b > 31); w[PC_CA] = (b == 31); w[PC_R2] = (b < 32);
-                    w[PC_R3] = (b >= 16 && b < 32); w[PC_L31] = (b < 31); w[PC_L16] = (b < 16);
-                    w[PC_F1] = (b == 31); w[PC_F2] = (b > 31); w[PC_F3] = (b == 39); w[PC_PE] = (b == 39);
-                end
-                PK_FIX3: begin                                  // omega saturated -> X, om, SPEED
-                    w[PC_XS] = 1'b1; w[PC_AL] = 1'b1; w[PC_SS] = (b < 32); w[PC_HA] = (b > 31);
-                    w[PC_CA] = (b == 31); w[PC_R2] = (b < 32); w[PC_L31] = (b < 31); w[PC_PE] = (b == 39);
-                end
-                PK_W6: begin                                    // dx2 = omega - omega_prev
-                    w[PC_XS] = 1'b1; w[PC_AL] = 1'b1; w[PC_HA] = (b > 31); w[PC_CA] = (b == 31);
-                    w[PC_HB] = (b > 31); w[PC_CB] = (b == 31); w[PC_R1] = (b < 32); w[PC_R2] = (b < 32);
-                    w[PC_PE] = (b == 39); w[PC_G] = (b == 31);
-                end
-                PK_STAT: begin                                  // a status word out of X
-                    w[PC_XS] = 1'b1; w[PC_AL] = 1'b1; w[PC_SS] = (b < 32); w[PC_PE] = (b == 32);
-                end
-                PK_CNT: begin                                   // counter + event, 32 bits
-                    w[PC_AL] = 1'b1; w[PC_SS] = (b < 32); w[PC_CA] = (b == 31); w[PC_PE] = (b == 32);
-                end
-                PK_FIX: begin                                   // E_FIX (second port, pwf): end, bits
-                    w[PC_PE] = (b == 39); w[PC_XS] = (b >= 31); //   31.. of the saturation pattern
-                end
-                default: begin
-                    if (refp) begin                             // (w - count << 32) >> 24 + w[23]
-                        w[PC_AL] = (b >= 24); w[PC_XS] = (b >= 24); w[PC_R1] = (b >= 32);
-                        w[PC_F1] = (b == 23); w[PC_F2] = (b >= 24); w[PC_SS] = m0k && b >= 24 && b < 56;
-                        w[PC_PE] = (b == 63); w[PC_G] = (b == 55);
-                    end else if (refs) begin                    // (w >> 16) + w[15]
-                        w[PC_AL] = (b >= 16); w[PC_XS] = (b >= 16 && b < 56);
-                        w[PC_SS] = m0k && b >= 16 && b < 48; w[PC_PE] = (b == 63); w[PC_G] = (b == 47);
-                    end
-                end
-            endcase
-            pctl = w;
-        end
-    endfunction
+    // ---------------- microprogram and pass table (block RAM) ----------------
+    // Both images are generated from the tables of gen/empc/rtlmodel/ctrl_seq.py (python -m
+    // empc.ucode): the microprogram urom holds two 36-bit words per step, uw (the fields and the
+    // op flags) at pc and ub (the engine's decode: stage selects, next-state classes, writes,
+    // end markers) at 128 + pc, one image per horizon N; the pass table crom one 18-bit word per
+    // (pass kind, bit): which registers shift, when the pass ends, sign holds, flag strobes.
+`include "ctrl_seq_ucode.vh"
+    localparam integer NSRC = UB_TO_STG - UB_NSEL;          // stage sources SRC_POS .. SRC_IQ (ub.nsel)
     (* rom_style = "block" *) reg [17:0] crom [0:1023];     // pass table (kinds 0..11, 64 bits each)
     (* rom_style = "block" *) reg [35:0] urom [0:255];      // microprogram: uw at pc, ub at 128 + pc
-    integer ui, ua, uk;
+    integer ui;
     initial begin
-        for (ui = 0; ui < 1024; ui = ui + 1) crom[ui] = 18'd0;
-        for (uk = 0; uk < 12; uk = uk + 1)
-            for (ui = 0; ui < 64; ui = ui + 1) crom[64 * uk + ui] = pctl(uk[3:0], ui);
-        for (ui = 0; ui < 128; ui = ui + 1) ucode[ui] = uword(OP_SEND, 4'd0, 6'd0, 3'd0);
-        ucode[0] = uword(OP_POS, SRC_POS, `EMPC_IN_DX + 6'd3, 3'd0);      // dx3 = dpos << 8
-        ucode[1] = uword(OP_ZERO, 4'd0, `EMPC_IN_DX + 6'd4, 3'd0);        // dx4 = 0
-        ucode[2] = uword(OP_COPY, SRC_E0, `EMPC_IN_EBAR + 6'd0, 3'd0);    // ebar_prev
-        ucode[3] = uword(OP_COPY, SRC_E1, `EMPC_IN_EBAR + 6'd1, 3'd0);
-        ucode[4] = uword(OP_COPY, SRC_E2, `EMPC_IN_EBAR + 6'd2, 3'd0);
-        ucode[5] = uword(OP_COPY, SRC_U0, `EMPC_IN_UPREV + 6'd0, 3'd0);   // u_prev
-        ucode[6] = uword(OP_COPY, SRC_U1, `EMPC_IN_UPREV + 6'd1, 3'd0);
-        for (ui = 0; ui <= N; ui = ui + 1) begin                          // wref[m] = (id_ref, iq_ref, w3)
-            ua = `EMPC_IN_WREF + 3 * ui;
-            ucode[7 + 3 * ui] = uword(OP_COPY, SRC_IDR, ua[5:0], 3'd0);
-            ua = ua + 1;
-            ucode[8 + 3 * ui] = uword(OP_COPY, SRC_IQR, ua[5:0], 3'd0);
-            ua = ua + 1;
-            ucode[9 + 3 * ui] = uword(OP_REF, 4'd0, ua[5:0], ui[2:0]);
-        end
-        ucode[NUC - 7] = uword(OP_DIFF, SRC_ID, `EMPC_IN_Y + 6'd0, 3'd0);    // y0 = i_d; dx0 at +4
-        ucode[NUC - 6] = uword(OP_DIFF, SRC_IQ, `EMPC_IN_Y + 6'd1, 3'd0);    // y1 = i_q; dx1 at +4
-        ucode[NUC - 5] = uword(OP_OM, 4'd0, 6'd0, 3'd0);
-        ucode[NUC - 4] = uword(OP_FIX3, 4'd0, `EMPC_IN_OMEGA, 3'd0);         // omega (and y2 = omega)
-        ucode[NUC - 3] = uword(OP_W6, 4'd0, `EMPC_IN_DX + 6'd2, 3'd0);       // dx2
-        ucode[NUC - 2] = uword(OP_ZPOS, 4'd0, `EMPC_IN_Y + 6'd2, 3'd0);      // y2 = 0 (position task)
-        ucode[NUC - 1] = uword(OP_END, 4'd0, 6'd0, 3'd0);
-        // status program, at every modulation start: U_D, U_Q = the u applied
-        ucode[PCI_STAT + 0] = uword(OP_STAT, SRC_U0, `EMPC_A_U_D, 3'd0);
-        ucode[PCI_STAT + 1] = uword(OP_STAT, SRC_U1, `EMPC_A_U_Q, 3'd0);
-        ucode[PCI_STAT + 2] = uword(OP_SEND, 4'd0, 6'd0, 3'd0);
-        // after rst: the status words to 0 (then the counters, zero sweep)
-        ucode[PCI_RSTZ + 0] = uword(OP_CNT, 4'd15, `EMPC_A_SPEED, 3'd0);
-        ucode[PCI_RSTZ + 1] = uword(OP_CNT, 4'd15, `EMPC_A_I_D, 3'd0);
-        ucode[PCI_RSTZ + 2] = uword(OP_CNT, 4'd15, `EMPC_A_I_Q, 3'd0);
-        ucode[PCI_RSTZ + 3] = uword(OP_CNT, 4'd15, `EMPC_A_U_D, 3'd0);
-        ucode[PCI_RSTZ + 4] = uword(OP_CNT, 4'd15, `EMPC_A_U_Q, 3'd0);
-        ucode[PCI_RSTZ + 5] = uword(OP_CNT, 4'd15, `EMPC_A_REF, 3'd0);
-        // counter sweep, after the modulation of a control period (or zeroing them)
-        for (ui = 0; ui < NCNT - 1; ui = ui + 1) begin
-            ua = `EMPC_A_SAT_OPERAND + ui;
-            ucode[PCI_CNT + ui] = uword(OP_CNT, ui[3:0], ua[5:0], 3'd0);
-        end
-        ucode[PCI_CNT + NCNT - 1] = uword(OP_CNT, 4'd13, `EMPC_A_PERIODS, 3'd0);
-        ucode[PCI_CNT + NCNT] = uword(OP_CEND, 4'd0, 6'd0, 3'd0);
-        for (ui = 0; ui < 128; ui = ui + 1) begin
-            urom[ui] = ucode[ui][35:0];
-            urom[128 + ui] = ucode[ui][71:36];
-        end
+`include "ctrl_seq_rom.vh"
     end
     reg  [6:0]  pc;
     reg  [6:0]  pc_next;
     reg  [35:0] uw, ub;             // ucode[pc]
-    wire [3:0]  u_op  = uw[3:0];
-    wire [3:0]  u_src = uw[7:4];
-    wire [5:0]  u_wa  = uw[13:8];
+    wire [3:0]  u_src = uw[UW_SRC +: 4];
+    wire [5:0]  u_wa  = uw[UW_WA +: 6];
 
     // engine states
     localparam [2:0] E_IDLE = 3'd0, E_OP = 3'd1, E_STG = 3'd2, E_LD = 3'd3, E_PASS = 3'd4,
@@ -410,14 +217,14 @@ module ctrl_seq #(
     // so the registered flags are valid from the clock after E_OP on: in every state where the
     // pass datapath acts.  What acts in E_OP itself (next state, pass table and status
     // addresses, ALU carry preset, zero writes) uses the unregistered op_* bits.
-    wire op_pos  = uw[UW_F + 0];
-    wire op_ref  = uw[UW_F + 1];
-    wire op_diff = uw[UW_F + 2];
-    wire op_om   = uw[UW_F + 3];
-    wire op_fix3 = uw[UW_F + 4];
-    wire op_w6   = uw[UW_F + 5];
-    wire op_stat = uw[UW_F + 6];
-    wire op_cnt  = uw[UW_F + 7];
+    wire op_pos  = uw[UW_POS];
+    wire op_ref  = uw[UW_REF];
+    wire op_diff = uw[UW_DIFF];
+    wire op_om   = uw[UW_OM];
+    wire op_fix3 = uw[UW_FIX3];
+    wire op_w6   = uw[UW_W6];
+    wire op_stat = uw[UW_STAT];
+    wire op_cnt  = uw[UW_CNT];
     wire op_sub  = uw[UW_SUB] || (op_ref && task_pos);     // the pass subtracts B
     reg  is_pos, is_ref, is_diff, is_om, is_fix3, is_w6, is_stat, is_cnt, diff_q, sub, is_sat, is_back, is_stw;
     always @(posedge clk) begin
@@ -443,7 +250,7 @@ module ctrl_seq #(
     // change before E_LD), active low so that they drive the stage flip-flops' reset directly;
     // ebar_prev is selected unless zeroed is set in the E_STG clock (zeroed's next value).
     reg  [NSRC-1:0] nsel;
-    wire          to_stg = !rst && (est == E_OP) && !go_ctl && (ub[UB_STG] || (op_diff && front_done));
+    wire          to_stg = !rst && (est == E_OP) && !go_ctl && (ub[UB_TO_STG] || (op_diff && front_done));
     wire          zeroed_nx = rst || (!core_done && (!run || zeroed));
     always @(posedge clk) begin
         nsel <= to_stg ? ub[UB_NSEL +: NSRC] : {NSRC{1'b1}};
@@ -490,10 +297,10 @@ module ctrl_seq #(
 
     // reference pass: first bit j0 = the rounding bit (the REF window of w_k lies above it)
     wire [5:0] ref_j0  = task_pos ? 6'd23 : 6'd15;
-    wire       p_xs  = pw[PC_XS], p_pe = pw[PC_PE], p_ss = pw[PC_SS], p_ha = pw[PC_HA], p_hb = pw[PC_HB];
-    wire       p_ca  = pw[PC_CA], p_cb = pw[PC_CB], p_r1 = pw[PC_R1], p_r2 = pw[PC_R2], p_r3 = pw[PC_R3];
-    wire       p_al  = pw[PC_AL], p_l31 = pw[PC_L31], p_l16 = pw[PC_L16], p_f1 = pw[PC_F1], p_f2 = pw[PC_F2];
-    wire       p_f3  = pw[PC_F3], p_w0 = pw[PC_W0];
+    wire       p_xs  = pw[PT_XS], p_pe = pw[PT_PE], p_ss = pw[PT_SS], p_ha = pw[PT_HA], p_hb = pw[PT_HB];
+    wire       p_ca  = pw[PT_CA], p_cb = pw[PT_CB], p_r1 = pw[PT_R1], p_r2 = pw[PT_R2], p_r3 = pw[PT_R3];
+    wire       p_al  = pw[PT_AL], p_l31 = pw[PT_L31], p_l16 = pw[PT_L16], p_f1 = pw[PT_F1], p_f2 = pw[PT_F2];
+    wire       p_f3  = pw[PT_F3], p_w0 = pw[PT_W0];
     assign ref_age = uw[UW_AGE +: AW];
     assign ref_bit = j;
 
@@ -524,8 +331,8 @@ module ctrl_seq #(
     wire       r      = a_bit ^ b_eff ^ c0;
     wire       maj    = (a_bit & b_eff) | (c0 & (a_bit ^ b_eff));
     reg  [17:0] pwf;                // E_FIX table word of j (kind PK_FIX, second port of the pass table)
-    wire       fix_end = (est == E_FIX) && pwf[PC_PE];
-    wire       r_fix  = pwf[PC_XS] ? fix_sgn : ~fix_sgn;       // X = satSW pattern, sign-extended
+    wire       fix_end = (est == E_FIX) && pwf[PT_PE];
+    wire       r_fix  = pwf[PT_XS] ? fix_sgn : ~fix_sgn;       // X = satSW pattern, sign-extended
 
     // pass control (status / counter passes: 32 bits, the word written one clock after the last)
     wire       pass_end  = in_pass && p_pe;
@@ -585,9 +392,9 @@ module ctrl_seq #(
                    (est == E_WR && !(is_fix3 && !task_pos)) || (est == E_WR2) ||
                    (pass_end && is_back);
     always @(*) begin
-        if (go_ctl) pc_next = 7'd0;
+        if (go_ctl) pc_next = PC_CTL;
         else if (go_stat) pc_next = PC_STAT;
-        else if (go_rstz) pc_next = PC_RSTZ;
+        else if (go_rstz) pc_next = PC_ZERO;
         else if (go_cnt) pc_next = PC_CNT;
         else if (step) pc_next = pc + 7'd1;
         else pc_next = pc;
@@ -754,9 +561,9 @@ module ctrl_seq #(
                     // POS, COPY, STAT; DIFF when the front is done / REF when the references are
                     // current, OM when the product is ready; FIX3, W6, CNT / END, SEND, CEND;
                     // ZERO, ZPOS stay (written in this clock, pc + 1)
-                    if (ub[UB_STG] || (op_diff && front_done)) est <= E_STG;
-                    else if (ub[UB_PASS] || (op_ref && ref_ok) || (op_om && !mrun)) est <= E_PASS;
-                    else if (ub[UB_IDLE]) est <= E_IDLE;
+                    if (ub[UB_TO_STG] || (op_diff && front_done)) est <= E_STG;
+                    else if (ub[UB_TO_PASS] || (op_ref && ref_ok) || (op_om && !mrun)) est <= E_PASS;
+                    else if (ub[UB_TO_IDLE]) est <= E_IDLE;
                     if (op_fix3 && (spd_ovf || om_ovf)) front_sat <= 1'b1;
                     if (ub[UB_END]) prog_done <= 1'b1;
                 end
@@ -882,7 +689,7 @@ module ctrl_seq #(
         if (!in_pass) begin
             w_trk <= 1'b0;
             w_ovf <= 1'b0;
-        end else if (pw[PC_G]) begin
+        end else if (pw[PT_G]) begin
             w_trk <= 1'b1;
             w_r <= r;
         end else if (w_trk && r != w_r) begin
@@ -938,6 +745,6 @@ module ctrl_seq #(
 
     // the op code stays in the microword (decoded at build time into the flags and ub; the test
     // bench reads it), ub's top bits are spare
-    wire unused = &{1'b0, u_op, uw[UW_AGE + 3], ub[35:UB_STW+1], per_cnt};   // (age bit 3: N = 8 only)
+    wire unused = &{1'b0, uw[UW_SRC-1:0], uw[UW_AGE + 3], ub[35:UB_STW+1], per_cnt};   // (age bit 3: N = 8 only)
 endmodule
 `default_nettype wire
