@@ -35,10 +35,8 @@ for (ui = 40; ui <= 63; ui = ui + 1) crom[256 + ui] = 18'h00419;   // W6 40: XS 
 for (ui = 0; ui <= 31; ui = ui + 1) crom[320 + ui] = 18'h00405;   // STAT 0: XS SS AL
 crom[320 + 32] = 18'h00403;   // STAT 32: XS PE AL
 for (ui = 33; ui <= 63; ui = ui + 1) crom[320 + ui] = 18'h00401;   // STAT 33: XS AL
-for (ui = 0; ui <= 30; ui = ui + 1) crom[384 + ui] = 18'h00404;   // CNT 0: SS AL
-crom[384 + 31] = 18'h00424;   // CNT 31: SS CA AL
-crom[384 + 32] = 18'h00402;   // CNT 32: PE AL
-for (ui = 33; ui <= 63; ui = ui + 1) crom[384 + ui] = 18'h00400;   // CNT 33: AL
+for (ui = 0; ui <= 31; ui = ui + 1) crom[384 + ui] = 18'h00004;   // CNT 0: SS
+crom[384 + 32] = 18'h00002;   // CNT 32: PE
 for (ui = 31; ui <= 38; ui = ui + 1) crom[448 + ui] = 18'h00001;   // FIX 31: XS
 crom[448 + 39] = 18'h00003;   // FIX 39: XS PE
 for (ui = 40; ui <= 63; ui = ui + 1) crom[448 + ui] = 18'h00001;   // FIX 40: XS
@@ -64,464 +62,464 @@ for (ui = 32; ui <= 54; ui = ui + 1) crom[704 + ui] = 18'h04485;   // REFP0 32: 
 crom[704 + 55] = 18'h24485;   // REFP0 55: XS SS R1 AL F2 G
 for (ui = 56; ui <= 62; ui = ui + 1) crom[704 + ui] = 18'h04481;   // REFP0 56: XS R1 AL F2
 crom[704 + 63] = 18'h04483;   // REFP0 63: XS PE R1 AL F2
-// microprogram urom: uw (op[4], src[4], wa[6], age[4], st[6], pos[1], ref[1], diff[1], om[1], fix3[1], w6[1], stat[1], cnt[1], sub[1], pk[3]) at pc, ub (nsel[10], to_stg[1], to_pass[1], zero[1], to_idle[1], end[1], cend[1], copy[1], wz[1], zpos[1], back[1], sat[1], csok[1], stok[1], stw[1], spare[12]) at 128 + pc, for the horizon N (the age field, the control program's length)
+// microprogram urom: uw (op[4], src[4], wa[6], age[4], st[6], pos[1], ref[1], diff[1], om[1], fix3[1], w6[1], stat[1], sub[1], pk[3], spare[1]) at pc, ub (nsel[10], to_stg[1], to_pass[1], zero[1], to_idle[1], end[1], cend[1], copy[1], wz[1], zpos[1], back[1], sat[1], stw[1], spare[14]) at 128 + pc, for the horizon N (the age field, the control program's length)
 if (N == 1) begin
-    for (ui = 0; ui < 128; ui = ui + 1) begin urom[ui] = 36'hc0000400b; urom[128 + ui] = 36'h0006023fe; end   // SEND
-    urom[0] = 36'h1011c4700; urom[128] = 36'h0007007fe;   // pc 0 POS POS -> 7: dx3 = dpos << 8 (and dpos, the speed)
-    urom[1] = 36'hc00204801; urom[129] = 36'h0006213fe;   // pc 1 ZERO -> 8: dx4 = 0
-    urom[2] = 36'hc002c4b12; urom[130] = 36'h0006107fd;   // pc 2 COPY E0 -> 11: ebar_prev[0]
-    urom[3] = 36'hc00304c22; urom[131] = 36'h0006107fb;   // pc 3 COPY E1 -> 12: ebar_prev[1]
-    urom[4] = 36'hc00344d32; urom[132] = 36'h0006107f7;   // pc 4 COPY E2 -> 13: ebar_prev[2]
-    urom[5] = 36'hc00244942; urom[133] = 36'h0006107ef;   // pc 5 COPY U0 -> 9: u_prev[0]
-    urom[6] = 36'hc00284a52; urom[134] = 36'h0006107df;   // pc 6 COPY U1 -> 10: u_prev[1]
-    urom[7] = 36'hc00405062; urom[135] = 36'h0006107bf;   // pc 7 COPY IDR -> 16: wref[0] = (id_ref,
-    urom[8] = 36'hc00445172; urom[136] = 36'h00061077f;   // pc 8 COPY IQR -> 17: iq_ref,
-    urom[9] = 36'h2029c5203; urom[137] = 36'h000f003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
-    urom[10] = 36'hc004c5362; urom[138] = 36'h0006107bf;   // pc 10 COPY IDR -> 19: wref[1] = (id_ref,
-    urom[11] = 36'hc00505472; urom[139] = 36'h00061077f;   // pc 11 COPY IQR -> 20: iq_ref,
-    urom[12] = 36'h0029c1503; urom[140] = 36'h0007003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
-    urom[13] = 36'h3048c4084; urom[141] = 36'h000e002ff;   // pc 13 DIFF ID -> 0: y0 = i_d, dx0 (at +4); waits for the front
-    urom[14] = 36'h304904194; urom[142] = 36'h000e001ff;   // pc 14 DIFF IQ -> 1: y1 = i_q, dx1; feeds the multiplier
-    urom[15] = 36'h408004005; urom[143] = 36'h0006803fe;   // pc 15 OM: omega = spd + ka; waits for the product
-    urom[16] = 36'h610844306; urom[144] = 36'h000e00bfe;   // pc 16 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
-    urom[17] = 36'h920184607; urom[145] = 36'h000700bfe;   // pc 17 W6 -> 6: dx2 = omega - omega_prev
-    urom[18] = 36'hc00084208; urom[146] = 36'h0006413fe;   // pc 18 ZPOS -> 2: y2 = 0 (position task)
-    urom[19] = 36'hc00004009; urom[147] = 36'h0006063fe;   // pc 19 END: core start
-    urom[64] = 36'ha4094654a; urom[192] = 36'h000e807ef;   // pc 64 STAT U0 -> 37: U_D = the u applied
-    urom[65] = 36'ha4098665a; urom[193] = 36'h000e807df;   // pc 65 STAT U1 -> 38: U_Q
-    urom[66] = 36'hc0000400b; urom[194] = 36'h0006023fe;   // pc 66 SEND
-    urom[67] = 36'hc808461fc; urom[195] = 36'h000080bff;   // pc 67 CNT 15 -> 33: SPEED = 0
-    urom[68] = 36'hc808c63fc; urom[196] = 36'h000080bff;   // pc 68 CNT 15 -> 35: I_D = 0
-    urom[69] = 36'hc809064fc; urom[197] = 36'h000080bff;   // pc 69 CNT 15 -> 36: I_Q = 0
-    urom[70] = 36'hc809465fc; urom[198] = 36'h000080bff;   // pc 70 CNT 15 -> 37: U_D = 0
-    urom[71] = 36'hc809866fc; urom[199] = 36'h000080bff;   // pc 71 CNT 15 -> 38: U_Q = 0
-    urom[72] = 36'hc809c67fc; urom[200] = 36'h000080bff;   // pc 72 CNT 15 -> 39: REF = 0
-    urom[73] = 36'hc80c0700c; urom[201] = 36'h000680bfe;   // pc 73 CNT 0 -> 48: SAT_OPERAND + event 0
-    urom[74] = 36'hc80c4711c; urom[202] = 36'h000680bfd;   // pc 74 CNT 1 -> 49: SAT_GAIN + event 1
-    urom[75] = 36'hc80c8722c; urom[203] = 36'h000680bfb;   // pc 75 CNT 2 -> 50: SAT_TERM + event 2
-    urom[76] = 36'hc80cc733c; urom[204] = 36'h000680bf7;   // pc 76 CNT 3 -> 51: SAT_ACC + event 3
-    urom[77] = 36'hc80d0744c; urom[205] = 36'h000680bef;   // pc 77 CNT 4 -> 52: SAT_DU + event 4
-    urom[78] = 36'hc80d4755c; urom[206] = 36'h000680bdf;   // pc 78 CNT 5 -> 53: SAT_U + event 5
-    urom[79] = 36'hc80d8766c; urom[207] = 36'h000680bbf;   // pc 79 CNT 6 -> 54: SAT_EBAR + event 6
-    urom[80] = 36'hc80dc777c; urom[208] = 36'h000680b7f;   // pc 80 CNT 7 -> 55: SAT_EBAR_INC + event 7
-    urom[81] = 36'hc80e0788c; urom[209] = 36'h000680aff;   // pc 81 CNT 8 -> 56: SAT_LIMIT + event 8
-    urom[82] = 36'hc80e4799c; urom[210] = 36'h0006809ff;   // pc 82 CNT 9 -> 57: SAT_WN + event 9
-    urom[83] = 36'hc80e87aac; urom[211] = 36'h000680bff;   // pc 83 CNT 10 -> 58: SAT_SIGNAL + event 10
-    urom[84] = 36'hc80ec7bbc; urom[212] = 36'h000680bff;   // pc 84 CNT 11 -> 59: SAT_FRONT + event 11
-    urom[85] = 36'hc80f07ccc; urom[213] = 36'h000680bff;   // pc 85 CNT 12 -> 60: CNT_OVERRUN + event 12
-    urom[86] = 36'hc80ac6bdc; urom[214] = 36'h000480bff;   // pc 86 CNT 13 -> 43: PERIODS + event 13
-    urom[87] = 36'hc0000400d; urom[215] = 36'h00060a3fe;   // pc 87 CEND
+    for (ui = 0; ui < 128; ui = ui + 1) begin urom[ui] = 36'h60000400b; urom[128 + ui] = 36'h0000023fe; end   // SEND
+    urom[0] = 36'h0811c4700; urom[128] = 36'h0001007fe;   // pc 0 POS POS -> 7: dx3 = dpos << 8 (and dpos, the speed)
+    urom[1] = 36'h600204801; urom[129] = 36'h0000213fe;   // pc 1 ZERO -> 8: dx4 = 0
+    urom[2] = 36'h6002c4b12; urom[130] = 36'h0000107fd;   // pc 2 COPY E0 -> 11: ebar_prev[0]
+    urom[3] = 36'h600304c22; urom[131] = 36'h0000107fb;   // pc 3 COPY E1 -> 12: ebar_prev[1]
+    urom[4] = 36'h600344d32; urom[132] = 36'h0000107f7;   // pc 4 COPY E2 -> 13: ebar_prev[2]
+    urom[5] = 36'h600244942; urom[133] = 36'h0000107ef;   // pc 5 COPY U0 -> 9: u_prev[0]
+    urom[6] = 36'h600284a52; urom[134] = 36'h0000107df;   // pc 6 COPY U1 -> 10: u_prev[1]
+    urom[7] = 36'h600405062; urom[135] = 36'h0000107bf;   // pc 7 COPY IDR -> 16: wref[0] = (id_ref,
+    urom[8] = 36'h600445172; urom[136] = 36'h00001077f;   // pc 8 COPY IQR -> 17: iq_ref,
+    urom[9] = 36'h1029c5203; urom[137] = 36'h0003003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
+    urom[10] = 36'h6004c5362; urom[138] = 36'h0000107bf;   // pc 10 COPY IDR -> 19: wref[1] = (id_ref,
+    urom[11] = 36'h600505472; urom[139] = 36'h00001077f;   // pc 11 COPY IQR -> 20: iq_ref,
+    urom[12] = 36'h0029c1503; urom[140] = 36'h0001003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
+    urom[13] = 36'h1848c4084; urom[141] = 36'h0002002ff;   // pc 13 DIFF ID -> 0: y0 = i_d, dx0 (at +4); waits for the front
+    urom[14] = 36'h184904194; urom[142] = 36'h0002001ff;   // pc 14 DIFF IQ -> 1: y1 = i_q, dx1; feeds the multiplier
+    urom[15] = 36'h208004005; urom[143] = 36'h0000803fe;   // pc 15 OM: omega = spd + ka; waits for the product
+    urom[16] = 36'h310844306; urom[144] = 36'h000200bfe;   // pc 16 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
+    urom[17] = 36'h4a0184607; urom[145] = 36'h000100bfe;   // pc 17 W6 -> 6: dx2 = omega - omega_prev
+    urom[18] = 36'h600084208; urom[146] = 36'h0000413fe;   // pc 18 ZPOS -> 2: y2 = 0 (position task)
+    urom[19] = 36'h600004009; urom[147] = 36'h0000063fe;   // pc 19 END: core start
+    urom[64] = 36'h54094654a; urom[192] = 36'h0002807ef;   // pc 64 STAT U0 -> 37: U_D = the u applied
+    urom[65] = 36'h54098665a; urom[193] = 36'h0002807df;   // pc 65 STAT U1 -> 38: U_Q
+    urom[66] = 36'h60000400b; urom[194] = 36'h0000023fe;   // pc 66 SEND
+    urom[67] = 36'h60084610c; urom[195] = 36'h000280bfe;   // pc 67 CNT -> 33: SPEED = 0
+    urom[68] = 36'h6008c630c; urom[196] = 36'h000280bfe;   // pc 68 CNT -> 35: I_D = 0
+    urom[69] = 36'h60090640c; urom[197] = 36'h000280bfe;   // pc 69 CNT -> 36: I_Q = 0
+    urom[70] = 36'h60094650c; urom[198] = 36'h000280bfe;   // pc 70 CNT -> 37: U_D = 0
+    urom[71] = 36'h60098660c; urom[199] = 36'h000280bfe;   // pc 71 CNT -> 38: U_Q = 0
+    urom[72] = 36'h6009c670c; urom[200] = 36'h000280bfe;   // pc 72 CNT -> 39: REF = 0
+    urom[73] = 36'h600c0700c; urom[201] = 36'h000280bfe;   // pc 73 CNT -> 48: SAT_OPERAND
+    urom[74] = 36'h600c4710c; urom[202] = 36'h000280bfe;   // pc 74 CNT -> 49: SAT_GAIN
+    urom[75] = 36'h600c8720c; urom[203] = 36'h000280bfe;   // pc 75 CNT -> 50: SAT_TERM
+    urom[76] = 36'h600cc730c; urom[204] = 36'h000280bfe;   // pc 76 CNT -> 51: SAT_ACC
+    urom[77] = 36'h600d0740c; urom[205] = 36'h000280bfe;   // pc 77 CNT -> 52: SAT_DU
+    urom[78] = 36'h600d4750c; urom[206] = 36'h000280bfe;   // pc 78 CNT -> 53: SAT_U
+    urom[79] = 36'h600d8760c; urom[207] = 36'h000280bfe;   // pc 79 CNT -> 54: SAT_EBAR
+    urom[80] = 36'h600dc770c; urom[208] = 36'h000280bfe;   // pc 80 CNT -> 55: SAT_EBAR_INC
+    urom[81] = 36'h600e0780c; urom[209] = 36'h000280bfe;   // pc 81 CNT -> 56: SAT_LIMIT
+    urom[82] = 36'h600e4790c; urom[210] = 36'h000280bfe;   // pc 82 CNT -> 57: SAT_WN
+    urom[83] = 36'h600e87a0c; urom[211] = 36'h000280bfe;   // pc 83 CNT -> 58: SAT_SIGNAL
+    urom[84] = 36'h600ec7b0c; urom[212] = 36'h000280bfe;   // pc 84 CNT -> 59: SAT_FRONT
+    urom[85] = 36'h600f07c0c; urom[213] = 36'h000280bfe;   // pc 85 CNT -> 60: CNT_OVERRUN
+    urom[86] = 36'h600ac6b0c; urom[214] = 36'h000280bfe;   // pc 86 CNT -> 43: PERIODS
+    urom[87] = 36'h60000400d; urom[215] = 36'h00000a3fe;   // pc 87 CEND
 end
 if (N == 2) begin
-    for (ui = 0; ui < 128; ui = ui + 1) begin urom[ui] = 36'hc0000800b; urom[128 + ui] = 36'h0006023fe; end   // SEND
-    urom[0] = 36'h1011c8700; urom[128] = 36'h0007007fe;   // pc 0 POS POS -> 7: dx3 = dpos << 8 (and dpos, the speed)
-    urom[1] = 36'hc00208801; urom[129] = 36'h0006213fe;   // pc 1 ZERO -> 8: dx4 = 0
-    urom[2] = 36'hc002c8b12; urom[130] = 36'h0006107fd;   // pc 2 COPY E0 -> 11: ebar_prev[0]
-    urom[3] = 36'hc00308c22; urom[131] = 36'h0006107fb;   // pc 3 COPY E1 -> 12: ebar_prev[1]
-    urom[4] = 36'hc00348d32; urom[132] = 36'h0006107f7;   // pc 4 COPY E2 -> 13: ebar_prev[2]
-    urom[5] = 36'hc00248942; urom[133] = 36'h0006107ef;   // pc 5 COPY U0 -> 9: u_prev[0]
-    urom[6] = 36'hc00288a52; urom[134] = 36'h0006107df;   // pc 6 COPY U1 -> 10: u_prev[1]
-    urom[7] = 36'hc00409062; urom[135] = 36'h0006107bf;   // pc 7 COPY IDR -> 16: wref[0] = (id_ref,
-    urom[8] = 36'hc00449172; urom[136] = 36'h00061077f;   // pc 8 COPY IQR -> 17: iq_ref,
-    urom[9] = 36'h2029c9203; urom[137] = 36'h000f003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
-    urom[10] = 36'hc004c9362; urom[138] = 36'h0006107bf;   // pc 10 COPY IDR -> 19: wref[1] = (id_ref,
-    urom[11] = 36'hc00509472; urom[139] = 36'h00061077f;   // pc 11 COPY IQR -> 20: iq_ref,
-    urom[12] = 36'h0029c5503; urom[140] = 36'h0007003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
-    urom[13] = 36'hc00589662; urom[141] = 36'h0006107bf;   // pc 13 COPY IDR -> 22: wref[2] = (id_ref,
-    urom[14] = 36'hc005c9772; urom[142] = 36'h00061077f;   // pc 14 COPY IQR -> 23: iq_ref,
-    urom[15] = 36'h0029c1803; urom[143] = 36'h0007003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
-    urom[16] = 36'h3048c8084; urom[144] = 36'h000e002ff;   // pc 16 DIFF ID -> 0: y0 = i_d, dx0 (at +4); waits for the front
-    urom[17] = 36'h304908194; urom[145] = 36'h000e001ff;   // pc 17 DIFF IQ -> 1: y1 = i_q, dx1; feeds the multiplier
-    urom[18] = 36'h408008005; urom[146] = 36'h0006803fe;   // pc 18 OM: omega = spd + ka; waits for the product
-    urom[19] = 36'h610848306; urom[147] = 36'h000e00bfe;   // pc 19 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
-    urom[20] = 36'h920188607; urom[148] = 36'h000700bfe;   // pc 20 W6 -> 6: dx2 = omega - omega_prev
-    urom[21] = 36'hc00088208; urom[149] = 36'h0006413fe;   // pc 21 ZPOS -> 2: y2 = 0 (position task)
-    urom[22] = 36'hc00008009; urom[150] = 36'h0006063fe;   // pc 22 END: core start
-    urom[64] = 36'ha4094a54a; urom[192] = 36'h000e807ef;   // pc 64 STAT U0 -> 37: U_D = the u applied
-    urom[65] = 36'ha4098a65a; urom[193] = 36'h000e807df;   // pc 65 STAT U1 -> 38: U_Q
-    urom[66] = 36'hc0000800b; urom[194] = 36'h0006023fe;   // pc 66 SEND
-    urom[67] = 36'hc8084a1fc; urom[195] = 36'h000080bff;   // pc 67 CNT 15 -> 33: SPEED = 0
-    urom[68] = 36'hc808ca3fc; urom[196] = 36'h000080bff;   // pc 68 CNT 15 -> 35: I_D = 0
-    urom[69] = 36'hc8090a4fc; urom[197] = 36'h000080bff;   // pc 69 CNT 15 -> 36: I_Q = 0
-    urom[70] = 36'hc8094a5fc; urom[198] = 36'h000080bff;   // pc 70 CNT 15 -> 37: U_D = 0
-    urom[71] = 36'hc8098a6fc; urom[199] = 36'h000080bff;   // pc 71 CNT 15 -> 38: U_Q = 0
-    urom[72] = 36'hc809ca7fc; urom[200] = 36'h000080bff;   // pc 72 CNT 15 -> 39: REF = 0
-    urom[73] = 36'hc80c0b00c; urom[201] = 36'h000680bfe;   // pc 73 CNT 0 -> 48: SAT_OPERAND + event 0
-    urom[74] = 36'hc80c4b11c; urom[202] = 36'h000680bfd;   // pc 74 CNT 1 -> 49: SAT_GAIN + event 1
-    urom[75] = 36'hc80c8b22c; urom[203] = 36'h000680bfb;   // pc 75 CNT 2 -> 50: SAT_TERM + event 2
-    urom[76] = 36'hc80ccb33c; urom[204] = 36'h000680bf7;   // pc 76 CNT 3 -> 51: SAT_ACC + event 3
-    urom[77] = 36'hc80d0b44c; urom[205] = 36'h000680bef;   // pc 77 CNT 4 -> 52: SAT_DU + event 4
-    urom[78] = 36'hc80d4b55c; urom[206] = 36'h000680bdf;   // pc 78 CNT 5 -> 53: SAT_U + event 5
-    urom[79] = 36'hc80d8b66c; urom[207] = 36'h000680bbf;   // pc 79 CNT 6 -> 54: SAT_EBAR + event 6
-    urom[80] = 36'hc80dcb77c; urom[208] = 36'h000680b7f;   // pc 80 CNT 7 -> 55: SAT_EBAR_INC + event 7
-    urom[81] = 36'hc80e0b88c; urom[209] = 36'h000680aff;   // pc 81 CNT 8 -> 56: SAT_LIMIT + event 8
-    urom[82] = 36'hc80e4b99c; urom[210] = 36'h0006809ff;   // pc 82 CNT 9 -> 57: SAT_WN + event 9
-    urom[83] = 36'hc80e8baac; urom[211] = 36'h000680bff;   // pc 83 CNT 10 -> 58: SAT_SIGNAL + event 10
-    urom[84] = 36'hc80ecbbbc; urom[212] = 36'h000680bff;   // pc 84 CNT 11 -> 59: SAT_FRONT + event 11
-    urom[85] = 36'hc80f0bccc; urom[213] = 36'h000680bff;   // pc 85 CNT 12 -> 60: CNT_OVERRUN + event 12
-    urom[86] = 36'hc80acabdc; urom[214] = 36'h000480bff;   // pc 86 CNT 13 -> 43: PERIODS + event 13
-    urom[87] = 36'hc0000800d; urom[215] = 36'h00060a3fe;   // pc 87 CEND
+    for (ui = 0; ui < 128; ui = ui + 1) begin urom[ui] = 36'h60000800b; urom[128 + ui] = 36'h0000023fe; end   // SEND
+    urom[0] = 36'h0811c8700; urom[128] = 36'h0001007fe;   // pc 0 POS POS -> 7: dx3 = dpos << 8 (and dpos, the speed)
+    urom[1] = 36'h600208801; urom[129] = 36'h0000213fe;   // pc 1 ZERO -> 8: dx4 = 0
+    urom[2] = 36'h6002c8b12; urom[130] = 36'h0000107fd;   // pc 2 COPY E0 -> 11: ebar_prev[0]
+    urom[3] = 36'h600308c22; urom[131] = 36'h0000107fb;   // pc 3 COPY E1 -> 12: ebar_prev[1]
+    urom[4] = 36'h600348d32; urom[132] = 36'h0000107f7;   // pc 4 COPY E2 -> 13: ebar_prev[2]
+    urom[5] = 36'h600248942; urom[133] = 36'h0000107ef;   // pc 5 COPY U0 -> 9: u_prev[0]
+    urom[6] = 36'h600288a52; urom[134] = 36'h0000107df;   // pc 6 COPY U1 -> 10: u_prev[1]
+    urom[7] = 36'h600409062; urom[135] = 36'h0000107bf;   // pc 7 COPY IDR -> 16: wref[0] = (id_ref,
+    urom[8] = 36'h600449172; urom[136] = 36'h00001077f;   // pc 8 COPY IQR -> 17: iq_ref,
+    urom[9] = 36'h1029c9203; urom[137] = 36'h0003003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
+    urom[10] = 36'h6004c9362; urom[138] = 36'h0000107bf;   // pc 10 COPY IDR -> 19: wref[1] = (id_ref,
+    urom[11] = 36'h600509472; urom[139] = 36'h00001077f;   // pc 11 COPY IQR -> 20: iq_ref,
+    urom[12] = 36'h0029c5503; urom[140] = 36'h0001003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
+    urom[13] = 36'h600589662; urom[141] = 36'h0000107bf;   // pc 13 COPY IDR -> 22: wref[2] = (id_ref,
+    urom[14] = 36'h6005c9772; urom[142] = 36'h00001077f;   // pc 14 COPY IQR -> 23: iq_ref,
+    urom[15] = 36'h0029c1803; urom[143] = 36'h0001003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
+    urom[16] = 36'h1848c8084; urom[144] = 36'h0002002ff;   // pc 16 DIFF ID -> 0: y0 = i_d, dx0 (at +4); waits for the front
+    urom[17] = 36'h184908194; urom[145] = 36'h0002001ff;   // pc 17 DIFF IQ -> 1: y1 = i_q, dx1; feeds the multiplier
+    urom[18] = 36'h208008005; urom[146] = 36'h0000803fe;   // pc 18 OM: omega = spd + ka; waits for the product
+    urom[19] = 36'h310848306; urom[147] = 36'h000200bfe;   // pc 19 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
+    urom[20] = 36'h4a0188607; urom[148] = 36'h000100bfe;   // pc 20 W6 -> 6: dx2 = omega - omega_prev
+    urom[21] = 36'h600088208; urom[149] = 36'h0000413fe;   // pc 21 ZPOS -> 2: y2 = 0 (position task)
+    urom[22] = 36'h600008009; urom[150] = 36'h0000063fe;   // pc 22 END: core start
+    urom[64] = 36'h54094a54a; urom[192] = 36'h0002807ef;   // pc 64 STAT U0 -> 37: U_D = the u applied
+    urom[65] = 36'h54098a65a; urom[193] = 36'h0002807df;   // pc 65 STAT U1 -> 38: U_Q
+    urom[66] = 36'h60000800b; urom[194] = 36'h0000023fe;   // pc 66 SEND
+    urom[67] = 36'h60084a10c; urom[195] = 36'h000280bfe;   // pc 67 CNT -> 33: SPEED = 0
+    urom[68] = 36'h6008ca30c; urom[196] = 36'h000280bfe;   // pc 68 CNT -> 35: I_D = 0
+    urom[69] = 36'h60090a40c; urom[197] = 36'h000280bfe;   // pc 69 CNT -> 36: I_Q = 0
+    urom[70] = 36'h60094a50c; urom[198] = 36'h000280bfe;   // pc 70 CNT -> 37: U_D = 0
+    urom[71] = 36'h60098a60c; urom[199] = 36'h000280bfe;   // pc 71 CNT -> 38: U_Q = 0
+    urom[72] = 36'h6009ca70c; urom[200] = 36'h000280bfe;   // pc 72 CNT -> 39: REF = 0
+    urom[73] = 36'h600c0b00c; urom[201] = 36'h000280bfe;   // pc 73 CNT -> 48: SAT_OPERAND
+    urom[74] = 36'h600c4b10c; urom[202] = 36'h000280bfe;   // pc 74 CNT -> 49: SAT_GAIN
+    urom[75] = 36'h600c8b20c; urom[203] = 36'h000280bfe;   // pc 75 CNT -> 50: SAT_TERM
+    urom[76] = 36'h600ccb30c; urom[204] = 36'h000280bfe;   // pc 76 CNT -> 51: SAT_ACC
+    urom[77] = 36'h600d0b40c; urom[205] = 36'h000280bfe;   // pc 77 CNT -> 52: SAT_DU
+    urom[78] = 36'h600d4b50c; urom[206] = 36'h000280bfe;   // pc 78 CNT -> 53: SAT_U
+    urom[79] = 36'h600d8b60c; urom[207] = 36'h000280bfe;   // pc 79 CNT -> 54: SAT_EBAR
+    urom[80] = 36'h600dcb70c; urom[208] = 36'h000280bfe;   // pc 80 CNT -> 55: SAT_EBAR_INC
+    urom[81] = 36'h600e0b80c; urom[209] = 36'h000280bfe;   // pc 81 CNT -> 56: SAT_LIMIT
+    urom[82] = 36'h600e4b90c; urom[210] = 36'h000280bfe;   // pc 82 CNT -> 57: SAT_WN
+    urom[83] = 36'h600e8ba0c; urom[211] = 36'h000280bfe;   // pc 83 CNT -> 58: SAT_SIGNAL
+    urom[84] = 36'h600ecbb0c; urom[212] = 36'h000280bfe;   // pc 84 CNT -> 59: SAT_FRONT
+    urom[85] = 36'h600f0bc0c; urom[213] = 36'h000280bfe;   // pc 85 CNT -> 60: CNT_OVERRUN
+    urom[86] = 36'h600acab0c; urom[214] = 36'h000280bfe;   // pc 86 CNT -> 43: PERIODS
+    urom[87] = 36'h60000800d; urom[215] = 36'h00000a3fe;   // pc 87 CEND
 end
 if (N == 3) begin
-    for (ui = 0; ui < 128; ui = ui + 1) begin urom[ui] = 36'hc0000c00b; urom[128 + ui] = 36'h0006023fe; end   // SEND
-    urom[0] = 36'h1011cc700; urom[128] = 36'h0007007fe;   // pc 0 POS POS -> 7: dx3 = dpos << 8 (and dpos, the speed)
-    urom[1] = 36'hc0020c801; urom[129] = 36'h0006213fe;   // pc 1 ZERO -> 8: dx4 = 0
-    urom[2] = 36'hc002ccb12; urom[130] = 36'h0006107fd;   // pc 2 COPY E0 -> 11: ebar_prev[0]
-    urom[3] = 36'hc0030cc22; urom[131] = 36'h0006107fb;   // pc 3 COPY E1 -> 12: ebar_prev[1]
-    urom[4] = 36'hc0034cd32; urom[132] = 36'h0006107f7;   // pc 4 COPY E2 -> 13: ebar_prev[2]
-    urom[5] = 36'hc0024c942; urom[133] = 36'h0006107ef;   // pc 5 COPY U0 -> 9: u_prev[0]
-    urom[6] = 36'hc0028ca52; urom[134] = 36'h0006107df;   // pc 6 COPY U1 -> 10: u_prev[1]
-    urom[7] = 36'hc0040d062; urom[135] = 36'h0006107bf;   // pc 7 COPY IDR -> 16: wref[0] = (id_ref,
-    urom[8] = 36'hc0044d172; urom[136] = 36'h00061077f;   // pc 8 COPY IQR -> 17: iq_ref,
-    urom[9] = 36'h2029cd203; urom[137] = 36'h000f003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
-    urom[10] = 36'hc004cd362; urom[138] = 36'h0006107bf;   // pc 10 COPY IDR -> 19: wref[1] = (id_ref,
-    urom[11] = 36'hc0050d472; urom[139] = 36'h00061077f;   // pc 11 COPY IQR -> 20: iq_ref,
-    urom[12] = 36'h0029c9503; urom[140] = 36'h0007003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
-    urom[13] = 36'hc0058d662; urom[141] = 36'h0006107bf;   // pc 13 COPY IDR -> 22: wref[2] = (id_ref,
-    urom[14] = 36'hc005cd772; urom[142] = 36'h00061077f;   // pc 14 COPY IQR -> 23: iq_ref,
-    urom[15] = 36'h0029c5803; urom[143] = 36'h0007003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
-    urom[16] = 36'hc0064d962; urom[144] = 36'h0006107bf;   // pc 16 COPY IDR -> 25: wref[3] = (id_ref,
-    urom[17] = 36'hc0068da72; urom[145] = 36'h00061077f;   // pc 17 COPY IQR -> 26: iq_ref,
-    urom[18] = 36'h0029c1b03; urom[146] = 36'h0007003fe;   // pc 18 REF -> 27 m 3: w3[3] from w_(k+3))
-    urom[19] = 36'h3048cc084; urom[147] = 36'h000e002ff;   // pc 19 DIFF ID -> 0: y0 = i_d, dx0 (at +4); waits for the front
-    urom[20] = 36'h30490c194; urom[148] = 36'h000e001ff;   // pc 20 DIFF IQ -> 1: y1 = i_q, dx1; feeds the multiplier
-    urom[21] = 36'h40800c005; urom[149] = 36'h0006803fe;   // pc 21 OM: omega = spd + ka; waits for the product
-    urom[22] = 36'h61084c306; urom[150] = 36'h000e00bfe;   // pc 22 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
-    urom[23] = 36'h92018c607; urom[151] = 36'h000700bfe;   // pc 23 W6 -> 6: dx2 = omega - omega_prev
-    urom[24] = 36'hc0008c208; urom[152] = 36'h0006413fe;   // pc 24 ZPOS -> 2: y2 = 0 (position task)
-    urom[25] = 36'hc0000c009; urom[153] = 36'h0006063fe;   // pc 25 END: core start
-    urom[64] = 36'ha4094e54a; urom[192] = 36'h000e807ef;   // pc 64 STAT U0 -> 37: U_D = the u applied
-    urom[65] = 36'ha4098e65a; urom[193] = 36'h000e807df;   // pc 65 STAT U1 -> 38: U_Q
-    urom[66] = 36'hc0000c00b; urom[194] = 36'h0006023fe;   // pc 66 SEND
-    urom[67] = 36'hc8084e1fc; urom[195] = 36'h000080bff;   // pc 67 CNT 15 -> 33: SPEED = 0
-    urom[68] = 36'hc808ce3fc; urom[196] = 36'h000080bff;   // pc 68 CNT 15 -> 35: I_D = 0
-    urom[69] = 36'hc8090e4fc; urom[197] = 36'h000080bff;   // pc 69 CNT 15 -> 36: I_Q = 0
-    urom[70] = 36'hc8094e5fc; urom[198] = 36'h000080bff;   // pc 70 CNT 15 -> 37: U_D = 0
-    urom[71] = 36'hc8098e6fc; urom[199] = 36'h000080bff;   // pc 71 CNT 15 -> 38: U_Q = 0
-    urom[72] = 36'hc809ce7fc; urom[200] = 36'h000080bff;   // pc 72 CNT 15 -> 39: REF = 0
-    urom[73] = 36'hc80c0f00c; urom[201] = 36'h000680bfe;   // pc 73 CNT 0 -> 48: SAT_OPERAND + event 0
-    urom[74] = 36'hc80c4f11c; urom[202] = 36'h000680bfd;   // pc 74 CNT 1 -> 49: SAT_GAIN + event 1
-    urom[75] = 36'hc80c8f22c; urom[203] = 36'h000680bfb;   // pc 75 CNT 2 -> 50: SAT_TERM + event 2
-    urom[76] = 36'hc80ccf33c; urom[204] = 36'h000680bf7;   // pc 76 CNT 3 -> 51: SAT_ACC + event 3
-    urom[77] = 36'hc80d0f44c; urom[205] = 36'h000680bef;   // pc 77 CNT 4 -> 52: SAT_DU + event 4
-    urom[78] = 36'hc80d4f55c; urom[206] = 36'h000680bdf;   // pc 78 CNT 5 -> 53: SAT_U + event 5
-    urom[79] = 36'hc80d8f66c; urom[207] = 36'h000680bbf;   // pc 79 CNT 6 -> 54: SAT_EBAR + event 6
-    urom[80] = 36'hc80dcf77c; urom[208] = 36'h000680b7f;   // pc 80 CNT 7 -> 55: SAT_EBAR_INC + event 7
-    urom[81] = 36'hc80e0f88c; urom[209] = 36'h000680aff;   // pc 81 CNT 8 -> 56: SAT_LIMIT + event 8
-    urom[82] = 36'hc80e4f99c; urom[210] = 36'h0006809ff;   // pc 82 CNT 9 -> 57: SAT_WN + event 9
-    urom[83] = 36'hc80e8faac; urom[211] = 36'h000680bff;   // pc 83 CNT 10 -> 58: SAT_SIGNAL + event 10
-    urom[84] = 36'hc80ecfbbc; urom[212] = 36'h000680bff;   // pc 84 CNT 11 -> 59: SAT_FRONT + event 11
-    urom[85] = 36'hc80f0fccc; urom[213] = 36'h000680bff;   // pc 85 CNT 12 -> 60: CNT_OVERRUN + event 12
-    urom[86] = 36'hc80acebdc; urom[214] = 36'h000480bff;   // pc 86 CNT 13 -> 43: PERIODS + event 13
-    urom[87] = 36'hc0000c00d; urom[215] = 36'h00060a3fe;   // pc 87 CEND
+    for (ui = 0; ui < 128; ui = ui + 1) begin urom[ui] = 36'h60000c00b; urom[128 + ui] = 36'h0000023fe; end   // SEND
+    urom[0] = 36'h0811cc700; urom[128] = 36'h0001007fe;   // pc 0 POS POS -> 7: dx3 = dpos << 8 (and dpos, the speed)
+    urom[1] = 36'h60020c801; urom[129] = 36'h0000213fe;   // pc 1 ZERO -> 8: dx4 = 0
+    urom[2] = 36'h6002ccb12; urom[130] = 36'h0000107fd;   // pc 2 COPY E0 -> 11: ebar_prev[0]
+    urom[3] = 36'h60030cc22; urom[131] = 36'h0000107fb;   // pc 3 COPY E1 -> 12: ebar_prev[1]
+    urom[4] = 36'h60034cd32; urom[132] = 36'h0000107f7;   // pc 4 COPY E2 -> 13: ebar_prev[2]
+    urom[5] = 36'h60024c942; urom[133] = 36'h0000107ef;   // pc 5 COPY U0 -> 9: u_prev[0]
+    urom[6] = 36'h60028ca52; urom[134] = 36'h0000107df;   // pc 6 COPY U1 -> 10: u_prev[1]
+    urom[7] = 36'h60040d062; urom[135] = 36'h0000107bf;   // pc 7 COPY IDR -> 16: wref[0] = (id_ref,
+    urom[8] = 36'h60044d172; urom[136] = 36'h00001077f;   // pc 8 COPY IQR -> 17: iq_ref,
+    urom[9] = 36'h1029cd203; urom[137] = 36'h0003003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
+    urom[10] = 36'h6004cd362; urom[138] = 36'h0000107bf;   // pc 10 COPY IDR -> 19: wref[1] = (id_ref,
+    urom[11] = 36'h60050d472; urom[139] = 36'h00001077f;   // pc 11 COPY IQR -> 20: iq_ref,
+    urom[12] = 36'h0029c9503; urom[140] = 36'h0001003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
+    urom[13] = 36'h60058d662; urom[141] = 36'h0000107bf;   // pc 13 COPY IDR -> 22: wref[2] = (id_ref,
+    urom[14] = 36'h6005cd772; urom[142] = 36'h00001077f;   // pc 14 COPY IQR -> 23: iq_ref,
+    urom[15] = 36'h0029c5803; urom[143] = 36'h0001003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
+    urom[16] = 36'h60064d962; urom[144] = 36'h0000107bf;   // pc 16 COPY IDR -> 25: wref[3] = (id_ref,
+    urom[17] = 36'h60068da72; urom[145] = 36'h00001077f;   // pc 17 COPY IQR -> 26: iq_ref,
+    urom[18] = 36'h0029c1b03; urom[146] = 36'h0001003fe;   // pc 18 REF -> 27 m 3: w3[3] from w_(k+3))
+    urom[19] = 36'h1848cc084; urom[147] = 36'h0002002ff;   // pc 19 DIFF ID -> 0: y0 = i_d, dx0 (at +4); waits for the front
+    urom[20] = 36'h18490c194; urom[148] = 36'h0002001ff;   // pc 20 DIFF IQ -> 1: y1 = i_q, dx1; feeds the multiplier
+    urom[21] = 36'h20800c005; urom[149] = 36'h0000803fe;   // pc 21 OM: omega = spd + ka; waits for the product
+    urom[22] = 36'h31084c306; urom[150] = 36'h000200bfe;   // pc 22 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
+    urom[23] = 36'h4a018c607; urom[151] = 36'h000100bfe;   // pc 23 W6 -> 6: dx2 = omega - omega_prev
+    urom[24] = 36'h60008c208; urom[152] = 36'h0000413fe;   // pc 24 ZPOS -> 2: y2 = 0 (position task)
+    urom[25] = 36'h60000c009; urom[153] = 36'h0000063fe;   // pc 25 END: core start
+    urom[64] = 36'h54094e54a; urom[192] = 36'h0002807ef;   // pc 64 STAT U0 -> 37: U_D = the u applied
+    urom[65] = 36'h54098e65a; urom[193] = 36'h0002807df;   // pc 65 STAT U1 -> 38: U_Q
+    urom[66] = 36'h60000c00b; urom[194] = 36'h0000023fe;   // pc 66 SEND
+    urom[67] = 36'h60084e10c; urom[195] = 36'h000280bfe;   // pc 67 CNT -> 33: SPEED = 0
+    urom[68] = 36'h6008ce30c; urom[196] = 36'h000280bfe;   // pc 68 CNT -> 35: I_D = 0
+    urom[69] = 36'h60090e40c; urom[197] = 36'h000280bfe;   // pc 69 CNT -> 36: I_Q = 0
+    urom[70] = 36'h60094e50c; urom[198] = 36'h000280bfe;   // pc 70 CNT -> 37: U_D = 0
+    urom[71] = 36'h60098e60c; urom[199] = 36'h000280bfe;   // pc 71 CNT -> 38: U_Q = 0
+    urom[72] = 36'h6009ce70c; urom[200] = 36'h000280bfe;   // pc 72 CNT -> 39: REF = 0
+    urom[73] = 36'h600c0f00c; urom[201] = 36'h000280bfe;   // pc 73 CNT -> 48: SAT_OPERAND
+    urom[74] = 36'h600c4f10c; urom[202] = 36'h000280bfe;   // pc 74 CNT -> 49: SAT_GAIN
+    urom[75] = 36'h600c8f20c; urom[203] = 36'h000280bfe;   // pc 75 CNT -> 50: SAT_TERM
+    urom[76] = 36'h600ccf30c; urom[204] = 36'h000280bfe;   // pc 76 CNT -> 51: SAT_ACC
+    urom[77] = 36'h600d0f40c; urom[205] = 36'h000280bfe;   // pc 77 CNT -> 52: SAT_DU
+    urom[78] = 36'h600d4f50c; urom[206] = 36'h000280bfe;   // pc 78 CNT -> 53: SAT_U
+    urom[79] = 36'h600d8f60c; urom[207] = 36'h000280bfe;   // pc 79 CNT -> 54: SAT_EBAR
+    urom[80] = 36'h600dcf70c; urom[208] = 36'h000280bfe;   // pc 80 CNT -> 55: SAT_EBAR_INC
+    urom[81] = 36'h600e0f80c; urom[209] = 36'h000280bfe;   // pc 81 CNT -> 56: SAT_LIMIT
+    urom[82] = 36'h600e4f90c; urom[210] = 36'h000280bfe;   // pc 82 CNT -> 57: SAT_WN
+    urom[83] = 36'h600e8fa0c; urom[211] = 36'h000280bfe;   // pc 83 CNT -> 58: SAT_SIGNAL
+    urom[84] = 36'h600ecfb0c; urom[212] = 36'h000280bfe;   // pc 84 CNT -> 59: SAT_FRONT
+    urom[85] = 36'h600f0fc0c; urom[213] = 36'h000280bfe;   // pc 85 CNT -> 60: CNT_OVERRUN
+    urom[86] = 36'h600aceb0c; urom[214] = 36'h000280bfe;   // pc 86 CNT -> 43: PERIODS
+    urom[87] = 36'h60000c00d; urom[215] = 36'h00000a3fe;   // pc 87 CEND
 end
 if (N == 4) begin
-    for (ui = 0; ui < 128; ui = ui + 1) begin urom[ui] = 36'hc0001000b; urom[128 + ui] = 36'h0006023fe; end   // SEND
-    urom[0] = 36'h1011d0700; urom[128] = 36'h0007007fe;   // pc 0 POS POS -> 7: dx3 = dpos << 8 (and dpos, the speed)
-    urom[1] = 36'hc00210801; urom[129] = 36'h0006213fe;   // pc 1 ZERO -> 8: dx4 = 0
-    urom[2] = 36'hc002d0b12; urom[130] = 36'h0006107fd;   // pc 2 COPY E0 -> 11: ebar_prev[0]
-    urom[3] = 36'hc00310c22; urom[131] = 36'h0006107fb;   // pc 3 COPY E1 -> 12: ebar_prev[1]
-    urom[4] = 36'hc00350d32; urom[132] = 36'h0006107f7;   // pc 4 COPY E2 -> 13: ebar_prev[2]
-    urom[5] = 36'hc00250942; urom[133] = 36'h0006107ef;   // pc 5 COPY U0 -> 9: u_prev[0]
-    urom[6] = 36'hc00290a52; urom[134] = 36'h0006107df;   // pc 6 COPY U1 -> 10: u_prev[1]
-    urom[7] = 36'hc00411062; urom[135] = 36'h0006107bf;   // pc 7 COPY IDR -> 16: wref[0] = (id_ref,
-    urom[8] = 36'hc00451172; urom[136] = 36'h00061077f;   // pc 8 COPY IQR -> 17: iq_ref,
-    urom[9] = 36'h2029d1203; urom[137] = 36'h000f003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
-    urom[10] = 36'hc004d1362; urom[138] = 36'h0006107bf;   // pc 10 COPY IDR -> 19: wref[1] = (id_ref,
-    urom[11] = 36'hc00511472; urom[139] = 36'h00061077f;   // pc 11 COPY IQR -> 20: iq_ref,
-    urom[12] = 36'h0029cd503; urom[140] = 36'h0007003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
-    urom[13] = 36'hc00591662; urom[141] = 36'h0006107bf;   // pc 13 COPY IDR -> 22: wref[2] = (id_ref,
-    urom[14] = 36'hc005d1772; urom[142] = 36'h00061077f;   // pc 14 COPY IQR -> 23: iq_ref,
-    urom[15] = 36'h0029c9803; urom[143] = 36'h0007003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
-    urom[16] = 36'hc00651962; urom[144] = 36'h0006107bf;   // pc 16 COPY IDR -> 25: wref[3] = (id_ref,
-    urom[17] = 36'hc00691a72; urom[145] = 36'h00061077f;   // pc 17 COPY IQR -> 26: iq_ref,
-    urom[18] = 36'h0029c5b03; urom[146] = 36'h0007003fe;   // pc 18 REF -> 27 m 3: w3[3] from w_(k+3))
-    urom[19] = 36'hc00711c62; urom[147] = 36'h0006107bf;   // pc 19 COPY IDR -> 28: wref[4] = (id_ref,
-    urom[20] = 36'hc00751d72; urom[148] = 36'h00061077f;   // pc 20 COPY IQR -> 29: iq_ref,
-    urom[21] = 36'h0029c1e03; urom[149] = 36'h0007003fe;   // pc 21 REF -> 30 m 4: w3[4] from w_(k+4))
-    urom[22] = 36'h3048d0084; urom[150] = 36'h000e002ff;   // pc 22 DIFF ID -> 0: y0 = i_d, dx0 (at +4); waits for the front
-    urom[23] = 36'h304910194; urom[151] = 36'h000e001ff;   // pc 23 DIFF IQ -> 1: y1 = i_q, dx1; feeds the multiplier
-    urom[24] = 36'h408010005; urom[152] = 36'h0006803fe;   // pc 24 OM: omega = spd + ka; waits for the product
-    urom[25] = 36'h610850306; urom[153] = 36'h000e00bfe;   // pc 25 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
-    urom[26] = 36'h920190607; urom[154] = 36'h000700bfe;   // pc 26 W6 -> 6: dx2 = omega - omega_prev
-    urom[27] = 36'hc00090208; urom[155] = 36'h0006413fe;   // pc 27 ZPOS -> 2: y2 = 0 (position task)
-    urom[28] = 36'hc00010009; urom[156] = 36'h0006063fe;   // pc 28 END: core start
-    urom[64] = 36'ha4095254a; urom[192] = 36'h000e807ef;   // pc 64 STAT U0 -> 37: U_D = the u applied
-    urom[65] = 36'ha4099265a; urom[193] = 36'h000e807df;   // pc 65 STAT U1 -> 38: U_Q
-    urom[66] = 36'hc0001000b; urom[194] = 36'h0006023fe;   // pc 66 SEND
-    urom[67] = 36'hc808521fc; urom[195] = 36'h000080bff;   // pc 67 CNT 15 -> 33: SPEED = 0
-    urom[68] = 36'hc808d23fc; urom[196] = 36'h000080bff;   // pc 68 CNT 15 -> 35: I_D = 0
-    urom[69] = 36'hc809124fc; urom[197] = 36'h000080bff;   // pc 69 CNT 15 -> 36: I_Q = 0
-    urom[70] = 36'hc809525fc; urom[198] = 36'h000080bff;   // pc 70 CNT 15 -> 37: U_D = 0
-    urom[71] = 36'hc809926fc; urom[199] = 36'h000080bff;   // pc 71 CNT 15 -> 38: U_Q = 0
-    urom[72] = 36'hc809d27fc; urom[200] = 36'h000080bff;   // pc 72 CNT 15 -> 39: REF = 0
-    urom[73] = 36'hc80c1300c; urom[201] = 36'h000680bfe;   // pc 73 CNT 0 -> 48: SAT_OPERAND + event 0
-    urom[74] = 36'hc80c5311c; urom[202] = 36'h000680bfd;   // pc 74 CNT 1 -> 49: SAT_GAIN + event 1
-    urom[75] = 36'hc80c9322c; urom[203] = 36'h000680bfb;   // pc 75 CNT 2 -> 50: SAT_TERM + event 2
-    urom[76] = 36'hc80cd333c; urom[204] = 36'h000680bf7;   // pc 76 CNT 3 -> 51: SAT_ACC + event 3
-    urom[77] = 36'hc80d1344c; urom[205] = 36'h000680bef;   // pc 77 CNT 4 -> 52: SAT_DU + event 4
-    urom[78] = 36'hc80d5355c; urom[206] = 36'h000680bdf;   // pc 78 CNT 5 -> 53: SAT_U + event 5
-    urom[79] = 36'hc80d9366c; urom[207] = 36'h000680bbf;   // pc 79 CNT 6 -> 54: SAT_EBAR + event 6
-    urom[80] = 36'hc80dd377c; urom[208] = 36'h000680b7f;   // pc 80 CNT 7 -> 55: SAT_EBAR_INC + event 7
-    urom[81] = 36'hc80e1388c; urom[209] = 36'h000680aff;   // pc 81 CNT 8 -> 56: SAT_LIMIT + event 8
-    urom[82] = 36'hc80e5399c; urom[210] = 36'h0006809ff;   // pc 82 CNT 9 -> 57: SAT_WN + event 9
-    urom[83] = 36'hc80e93aac; urom[211] = 36'h000680bff;   // pc 83 CNT 10 -> 58: SAT_SIGNAL + event 10
-    urom[84] = 36'hc80ed3bbc; urom[212] = 36'h000680bff;   // pc 84 CNT 11 -> 59: SAT_FRONT + event 11
-    urom[85] = 36'hc80f13ccc; urom[213] = 36'h000680bff;   // pc 85 CNT 12 -> 60: CNT_OVERRUN + event 12
-    urom[86] = 36'hc80ad2bdc; urom[214] = 36'h000480bff;   // pc 86 CNT 13 -> 43: PERIODS + event 13
-    urom[87] = 36'hc0001000d; urom[215] = 36'h00060a3fe;   // pc 87 CEND
+    for (ui = 0; ui < 128; ui = ui + 1) begin urom[ui] = 36'h60001000b; urom[128 + ui] = 36'h0000023fe; end   // SEND
+    urom[0] = 36'h0811d0700; urom[128] = 36'h0001007fe;   // pc 0 POS POS -> 7: dx3 = dpos << 8 (and dpos, the speed)
+    urom[1] = 36'h600210801; urom[129] = 36'h0000213fe;   // pc 1 ZERO -> 8: dx4 = 0
+    urom[2] = 36'h6002d0b12; urom[130] = 36'h0000107fd;   // pc 2 COPY E0 -> 11: ebar_prev[0]
+    urom[3] = 36'h600310c22; urom[131] = 36'h0000107fb;   // pc 3 COPY E1 -> 12: ebar_prev[1]
+    urom[4] = 36'h600350d32; urom[132] = 36'h0000107f7;   // pc 4 COPY E2 -> 13: ebar_prev[2]
+    urom[5] = 36'h600250942; urom[133] = 36'h0000107ef;   // pc 5 COPY U0 -> 9: u_prev[0]
+    urom[6] = 36'h600290a52; urom[134] = 36'h0000107df;   // pc 6 COPY U1 -> 10: u_prev[1]
+    urom[7] = 36'h600411062; urom[135] = 36'h0000107bf;   // pc 7 COPY IDR -> 16: wref[0] = (id_ref,
+    urom[8] = 36'h600451172; urom[136] = 36'h00001077f;   // pc 8 COPY IQR -> 17: iq_ref,
+    urom[9] = 36'h1029d1203; urom[137] = 36'h0003003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
+    urom[10] = 36'h6004d1362; urom[138] = 36'h0000107bf;   // pc 10 COPY IDR -> 19: wref[1] = (id_ref,
+    urom[11] = 36'h600511472; urom[139] = 36'h00001077f;   // pc 11 COPY IQR -> 20: iq_ref,
+    urom[12] = 36'h0029cd503; urom[140] = 36'h0001003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
+    urom[13] = 36'h600591662; urom[141] = 36'h0000107bf;   // pc 13 COPY IDR -> 22: wref[2] = (id_ref,
+    urom[14] = 36'h6005d1772; urom[142] = 36'h00001077f;   // pc 14 COPY IQR -> 23: iq_ref,
+    urom[15] = 36'h0029c9803; urom[143] = 36'h0001003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
+    urom[16] = 36'h600651962; urom[144] = 36'h0000107bf;   // pc 16 COPY IDR -> 25: wref[3] = (id_ref,
+    urom[17] = 36'h600691a72; urom[145] = 36'h00001077f;   // pc 17 COPY IQR -> 26: iq_ref,
+    urom[18] = 36'h0029c5b03; urom[146] = 36'h0001003fe;   // pc 18 REF -> 27 m 3: w3[3] from w_(k+3))
+    urom[19] = 36'h600711c62; urom[147] = 36'h0000107bf;   // pc 19 COPY IDR -> 28: wref[4] = (id_ref,
+    urom[20] = 36'h600751d72; urom[148] = 36'h00001077f;   // pc 20 COPY IQR -> 29: iq_ref,
+    urom[21] = 36'h0029c1e03; urom[149] = 36'h0001003fe;   // pc 21 REF -> 30 m 4: w3[4] from w_(k+4))
+    urom[22] = 36'h1848d0084; urom[150] = 36'h0002002ff;   // pc 22 DIFF ID -> 0: y0 = i_d, dx0 (at +4); waits for the front
+    urom[23] = 36'h184910194; urom[151] = 36'h0002001ff;   // pc 23 DIFF IQ -> 1: y1 = i_q, dx1; feeds the multiplier
+    urom[24] = 36'h208010005; urom[152] = 36'h0000803fe;   // pc 24 OM: omega = spd + ka; waits for the product
+    urom[25] = 36'h310850306; urom[153] = 36'h000200bfe;   // pc 25 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
+    urom[26] = 36'h4a0190607; urom[154] = 36'h000100bfe;   // pc 26 W6 -> 6: dx2 = omega - omega_prev
+    urom[27] = 36'h600090208; urom[155] = 36'h0000413fe;   // pc 27 ZPOS -> 2: y2 = 0 (position task)
+    urom[28] = 36'h600010009; urom[156] = 36'h0000063fe;   // pc 28 END: core start
+    urom[64] = 36'h54095254a; urom[192] = 36'h0002807ef;   // pc 64 STAT U0 -> 37: U_D = the u applied
+    urom[65] = 36'h54099265a; urom[193] = 36'h0002807df;   // pc 65 STAT U1 -> 38: U_Q
+    urom[66] = 36'h60001000b; urom[194] = 36'h0000023fe;   // pc 66 SEND
+    urom[67] = 36'h60085210c; urom[195] = 36'h000280bfe;   // pc 67 CNT -> 33: SPEED = 0
+    urom[68] = 36'h6008d230c; urom[196] = 36'h000280bfe;   // pc 68 CNT -> 35: I_D = 0
+    urom[69] = 36'h60091240c; urom[197] = 36'h000280bfe;   // pc 69 CNT -> 36: I_Q = 0
+    urom[70] = 36'h60095250c; urom[198] = 36'h000280bfe;   // pc 70 CNT -> 37: U_D = 0
+    urom[71] = 36'h60099260c; urom[199] = 36'h000280bfe;   // pc 71 CNT -> 38: U_Q = 0
+    urom[72] = 36'h6009d270c; urom[200] = 36'h000280bfe;   // pc 72 CNT -> 39: REF = 0
+    urom[73] = 36'h600c1300c; urom[201] = 36'h000280bfe;   // pc 73 CNT -> 48: SAT_OPERAND
+    urom[74] = 36'h600c5310c; urom[202] = 36'h000280bfe;   // pc 74 CNT -> 49: SAT_GAIN
+    urom[75] = 36'h600c9320c; urom[203] = 36'h000280bfe;   // pc 75 CNT -> 50: SAT_TERM
+    urom[76] = 36'h600cd330c; urom[204] = 36'h000280bfe;   // pc 76 CNT -> 51: SAT_ACC
+    urom[77] = 36'h600d1340c; urom[205] = 36'h000280bfe;   // pc 77 CNT -> 52: SAT_DU
+    urom[78] = 36'h600d5350c; urom[206] = 36'h000280bfe;   // pc 78 CNT -> 53: SAT_U
+    urom[79] = 36'h600d9360c; urom[207] = 36'h000280bfe;   // pc 79 CNT -> 54: SAT_EBAR
+    urom[80] = 36'h600dd370c; urom[208] = 36'h000280bfe;   // pc 80 CNT -> 55: SAT_EBAR_INC
+    urom[81] = 36'h600e1380c; urom[209] = 36'h000280bfe;   // pc 81 CNT -> 56: SAT_LIMIT
+    urom[82] = 36'h600e5390c; urom[210] = 36'h000280bfe;   // pc 82 CNT -> 57: SAT_WN
+    urom[83] = 36'h600e93a0c; urom[211] = 36'h000280bfe;   // pc 83 CNT -> 58: SAT_SIGNAL
+    urom[84] = 36'h600ed3b0c; urom[212] = 36'h000280bfe;   // pc 84 CNT -> 59: SAT_FRONT
+    urom[85] = 36'h600f13c0c; urom[213] = 36'h000280bfe;   // pc 85 CNT -> 60: CNT_OVERRUN
+    urom[86] = 36'h600ad2b0c; urom[214] = 36'h000280bfe;   // pc 86 CNT -> 43: PERIODS
+    urom[87] = 36'h60001000d; urom[215] = 36'h00000a3fe;   // pc 87 CEND
 end
 if (N == 5) begin
-    for (ui = 0; ui < 128; ui = ui + 1) begin urom[ui] = 36'hc0001400b; urom[128 + ui] = 36'h0006023fe; end   // SEND
-    urom[0] = 36'h1011d4700; urom[128] = 36'h0007007fe;   // pc 0 POS POS -> 7: dx3 = dpos << 8 (and dpos, the speed)
-    urom[1] = 36'hc00214801; urom[129] = 36'h0006213fe;   // pc 1 ZERO -> 8: dx4 = 0
-    urom[2] = 36'hc002d4b12; urom[130] = 36'h0006107fd;   // pc 2 COPY E0 -> 11: ebar_prev[0]
-    urom[3] = 36'hc00314c22; urom[131] = 36'h0006107fb;   // pc 3 COPY E1 -> 12: ebar_prev[1]
-    urom[4] = 36'hc00354d32; urom[132] = 36'h0006107f7;   // pc 4 COPY E2 -> 13: ebar_prev[2]
-    urom[5] = 36'hc00254942; urom[133] = 36'h0006107ef;   // pc 5 COPY U0 -> 9: u_prev[0]
-    urom[6] = 36'hc00294a52; urom[134] = 36'h0006107df;   // pc 6 COPY U1 -> 10: u_prev[1]
-    urom[7] = 36'hc00415062; urom[135] = 36'h0006107bf;   // pc 7 COPY IDR -> 16: wref[0] = (id_ref,
-    urom[8] = 36'hc00455172; urom[136] = 36'h00061077f;   // pc 8 COPY IQR -> 17: iq_ref,
-    urom[9] = 36'h2029d5203; urom[137] = 36'h000f003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
-    urom[10] = 36'hc004d5362; urom[138] = 36'h0006107bf;   // pc 10 COPY IDR -> 19: wref[1] = (id_ref,
-    urom[11] = 36'hc00515472; urom[139] = 36'h00061077f;   // pc 11 COPY IQR -> 20: iq_ref,
-    urom[12] = 36'h0029d1503; urom[140] = 36'h0007003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
-    urom[13] = 36'hc00595662; urom[141] = 36'h0006107bf;   // pc 13 COPY IDR -> 22: wref[2] = (id_ref,
-    urom[14] = 36'hc005d5772; urom[142] = 36'h00061077f;   // pc 14 COPY IQR -> 23: iq_ref,
-    urom[15] = 36'h0029cd803; urom[143] = 36'h0007003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
-    urom[16] = 36'hc00655962; urom[144] = 36'h0006107bf;   // pc 16 COPY IDR -> 25: wref[3] = (id_ref,
-    urom[17] = 36'hc00695a72; urom[145] = 36'h00061077f;   // pc 17 COPY IQR -> 26: iq_ref,
-    urom[18] = 36'h0029c9b03; urom[146] = 36'h0007003fe;   // pc 18 REF -> 27 m 3: w3[3] from w_(k+3))
-    urom[19] = 36'hc00715c62; urom[147] = 36'h0006107bf;   // pc 19 COPY IDR -> 28: wref[4] = (id_ref,
-    urom[20] = 36'hc00755d72; urom[148] = 36'h00061077f;   // pc 20 COPY IQR -> 29: iq_ref,
-    urom[21] = 36'h0029c5e03; urom[149] = 36'h0007003fe;   // pc 21 REF -> 30 m 4: w3[4] from w_(k+4))
-    urom[22] = 36'hc007d5f62; urom[150] = 36'h0006107bf;   // pc 22 COPY IDR -> 31: wref[5] = (id_ref,
-    urom[23] = 36'hc00816072; urom[151] = 36'h00061077f;   // pc 23 COPY IQR -> 32: iq_ref,
-    urom[24] = 36'h0029c2103; urom[152] = 36'h0007003fe;   // pc 24 REF -> 33 m 5: w3[5] from w_(k+5))
-    urom[25] = 36'h3048d4084; urom[153] = 36'h000e002ff;   // pc 25 DIFF ID -> 0: y0 = i_d, dx0 (at +4); waits for the front
-    urom[26] = 36'h304914194; urom[154] = 36'h000e001ff;   // pc 26 DIFF IQ -> 1: y1 = i_q, dx1; feeds the multiplier
-    urom[27] = 36'h408014005; urom[155] = 36'h0006803fe;   // pc 27 OM: omega = spd + ka; waits for the product
-    urom[28] = 36'h610854306; urom[156] = 36'h000e00bfe;   // pc 28 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
-    urom[29] = 36'h920194607; urom[157] = 36'h000700bfe;   // pc 29 W6 -> 6: dx2 = omega - omega_prev
-    urom[30] = 36'hc00094208; urom[158] = 36'h0006413fe;   // pc 30 ZPOS -> 2: y2 = 0 (position task)
-    urom[31] = 36'hc00014009; urom[159] = 36'h0006063fe;   // pc 31 END: core start
-    urom[64] = 36'ha4095654a; urom[192] = 36'h000e807ef;   // pc 64 STAT U0 -> 37: U_D = the u applied
-    urom[65] = 36'ha4099665a; urom[193] = 36'h000e807df;   // pc 65 STAT U1 -> 38: U_Q
-    urom[66] = 36'hc0001400b; urom[194] = 36'h0006023fe;   // pc 66 SEND
-    urom[67] = 36'hc808561fc; urom[195] = 36'h000080bff;   // pc 67 CNT 15 -> 33: SPEED = 0
-    urom[68] = 36'hc808d63fc; urom[196] = 36'h000080bff;   // pc 68 CNT 15 -> 35: I_D = 0
-    urom[69] = 36'hc809164fc; urom[197] = 36'h000080bff;   // pc 69 CNT 15 -> 36: I_Q = 0
-    urom[70] = 36'hc809565fc; urom[198] = 36'h000080bff;   // pc 70 CNT 15 -> 37: U_D = 0
-    urom[71] = 36'hc809966fc; urom[199] = 36'h000080bff;   // pc 71 CNT 15 -> 38: U_Q = 0
-    urom[72] = 36'hc809d67fc; urom[200] = 36'h000080bff;   // pc 72 CNT 15 -> 39: REF = 0
-    urom[73] = 36'hc80c1700c; urom[201] = 36'h000680bfe;   // pc 73 CNT 0 -> 48: SAT_OPERAND + event 0
-    urom[74] = 36'hc80c5711c; urom[202] = 36'h000680bfd;   // pc 74 CNT 1 -> 49: SAT_GAIN + event 1
-    urom[75] = 36'hc80c9722c; urom[203] = 36'h000680bfb;   // pc 75 CNT 2 -> 50: SAT_TERM + event 2
-    urom[76] = 36'hc80cd733c; urom[204] = 36'h000680bf7;   // pc 76 CNT 3 -> 51: SAT_ACC + event 3
-    urom[77] = 36'hc80d1744c; urom[205] = 36'h000680bef;   // pc 77 CNT 4 -> 52: SAT_DU + event 4
-    urom[78] = 36'hc80d5755c; urom[206] = 36'h000680bdf;   // pc 78 CNT 5 -> 53: SAT_U + event 5
-    urom[79] = 36'hc80d9766c; urom[207] = 36'h000680bbf;   // pc 79 CNT 6 -> 54: SAT_EBAR + event 6
-    urom[80] = 36'hc80dd777c; urom[208] = 36'h000680b7f;   // pc 80 CNT 7 -> 55: SAT_EBAR_INC + event 7
-    urom[81] = 36'hc80e1788c; urom[209] = 36'h000680aff;   // pc 81 CNT 8 -> 56: SAT_LIMIT + event 8
-    urom[82] = 36'hc80e5799c; urom[210] = 36'h0006809ff;   // pc 82 CNT 9 -> 57: SAT_WN + event 9
-    urom[83] = 36'hc80e97aac; urom[211] = 36'h000680bff;   // pc 83 CNT 10 -> 58: SAT_SIGNAL + event 10
-    urom[84] = 36'hc80ed7bbc; urom[212] = 36'h000680bff;   // pc 84 CNT 11 -> 59: SAT_FRONT + event 11
-    urom[85] = 36'hc80f17ccc; urom[213] = 36'h000680bff;   // pc 85 CNT 12 -> 60: CNT_OVERRUN + event 12
-    urom[86] = 36'hc80ad6bdc; urom[214] = 36'h000480bff;   // pc 86 CNT 13 -> 43: PERIODS + event 13
-    urom[87] = 36'hc0001400d; urom[215] = 36'h00060a3fe;   // pc 87 CEND
+    for (ui = 0; ui < 128; ui = ui + 1) begin urom[ui] = 36'h60001400b; urom[128 + ui] = 36'h0000023fe; end   // SEND
+    urom[0] = 36'h0811d4700; urom[128] = 36'h0001007fe;   // pc 0 POS POS -> 7: dx3 = dpos << 8 (and dpos, the speed)
+    urom[1] = 36'h600214801; urom[129] = 36'h0000213fe;   // pc 1 ZERO -> 8: dx4 = 0
+    urom[2] = 36'h6002d4b12; urom[130] = 36'h0000107fd;   // pc 2 COPY E0 -> 11: ebar_prev[0]
+    urom[3] = 36'h600314c22; urom[131] = 36'h0000107fb;   // pc 3 COPY E1 -> 12: ebar_prev[1]
+    urom[4] = 36'h600354d32; urom[132] = 36'h0000107f7;   // pc 4 COPY E2 -> 13: ebar_prev[2]
+    urom[5] = 36'h600254942; urom[133] = 36'h0000107ef;   // pc 5 COPY U0 -> 9: u_prev[0]
+    urom[6] = 36'h600294a52; urom[134] = 36'h0000107df;   // pc 6 COPY U1 -> 10: u_prev[1]
+    urom[7] = 36'h600415062; urom[135] = 36'h0000107bf;   // pc 7 COPY IDR -> 16: wref[0] = (id_ref,
+    urom[8] = 36'h600455172; urom[136] = 36'h00001077f;   // pc 8 COPY IQR -> 17: iq_ref,
+    urom[9] = 36'h1029d5203; urom[137] = 36'h0003003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
+    urom[10] = 36'h6004d5362; urom[138] = 36'h0000107bf;   // pc 10 COPY IDR -> 19: wref[1] = (id_ref,
+    urom[11] = 36'h600515472; urom[139] = 36'h00001077f;   // pc 11 COPY IQR -> 20: iq_ref,
+    urom[12] = 36'h0029d1503; urom[140] = 36'h0001003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
+    urom[13] = 36'h600595662; urom[141] = 36'h0000107bf;   // pc 13 COPY IDR -> 22: wref[2] = (id_ref,
+    urom[14] = 36'h6005d5772; urom[142] = 36'h00001077f;   // pc 14 COPY IQR -> 23: iq_ref,
+    urom[15] = 36'h0029cd803; urom[143] = 36'h0001003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
+    urom[16] = 36'h600655962; urom[144] = 36'h0000107bf;   // pc 16 COPY IDR -> 25: wref[3] = (id_ref,
+    urom[17] = 36'h600695a72; urom[145] = 36'h00001077f;   // pc 17 COPY IQR -> 26: iq_ref,
+    urom[18] = 36'h0029c9b03; urom[146] = 36'h0001003fe;   // pc 18 REF -> 27 m 3: w3[3] from w_(k+3))
+    urom[19] = 36'h600715c62; urom[147] = 36'h0000107bf;   // pc 19 COPY IDR -> 28: wref[4] = (id_ref,
+    urom[20] = 36'h600755d72; urom[148] = 36'h00001077f;   // pc 20 COPY IQR -> 29: iq_ref,
+    urom[21] = 36'h0029c5e03; urom[149] = 36'h0001003fe;   // pc 21 REF -> 30 m 4: w3[4] from w_(k+4))
+    urom[22] = 36'h6007d5f62; urom[150] = 36'h0000107bf;   // pc 22 COPY IDR -> 31: wref[5] = (id_ref,
+    urom[23] = 36'h600816072; urom[151] = 36'h00001077f;   // pc 23 COPY IQR -> 32: iq_ref,
+    urom[24] = 36'h0029c2103; urom[152] = 36'h0001003fe;   // pc 24 REF -> 33 m 5: w3[5] from w_(k+5))
+    urom[25] = 36'h1848d4084; urom[153] = 36'h0002002ff;   // pc 25 DIFF ID -> 0: y0 = i_d, dx0 (at +4); waits for the front
+    urom[26] = 36'h184914194; urom[154] = 36'h0002001ff;   // pc 26 DIFF IQ -> 1: y1 = i_q, dx1; feeds the multiplier
+    urom[27] = 36'h208014005; urom[155] = 36'h0000803fe;   // pc 27 OM: omega = spd + ka; waits for the product
+    urom[28] = 36'h310854306; urom[156] = 36'h000200bfe;   // pc 28 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
+    urom[29] = 36'h4a0194607; urom[157] = 36'h000100bfe;   // pc 29 W6 -> 6: dx2 = omega - omega_prev
+    urom[30] = 36'h600094208; urom[158] = 36'h0000413fe;   // pc 30 ZPOS -> 2: y2 = 0 (position task)
+    urom[31] = 36'h600014009; urom[159] = 36'h0000063fe;   // pc 31 END: core start
+    urom[64] = 36'h54095654a; urom[192] = 36'h0002807ef;   // pc 64 STAT U0 -> 37: U_D = the u applied
+    urom[65] = 36'h54099665a; urom[193] = 36'h0002807df;   // pc 65 STAT U1 -> 38: U_Q
+    urom[66] = 36'h60001400b; urom[194] = 36'h0000023fe;   // pc 66 SEND
+    urom[67] = 36'h60085610c; urom[195] = 36'h000280bfe;   // pc 67 CNT -> 33: SPEED = 0
+    urom[68] = 36'h6008d630c; urom[196] = 36'h000280bfe;   // pc 68 CNT -> 35: I_D = 0
+    urom[69] = 36'h60091640c; urom[197] = 36'h000280bfe;   // pc 69 CNT -> 36: I_Q = 0
+    urom[70] = 36'h60095650c; urom[198] = 36'h000280bfe;   // pc 70 CNT -> 37: U_D = 0
+    urom[71] = 36'h60099660c; urom[199] = 36'h000280bfe;   // pc 71 CNT -> 38: U_Q = 0
+    urom[72] = 36'h6009d670c; urom[200] = 36'h000280bfe;   // pc 72 CNT -> 39: REF = 0
+    urom[73] = 36'h600c1700c; urom[201] = 36'h000280bfe;   // pc 73 CNT -> 48: SAT_OPERAND
+    urom[74] = 36'h600c5710c; urom[202] = 36'h000280bfe;   // pc 74 CNT -> 49: SAT_GAIN
+    urom[75] = 36'h600c9720c; urom[203] = 36'h000280bfe;   // pc 75 CNT -> 50: SAT_TERM
+    urom[76] = 36'h600cd730c; urom[204] = 36'h000280bfe;   // pc 76 CNT -> 51: SAT_ACC
+    urom[77] = 36'h600d1740c; urom[205] = 36'h000280bfe;   // pc 77 CNT -> 52: SAT_DU
+    urom[78] = 36'h600d5750c; urom[206] = 36'h000280bfe;   // pc 78 CNT -> 53: SAT_U
+    urom[79] = 36'h600d9760c; urom[207] = 36'h000280bfe;   // pc 79 CNT -> 54: SAT_EBAR
+    urom[80] = 36'h600dd770c; urom[208] = 36'h000280bfe;   // pc 80 CNT -> 55: SAT_EBAR_INC
+    urom[81] = 36'h600e1780c; urom[209] = 36'h000280bfe;   // pc 81 CNT -> 56: SAT_LIMIT
+    urom[82] = 36'h600e5790c; urom[210] = 36'h000280bfe;   // pc 82 CNT -> 57: SAT_WN
+    urom[83] = 36'h600e97a0c; urom[211] = 36'h000280bfe;   // pc 83 CNT -> 58: SAT_SIGNAL
+    urom[84] = 36'h600ed7b0c; urom[212] = 36'h000280bfe;   // pc 84 CNT -> 59: SAT_FRONT
+    urom[85] = 36'h600f17c0c; urom[213] = 36'h000280bfe;   // pc 85 CNT -> 60: CNT_OVERRUN
+    urom[86] = 36'h600ad6b0c; urom[214] = 36'h000280bfe;   // pc 86 CNT -> 43: PERIODS
+    urom[87] = 36'h60001400d; urom[215] = 36'h00000a3fe;   // pc 87 CEND
 end
 if (N == 6) begin
-    for (ui = 0; ui < 128; ui = ui + 1) begin urom[ui] = 36'hc0001800b; urom[128 + ui] = 36'h0006023fe; end   // SEND
-    urom[0] = 36'h1011d8700; urom[128] = 36'h0007007fe;   // pc 0 POS POS -> 7: dx3 = dpos << 8 (and dpos, the speed)
-    urom[1] = 36'hc00218801; urom[129] = 36'h0006213fe;   // pc 1 ZERO -> 8: dx4 = 0
-    urom[2] = 36'hc002d8b12; urom[130] = 36'h0006107fd;   // pc 2 COPY E0 -> 11: ebar_prev[0]
-    urom[3] = 36'hc00318c22; urom[131] = 36'h0006107fb;   // pc 3 COPY E1 -> 12: ebar_prev[1]
-    urom[4] = 36'hc00358d32; urom[132] = 36'h0006107f7;   // pc 4 COPY E2 -> 13: ebar_prev[2]
-    urom[5] = 36'hc00258942; urom[133] = 36'h0006107ef;   // pc 5 COPY U0 -> 9: u_prev[0]
-    urom[6] = 36'hc00298a52; urom[134] = 36'h0006107df;   // pc 6 COPY U1 -> 10: u_prev[1]
-    urom[7] = 36'hc00419062; urom[135] = 36'h0006107bf;   // pc 7 COPY IDR -> 16: wref[0] = (id_ref,
-    urom[8] = 36'hc00459172; urom[136] = 36'h00061077f;   // pc 8 COPY IQR -> 17: iq_ref,
-    urom[9] = 36'h2029d9203; urom[137] = 36'h000f003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
-    urom[10] = 36'hc004d9362; urom[138] = 36'h0006107bf;   // pc 10 COPY IDR -> 19: wref[1] = (id_ref,
-    urom[11] = 36'hc00519472; urom[139] = 36'h00061077f;   // pc 11 COPY IQR -> 20: iq_ref,
-    urom[12] = 36'h0029d5503; urom[140] = 36'h0007003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
-    urom[13] = 36'hc00599662; urom[141] = 36'h0006107bf;   // pc 13 COPY IDR -> 22: wref[2] = (id_ref,
-    urom[14] = 36'hc005d9772; urom[142] = 36'h00061077f;   // pc 14 COPY IQR -> 23: iq_ref,
-    urom[15] = 36'h0029d1803; urom[143] = 36'h0007003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
-    urom[16] = 36'hc00659962; urom[144] = 36'h0006107bf;   // pc 16 COPY IDR -> 25: wref[3] = (id_ref,
-    urom[17] = 36'hc00699a72; urom[145] = 36'h00061077f;   // pc 17 COPY IQR -> 26: iq_ref,
-    urom[18] = 36'h0029cdb03; urom[146] = 36'h0007003fe;   // pc 18 REF -> 27 m 3: w3[3] from w_(k+3))
-    urom[19] = 36'hc00719c62; urom[147] = 36'h0006107bf;   // pc 19 COPY IDR -> 28: wref[4] = (id_ref,
-    urom[20] = 36'hc00759d72; urom[148] = 36'h00061077f;   // pc 20 COPY IQR -> 29: iq_ref,
-    urom[21] = 36'h0029c9e03; urom[149] = 36'h0007003fe;   // pc 21 REF -> 30 m 4: w3[4] from w_(k+4))
-    urom[22] = 36'hc007d9f62; urom[150] = 36'h0006107bf;   // pc 22 COPY IDR -> 31: wref[5] = (id_ref,
-    urom[23] = 36'hc0081a072; urom[151] = 36'h00061077f;   // pc 23 COPY IQR -> 32: iq_ref,
-    urom[24] = 36'h0029c6103; urom[152] = 36'h0007003fe;   // pc 24 REF -> 33 m 5: w3[5] from w_(k+5))
-    urom[25] = 36'hc0089a262; urom[153] = 36'h0006107bf;   // pc 25 COPY IDR -> 34: wref[6] = (id_ref,
-    urom[26] = 36'hc008da372; urom[154] = 36'h00061077f;   // pc 26 COPY IQR -> 35: iq_ref,
-    urom[27] = 36'h0029c2403; urom[155] = 36'h0007003fe;   // pc 27 REF -> 36 m 6: w3[6] from w_(k+6))
-    urom[28] = 36'h3048d8084; urom[156] = 36'h000e002ff;   // pc 28 DIFF ID -> 0: y0 = i_d, dx0 (at +4); waits for the front
-    urom[29] = 36'h304918194; urom[157] = 36'h000e001ff;   // pc 29 DIFF IQ -> 1: y1 = i_q, dx1; feeds the multiplier
-    urom[30] = 36'h408018005; urom[158] = 36'h0006803fe;   // pc 30 OM: omega = spd + ka; waits for the product
-    urom[31] = 36'h610858306; urom[159] = 36'h000e00bfe;   // pc 31 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
-    urom[32] = 36'h920198607; urom[160] = 36'h000700bfe;   // pc 32 W6 -> 6: dx2 = omega - omega_prev
-    urom[33] = 36'hc00098208; urom[161] = 36'h0006413fe;   // pc 33 ZPOS -> 2: y2 = 0 (position task)
-    urom[34] = 36'hc00018009; urom[162] = 36'h0006063fe;   // pc 34 END: core start
-    urom[64] = 36'ha4095a54a; urom[192] = 36'h000e807ef;   // pc 64 STAT U0 -> 37: U_D = the u applied
-    urom[65] = 36'ha4099a65a; urom[193] = 36'h000e807df;   // pc 65 STAT U1 -> 38: U_Q
-    urom[66] = 36'hc0001800b; urom[194] = 36'h0006023fe;   // pc 66 SEND
-    urom[67] = 36'hc8085a1fc; urom[195] = 36'h000080bff;   // pc 67 CNT 15 -> 33: SPEED = 0
-    urom[68] = 36'hc808da3fc; urom[196] = 36'h000080bff;   // pc 68 CNT 15 -> 35: I_D = 0
-    urom[69] = 36'hc8091a4fc; urom[197] = 36'h000080bff;   // pc 69 CNT 15 -> 36: I_Q = 0
-    urom[70] = 36'hc8095a5fc; urom[198] = 36'h000080bff;   // pc 70 CNT 15 -> 37: U_D = 0
-    urom[71] = 36'hc8099a6fc; urom[199] = 36'h000080bff;   // pc 71 CNT 15 -> 38: U_Q = 0
-    urom[72] = 36'hc809da7fc; urom[200] = 36'h000080bff;   // pc 72 CNT 15 -> 39: REF = 0
-    urom[73] = 36'hc80c1b00c; urom[201] = 36'h000680bfe;   // pc 73 CNT 0 -> 48: SAT_OPERAND + event 0
-    urom[74] = 36'hc80c5b11c; urom[202] = 36'h000680bfd;   // pc 74 CNT 1 -> 49: SAT_GAIN + event 1
-    urom[75] = 36'hc80c9b22c; urom[203] = 36'h000680bfb;   // pc 75 CNT 2 -> 50: SAT_TERM + event 2
-    urom[76] = 36'hc80cdb33c; urom[204] = 36'h000680bf7;   // pc 76 CNT 3 -> 51: SAT_ACC + event 3
-    urom[77] = 36'hc80d1b44c; urom[205] = 36'h000680bef;   // pc 77 CNT 4 -> 52: SAT_DU + event 4
-    urom[78] = 36'hc80d5b55c; urom[206] = 36'h000680bdf;   // pc 78 CNT 5 -> 53: SAT_U + event 5
-    urom[79] = 36'hc80d9b66c; urom[207] = 36'h000680bbf;   // pc 79 CNT 6 -> 54: SAT_EBAR + event 6
-    urom[80] = 36'hc80ddb77c; urom[208] = 36'h000680b7f;   // pc 80 CNT 7 -> 55: SAT_EBAR_INC + event 7
-    urom[81] = 36'hc80e1b88c; urom[209] = 36'h000680aff;   // pc 81 CNT 8 -> 56: SAT_LIMIT + event 8
-    urom[82] = 36'hc80e5b99c; urom[210] = 36'h0006809ff;   // pc 82 CNT 9 -> 57: SAT_WN + event 9
-    urom[83] = 36'hc80e9baac; urom[211] = 36'h000680bff;   // pc 83 CNT 10 -> 58: SAT_SIGNAL + event 10
-    urom[84] = 36'hc80edbbbc; urom[212] = 36'h000680bff;   // pc 84 CNT 11 -> 59: SAT_FRONT + event 11
-    urom[85] = 36'hc80f1bccc; urom[213] = 36'h000680bff;   // pc 85 CNT 12 -> 60: CNT_OVERRUN + event 12
-    urom[86] = 36'hc80adabdc; urom[214] = 36'h000480bff;   // pc 86 CNT 13 -> 43: PERIODS + event 13
-    urom[87] = 36'hc0001800d; urom[215] = 36'h00060a3fe;   // pc 87 CEND
+    for (ui = 0; ui < 128; ui = ui + 1) begin urom[ui] = 36'h60001800b; urom[128 + ui] = 36'h0000023fe; end   // SEND
+    urom[0] = 36'h0811d8700; urom[128] = 36'h0001007fe;   // pc 0 POS POS -> 7: dx3 = dpos << 8 (and dpos, the speed)
+    urom[1] = 36'h600218801; urom[129] = 36'h0000213fe;   // pc 1 ZERO -> 8: dx4 = 0
+    urom[2] = 36'h6002d8b12; urom[130] = 36'h0000107fd;   // pc 2 COPY E0 -> 11: ebar_prev[0]
+    urom[3] = 36'h600318c22; urom[131] = 36'h0000107fb;   // pc 3 COPY E1 -> 12: ebar_prev[1]
+    urom[4] = 36'h600358d32; urom[132] = 36'h0000107f7;   // pc 4 COPY E2 -> 13: ebar_prev[2]
+    urom[5] = 36'h600258942; urom[133] = 36'h0000107ef;   // pc 5 COPY U0 -> 9: u_prev[0]
+    urom[6] = 36'h600298a52; urom[134] = 36'h0000107df;   // pc 6 COPY U1 -> 10: u_prev[1]
+    urom[7] = 36'h600419062; urom[135] = 36'h0000107bf;   // pc 7 COPY IDR -> 16: wref[0] = (id_ref,
+    urom[8] = 36'h600459172; urom[136] = 36'h00001077f;   // pc 8 COPY IQR -> 17: iq_ref,
+    urom[9] = 36'h1029d9203; urom[137] = 36'h0003003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
+    urom[10] = 36'h6004d9362; urom[138] = 36'h0000107bf;   // pc 10 COPY IDR -> 19: wref[1] = (id_ref,
+    urom[11] = 36'h600519472; urom[139] = 36'h00001077f;   // pc 11 COPY IQR -> 20: iq_ref,
+    urom[12] = 36'h0029d5503; urom[140] = 36'h0001003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
+    urom[13] = 36'h600599662; urom[141] = 36'h0000107bf;   // pc 13 COPY IDR -> 22: wref[2] = (id_ref,
+    urom[14] = 36'h6005d9772; urom[142] = 36'h00001077f;   // pc 14 COPY IQR -> 23: iq_ref,
+    urom[15] = 36'h0029d1803; urom[143] = 36'h0001003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
+    urom[16] = 36'h600659962; urom[144] = 36'h0000107bf;   // pc 16 COPY IDR -> 25: wref[3] = (id_ref,
+    urom[17] = 36'h600699a72; urom[145] = 36'h00001077f;   // pc 17 COPY IQR -> 26: iq_ref,
+    urom[18] = 36'h0029cdb03; urom[146] = 36'h0001003fe;   // pc 18 REF -> 27 m 3: w3[3] from w_(k+3))
+    urom[19] = 36'h600719c62; urom[147] = 36'h0000107bf;   // pc 19 COPY IDR -> 28: wref[4] = (id_ref,
+    urom[20] = 36'h600759d72; urom[148] = 36'h00001077f;   // pc 20 COPY IQR -> 29: iq_ref,
+    urom[21] = 36'h0029c9e03; urom[149] = 36'h0001003fe;   // pc 21 REF -> 30 m 4: w3[4] from w_(k+4))
+    urom[22] = 36'h6007d9f62; urom[150] = 36'h0000107bf;   // pc 22 COPY IDR -> 31: wref[5] = (id_ref,
+    urom[23] = 36'h60081a072; urom[151] = 36'h00001077f;   // pc 23 COPY IQR -> 32: iq_ref,
+    urom[24] = 36'h0029c6103; urom[152] = 36'h0001003fe;   // pc 24 REF -> 33 m 5: w3[5] from w_(k+5))
+    urom[25] = 36'h60089a262; urom[153] = 36'h0000107bf;   // pc 25 COPY IDR -> 34: wref[6] = (id_ref,
+    urom[26] = 36'h6008da372; urom[154] = 36'h00001077f;   // pc 26 COPY IQR -> 35: iq_ref,
+    urom[27] = 36'h0029c2403; urom[155] = 36'h0001003fe;   // pc 27 REF -> 36 m 6: w3[6] from w_(k+6))
+    urom[28] = 36'h1848d8084; urom[156] = 36'h0002002ff;   // pc 28 DIFF ID -> 0: y0 = i_d, dx0 (at +4); waits for the front
+    urom[29] = 36'h184918194; urom[157] = 36'h0002001ff;   // pc 29 DIFF IQ -> 1: y1 = i_q, dx1; feeds the multiplier
+    urom[30] = 36'h208018005; urom[158] = 36'h0000803fe;   // pc 30 OM: omega = spd + ka; waits for the product
+    urom[31] = 36'h310858306; urom[159] = 36'h000200bfe;   // pc 31 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
+    urom[32] = 36'h4a0198607; urom[160] = 36'h000100bfe;   // pc 32 W6 -> 6: dx2 = omega - omega_prev
+    urom[33] = 36'h600098208; urom[161] = 36'h0000413fe;   // pc 33 ZPOS -> 2: y2 = 0 (position task)
+    urom[34] = 36'h600018009; urom[162] = 36'h0000063fe;   // pc 34 END: core start
+    urom[64] = 36'h54095a54a; urom[192] = 36'h0002807ef;   // pc 64 STAT U0 -> 37: U_D = the u applied
+    urom[65] = 36'h54099a65a; urom[193] = 36'h0002807df;   // pc 65 STAT U1 -> 38: U_Q
+    urom[66] = 36'h60001800b; urom[194] = 36'h0000023fe;   // pc 66 SEND
+    urom[67] = 36'h60085a10c; urom[195] = 36'h000280bfe;   // pc 67 CNT -> 33: SPEED = 0
+    urom[68] = 36'h6008da30c; urom[196] = 36'h000280bfe;   // pc 68 CNT -> 35: I_D = 0
+    urom[69] = 36'h60091a40c; urom[197] = 36'h000280bfe;   // pc 69 CNT -> 36: I_Q = 0
+    urom[70] = 36'h60095a50c; urom[198] = 36'h000280bfe;   // pc 70 CNT -> 37: U_D = 0
+    urom[71] = 36'h60099a60c; urom[199] = 36'h000280bfe;   // pc 71 CNT -> 38: U_Q = 0
+    urom[72] = 36'h6009da70c; urom[200] = 36'h000280bfe;   // pc 72 CNT -> 39: REF = 0
+    urom[73] = 36'h600c1b00c; urom[201] = 36'h000280bfe;   // pc 73 CNT -> 48: SAT_OPERAND
+    urom[74] = 36'h600c5b10c; urom[202] = 36'h000280bfe;   // pc 74 CNT -> 49: SAT_GAIN
+    urom[75] = 36'h600c9b20c; urom[203] = 36'h000280bfe;   // pc 75 CNT -> 50: SAT_TERM
+    urom[76] = 36'h600cdb30c; urom[204] = 36'h000280bfe;   // pc 76 CNT -> 51: SAT_ACC
+    urom[77] = 36'h600d1b40c; urom[205] = 36'h000280bfe;   // pc 77 CNT -> 52: SAT_DU
+    urom[78] = 36'h600d5b50c; urom[206] = 36'h000280bfe;   // pc 78 CNT -> 53: SAT_U
+    urom[79] = 36'h600d9b60c; urom[207] = 36'h000280bfe;   // pc 79 CNT -> 54: SAT_EBAR
+    urom[80] = 36'h600ddb70c; urom[208] = 36'h000280bfe;   // pc 80 CNT -> 55: SAT_EBAR_INC
+    urom[81] = 36'h600e1b80c; urom[209] = 36'h000280bfe;   // pc 81 CNT -> 56: SAT_LIMIT
+    urom[82] = 36'h600e5b90c; urom[210] = 36'h000280bfe;   // pc 82 CNT -> 57: SAT_WN
+    urom[83] = 36'h600e9ba0c; urom[211] = 36'h000280bfe;   // pc 83 CNT -> 58: SAT_SIGNAL
+    urom[84] = 36'h600edbb0c; urom[212] = 36'h000280bfe;   // pc 84 CNT -> 59: SAT_FRONT
+    urom[85] = 36'h600f1bc0c; urom[213] = 36'h000280bfe;   // pc 85 CNT -> 60: CNT_OVERRUN
+    urom[86] = 36'h600adab0c; urom[214] = 36'h000280bfe;   // pc 86 CNT -> 43: PERIODS
+    urom[87] = 36'h60001800d; urom[215] = 36'h00000a3fe;   // pc 87 CEND
 end
 if (N == 7) begin
-    for (ui = 0; ui < 128; ui = ui + 1) begin urom[ui] = 36'hc0001c00b; urom[128 + ui] = 36'h0006023fe; end   // SEND
-    urom[0] = 36'h1011dc700; urom[128] = 36'h0007007fe;   // pc 0 POS POS -> 7: dx3 = dpos << 8 (and dpos, the speed)
-    urom[1] = 36'hc0021c801; urom[129] = 36'h0006213fe;   // pc 1 ZERO -> 8: dx4 = 0
-    urom[2] = 36'hc002dcb12; urom[130] = 36'h0006107fd;   // pc 2 COPY E0 -> 11: ebar_prev[0]
-    urom[3] = 36'hc0031cc22; urom[131] = 36'h0006107fb;   // pc 3 COPY E1 -> 12: ebar_prev[1]
-    urom[4] = 36'hc0035cd32; urom[132] = 36'h0006107f7;   // pc 4 COPY E2 -> 13: ebar_prev[2]
-    urom[5] = 36'hc0025c942; urom[133] = 36'h0006107ef;   // pc 5 COPY U0 -> 9: u_prev[0]
-    urom[6] = 36'hc0029ca52; urom[134] = 36'h0006107df;   // pc 6 COPY U1 -> 10: u_prev[1]
-    urom[7] = 36'hc0041d062; urom[135] = 36'h0006107bf;   // pc 7 COPY IDR -> 16: wref[0] = (id_ref,
-    urom[8] = 36'hc0045d172; urom[136] = 36'h00061077f;   // pc 8 COPY IQR -> 17: iq_ref,
-    urom[9] = 36'h2029dd203; urom[137] = 36'h000f003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
-    urom[10] = 36'hc004dd362; urom[138] = 36'h0006107bf;   // pc 10 COPY IDR -> 19: wref[1] = (id_ref,
-    urom[11] = 36'hc0051d472; urom[139] = 36'h00061077f;   // pc 11 COPY IQR -> 20: iq_ref,
-    urom[12] = 36'h0029d9503; urom[140] = 36'h0007003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
-    urom[13] = 36'hc0059d662; urom[141] = 36'h0006107bf;   // pc 13 COPY IDR -> 22: wref[2] = (id_ref,
-    urom[14] = 36'hc005dd772; urom[142] = 36'h00061077f;   // pc 14 COPY IQR -> 23: iq_ref,
-    urom[15] = 36'h0029d5803; urom[143] = 36'h0007003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
-    urom[16] = 36'hc0065d962; urom[144] = 36'h0006107bf;   // pc 16 COPY IDR -> 25: wref[3] = (id_ref,
-    urom[17] = 36'hc0069da72; urom[145] = 36'h00061077f;   // pc 17 COPY IQR -> 26: iq_ref,
-    urom[18] = 36'h0029d1b03; urom[146] = 36'h0007003fe;   // pc 18 REF -> 27 m 3: w3[3] from w_(k+3))
-    urom[19] = 36'hc0071dc62; urom[147] = 36'h0006107bf;   // pc 19 COPY IDR -> 28: wref[4] = (id_ref,
-    urom[20] = 36'hc0075dd72; urom[148] = 36'h00061077f;   // pc 20 COPY IQR -> 29: iq_ref,
-    urom[21] = 36'h0029cde03; urom[149] = 36'h0007003fe;   // pc 21 REF -> 30 m 4: w3[4] from w_(k+4))
-    urom[22] = 36'hc007ddf62; urom[150] = 36'h0006107bf;   // pc 22 COPY IDR -> 31: wref[5] = (id_ref,
-    urom[23] = 36'hc0081e072; urom[151] = 36'h00061077f;   // pc 23 COPY IQR -> 32: iq_ref,
-    urom[24] = 36'h0029ca103; urom[152] = 36'h0007003fe;   // pc 24 REF -> 33 m 5: w3[5] from w_(k+5))
-    urom[25] = 36'hc0089e262; urom[153] = 36'h0006107bf;   // pc 25 COPY IDR -> 34: wref[6] = (id_ref,
-    urom[26] = 36'hc008de372; urom[154] = 36'h00061077f;   // pc 26 COPY IQR -> 35: iq_ref,
-    urom[27] = 36'h0029c6403; urom[155] = 36'h0007003fe;   // pc 27 REF -> 36 m 6: w3[6] from w_(k+6))
-    urom[28] = 36'hc0095e562; urom[156] = 36'h0006107bf;   // pc 28 COPY IDR -> 37: wref[7] = (id_ref,
-    urom[29] = 36'hc0099e672; urom[157] = 36'h00061077f;   // pc 29 COPY IQR -> 38: iq_ref,
-    urom[30] = 36'h0029c2703; urom[158] = 36'h0007003fe;   // pc 30 REF -> 39 m 7: w3[7] from w_(k+7))
-    urom[31] = 36'h3048dc084; urom[159] = 36'h000e002ff;   // pc 31 DIFF ID -> 0: y0 = i_d, dx0 (at +4); waits for the front
-    urom[32] = 36'h30491c194; urom[160] = 36'h000e001ff;   // pc 32 DIFF IQ -> 1: y1 = i_q, dx1; feeds the multiplier
-    urom[33] = 36'h40801c005; urom[161] = 36'h0006803fe;   // pc 33 OM: omega = spd + ka; waits for the product
-    urom[34] = 36'h61085c306; urom[162] = 36'h000e00bfe;   // pc 34 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
-    urom[35] = 36'h92019c607; urom[163] = 36'h000700bfe;   // pc 35 W6 -> 6: dx2 = omega - omega_prev
-    urom[36] = 36'hc0009c208; urom[164] = 36'h0006413fe;   // pc 36 ZPOS -> 2: y2 = 0 (position task)
-    urom[37] = 36'hc0001c009; urom[165] = 36'h0006063fe;   // pc 37 END: core start
-    urom[64] = 36'ha4095e54a; urom[192] = 36'h000e807ef;   // pc 64 STAT U0 -> 37: U_D = the u applied
-    urom[65] = 36'ha4099e65a; urom[193] = 36'h000e807df;   // pc 65 STAT U1 -> 38: U_Q
-    urom[66] = 36'hc0001c00b; urom[194] = 36'h0006023fe;   // pc 66 SEND
-    urom[67] = 36'hc8085e1fc; urom[195] = 36'h000080bff;   // pc 67 CNT 15 -> 33: SPEED = 0
-    urom[68] = 36'hc808de3fc; urom[196] = 36'h000080bff;   // pc 68 CNT 15 -> 35: I_D = 0
-    urom[69] = 36'hc8091e4fc; urom[197] = 36'h000080bff;   // pc 69 CNT 15 -> 36: I_Q = 0
-    urom[70] = 36'hc8095e5fc; urom[198] = 36'h000080bff;   // pc 70 CNT 15 -> 37: U_D = 0
-    urom[71] = 36'hc8099e6fc; urom[199] = 36'h000080bff;   // pc 71 CNT 15 -> 38: U_Q = 0
-    urom[72] = 36'hc809de7fc; urom[200] = 36'h000080bff;   // pc 72 CNT 15 -> 39: REF = 0
-    urom[73] = 36'hc80c1f00c; urom[201] = 36'h000680bfe;   // pc 73 CNT 0 -> 48: SAT_OPERAND + event 0
-    urom[74] = 36'hc80c5f11c; urom[202] = 36'h000680bfd;   // pc 74 CNT 1 -> 49: SAT_GAIN + event 1
-    urom[75] = 36'hc80c9f22c; urom[203] = 36'h000680bfb;   // pc 75 CNT 2 -> 50: SAT_TERM + event 2
-    urom[76] = 36'hc80cdf33c; urom[204] = 36'h000680bf7;   // pc 76 CNT 3 -> 51: SAT_ACC + event 3
-    urom[77] = 36'hc80d1f44c; urom[205] = 36'h000680bef;   // pc 77 CNT 4 -> 52: SAT_DU + event 4
-    urom[78] = 36'hc80d5f55c; urom[206] = 36'h000680bdf;   // pc 78 CNT 5 -> 53: SAT_U + event 5
-    urom[79] = 36'hc80d9f66c; urom[207] = 36'h000680bbf;   // pc 79 CNT 6 -> 54: SAT_EBAR + event 6
-    urom[80] = 36'hc80ddf77c; urom[208] = 36'h000680b7f;   // pc 80 CNT 7 -> 55: SAT_EBAR_INC + event 7
-    urom[81] = 36'hc80e1f88c; urom[209] = 36'h000680aff;   // pc 81 CNT 8 -> 56: SAT_LIMIT + event 8
-    urom[82] = 36'hc80e5f99c; urom[210] = 36'h0006809ff;   // pc 82 CNT 9 -> 57: SAT_WN + event 9
-    urom[83] = 36'hc80e9faac; urom[211] = 36'h000680bff;   // pc 83 CNT 10 -> 58: SAT_SIGNAL + event 10
-    urom[84] = 36'hc80edfbbc; urom[212] = 36'h000680bff;   // pc 84 CNT 11 -> 59: SAT_FRONT + event 11
-    urom[85] = 36'hc80f1fccc; urom[213] = 36'h000680bff;   // pc 85 CNT 12 -> 60: CNT_OVERRUN + event 12
-    urom[86] = 36'hc80adebdc; urom[214] = 36'h000480bff;   // pc 86 CNT 13 -> 43: PERIODS + event 13
-    urom[87] = 36'hc0001c00d; urom[215] = 36'h00060a3fe;   // pc 87 CEND
+    for (ui = 0; ui < 128; ui = ui + 1) begin urom[ui] = 36'h60001c00b; urom[128 + ui] = 36'h0000023fe; end   // SEND
+    urom[0] = 36'h0811dc700; urom[128] = 36'h0001007fe;   // pc 0 POS POS -> 7: dx3 = dpos << 8 (and dpos, the speed)
+    urom[1] = 36'h60021c801; urom[129] = 36'h0000213fe;   // pc 1 ZERO -> 8: dx4 = 0
+    urom[2] = 36'h6002dcb12; urom[130] = 36'h0000107fd;   // pc 2 COPY E0 -> 11: ebar_prev[0]
+    urom[3] = 36'h60031cc22; urom[131] = 36'h0000107fb;   // pc 3 COPY E1 -> 12: ebar_prev[1]
+    urom[4] = 36'h60035cd32; urom[132] = 36'h0000107f7;   // pc 4 COPY E2 -> 13: ebar_prev[2]
+    urom[5] = 36'h60025c942; urom[133] = 36'h0000107ef;   // pc 5 COPY U0 -> 9: u_prev[0]
+    urom[6] = 36'h60029ca52; urom[134] = 36'h0000107df;   // pc 6 COPY U1 -> 10: u_prev[1]
+    urom[7] = 36'h60041d062; urom[135] = 36'h0000107bf;   // pc 7 COPY IDR -> 16: wref[0] = (id_ref,
+    urom[8] = 36'h60045d172; urom[136] = 36'h00001077f;   // pc 8 COPY IQR -> 17: iq_ref,
+    urom[9] = 36'h1029dd203; urom[137] = 36'h0003003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
+    urom[10] = 36'h6004dd362; urom[138] = 36'h0000107bf;   // pc 10 COPY IDR -> 19: wref[1] = (id_ref,
+    urom[11] = 36'h60051d472; urom[139] = 36'h00001077f;   // pc 11 COPY IQR -> 20: iq_ref,
+    urom[12] = 36'h0029d9503; urom[140] = 36'h0001003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
+    urom[13] = 36'h60059d662; urom[141] = 36'h0000107bf;   // pc 13 COPY IDR -> 22: wref[2] = (id_ref,
+    urom[14] = 36'h6005dd772; urom[142] = 36'h00001077f;   // pc 14 COPY IQR -> 23: iq_ref,
+    urom[15] = 36'h0029d5803; urom[143] = 36'h0001003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
+    urom[16] = 36'h60065d962; urom[144] = 36'h0000107bf;   // pc 16 COPY IDR -> 25: wref[3] = (id_ref,
+    urom[17] = 36'h60069da72; urom[145] = 36'h00001077f;   // pc 17 COPY IQR -> 26: iq_ref,
+    urom[18] = 36'h0029d1b03; urom[146] = 36'h0001003fe;   // pc 18 REF -> 27 m 3: w3[3] from w_(k+3))
+    urom[19] = 36'h60071dc62; urom[147] = 36'h0000107bf;   // pc 19 COPY IDR -> 28: wref[4] = (id_ref,
+    urom[20] = 36'h60075dd72; urom[148] = 36'h00001077f;   // pc 20 COPY IQR -> 29: iq_ref,
+    urom[21] = 36'h0029cde03; urom[149] = 36'h0001003fe;   // pc 21 REF -> 30 m 4: w3[4] from w_(k+4))
+    urom[22] = 36'h6007ddf62; urom[150] = 36'h0000107bf;   // pc 22 COPY IDR -> 31: wref[5] = (id_ref,
+    urom[23] = 36'h60081e072; urom[151] = 36'h00001077f;   // pc 23 COPY IQR -> 32: iq_ref,
+    urom[24] = 36'h0029ca103; urom[152] = 36'h0001003fe;   // pc 24 REF -> 33 m 5: w3[5] from w_(k+5))
+    urom[25] = 36'h60089e262; urom[153] = 36'h0000107bf;   // pc 25 COPY IDR -> 34: wref[6] = (id_ref,
+    urom[26] = 36'h6008de372; urom[154] = 36'h00001077f;   // pc 26 COPY IQR -> 35: iq_ref,
+    urom[27] = 36'h0029c6403; urom[155] = 36'h0001003fe;   // pc 27 REF -> 36 m 6: w3[6] from w_(k+6))
+    urom[28] = 36'h60095e562; urom[156] = 36'h0000107bf;   // pc 28 COPY IDR -> 37: wref[7] = (id_ref,
+    urom[29] = 36'h60099e672; urom[157] = 36'h00001077f;   // pc 29 COPY IQR -> 38: iq_ref,
+    urom[30] = 36'h0029c2703; urom[158] = 36'h0001003fe;   // pc 30 REF -> 39 m 7: w3[7] from w_(k+7))
+    urom[31] = 36'h1848dc084; urom[159] = 36'h0002002ff;   // pc 31 DIFF ID -> 0: y0 = i_d, dx0 (at +4); waits for the front
+    urom[32] = 36'h18491c194; urom[160] = 36'h0002001ff;   // pc 32 DIFF IQ -> 1: y1 = i_q, dx1; feeds the multiplier
+    urom[33] = 36'h20801c005; urom[161] = 36'h0000803fe;   // pc 33 OM: omega = spd + ka; waits for the product
+    urom[34] = 36'h31085c306; urom[162] = 36'h000200bfe;   // pc 34 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
+    urom[35] = 36'h4a019c607; urom[163] = 36'h000100bfe;   // pc 35 W6 -> 6: dx2 = omega - omega_prev
+    urom[36] = 36'h60009c208; urom[164] = 36'h0000413fe;   // pc 36 ZPOS -> 2: y2 = 0 (position task)
+    urom[37] = 36'h60001c009; urom[165] = 36'h0000063fe;   // pc 37 END: core start
+    urom[64] = 36'h54095e54a; urom[192] = 36'h0002807ef;   // pc 64 STAT U0 -> 37: U_D = the u applied
+    urom[65] = 36'h54099e65a; urom[193] = 36'h0002807df;   // pc 65 STAT U1 -> 38: U_Q
+    urom[66] = 36'h60001c00b; urom[194] = 36'h0000023fe;   // pc 66 SEND
+    urom[67] = 36'h60085e10c; urom[195] = 36'h000280bfe;   // pc 67 CNT -> 33: SPEED = 0
+    urom[68] = 36'h6008de30c; urom[196] = 36'h000280bfe;   // pc 68 CNT -> 35: I_D = 0
+    urom[69] = 36'h60091e40c; urom[197] = 36'h000280bfe;   // pc 69 CNT -> 36: I_Q = 0
+    urom[70] = 36'h60095e50c; urom[198] = 36'h000280bfe;   // pc 70 CNT -> 37: U_D = 0
+    urom[71] = 36'h60099e60c; urom[199] = 36'h000280bfe;   // pc 71 CNT -> 38: U_Q = 0
+    urom[72] = 36'h6009de70c; urom[200] = 36'h000280bfe;   // pc 72 CNT -> 39: REF = 0
+    urom[73] = 36'h600c1f00c; urom[201] = 36'h000280bfe;   // pc 73 CNT -> 48: SAT_OPERAND
+    urom[74] = 36'h600c5f10c; urom[202] = 36'h000280bfe;   // pc 74 CNT -> 49: SAT_GAIN
+    urom[75] = 36'h600c9f20c; urom[203] = 36'h000280bfe;   // pc 75 CNT -> 50: SAT_TERM
+    urom[76] = 36'h600cdf30c; urom[204] = 36'h000280bfe;   // pc 76 CNT -> 51: SAT_ACC
+    urom[77] = 36'h600d1f40c; urom[205] = 36'h000280bfe;   // pc 77 CNT -> 52: SAT_DU
+    urom[78] = 36'h600d5f50c; urom[206] = 36'h000280bfe;   // pc 78 CNT -> 53: SAT_U
+    urom[79] = 36'h600d9f60c; urom[207] = 36'h000280bfe;   // pc 79 CNT -> 54: SAT_EBAR
+    urom[80] = 36'h600ddf70c; urom[208] = 36'h000280bfe;   // pc 80 CNT -> 55: SAT_EBAR_INC
+    urom[81] = 36'h600e1f80c; urom[209] = 36'h000280bfe;   // pc 81 CNT -> 56: SAT_LIMIT
+    urom[82] = 36'h600e5f90c; urom[210] = 36'h000280bfe;   // pc 82 CNT -> 57: SAT_WN
+    urom[83] = 36'h600e9fa0c; urom[211] = 36'h000280bfe;   // pc 83 CNT -> 58: SAT_SIGNAL
+    urom[84] = 36'h600edfb0c; urom[212] = 36'h000280bfe;   // pc 84 CNT -> 59: SAT_FRONT
+    urom[85] = 36'h600f1fc0c; urom[213] = 36'h000280bfe;   // pc 85 CNT -> 60: CNT_OVERRUN
+    urom[86] = 36'h600adeb0c; urom[214] = 36'h000280bfe;   // pc 86 CNT -> 43: PERIODS
+    urom[87] = 36'h60001c00d; urom[215] = 36'h00000a3fe;   // pc 87 CEND
 end
 if (N == 8) begin
-    for (ui = 0; ui < 128; ui = ui + 1) begin urom[ui] = 36'hc0002000b; urom[128 + ui] = 36'h0006023fe; end   // SEND
-    urom[0] = 36'h1011e0700; urom[128] = 36'h0007007fe;   // pc 0 POS POS -> 7: dx3 = dpos << 8 (and dpos, the speed)
-    urom[1] = 36'hc00220801; urom[129] = 36'h0006213fe;   // pc 1 ZERO -> 8: dx4 = 0
-    urom[2] = 36'hc002e0b12; urom[130] = 36'h0006107fd;   // pc 2 COPY E0 -> 11: ebar_prev[0]
-    urom[3] = 36'hc00320c22; urom[131] = 36'h0006107fb;   // pc 3 COPY E1 -> 12: ebar_prev[1]
-    urom[4] = 36'hc00360d32; urom[132] = 36'h0006107f7;   // pc 4 COPY E2 -> 13: ebar_prev[2]
-    urom[5] = 36'hc00260942; urom[133] = 36'h0006107ef;   // pc 5 COPY U0 -> 9: u_prev[0]
-    urom[6] = 36'hc002a0a52; urom[134] = 36'h0006107df;   // pc 6 COPY U1 -> 10: u_prev[1]
-    urom[7] = 36'hc00421062; urom[135] = 36'h0006107bf;   // pc 7 COPY IDR -> 16: wref[0] = (id_ref,
-    urom[8] = 36'hc00461172; urom[136] = 36'h00061077f;   // pc 8 COPY IQR -> 17: iq_ref,
-    urom[9] = 36'h2029e1203; urom[137] = 36'h000f003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
-    urom[10] = 36'hc004e1362; urom[138] = 36'h0006107bf;   // pc 10 COPY IDR -> 19: wref[1] = (id_ref,
-    urom[11] = 36'hc00521472; urom[139] = 36'h00061077f;   // pc 11 COPY IQR -> 20: iq_ref,
-    urom[12] = 36'h0029dd503; urom[140] = 36'h0007003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
-    urom[13] = 36'hc005a1662; urom[141] = 36'h0006107bf;   // pc 13 COPY IDR -> 22: wref[2] = (id_ref,
-    urom[14] = 36'hc005e1772; urom[142] = 36'h00061077f;   // pc 14 COPY IQR -> 23: iq_ref,
-    urom[15] = 36'h0029d9803; urom[143] = 36'h0007003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
-    urom[16] = 36'hc00661962; urom[144] = 36'h0006107bf;   // pc 16 COPY IDR -> 25: wref[3] = (id_ref,
-    urom[17] = 36'hc006a1a72; urom[145] = 36'h00061077f;   // pc 17 COPY IQR -> 26: iq_ref,
-    urom[18] = 36'h0029d5b03; urom[146] = 36'h0007003fe;   // pc 18 REF -> 27 m 3: w3[3] from w_(k+3))
-    urom[19] = 36'hc00721c62; urom[147] = 36'h0006107bf;   // pc 19 COPY IDR -> 28: wref[4] = (id_ref,
-    urom[20] = 36'hc00761d72; urom[148] = 36'h00061077f;   // pc 20 COPY IQR -> 29: iq_ref,
-    urom[21] = 36'h0029d1e03; urom[149] = 36'h0007003fe;   // pc 21 REF -> 30 m 4: w3[4] from w_(k+4))
-    urom[22] = 36'hc007e1f62; urom[150] = 36'h0006107bf;   // pc 22 COPY IDR -> 31: wref[5] = (id_ref,
-    urom[23] = 36'hc00822072; urom[151] = 36'h00061077f;   // pc 23 COPY IQR -> 32: iq_ref,
-    urom[24] = 36'h0029ce103; urom[152] = 36'h0007003fe;   // pc 24 REF -> 33 m 5: w3[5] from w_(k+5))
-    urom[25] = 36'hc008a2262; urom[153] = 36'h0006107bf;   // pc 25 COPY IDR -> 34: wref[6] = (id_ref,
-    urom[26] = 36'hc008e2372; urom[154] = 36'h00061077f;   // pc 26 COPY IQR -> 35: iq_ref,
-    urom[27] = 36'h0029ca403; urom[155] = 36'h0007003fe;   // pc 27 REF -> 36 m 6: w3[6] from w_(k+6))
-    urom[28] = 36'hc00962562; urom[156] = 36'h0006107bf;   // pc 28 COPY IDR -> 37: wref[7] = (id_ref,
-    urom[29] = 36'hc009a2672; urom[157] = 36'h00061077f;   // pc 29 COPY IQR -> 38: iq_ref,
-    urom[30] = 36'h0029c6703; urom[158] = 36'h0007003fe;   // pc 30 REF -> 39 m 7: w3[7] from w_(k+7))
-    urom[31] = 36'hc00a22862; urom[159] = 36'h0006107bf;   // pc 31 COPY IDR -> 40: wref[8] = (id_ref,
-    urom[32] = 36'hc00a62972; urom[160] = 36'h00061077f;   // pc 32 COPY IQR -> 41: iq_ref,
-    urom[33] = 36'h0029c2a03; urom[161] = 36'h0007003fe;   // pc 33 REF -> 42 m 8: w3[8] from w_(k+8))
-    urom[34] = 36'h3048e0084; urom[162] = 36'h000e002ff;   // pc 34 DIFF ID -> 0: y0 = i_d, dx0 (at +4); waits for the front
-    urom[35] = 36'h304920194; urom[163] = 36'h000e001ff;   // pc 35 DIFF IQ -> 1: y1 = i_q, dx1; feeds the multiplier
-    urom[36] = 36'h408020005; urom[164] = 36'h0006803fe;   // pc 36 OM: omega = spd + ka; waits for the product
-    urom[37] = 36'h610860306; urom[165] = 36'h000e00bfe;   // pc 37 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
-    urom[38] = 36'h9201a0607; urom[166] = 36'h000700bfe;   // pc 38 W6 -> 6: dx2 = omega - omega_prev
-    urom[39] = 36'hc000a0208; urom[167] = 36'h0006413fe;   // pc 39 ZPOS -> 2: y2 = 0 (position task)
-    urom[40] = 36'hc00020009; urom[168] = 36'h0006063fe;   // pc 40 END: core start
-    urom[64] = 36'ha4096254a; urom[192] = 36'h000e807ef;   // pc 64 STAT U0 -> 37: U_D = the u applied
-    urom[65] = 36'ha409a265a; urom[193] = 36'h000e807df;   // pc 65 STAT U1 -> 38: U_Q
-    urom[66] = 36'hc0002000b; urom[194] = 36'h0006023fe;   // pc 66 SEND
-    urom[67] = 36'hc808621fc; urom[195] = 36'h000080bff;   // pc 67 CNT 15 -> 33: SPEED = 0
-    urom[68] = 36'hc808e23fc; urom[196] = 36'h000080bff;   // pc 68 CNT 15 -> 35: I_D = 0
-    urom[69] = 36'hc809224fc; urom[197] = 36'h000080bff;   // pc 69 CNT 15 -> 36: I_Q = 0
-    urom[70] = 36'hc809625fc; urom[198] = 36'h000080bff;   // pc 70 CNT 15 -> 37: U_D = 0
-    urom[71] = 36'hc809a26fc; urom[199] = 36'h000080bff;   // pc 71 CNT 15 -> 38: U_Q = 0
-    urom[72] = 36'hc809e27fc; urom[200] = 36'h000080bff;   // pc 72 CNT 15 -> 39: REF = 0
-    urom[73] = 36'hc80c2300c; urom[201] = 36'h000680bfe;   // pc 73 CNT 0 -> 48: SAT_OPERAND + event 0
-    urom[74] = 36'hc80c6311c; urom[202] = 36'h000680bfd;   // pc 74 CNT 1 -> 49: SAT_GAIN + event 1
-    urom[75] = 36'hc80ca322c; urom[203] = 36'h000680bfb;   // pc 75 CNT 2 -> 50: SAT_TERM + event 2
-    urom[76] = 36'hc80ce333c; urom[204] = 36'h000680bf7;   // pc 76 CNT 3 -> 51: SAT_ACC + event 3
-    urom[77] = 36'hc80d2344c; urom[205] = 36'h000680bef;   // pc 77 CNT 4 -> 52: SAT_DU + event 4
-    urom[78] = 36'hc80d6355c; urom[206] = 36'h000680bdf;   // pc 78 CNT 5 -> 53: SAT_U + event 5
-    urom[79] = 36'hc80da366c; urom[207] = 36'h000680bbf;   // pc 79 CNT 6 -> 54: SAT_EBAR + event 6
-    urom[80] = 36'hc80de377c; urom[208] = 36'h000680b7f;   // pc 80 CNT 7 -> 55: SAT_EBAR_INC + event 7
-    urom[81] = 36'hc80e2388c; urom[209] = 36'h000680aff;   // pc 81 CNT 8 -> 56: SAT_LIMIT + event 8
-    urom[82] = 36'hc80e6399c; urom[210] = 36'h0006809ff;   // pc 82 CNT 9 -> 57: SAT_WN + event 9
-    urom[83] = 36'hc80ea3aac; urom[211] = 36'h000680bff;   // pc 83 CNT 10 -> 58: SAT_SIGNAL + event 10
-    urom[84] = 36'hc80ee3bbc; urom[212] = 36'h000680bff;   // pc 84 CNT 11 -> 59: SAT_FRONT + event 11
-    urom[85] = 36'hc80f23ccc; urom[213] = 36'h000680bff;   // pc 85 CNT 12 -> 60: CNT_OVERRUN + event 12
-    urom[86] = 36'hc80ae2bdc; urom[214] = 36'h000480bff;   // pc 86 CNT 13 -> 43: PERIODS + event 13
-    urom[87] = 36'hc0002000d; urom[215] = 36'h00060a3fe;   // pc 87 CEND
+    for (ui = 0; ui < 128; ui = ui + 1) begin urom[ui] = 36'h60002000b; urom[128 + ui] = 36'h0000023fe; end   // SEND
+    urom[0] = 36'h0811e0700; urom[128] = 36'h0001007fe;   // pc 0 POS POS -> 7: dx3 = dpos << 8 (and dpos, the speed)
+    urom[1] = 36'h600220801; urom[129] = 36'h0000213fe;   // pc 1 ZERO -> 8: dx4 = 0
+    urom[2] = 36'h6002e0b12; urom[130] = 36'h0000107fd;   // pc 2 COPY E0 -> 11: ebar_prev[0]
+    urom[3] = 36'h600320c22; urom[131] = 36'h0000107fb;   // pc 3 COPY E1 -> 12: ebar_prev[1]
+    urom[4] = 36'h600360d32; urom[132] = 36'h0000107f7;   // pc 4 COPY E2 -> 13: ebar_prev[2]
+    urom[5] = 36'h600260942; urom[133] = 36'h0000107ef;   // pc 5 COPY U0 -> 9: u_prev[0]
+    urom[6] = 36'h6002a0a52; urom[134] = 36'h0000107df;   // pc 6 COPY U1 -> 10: u_prev[1]
+    urom[7] = 36'h600421062; urom[135] = 36'h0000107bf;   // pc 7 COPY IDR -> 16: wref[0] = (id_ref,
+    urom[8] = 36'h600461172; urom[136] = 36'h00001077f;   // pc 8 COPY IQR -> 17: iq_ref,
+    urom[9] = 36'h1029e1203; urom[137] = 36'h0003003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
+    urom[10] = 36'h6004e1362; urom[138] = 36'h0000107bf;   // pc 10 COPY IDR -> 19: wref[1] = (id_ref,
+    urom[11] = 36'h600521472; urom[139] = 36'h00001077f;   // pc 11 COPY IQR -> 20: iq_ref,
+    urom[12] = 36'h0029dd503; urom[140] = 36'h0001003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
+    urom[13] = 36'h6005a1662; urom[141] = 36'h0000107bf;   // pc 13 COPY IDR -> 22: wref[2] = (id_ref,
+    urom[14] = 36'h6005e1772; urom[142] = 36'h00001077f;   // pc 14 COPY IQR -> 23: iq_ref,
+    urom[15] = 36'h0029d9803; urom[143] = 36'h0001003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
+    urom[16] = 36'h600661962; urom[144] = 36'h0000107bf;   // pc 16 COPY IDR -> 25: wref[3] = (id_ref,
+    urom[17] = 36'h6006a1a72; urom[145] = 36'h00001077f;   // pc 17 COPY IQR -> 26: iq_ref,
+    urom[18] = 36'h0029d5b03; urom[146] = 36'h0001003fe;   // pc 18 REF -> 27 m 3: w3[3] from w_(k+3))
+    urom[19] = 36'h600721c62; urom[147] = 36'h0000107bf;   // pc 19 COPY IDR -> 28: wref[4] = (id_ref,
+    urom[20] = 36'h600761d72; urom[148] = 36'h00001077f;   // pc 20 COPY IQR -> 29: iq_ref,
+    urom[21] = 36'h0029d1e03; urom[149] = 36'h0001003fe;   // pc 21 REF -> 30 m 4: w3[4] from w_(k+4))
+    urom[22] = 36'h6007e1f62; urom[150] = 36'h0000107bf;   // pc 22 COPY IDR -> 31: wref[5] = (id_ref,
+    urom[23] = 36'h600822072; urom[151] = 36'h00001077f;   // pc 23 COPY IQR -> 32: iq_ref,
+    urom[24] = 36'h0029ce103; urom[152] = 36'h0001003fe;   // pc 24 REF -> 33 m 5: w3[5] from w_(k+5))
+    urom[25] = 36'h6008a2262; urom[153] = 36'h0000107bf;   // pc 25 COPY IDR -> 34: wref[6] = (id_ref,
+    urom[26] = 36'h6008e2372; urom[154] = 36'h00001077f;   // pc 26 COPY IQR -> 35: iq_ref,
+    urom[27] = 36'h0029ca403; urom[155] = 36'h0001003fe;   // pc 27 REF -> 36 m 6: w3[6] from w_(k+6))
+    urom[28] = 36'h600962562; urom[156] = 36'h0000107bf;   // pc 28 COPY IDR -> 37: wref[7] = (id_ref,
+    urom[29] = 36'h6009a2672; urom[157] = 36'h00001077f;   // pc 29 COPY IQR -> 38: iq_ref,
+    urom[30] = 36'h0029c6703; urom[158] = 36'h0001003fe;   // pc 30 REF -> 39 m 7: w3[7] from w_(k+7))
+    urom[31] = 36'h600a22862; urom[159] = 36'h0000107bf;   // pc 31 COPY IDR -> 40: wref[8] = (id_ref,
+    urom[32] = 36'h600a62972; urom[160] = 36'h00001077f;   // pc 32 COPY IQR -> 41: iq_ref,
+    urom[33] = 36'h0029c2a03; urom[161] = 36'h0001003fe;   // pc 33 REF -> 42 m 8: w3[8] from w_(k+8))
+    urom[34] = 36'h1848e0084; urom[162] = 36'h0002002ff;   // pc 34 DIFF ID -> 0: y0 = i_d, dx0 (at +4); waits for the front
+    urom[35] = 36'h184920194; urom[163] = 36'h0002001ff;   // pc 35 DIFF IQ -> 1: y1 = i_q, dx1; feeds the multiplier
+    urom[36] = 36'h208020005; urom[164] = 36'h0000803fe;   // pc 36 OM: omega = spd + ka; waits for the product
+    urom[37] = 36'h310860306; urom[165] = 36'h000200bfe;   // pc 37 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
+    urom[38] = 36'h4a01a0607; urom[166] = 36'h000100bfe;   // pc 38 W6 -> 6: dx2 = omega - omega_prev
+    urom[39] = 36'h6000a0208; urom[167] = 36'h0000413fe;   // pc 39 ZPOS -> 2: y2 = 0 (position task)
+    urom[40] = 36'h600020009; urom[168] = 36'h0000063fe;   // pc 40 END: core start
+    urom[64] = 36'h54096254a; urom[192] = 36'h0002807ef;   // pc 64 STAT U0 -> 37: U_D = the u applied
+    urom[65] = 36'h5409a265a; urom[193] = 36'h0002807df;   // pc 65 STAT U1 -> 38: U_Q
+    urom[66] = 36'h60002000b; urom[194] = 36'h0000023fe;   // pc 66 SEND
+    urom[67] = 36'h60086210c; urom[195] = 36'h000280bfe;   // pc 67 CNT -> 33: SPEED = 0
+    urom[68] = 36'h6008e230c; urom[196] = 36'h000280bfe;   // pc 68 CNT -> 35: I_D = 0
+    urom[69] = 36'h60092240c; urom[197] = 36'h000280bfe;   // pc 69 CNT -> 36: I_Q = 0
+    urom[70] = 36'h60096250c; urom[198] = 36'h000280bfe;   // pc 70 CNT -> 37: U_D = 0
+    urom[71] = 36'h6009a260c; urom[199] = 36'h000280bfe;   // pc 71 CNT -> 38: U_Q = 0
+    urom[72] = 36'h6009e270c; urom[200] = 36'h000280bfe;   // pc 72 CNT -> 39: REF = 0
+    urom[73] = 36'h600c2300c; urom[201] = 36'h000280bfe;   // pc 73 CNT -> 48: SAT_OPERAND
+    urom[74] = 36'h600c6310c; urom[202] = 36'h000280bfe;   // pc 74 CNT -> 49: SAT_GAIN
+    urom[75] = 36'h600ca320c; urom[203] = 36'h000280bfe;   // pc 75 CNT -> 50: SAT_TERM
+    urom[76] = 36'h600ce330c; urom[204] = 36'h000280bfe;   // pc 76 CNT -> 51: SAT_ACC
+    urom[77] = 36'h600d2340c; urom[205] = 36'h000280bfe;   // pc 77 CNT -> 52: SAT_DU
+    urom[78] = 36'h600d6350c; urom[206] = 36'h000280bfe;   // pc 78 CNT -> 53: SAT_U
+    urom[79] = 36'h600da360c; urom[207] = 36'h000280bfe;   // pc 79 CNT -> 54: SAT_EBAR
+    urom[80] = 36'h600de370c; urom[208] = 36'h000280bfe;   // pc 80 CNT -> 55: SAT_EBAR_INC
+    urom[81] = 36'h600e2380c; urom[209] = 36'h000280bfe;   // pc 81 CNT -> 56: SAT_LIMIT
+    urom[82] = 36'h600e6390c; urom[210] = 36'h000280bfe;   // pc 82 CNT -> 57: SAT_WN
+    urom[83] = 36'h600ea3a0c; urom[211] = 36'h000280bfe;   // pc 83 CNT -> 58: SAT_SIGNAL
+    urom[84] = 36'h600ee3b0c; urom[212] = 36'h000280bfe;   // pc 84 CNT -> 59: SAT_FRONT
+    urom[85] = 36'h600f23c0c; urom[213] = 36'h000280bfe;   // pc 85 CNT -> 60: CNT_OVERRUN
+    urom[86] = 36'h600ae2b0c; urom[214] = 36'h000280bfe;   // pc 86 CNT -> 43: PERIODS
+    urom[87] = 36'h60002000d; urom[215] = 36'h00000a3fe;   // pc 87 CEND
 end

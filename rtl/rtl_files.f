@@ -14,6 +14,7 @@ rtl/mpc_boot.v
 rtl/mpc_core.v
 rtl/lx_rocon_top.v
 rtl/ctrl_seq.v
+rtl/axis_status.v
 rtl/clk_gen.v
 rtl/mpc_axis.v
 rtl/fault_ctrl.v

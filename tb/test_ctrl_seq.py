@@ -268,7 +268,7 @@ async def random_periods(dut):
         st["run0"] += int(not regs.run)
         await ClockCycles(dut.clk, 700, rising=False)        # counter sweep, settle
         if interrupted:     # the interrupted zero sweep ran again after the period and completed
-            assert int(dut.u_seq.hide_cnt.value) == 0, f"period {k}: zero sweep not completed"
+            assert int(dut.u_status.hide_cnt.value) == 0, f"period {k}: zero sweep not completed"
     dut._log.info("ctrl_seq %s: seed %d, %s (all compare values, core outputs and front_sat pulses "
                   "bit-exact with the model)", task, seed, st)
     for key in ("dth_sat", "dom_sat", "ref_sat", "spd_sat", "run0", "core_checked", "int_op", "int_cend", "int_any"):

@@ -5,12 +5,19 @@ the angle and encoder count of that instant and the ADC samples of the period:
 it returns the compare values the RTL loads for the next PWM period, and on a
 control period also runs the front end, the MPC core model and updates the
 loop state exactly like the RTL.
+
+The second half of this module is the RTL's microprogram: the tables (ops, pass table,
+programs) from which ``empc.ucode`` generates rtl/ctrl_seq_ucode.vh and rtl/ctrl_seq_rom.vh
+(``python -m empc.ucode``).  They describe how the RTL computes, not what: the model above
+does not use them.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 
 from .. import formats as F
+from .. import regmap
+from .. import ucode as U
 from . import mpc_core as core
 from .clarke import clarke
 from .duty_scale import duty_scale
@@ -141,15 +148,11 @@ class CtrlSeq:
 # to decode from (op, source, m) behind the block RAM is decoded here instead: the microword
 # uw carries the fields and the op flags, the second word ub the engine's decode.
 # ==============================================================================================
-from .. import regmap  # noqa: E402
-from .. import ucode as U  # noqa: E402
-
 NUC_MAX = 64                    # control program rows 0..63 (7-bit pc; status programs from 64)
 OP = {"POS": 0, "ZERO": 1, "COPY": 2, "REF": 3, "DIFF": 4, "OM": 5, "FIX3": 6, "W6": 7, "ZPOS": 8, "END": 9,
       "STAT": 10, "SEND": 11, "CNT": 12, "CEND": 13}
 # sources of the COPY / STAT / DIFF / POS steps: stage registers, selected one-hot (ub.nsel, active low)
 SRC = {"POS": 0, "E0": 1, "E1": 2, "E2": 3, "U0": 4, "U1": 5, "IDR": 6, "IQR": 7, "ID": 8, "IQ": 9}
-SRC_ZERO = 15                   # counter op: a status word set to 0 (zero sweep after rst)
 N_SRC = len(SRC)
 # pass kinds (rows 64 k .. 64 k + 63 of the pass table); the reference kinds are {1, 0, task_pos,
 # m == 0}: the microword holds REFS / REFS0 and the RTL ORs task_pos into bit 1 (REFP / REFP0)
@@ -187,17 +190,23 @@ OPS = {
     "END":  Op("idle"),                                          # control program done: core start
     "STAT": Op("stage", "STAT", back=True, status=True),         # a status word out of X (U_D, U_Q)
     "SEND": Op("idle"),                                          # status program done
-    "CNT":  Op("pass", "CNT", back=True),                        # counter + event (or a word to 0)
+    "CNT":  Op("pass", "CNT", back=True, status=True),           # a sweep word (bits from axis_status)
     "CEND": Op("idle"),                                          # counter sweep done
 }
-FLAG_OPS = tuple(n for n in OP if OPS[n].kind)                   # op flags in uw (registered as is_*)
-assert FLAG_OPS == ("POS", "REF", "DIFF", "OM", "FIX3", "W6", "STAT", "CNT")
+# op flags in uw (registered as is_*): the ops whose pass the datapath treats apart (not CNT: the
+# sweep words' bits come from axis_status)
+FLAG_OPS = ("POS", "REF", "DIFF", "OM", "FIX3", "W6", "STAT")
 
+# uw: op (read by the test bench only), src (bit 0: DIFF i_q), wa (core word), age (ref_age = N - m),
+# st (status / sweep word offset), op flags, sub, pk (pass kind bits 2:0)
 UW = U.Layout((("op", 4), ("src", 4), ("wa", 6), ("age", 4), ("st", 6))
-              + tuple((n.lower(), 1) for n in FLAG_OPS) + (("sub", 1), ("pk", 3)))
+              + tuple((n.lower(), 1) for n in FLAG_OPS) + (("sub", 1), ("pk", 3), ("spare", 1)))
+# ub: stage selects (active low, one per SRC), next state from E_OP (to E_STG / E_PASS / E_IDLE; the
+# waits are the op flags), zero is "next step in E_OP" (ZERO, ZPOS), end markers (END: core start;
+# CEND: sweep done), COPY (E_LD -> E_WR), the zero writes (ZERO; ZPOS for the position task), the
+# pass-end actions: back to E_OP, saturated to SIG_W, writes a status / sweep word
 UB = U.Layout((("nsel", N_SRC), ("to_stg", 1), ("to_pass", 1), ("zero", 1), ("to_idle", 1), ("end", 1), ("cend", 1),
-               ("copy", 1), ("wz", 1), ("zpos", 1), ("back", 1), ("sat", 1), ("csok", 1), ("stok", 1),
-               ("stw", 1), ("spare", 12)))
+               ("copy", 1), ("wz", 1), ("zpos", 1), ("back", 1), ("sat", 1), ("stw", 1), ("spare", 14)))
 assert UW.width == UB.width == 36
 
 # Pass table: per kind, the bits b (0..63) of the pass in which each control bit is set.
@@ -220,7 +229,7 @@ PASSES = {
     "W6":    dict(XS=_ALL, AL=_ALL, HA=range(32, 64), CA=[31], HB=range(32, 64), CB=[31], R1=range(32),
                   R2=range(32), PE=[39], G=[31]),
     "STAT":  dict(XS=_ALL, AL=_ALL, SS=range(32), PE=[32]),
-    "CNT":   dict(AL=_ALL, SS=range(32), CA=[31], PE=[32]),
+    "CNT":   dict(SS=range(32), PE=[32]),                    # sweep word: axis_status forms the bits
     "FIX":   dict(PE=[39], XS=range(31, 64)),               # E_FIX (second port): bits 31.. of the pattern
     "REFS":  _REFS,
     "REFS0": dict(_REFS, SS=range(16, 48)),                  # m = 0: also the REF status word
@@ -236,10 +245,10 @@ def pass_word(kind: str, b: int) -> int:
 
 @dataclass(frozen=True)
 class Step:
-    """One instruction: op, source (SRC name; for CNT the event index, SRC_ZERO for a word to 0),
-    wa (core input word, or the register offset of a STAT / CNT word), m (reference w_{k+m})."""
+    """One instruction: op, source (SRC name), wa (core input word, or the register offset of a
+    STAT / CNT word), m (reference w_{k+m})."""
     op: str
-    src: str | int = 0
+    src: str = "POS"
     wa: int = 0
     m: int = 0
     note: str = ""
@@ -263,13 +272,13 @@ def control_program(n: int) -> list[Step]:
     for m in range(n + 1):
         a = core.IN_WREF + 3 * m
         prog += [Step("COPY", "IDR", a, note=f"wref[{m}] = (id_ref,"), Step("COPY", "IQR", a + 1, note="iq_ref,"),
-                 Step("REF", 0, a + 2, m, note=f"w3[{m}] from w_(k+{m}))")]
+                 Step("REF", wa=a + 2, m=m, note=f"w3[{m}] from w_(k+{m}))")]
     prog += [Step("DIFF", "ID", core.IN_Y + 0, note="y0 = i_d, dx0 (at +4); waits for the front"),
              Step("DIFF", "IQ", core.IN_Y + 1, note="y1 = i_q, dx1; feeds the multiplier"),
              Step("OM", note="omega = spd + ka; waits for the product"),
-             Step("FIX3", 0, core.IN_OMEGA, note="omega saturated (and y2 = omega for the speed task)"),
-             Step("W6", 0, core.IN_DX + 2, note="dx2 = omega - omega_prev"),
-             Step("ZPOS", 0, core.IN_Y + 2, note="y2 = 0 (position task)"),
+             Step("FIX3", wa=core.IN_OMEGA, note="omega saturated (and y2 = omega for the speed task)"),
+             Step("W6", wa=core.IN_DX + 2, note="dx2 = omega - omega_prev"),
+             Step("ZPOS", wa=core.IN_Y + 2, note="y2 = 0 (position task)"),
              Step("END", note="core start")]
     assert len(prog) == 14 + 3 * (n + 1) <= NUC_MAX
     return prog
@@ -277,9 +286,10 @@ def control_program(n: int) -> list[Step]:
 
 STATUS_PROGRAM = [Step("STAT", "U0", _a("U_D"), note="U_D = the u applied"),
                   Step("STAT", "U1", _a("U_Q"), note="U_Q"), Step("SEND")]
-ZERO_PROGRAM = [Step("CNT", SRC_ZERO, _a(w), note=f"{w} = 0") for w in STATUS_WORDS]    # falls through into
-COUNT_PROGRAM = ([Step("CNT", i, _a(c), note=f"{c} + event {i}") for i, c in enumerate(COUNTERS)]
-                 + [Step("CEND")])
+# sweeps of axis_status (it supplies the bits: counter + event, or 0 in a zero sweep); the zero
+# sweep after rst zeroes the status words, then runs into the counters
+ZERO_PROGRAM = [Step("CNT", wa=_a(w), note=f"{w} = 0") for w in STATUS_WORDS]
+COUNT_PROGRAM = [Step("CNT", wa=_a(c), note=c) for c in COUNTERS] + [Step("CEND")]
 # entry points: the control program at 0, the others from NUC_MAX on; the zero sweep (after rst)
 # runs into the counter sweep
 ENTRY = {"CTL": 0, "STAT": NUC_MAX, "ZERO": NUC_MAX + len(STATUS_PROGRAM),
@@ -291,19 +301,19 @@ DEFAULT = Step("SEND")
 def words(s: Step, n: int) -> tuple[int, int]:
     """(uw, ub) of step ``s`` for horizon ``n``."""
     d = OPS[s.op]
-    src = SRC[s.src] if isinstance(s.src, str) else s.src
+    src = SRC[s.src]
     ref = s.op == "REF"
     kind = d.kind or "CNT"
     if ref and s.m == 0:
         kind = "REFS0"
     st = {"REF": _a("REF"), "DIFF": _a("I_D") + (src & 1), "FIX3": _a("SPEED")}.get(s.op, s.wa)
-    uw = UW.pack(op=OP[s.op], src=src, wa=s.wa, age=(n - s.m) & 15, st=st, sub=int(d.sub), pk=PK[kind] & 7,
-                 **({s.op.lower(): 1} if d.kind else {}))
+    # (every field range-checked by pack: no silent truncation, e.g. of m or N - m)
+    uw = UW.pack(op=OP[s.op], src=src, wa=s.wa, age=n - s.m, st=st, sub=int(d.sub), pk=PK[kind] & 7,
+                 **({s.op.lower(): 1} if s.op in FLAG_OPS else {}))
     ub = UB.pack(nsel=((1 << N_SRC) - 1) & ~(1 << src), to_stg=int(d.go == "stage"), to_pass=int(d.go == "pass"),
-                 zero=int(d.go == "zero"), to_idle=int(d.go == "idle"), end=int(s.op == "END"), cend=int(s.op == "CEND"),
-                 copy=int(s.op == "COPY"), wz=int(s.op == "ZERO"), zpos=int(s.op == "ZPOS"), back=int(d.back),
-                 sat=int(d.sat), csok=int(src not in (13, SRC_ZERO)), stok=int(src != SRC_ZERO),
-                 stw=int(d.status and (not ref or s.m == 0)))
+                 zero=int(d.go == "zero"), to_idle=int(d.go == "idle"), end=int(s.op == "END"),
+                 cend=int(s.op == "CEND"), copy=int(s.op == "COPY"), wz=int(s.op == "ZERO"), zpos=int(s.op == "ZPOS"),
+                 back=int(d.back), sat=int(d.sat), stw=int(d.status and (not ref or s.m == 0)))
     return uw, ub
 
 
@@ -337,8 +347,7 @@ def crom_image() -> list[int]:
 N_RANGE = range(1, core.N_MAX + 1)      # the horizons the RTL accepts (parameter N)
 # the names rtl/ctrl_seq.v refers to (the others stay out of the header: no unused localparams)
 RTL_NAMES = {"UW_SRC", "UW_WA", "UW_AGE", "UW_ST", "UW_SUB", "UW_PK", *(f"UW_{n}" for n in FLAG_OPS),
-             *(f"UB_{n.upper()}" for n, _ in UB.fields if n not in ("csok", "stok", "spare")),
-             "UB_CSOK", "UB_STOK",
+             *(f"UB_{n.upper()}" for n, _ in UB.fields if n != "spare"),
              *(f"PT_{n}" for n, _ in PT.fields), *(f"SRC_{n}" for n in SRC), "PK_FIX",
              *(f"PC_{n}" for n in ENTRY)}
 
@@ -378,7 +387,7 @@ def ucode_vh() -> str:
 
 
 def _step_text(s: Step) -> str:
-    src = "" if s.op in ("ZERO", "REF", "OM", "FIX3", "W6", "ZPOS", "END", "SEND", "CEND") else f" {s.src}"
+    src = f" {s.src}" if s.op in ("POS", "COPY", "DIFF", "STAT") else ""
     dst = f" -> {s.wa}" if s.op not in ("OM", "END", "SEND", "CEND") else ""
     return f"{s.op}{src}{dst}" + (f" m {s.m}" if s.op == "REF" else "") + (f": {s.note}" if s.note else "")
 
