@@ -50,8 +50,9 @@ pass is still in flight (result written 5 clocks after its last row was issued).
 :func:`schedule` computes every row's issue cycle, checks that every operand read
 happens after the pass that writes it has written it, and gives the latencies.
 :func:`ucode_vh` / :func:`rom_vh` generate ``rtl/xform_ucode.vh`` (codes, RF_B constants,
-entry points) / ``rtl/xform_rom.vh`` (block RAM image: sine nodes + microprogram)
-(regenerate: ``python -m empc.rtlmodel.xform ucode|rom``; the tests check the files).
+entry points) / ``rtl/xform_rom.vh`` (block RAM image: sine nodes + microprogram) through the
+microcode compiler :mod:`empc.ucode`, which ctrl_seq uses too (regenerate: ``python -m empc.ucode``
+or ``python -m empc.rtlmodel.xform ucode|rom``; the tests check the files).
 """
 from __future__ import annotations
 
