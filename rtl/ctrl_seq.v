@@ -23,7 +23,12 @@
 // With run = 0 the law is skipped and u = ebar = 0 (bridges, if enabled, see zero voltage).
 // Bit-exact to gen/empc/rtlmodel/ctrl_seq.py (CtrlSeq.period) with mpc_core.py.
 //
-// Datapath (LSB first, one bit per clock; no multiplier, no wide adder):
+// Three parts: the period bookkeeping (trigger, theta, xform front / mod, core handshake,
+// latency), the engine that forms the core's input words, and its interfaces.  The engine runs
+// a microprogram (block RAM; generated with its pass table from the tables in
+// gen/empc/rtlmodel/ctrl_seq.py): the control program from the trigger of a control period, a
+// status program (U_D, U_Q) at every modulation start, and the sweeps of axis_status.  Its
+// datapath is bit-serial (LSB first, one bit per clock; no multiplier, no wide adder):
 //   X        40-bit word register, X[SIG_W-1:0] = the core's in_wdata.  A word to copy (i_d, i_q,
 //            id_ref, iq_ref, u_prev, ebar_prev, the count) is loaded in parallel as the OR
 //            of "stage" registers, each a copy of its source that is held at 0 (flip-flop
@@ -35,24 +40,21 @@
 //            SIG_W: a word whose 40-bit result does not fit is rewritten in X, state E_FIX).
 //   rings    shift registers holding the previous i_d, i_q, omega, count (B operands,
 //            refilled from the A stream in the same pass), dpos, omega (result), the
-//            acceleration term ka and the angle words; none needs a data multiplexer.
+//            acceleration term ka; none needs a data multiplexer.
 //   mult     kacc * i_q: a serial-parallel multiplier (19-bit adder) fed with i_q bit by
 //            bit; its product stream is shifted through a 41-bit register for s + 40
 //            steps (s = kacc_shift), which leaves ka = product >> s in bits 40:1 and the
 //            rounding bit product[s-1] in bit 0 (0 for s = 0).
-//   theta    own 1-bit adder: theta_mod = 2 theta_trig - theta_prev (theta_trig if first),
-//            written into the xform angle register after the front has started.
-//   sequence a microprogram (two 36-bit words per core-input step, block RAM, with the
-//            decode precomputed at elaboration; pass table in a second one), the control
-//            program from the trigger of a control period, a status program (U_D, U_Q)
-//            at every modulation start.
-//   status   the words I_D, I_Q, SPEED, REF (w_k in the task window: bits 47:16 speed,
-//            55:24 position), U_D, U_Q leave bit-serially (st_*) while they pass through
-//            the datapath; the register file assembles and stores them.
+// The theta unit has its own 1-bit adder: theta_mod = 2 theta_trig - theta_prev (theta_trig if
+// first), written into the xform angle register after the front has started.
 //
 // Ports: see below; formats are those of empc_formats.vh.  References: ref_ok (ref_gen
-// w_ok), ref_age / ref_bit -> ref_q (combinational).  core_in_we / core_in_addr /
-// core_in_wdata and st_* are combinational from this module's registers.
+// w_ok), ref_age / ref_bit -> ref_q (combinational).  Status (axis_status): the words I_D,
+// I_Q, SPEED, REF (w_k in the task window: bits 47:16 speed, 55:24 position), U_D, U_Q leave
+// bit-serially (st_*) while they pass through the datapath; the sweeps (sw_*, ctl_go) are
+// programs of this engine whose word bits axis_status supplies.  core_in_* and st_*, sw_go,
+// sw_end, ctl_go are combinational from this module's registers (ctl_go and sw_go also from
+// adc_trig / sw_req).
 // Latency: adc_trig -> cmp_load is reported on `latency` (clocks) every period; it must
 // end before the next period boundary (PWM_HALF_PERIOD clocks after the trigger), else
 // `overrun` pulses at the boundary (a trigger while a period is still running is ignored).
@@ -118,21 +120,22 @@ module ctrl_seq #(
     output wire signed [`EMPC_I_W-1:0]    i_q,
     output reg  signed [`EMPC_W_W-1:0]    omega,
     output reg  [`EMPC_ANGLE_BITS-1:0]    theta_trig,
-    // status words, bit-serial (LSB first) into the register file: st_d shifted in with
-    // st_sh, the 32-bit word then written to register offset st_addr with st_wr
+    // status words and counters (axis_status): a word streams bit-serially (LSB first), st_d
+    // shifted in with st_sh, then written to register offset st_addr with st_wr; st_bit = the
+    // bit of word st_addr that st_sh takes next clock
     output wire                           st_sh,
     output wire                           st_d,
     output wire                           st_wr,
     output wire [5:0]                     st_addr,
-    // event counters (register file words, incremented here): st_bit = the bit of word st_addr
-    // to read (cnt_q, one clock later), cnt_ev = events of the period per counter
     output wire [4:0]                     st_bit,
-    input  wire                           cnt_q,
-    input  wire [13:0]                    cnt_ev,
-    input  wire                           cnt_clear,       // pulse: zero the counters
-    output wire                           cnt_done,        // pulse: a counter sweep ended (events taken)
-    output wire                           cnt_hide,        // counters are being zeroed (read them as 0)
-    output wire                           st_hide          // status words are being zeroed (after rst)
+    // sweeps: axis_status asks for one (sw_req; sw_all: the zero sweep after rst, status words
+    // too), the engine runs it when idle (sw_go .. sw_end; its word bits come from axis_status);
+    // ctl_go, the start of a control period, interrupts it
+    input  wire                           sw_req,
+    input  wire                           sw_all,
+    output wire                           sw_go,
+    output wire                           sw_end,
+    output wire                           ctl_go
 );
     localparam integer SW = `EMPC_SIG_W;     // 32: core input words (X[SW-1:0])
     localparam integer XW = 40;              // X: the passes form 40-bit words, saturated to SW
@@ -141,15 +144,17 @@ module ctrl_seq #(
     localparam integer WW = `EMPC_W_W;       // 32
     localparam integer AB = `EMPC_ANGLE_BITS; // 16
     localparam integer PW = `EMPC_POS_W;     // 32
+    // microword fields, codes and entry points (generated from gen/empc/rtlmodel/ctrl_seq.py)
+`include "ctrl_seq_ucode.vh"
 
     generate if (SW != 32 || UW != 24 || IW != 18 || WW != 32 || PW != 32 || AB != 16 ||
                  `EMPC_W_FRAC != 16 || `EMPC_TH_FRAC != 8 || N > 8 || THETA_LAT < 1 || THETA_LAT > 8 ||
-                 `EMPC_IN_Y != 0 || `EMPC_IN_OMEGA != 3 || `EMPC_IN_DX != 4)
+                 `EMPC_IN_Y != 0 || `EMPC_IN_OMEGA != 3 || `EMPC_IN_DX != 4 || !UC_MAP_OK)
     begin : g_bad_params
         ctrl_seq_unsupported_parameters u_error ();   // no such module: elaboration stops here
     end endgenerate
 
-    // ---------------- per-period bookkeeping ----------------
+    // ================================ period bookkeeping ================================
     reg  [7:0]  per_nx;             // PWM periods since the last control period, + 1 (mod 256):
                                     // held incremented so that the compare needs no adder in front
     reg         is_control;
@@ -159,11 +164,14 @@ module ctrl_seq #(
     reg  [PW-1:0] pos_trig;
     reg  signed [UW-1:0] u_st0, u_st1;
     reg         zeroed;             // run was low since the last core update: u_prev = ebar_prev = 0
+    reg         prog_done, front_done, adc_seen, core_run, core_fin;
     wire        trig = adc_trig && !busy_period;
     wire        ctl_now = (per_nx >= pwm_per_control);
+    wire        go_ctl = trig && ctl_now;
     wire [7:0]  per_cnt = per_nx - 8'd1;    // (read by tb/hdl/cosim_top.v only: no logic in synthesis)
+    wire        prog_end, eng_sat;          // engine: control program done, a dx / omega saturated
 
-    // ---------------- transform chain: one microprogrammed MAC (xform) ----------------
+    // transform chain: one microprogrammed MAC (xform)
     reg  xf_front, xf_mod;
     wire xf_busy, xf_done, xf_sat;
     wire [CW-1:0] cmp_a, cmp_b, cmp_c;
@@ -175,7 +183,7 @@ module ctrl_seq #(
                    .cmp_a(cmp_a), .cmp_b(cmp_b), .cmp_c(cmp_c));
     assign cmp = {cmp_c, cmp_b, cmp_a};
 
-    // ---------------- theta unit (own 1-bit adder) ----------------
+    // theta unit (own 1-bit adder)
     reg         th_wait_run, th_run, th_done, ang_run, ang_done;
     reg  [3:0]  jt;                 // theta wait (16 - THETA_LAT .. 15), then bit of the pass
     reg  [AB-1:0] tp, tm;           // theta_prev, theta_mod (shift registers)
@@ -183,430 +191,6 @@ module ctrl_seq #(
     wire        ta  = theta_trig[jt];
     wire        tb  = mfirst ? ta : tp[0];
     wire        tr  = ta_d ^ ~tb ^ tc;          // 2 theta - theta_prev (theta if first)
-
-    // ---------------- microprogram (one word per step, block RAM) ----------------
-    localparam [3:0] OP_POS = 4'd0, OP_ZERO = 4'd1, OP_COPY = 4'd2, OP_REF = 4'd3, OP_DIFF = 4'd4,
-                     OP_OM = 4'd5, OP_FIX3 = 4'd6, OP_W6 = 4'd7, OP_ZPOS = 4'd8, OP_END = 4'd9,
-                     OP_STAT = 4'd10, OP_SEND = 4'd11, OP_CNT = 4'd12, OP_CEND = 4'd13;
-    localparam [3:0] SRC_POS = 4'd0, SRC_E0 = 4'd1, SRC_E1 = 4'd2, SRC_E2 = 4'd3, SRC_U0 = 4'd4,
-                     SRC_U1 = 4'd5, SRC_IDR = 4'd6, SRC_IQR = 4'd7, SRC_ID = 4'd8, SRC_IQ = 4'd9;
-    localparam integer NUC = 14 + 3 * (N + 1);
-    localparam integer PCI_STAT = 64;                  // entry points: status program (3 words),
-    localparam integer PCI_RSTZ = PCI_STAT + 3;        // reset zeroing (6 words, falls through into)
-    localparam integer PCI_CNT  = PCI_RSTZ + 6;        // the counter sweep
-    localparam [6:0]   PC_STAT = PCI_STAT[6:0], PC_RSTZ = PCI_RSTZ[6:0], PC_CNT = PCI_CNT[6:0];
-    localparam integer NCNT = 14;   // SAT_OPERAND .. CNT_OVERRUN, PERIODS
-    // Pass kinds PK_*: the non-reference kinds are 0..6 (PK_CNT also for the ops without a pass),
-    // the reference kinds {1, 0, task_pos, m == 0}, so that the microword holds the kind but
-    // for the one bit that task_pos decides.
-    localparam [3:0] PK_POS = 4'd0, PK_DIFF = 4'd1, PK_OM = 4'd2, PK_FIX3 = 4'd3, PK_W6 = 4'd4,
-                     PK_STAT = 4'd5, PK_CNT = 4'd6, PK_FIX = 4'd7, PK_REFS = 4'd8, PK_REFS0 = 4'd9, PK_REFP = 4'd10,
-                     PK_REFP0 = 4'd11;
-    localparam [5:0] ST_REF = `EMPC_A_REF, ST_I_D = `EMPC_A_I_D, ST_SPEED = `EMPC_A_SPEED;
-    // Microword, 36 bits: the fields op, src, wa (core address), ref_age (N - m) and what is
-    // decoded from them once, here, instead of in logic behind the block RAM: the status
-    // address, one flag per pass op (registered as is_*), "subtracts" (but for the reference,
-    // whose sign task_pos decides) and the pass kind (its bit 1 for a reference: task_pos).
-    // A second 36-bit word per step (ub, the block RAM's second port) holds the engine's decode:
-    // the stage selects (active low, one per source SRC_*), the next-state classes of E_OP (to
-    // E_STG, to E_PASS, to E_IDLE; the waits are the op flags), the zero writes, the end markers,
-    // "back to E_OP after the pass", "saturated to SW bits", "writes a status word" and the
-    // counter source checks.
-    localparam integer UW_AGE = 14, UW_ST = 18, UW_F = 24, UW_SUB = 32, UW_PK = 33;
-    localparam integer UB_NSEL = 0, UB_STG = 10, UB_PASS = 11, UB_ZERO = 12, UB_IDLE = 13, UB_END = 14,
-                       UB_CEND = 15, UB_COPY = 16, UB_WZ = 17, UB_ZPOS = 18, UB_BACK = 19, UB_SAT = 20,
-                       UB_CSOK = 21, UB_STOK = 22, UB_STW = 23;
-    localparam integer NSRC = 10;  // SRC_POS .. SRC_IQ
-    reg [71:0] ucode [0:127];      // (initial values only: copied into urom as {ub, uw})
-    function [35:0] uwordb;
-        input [3:0] op;
-        input [3:0] src;
-        input [2:0] m;
-        reg   [NSRC-1:0] ns;
-        begin
-            ns = {src != SRC_IQ, src != SRC_ID, src != SRC_IQR, src != SRC_IDR, src != SRC_U1,
-                  src != SRC_U0, src != SRC_E2, src != SRC_E1, src != SRC_E0, src != SRC_POS};
-            uwordb = {12'd0,
-                      // status word out of this pass: REF (m = 0), I_D / I_Q, SPEED, U_D / U_Q
-                      ((op == OP_REF) && (m == 3'd0)) || (op == OP_DIFF) || (op == OP_FIX3) || (op == OP_STAT),
-                      src != 4'd15, (src != 4'd13) && (src != 4'd15),
-                      (op == OP_POS) || (op == OP_REF) || (op == OP_W6),
-                      (op == OP_OM) || (op == OP_STAT) || (op == OP_CNT),
-                      op == OP_ZPOS, op == OP_ZERO, op == OP_COPY, op == OP_CEND, op == OP_END,
-                      !((op == OP_POS) || (op == OP_COPY) || (op == OP_STAT) || (op == OP_DIFF) ||
-                        (op == OP_REF) || (op == OP_OM) || (op == OP_FIX3) || (op == OP_W6) ||
-                        (op == OP_CNT) || (op == OP_ZERO) || (op == OP_ZPOS)),
-                      (op == OP_ZERO) || (op == OP_ZPOS),
-                      (op == OP_FIX3) || (op == OP_W6) || (op == OP_CNT),
-                      (op == OP_POS) || (op == OP_COPY) || (op == OP_STAT), ns};
-        end
-    endfunction
-    function [35:0] uworda;
-        input [3:0] op;
-        input [3:0] src;
-        input [5:0] wa;
-        input [2:0] m;
-        reg   [5:0] st;
-        reg   [2:0] k;         // pass kind, bits 2:0 (bit 3: op == OP_REF)
-        reg   [3:0] age;       // ref_age = N - m
-        begin
-            age = N[3:0] - {1'b0, m};
-            st = (op == OP_REF) ? ST_REF : (op == OP_DIFF) ? (ST_I_D + {5'd0, src[0]}) :
-                 (op == OP_FIX3) ? ST_SPEED : wa;
-            case (op)
-                OP_POS: k = PK_POS[2:0];
-                OP_REF: k = (m == 3'd0) ? PK_REFS0[2:0] : PK_REFS[2:0];
-                OP_DIFF: k = PK_DIFF[2:0];
-                OP_OM: k = PK_OM[2:0];
-                OP_FIX3: k = PK_FIX3[2:0];
-                OP_W6: k = PK_W6[2:0];
-                OP_STAT: k = PK_STAT[2:0];
-                default: k = PK_CNT[2:0];
-            endcase
-            uworda = {k, (op == OP_POS) || (op == OP_DIFF) || (op == OP_W6),
-                     op == OP_CNT, op == OP_STAT, op == OP_W6, op == OP_FIX3, op == OP_OM,
-                     op == OP_DIFF, op == OP_REF, op == OP_POS, st, age, wa, src, op};
-        end
-    endfunction
-    function [71:0] uword;
-        input [3:0] op;
-        input [3:0] src;
-        input [5:0] wa;
-        input [2:0] m;
-        uword = {uwordb(op, src, m), uworda(op, src, wa, m)};
-    endfunction
-    // Pass control table, one word per (pass kind, bit j): which registers shift, when the
-    // pass ends, sign holds, flag strobes (PC_* bits below).
-    localparam integer PC_XS = 0, PC_PE = 1, PC_SS = 2, PC_HA = 3, PC_HB = 4, PC_CA = 5, PC_CB = 6,
-                       PC_R1 = 7, PC_R2 = 8, PC_R3 = 9, PC_AL = 10, PC_L31 = 11, PC_L16 = 12, PC_F1 = 13,
-                       PC_F2 = 14, PC_F3 = 15, PC_W0 = 16, PC_G = 17;
-    function [17:0] pctl;
-        input [3:0] k;
-        input integer b;
-        reg [17:0] w;
-        reg refp, refs, m0k;
-        begin
-            w = 18'd0;
-            refp = (k == PK_REFP0) || (k == PK_REFP);
-            refs = (k == PK_REFS0) || (k == PK_REFS);
-            m0k  = (k == PK_REFP0) || (k == PK_REFS0);
-            case (k)
-                PK_POS: begin                                   // dpos = count - count_prev (32 bits)
-                    w[PC_XS] = 1'b1; w[PC_R1] = 1'b1; w[PC_R3] = 1'b1; w[PC_AL] = 1'b1;
-                    w[PC_PE] = (b == 31); w[PC_F1] = (b == 15); w[PC_F2] = (b > 15); w[PC_F3] = (b == 31);
-                    w[PC_G] = (b == 23);
-                end
-                PK_DIFF: begin                                  // y (copy) at bit 0, dx = y - y_prev
-                    w[PC_XS] = 1'b1; w[PC_AL] = 1'b1; w[PC_SS] = (b < 32); w[PC_HB] = (b > 17);
-                    w[PC_CB] = (b == 17); w[PC_R1] = (b < 18); w[PC_W0] = (b == 0); w[PC_PE] = (b == 39);
-                end
-                PK_OM: begin                                    // omega (raw) = spd + ka
-                    w[PC_AL] = 1'b1; w[PC_HA] = (b > 31); w[PC_CA] = (b == 31); w[PC_R2] = (b < 32);
-                    w[PC_R3] = (b >= 16 && b < 32); w[PC_L31] = (b < 31); w[PC_L16] = (b < 16);
-                    w[PC_F1] = (b == 31); w[PC_F2] = (b > 31); w[PC_F3] = (b == 39); w[PC_PE] = (b == 39);
-                end
-                PK_FIX3: begin                                  // omega saturated -> X, om, SPEED
-                    w[PC_XS] = 1'b1; w[PC_AL] = 1'b1; w[PC_SS] = (b < 32); w[PC_HA] = (b > 31);
-                    w[PC_CA] = (b == 31); w[PC_R2] = (b < 32); w[PC_L31] = (b < 31); w[PC_PE] = (b == 39);
-                end
-                PK_W6: begin                                    // dx2 = omega - omega_prev
-                    w[PC_XS] = 1'b1; w[PC_AL] = 1'b1; w[PC_HA] = (b > 31); w[PC_CA] = (b == 31);
-                    w[PC_HB] = (b > 31); w[PC_CB] = (b == 31); w[PC_R1] = (b < 32); w[PC_R2] = (b < 32);
-                    w[PC_PE] = (b == 39); w[PC_G] = (b == 31);
-                end
-                PK_STAT: begin                                  // a status word out of X
-                    w[PC_XS] = 1'b1; w[PC_AL] = 1'b1; w[PC_SS] = (b < 32); w[PC_PE] = (b == 32);
-                end
-                PK_CNT: begin                                   // counter + event, 32 bits
-                    w[PC_AL] = 1'b1; w[PC_SS] = (b < 32); w[PC_CA] = (b == 31); w[PC_PE] = (b == 32);
-                end
-                PK_FIX: begin                                   // E_FIX (second port, pwf): end, bits
-                    w[PC_PE] = (b == 39); w[PC_XS] = (b >= 31); //   31.. of the saturation pattern
-                end
-                default: begin
-                    if (refp) begin                             // (w - count << 32) >> 24 + w[23]
-                        w[PC_AL] = (b >= 24); w[PC_XS] = (b >= 24); w[PC_R1] = (b >= 32);
-                        w[PC_F1] = (b == 23); w[PC_F2] = (b >= 24); w[PC_SS] = m0k && b >= 24 && b < 56;
-                        w[PC_PE] = (b == 63); w[PC_G] = (b == 55);
-                    end else if (refs) begin                    // (w >> 16) + w[15]
-                        w[PC_AL] = (b >= 16); w[PC_XS] = (b >= 16 && b < 56);
-                        w[PC_SS] = m0k && b >= 16 && b < 48; w[PC_PE] = (b == 63); w[PC_G] = (b == 47);
-                    end
-                end
-            endcase
-            pctl = w;
-        end
-    endfunction
-    (* rom_style = "block" *) reg [17:0] crom [0:1023];     // pass table (kinds 0..11, 64 bits each)
-    (* rom_style = "block" *) reg [35:0] urom [0:255];      // microprogram: uw at pc, ub at 128 + pc
-    integer ui, ua, uk;
-    initial begin
-        for (ui = 0; ui < 1024; ui = ui + 1) crom[ui] = 18'd0;
-        for (uk = 0; uk < 12; uk = uk + 1)
-            for (ui = 0; ui < 64; ui = ui + 1) crom[64 * uk + ui] = pctl(uk[3:0], ui);
-        for (ui = 0; ui < 128; ui = ui + 1) ucode[ui] = uword(OP_SEND, 4'd0, 6'd0, 3'd0);
-        ucode[0] = uword(OP_POS, SRC_POS, `EMPC_IN_DX + 6'd3, 3'd0);      // dx3 = dpos << 8
-        ucode[1] = uword(OP_ZERO, 4'd0, `EMPC_IN_DX + 6'd4, 3'd0);        // dx4 = 0
-        ucode[2] = uword(OP_COPY, SRC_E0, `EMPC_IN_EBAR + 6'd0, 3'd0);    // ebar_prev
-        ucode[3] = uword(OP_COPY, SRC_E1, `EMPC_IN_EBAR + 6'd1, 3'd0);
-        ucode[4] = uword(OP_COPY, SRC_E2, `EMPC_IN_EBAR + 6'd2, 3'd0);
-        ucode[5] = uword(OP_COPY, SRC_U0, `EMPC_IN_UPREV + 6'd0, 3'd0);   // u_prev
-        ucode[6] = uword(OP_COPY, SRC_U1, `EMPC_IN_UPREV + 6'd1, 3'd0);
-        for (ui = 0; ui <= N; ui = ui + 1) begin                          // wref[m] = (id_ref, iq_ref, w3)
-            ua = `EMPC_IN_WREF + 3 * ui;
-            ucode[7 + 3 * ui] = uword(OP_COPY, SRC_IDR, ua[5:0], 3'd0);
-            ua = ua + 1;
-            ucode[8 + 3 * ui] = uword(OP_COPY, SRC_IQR, ua[5:0], 3'd0);
-            ua = ua + 1;
-            ucode[9 + 3 * ui] = uword(OP_REF, 4'd0, ua[5:0], ui[2:0]);
-        end
-        ucode[NUC - 7] = uword(OP_DIFF, SRC_ID, `EMPC_IN_Y + 6'd0, 3'd0);    // y0 = i_d; dx0 at +4
-        ucode[NUC - 6] = uword(OP_DIFF, SRC_IQ, `EMPC_IN_Y + 6'd1, 3'd0);    // y1 = i_q; dx1 at +4
-        ucode[NUC - 5] = uword(OP_OM, 4'd0, 6'd0, 3'd0);
-        ucode[NUC - 4] = uword(OP_FIX3, 4'd0, `EMPC_IN_OMEGA, 3'd0);         // omega (and y2 = omega)
-        ucode[NUC - 3] = uword(OP_W6, 4'd0, `EMPC_IN_DX + 6'd2, 3'd0);       // dx2
-        ucode[NUC - 2] = uword(OP_ZPOS, 4'd0, `EMPC_IN_Y + 6'd2, 3'd0);      // y2 = 0 (position task)
-        ucode[NUC - 1] = uword(OP_END, 4'd0, 6'd0, 3'd0);
-        // status program, at every modulation start: U_D, U_Q = the u applied
-        ucode[PCI_STAT + 0] = uword(OP_STAT, SRC_U0, `EMPC_A_U_D, 3'd0);
-        ucode[PCI_STAT + 1] = uword(OP_STAT, SRC_U1, `EMPC_A_U_Q, 3'd0);
-        ucode[PCI_STAT + 2] = uword(OP_SEND, 4'd0, 6'd0, 3'd0);
-        // after rst: the status words to 0 (then the counters, zero sweep)
-        ucode[PCI_RSTZ + 0] = uword(OP_CNT, 4'd15, `EMPC_A_SPEED, 3'd0);
-        ucode[PCI_RSTZ + 1] = uword(OP_CNT, 4'd15, `EMPC_A_I_D, 3'd0);
-        ucode[PCI_RSTZ + 2] = uword(OP_CNT, 4'd15, `EMPC_A_I_Q, 3'd0);
-        ucode[PCI_RSTZ + 3] = uword(OP_CNT, 4'd15, `EMPC_A_U_D, 3'd0);
-        ucode[PCI_RSTZ + 4] = uword(OP_CNT, 4'd15, `EMPC_A_U_Q, 3'd0);
-        ucode[PCI_RSTZ + 5] = uword(OP_CNT, 4'd15, `EMPC_A_REF, 3'd0);
-        // counter sweep, after the modulation of a control period (or zeroing them)
-        for (ui = 0; ui < NCNT - 1; ui = ui + 1) begin
-            ua = `EMPC_A_SAT_OPERAND + ui;
-            ucode[PCI_CNT + ui] = uword(OP_CNT, ui[3:0], ua[5:0], 3'd0);
-        end
-        ucode[PCI_CNT + NCNT - 1] = uword(OP_CNT, 4'd13, `EMPC_A_PERIODS, 3'd0);
-        ucode[PCI_CNT + NCNT] = uword(OP_CEND, 4'd0, 6'd0, 3'd0);
-        for (ui = 0; ui < 128; ui = ui + 1) begin
-            urom[ui] = ucode[ui][35:0];
-            urom[128 + ui] = ucode[ui][71:36];
-        end
-    end
-    reg  [6:0]  pc;
-    reg  [6:0]  pc_next;
-    reg  [35:0] uw, ub;             // ucode[pc]
-    wire [3:0]  u_op  = uw[3:0];
-    wire [3:0]  u_src = uw[7:4];
-    wire [5:0]  u_wa  = uw[13:8];
-
-    // engine states
-    localparam [2:0] E_IDLE = 3'd0, E_OP = 3'd1, E_STG = 3'd2, E_LD = 3'd3, E_PASS = 3'd4,
-                     E_FIX = 3'd5, E_WR = 3'd6, E_WR2 = 3'd7;
-    reg  [2:0]  est;
-    reg         prog_done, front_done, adc_seen, core_run, core_fin;
-    reg  [5:0]  j;                  // bit of the pass
-
-    // The op flags of uw, registered: uw comes out of block RAM (about 2 ns clock-to-out), and
-    // decoding it in front of the serial ALU made the pass datapath 9 LUT levels deep (93.5 MHz
-    // proxy).  uw changes only together with pc, which always enters E_OP for at least one clock,
-    // so the registered flags are valid from the clock after E_OP on: in every state where the
-    // pass datapath acts.  What acts in E_OP itself (next state, pass table and status
-    // addresses, ALU carry preset, zero writes) uses the unregistered op_* bits.
-    wire op_pos  = uw[UW_F + 0];
-    wire op_ref  = uw[UW_F + 1];
-    wire op_diff = uw[UW_F + 2];
-    wire op_om   = uw[UW_F + 3];
-    wire op_fix3 = uw[UW_F + 4];
-    wire op_w6   = uw[UW_F + 5];
-    wire op_stat = uw[UW_F + 6];
-    wire op_cnt  = uw[UW_F + 7];
-    wire op_sub  = uw[UW_SUB] || (op_ref && task_pos);     // the pass subtracts B
-    reg  is_pos, is_ref, is_diff, is_om, is_fix3, is_w6, is_stat, is_cnt, diff_q, sub, is_sat, is_back, is_stw;
-    always @(posedge clk) begin
-        {is_pos, is_ref, is_diff, is_om, is_fix3, is_w6, is_stat, is_cnt} <=
-            {op_pos, op_ref, op_diff, op_om, op_fix3, op_w6, op_stat, op_cnt};
-        diff_q  <= u_src[0];        // SRC_IQ (9) vs SRC_ID (8)
-        sub     <= op_sub;
-        is_sat  <= ub[UB_SAT];      // result saturated to SW bits (POS, REF, W6)
-        is_back <= ub[UB_BACK];     // back to E_OP at the pass end (OM, STAT, CNT)
-        is_stw  <= ub[UB_STW];      // writes a status word at the pass end (counters: unless saturated)
-    end
-    wire in_pass = (est == E_PASS);
-
-    // ---------------- stage registers and X ----------------
-    // Each stage register holds its source in the clock after its select and is 0 otherwise
-    // (the select drives the flip-flops' reset); X loads the OR of all stages.
-    reg  [XW-1:0] x;
-    reg  [PW-1:0] g_pos;
-    reg  [IW-1:0] g_id, g_iq, g_idr, g_iqr;
-    reg  [SW-1:0] g_e0, g_e1, g_e2;
-    reg  [UW-1:0] g_u0, g_u1;
-    // The selects are registered in the E_OP clock that enters E_STG (the step word ub cannot
-    // change before E_LD), active low so that they drive the stage flip-flops' reset directly;
-    // ebar_prev is selected unless zeroed is set in the E_STG clock (zeroed's next value).
-    reg  [NSRC-1:0] nsel;
-    wire          to_stg = !rst && (est == E_OP) && !go_ctl && (ub[UB_STG] || (op_diff && front_done));
-    wire          zeroed_nx = rst || (!core_done && (!run || zeroed));
-    always @(posedge clk) begin
-        nsel <= to_stg ? ub[UB_NSEL +: NSRC] : {NSRC{1'b1}};
-        if (zeroed_nx) nsel[SRC_E2:SRC_E0] <= 3'b111;
-    end
-    always @(posedge clk) begin
-        g_pos <= nsel[SRC_POS] ? {PW{1'b0}} : pos_trig;
-        g_id  <= nsel[SRC_ID]  ? {IW{1'b0}} : i_d;
-        g_iq  <= nsel[SRC_IQ]  ? {IW{1'b0}} : i_q;
-        g_idr <= nsel[SRC_IDR] ? {IW{1'b0}} : id_ref;
-        g_iqr <= nsel[SRC_IQR] ? {IW{1'b0}} : iq_ref;
-        g_e0  <= nsel[SRC_E0]  ? {SW{1'b0}} : core_ebar[0*SW +: SW];
-        g_e1  <= nsel[SRC_E1]  ? {SW{1'b0}} : core_ebar[1*SW +: SW];
-        g_e2  <= nsel[SRC_E2]  ? {SW{1'b0}} : core_ebar[2*SW +: SW];
-        g_u0  <= nsel[SRC_U0]  ? {UW{1'b0}} : u_st0;
-        g_u1  <= nsel[SRC_U1]  ? {UW{1'b0}} : u_st1;
-    end
-    // sign of the staged 18-bit source / of any 18- or 24-bit source (unselected stages are 0)
-    wire          g_s18 = g_id[IW-1] | g_iq[IW-1] | g_idr[IW-1] | g_iqr[IW-1];
-    wire          g_s24 = g_s18 | g_u0[UW-1] | g_u1[UW-1];
-    // the OR of the stages, sign-extended through the two registered sign bits; bits
-    // 17:0 have 11 inputs with X's own shift: split 6 + 5 so that each is one LUT6
-    (* keep *) wire [IW-1:0] g_lo = x[IW:1] | g_pos[IW-1:0] | g_e0[IW-1:0] | g_e1[IW-1:0] | g_e2[IW-1:0] |
-                                    g_u0[IW-1:0];
-    // (bits SW..XW-1 of a copied word are never written to the core: left 0 / unextended)
-    wire [XW-1:0] g_all = {{(XW-PW){1'b0}}, g_pos[PW-1:IW], {IW{1'b0}}} |
-                          {{(XW-SW){1'b0}}, g_e0[SW-1:IW] | g_e1[SW-1:IW] | g_e2[SW-1:IW], {IW{1'b0}}} |
-                          {{(XW-SW){1'b0}}, {(SW-UW){g_s24}}, {(UW-IW){g_s18}}, g_id | g_iq | g_idr | g_iqr} |
-                          {{(XW-UW){1'b0}}, g_u0[UW-1:IW], {IW{1'b0}}} | {{(XW-IW){1'b0}}, g_u1[IW-1:0] | g_lo} |
-                          {{(XW-UW){1'b0}}, g_u1[UW-1:IW], {IW{1'b0}}};
-    assign core_in_wdata = x[SW-1:0];
-
-    // ---------------- serial operands ----------------
-    reg  [IW-1:0] idp, iqp;         // previous i_d, i_q
-    reg  [WW-1:0] omp;              // previous omega
-    reg  [PW-1:0] pp;               // previous count (after the POS pass: this period's count)
-    reg  [PW-1:0] dp;               // dpos
-    reg  [WW-1:0] om;               // omega (OM pass result, saturated by the FIX3 pass)
-    reg  [40:0]   ka;               // product stream: ka = ka[40:1], rounding bit ka[0]
-    reg           a_h, b_h;         // held sign bits
-    reg           c0, c1;           // carry 0..2
-    reg           sd, spd_ovf, om_ovf, om_sgn, rnd, nz;
-    reg           w_trk, w_r, w_ovf, fix_sgn;   // SW-bit saturation of the word in X (from bit G)
-
-    // reference pass: first bit j0 = the rounding bit (the REF window of w_k lies above it)
-    wire [5:0] ref_j0  = task_pos ? 6'd23 : 6'd15;
-    wire       p_xs  = pw[PC_XS], p_pe = pw[PC_PE], p_ss = pw[PC_SS], p_ha = pw[PC_HA], p_hb = pw[PC_HB];
-    wire       p_ca  = pw[PC_CA], p_cb = pw[PC_CB], p_r1 = pw[PC_R1], p_r2 = pw[PC_R2], p_r3 = pw[PC_R3];
-    wire       p_al  = pw[PC_AL], p_l31 = pw[PC_L31], p_l16 = pw[PC_L16], p_f1 = pw[PC_F1], p_f2 = pw[PC_F2];
-    wire       p_f3  = pw[PC_F3], p_w0 = pw[PC_W0];
-    assign ref_age = uw[UW_AGE +: AW];
-    assign ref_bit = j;
-
-    // A operand
-    wire spd_raw = spd_ovf ? (p_l31 ? ~sd : sd) : p_l16 ? 1'b0 : dp[0];
-    reg  a_raw;
-    always @(*) begin
-        if (is_ref) a_raw = ref_q;
-        else if (is_cnt) a_raw = cnt_q;
-        else if (is_om) a_raw = spd_raw;
-        else if (is_fix3) a_raw = om_ovf ? (p_l31 ? ~om_sgn : om_sgn) : om[0];
-        else if (is_w6) a_raw = om[0];
-        else a_raw = x[0];
-    end
-    wire a_bit  = p_ha ? a_h : a_raw;
-    // B operand
-    reg  b_raw;
-    always @(*) begin
-        if (is_pos) b_raw = pp[0];
-        else if (is_ref) b_raw = p_r1 && pp[0];
-        else if (is_diff) b_raw = diff_q ? iqp[0] : idp[0];
-        else if (is_om) b_raw = ka[1];
-        else if (is_w6) b_raw = omp[0];
-        else b_raw = 1'b0;
-    end
-    wire       b_bit  = p_hb ? b_h : b_raw;
-    wire       b_eff  = b_bit ^ sub;
-    wire       r      = a_bit ^ b_eff ^ c0;
-    wire       maj    = (a_bit & b_eff) | (c0 & (a_bit ^ b_eff));
-    reg  [17:0] pwf;                // E_FIX table word of j (kind PK_FIX, second port of the pass table)
-    wire       fix_end = (est == E_FIX) && pwf[PC_PE];
-    wire       r_fix  = pwf[PC_XS] ? fix_sgn : ~fix_sgn;       // X = satSW pattern, sign-extended
-
-    // pass control (status / counter passes: 32 bits, the word written one clock after the last)
-    wire       pass_end  = in_pass && p_pe;
-    // reference overflow including this clock's bit (used at j = 63)
-    // the word formed in X does not fit SW bits: result bits SW-1 .. XW-1 (pass bits G .. end) not
-    // all equal, including this clock's bit (used at the pass end); its sign: the computed top bit,
-    // the reference sign for a speed reference (w[63]), and + for the one position-reference
-    // wrap (rel + 2^23 carried into bit 63: rnd, bits 24..62 zero)
-    wire       ovf_now = w_ovf || (w_trk && (r != w_r));
-    wire       sgn_now = (is_ref && !task_pos) ? a_raw : (r && !(is_ref && rnd && !nz));
-    wire       x_shift = (in_pass && p_xs) || (est == E_FIX);
-    wire       x_in    = (est == E_FIX) ? r_fix : r;
-    wire       x_load  = (est == E_LD);
-    wire       x_clr   = (est == E_WR && !(is_fix3 && !task_pos)) || (est == E_WR2) ||
-                         (pass_end && ((is_sat && ovf_now) || is_stat));
-    wire       wr_zero = (est == E_OP) && (ub[UB_WZ] || (ub[UB_ZPOS] && task_pos));
-    assign core_in_we   = (est == E_WR) || (est == E_WR2) || wr_zero || (in_pass && p_w0);
-    // (dx0, dx1 at y0 + 4, y1 + 4; the second FIX3 write: y2 = omega, at omega - 1)
-    assign core_in_addr = {u_wa[5:3], u_wa[2] | (est == E_WR && is_diff), u_wa[1], u_wa[0] & (est != E_WR2)};
-
-    // status streams: REF (w_k window, reference pass m = 0), I_D / I_Q (W4 / W5 passes,
-    // A = i_d / i_q), SPEED (FIX3 pass, result), U_D / U_Q (status passes, A = u)
-    // counters (OP_CNT, src = event index, 15 = status word to 0): word + event bit,
-    // saturating (no write if it was 2^32-1; PERIODS wraps); all 0 in a zero sweep
-    reg        cz;                  // zero sweep
-    reg        csat;                // the counter was 2^32-1 (carry out of bit 31, registered)
-    assign st_sh   = in_pass && p_ss;
-    assign st_d    = is_fix3 ? r : is_cnt ? (r && !cz && ub[UB_STOK]) : a_raw;
-    assign st_wr   = pass_end && (is_stw || (is_cnt && !csat));
-    assign st_addr = uw[UW_ST +: 6];
-    assign st_bit  = j_nx[4:0];                                 // the counter bit needed next clock
-    wire [15:0] ev16 = {2'b00, cnt_ev};
-    wire   ev_k    = ev16[u_src] && !cz;
-
-    // ---------------- multiplier kacc * i_q (serial-parallel, steps mk = 0 .. s + 39) ----------------
-    reg         mrun, msg;
-    reg  [6:0]  mk;
-    reg  signed [18:0] ms;
-    // steps: mk = -39 .. s (7-bit two's complement); the first 18 take i_q bit j of the W5
-    // pass (A), the rest its sign msg (captured at bit 17)
-    wire        mb   = (in_pass && is_diff && p_r1) ? x[0] : msg;   // (A of the W5 pass is x[0])
-    wire signed [18:0] msum = ms + (mb ? {kacc[17], kacc} : 19'sd0);
-    wire        m_end = (mk[6:5] == 2'b00) && (mk[4:0] == kacc_shift);
-    wire        m_start = (est == E_LD) && is_diff && diff_q;
-
-    // ---------------- sequencer ----------------
-    wire go_ctl  = trig && ctl_now;
-    wire go_stat = xf_mod && !xf_busy && (est == E_IDLE);
-    reg  cnt_pend, hide_st, hide_cnt;
-    wire quiet   = (est == E_IDLE) && !busy_period && !xf_mod && !trig;
-    wire go_rstz = quiet && hide_st;
-    wire go_cnt  = quiet && !hide_st && (hide_cnt || cnt_pend);
-    assign cnt_done = (est == E_OP) && ub[UB_CEND];
-    assign cnt_hide = hide_cnt;
-    assign st_hide  = hide_st;
-    wire step    = (est == E_OP && ub[UB_ZERO]) ||
-                   (est == E_WR && !(is_fix3 && !task_pos)) || (est == E_WR2) ||
-                   (pass_end && is_back);
-    always @(*) begin
-        if (go_ctl) pc_next = 7'd0;
-        else if (go_stat) pc_next = PC_STAT;
-        else if (go_rstz) pc_next = PC_RSTZ;
-        else if (go_cnt) pc_next = PC_CNT;
-        else if (step) pc_next = pc + 7'd1;
-        else pc_next = pc;
-    end
-    reg  [17:0] pw;                 // pass control word of (pass kind, j)
-    reg  [5:0]  j_nx;
-    wire [3:0]  pk = {op_ref, uw[UW_PK + 2], uw[UW_PK + 1] | (op_ref & task_pos), uw[UW_PK]};
-    always @(*) begin
-        j_nx = j;
-        if (est == E_OP) j_nx = op_ref ? ref_j0 : 6'd0;
-        else if (in_pass) j_nx = pass_end ? 6'd0 : j + 6'd1;
-        else if (est == E_FIX) j_nx = fix_end ? 6'd0 : j + 6'd1;
-    end
-    always @(posedge clk) begin
-        uw <= urom[{1'b0, pc_next}];
-        ub <= urom[{1'b1, pc_next}];
-        pw <= crom[{pk, j_nx}];
-        pwf <= crom[{PK_FIX, j_nx}];
-    end
 
     always @(posedge clk) begin
         // default single-cycle pulses
@@ -633,22 +217,12 @@ module ctrl_seq #(
             th_done <= 1'b0;
             ang_run <= 1'b0;
             ang_done <= 1'b0;
-            pc <= 7'd0;
-            est <= E_IDLE;
-            cnt_pend <= 1'b0;
-            hide_st <= 1'b1;
-            hide_cnt <= 1'b1;
-            cz <= 1'b0;
             prog_done <= 1'b0;
             front_done <= 1'b0;
             adc_seen <= 1'b0;
             core_run <= 1'b0;
             core_fin <= 1'b0;
-            j <= 6'd0;
-            omega <= {WW{1'b0}};
-            mrun <= 1'b0;
         end else begin
-            pc <= pc_next;
             if (period_start && busy_period)
                 overrun <= 1'b1;
             zeroed <= core_done ? 1'b0 : (!run ? 1'b1 : zeroed);
@@ -702,8 +276,10 @@ module ctrl_seq #(
                 front_done <= 1'b1;
                 if (xf_sat) front_sat <= 1'b1;
             end
+            if (eng_sat) front_sat <= 1'b1;
 
             // ---- core ----
+            if (prog_end) prog_done <= 1'b1;
             if (prog_done && !core_fin && !core_run) begin
                 if (run) begin
                     core_start <= 1'b1;
@@ -729,66 +305,6 @@ module ctrl_seq #(
                 latency <= lat_cnt + 16'd1;
                 busy_period <= 1'b0;
             end
-
-            // ---- microprogram ----
-            j <= j_nx;
-            // counter sweep after the modulation of a control period; zero sweep (status words
-            // too after rst) while the counters are hidden.  A trigger interrupts a zero sweep,
-            // which then starts again (it cannot meet a normal sweep, which ends well before).
-            if (go_rstz || go_cnt) begin
-                cz <= hide_cnt;
-                cnt_pend <= 1'b0;
-            end
-            if (go_ctl) begin
-                cnt_pend <= 1'b1;                                        // counted after this period
-                cz <= 1'b0;
-            end
-            if (cnt_done && cz) begin
-                hide_cnt <= 1'b0;
-                hide_st <= 1'b0;
-            end
-            if (cnt_clear) hide_cnt <= 1'b1;
-            case (est)
-                E_IDLE: ;
-                E_OP: begin
-                    // POS, COPY, STAT; DIFF when the front is done / REF when the references are
-                    // current, OM when the product is ready; FIX3, W6, CNT / END, SEND, CEND;
-                    // ZERO, ZPOS stay (written in this clock, pc + 1)
-                    if (ub[UB_STG] || (op_diff && front_done)) est <= E_STG;
-                    else if (ub[UB_PASS] || (op_ref && ref_ok) || (op_om && !mrun)) est <= E_PASS;
-                    else if (ub[UB_IDLE]) est <= E_IDLE;
-                    if (op_fix3 && (spd_ovf || om_ovf)) front_sat <= 1'b1;
-                    if (ub[UB_END]) prog_done <= 1'b1;
-                end
-                E_STG: est <= E_LD;
-                E_LD: est <= ub[UB_COPY] ? E_WR : E_PASS;
-                E_PASS: begin
-                    if (pass_end) begin
-                        if (is_back) est <= E_OP;
-                        else if (is_sat && ovf_now) begin
-                            est <= E_FIX;
-                            if (!is_ref) front_sat <= 1'b1;   // dx2, dx3 saturated (model: front_sat)
-                        end
-                        else est <= E_WR;
-                        if (is_fix3) omega <= om;           // complete since bit 31
-                    end
-                end
-                E_FIX: if (fix_end) est <= E_WR;
-                E_WR: est <= (is_fix3 && !task_pos) ? E_WR2 : E_OP;
-                default: est <= E_OP;                       // E_WR2
-            endcase
-            // Program entry (pc_next jumps): after the step states, so that it wins over them.
-            // go_stat / go_rstz / go_cnt start from E_IDLE only; a control trigger may interrupt
-            // a zero sweep in any clock, including its E_OP clocks, whose own next state once won
-            // here (a counter op entered its pass with the first control instruction; the end
-            // marker dropped to E_IDLE and the control period stalled into an overrun).
-            if (go_ctl || go_stat || go_rstz || go_cnt) est <= E_OP;
-
-            // ---- multiplier: starts with the W5 pass (step mk = pass bit j) ----
-            if (m_start)
-                mrun <= 1'b1;
-            else if (mrun && m_end)
-                mrun <= 1'b0;
         end
     end
 
@@ -815,6 +331,28 @@ module ctrl_seq #(
             jt <= jt + 4'd1;
     end
 
+    // theta_mod pass and the angle register
+    always @(posedge clk) begin
+        if (th_run) begin
+            ta_d <= ta;
+            tc <= (ta_d & ~tb) | (tc & (ta_d ^ ~tb));
+            tm <= {tr, tm[AB-1:1]};
+            tp <= {ta, tp[AB-1:1]};
+            ang <= {ta, ang[AB-1:1]};
+        end else begin
+            ta_d <= 1'b0;
+            tc <= 1'b1;
+        end
+        if (ang_run) begin
+            ang <= {tm[0], ang[AB-1:1]};
+            tm <= {tm[0], tm[AB-1:1]};
+        end
+        if (rst) begin
+            tp <= {AB{1'b0}};
+            ang <= {AB{1'b0}};
+        end
+    end
+
     // held u: loaded at core_done, 0 while run is low (flip-flop reset and enable, no mux)
     always @(posedge clk) begin
         if (rst || (!run && !core_done)) begin
@@ -831,7 +369,260 @@ module ctrl_seq #(
         else if (xf_done && xf_run_mod) xf_run_mod <= 1'b0;
     end
 
-    // ---------------- datapath registers ----------------
+    // ===================================== engine =====================================
+    // The microprogram urom holds two 36-bit words per step: uw (the fields and the op flags)
+    // at pc and ub (the engine's decode: stage selects, next-state classes of E_OP, zero writes,
+    // end markers, pass-end actions) at 128 + pc, one image per horizon N; the pass table crom
+    // one 18-bit word per (pass kind, bit j): which registers shift, when the pass ends, sign
+    // holds, flag strobes.  Both images come from gen/empc/rtlmodel/ctrl_seq.py.
+    localparam integer NSRC = UB_TO_STG - UB_NSEL;          // stage sources SRC_POS .. SRC_IQ (ub.nsel)
+    (* rom_style = "block" *) reg [17:0] crom [0:1023];     // pass table (kinds 0..11, 64 bits each)
+    (* rom_style = "block" *) reg [35:0] urom [0:255];      // microprogram: uw at pc, ub at 128 + pc
+    integer ui;
+    initial begin
+`include "ctrl_seq_rom.vh"
+    end
+    reg  [6:0]  pc;
+    reg  [6:0]  pc_next;
+    reg  [35:0] uw, ub;             // urom[pc], urom[128 + pc]
+    wire [5:0]  u_wa  = uw[UW_WA +: 6];
+
+    // engine states
+    localparam [2:0] E_IDLE = 3'd0, E_OP = 3'd1, E_STG = 3'd2, E_LD = 3'd3, E_PASS = 3'd4,
+                     E_FIX = 3'd5, E_WR = 3'd6, E_WR2 = 3'd7;
+    reg  [2:0]  est;
+    reg  [5:0]  j;                  // bit of the pass
+
+    // The op flags of uw, registered: uw comes out of block RAM (about 2 ns clock-to-out), and
+    // decoding it in front of the serial ALU made the pass datapath 9 LUT levels deep (93.5 MHz
+    // proxy).  uw changes only together with pc, which always enters E_OP for at least one clock,
+    // so the registered flags are valid from the clock after E_OP on: in every state where the
+    // pass datapath acts.  What acts in E_OP itself (next state, pass table and status
+    // addresses, ALU carry preset, zero writes) uses the unregistered op_* bits.
+    wire op_pos  = uw[UW_POS];
+    wire op_ref  = uw[UW_REF];
+    wire op_diff = uw[UW_DIFF];
+    wire op_om   = uw[UW_OM];
+    wire op_fix3 = uw[UW_FIX3];
+    wire op_w6   = uw[UW_W6];
+    wire op_stat = uw[UW_STAT];
+    wire op_sub  = uw[UW_SUB] || (op_ref && task_pos);     // the pass subtracts B
+    reg  is_pos, is_ref, is_diff, is_om, is_fix3, is_w6, is_stat, diff_q, sub, is_sat, is_back, is_stw;
+    always @(posedge clk) begin
+        {is_pos, is_ref, is_diff, is_om, is_fix3, is_w6, is_stat} <=
+            {op_pos, op_ref, op_diff, op_om, op_fix3, op_w6, op_stat};
+        diff_q  <= uw[UW_SRC];      // SRC_IQ (9) vs SRC_ID (8)
+        sub     <= op_sub;
+        is_sat  <= ub[UB_SAT];      // result saturated to SW bits (POS, REF, W6)
+        is_back <= ub[UB_BACK];     // back to E_OP at the pass end (OM, STAT, CNT)
+        is_stw  <= ub[UB_STW];      // writes a status word at the pass end
+    end
+    wire in_pass = (est == E_PASS);
+
+    // ---------------- stage registers and X ----------------
+    // Each stage register holds its source in the clock after its select and is 0 otherwise
+    // (the select drives the flip-flops' reset); X loads the OR of all stages.
+    reg  [XW-1:0] x;
+    reg  [PW-1:0] g_pos;
+    reg  [IW-1:0] g_id, g_iq, g_idr, g_iqr;
+    reg  [SW-1:0] g_e0, g_e1, g_e2;
+    reg  [UW-1:0] g_u0, g_u1;
+    // The selects are registered in the E_OP clock that enters E_STG (the step word ub cannot
+    // change before E_LD), active low so that they drive the stage flip-flops' reset directly;
+    // ebar_prev is selected unless zeroed is set in the E_STG clock (zeroed's next value).
+    reg  [NSRC-1:0] nsel;
+    wire          to_stg = !rst && (est == E_OP) && !go_ctl && (ub[UB_TO_STG] || (op_diff && front_done));
+    wire          zeroed_nx = rst || (!core_done && (!run || zeroed));
+    always @(posedge clk) begin
+        nsel <= to_stg ? ub[UB_NSEL +: NSRC] : {NSRC{1'b1}};
+        if (zeroed_nx) nsel[SRC_E2:SRC_E0] <= 3'b111;
+    end
+    always @(posedge clk) begin
+        g_pos <= nsel[SRC_POS] ? {PW{1'b0}} : pos_trig;
+        g_id  <= nsel[SRC_ID]  ? {IW{1'b0}} : i_d;
+        g_iq  <= nsel[SRC_IQ]  ? {IW{1'b0}} : i_q;
+        g_idr <= nsel[SRC_IDR] ? {IW{1'b0}} : id_ref;
+        g_iqr <= nsel[SRC_IQR] ? {IW{1'b0}} : iq_ref;
+        g_e0  <= nsel[SRC_E0]  ? {SW{1'b0}} : core_ebar[0*SW +: SW];
+        g_e1  <= nsel[SRC_E1]  ? {SW{1'b0}} : core_ebar[1*SW +: SW];
+        g_e2  <= nsel[SRC_E2]  ? {SW{1'b0}} : core_ebar[2*SW +: SW];
+        g_u0  <= nsel[SRC_U0]  ? {UW{1'b0}} : u_st0;
+        g_u1  <= nsel[SRC_U1]  ? {UW{1'b0}} : u_st1;
+    end
+    // sign of the staged 18-bit source / of any 18- or 24-bit source (unselected stages are 0)
+    wire          g_s18 = g_id[IW-1] | g_iq[IW-1] | g_idr[IW-1] | g_iqr[IW-1];
+    wire          g_s24 = g_s18 | g_u0[UW-1] | g_u1[UW-1];
+    // the OR of the stages, sign-extended through the two registered sign bits; bits
+    // 17:0 have 11 inputs with X's own shift: split 6 + 5 so that each is one LUT6
+    (* keep *) wire [IW-1:0] g_lo = x[IW:1] | g_pos[IW-1:0] | g_e0[IW-1:0] | g_e1[IW-1:0] | g_e2[IW-1:0] |
+                                    g_u0[IW-1:0];
+    // (bits SW..XW-1 of a copied word are never written to the core: left 0 / unextended)
+    wire [XW-1:0] g_all = {{(XW-PW){1'b0}}, g_pos[PW-1:IW], {IW{1'b0}}} |
+                          {{(XW-SW){1'b0}}, g_e0[SW-1:IW] | g_e1[SW-1:IW] | g_e2[SW-1:IW], {IW{1'b0}}} |
+                          {{(XW-SW){1'b0}}, {(SW-UW){g_s24}}, {(UW-IW){g_s18}}, g_id | g_iq | g_idr | g_iqr} |
+                          {{(XW-UW){1'b0}}, g_u0[UW-1:IW], {IW{1'b0}}} | {{(XW-IW){1'b0}}, g_u1[IW-1:0] | g_lo} |
+                          {{(XW-UW){1'b0}}, g_u1[UW-1:IW], {IW{1'b0}}};
+
+    // ---------------- serial operands and ALU ----------------
+    reg  [IW-1:0] idp, iqp;         // previous i_d, i_q
+    reg  [WW-1:0] omp;              // previous omega
+    reg  [PW-1:0] pp;               // previous count (after the POS pass: this period's count)
+    reg  [PW-1:0] dp;               // dpos
+    reg  [WW-1:0] om;               // omega (OM pass result, saturated by the FIX3 pass)
+    reg  [40:0]   ka;               // product stream: ka = ka[40:1], rounding bit ka[0]
+    reg           a_h, b_h;         // held sign bits
+    reg           c0, c1;           // carry 0..2
+    reg           sd, spd_ovf, om_ovf, om_sgn, rnd, nz;
+    reg           w_trk, w_r, w_ovf, fix_sgn;   // SW-bit saturation of the word in X (from bit G)
+    reg  [17:0]   pw;               // pass control word of (pass kind, j)
+    reg  [17:0]   pwf;              // E_FIX table word of j (kind PK_FIX, second port of the pass table)
+
+    // reference pass: first bit j0 = the rounding bit (the REF window of w_k lies above it)
+    wire [5:0] ref_j0  = task_pos ? 6'd23 : 6'd15;
+    wire       p_xs  = pw[PT_XS], p_pe = pw[PT_PE], p_ss = pw[PT_SS], p_ha = pw[PT_HA], p_hb = pw[PT_HB];
+    wire       p_ca  = pw[PT_CA], p_cb = pw[PT_CB], p_r1 = pw[PT_R1], p_r2 = pw[PT_R2], p_r3 = pw[PT_R3];
+    wire       p_al  = pw[PT_AL], p_l31 = pw[PT_L31], p_l16 = pw[PT_L16], p_f1 = pw[PT_F1], p_f2 = pw[PT_F2];
+    wire       p_f3  = pw[PT_F3], p_w0 = pw[PT_W0];
+
+    // A operand
+    wire spd_raw = spd_ovf ? (p_l31 ? ~sd : sd) : p_l16 ? 1'b0 : dp[0];
+    reg  a_raw;
+    always @(*) begin
+        if (is_ref) a_raw = ref_q;
+        else if (is_om) a_raw = spd_raw;
+        else if (is_fix3) a_raw = om_ovf ? (p_l31 ? ~om_sgn : om_sgn) : om[0];
+        else if (is_w6) a_raw = om[0];
+        else a_raw = x[0];
+    end
+    wire a_bit  = p_ha ? a_h : a_raw;
+    // B operand
+    reg  b_raw;
+    always @(*) begin
+        if (is_pos) b_raw = pp[0];
+        else if (is_ref) b_raw = p_r1 && pp[0];
+        else if (is_diff) b_raw = diff_q ? iqp[0] : idp[0];
+        else if (is_om) b_raw = ka[1];
+        else if (is_w6) b_raw = omp[0];
+        else b_raw = 1'b0;
+    end
+    wire       b_bit  = p_hb ? b_h : b_raw;
+    wire       b_eff  = b_bit ^ sub;
+    wire       r      = a_bit ^ b_eff ^ c0;
+    wire       maj    = (a_bit & b_eff) | (c0 & (a_bit ^ b_eff));
+    wire       fix_end = (est == E_FIX) && pwf[PT_PE];
+    wire       r_fix  = pwf[PT_XS] ? fix_sgn : ~fix_sgn;       // X = satSW pattern, sign-extended
+
+    // pass control (status words and sweep words: 32 bits, written one clock after the last)
+    wire       pass_end  = in_pass && p_pe;
+    // the word formed in X does not fit SW bits: result bits SW-1 .. XW-1 (pass bits G .. end) not
+    // all equal, including this clock's bit (used at the pass end); its sign: the computed top bit,
+    // the reference sign for a speed reference (w[63]), and + for the one position-reference
+    // wrap (rel + 2^23 carried into bit 63: rnd, bits 24..62 zero)
+    wire       ovf_now = w_ovf || (w_trk && (r != w_r));
+    wire       sgn_now = (is_ref && !task_pos) ? a_raw : (r && !(is_ref && rnd && !nz));
+    wire       x_shift = (in_pass && p_xs) || (est == E_FIX);
+    wire       x_in    = (est == E_FIX) ? r_fix : r;
+    wire       x_load  = (est == E_LD);
+    wire       x_clr   = (est == E_WR && !(is_fix3 && !task_pos)) || (est == E_WR2) ||
+                         (pass_end && ((is_sat && ovf_now) || is_stat));
+    wire       wr_zero = (est == E_OP) && (ub[UB_WZ] || (ub[UB_ZPOS] && task_pos));
+
+    // ---------------- multiplier kacc * i_q (serial-parallel, steps mk = 0 .. s + 39) ----------------
+    reg         mrun, msg;
+    reg  [6:0]  mk;
+    reg  signed [18:0] ms;
+    // steps: mk = -39 .. s (7-bit two's complement); the first 18 take i_q bit j of the W5
+    // pass (A), the rest its sign msg (captured at bit 17)
+    wire        mb   = (in_pass && is_diff && p_r1) ? x[0] : msg;   // (A of the W5 pass is x[0])
+    wire signed [18:0] msum = ms + (mb ? {kacc[17], kacc} : 19'sd0);
+    wire        m_end = (mk[6:5] == 2'b00) && (mk[4:0] == kacc_shift);
+    wire        m_start = (est == E_LD) && is_diff && diff_q;
+
+    // ---------------- sequence ----------------
+    // program entries: control (trigger of a control period), status (every modulation start),
+    // a sweep of axis_status when nothing else runs (the zero sweep runs into the counter sweep)
+    wire go_stat = xf_mod && !xf_busy && (est == E_IDLE);
+    wire quiet   = (est == E_IDLE) && !busy_period && !xf_mod && !trig;
+    wire go_sw   = quiet && sw_req;
+    wire step    = (est == E_OP && ub[UB_ZERO]) ||
+                   (est == E_WR && !(is_fix3 && !task_pos)) || (est == E_WR2) ||
+                   (pass_end && is_back);
+    always @(*) begin
+        if (go_ctl) pc_next = PC_CTL;
+        else if (go_stat) pc_next = PC_STAT;
+        else if (go_sw) pc_next = sw_all ? PC_ZERO : PC_CNT;
+        else if (step) pc_next = pc + 7'd1;
+        else pc_next = pc;
+    end
+    reg  [5:0]  j_nx;
+    wire [3:0]  pk = {op_ref, uw[UW_PK + 2], uw[UW_PK + 1] | (op_ref & task_pos), uw[UW_PK]};
+    always @(*) begin
+        j_nx = j;
+        if (est == E_OP) j_nx = op_ref ? ref_j0 : 6'd0;
+        else if (in_pass) j_nx = pass_end ? 6'd0 : j + 6'd1;
+        else if (est == E_FIX) j_nx = fix_end ? 6'd0 : j + 6'd1;
+    end
+    always @(posedge clk) begin
+        uw <= urom[{1'b0, pc_next}];
+        ub <= urom[{1'b1, pc_next}];
+        pw <= crom[{pk, j_nx}];
+        pwf <= crom[{PK_FIX, j_nx}];
+    end
+    assign prog_end = (est == E_OP) && ub[UB_END];
+    // dx2 / dx3 saturated (E_FIX; not the references), omega saturated (FIX3): model front_sat
+    assign eng_sat = (est == E_OP && op_fix3 && (spd_ovf || om_ovf)) ||
+                     (pass_end && !is_back && is_sat && ovf_now && !is_ref);
+
+    always @(posedge clk) begin
+        if (rst) begin
+            pc <= 7'd0;
+            est <= E_IDLE;
+            j <= 6'd0;
+            omega <= {WW{1'b0}};
+            mrun <= 1'b0;
+        end else begin
+            pc <= pc_next;
+            j <= j_nx;
+            case (est)
+                E_IDLE: ;
+                E_OP: begin
+                    // POS, COPY, STAT; DIFF when the front is done / REF when the references are
+                    // current, OM when the product is ready; FIX3, W6, CNT / END, SEND, CEND;
+                    // ZERO, ZPOS stay (written in this clock, pc + 1)
+                    if (ub[UB_TO_STG] || (op_diff && front_done)) est <= E_STG;
+                    else if (ub[UB_TO_PASS] || (op_ref && ref_ok) || (op_om && !mrun)) est <= E_PASS;
+                    else if (ub[UB_TO_IDLE]) est <= E_IDLE;
+                end
+                E_STG: est <= E_LD;
+                E_LD: est <= ub[UB_COPY] ? E_WR : E_PASS;
+                E_PASS: begin
+                    if (pass_end) begin
+                        if (is_back) est <= E_OP;
+                        else if (is_sat && ovf_now) est <= E_FIX;
+                        else est <= E_WR;
+                        if (is_fix3) omega <= om;           // complete since bit 31
+                    end
+                end
+                E_FIX: if (fix_end) est <= E_WR;
+                E_WR: est <= (is_fix3 && !task_pos) ? E_WR2 : E_OP;
+                default: est <= E_OP;                       // E_WR2
+            endcase
+            // Program entry (pc_next jumps): after the step states, so that it wins over them.
+            // go_stat / go_sw start from E_IDLE only; a control trigger may interrupt a sweep in
+            // any clock, including its E_OP clocks, whose own next state once won here (a counter
+            // op entered its pass with the first control instruction; the end marker dropped to
+            // E_IDLE and the control period stalled into an overrun).
+            if (go_ctl || go_stat || go_sw) est <= E_OP;
+
+            // ---- multiplier: starts with the W5 pass (step mk = pass bit j) ----
+            if (m_start)
+                mrun <= 1'b1;
+            else if (mrun && m_end)
+                mrun <= 1'b0;
+        end
+    end
+
+    // datapath registers
     always @(posedge clk) begin
         // X: shift / parallel load (the OR of the stages; X is 0 before a load)
         if (x_clr || rst)
@@ -845,7 +636,7 @@ module ctrl_seq #(
                 c0 <= task_pos ? ~ref_q : ref_q;       // the value of the clock j = ja - 1 stays
                 c1 <= task_pos & ref_q;
             end else begin
-                c0 <= op_sub | (op_om & ka[0]) | (op_cnt & ev_k);
+                c0 <= op_sub | (op_om & ka[0]);
                 c1 <= 1'b0;
             end
         end else begin
@@ -853,7 +644,6 @@ module ctrl_seq #(
             c1 <= maj & c1;
         end
         if (in_pass && p_ca) a_h <= a_raw;                   // sign of a 32-bit A (bit 31)
-        if (in_pass && p_ca) csat <= maj && !cz && ub[UB_CSOK];
         if (in_pass && p_cb) b_h <= b_raw;                   // sign of B (bit 17 or 31)
         // POS pass: dpos sign sd, spd = dpos << 16 overflows if dpos bits 31..15 are not all equal
         if (in_pass && is_pos) begin
@@ -882,7 +672,7 @@ module ctrl_seq #(
         if (!in_pass) begin
             w_trk <= 1'b0;
             w_ovf <= 1'b0;
-        end else if (pw[PC_G]) begin
+        end else if (pw[PT_G]) begin
             w_trk <= 1'b1;
             w_r <= r;
         end else if (w_trk && r != w_r) begin
@@ -911,33 +701,38 @@ module ctrl_seq #(
             ka <= {1'b0, ka[40:1]};
         end
         if (in_pass && is_diff && p_cb) msg <= x[0];        // i_q sign (bit 17 of the W5 pass)
-        // theta_mod pass and the angle register
-        if (th_run) begin
-            ta_d <= ta;
-            tc <= (ta_d & ~tb) | (tc & (ta_d ^ ~tb));
-            tm <= {tr, tm[AB-1:1]};
-            tp <= {ta, tp[AB-1:1]};
-            ang <= {ta, ang[AB-1:1]};
-        end else begin
-            ta_d <= 1'b0;
-            tc <= 1'b1;
-        end
-        if (ang_run) begin
-            ang <= {tm[0], ang[AB-1:1]};
-            tm <= {tm[0], tm[AB-1:1]};
-        end
         if (rst) begin
             pp <= {PW{1'b0}};
             idp <= {IW{1'b0}};
             iqp <= {IW{1'b0}};
             omp <= {WW{1'b0}};
-            tp <= {AB{1'b0}};
-            ang <= {AB{1'b0}};
         end
     end
 
-    // the op code stays in the microword (decoded at build time into the flags and ub; the test
-    // bench reads it), ub's top bits are spare
-    wire unused = &{1'b0, u_op, uw[UW_AGE + 3], ub[35:UB_STW+1], per_cnt};   // (age bit 3: N = 8 only)
+    // =================================== interfaces ===================================
+    // MPC core input buffer (dx0, dx1 at y0 + 4, y1 + 4; the second FIX3 write: y2 = omega,
+    // at omega - 1)
+    assign core_in_wdata = x[SW-1:0];
+    assign core_in_we    = (est == E_WR) || (est == E_WR2) || wr_zero || (in_pass && p_w0);
+    assign core_in_addr  = {u_wa[5:3], u_wa[2] | (est == E_WR && is_diff), u_wa[1], u_wa[0] & (est != E_WR2)};
+    // reference readout
+    assign ref_age = uw[UW_AGE +: AW];
+    assign ref_bit = j;
+    // status words: REF (w_k window, reference pass m = 0), I_D / I_Q (DIFF passes, A = i_d /
+    // i_q), SPEED (FIX3 pass, result), U_D / U_Q (status passes, A = u); sweep words (CNT
+    // steps): the bits come from axis_status, st_d is not used
+    assign st_sh   = in_pass && p_ss;
+    assign st_d    = is_fix3 ? r : a_raw;
+    assign st_wr   = pass_end && is_stw;
+    assign st_addr = uw[UW_ST +: 6];
+    assign st_bit  = j_nx[4:0];
+    assign sw_go   = go_sw;
+    assign sw_end  = (est == E_OP) && ub[UB_CEND];
+    assign ctl_go  = go_ctl;
+
+    // the op code stays in the microword (the test bench reads it), so do the source's upper bits;
+    // the words' top bits are spare
+    wire unused = &{1'b0, uw[UW_SRC-1:0], uw[UW_SRC+3:UW_SRC+1], uw[UW_AGE + 3], uw[35:UW_PK+3],
+                    ub[35:UB_STW+1], per_cnt};   // (age bit 3: N = 8 only)
 endmodule
 `default_nettype wire

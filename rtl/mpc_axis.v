@@ -203,8 +203,7 @@ module mpc_axis #(
         .cmp(cmp), .cmp_load(cmp_load), .control_done(control_done), .overrun(overrun),
         .front_sat(seq_front_sat), .latency(seq_latency), .i_d(st_id), .i_q(st_iq), .omega(omega),
         .theta_trig(theta_trig), .st_sh(st_sh), .st_d(st_d), .st_wr(st_wr), .st_addr(st_addr),
-        .st_bit(st_bit), .cnt_q(cnt_q), .cnt_ev(cnt_ev), .cnt_clear(cmd_clear_counters), .cnt_done(cnt_done),
-        .cnt_hide(cnt_hide), .st_hide(st_hide));
+        .st_bit(st_bit), .sw_req(sw_req), .sw_all(sw_all), .sw_go(sw_go), .sw_end(sw_end), .ctl_go(ctl_go));
 
     mpc_core #(.N(N), .BOOT_FILE(BOOT_FILE), .RSQRT_FILE(RSQRT_FILE)) u_core (
         .clk(clk), .rst(rst), .start(core_start), .in_we(core_in_we), .in_addr(core_in_addr),
@@ -241,71 +240,17 @@ module mpc_axis #(
     assign period_tick = period_start;
 
     // ---------------- status words and counters: one block RAM ----------------
-    // Words SPEED, I_D, I_Q, U_D, U_Q, REF, PERIODS and the event counters SAT_OPERAND ..
-    // CNT_OVERRUN live in a block RAM at their register offsets.  ctrl_seq streams each new
-    // word bit by bit into the shift register sts, which is then written in one clock (port
-    // A, shared with the CPU read; a write that meets a CPU read waits one clock), so a CPU
-    // read never sees a half-updated word.  The counters are incremented by ctrl_seq too:
-    // after the modulation of a control period it reads each counter bit by bit (port B,
-    // x1) and streams back counter + event (saturating at 2^32-1; PERIODS wraps).  The
-    // events of the period are held here until that sweep: the core's flags of the
-    // update, "front end saturated" (sequencer, ADC, PWM clip) and "overrun" at any time
-    // in the control period, and "a control period ran" for PERIODS; SAT_* and CNT_OVERRUN
-    // therefore count the control periods in which the event happened.  rst and
-    // CMD.clear_counters zero the counters (rst also the status words); they read 0 from
-    // the command on.  ADC misses and encoder errors come from the blocks' own counters.
-    reg         smem [0:2047];                     // 64 words x 32 bit, bit {word, bit}
-    integer si;
-    initial begin
-        for (si = 0; si < 2048; si = si + 1) smem[si] = 1'b0;
-    end
-    reg  [31:0] sts;
-    reg  [31:0] s_q;                               // port A read (0 unless a word of smem is read)
-    wire        cnt_q;
+    // axis_status owns them, the events of the control period and the sweeps (which ctrl_seq's
+    // engine clocks); s_q is its read data (0 unless one of its words is read)
+    wire        sw_req, sw_all, sw_go, sw_end, ctl_go;
     wire [4:0]  st_bit;
-    wire        cnt_done, cnt_hide, st_hide;
-    reg  [10:0] ev_core;
-    reg         ev_front, ev_ovr, ev_per;
-    wire [13:0] cnt_ev = {ev_per, ev_ovr, ev_front, ev_core};
-    always @(posedge clk) begin
-        if (rst || cnt_done) begin
-            ev_core <= 11'd0;
-            ev_front <= 1'b0;
-            ev_ovr <= 1'b0;
-            ev_per <= 1'b0;
-        end else begin
-            if (core_done) ev_core <= core_flags;
-            if (seq_front_sat || adc_sat || cmp_clip) ev_front <= 1'b1;
-            if (overrun) ev_ovr <= 1'b1;
-            if (control_done && running) ev_per <= 1'b1;
-        end
-    end
-    always @(posedge clk) begin
-        if (st_sh) sts <= {st_d, sts[31:1]};
-    end
-    // port A: CPU read, or the write of sts (moved by one clock when it meets a CPU read)
-    reg         w_def;
-    reg  [5:0]  w_def_a;
-    wire        w_go = (st_wr && !reg_rd) || w_def;
-    wire [5:0]  w_a  = w_def ? w_def_a : st_addr;
-    always @(posedge clk) begin
-        w_def <= st_wr && reg_rd && !rst;
-        w_def_a <= st_addr;
-    end
-    wire s_rd   = (cnt_re && !cnt_hide) || (stat_re && !st_hide);   // axis_regs' address tables
-    wire [5:0]  pa = w_go ? w_a : reg_addr[5:0];   // (a write never meets a read)
-    always @(posedge clk) begin
-        if (w_go)
-            for (si = 0; si < 32; si = si + 1) smem[{pa, si[4:0]}] <= sts[si];
-        if (!s_rd)
-            s_q <= 32'd0;
-        else
-            for (si = 0; si < 32; si = si + 1) s_q[si] <= smem[{pa, si[4:0]}];
-    end
-    // port B (x1): counter bits for ctrl_seq
-    reg         cnt_q_r;
-    always @(posedge clk) cnt_q_r <= smem[{st_addr, st_bit}];
-    assign cnt_q = cnt_q_r;
+    wire [31:0] s_q;
+    axis_status u_status (
+        .clk(clk), .rst(rst), .reg_rd(reg_rd), .reg_addr(reg_addr), .cnt_re(cnt_re), .stat_re(stat_re), .rdata(s_q), .cnt_clear(cmd_clear_counters),
+        .core_done(core_done), .core_flags(core_flags), .front_sat(seq_front_sat || adc_sat || cmp_clip),
+        .overrun(overrun), .period(control_done && running), .st_sh(st_sh), .st_d(st_d), .st_wr(st_wr),
+        .st_addr(st_addr), .st_bit(st_bit), .sw_req(sw_req), .sw_all(sw_all), .sw_go(sw_go), .sw_end(sw_end),
+        .ctl_go(ctl_go));
 
     // ---------------- axis registers (generated: rtl/axis_regs.v) ----------------
     axis_regs u_regs (

@@ -33,6 +33,7 @@ from cocotb.triggers import ClockCycles, FallingEdge
 
 from empc import formats as F
 from empc import image
+from empc.rtlmodel import ctrl_seq as CS
 from empc.rtlmodel import mpc_core as core
 from empc.rtlmodel.ctrl_seq import CtrlSeq, Regs, _signed
 from empc.rtlmodel.ref_gen import FIELDS, RefGen, Slot, slot_field
@@ -51,8 +52,10 @@ def _rtl_consts(*names: str) -> list[int]:
     return out
 
 
-# engine state E_OP and the counter-sweep ops (uw[3:0]), for timing triggers onto sweep E_OP clocks
-E_OP, OP_CNT, OP_CEND = _rtl_consts("E_OP", "OP_CNT", "OP_CEND")
+# engine state E_OP and the counter-sweep ops (uw[3:0], microprogram table), for timing triggers
+# onto sweep E_OP clocks
+(E_OP,) = _rtl_consts("E_OP")
+OP_CNT, OP_CEND = CS.OP["CNT"], CS.OP["CEND"]
 N = 4
 PERIODS = int(os.environ.get("EMPC_CS_PERIODS", "400"))
 
@@ -265,7 +268,7 @@ async def random_periods(dut):
         st["run0"] += int(not regs.run)
         await ClockCycles(dut.clk, 700, rising=False)        # counter sweep, settle
         if interrupted:     # the interrupted zero sweep ran again after the period and completed
-            assert int(dut.u_seq.hide_cnt.value) == 0, f"period {k}: zero sweep not completed"
+            assert int(dut.u_status.hide_cnt.value) == 0, f"period {k}: zero sweep not completed"
     dut._log.info("ctrl_seq %s: seed %d, %s (all compare values, core outputs and front_sat pulses "
                   "bit-exact with the model)", task, seed, st)
     for key in ("dth_sat", "dom_sat", "ref_sat", "spd_sat", "run0", "core_checked", "int_op", "int_cend", "int_any"):
@@ -284,3 +287,31 @@ def test_ctrl_seq_speed():
 
 def test_ctrl_seq_position():
     _run("position")
+
+
+def test_ctrl_seq_generated_files():
+    """rtl/ctrl_seq_ucode.vh and rtl/ctrl_seq_rom.vh equal what the microprogram tables generate."""
+    root = Path(__file__).resolve().parents[1]
+    for cmd, gen in (("ucode", CS.ucode_vh), ("rom", CS.rom_vh)):
+        assert (root / "rtl" / f"ctrl_seq_{cmd}.vh").read_text() == gen(), \
+            f"rtl/ctrl_seq_{cmd}.vh is stale: python -m empc.ucode"
+
+
+def test_ctrl_seq_images():
+    """Every horizon's microprogram image decodes back to its programs: the control program reads
+    w_k .. w_{k+N} in order (ref_age = N - m; only m = 0 streams the REF status word) and fits
+    below the status programs, which run into each other as the RTL's entry points assume."""
+    for n in CS.N_RANGE:
+        img = CS.urom_image(n)
+        uw = [CS.UW.unpack(w) for w in img[:CS.UROM_ROWS]]
+        ub = [CS.UB.unpack(w) for w in img[CS.UROM_ROWS:]]
+        refs = [(pc, w) for pc, w in enumerate(uw) if w["op"] == CS.OP["REF"]]
+        assert [w["age"] for _, w in refs] == list(range(n, -1, -1)), (n, refs)
+        assert [ub[pc]["stw"] for pc, _ in refs] == [1] + [0] * n
+        assert [w["wa"] for _, w in refs] == [core.IN_WREF + 3 * m + 2 for m in range(n + 1)]
+        end = [pc for pc, w in enumerate(uw) if w["op"] == CS.OP["END"]]
+        assert end == [13 + 3 * (n + 1)] and end[0] < CS.ENTRY["STAT"], (n, end)
+        assert CS.ENTRY["CNT"] == CS.ENTRY["ZERO"] + len(CS.ZERO_PROGRAM)
+        assert [w["op"] for w in uw[CS.ENTRY["CNT"]:CS.ENTRY["CNT"] + len(CS.COUNT_PROGRAM)]] == \
+            [CS.OP["CNT"]] * len(CS.COUNTERS) + [CS.OP["CEND"]]
+        assert CS.ENTRY["CNT"] + len(CS.COUNT_PROGRAM) <= CS.UROM_ROWS

@@ -1,5 +1,5 @@
 // ctrl_seq_tb: simulation wrapper for tb/test_ctrl_seq.py: ctrl_seq with the blocks it talks to
-// (ref_gen, mpc_core; the register file's counter RAM reads 0), driven directly by the test so
+// (ref_gen, mpc_core, axis_status with no events and no CPU reads), driven directly by the test so
 // that periods, registers and reference programs can be randomised far beyond what the closed
 // loop produces (large position jumps, saturated references, one control period per PWM period).
 `default_nettype none
@@ -23,10 +23,8 @@ module ctrl_seq_tb (
     wire core_start, core_done, core_in_we; wire [5:0] core_in_addr; wire signed [`EMPC_SIG_W-1:0] core_in_wdata;
     wire [47:0] core_u, core_du, core_u_raw; wire [3*`EMPC_SIG_W-1:0] core_ebar; wire [17:0] core_wn; wire [10:0] core_flags;
     wire [7:0] core_latency; wire core_busy, core_bank, core_boot_ok;
-    wire [4:0] st_bit; wire cnt_done, cnt_hide, st_hide; wire overrun, pos_sample; wire [17:0] i_d, i_q;
-    wire [31:0] omega; wire [15:0] theta_trig; wire [31:0] seg_rdata;
-    reg cnt_q;
-    always @(posedge clk) cnt_q <= 1'b0;
+    wire [4:0] st_bit; wire sw_req, sw_all, sw_go, sw_end, ctl_go; wire overrun, pos_sample; wire [17:0] i_d, i_q;
+    wire [31:0] omega; wire [15:0] theta_trig; wire [31:0] seg_rdata, st_rdata;
     ref_gen #(.N(4)) u_ref (.clk(clk), .rst(rst), .seg_we(seg_we), .seg_re(1'b0), .seg_slot(seg_slot),
         .seg_field(seg_field), .seg_wdata(seg_wdata), .seg_rdata(seg_rdata), .start(start), .start_slot(start_slot),
         .sync(sync), .sync_idx(sync_idx), .sync_bit(sync_bit), .advance(ref_advance), .rd_age(ref_age),
@@ -39,8 +37,12 @@ module ctrl_seq_tb (
         .core_in_addr(core_in_addr), .core_in_wdata(core_in_wdata), .core_done(core_done), .core_u(core_u),
         .core_ebar(core_ebar), .cmp(cmp), .cmp_load(cmp_load), .control_done(control_done), .overrun(overrun),
         .front_sat(front_sat), .latency(latency), .i_d(i_d), .i_q(i_q), .omega(omega), .theta_trig(theta_trig),
-        .st_sh(st_sh), .st_d(st_d), .st_wr(st_wr), .st_addr(st_addr), .st_bit(st_bit), .cnt_q(cnt_q),
-        .cnt_ev(14'd0), .cnt_clear(cnt_clear), .cnt_done(cnt_done), .cnt_hide(cnt_hide), .st_hide(st_hide));
+        .st_sh(st_sh), .st_d(st_d), .st_wr(st_wr), .st_addr(st_addr), .st_bit(st_bit), .sw_req(sw_req),
+        .sw_all(sw_all), .sw_go(sw_go), .sw_end(sw_end), .ctl_go(ctl_go));
+    axis_status u_status (.clk(clk), .rst(rst), .reg_rd(1'b0), .reg_addr(8'd0), .rdata(st_rdata), .cnt_clear(cnt_clear),
+        .core_done(1'b0), .core_flags(11'd0), .front_sat(1'b0), .overrun(1'b0), .period(1'b0), .st_sh(st_sh),
+        .st_d(st_d), .st_wr(st_wr), .st_addr(st_addr), .st_bit(st_bit), .sw_req(sw_req), .sw_all(sw_all),
+        .sw_go(sw_go), .sw_end(sw_end), .ctl_go(ctl_go));
     mpc_core #(.N(4)) u_core (.clk(clk), .rst(rst), .start(core_start), .in_we(core_in_we), .in_addr(core_in_addr),
         .in_wdata(core_in_wdata), .busy(core_busy), .done(core_done), .u(core_u), .du(core_du), .u_raw(core_u_raw),
         .ebar(core_ebar), .wn(core_wn), .flags(core_flags), .latency(core_latency), .cfg_we(cfg_we),
