@@ -1,9 +1,9 @@
 """The one source of truth for the datapath's number formats.
 
 Everything the RTL and the bit-accurate models agree on lives here: word
-widths, fractional bits and raw units.  ``empc roms`` writes these into the
-Verilog header ``empc_formats.vh`` (macros ``EMPC_*``) and into
-``manifest.json``; RTL modules take their parameter defaults from the header
+widths, fractional bits and raw units.  Every upper-case int here is a row of
+the constant table in ``header.py``, from which ``empc roms`` writes the Verilog
+header ``empc_formats.vh`` (macros ``EMPC_*``) and ``manifest.json``; RTL modules take their parameter defaults from the header
 and the Python models import this module, so the two cannot disagree.
 
 Raw units (so the datapath converts nothing):
@@ -40,7 +40,7 @@ POS_W = 32          # integer multi-turn encoder counter
 KDC_FRAC = 16       # DC-link compensation factor Udc_nom/Udc, 1.0 = 2**16, 18 bit unsigned
 KDC_W = 18
 
-# MPC core (see mpc_fixed.py)
+# MPC core (see rtlmodel/mpc_core.py)
 COEF_W = OPW        # polynomial coefficient mantissa
 WN_FRAC = OPW - 1   # normalised scheduling speed, Q1.17
 SIG_SHIFT_BITS = 4  # per-column signal right shift 0..15 (enough for any 32-bit signal)
@@ -66,9 +66,3 @@ def rshift_round(x: int, n: int) -> int:
         return x << (-n)
     return (x + (1 << (n - 1))) >> n
 
-
-FORMAT_CONSTANTS = {
-    name: value
-    for name, value in dict(globals()).items()
-    if name.isupper() and isinstance(value, int)
-}
