@@ -3,8 +3,9 @@
 Everything the RTL and the bit-accurate models agree on lives here: word
 widths, fractional bits and raw units.  Every upper-case int here is a row of
 the constant table in ``header.py``, from which ``empc roms`` writes the Verilog
-header ``empc_formats.vh`` (macros ``EMPC_*``) and ``manifest.json``; RTL modules take their parameter defaults from the header
-and the Python models import this module, so the two cannot disagree.
+header ``empc_formats.vh`` (macros ``EMPC_*``) and ``manifest.json``; RTL
+modules take their parameter defaults from the header and the Python models
+import this module, so the two cannot disagree.
 
 Raw units (so the datapath converts nothing):
   current   ADC LSB (``adc_amps_per_lsb`` A)              Q14.4  in 18 bit
