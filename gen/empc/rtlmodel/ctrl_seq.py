@@ -12,13 +12,13 @@ from dataclasses import dataclass, field
 
 from .. import formats as F
 from . import mpc_core as core
-from .clarke import clarke
-from .duty_scale import duty_scale
-from .inv_clarke import inv_clarke
-from .inv_park import inv_park
-from .min_sub import min_sub
-from .park import park
-from .sincos import sincos
+from .xform_steps.clarke import clarke
+from .xform_steps.duty_scale import duty_scale
+from .xform_steps.inv_clarke import inv_clarke
+from .xform_steps.inv_park import inv_park
+from .xform_steps.min_sub import min_sub
+from .xform_steps.park import park
+from .xform_steps.sincos import sincos
 
 ANGLE_MASK = (1 << F.ANGLE_BITS) - 1
 POS_MASK = (1 << F.POS_W) - 1

@@ -31,7 +31,7 @@ an output.  Every step is rewritten exactly for the fixed window ``>> 16``:
   ``sat18((4 (uh 2**16) + ul 4096 + 2**15) >> 16) = sat18((u + 8) >> 4)``.
 * clarke: ``i_alpha = 16 i_a`` (an operand, no pass); ``i_beta = ((4 i_b)(K1 + K2)
   - (4 i_c)(K1 + K2) + 2**15) >> 16`` with K1 + K2 = K_BETA (each < 2**17).
-* park / inverse park: two products each, as in :func:`empc.rtlmodel.park.rotate`
+* park / inverse park: two products each, as in :func:`empc.rtlmodel.xform_steps.park.rotate`
   (-sin is an operand, so every pass only adds).
 * inverse Clarke (shift 21 -> 16): with K_SQ3 = 32 * 56755 + 27,
   ``t = floor(u_beta 27/32) = (u_beta * 55296) >> 16``,
@@ -58,13 +58,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .. import formats as F
-from . import sincos as SC
-from .clarke import K_BETA, clarke
-from .duty_scale import duty_scale
-from .inv_clarke import K_SHIFT as IC_SHIFT, K_SQ3, inv_clarke
-from .inv_park import inv_park
-from .min_sub import min_sub
-from .park import park
+from .xform_steps import sincos as SC
+from .xform_steps.clarke import K_BETA, clarke
+from .xform_steps.duty_scale import duty_scale
+from .xform_steps.inv_clarke import K_SHIFT as IC_SHIFT, K_SQ3, inv_clarke
+from .xform_steps.inv_park import inv_park
+from .xform_steps.min_sub import min_sub
+from .xform_steps.park import park
 
 W = F.OPW                     # 18: every datapath word (I_W = V_W = TRIG_W = OPW)
 SH = F.TRIG_FRAC              # 16: the one output window: y = acc >> 16

@@ -1,12 +1,12 @@
-"""Bit-exact model of ``rtl/park.v`` (forward Park, paper 000 eq. 33); the shared
-rotation also models ``rtl/inv_park.v`` (see :mod:`empc.rtlmodel.inv_park`).
+"""Step of ``xform`` (``rtl/xform.v``, front): forward Park transform (paper 000 eq. 33), bit-exact;
+the shared rotation is also the inverse Park step (see :mod:`empc.rtlmodel.xform_steps.inv_park`).
 
     i_d =  cos * i_alpha + sin * i_beta
     i_q = -sin * i_alpha + cos * i_beta
 
 Operands: currents signed ``I_W`` = 18 bit Q.4 (any Q format: the block is format-neutral,
 output format = input format), sin/cos signed ``TRIG_W`` = 18 bit with 1.0 = 2**TRIG_FRAC
-(from :mod:`empc.rtlmodel.sincos`).  Each output is the exact sum of the two 36-bit
+(from :mod:`empc.rtlmodel.xform_steps.sincos`).  Each output is the exact sum of the two 36-bit
 products, rounded once (round half up) by TRIG_FRAC bits and saturated to 18 bit:
 
     y = sat((p0 +- p1 + 2**15) >> 16)
@@ -20,7 +20,7 @@ the same integer sin/cos.
 """
 from __future__ import annotations
 
-from ..formats import I_W, TRIG_FRAC
+from ...formats import I_W, TRIG_FRAC
 
 _RND = 1 << (TRIG_FRAC - 1)
 _HI = (1 << (I_W - 1)) - 1
@@ -28,7 +28,7 @@ _LO = -(1 << (I_W - 1))
 
 
 def rotate(x0: int, x1: int, sin: int, cos: int, inverse: bool) -> tuple[int, int, bool]:
-    """Shared datapath of park (inverse=False) and inv_park (inverse=True).
+    """Shared arithmetic of park (inverse=False) and inv_park (inverse=True).
 
     forward: y0 = c x0 + s x1, y1 = -s x0 + c x1;  inverse: y0 = c x0 - s x1, y1 = s x0 + c x1.
     """
@@ -51,7 +51,7 @@ def rotate(x0: int, x1: int, sin: int, cos: int, inverse: bool) -> tuple[int, in
 
 
 def park(i_alpha: int, i_beta: int, sin: int, cos: int) -> tuple[int, int, bool]:
-    """(i_d, i_q, sat) exactly as ``rtl/park.v`` computes them."""
+    """(i_d, i_q, sat) exactly as ``xform`` computes them."""
     return rotate(i_alpha, i_beta, sin, cos, False)
 
 
