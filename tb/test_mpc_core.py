@@ -24,6 +24,7 @@ import pytest
 
 import mpc_core_vectors as V
 from empc import image
+from empc.formats import sat, wrap
 from empc.rtlmodel import mpc_core as core
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -52,11 +53,6 @@ def _u(v: int, w: int) -> int:
     return v & ((1 << w) - 1)
 
 
-def _s(v: int, w: int) -> int:
-    v &= (1 << w) - 1
-    return v - (1 << w) if v >> (w - 1) else v
-
-
 def _pack(vals, w: int) -> int:
     out = 0
     for k, v in enumerate(vals):
@@ -65,7 +61,7 @@ def _pack(vals, w: int) -> int:
 
 
 def _unpack(v: int, n: int, w: int) -> list[int]:
-    return [_s(v >> (k * w), w) for k in range(n)]
+    return [wrap(v >> (k * w), w) for k in range(n)]
 
 
 def input_words(x: dict, i: int, N: int) -> dict[int, int]:
@@ -93,7 +89,7 @@ def unused_words(rng, N: int) -> dict[int, int]:
 def read_out(dut) -> dict:
     return {"u": _unpack(int(dut.u.value), 2, UW), "du": _unpack(int(dut.du.value), 2, UW),
             "u_raw": _unpack(int(dut.u_raw.value), 2, UW), "ebar": _unpack(int(dut.ebar.value), 3, SW),
-            "wn": _s(int(dut.wn.value), OPW), "flags": int(dut.flags.value)}
+            "wn": wrap(int(dut.wn.value), OPW), "flags": int(dut.flags.value)}
 
 
 def _mismatch(got: dict, exp: dict) -> str | None:
@@ -418,7 +414,7 @@ def read_stream(path: Path) -> dict:
             v = np.zeros(len(rows), np.int64)
             for c in range(d):
                 v = (v << 4) | digs[:, c]
-            v = np.where(v >> (w - 1) & 1, v - (1 << w), v) if name not in ("flags", "lat") else v
+            v = wrap(v, w) if name not in ("flags", "lat") else v
             vals.append((e, v))
         vals.sort()
         out[name] = np.stack([v for _, v in vals], axis=1) if k > 1 else vals[0][1]
@@ -608,8 +604,7 @@ def test_limiter_bound():
         for _ in range(100000 // 6):
             R = umax * np.exp(rng.uniform(0, 5))
             a = rng.uniform(0, 2 * np.pi)
-            u = [max(min(int(R * np.cos(a)) << 4, (1 << 23) - 1), -(1 << 23)),
-                 max(min(int(R * np.sin(a)) << 4, (1 << 23) - 1), -(1 << 23))]
+            u = [sat(int(R * np.cos(a)) << 4, 24), sat(int(R * np.sin(a)) << 4, 24)]
             out, lim = core.limit_circle(u, umax)
             if not lim:
                 continue

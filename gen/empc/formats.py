@@ -57,8 +57,16 @@ def sat(x: int, width: int) -> int:
 
 
 def sat_flag(x: int, width: int) -> tuple[int, bool]:
+    """:func:`sat` and whether it saturated."""
     y = sat(x, width)
     return y, y != x
+
+
+def wrap(x, width: int):
+    """Signed value of the low ``width`` bits of ``x`` (two's complement: what a ``width``-bit register
+    holds, e.g. a counter difference).  Also for numpy integer arrays (``width`` < 64)."""
+    half = 1 << (width - 1)
+    return ((x + half) & ((1 << width) - 1)) - half
 
 
 def rshift_round(x: int, n: int) -> int:

@@ -31,11 +31,6 @@ def _u32(v: int) -> int:
     return v & 0xFFFFFFFF
 
 
-def _s32(v: int) -> int:
-    v &= 0xFFFFFFFF
-    return v - (1 << 32) if v & 0x80000000 else v
-
-
 def encode(p: core.Params) -> list[int]:
     if p.ncols > core.MAX_COLS:
         raise ValueError(f"{p.ncols} columns exceed the core's {core.MAX_COLS}")
@@ -82,10 +77,10 @@ def decode(w: list[int]) -> core.Params:
     for i in range(2):
         for j in range(ncols):
             base = A_GAINS + 4 * (core.MAX_COLS * i + j)
-            coef[i].append((_s32(w[base]), _s32(w[base + 1]), _s32(w[base + 2]), w[base + 3] & 0xF))
+            coef[i].append((F.wrap(w[base], 32), F.wrap(w[base + 1], 32), F.wrap(w[base + 2], 32), w[base + 3] & 0xF))
     return core.Params(
         algorithm=(cfgw >> 13) & 3, task="position" if (cfgw >> 12) & 1 else "speed", N=(cfgw >> 8) & 0xF,
-        ws=w[A_WS] & ((1 << F.SIG_SHIFT_BITS) - 1), wn_min=_s32(w[A_WNMIN]), wn_max=_s32(w[A_WNMAX]), u_max=w[A_UMAX],
+        ws=w[A_WS] & ((1 << F.SIG_SHIFT_BITS) - 1), wn_min=F.wrap(w[A_WNMIN], 32), wn_max=F.wrap(w[A_WNMAX], 32), u_max=w[A_UMAX],
         ebar_lim=tuple(w[A_EBAR + o] for o in range(3)),
         col_sig=[w[A_COLS + j] & 0x3F for j in range(ncols)],
         col_shift=[(w[A_COLS + j] >> 8) & ((1 << F.SIG_SHIFT_BITS) - 1) for j in range(ncols)], coef=coef)

@@ -266,11 +266,6 @@ def trig_fold(angle: int, kind: str) -> tuple[int, int, bool]:
 
 
 # ---- instruction-level model ----------------------------------------------------------------
-def _sat(v: int) -> tuple[int, bool]:
-    hi, lo = (1 << (W - 1)) - 1, -(1 << (W - 1))
-    return (hi, True) if v > hi else (lo, True) if v < lo else (v, False)
-
-
 def run(op: str, *, angle: int, i_a: int = 0, i_b: int = 0, i_c: int = 0, u_d: int = 0, u_q: int = 0,
         kdc: int = 0, half_period: int = 0) -> dict:
     """Execute ``op``'s microprogram the way the datapath does (sequential semantics; the
@@ -316,7 +311,7 @@ def run(op: str, *, angle: int, i_a: int = 0, i_b: int = 0, i_c: int = 0, u_d: i
         assert -(1 << (ACC_BITS - 1)) <= acc < (1 << (ACC_BITS - 1)), (r, acc)     # fits ACC_BITS
         if r.dst == "NONE":
             continue
-        y, ovf = _sat(acc >> SH)
+        y, ovf = F.sat_flag(acc >> SH, W)
         if r.dst in ("FLAG1", "FLAG2"):
             flag[r.dst] = acc < 0
             if r.dst == "FLAG1":

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import math
 
-from ...formats import V_W
+from ...formats import V_W, sat_flag
 
 K_SHIFT = 21
 K_SQ3 = int(math.floor((1 << K_SHIFT) * math.sqrt(3.0) / 2 + 0.5))   # 1816187, 21 bit unsigned
@@ -34,16 +34,9 @@ def inv_clarke(u_alpha: int, u_beta: int) -> tuple[int, int, int, bool]:
     h = u_alpha << (K_SHIFT - 1)
     b = (p - h + _RND) >> K_SHIFT
     c = (-p - h + _RND) >> K_SHIFT
-    sat = False
-    if b > _HI:
-        b, sat = _HI, True
-    elif b < _LO:
-        b, sat = _LO, True
-    if c > _HI:
-        c, sat = _HI, True
-    elif c < _LO:
-        c, sat = _LO, True
-    return u_alpha, b, c, sat
+    b, sat_b = sat_flag(b, V_W)
+    c, sat_c = sat_flag(c, V_W)
+    return u_alpha, b, c, sat_b or sat_c
 
 
 def inv_clarke_np(u_alpha, u_beta):

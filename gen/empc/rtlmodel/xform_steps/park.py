@@ -20,7 +20,7 @@ the same integer sin/cos.
 """
 from __future__ import annotations
 
-from ...formats import I_W, TRIG_FRAC
+from ...formats import I_W, TRIG_FRAC, sat_flag
 
 _RND = 1 << (TRIG_FRAC - 1)
 _HI = (1 << (I_W - 1)) - 1
@@ -38,16 +38,9 @@ def rotate(x0: int, x1: int, sin: int, cos: int, inverse: bool) -> tuple[int, in
     else:
         y0 = (cos * x0 + sin * x1 + _RND) >> TRIG_FRAC
         y1 = (cos * x1 - sin * x0 + _RND) >> TRIG_FRAC
-    sat = False
-    if y0 > _HI:
-        y0, sat = _HI, True
-    elif y0 < _LO:
-        y0, sat = _LO, True
-    if y1 > _HI:
-        y1, sat = _HI, True
-    elif y1 < _LO:
-        y1, sat = _LO, True
-    return y0, y1, sat
+    y0, sat0 = sat_flag(y0, I_W)
+    y1, sat1 = sat_flag(y1, I_W)
+    return y0, y1, sat0 or sat1
 
 
 def park(i_alpha: int, i_beta: int, sin: int, cos: int) -> tuple[int, int, bool]:
