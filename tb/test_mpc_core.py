@@ -173,7 +173,7 @@ def _model_outputs(p: core.Params, x: dict, i: int) -> dict:
 
 
 async def _check_vectors(tb: Bench, p: core.Params, x: dict, names=None, log=None) -> int:
-    lat_exp = LAT_BASE + min(p.ncols, core.MAX_COLS)
+    lat_exp = core.latency(p.ncols)
     for i in range(len(x["omega"])):
         got, lat = await tb.run(x, i)
         exp = _model_outputs(p, x, i)
@@ -261,7 +261,7 @@ try:
             total += await _check_vectors(tb, p_new, x)
             total += await _check_vectors(tb, p_new, V.take(xc, sel), [names[s] for s in sel])
             dut._log.info(f"image {name}: bank {1 - bank0}, swap during update ok, ncols {p_new.ncols}, "
-                          f"latency {LAT_BASE + p_new.ncols} cycles")
+                          f"latency {core.latency(p_new.ncols)} cycles")
             p_cur = p_new
         # swap requested while idle: takes effect at the next edge; swap + start in one cycle
         w = load_image(IMAGES[0])
@@ -438,7 +438,7 @@ def compare_stream(path: Path, jobs: list[dict], log) -> dict:
             e = exp[k]
             bad |= (g != e).reshape(n, -1).any(axis=1)
         lat = got["lat"][base:base + n]
-        lat_exp = LAT_BASE + min(p.ncols, core.MAX_COLS)
+        lat_exp = core.latency(p.ncols)
         bad_lat = int((lat != lat_exp).sum())
         nb = int(bad.sum())
         flag_hits = {name: int(((exp["flags"] >> b) & 1).sum()) for name, b in core.FLAG_BITS.items()}
