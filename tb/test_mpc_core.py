@@ -23,6 +23,7 @@ import numpy as np
 import pytest
 
 import mpc_core_vectors as V
+from files import roms_dir
 from empc import image
 from empc.formats import sat, wrap
 from empc.rtlmodel import mpc_core as core
@@ -36,7 +37,7 @@ SW, UW, OPW = core.SIG_W, 24, 18
 
 
 def roms() -> Path:
-    return Path(os.environ.get("EMPC_ROMS", ROOT / "build" / "roms" / "default")).resolve()
+    return roms_dir()
 
 
 def load_image(name: str) -> list[int]:
@@ -321,9 +322,12 @@ try:
         dut._log.info(f"simulation {t2 - t1:.1f} s, {int(dut.cycles.value)} cycles")
         res = compare_stream(Path("mpc_stream_out.txt"), jobs, dut._log)
         Path("mpc_stream_result.json").write_text(json.dumps(res, indent=1))
-        from bench_mpc_core import merge_report
-        merge_report({"vectors": res["vectors"], "mismatches": res["mismatches"], "seed": SEED,
-                      "sim_cycles": int(dut.cycles.value), "stream_jobs": res["jobs"]})
+        from files import REPORTS, merge_report
+        lat = {j["name"]: j["latency"] for j in res["jobs"] if not j["name"].startswith("random")}
+        merge_report(REPORTS / "mpc_core.json", {
+            "vectors": res["vectors"], "mismatches": res["mismatches"], "seed": SEED,
+            "sim_cycles": int(dut.cycles.value), "stream_jobs": res["jobs"],
+            "latency_cycles": lat, "latency_formula": f"{core.LATENCY_BASE} + ncols (start -> done)"})
         dut._log.info(f"compare {time.time() - t2:.1f} s")
         assert res["mismatches"] == 0, res
 except ImportError:   # pytest without cocotb context
@@ -649,10 +653,17 @@ def test_input_words():
 
 
 @pytest.mark.full
-def test_bench_mpc_core():
-    """Synthesis benchmark (flow/bench_mpc_core.py, ~1 min of Yosys): 6 DSP48A1, report written."""
-    import bench_mpc_core
-    assert bench_mpc_core.main() == 0
-    rep = json.loads(bench_mpc_core.REPORT.read_text())
-    print({k: rep.get(k) for k in ("dsp48a1", "lut", "ff", "ramb16", "ramb8", "clock_mhz", "latency_cycles")})
-    assert rep["dsp48a1"] == 6, rep["dsp48a1"]
+def test_bench_mpc_core(tmp_path):
+    """`make bench` (~1 min of Yosys): the core alone through flow/synth.py --top mpc_core --summary, the
+    same script and timing proxy as `make synth`; 6 DSP48A1, headline keys merged beside existing ones."""
+    import synth
+    summary = tmp_path / "mpc_core.json"
+    summary.write_text(json.dumps({"vectors": 1, "stream_jobs": []}))
+    assert synth.main(["--top", "mpc_core", "--out", str(tmp_path / "synth"), "--report", str(tmp_path / "synth.json"),
+                       "--summary", str(summary)]) == 0
+    rep = json.loads(summary.read_text())
+    print({k: rep.get(k) for k in ("dsp48a1", "lut", "ff", "ramb16", "ramb8", "clock_mhz", "timing_proxy")})
+    assert rep["vectors"] == 1 and rep["stream_jobs"] == [], "the stream test's keys must survive the merge"
+    assert rep["block"] == "mpc_core" and rep["dsp48a1"] == 6, rep["dsp48a1"]
+    full = json.loads((tmp_path / "synth.json").read_text())
+    assert rep["lut"] == full["resources"]["lut"] and rep["clock_mhz"] == full["timing"]["est_fmax_mhz"]

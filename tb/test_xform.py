@@ -34,6 +34,7 @@ from empc.rtlmodel.xform_steps.inv_park import inv_park
 from empc.rtlmodel.xform_steps.min_sub import min_sub
 from empc.rtlmodel.xform_steps.duty_scale import duty_scale
 from empc.rtlmodel.xform_steps.park import park
+from files import roms_dir
 
 ROOT = Path(__file__).resolve().parents[1]
 SEED = int(os.environ.get("EMPC_SEED", 4101))
@@ -54,8 +55,7 @@ MOD_IN = ["u_d", "u_q", "angle", "kdc"]
 
 
 def _header_half_period() -> int:
-    roms = Path(os.environ.get("EMPC_ROMS", ROOT / "build" / "roms" / "default"))
-    return header.read(roms / "empc_formats.vh")["PWM_HALF_PERIOD"]
+    return header.read(roms_dir() / "empc_formats.vh")["PWM_HALF_PERIOD"]
 
 
 # ---------------------------------------------------------------- pytest entries
