@@ -5,8 +5,7 @@
 //   front (start_front): (i_a, i_b, i_c, angle)  -> i_d, i_q              (paper 000 eqs. 32, 33)
 //   mod   (start_mod):   (u_d, u_q, angle, kdc)  -> cmp_a, cmp_b, cmp_c    (u (Q.8) -> Q.4 as in
 //                        ctrl_seq, eqs. 34-36, DC link)
-//   Bit-exact to the step models (gen/empc/rtlmodel/xform_steps/) composed in
-//   gen/empc/rtlmodel/xform.py (front(), modulate());
+//   Bit-exact to the step models of gen/empc/rtlmodel/xform_steps/ composed (xform.py front(), modulate());
 //   the microprogram, its static schedule and its arithmetic are in xform.py (PROGRAM).
 //
 // Datapath, one microword (18 bit) per clock from the block RAM's second port:

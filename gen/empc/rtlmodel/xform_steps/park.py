@@ -27,17 +27,20 @@ _HI = (1 << (I_W - 1)) - 1
 _LO = -(1 << (I_W - 1))
 
 
+def _rounded(x0, x1, sin, cos, inverse: bool):
+    """The two outputs before saturation: the exact two-product sums rounded once (ints or numpy int64
+    arrays; the products fit easily in int64)."""
+    if inverse:
+        return (cos * x0 - sin * x1 + _RND) >> TRIG_FRAC, (sin * x0 + cos * x1 + _RND) >> TRIG_FRAC
+    return (cos * x0 + sin * x1 + _RND) >> TRIG_FRAC, (cos * x1 - sin * x0 + _RND) >> TRIG_FRAC
+
+
 def rotate(x0: int, x1: int, sin: int, cos: int, inverse: bool) -> tuple[int, int, bool]:
     """Shared arithmetic of park (inverse=False) and inv_park (inverse=True).
 
     forward: y0 = c x0 + s x1, y1 = -s x0 + c x1;  inverse: y0 = c x0 - s x1, y1 = s x0 + c x1.
     """
-    if inverse:
-        y0 = (cos * x0 - sin * x1 + _RND) >> TRIG_FRAC
-        y1 = (sin * x0 + cos * x1 + _RND) >> TRIG_FRAC
-    else:
-        y0 = (cos * x0 + sin * x1 + _RND) >> TRIG_FRAC
-        y1 = (cos * x1 - sin * x0 + _RND) >> TRIG_FRAC
+    y0, y1 = _rounded(x0, x1, sin, cos, inverse)
     y0, sat0 = sat_flag(y0, I_W)
     y1, sat1 = sat_flag(y1, I_W)
     return y0, y1, sat0 or sat1
@@ -49,16 +52,10 @@ def park(i_alpha: int, i_beta: int, sin: int, cos: int) -> tuple[int, int, bool]
 
 
 def rotate_np(x0, x1, sin, cos, inverse: bool):
-    """Vectorised :func:`rotate` (numpy int64 arrays; products fit easily in int64)."""
+    """Vectorised :func:`rotate` (numpy int64 arrays)."""
     import numpy as np
 
-    x0, x1, s, c = (np.asarray(v, dtype=np.int64) for v in (x0, x1, sin, cos))
-    if inverse:
-        y0 = (c * x0 - s * x1 + _RND) >> TRIG_FRAC
-        y1 = (s * x0 + c * x1 + _RND) >> TRIG_FRAC
-    else:
-        y0 = (c * x0 + s * x1 + _RND) >> TRIG_FRAC
-        y1 = (c * x1 - s * x0 + _RND) >> TRIG_FRAC
+    y0, y1 = _rounded(*(np.asarray(v, dtype=np.int64) for v in (x0, x1, sin, cos)), inverse)
     a, b = np.clip(y0, _LO, _HI), np.clip(y1, _LO, _HI)
     return a, b, (a != y0) | (b != y1)
 
