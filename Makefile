@@ -68,8 +68,8 @@ synth: $(STAMP) roms ## Yosys synth_xilinx -family xc6s on lx_rocon_top: EDIF + 
 bitstream: synth ## ISE 14.7 ngdbuild/map/par/trce/bitgen (needs ISE on PATH and every pin LOC'd)
 	$(PY) flow/bitstream.py
 
-bench: $(STAMP) roms ## benchmark reports: MPC core alone through Yosys -> build/reports/mpc_core.json (+ vectors of the last stream test)
-	$(PY) flow/bench_mpc_core.py
+bench: $(STAMP) roms ## MPC core alone through flow/synth.py (same script and timing proxy as synth) -> build/reports/mpc_core.json (+ vectors of the last stream test)
+	$(PY) flow/synth.py --top mpc_core --summary build/reports/mpc_core.json
 
 readme: $(STAMP) ## refresh the README's results tables from build/reports (run after sim, synth, bench, compare)
 	$(PY) flow/readme_results.py --write

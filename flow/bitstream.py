@@ -33,7 +33,8 @@ import sys
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+from files import ROOT  # flow/ is on sys.path
+
 TOP = "lx_rocon_top"
 UCF = ROOT / "constraints" / "lx_rocon.ucf"
 SYNTH_DIR = ROOT / "build" / "synth"

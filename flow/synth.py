@@ -20,6 +20,11 @@ directory then holds exactly the ROM contents that were synthesised (see
 
 Any other module: ``python flow/synth.py --top mpc_core`` (out-of-context: no I/O
 pads, no clock buffer, no fit check on IOBs; report build/reports/synth_<top>.json).
+``--summary FILE`` also merges the headline figures (``summary()``: lut, ff, dsp48a1,
+ramb16, clock_mhz, ...) into FILE, keeping its other keys: ``make bench`` is
+``--top mpc_core --summary build/reports/mpc_core.json`` (the stream test of
+tb/test_mpc_core.py adds its vector counts and latencies to the same file), so the
+core alone and the whole axis are measured by the same script and timing proxy.
 ``--param NAME=VALUE`` overrides a top-level parameter (``chparam -set``).
 ``--stats-only`` re-reads an existing JSON netlist without running Yosys.
 
@@ -49,10 +54,9 @@ import time
 from collections import defaultdict, deque
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-BUILD = ROOT / "build"
+from files import BUILD, REPORTS, ROOT, merge_report, rtl_sources, roms_dir  # flow/ is on sys.path
+
 SYNTH_DIR = BUILD / "synth"
-REPORTS = BUILD / "reports"
 BUDGET_FILE = ROOT / "constraints" / "resource_budget.json"
 BOARD_TOP = "lx_rocon_top"
 
@@ -98,24 +102,6 @@ CLOCK_PINS = {"C", "CLK", "WCLK", "CLKA", "CLKB", "CLKAWRCLK", "CLKBRDCLK"}
 
 
 # ---- helpers ------------------------------------------------------------------------------
-def read_filelist(path: Path) -> list[Path]:
-    """Paths listed one per line in a ``.f`` file (``#`` comments), relative to the repository root."""
-    out = []
-    for line in path.read_text().splitlines():
-        line = line.split("#", 1)[0].strip()
-        if line:
-            out.append(ROOT / line)
-    return out
-
-
-def rtl_sources() -> list[Path]:
-    return read_filelist(ROOT / "rtl" / "rtl_files.f")
-
-
-def roms_dir() -> Path:
-    return Path(os.environ.get("EMPC_ROMS", BUILD / "roms" / "default")).resolve()
-
-
 def _strip_comments(text: str) -> str:
     return re.sub(r"/\*.*?\*/", " ", re.sub(r"//[^\n]*", "", text), flags=re.S)
 
@@ -633,6 +619,25 @@ def format_table(stats: dict, budget: dict | None = None) -> str:
     return "\n".join(lines)
 
 
+def summary(stats: dict, report: Path | None = None) -> dict:
+    """Headline figures of a synthesis report, flat (what ``--summary`` merges; the keys of
+    build/reports/mpc_core.json that the README's core line uses)."""
+    res, t = stats["resources"], stats.get("timing") or {}
+    out = {"block": stats["top"],
+           "target": f"{stats['device']} (flow/synth.py: Yosys synth_xilinx -family xc6s"
+                     + (", out of context)" if stats.get("ooc") else ")"),
+           **{k: res[k] for k in ("lut", "ff", "dsp48a1", "ramb16")},
+           "ramb8": res["ramb8bwer"], "lut_mem": res["lut_mem"], "carry4": res["carry4"],
+           "clock_mhz": t.get("est_fmax_mhz"), "clock_mhz_target": round(t.get("target_mhz", TARGET_MHZ)),
+           "clock_note": (t.get("model") or "no timing proxy") + "; not a timing analysis",
+           "timing_proxy": {k: t.get(k) for k in ("worst_path_ns", "worst_path_lut_levels", "worst_path_endpoint",
+                                                   "max_lut_levels")},
+           "synth_seconds": stats.get("yosys_runtime_s")}
+    if report is not None:
+        out["synth_report"] = os.path.relpath(report, ROOT)
+    return out
+
+
 # ---- main ---------------------------------------------------------------------------------
 def run_yosys(top: str, out_dir: Path, *, ooc: bool, params: dict[str, str], quiet: bool = False,
               hier: bool = False) -> float:
@@ -730,6 +735,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--out", type=Path, default=None, help="netlist directory (default build/synth)")
     ap.add_argument("--report", type=Path, default=None,
                     help="report JSON (default build/reports/synth.json, synth_<top>.json for other tops)")
+    ap.add_argument("--summary", type=Path, default=None,
+                    help="also merge the headline figures into this JSON, keeping its other keys "
+                         "(make bench: build/reports/mpc_core.json)")
     ap.add_argument("--budget", type=Path, default=BUDGET_FILE)
     ap.add_argument("--no-budget", action="store_true", help="do not compare against the budget file")
     ap.add_argument("--ooc", action="store_true", default=None,
@@ -793,6 +801,8 @@ def main(argv: list[str] | None = None) -> int:
     stats["problems"] = fit + over
     report.parent.mkdir(parents=True, exist_ok=True)
     report.write_text(json.dumps(stats, indent=1) + "\n")
+    if args.summary is not None:
+        merge_report(args.summary, summary(stats, report))
 
     print(f"synth: {top} on {DEVICE}-{args.package}" + (" (out of context)" if ooc else "")
           + (f", yosys {runtime:.0f} s" if runtime is not None else ""))
@@ -800,7 +810,8 @@ def main(argv: list[str] | None = None) -> int:
     if "hierarchy" in stats:
         print("per instance (unflattened run; totals include sub-instances):")
         print(format_hier(stats["hierarchy"]))
-    print(f"synth: netlist {stats['files']['edif']}, report {os.path.relpath(report, ROOT)}")
+    print(f"synth: netlist {stats['files']['edif']}, report {os.path.relpath(report, ROOT)}"
+          + (f", summary merged into {os.path.relpath(args.summary, ROOT)}" if args.summary is not None else ""))
     if fit:
         print("synth: FAIL - design does not fit the device:\n  " + "\n  ".join(fit), file=sys.stderr)
     if over:

@@ -5,7 +5,7 @@
 //   front (start_front): (i_a, i_b, i_c, angle)  -> i_d, i_q              (paper 000 eqs. 32, 33)
 //   mod   (start_mod):   (u_d, u_q, angle, kdc)  -> cmp_a, cmp_b, cmp_c    (u (Q.8) -> Q.4 as in
 //                        ctrl_seq, eqs. 34-36, DC link)
-//   Bit-exact to the step models composed (gen/empc/rtlmodel/xform.py front(), modulate());
+//   Bit-exact to the step models of gen/empc/rtlmodel/xform_steps/ composed (xform.py front(), modulate());
 //   the microprogram, its static schedule and its arithmetic are in xform.py (PROGRAM).
 //
 // Datapath, one microword (18 bit) per clock from the block RAM's second port:
@@ -165,7 +165,7 @@ module xform #(
 
     // sine rows (a = 16..21): kind S / C / MS in u_a[2:1], node T[k] (u_a[0] = 0) or T[k+1].
     // sin(a) = sin_q(a), cos(a) = sin_q(a + 2^14), -sin(a) = sin_q(a + 2^15); odd quadrants use
-    // k = ~r[13:5] and f = ~r[4:0] + 1 (1..32), so no subtractor is needed (sincos.py).
+    // k = ~r[13:5] and f = ~r[4:0] + 1 (1..32), so no subtractor is needed (xform_steps/sincos.py).
     //   value = (T[k] (s (32 - f)) + T[k+1] (s f)) 2^11 + C,  s = -1 in the negative half
     wire           is_rom = (u_a[4:3] == 2'b10);
     wire           t_cos  = (u_a[2:1] == 2'b01);

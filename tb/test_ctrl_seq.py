@@ -35,7 +35,7 @@ from empc import formats as F
 from empc import image
 from empc.rtlmodel import ctrl_seq as CS
 from empc.rtlmodel import mpc_core as core
-from empc.rtlmodel.ctrl_seq import CtrlSeq, Regs, _signed
+from empc.rtlmodel.ctrl_seq import CtrlSeq, Regs
 from empc.rtlmodel.ref_gen import FIELDS, RefGen, Slot, slot_field
 
 DEFAULT_SEED = 777
@@ -65,7 +65,7 @@ def _s13(rng):
 
 
 def _unpack(v: int, n: int, w: int) -> tuple:
-    return tuple(_signed(v >> (w * i), w) for i in range(n))
+    return tuple(F.wrap(v >> (w * i), w) for i in range(n))
 
 
 @cocotb.test()
@@ -197,12 +197,12 @@ async def random_periods(dut):
         control = model.per_cnt + 1 >= regs.pwm_per_control
         ref_w = ref.advance() if control else None
         if control:
-            dpos = _signed(pos - model.pos_prev, 32)
+            dpos = F.wrap(pos - model.pos_prev, 32)
             st["spd_sat"] += int(F.sat(dpos << F.W_FRAC, F.W_W) != dpos << F.W_FRAC)
             st["dth_sat"] += int(F.sat(dpos << F.TH_FRAC, sw) != dpos << F.TH_FRAC)
             for wv in ref_w:
-                x = F.rshift_round(_signed(wv - (pos << 32), 64), 32 - F.TH_FRAC) if task == "position" \
-                    else F.rshift_round(_signed(wv, 64), 32 - F.W_FRAC)
+                x = F.rshift_round(F.wrap(wv - (pos << 32), 64), 32 - F.TH_FRAC) if task == "position" \
+                    else F.rshift_round(F.wrap(wv, 64), 32 - F.W_FRAC)
                 st["ref_sat"] += int(F.sat(x, sw) != x)
         omega_prev = model.omega_prev
         out = model.period(theta, pos, cur, regs, ref_w)

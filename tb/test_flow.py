@@ -341,6 +341,53 @@ def test_budget_regression(tmp_path, capsys):
     assert "does not fit" in capsys.readouterr().err
 
 
+def test_bench_summary_merges_into_core_report(tmp_path, capsys):
+    """`make bench` = flow/synth.py --top mpc_core --summary build/reports/mpc_core.json: the headline
+    figures (the keys flow/readme_results.py's core line reads) are merged beside the stream test's keys."""
+    import readme_results
+    d = _fake_synth_dir(tmp_path, 40, 30, top="mpc_core")
+    summ = tmp_path / "mpc_core.json"
+    summ.write_text(json.dumps({"vectors": 12, "mismatches": 0, "seed": 1, "lut": -1,
+                                "stream_jobs": [{"name": "alg1_speed", "vectors": 12, "mismatches": 0, "latency": 55}]}))
+    assert synth.main(["--stats-only", "--top", "mpc_core", "--out", str(d), "--report", str(tmp_path / "s.json"),
+                       "--summary", str(summ)]) == 0
+    rep = json.loads(summ.read_text())
+    full = json.loads((tmp_path / "s.json").read_text())
+    assert rep["vectors"] == 12 and rep["stream_jobs"][0]["latency"] == 55      # stream test's keys kept
+    assert rep["lut"] == 40 == full["resources"]["lut"] and rep["ff"] == 30      # stale figure replaced
+    assert rep["block"] == "mpc_core" and "out of context" in rep["target"] and rep["clock_mhz_target"] == 100
+    assert rep["clock_mhz"] == full["timing"]["est_fmax_mhz"]                   # the one timing proxy
+    assert set(synth.summary(full)) >= {"lut", "ff", "dsp48a1", "ramb16", "clock_mhz", "clock_mhz_target"}
+    # the README's core line renders from exactly these keys
+    old = readme_results.R
+    try:
+        readme_results.R = tmp_path
+        line = readme_results.core_table().splitlines()[-1]
+    finally:
+        readme_results.R = old
+    assert line.startswith("Core alone") and "40 LUT, 30 FF, 0 DSP48A1" in line
+
+
+def test_flow_tools_take_the_layout_from_files_py():
+    """One place knows the repository layout (flow/files.py): no other flow tool reads a .f file list,
+    the EMPC_ROMS variable or keeps its own list of RTL modules."""
+    import files
+    import re
+    flow = ROOT / "flow"
+    assert files.ROOT == ROOT and files.rtl_sources() and all(p.exists() for p in files.rtl_sources())
+    modules = {p.stem for p in files.rtl_sources()}
+    for p in sorted(flow.glob("*.py")):
+        if p.name == "files.py":
+            continue
+        text = p.read_text()
+        assert not re.search(r"""["'](rtl|sim)_files\.f["']""", text), f"{p.name} names a file list itself"
+        assert not re.search(r"""environ[^\n]{0,8}["']EMPC_ROMS["']""", text), f"{p.name} reads EMPC_ROMS itself"
+        assert not re.search(r"""parents\[1\]""", text), f"{p.name} derives the repository root itself"
+        lists = re.findall(r"\[((?:\s*[\"'][a-z0-9_]+[\"']\s*,){3,}[^\]]*)\]", text)
+        named = [m for m in lists if len(set(re.findall(r"[\"']([a-z0-9_]+)[\"']", m)) & modules) >= 3]
+        assert not named, f"{p.name} keeps a list of RTL modules: {named[0][:80]}"
+
+
 def test_committed_budget_one_axis_under_half():
     b = synth.load_budget("lx_rocon_top")
     assert b is not None, "constraints/resource_budget.json needs an lx_rocon_top entry"

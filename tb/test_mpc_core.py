@@ -23,7 +23,9 @@ import numpy as np
 import pytest
 
 import mpc_core_vectors as V
+from files import roms_dir
 from empc import image
+from empc.formats import sat, wrap
 from empc.rtlmodel import mpc_core as core
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -35,7 +37,7 @@ SW, UW, OPW = core.SIG_W, 24, 18
 
 
 def roms() -> Path:
-    return Path(os.environ.get("EMPC_ROMS", ROOT / "build" / "roms" / "default")).resolve()
+    return roms_dir()
 
 
 def load_image(name: str) -> list[int]:
@@ -52,11 +54,6 @@ def _u(v: int, w: int) -> int:
     return v & ((1 << w) - 1)
 
 
-def _s(v: int, w: int) -> int:
-    v &= (1 << w) - 1
-    return v - (1 << w) if v >> (w - 1) else v
-
-
 def _pack(vals, w: int) -> int:
     out = 0
     for k, v in enumerate(vals):
@@ -65,7 +62,7 @@ def _pack(vals, w: int) -> int:
 
 
 def _unpack(v: int, n: int, w: int) -> list[int]:
-    return [_s(v >> (k * w), w) for k in range(n)]
+    return [wrap(v >> (k * w), w) for k in range(n)]
 
 
 def input_words(x: dict, i: int, N: int) -> dict[int, int]:
@@ -93,7 +90,7 @@ def unused_words(rng, N: int) -> dict[int, int]:
 def read_out(dut) -> dict:
     return {"u": _unpack(int(dut.u.value), 2, UW), "du": _unpack(int(dut.du.value), 2, UW),
             "u_raw": _unpack(int(dut.u_raw.value), 2, UW), "ebar": _unpack(int(dut.ebar.value), 3, SW),
-            "wn": _s(int(dut.wn.value), OPW), "flags": int(dut.flags.value)}
+            "wn": wrap(int(dut.wn.value), OPW), "flags": int(dut.flags.value)}
 
 
 def _mismatch(got: dict, exp: dict) -> str | None:
@@ -177,7 +174,7 @@ def _model_outputs(p: core.Params, x: dict, i: int) -> dict:
 
 
 async def _check_vectors(tb: Bench, p: core.Params, x: dict, names=None, log=None) -> int:
-    lat_exp = LAT_BASE + min(p.ncols, core.MAX_COLS)
+    lat_exp = core.latency(p.ncols)
     for i in range(len(x["omega"])):
         got, lat = await tb.run(x, i)
         exp = _model_outputs(p, x, i)
@@ -265,7 +262,7 @@ try:
             total += await _check_vectors(tb, p_new, x)
             total += await _check_vectors(tb, p_new, V.take(xc, sel), [names[s] for s in sel])
             dut._log.info(f"image {name}: bank {1 - bank0}, swap during update ok, ncols {p_new.ncols}, "
-                          f"latency {LAT_BASE + p_new.ncols} cycles")
+                          f"latency {core.latency(p_new.ncols)} cycles")
             p_cur = p_new
         # swap requested while idle: takes effect at the next edge; swap + start in one cycle
         w = load_image(IMAGES[0])
@@ -325,9 +322,12 @@ try:
         dut._log.info(f"simulation {t2 - t1:.1f} s, {int(dut.cycles.value)} cycles")
         res = compare_stream(Path("mpc_stream_out.txt"), jobs, dut._log)
         Path("mpc_stream_result.json").write_text(json.dumps(res, indent=1))
-        from bench_mpc_core import merge_report
-        merge_report({"vectors": res["vectors"], "mismatches": res["mismatches"], "seed": SEED,
-                      "sim_cycles": int(dut.cycles.value), "stream_jobs": res["jobs"]})
+        from files import REPORTS, merge_report
+        lat = {j["name"]: j["latency"] for j in res["jobs"] if not j["name"].startswith("random")}
+        merge_report(REPORTS / "mpc_core.json", {
+            "vectors": res["vectors"], "mismatches": res["mismatches"], "seed": SEED,
+            "sim_cycles": int(dut.cycles.value), "stream_jobs": res["jobs"],
+            "latency_cycles": lat, "latency_formula": f"{core.LATENCY_BASE} + ncols (start -> done)"})
         dut._log.info(f"compare {time.time() - t2:.1f} s")
         assert res["mismatches"] == 0, res
 except ImportError:   # pytest without cocotb context
@@ -418,7 +418,7 @@ def read_stream(path: Path) -> dict:
             v = np.zeros(len(rows), np.int64)
             for c in range(d):
                 v = (v << 4) | digs[:, c]
-            v = np.where(v >> (w - 1) & 1, v - (1 << w), v) if name not in ("flags", "lat") else v
+            v = wrap(v, w) if name not in ("flags", "lat") else v
             vals.append((e, v))
         vals.sort()
         out[name] = np.stack([v for _, v in vals], axis=1) if k > 1 else vals[0][1]
@@ -442,7 +442,7 @@ def compare_stream(path: Path, jobs: list[dict], log) -> dict:
             e = exp[k]
             bad |= (g != e).reshape(n, -1).any(axis=1)
         lat = got["lat"][base:base + n]
-        lat_exp = LAT_BASE + min(p.ncols, core.MAX_COLS)
+        lat_exp = core.latency(p.ncols)
         bad_lat = int((lat != lat_exp).sum())
         nb = int(bad.sum())
         flag_hits = {name: int(((exp["flags"] >> b) & 1).sum()) for name, b in core.FLAG_BITS.items()}
@@ -608,8 +608,7 @@ def test_limiter_bound():
         for _ in range(100000 // 6):
             R = umax * np.exp(rng.uniform(0, 5))
             a = rng.uniform(0, 2 * np.pi)
-            u = [max(min(int(R * np.cos(a)) << 4, (1 << 23) - 1), -(1 << 23)),
-                 max(min(int(R * np.sin(a)) << 4, (1 << 23) - 1), -(1 << 23))]
+            u = [sat(int(R * np.cos(a)) << 4, 24), sat(int(R * np.sin(a)) << 4, 24)]
             out, lim = core.limit_circle(u, umax)
             if not lim:
                 continue
@@ -654,10 +653,17 @@ def test_input_words():
 
 
 @pytest.mark.full
-def test_bench_mpc_core():
-    """Synthesis benchmark (flow/bench_mpc_core.py, ~1 min of Yosys): 6 DSP48A1, report written."""
-    import bench_mpc_core
-    assert bench_mpc_core.main() == 0
-    rep = json.loads(bench_mpc_core.REPORT.read_text())
-    print({k: rep.get(k) for k in ("dsp48a1", "lut", "ff", "ramb16", "ramb8", "clock_mhz", "latency_cycles")})
-    assert rep["dsp48a1"] == 6, rep["dsp48a1"]
+def test_bench_mpc_core(tmp_path):
+    """`make bench` (~1 min of Yosys): the core alone through flow/synth.py --top mpc_core --summary, the
+    same script and timing proxy as `make synth`; 6 DSP48A1, headline keys merged beside existing ones."""
+    import synth
+    summary = tmp_path / "mpc_core.json"
+    summary.write_text(json.dumps({"vectors": 1, "stream_jobs": []}))
+    assert synth.main(["--top", "mpc_core", "--out", str(tmp_path / "synth"), "--report", str(tmp_path / "synth.json"),
+                       "--summary", str(summary)]) == 0
+    rep = json.loads(summary.read_text())
+    print({k: rep.get(k) for k in ("dsp48a1", "lut", "ff", "ramb16", "ramb8", "clock_mhz", "timing_proxy")})
+    assert rep["vectors"] == 1 and rep["stream_jobs"] == [], "the stream test's keys must survive the merge"
+    assert rep["block"] == "mpc_core" and rep["dsp48a1"] == 6, rep["dsp48a1"]
+    full = json.loads((tmp_path / "synth.json").read_text())
+    assert rep["lut"] == full["resources"]["lut"] and rep["clock_mhz"] == full["timing"]["est_fmax_mhz"]

@@ -36,7 +36,8 @@ import cocotb
 from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, FallingEdge, Timer
 
-from empc.rtlmodel.ref_gen import (FIELDS, M32, M64, NSLOT, RefGen, Slot, q32, s64, segments_from_points,
+from empc.formats import wrap
+from empc.rtlmodel.ref_gen import (FIELDS, M32, M64, NSLOT, RefGen, Slot, q32, segments_from_points,
                                    slot_field)
 
 DEFAULT_SEED = 20240
@@ -226,7 +227,7 @@ async def closed_form(dut):
                     assert w[j] == heads[p - (N - j)], f"delay line w[{j}] at period {p}"
             if p:
                 wrapped32 |= (heads[p] >> 32) < (heads[p - 1] >> 32) if d1 > 0 else (heads[p] >> 32) > (heads[p - 1] >> 32)
-                wrapped64 |= abs(s64(heads[p]) - s64(heads[p - 1])) > (1 << 62)
+                wrapped64 |= abs(wrap(heads[p], 64) - wrap(heads[p - 1], 64)) > (1 << 62)
             if p % 500 == 0:
                 await env.readout(20)
             checks += 1
@@ -295,7 +296,7 @@ async def profile(dut):
     prev = (0.0, 1.5)
     for t, v, kind in pts:
         p = int(round(t / Ts))
-        assert heads[p] == q32(v * unit) & M64, f"breakpoint t={t}: {s64(heads[p]) / 2**32} != {v * unit}"
+        assert heads[p] == q32(v * unit) & M64, f"breakpoint t={t}: {wrap(heads[p], 64) / 2**32} != {v * unit}"
         if kind == "step":      # the value before the step is the previous one
             assert heads[p - 1] == q32(prev[1] * unit) & M64, f"value before step at t={t}"
         else:                   # ramp midpoint within 1 count of the straight line
@@ -303,7 +304,7 @@ async def profile(dut):
             p0 = int(round(prev[0] / Ts))
             pm = (p0 + p) // 2
             vm = prev[1] + (v - prev[1]) * (pm - p0) / (p - p0)
-            assert abs(s64(heads[pm]) / 2**32 - vm * unit) < 2**-20, f"ramp midpoint period {pm}"
+            assert abs(wrap(heads[pm], 64) / 2**32 - vm * unit) < 2**-20, f"ramp midpoint period {pm}"
         prev = (t, v)
         checks += 1
     assert all(h == heads[-1] for h in heads[int(round(0.06 / Ts)):]), "final hold"

@@ -85,7 +85,7 @@ def _section(text: str) -> str:
 
 
 def build_pairs(out: Path) -> list[Path]:
-    """Write ctrl_seq_old.v and pairs.v (pair_old, pair_new) into ``out``."""
+    """Write build/lockstep/ctrl_seq_old.v and build/lockstep/pairs.v (pair_old, pair_new) into ``out``."""
     if shutil.which("git") is None:
         pytest.skip("git not available")
     old_seq = _git_show("rtl/ctrl_seq.v").replace("module ctrl_seq #(", "module ctrl_seq_old #(", 1)

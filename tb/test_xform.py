@@ -1,6 +1,6 @@
 """xform: the transform chain engine, bit-exact against the composed step models
-(empc.rtlmodel.xform.front / modulate = clarke -> park, inv_park -> inv_clarke -> min_sub ->
-duty_scale, with sincos), plus the start/done protocol, output hold, reset.
+(empc.rtlmodel.xform.front / modulate = the steps of empc.rtlmodel.xform_steps: clarke -> park,
+inv_park -> inv_clarke -> min_sub -> duty_scale, with sincos), plus the start/done protocol, output hold, reset.
 
 Vectors reuse the corner sets of the former per-block tests: clarke (every combination of
 lo, lo+1, -1, 0, 1, hi-1, hi), park/inv_park (angles 0/90/180/270 deg +-1, 2 LSB, 45 deg,
@@ -27,13 +27,14 @@ from cocotb.triggers import ReadOnly, RisingEdge, Timer
 
 from empc import header
 from empc.rtlmodel import xform as X
-from empc.rtlmodel import sincos as S
-from empc.rtlmodel.clarke import clarke
-from empc.rtlmodel.inv_clarke import inv_clarke
-from empc.rtlmodel.inv_park import inv_park
-from empc.rtlmodel.min_sub import min_sub
-from empc.rtlmodel.duty_scale import duty_scale
-from empc.rtlmodel.park import park
+from empc.rtlmodel.xform_steps import sincos as S
+from empc.rtlmodel.xform_steps.clarke import clarke
+from empc.rtlmodel.xform_steps.inv_clarke import inv_clarke
+from empc.rtlmodel.xform_steps.inv_park import inv_park
+from empc.rtlmodel.xform_steps.min_sub import min_sub
+from empc.rtlmodel.xform_steps.duty_scale import duty_scale
+from empc.rtlmodel.xform_steps.park import park
+from files import roms_dir
 
 ROOT = Path(__file__).resolve().parents[1]
 SEED = int(os.environ.get("EMPC_SEED", 4101))
@@ -54,8 +55,7 @@ MOD_IN = ["u_d", "u_q", "angle", "kdc"]
 
 
 def _header_half_period() -> int:
-    roms = Path(os.environ.get("EMPC_ROMS", ROOT / "build" / "roms" / "default"))
-    return header.read(roms / "empc_formats.vh")["PWM_HALF_PERIOD"]
+    return header.read(roms_dir() / "empc_formats.vh")["PWM_HALF_PERIOD"]
 
 
 # ---------------------------------------------------------------- pytest entries
@@ -144,7 +144,7 @@ def test_xform_program_model():
 def test_step_models_np():
     """numpy variants of the step models equal the scalar models (random, full range)."""
     import numpy as np
-    from empc.rtlmodel import clarke as CM, duty_scale as DM, inv_clarke as ICM, min_sub as MM, park as PM
+    from empc.rtlmodel.xform_steps import clarke as CM, duty_scale as DM, inv_clarke as ICM, min_sub as MM, park as PM
     rng = np.random.default_rng(SEED)
     n = 20000
     assert CM.K_BETA == round(2 ** CM.K_SHIFT / math.sqrt(3)) == 151349
@@ -181,7 +181,7 @@ def test_step_models_accuracy():
     with the exact angle; inverse Clarke <= 0.5 + constant error, phases sum to -1..1; min_sub
     exact; duty_scale |cmp - v kdc/2^20| <= 1/2 unless clamped."""
     import numpy as np
-    from empc.rtlmodel import clarke as CM, duty_scale as DM, inv_clarke as ICM, min_sub as MM, park as PM
+    from empc.rtlmodel.xform_steps import clarke as CM, duty_scale as DM, inv_clarke as ICM, min_sub as MM, park as PM
     rng = np.random.default_rng(SEED)
     a = np.arange(1 << 16)
     sn, cs = S.sincos_np(a)

@@ -8,7 +8,7 @@ cannot disagree.
 """
 from __future__ import annotations
 
-from . import image as image_mod
+from . import formats as F, image as image_mod
 from . import regmap
 from .rtlmodel.ref_gen import Slot
 
@@ -50,8 +50,7 @@ class Drive:
         return await self.bus.read(address(name, self.axis))
 
     async def read_signed(self, name: str, bits: int = 32) -> int:
-        v = await self.read(name) & ((1 << bits) - 1)
-        return v - (1 << bits) if v >> (bits - 1) else v
+        return F.wrap(await self.read(name), bits)
 
     async def kick(self) -> None:
         await self.bus.write(address("WDOG_KICK"), regmap.WDOG_KEY)

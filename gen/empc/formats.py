@@ -1,10 +1,11 @@
 """The one source of truth for the datapath's number formats.
 
 Everything the RTL and the bit-accurate models agree on lives here: word
-widths, fractional bits and raw units.  ``empc roms`` writes these into the
-Verilog header ``empc_formats.vh`` (macros ``EMPC_*``) and into
-``manifest.json``; RTL modules take their parameter defaults from the header
-and the Python models import this module, so the two cannot disagree.
+widths, fractional bits and raw units.  Every upper-case int here is a row of
+the constant table in ``header.py``, from which ``empc roms`` writes the Verilog
+header ``empc_formats.vh`` (macros ``EMPC_*``) and ``manifest.json``; RTL
+modules take their parameter defaults from the header and the Python models
+import this module, so the two cannot disagree.
 
 Raw units (so the datapath converts nothing):
   current   ADC LSB (``adc_amps_per_lsb`` A)              Q14.4  in 18 bit
@@ -40,7 +41,7 @@ POS_W = 32          # integer multi-turn encoder counter
 KDC_FRAC = 16       # DC-link compensation factor Udc_nom/Udc, 1.0 = 2**16, 18 bit unsigned
 KDC_W = 18
 
-# MPC core (see mpc_fixed.py)
+# MPC core (see rtlmodel/mpc_core.py)
 COEF_W = OPW        # polynomial coefficient mantissa
 WN_FRAC = OPW - 1   # normalised scheduling speed, Q1.17
 SIG_SHIFT_BITS = 4  # per-column signal right shift 0..15 (enough for any 32-bit signal)
@@ -56,8 +57,16 @@ def sat(x: int, width: int) -> int:
 
 
 def sat_flag(x: int, width: int) -> tuple[int, bool]:
+    """:func:`sat` and whether it saturated."""
     y = sat(x, width)
     return y, y != x
+
+
+def wrap(x, width: int):
+    """Signed value of the low ``width`` bits of ``x`` (two's complement: what a ``width``-bit register
+    holds, e.g. a counter difference).  Also for numpy integer arrays (``width`` < 64)."""
+    half = 1 << (width - 1)
+    return ((x + half) & ((1 << width) - 1)) - half
 
 
 def rshift_round(x: int, n: int) -> int:
@@ -66,9 +75,3 @@ def rshift_round(x: int, n: int) -> int:
         return x << (-n)
     return (x + (1 << (n - 1))) >> n
 
-
-FORMAT_CONSTANTS = {
-    name: value
-    for name, value in dict(globals()).items()
-    if name.isupper() and isinstance(value, int)
-}

@@ -26,20 +26,9 @@ A_COLS = 0x040
 A_GAINS = 0x100
 USED = A_GAINS + 4 * 2 * core.MAX_COLS    # 0x300
 
-CONSTANTS = {
-    "IMG_MAGIC": MAGIC, "IMG_LAYOUT": LAYOUT, "IMG_DEPTH": DEPTH, "IMG_A_CFG": A_CFG, "IMG_A_WS": A_WS,
-    "IMG_A_WNMIN": A_WNMIN, "IMG_A_WNMAX": A_WNMAX, "IMG_A_UMAX": A_UMAX, "IMG_A_EBAR": A_EBAR,
-    "IMG_A_USED": A_USED, "IMG_A_CSUM": A_CSUM, "IMG_A_COLS": A_COLS, "IMG_A_GAINS": A_GAINS, "IMG_USED": USED,
-}
-
 
 def _u32(v: int) -> int:
     return v & 0xFFFFFFFF
-
-
-def _s32(v: int) -> int:
-    v &= 0xFFFFFFFF
-    return v - (1 << 32) if v & 0x80000000 else v
 
 
 def encode(p: core.Params) -> list[int]:
@@ -88,10 +77,10 @@ def decode(w: list[int]) -> core.Params:
     for i in range(2):
         for j in range(ncols):
             base = A_GAINS + 4 * (core.MAX_COLS * i + j)
-            coef[i].append((_s32(w[base]), _s32(w[base + 1]), _s32(w[base + 2]), w[base + 3] & 0xF))
+            coef[i].append((F.wrap(w[base], 32), F.wrap(w[base + 1], 32), F.wrap(w[base + 2], 32), w[base + 3] & 0xF))
     return core.Params(
         algorithm=(cfgw >> 13) & 3, task="position" if (cfgw >> 12) & 1 else "speed", N=(cfgw >> 8) & 0xF,
-        ws=w[A_WS] & ((1 << F.SIG_SHIFT_BITS) - 1), wn_min=_s32(w[A_WNMIN]), wn_max=_s32(w[A_WNMAX]), u_max=w[A_UMAX],
+        ws=w[A_WS] & ((1 << F.SIG_SHIFT_BITS) - 1), wn_min=F.wrap(w[A_WNMIN], 32), wn_max=F.wrap(w[A_WNMAX], 32), u_max=w[A_UMAX],
         ebar_lim=tuple(w[A_EBAR + o] for o in range(3)),
         col_sig=[w[A_COLS + j] & 0x3F for j in range(ncols)],
         col_shift=[(w[A_COLS + j] >> 8) & ((1 << F.SIG_SHIFT_BITS) - 1) for j in range(ncols)], coef=coef)

@@ -14,7 +14,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from . import __version__, config as config_mod, formats, header, image, mpc, regmap
+from . import __version__, config as config_mod, header, image, mpc, regmap
 from .design import design, designs_of
 from .rtlmodel import mpc_core as core
 
@@ -33,26 +33,20 @@ def generate(cfg, out: Path, all_designs: bool = True) -> dict:
         if (alg, task) == boot:
             image.write_hex(words, out / "coef_boot.hex")
     image.write_hex(core.RSQRT, out / "rsqrt.hex", digits=5)
-    extra = dict(image.CONSTANTS)
-    extra.update({"SIG_W": core.SIG_W, "N_MAX": core.N_MAX, "MAX_COLS": core.MAX_COLS, "RSQRT_BITS": core.RSQRT_BITS,
-                  "SIG_WREL": core.SIG_WREL, "SIG_E": core.SIG_E, "SIG_Y": core.SIG_Y, "SIG_EBAR": core.SIG_EBAR,
-                  "SIG_DX": core.SIG_DX, "N": cfg.control.N,
-                  "IN_Y": core.IN_Y, "IN_OMEGA": core.IN_OMEGA, "IN_DX": core.IN_DX, "IN_UPREV": core.IN_UPREV,
-                  "IN_EBAR": core.IN_EBAR, "IN_WREF": core.IN_WREF, "IN_WORDS": core.IN_WORDS,
-                  "BOOT_ALGORITHM": boot[0], "BOOT_TASK_POSITION": 1 if boot[1] == "position" else 0})
-    header.write(cfg, out, extra)
+    consts = header.constants(cfg)
+    header.write(cfg, out)
     (out / "empc_regs.vh").write_text(regmap.render_vh())
     manifest = {
         "generator": f"empc {__version__}",
         "config": config_mod.display_path(cfg.source),
         "boot": {"algorithm": boot[0], "task": boot[1], "file": "coef_boot.hex"},
-        "formats": formats.FORMAT_CONSTANTS,
-        "header_constants": {**header.config_constants(cfg), **extra},
+        "formats": consts["formats"],
+        "header_constants": {**consts["config"], **consts["image"], **consts["core"]},
         "units": {
             "volts_per_tick": cfg.volts_per_tick, "amps_per_lsb": cfg.amps_per_lsb,
             "rad_per_count_electrical": cfg.rad_per_count, "rad_s_per_count_per_ts": cfg.rad_s_per_count_ts,
         },
-        "image_layout": image.CONSTANTS,
+        "image_layout": consts["image"],
         "designs": {},
     }
     for (alg, task), r in results.items():

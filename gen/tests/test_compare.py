@@ -10,7 +10,7 @@ and the plots) and asserts properties of the results:
 - field weakening (002): the 002 MPC reaches 320 rad/s with i_d < -1 A and |u| >= 0.9 Udc/sqrt3,
   and 150 rad/s (below base speed) is reached without field weakening first;
 - our bit-accurate RTL model follows the float explicit MPC (same figures within tolerance);
-- the RTL latency column comes from build/reports/mpc_core.json / docs/blocks/mpc_core.md or is null.
+- the RTL latency column comes from the core's model (mpc_core.latency: LATENCY_BASE + ncols of the design).
 Solver agreement (GI = quadprog etc.) is in test_qp_solvers.py.
 """
 import json
@@ -101,17 +101,22 @@ def test_rtl_model_follows_float(rep):
         assert abs((f["overshoot_pct"] or 0) - (x["overshoot_pct"] or 0)) < 3.0, key
 
 
-def test_rtl_latency_source(rep, tmp_path, monkeypatch):
-    lat = rep["rtl_latency"]["alg1_speed"]
-    if lat["source"]:
-        assert isinstance(lat["cycles"], int) and 0 < lat["cycles"] < 1000
-    # fallbacks: the documented value from docs/blocks/mpc_core.md, then null
-    (tmp_path / "docs" / "blocks").mkdir(parents=True)
-    monkeypatch.setattr(compare, "ROOT", tmp_path)
-    assert compare.rtl_latency(1, "speed")["cycles"] is None
-    (tmp_path / "docs" / "blocks" / "mpc_core.md").write_text("**Latency** = `LATENCY_BASE + ncols` = **30 + ncols** cycles")
-    assert compare.rtl_latency(1, "speed", 4)["cycles"] == 30 + 17
-    assert compare.rtl_latency(2, "position", 4)["cycles"] == 30 + 23
+def test_rtl_latency_from_model(rep):
+    """Latency = the model's LATENCY_BASE + ncols of the design actually built (the RTL is checked against
+    the same function in tb/test_mpc_core.py), for every design of the report and other horizons."""
+    from empc import config, design
+    from empc.rtlmodel import mpc_core as core
+    cfg = config.default()
+    for key, lat in rep["rtl_latency"].items():
+        alg, task = int(key[3]), key.split("_")[1]
+        ncols = design.design(cfg, alg, task)["params"].ncols
+        assert lat["cycles"] == core.LATENCY_BASE + ncols and lat["source"] == "gen/empc/rtlmodel/mpc_core.py", key
+    assert rep["rtl_latency"]["alg1_speed"]["cycles"] == 38 + 17 and rep["rtl_latency"]["alg2_speed"]["cycles"] == 38 + 23
+    for N in (1, 2, 6, 8):
+        assert compare.rtl_latency(1, "speed", N)["cycles"] == core.LATENCY_BASE + 3 * N + 5
+        assert compare.rtl_latency(2, "position", N)["cycles"] == core.LATENCY_BASE + 3 * N + 11
+    md = (OUT / "compare.md").read_text()
+    assert "alg1_speed 55" in md, "compare.md does not state the model's latency"
 
 
 def test_explicit_ops_count():

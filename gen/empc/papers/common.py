@@ -17,7 +17,7 @@ the standard delay compensation of predictive current control; without it the
 incremental laws of 001 oscillate at 10 kHz with one PWM period per sample
 (see the report).  Outer loops (papers/cascade.py) overwrite the
 references.  Every controller counts its arithmetic per step in ``self.ops``
-(an :class:`~empc.qp.opcount.OpCount`), summarised in ``op_stats()``.
+(an :class:`~empc.papers.qp.opcount.OpCount`), summarised in ``op_stats()``.
 """
 from __future__ import annotations
 

@@ -38,7 +38,6 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
-import re
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -47,6 +46,7 @@ import numpy as np
 
 from .. import closedloop as cl
 from .. import config as config_mod
+from .. import quantise
 from .. import scenarios as scen000
 from ..controllers.base import Controller
 from .cascade import Cascade, FieldWeakening, FWReference, RampReference
@@ -58,9 +58,9 @@ from .foc_pi import FocPI
 from .online_mpc_gi import OnlineMPC, voltage_polygon
 from .qp.opcount import OpCount
 from ..reference import Profile, Segment
+from ..rtlmodel import mpc_core as core
 
 CONFIGS = Path(__file__).resolve().parents[1] / "configs"
-ROOT = Path(__file__).resolve().parents[3]
 RPM = 2 * math.pi / 60
 
 
@@ -105,7 +105,7 @@ def explicit_ops(algorithm: int, N: int) -> OpCount:
     circle limit (worst case with the scaling).  Clarke/Park/modulation excluded (as for all).
     """
     o = OpCount()
-    cols = 3 * N + 5 if algorithm == 1 else 3 + 3 * N + 3 + 5
+    cols = _ncols(algorithm, N)
     o.mul += 2 * 2 * cols; o.add += 2 * 2 * cols           # 2 rows x cols polynomials
     o.mul += 2 * cols; o.add += 2 * (cols - 1)              # gain x signal accumulation
     o.add += 1; o.mul += 1                                   # speed estimate
@@ -117,41 +117,16 @@ def explicit_ops(algorithm: int, N: int) -> OpCount:
 
 
 def _ncols(algorithm: int, N: int) -> int:
-    """Signal columns of the explicit law: alg. 1 K_e (3N) + K_dx (5); alg. 2 K_ebar (3) + K_WL (3N) + K_y (3) + K_dx (5)."""
-    return 3 * N + 5 if algorithm == 1 else 3 + 3 * N + 3 + 5
+    """Signal columns of the explicit law (the core's column layout, quantise.columns): alg. 1 K_e (3N) +
+    K_dx (5); alg. 2 K_ebar (3) + K_WL (3N) + K_y (3) + K_dx (5)."""
+    return len(quantise.columns(algorithm, N))
 
 
 def rtl_latency(algorithm: int = 1, task: str = "speed", N: int = 4) -> dict:
-    """RTL latency (start -> done, clock cycles) of our core for one design.
-
-    Source order (issue 7): build/reports/mpc_core.json ("latency_cycles", a number or a
-    table keyed "alg<a>_<task>"), else docs/blocks/mpc_core.md ("<base> + ncols" or
-    "<n> cycles"), else null.
-    """
-    key = f"alg{algorithm}_{task}"
-    js = ROOT / "build" / "reports" / "mpc_core.json"
-    if js.exists():
-        try:
-            d = json.loads(js.read_text())
-            v = d.get("latency_cycles", d.get("latency"))
-            if isinstance(v, dict) and key in v:
-                return {"cycles": int(v[key]), "source": "build/reports/mpc_core.json", "design": key}
-            if isinstance(v, (int, float)):
-                return {"cycles": int(v), "source": "build/reports/mpc_core.json", "design": key}
-        except (ValueError, OSError):
-            pass
-    md = ROOT / "docs" / "blocks" / "mpc_core.md"
-    if md.exists():
-        txt = md.read_text()
-        m = re.search(r"\*{0,2}(\d+)\s*\+\s*ncols", txt)
-        if m:
-            return {"cycles": int(m.group(1)) + _ncols(algorithm, N), "source": "docs/blocks/mpc_core.md",
-                    "design": key, "text": m.group(0)}
-        m = re.search(r"[Ll]atency[^\n]*?(\d+)\s*(?:clock\s+)?cycles", txt)
-        if m:
-            return {"cycles": int(m.group(1)), "source": "docs/blocks/mpc_core.md", "design": key}
-    return {"cycles": None, "source": None, "design": key,
-            "note": "neither build/reports/mpc_core.json nor docs/blocks/mpc_core.md gives it"}
+    """RTL latency (start -> done, clock cycles) of our core for one design, from the core's model
+    (``mpc_core.latency(ncols)``, which tb/test_mpc_core.py checks against the RTL)."""
+    return {"cycles": core.latency(_ncols(algorithm, N)), "source": "gen/empc/rtlmodel/mpc_core.py",
+            "design": f"alg{algorithm}_{task}", "formula": f"{core.LATENCY_BASE} + ncols"}
 
 
 def const_profile(segments: list[tuple]) -> Profile:
@@ -620,14 +595,10 @@ def markdown(rep: dict) -> str:
          "encoder and current-ADC models); every controller runs at the same sample time with the same "
          "sensors and the half-PWM-period output delay of the FPGA timing.", ""]
     lat = rep["rtl_latency"]
-    if all(v["cycles"] is None for v in lat.values()):
-        L += ["RTL latency of our core: **null** - neither build/reports/mpc_core.json nor "
-              "docs/blocks/mpc_core.md was found when this report was generated.", ""]
-    else:
-        src = sorted({v["source"] for v in lat.values() if v["source"]})
-        L += ["RTL latency of our core (start -> done, 100 MHz clock cycles, from " + ", ".join(src) + "): "
-              + ", ".join(f"{k} {v['cycles']}" for k, v in lat.items()) + " (at 100 MHz: "
-              + ", ".join(f"{v['cycles'] * 10} ns" for v in lat.values() if v["cycles"] is not None) + ").", ""]
+    src = sorted({v["source"] for v in lat.values()})
+    L += ["RTL latency of our core (start -> done, 100 MHz clock cycles, from " + ", ".join(src) + "): "
+          + ", ".join(f"{k} {v['cycles']}" for k, v in lat.items()) + " (at 100 MHz: "
+          + ", ".join(f"{v['cycles'] * 10} ns" for v in lat.values()) + ").", ""]
     L += ["Columns: rise = 10-90 % rise time; OS = overshoot; ss err = mean reference minus output over the "
           "steady-state window(s) (second half of every constant reference piece), worst window (d / q for "
           "currents; hold / ramp where the reference has ramps: mean error over the second half of each ramp); ripple = RMS around the mean in steady "

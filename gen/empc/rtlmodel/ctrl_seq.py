@@ -19,22 +19,17 @@ from .. import formats as F
 from .. import regmap
 from .. import ucode as U
 from . import mpc_core as core
-from .clarke import clarke
-from .duty_scale import duty_scale
-from .inv_clarke import inv_clarke
-from .inv_park import inv_park
-from .min_sub import min_sub
-from .park import park
-from .sincos import sincos
+from .xform_steps.clarke import clarke
+from .xform_steps.duty_scale import duty_scale
+from .xform_steps.inv_clarke import inv_clarke
+from .xform_steps.inv_park import inv_park
+from .xform_steps.min_sub import min_sub
+from .xform_steps.park import park
+from .xform_steps.sincos import sincos
 
 ANGLE_MASK = (1 << F.ANGLE_BITS) - 1
 POS_MASK = (1 << F.POS_W) - 1
 MASK64 = (1 << 64) - 1
-
-
-def _signed(v: int, w: int) -> int:
-    v &= (1 << w) - 1
-    return v - (1 << w) if v >> (w - 1) else v
 
 
 @dataclass
@@ -101,7 +96,7 @@ class CtrlSeq:
         ia, ib, sat0 = clarke(*cur)
         s, c = sincos(theta)
         i_d, i_q, sat1 = park(ia, ib, s, c)
-        dpos = _signed(pos - self.pos_prev, F.POS_W)
+        dpos = F.wrap(pos - self.pos_prev, F.POS_W)
         spd = dpos << F.W_FRAC
         spd_s = F.sat(spd, F.W_W)
         ka = F.rshift_round(regs.kacc * i_q, regs.kacc_shift) if regs.kacc_shift else regs.kacc * i_q
@@ -114,10 +109,10 @@ class CtrlSeq:
         for j in range(self.N + 1):
             wv = ref_w[j] if ref_w is not None else 0
             if task_pos:
-                rel = _signed(wv - (pos << 32), 64)
+                rel = F.wrap(wv - (pos << 32), 64)
                 w3 = F.sat(F.rshift_round(rel, 32 - F.TH_FRAC), sw)
             else:
-                w3 = F.sat(F.rshift_round(_signed(wv, 64), 32 - F.W_FRAC), sw)
+                w3 = F.sat(F.rshift_round(F.wrap(wv, 64), 32 - F.W_FRAC), sw)
             wref.append((regs.id_ref, regs.iq_ref, w3))
         # dx in the core's SIG_W-bit words: the speed and angle increments saturate (only for
         # impossible jumps: 2^15 counts/Ts of speed change, 2^23 counts per Ts)

@@ -12,6 +12,7 @@ index and mark edges are evaluated (levels present at start-up are not edges).
 """
 from __future__ import annotations
 
+from ..formats import wrap
 from .glitch_filter import GlitchFilter
 
 
@@ -66,7 +67,7 @@ class IrcDecoder:
         return self.filt.q
 
     def pos_signed(self) -> int:
-        return self.pos - (1 << self.pos_w) if self.pos >> (self.pos_w - 1) else self.pos
+        return wrap(self.pos, self.pos_w)
 
     def outputs(self) -> dict:
         return {k: getattr(self, k) for k in self.OUTPUTS}

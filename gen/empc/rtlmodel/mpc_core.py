@@ -76,6 +76,12 @@ IN_WORDS = 64           # buffer depth (6-bit address); other words are not read
 LATENCY_BASE = 38       # latency = LATENCY_BASE + min(ncols, MAX_COLS)
 BOOT_CYCLES = 771       # rst released -> ready (768 image words streamed through the write port)
 
+
+def latency(ncols: int) -> int:
+    """Clock cycles from ``start`` to ``done`` of rtl/mpc_core.v for a bank of ``ncols`` columns
+    (tb/test_mpc_core.py checks the RTL's ``latency`` output and its done cycle against it)."""
+    return LATENCY_BASE + min(ncols, MAX_COLS)
+
 FLAG_BITS = {
     "operand": 0, "gain": 1, "term": 2, "acc": 3, "du": 4, "u": 5,
     "ebar": 6, "ebar_inc": 7, "limit": 8, "wn_clamp": 9, "signal": 10,

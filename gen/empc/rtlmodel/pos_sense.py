@@ -91,11 +91,6 @@ def _next_sector(s: int) -> int:
     return 1 if s == 6 else s + 1
 
 
-def to_signed(x: int, w: int) -> int:
-    x &= (1 << w) - 1
-    return x - (1 << w) if x >> (w - 1) else x
-
-
 class PosSense:
     """Cycle-exact model of one ``pos_sense``; :meth:`step` is one rising clock edge.
 
@@ -170,7 +165,7 @@ class PosSense:
         d = (pos - (index_pos if ev_index else self.last_pos)) & pmask
         load = (not self.busy) or ev_any
         if load:
-            last_pos, r, k = pos, to_signed(d, pw), 0
+            last_pos, r, k = pos, F.wrap(d, pw), 0
         else:
             r, k = self.r >> 1, self.k + 1
         if ev_any:
@@ -215,11 +210,10 @@ class PosSense:
         if sample:
             diff = (pos - self.pos_at_sample) & pmask
             if self.have_prev:
-                ds = to_signed(diff, pw)
-                q = ds << self.w_frac
-                lo, hi = -(1 << (self.w_w - 1)), (1 << (self.w_w - 1)) - 1
-                self.speed_sat = int(q < lo or q > hi)
-                self.speed_q = min(max(q, lo), hi) & ((1 << self.w_w) - 1)
+                ds = F.wrap(diff, pw)
+                q, sat = F.sat_flag(ds << self.w_frac, self.w_w)
+                self.speed_sat = int(sat)
+                self.speed_q = q & ((1 << self.w_w) - 1)
                 self.speed = diff
             else:
                 self.speed, self.speed_q, self.speed_sat = 0, 0, 0

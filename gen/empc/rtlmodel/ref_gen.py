@@ -27,21 +27,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..formats import wrap
+
 NSLOT = 16
 M64 = (1 << 64) - 1
 M32 = (1 << 32) - 1
 Q = 32                  # fractional bits of the generator values
-
-
-def _s32(x: int) -> int:
-    x &= M32
-    return x - (1 << 32) if x >> 31 else x
-
-
-def s64(x: int) -> int:
-    """Signed value of a 64-bit word."""
-    x &= M64
-    return x - (1 << 64) if x >> 63 else x
 
 
 @dataclass(frozen=True)
@@ -61,7 +52,7 @@ class Slot:
             raise ValueError(f"d2 {self.d2} does not fit 32 bits")
         if not 0 <= self.length <= M32:
             raise ValueError(f"length {self.length} out of 0..2**32-1")
-        return Slot(self.length, self.r0 & M64, self.d1 & M64, _s32(self.d2), bool(self.relative), bool(self.last))
+        return Slot(self.length, self.r0 & M64, self.d1 & M64, wrap(self.d2, 32), bool(self.relative), bool(self.last))
 
     def regs(self) -> dict:
         """Register words (gen/empc/regmap.py AXIS SEG_*) that program this slot (each write goes
@@ -93,7 +84,7 @@ def with_field(s: Slot, field: int, value: int) -> Slot:
         d1 = (s.d1 & ~M32 | v) if field == 3 else (s.d1 & M32 | v << 32)
         return Slot(s.length, s.r0, d1, s.d2, s.relative, s.last)
     if field == 5:
-        return Slot(s.length, s.r0, s.d1, _s32(v), s.relative, s.last)
+        return Slot(s.length, s.r0, s.d1, wrap(v, 32), s.relative, s.last)
     if field == 6:
         return Slot(s.length, s.r0, s.d1, s.d2, bool(v & 1), bool(v & 2))
     raise ValueError(f"field {field} out of 0..6")

@@ -31,7 +31,7 @@ an output.  Every step is rewritten exactly for the fixed window ``>> 16``:
   ``sat18((4 (uh 2**16) + ul 4096 + 2**15) >> 16) = sat18((u + 8) >> 4)``.
 * clarke: ``i_alpha = 16 i_a`` (an operand, no pass); ``i_beta = ((4 i_b)(K1 + K2)
   - (4 i_c)(K1 + K2) + 2**15) >> 16`` with K1 + K2 = K_BETA (each < 2**17).
-* park / inverse park: two products each, as in :func:`empc.rtlmodel.park.rotate`
+* park / inverse park: two products each, as in :func:`empc.rtlmodel.xform_steps.park.rotate`
   (-sin is an operand, so every pass only adds).
 * inverse Clarke (shift 21 -> 16): with K_SQ3 = 32 * 56755 + 27,
   ``t = floor(u_beta 27/32) = (u_beta * 55296) >> 16``,
@@ -60,13 +60,13 @@ from dataclasses import dataclass
 
 from .. import formats as F
 from .. import ucode as U
-from . import sincos as SC
-from .clarke import K_BETA, clarke
-from .duty_scale import duty_scale
-from .inv_clarke import K_SHIFT as IC_SHIFT, K_SQ3, inv_clarke
-from .inv_park import inv_park
-from .min_sub import min_sub
-from .park import park
+from .xform_steps import sincos as SC
+from .xform_steps.clarke import K_BETA, clarke
+from .xform_steps.duty_scale import duty_scale
+from .xform_steps.inv_clarke import K_SHIFT as IC_SHIFT, K_SQ3, inv_clarke
+from .xform_steps.inv_park import inv_park
+from .xform_steps.min_sub import min_sub
+from .xform_steps.park import park
 
 W = F.OPW                     # 18: every datapath word (I_W = V_W = TRIG_W = OPW)
 SH = F.TRIG_FRAC              # 16: the one output window: y = acc >> 16
@@ -262,11 +262,6 @@ def trig_fold(angle: int, kind: str) -> tuple[int, int, bool]:
 
 
 # ---- instruction-level model ----------------------------------------------------------------
-def _sat(v: int) -> tuple[int, bool]:
-    hi, lo = (1 << (W - 1)) - 1, -(1 << (W - 1))
-    return (hi, True) if v > hi else (lo, True) if v < lo else (v, False)
-
-
 def run(op: str, *, angle: int, i_a: int = 0, i_b: int = 0, i_c: int = 0, u_d: int = 0, u_q: int = 0,
         kdc: int = 0, half_period: int = 0) -> dict:
     """Execute ``op``'s microprogram the way the datapath does (sequential semantics; the
@@ -312,7 +307,7 @@ def run(op: str, *, angle: int, i_a: int = 0, i_b: int = 0, i_c: int = 0, u_d: i
         assert -(1 << (ACC_BITS - 1)) <= acc < (1 << (ACC_BITS - 1)), (r, acc)     # fits ACC_BITS
         if r.dst == "NONE":
             continue
-        y, ovf = _sat(acc >> SH)
+        y, ovf = F.sat_flag(acc >> SH, W)
         if r.dst in ("FLAG1", "FLAG2"):
             flag[r.dst] = acc < 0
             if r.dst == "FLAG1":

@@ -1,4 +1,4 @@
-"""Bit-exact model of ``rtl/clarke.v``: forward Clarke transform (paper 000 eq. 32).
+"""Step of ``xform`` (``rtl/xform.v``, front): forward Clarke transform (paper 000 eq. 32), bit-exact.
 
     i_alpha = i_A
     i_beta  = (i_B - i_C) / sqrt(3)
@@ -18,11 +18,10 @@ from __future__ import annotations
 
 import math
 
-from ..formats import I_FRAC, I_W
+from ...formats import I_FRAC, I_W, sat_flag
 
 K_SHIFT = 18
 K_BETA = int(math.floor((1 << K_SHIFT) / math.sqrt(3.0) + 0.5))   # 151349, 18 bit unsigned
-K_BITS = K_BETA.bit_length()                                        # serial multiply steps
 _SH = K_SHIFT - I_FRAC
 _RND = 1 << (_SH - 1)
 _HI = (1 << (I_W - 1)) - 1
@@ -30,19 +29,12 @@ _LO = -(1 << (I_W - 1))
 
 
 def clarke(i_a: int, i_b: int, i_c: int) -> tuple[int, int, bool]:
-    """(i_alpha, i_beta, sat) exactly as the RTL computes them."""
+    """(i_alpha, i_beta, sat) exactly as ``xform`` computes them."""
     a = i_a << I_FRAC
     b = ((i_b - i_c) * K_BETA + _RND) >> _SH
-    sat = False
-    if a > _HI:
-        a, sat = _HI, True
-    elif a < _LO:
-        a, sat = _LO, True
-    if b > _HI:
-        b, sat = _HI, True
-    elif b < _LO:
-        b, sat = _LO, True
-    return a, b, sat
+    a, sat_a = sat_flag(a, I_W)
+    b, sat_b = sat_flag(b, I_W)
+    return a, b, sat_a or sat_b
 
 
 def clarke_np(i_a, i_b, i_c):

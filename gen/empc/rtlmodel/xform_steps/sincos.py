@@ -1,4 +1,4 @@
-"""Bit-exact step model of sin and cos of the 16-bit electrical angle (computed by ``rtl/xform.v``).
+"""Step of ``xform`` (``rtl/xform.v``): sin and cos of the 16-bit electrical angle, bit-exact.
 
 Method (identical in RTL and model):
 
@@ -7,8 +7,8 @@ Method (identical in RTL and model):
 * mirrored first-quadrant argument ``x = r`` (q even) or ``x = 2**14 - r`` (q odd),
   so ``x`` is 0..2**14 and |sin| = S(x) with S(x) = sin(x * pi/2 / 2**14);
 * quarter-wave table of ``2**LUT_BITS`` = 512 nodes ``T[k] = round(2**16 sin(k pi / 1024))``
-  (k = 0..512) stored as words ``{T[k] (17 bit), D[k] = T[k+1] - T[k] (8 bit)}`` for
-  k = 0..511 (in rtl/xform.v: the 513 nodes T[k] in its block RAM, interpolated by its MAC);
+  (k = 0..512), with the differences ``D[k] = T[k+1] - T[k]`` (8 bit) for k = 0..511
+  (``rtl/xform.v`` keeps the 513 nodes T[k] in its block RAM and interpolates with its MAC);
 * linear interpolation ``S(x) = T[k] + ((D[k] * f + 16) >> 5)`` with ``k = x >> 5``,
   ``f = x & 31`` (round half up); ``x = 2**14`` (only possible in odd quadrants with
   r = 0) is the exact value 2**16;
@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import math
 
-from .. import formats as F
+from ... import formats as F
 
 ANGLE_BITS = F.ANGLE_BITS            # 16: 2**16 = 2 pi
 TRIG_FRAC = F.TRIG_FRAC              # 16: 1.0 = 2**16
@@ -33,9 +33,7 @@ TRIG_W = F.TRIG_W                    # 18
 QUARTER_BITS = ANGLE_BITS - 2        # 14: angle LSBs inside one quadrant
 LUT_BITS = 9                         # 512 table nodes per quadrant
 INTERP_BITS = QUARTER_BITS - LUT_BITS  # 5 fractional bits of the table index
-VALUE_BITS = TRIG_FRAC + 1           # 17: node value 0..2**16
 DELTA_BITS = 8                       # node difference, max 201
-WORD_BITS = VALUE_BITS + DELTA_BITS  # 25: table word {value, delta}
 LUT_SIZE = 1 << LUT_BITS
 ONE = 1 << TRIG_FRAC
 
@@ -77,7 +75,7 @@ def sin_q(angle: int) -> int:
 
 
 def sincos(angle: int) -> tuple[int, int]:
-    """(sin, cos) of the 16-bit angle exactly as ``rtl/sincos.v`` outputs them."""
+    """(sin, cos) of the 16-bit angle exactly as ``xform`` computes them."""
     return sin_q(angle), sin_q(angle + (1 << QUARTER_BITS))
 
 

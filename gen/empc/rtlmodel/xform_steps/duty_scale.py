@@ -1,4 +1,4 @@
-"""Bit-exact model of ``rtl/duty_scale.v``: DC-link compensation and PWM compare values.
+"""Step of ``xform`` (``rtl/xform.v``, mod): DC-link compensation and PWM compare values, bit-exact.
 
     cmp_X = clamp(round(v_X * kdc / 2**(KDC_FRAC + V_FRAC)), 0, half_period)
 
@@ -10,14 +10,14 @@ Rounding: half up ((p + 2**19) >> 20), then clamp; ``sat`` is True if any phase 
 """
 from __future__ import annotations
 
-from ..formats import KDC_FRAC, V_FRAC
+from ...formats import KDC_FRAC, V_FRAC
 
 SHIFT = KDC_FRAC + V_FRAC
 _RND = 1 << (SHIFT - 1)
 
 
 def duty_scale(v_a: int, v_b: int, v_c: int, kdc: int, half_period: int) -> tuple[int, int, int, bool]:
-    """(cmp_A, cmp_B, cmp_C, sat) exactly as the RTL computes them."""
+    """(cmp_A, cmp_B, cmp_C, sat) exactly as ``xform`` computes them."""
     out = []
     sat = False
     for v in (v_a, v_b, v_c):

@@ -1,4 +1,4 @@
-"""Bit-exact model of ``rtl/min_sub.v``: min-subtraction of the phase voltages (paper 000 eq. 36).
+"""Step of ``xform`` (``rtl/xform.v``, mod): min-subtraction of the phase voltages (paper 000 eq. 36), bit-exact.
 
     u_min = min(u_A, u_B, u_C);  w_X = u_X - u_min   (X = A, B, C)
 
@@ -8,13 +8,13 @@ they saturate to 2**17 - 1 and ``sat`` is True.
 """
 from __future__ import annotations
 
-from ..formats import V_W
+from ...formats import V_W
 
 _HI = (1 << (V_W - 1)) - 1
 
 
 def min_sub(u_a: int, u_b: int, u_c: int) -> tuple[int, int, int, bool]:
-    """(w_A, w_B, w_C, sat) exactly as the RTL computes them."""
+    """(w_A, w_B, w_C, sat) exactly as ``xform`` computes them."""
     m = min(u_a, u_b, u_c)
     a, b, c = u_a - m, u_b - m, u_c - m
     sat = a > _HI or b > _HI or c > _HI

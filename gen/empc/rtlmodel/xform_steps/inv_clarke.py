@@ -1,4 +1,4 @@
-"""Bit-exact model of ``rtl/inv_clarke.v``: inverse Clarke transform (paper 000 eq. 35).
+"""Step of ``xform`` (``rtl/xform.v``, mod): inverse Clarke transform (paper 000 eq. 35), bit-exact.
 
     u_A = u_alpha
     u_B = -u_alpha/2 + sqrt(3)/2 u_beta
@@ -19,32 +19,24 @@ from __future__ import annotations
 
 import math
 
-from ..formats import V_W
+from ...formats import V_W, sat_flag
 
 K_SHIFT = 21
 K_SQ3 = int(math.floor((1 << K_SHIFT) * math.sqrt(3.0) / 2 + 0.5))   # 1816187, 21 bit unsigned
-K_BITS = K_SQ3.bit_length()                                           # serial multiply steps
 _RND = 1 << (K_SHIFT - 1)
 _HI = (1 << (V_W - 1)) - 1
 _LO = -(1 << (V_W - 1))
 
 
 def inv_clarke(u_alpha: int, u_beta: int) -> tuple[int, int, int, bool]:
-    """(u_A, u_B, u_C, sat) exactly as the RTL computes them."""
+    """(u_A, u_B, u_C, sat) exactly as ``xform`` computes them."""
     p = u_beta * K_SQ3
     h = u_alpha << (K_SHIFT - 1)
     b = (p - h + _RND) >> K_SHIFT
     c = (-p - h + _RND) >> K_SHIFT
-    sat = False
-    if b > _HI:
-        b, sat = _HI, True
-    elif b < _LO:
-        b, sat = _LO, True
-    if c > _HI:
-        c, sat = _HI, True
-    elif c < _LO:
-        c, sat = _LO, True
-    return u_alpha, b, c, sat
+    b, sat_b = sat_flag(b, V_W)
+    c, sat_c = sat_flag(c, V_W)
+    return u_alpha, b, c, sat_b or sat_c
 
 
 def inv_clarke_np(u_alpha, u_beta):
