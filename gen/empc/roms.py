@@ -70,15 +70,6 @@ def generate(cfg, out: Path, all_designs: bool = True) -> dict:
     results = {k: design(cfg, *k) for k in designs_of(cfg, all_designs)}   # raises before writing anything
     out.mkdir(parents=True, exist_ok=True)
     boot = (cfg.control.algorithm, cfg.control.task)
-    files = {}
-    for (alg, task), r in results.items():
-        words = image.encode(r["params"])
-        name = f"coef_alg{alg}_{task}.hex"
-        image.write_hex(words, out / name)
-        files[f"alg{alg}_{task}"] = name
-        if (alg, task) == boot:
-            image.write_hex(words, out / "coef_boot.hex")
-    image.write_hex(core.RSQRT, out / "rsqrt.hex", digits=5)
     extra = dict(image.CONSTANTS)
     extra.update({"SIG_W": core.SIG_W, "N_MAX": core.N_MAX, "MAX_COLS": core.MAX_COLS, "RSQRT_BITS": core.RSQRT_BITS,
                   "SIG_WREL": core.SIG_WREL, "SIG_E": core.SIG_E, "SIG_Y": core.SIG_Y, "SIG_EBAR": core.SIG_EBAR,
@@ -86,6 +77,18 @@ def generate(cfg, out: Path, all_designs: bool = True) -> dict:
                   "IN_Y": core.IN_Y, "IN_OMEGA": core.IN_OMEGA, "IN_DX": core.IN_DX, "IN_UPREV": core.IN_UPREV,
                   "IN_EBAR": core.IN_EBAR, "IN_WREF": core.IN_WREF, "IN_WORDS": core.IN_WORDS,
                   "BOOT_ALGORITHM": boot[0], "BOOT_TASK_POSITION": 1 if boot[1] == "position" else 0})
+    units = {"volts_per_tick": cfg.volts_per_tick, "amps_per_lsb": cfg.amps_per_lsb,
+             "rad_per_count_electrical": cfg.rad_per_count, "rad_s_per_count_per_ts": cfg.rad_s_per_count_ts}
+    extra["IMG_FMT_ID"] = image.format_id({**formats.FORMAT_CONSTANTS, **header.config_constants(cfg), **extra}, units)
+    files = {}
+    for (alg, task), r in results.items():
+        words = image.encode(r["params"], extra["IMG_FMT_ID"])
+        name = f"coef_alg{alg}_{task}.hex"
+        image.write_hex(words, out / name)
+        files[f"alg{alg}_{task}"] = name
+        if (alg, task) == boot:
+            image.write_hex(words, out / "coef_boot.hex")
+    image.write_hex(core.RSQRT, out / "rsqrt.hex", digits=5)
     header.write(cfg, out, extra)
     (out / "empc_regs.vh").write_text(regmap.render_vh())
     manifest = {
@@ -94,10 +97,7 @@ def generate(cfg, out: Path, all_designs: bool = True) -> dict:
         "boot": {"algorithm": boot[0], "task": boot[1], "file": "coef_boot.hex"},
         "formats": formats.FORMAT_CONSTANTS,
         "header_constants": {**header.config_constants(cfg), **extra},
-        "units": {
-            "volts_per_tick": cfg.volts_per_tick, "amps_per_lsb": cfg.amps_per_lsb,
-            "rad_per_count_electrical": cfg.rad_per_count, "rad_s_per_count_per_ts": cfg.rad_s_per_count_ts,
-        },
+        "units": units,
         "image_layout": image.CONSTANTS,
         "designs": {},
     }
