@@ -11,6 +11,10 @@
 // Safety: every cause in FAULT_MASK forces all six outputs off in the clock the
 // cause is registered (fault_ctrl.trip is combinational into pwm_center's fault,
 // whose outputs are registered); latched until CMD.fault_clear with the cause gone.
+// The power-stage, clock (ext_fault, from the top's clock-independent kill path) and
+// coefficient-image causes trip whatever FAULT_MASK says.  The bridges are enabled
+// only while the angle is valid (pos_sense) and the active coefficient bank holds a
+// valid image (a bad boot image keeps them off until a valid upload is swapped in).
 // Reset: CTRL.enable = 0 (outputs off), registers at their map reset values.
 `default_nettype none
 `include "empc_formats.vh"
@@ -34,6 +38,7 @@ module mpc_axis #(
     input  wire [9:0]  coef_addr,
     // global
     input  wire        watchdog_expired,
+    input  wire [1:0]  ext_fault,        // {clock, pstage}: out_kill causes (synchronous levels)
     input  wire        pwm_sync_in,      // restart the PWM period (phase-lock several axes)
     output wire        pwm_sync_out,
     // pins
@@ -53,13 +58,15 @@ module mpc_axis #(
     output wire        fault_any
 );
     localparam integer CW = $clog2(`EMPC_PWM_HALF_PERIOD + 1);
-    localparam integer NCAUSE = 7;
+    localparam integer NCAUSE = 12;
+    // causes that trip whatever FAULT_MASK says
+    localparam [NCAUSE-1:0] NOMASK = (1 << `EMPC_A_FAULT_PSTAGE) | (1 << `EMPC_A_FAULT_CLOCK) | (1 << `EMPC_A_FAULT_COEF);
     localparam integer RAW = (N < 2) ? 1 : $clog2(N + 1);
 
     // ---------------- registers ----------------
     reg         r_enable, r_run, r_compl;
     reg  [7:0]  r_ppc;
-    reg  [6:0]  r_fault_mask;
+    reg  [NCAUSE-1:0] r_fault_mask;
     reg  [7:0]  r_dead;
     reg  [17:0] r_kdc;
     reg  [15:0] r_udc, r_udc_min, r_udc_max;
@@ -142,7 +149,7 @@ module mpc_axis #(
                     c_clear_cnt <= reg_wdata[`EMPC_A_CMD_CLEAR_COUNTERS];
                     c_align_clear <= reg_wdata[`EMPC_A_CMD_ALIGN_CLEAR];
                 end
-                W_FAULT_MASK[4:0]: r_fault_mask <= reg_wdata[6:0];
+                W_FAULT_MASK[4:0]: r_fault_mask <= reg_wdata[NCAUSE-1:0];
                 W_DEAD_TIME[4:0]: r_dead <= reg_wdata[7:0];
                 W_KDC[4:0]: r_kdc <= reg_wdata[17:0];
                 W_UDC[4:0]: r_udc <= reg_wdata[15:0];
@@ -202,16 +209,21 @@ module mpc_axis #(
         .speed(ps_speed), .speed_q(ps_speed_q), .speed_sat(speed_sat), .pos_at_sample(pos_at_sample),
         .theta_at_sample(theta_at_sample), .sample_valid(sample_valid));
     /* verilator lint_on PINCONNECTEMPTY */
+    sens_check u_sens (
+        .clk(clk), .rst(rst), .theta_hi(theta[15:8]), .theta_valid(theta_valid), .hall_off_hi(r_hall_offset[15:8]),
+        .hall_sector(hall_sector), .hall_valid(hall_valid), .hall_change(hall_change), .pos(pos[15:0]),
+        .hall_enc(hall_enc), .enc_break(enc_break));
 
     // ---------------- faults ----------------
     wire        adc_oc, adc_frame_err, overrun;
     wire        udc_bad = (r_udc < r_udc_min) || (r_udc > r_udc_max);
-    wire [NCAUSE-1:0] causes = {adc_frame_err, overrun, udc_bad, watchdog_expired, enc_err_pulse,
-                                hall_fault_pulse, adc_oc};
+    wire        hall_enc, enc_break, img_bad;
+    wire [NCAUSE-1:0] causes = {enc_break, hall_enc, img_bad, ext_fault, adc_frame_err, overrun, udc_bad,
+                                watchdog_expired, enc_err_pulse, hall_fault_pulse, adc_oc};
     wire [NCAUSE-1:0] fault_latched;
     wire        trip;
     fault_ctrl #(.NCAUSE(NCAUSE)) u_fault (
-        .clk(clk), .rst(rst), .cause_in(causes), .mask(r_fault_mask), .clear(c_fault_clear),
+        .clk(clk), .rst(rst), .cause_in(causes), .mask(r_fault_mask | NOMASK), .clear(c_fault_clear),
         .fault_latched(fault_latched), .trip(trip));
     assign fault_any = |fault_latched;
 
@@ -219,7 +231,8 @@ module mpc_axis #(
     wire [3*CW-1:0] cmp;
     wire            cmp_load;
     wire            period_start, adc_trig, pwm_fault_latched, mode_eff, cmp_clip;
-    wire            bridges_on = r_enable && !trip;
+    wire            core_img_ok;
+    wire            bridges_on = r_enable && !trip && theta_valid && core_img_ok;
     pwm_center u_pwm (
         .clk(clk), .rst(rst), .enable(bridges_on), .mode(!r_compl), .dead(r_dead), .cmp_in(cmp),
         .cmp_load(cmp_load), .sync_in(pwm_sync_in), .fault(trip), .fault_clear(c_fault_clear),
@@ -284,6 +297,7 @@ module mpc_axis #(
     wire [10:0]                     core_flags;
     wire [7:0]                      core_latency;
     wire                            core_ready, core_bank, core_swap_pending, core_boot_ok;
+    wire                            core_upl_ok, core_swap_refused, core_refused;
     wire                            seq_front_sat;
     wire [15:0]                     seq_latency;
     wire signed [`EMPC_I_W-1:0]     st_id, st_iq;
@@ -311,8 +325,16 @@ module mpc_axis #(
         .in_wdata(core_in_wdata), .busy(core_busy),
         .done(core_done), .u(core_u), .du(core_du), .u_raw(core_u_raw), .ebar(core_ebar), .wn(core_wn),
         .flags(core_flags), .latency(core_latency), .cfg_we(coef_we), .cfg_addr(coef_addr),
-        .cfg_wdata(reg_wdata), .cfg_swap(c_coef_swap), .ready(core_ready), .bank(core_bank),
-        .swap_pending(core_swap_pending), .boot_ok(core_boot_ok), .task_pos(task_pos));
+        .cfg_wdata(reg_wdata), .cfg_swap(c_coef_swap), .swap_at(pos_sample), .ready(core_ready), .bank(core_bank),
+        .swap_pending(core_swap_pending), .boot_ok(core_boot_ok), .img_ok(core_img_ok), .upl_ok(core_upl_ok),
+        .swap_refused(core_swap_refused), .refused(core_refused), .task_pos(task_pos));
+    assign img_bad = core_ready && !core_img_ok;
+    // refused swaps: 8-bit saturating counter (CNT_SWAP_REF)
+    reg  [7:0] cnt_swref;
+    always @(posedge clk) begin
+        if (rst || c_clear_cnt)             cnt_swref <= 8'd0;
+        else if (core_refused && !(&cnt_swref)) cnt_swref <= cnt_swref + 8'd1;
+    end
 
     // ---------------- status words and counters: one block RAM ----------------
     // Words SPEED, I_D, I_Q, U_D, U_Q, REF, PERIODS and the event counters SAT_OPERAND ..
@@ -388,13 +410,13 @@ module mpc_axis #(
     // their address and 0 in every other clock (flip-flop reset: no multiplexer); reg_rdata,
     // valid the clock after reg_rd, is the OR of the copies, of the block RAM read and of
     // ref_gen's field read.
-    localparam [7:0] R_ADC_OFF0 = `EMPC_A_ADC_OFF0, R_ADC_OFF1 = `EMPC_A_ADC_OFF1, R_ADC_OFF2 = `EMPC_A_ADC_OFF2, R_ANGLE_CAL = `EMPC_A_ANGLE_CAL, R_CNT_ADC_MISS = `EMPC_A_CNT_ADC_MISS, R_CNT_ENC_ERR = `EMPC_A_CNT_ENC_ERR, R_CTRL = `EMPC_A_CTRL, R_DEAD_TIME = `EMPC_A_DEAD_TIME, R_FAULT = `EMPC_A_FAULT, R_FAULT_MASK = `EMPC_A_FAULT_MASK, R_HALL_OFFSET = `EMPC_A_HALL_OFFSET, R_IABC0 = `EMPC_A_IABC0, R_IABC1 = `EMPC_A_IABC1, R_ID_REF = `EMPC_A_ID_REF, R_IQ_REF = `EMPC_A_IQ_REF, R_KACC = `EMPC_A_KACC, R_KDC = `EMPC_A_KDC, R_LATENCY = `EMPC_A_LATENCY, R_OC_THRESH = `EMPC_A_OC_THRESH, R_POS = `EMPC_A_POS, R_SEG_ADDR = `EMPC_A_SEG_ADDR, R_STATUS = `EMPC_A_STATUS, R_THETA = `EMPC_A_THETA, R_UDC = `EMPC_A_UDC, R_UDC_MAX = `EMPC_A_UDC_MAX, R_UDC_MIN = `EMPC_A_UDC_MIN;
+    localparam [7:0] R_ADC_OFF0 = `EMPC_A_ADC_OFF0, R_ADC_OFF1 = `EMPC_A_ADC_OFF1, R_ADC_OFF2 = `EMPC_A_ADC_OFF2, R_ANGLE_CAL = `EMPC_A_ANGLE_CAL, R_CNT_ADC_MISS = `EMPC_A_CNT_ADC_MISS, R_CNT_ENC_ERR = `EMPC_A_CNT_ENC_ERR, R_CNT_SWAP_REF = `EMPC_A_CNT_SWAP_REF, R_CTRL = `EMPC_A_CTRL, R_DEAD_TIME = `EMPC_A_DEAD_TIME, R_FAULT = `EMPC_A_FAULT, R_FAULT_MASK = `EMPC_A_FAULT_MASK, R_HALL_OFFSET = `EMPC_A_HALL_OFFSET, R_IABC0 = `EMPC_A_IABC0, R_IABC1 = `EMPC_A_IABC1, R_ID_REF = `EMPC_A_ID_REF, R_IQ_REF = `EMPC_A_IQ_REF, R_KACC = `EMPC_A_KACC, R_KDC = `EMPC_A_KDC, R_LATENCY = `EMPC_A_LATENCY, R_OC_THRESH = `EMPC_A_OC_THRESH, R_POS = `EMPC_A_POS, R_SEG_ADDR = `EMPC_A_SEG_ADDR, R_STATUS = `EMPC_A_STATUS, R_THETA = `EMPC_A_THETA, R_UDC = `EMPC_A_UDC, R_UDC_MAX = `EMPC_A_UDC_MAX, R_UDC_MIN = `EMPC_A_UDC_MIN;
     wire rd_lo = reg_rd && (reg_addr[7:5] == 3'd0);
     wire rd_hi = reg_rd && (reg_addr[7:5] == 3'd1);
     reg  [10:0] q_ctrl;
-    reg  [8:0]  q_status;
-    reg  [6:0]  q_fault, q_fmask;
-    reg  [7:0]  q_dead, q_miss;
+    reg  [10:0] q_status;
+    reg  [NCAUSE-1:0] q_fault, q_fmask;
+    reg  [7:0]  q_dead, q_miss, q_swref;
     reg  [17:0] q_kdc, q_kacc, q_idr, q_iqr;
     reg  [4:0]  q_ksh;
     reg  [15:0] q_udc, q_udcmin, q_udcmax, q_acal, q_hoff, q_theta, q_lat, q_enc;
@@ -404,10 +426,11 @@ module mpc_axis #(
     reg  [23:0] q_iabc0;
     always @(posedge clk) begin
         q_ctrl    <= (rd_lo && reg_addr[4:0] == R_CTRL[4:0]) ? {r_ppc, r_compl, r_run, r_enable} : 11'd0;
-        q_status  <= (rd_lo && reg_addr[4:0] == R_STATUS[4:0]) ? {fault_any, core_swap_pending, core_bank,
-                     core_ready, adc_cal_done, adc_cal_busy, aligned, bridges_on, running} : 9'd0;
-        q_fault   <= (rd_lo && reg_addr[4:0] == R_FAULT[4:0]) ? fault_latched : 7'd0;
-        q_fmask   <= (rd_lo && reg_addr[4:0] == R_FAULT_MASK[4:0]) ? r_fault_mask : 7'd0;
+        q_status  <= (rd_lo && reg_addr[4:0] == R_STATUS[4:0]) ? {core_swap_refused, core_upl_ok, fault_any,
+                     core_swap_pending, core_bank, core_ready, adc_cal_done, adc_cal_busy, aligned, bridges_on,
+                     running} : 11'd0;
+        q_fault   <= (rd_lo && reg_addr[4:0] == R_FAULT[4:0]) ? fault_latched : {NCAUSE{1'b0}};
+        q_fmask   <= (rd_lo && reg_addr[4:0] == R_FAULT_MASK[4:0]) ? r_fault_mask : {NCAUSE{1'b0}};
         q_dead    <= (rd_lo && reg_addr[4:0] == R_DEAD_TIME[4:0]) ? r_dead : 8'd0;
         q_kdc     <= (rd_lo && reg_addr[4:0] == R_KDC[4:0]) ? r_kdc : 18'd0;
         q_udc     <= (rd_lo && reg_addr[4:0] == R_UDC[4:0]) ? r_udc : 16'd0;
@@ -431,8 +454,10 @@ module mpc_axis #(
         q_lat     <= (rd_hi && reg_addr[4:0] == R_LATENCY[4:0]) ? seq_latency : 16'd0;
         q_miss    <= (rd_hi && reg_addr[4:0] == R_CNT_ADC_MISS[4:0]) ? adc_miss_cnt : 8'd0;
         q_enc     <= (rd_hi && reg_addr[4:0] == R_CNT_ENC_ERR[4:0]) ? enc_err_cnt : 16'd0;
+        q_swref   <= (rd_hi && reg_addr[4:0] == R_CNT_SWAP_REF[4:0]) ? cnt_swref : 8'd0;
         if (rst) begin
-            q_ctrl <= 11'd0; q_status <= 9'd0; q_fault <= 7'd0; q_fmask <= 7'd0; q_dead <= 8'd0; q_kdc <= 18'd0;
+            q_ctrl <= 11'd0; q_status <= 11'd0; q_fault <= {NCAUSE{1'b0}}; q_fmask <= {NCAUSE{1'b0}};
+            q_dead <= 8'd0; q_kdc <= 18'd0; q_swref <= 8'd0;
             q_udc <= 16'd0; q_udcmin <= 16'd0; q_udcmax <= 16'd0; q_oc <= 12'd0; q_off0 <= 12'd0; q_off1 <= 12'd0;
             q_off2 <= 12'd0; q_acal <= 16'd0; q_hoff <= 16'd0; q_kacc <= 18'd0; q_ksh <= 5'd0; q_idr <= 18'd0;
             q_iqr <= 18'd0; q_sega <= 4'd0; q_pos <= 32'd0; q_theta <= 16'd0; q_iabc0 <= 24'd0; q_iabc1 <= 12'd0;
@@ -441,8 +466,8 @@ module mpc_axis #(
     end
     always @(*) begin
         reg_rdata = seg_rdata | s_q | q_pos
-                  | {16'd0, q_ctrl[10:3], 5'd0, q_ctrl[2:0]} | {23'd0, q_status} | {25'd0, q_fault}
-                  | {25'd0, q_fmask} | {24'd0, q_dead} | {14'd0, q_kdc} | {16'd0, q_udc} | {16'd0, q_udcmin}
+                  | {16'd0, q_ctrl[10:3], 5'd0, q_ctrl[2:0]} | {21'd0, q_status} | {{(32-NCAUSE){1'b0}}, q_fault}
+                  | {{(32-NCAUSE){1'b0}}, q_fmask} | {24'd0, q_swref} | {24'd0, q_dead} | {14'd0, q_kdc} | {16'd0, q_udc} | {16'd0, q_udcmin}
                   | {16'd0, q_udcmax} | {20'd0, q_oc} | {20'd0, q_off0} | {20'd0, q_off1} | {20'd0, q_off2}
                   | {16'd0, q_acal} | {16'd0, q_hoff} | {3'd0, q_ksh, 6'd0, q_kacc}
                   | {{14{q_idr[17]}}, q_idr} | {{14{q_iqr[17]}}, q_iqr} | {28'd0, q_sega} | {16'd0, q_theta}
@@ -452,7 +477,7 @@ module mpc_axis #(
 
     // adc_trig_miss: counted by adc_spi itself (miss_cnt -> CNT_ADC_MISS)
     wire unused = &{1'b0, dir, index_seen, index_dir, mark_pos, mark_seen, mark_event, enc_err_flag,
-                    enc_in_state, enc_ready, hall_code, hall_ready, hall_fault, theta_valid, speed_sat,
+                    enc_in_state, enc_ready, hall_code, hall_ready, hall_fault, speed_sat,
                     sample_valid, ps_speed, pos_at_sample, ps_speed_q, theta_at_sample,
                     pwm_fault_latched, mode_eff, adc_busy, adc_trig_miss, oc_ch, core_busy, core_du, core_u_raw,
                     core_wn, core_latency, core_boot_ok, theta_trig, seg_off[7:3], ref_busy, st_id, st_iq};

@@ -5,6 +5,7 @@ rtl/pwm_center.v
 rtl/irc_decoder.v
 rtl/hall_decoder.v
 rtl/pos_sense.v
+rtl/sens_check.v
 rtl/mpc_mul18.v
 rtl/mpc_lane.v
 rtl/mpc_limiter.v
@@ -15,6 +16,8 @@ rtl/mpc_core.v
 rtl/lx_rocon_top.v
 rtl/ctrl_seq.v
 rtl/clk_gen.v
+rtl/clk_mon.v
+rtl/out_kill.v
 rtl/mpc_axis.v
 rtl/fault_ctrl.v
 rtl/watchdog.v
