@@ -210,8 +210,8 @@ module mpc_axis #(
         .theta_at_sample(theta_at_sample), .sample_valid(sample_valid));
     /* verilator lint_on PINCONNECTEMPTY */
     sens_check u_sens (
-        .clk(clk), .rst(rst), .theta_hi(theta[15:8]), .theta_valid(theta_valid), .hall_off_hi(r_hall_offset[15:8]),
-        .hall_sector(hall_sector), .hall_valid(hall_valid), .hall_change(hall_change), .pos(pos[15:0]),
+        .clk(clk), .rst(rst), .theta_hi(theta[15:10]), .theta_valid(theta_valid), .hall_off_hi(r_hall_offset[15:10]),
+        .hall_sector(hall_sector), .hall_valid(hall_valid), .hall_change(hall_change), .pos_q(pos[11:3]),
         .hall_enc(hall_enc), .enc_break(enc_break));
 
     // ---------------- faults ----------------

@@ -30,7 +30,7 @@ from cocotb.triggers import FallingEdge
 from empc.rtlmodel.hall_decoder import DEFAULT_MAP, DEFAULT_SEQUENCE
 from empc.rtlmodel.sens_check import SensCheck
 
-CPR, P, DW = 4000, 4, 16
+CPR, P, DW, QS = 4000, 4, 12, 3
 SEED = int(os.environ.get("EMPC_SEED", "9090"))
 CLK = 1e-8
 TAU_ENC, TAU_HALL = 11 * CLK, 1003 * CLK
@@ -40,7 +40,7 @@ CPE = CPR // P                                 # counts per electrical turn
 class Drv:
     def __init__(self, dut):
         self.dut = dut
-        self.m = SensCheck(CPR, P, DW)
+        self.m = SensCheck(CPR, P, DW, QS)
         self.n = 0
         self.trips = []
 
@@ -48,7 +48,7 @@ class Drv:
         d = self.dut
         Clock(d.clk, 10, unit="ns").start()
         d.rst.value = 1
-        for s in ("theta_hi", "theta_valid", "hall_off_hi", "hall_sector", "hall_valid", "hall_change", "pos"):
+        for s in ("theta_hi", "theta_valid", "hall_off_hi", "hall_sector", "hall_valid", "hall_change", "pos_q"):
             getattr(d, s).value = 0
         for _ in range(3):
             await FallingEdge(d.clk)
@@ -57,9 +57,10 @@ class Drv:
 
     async def clock(self, theta_hi, theta_valid, hall_off_hi, sector, hall_valid, hall_change, pos):
         d = self.dut
-        v = (theta_hi & 0xFF, theta_valid, hall_off_hi & 0xFF, sector, hall_valid, hall_change, pos & 0xFFFF)
+        v = (theta_hi & 0x3F, theta_valid, hall_off_hi & 0x3F, sector, hall_valid, hall_change,
+             (pos & ((1 << DW) - 1)) >> QS)
         d.theta_hi.value, d.theta_valid.value, d.hall_off_hi.value = v[0], v[1], v[2]
-        d.hall_sector.value, d.hall_valid.value, d.hall_change.value, d.pos.value = v[3], v[4], v[5], v[6]
+        d.hall_sector.value, d.hall_valid.value, d.hall_change.value, d.pos_q.value = v[3], v[4], v[5], v[6]
         exp = self.m.step(*v)
         await FallingEdge(d.clk)
         self.n += 1
@@ -124,7 +125,7 @@ async def run_traj(drv, rotor, traj, aligned, label, expect=None, fault_at=None,
     """traj: list of (theta_deg, omega_rad_s).  expect None: no trip allowed; 'hall_enc' /
     'enc_break' / 'any': a trip after sample fault_at within limit_deg of travel."""
     await drv.start()
-    hall_off_hi = round(rotor.hall_off / 360.0 * 256) & 0xFF
+    hall_off_hi = round(rotor.hall_off / 360.0 * 64) & 0x3F
     prev_sec = None
     base = None
     pos_base = 0
@@ -152,7 +153,7 @@ async def run_traj(drv, rotor, traj, aligned, label, expect=None, fault_at=None,
                 base += rotor.hall_off
                 pos_base = pos
             theta = (base + (pos - pos_base) * 360.0 / CPE) % 360.0
-        th_hi = int(theta / 360.0 * 256) & 0xFF
+        th_hi = int(theta / 360.0 * 64) & 0x3F
         he, eb = await drv.clock(th_hi, 1, hall_off_hi, sec, 1, change, pos)
         if i > 0:
             trav += abs(th - traj[i - 1][0])
@@ -191,8 +192,8 @@ async def random_inputs(dut):
             new = rng.choice([s for s in range(1, 7) if s != sec])
             change, sec = 1, new
         pos = (pos + rng.choice([0, 0, 1, -1, 40, -40, 90, rng.randrange(-300, 300)])) & 0xFFFF
-        th = (th + rng.randrange(-20, 21)) & 0xFF
-        await drv.clock(th, int(rng.random() < 0.97), rng.randrange(256), sec, valid, change, pos)
+        th = (th + rng.randrange(-5, 6)) & 0x3F
+        await drv.clock(th, int(rng.random() < 0.97), rng.randrange(64), sec, valid, change, pos)
     dut._log.info("random: %d clocks bit-exact (seed %d, EMPC_SEED)", drv.n, SEED)
 
 
@@ -287,4 +288,4 @@ async def physical(dut):
 
 def test_sens_check():
     from runner import run
-    run(toplevel="sens_check", test_module="test_sens_check", parameters={"CPR": CPR, "POLE_PAIRS": P, "DW": DW})
+    run(toplevel="sens_check", test_module="test_sens_check", parameters={"CPR": CPR, "POLE_PAIRS": P, "DW": DW, "QS": QS})
