@@ -1,5 +1,5 @@
 // pwm_center_props: formal property wrapper for rtl/pwm_center.v (SymbiYosys,
-// formal/pwm_center.sby, run by sim/formal.py).  Every DUT input is a free
+// formal/pwm_center.sby, run by flow/formal.py).  Every DUT input is a free
 // input of this wrapper (any value on any clock, including rst, sync_in, mode,
 // dead, cmp_in/cmp_load, fault, fault_clear); only the first clock is a reset.
 // The properties look at the DUT ports only and keep their own reference

@@ -94,8 +94,11 @@ int empc_coef_load(uint32_t axis, const uint32_t *image, uint32_t nwords, uint32
     WR_A(axis, CMD, EMPC_FIELD(EMPC_A_CMD_COEF_SWAP, 1u));
     while (max_polls--) {
         st = RD_A(axis, STATUS);
-        if (!EMPC_GET(EMPC_A_STATUS_SWAP_PENDING, st) && EMPC_GET(EMPC_A_STATUS_COEF_BANK, st) != bank)
-            return EMPC_OK;
+        if (EMPC_GET(EMPC_A_STATUS_SWAP_PENDING, st))
+            continue;
+        if (EMPC_GET(EMPC_A_STATUS_SWAP_REFUSED, st))
+            return EMPC_ERR_REFUSED;
+        return EMPC_GET(EMPC_A_STATUS_COEF_BANK, st) != bank ? EMPC_OK : EMPC_ERR_VERIFY;
     }
     return EMPC_ERR_TIMEOUT;
 }

@@ -44,7 +44,8 @@ typedef enum {
     EMPC_ERR_BUSY = -4,      /* bridges on (configuration refused) or a swap still pending */
     EMPC_ERR_VERIFY = -5,    /* a register did not read back what was written */
     EMPC_ERR_TIMEOUT = -6,   /* the poll count ran out */
-    EMPC_ERR_FAULT = -7      /* a fault is still latched (its cause has not gone) */
+    EMPC_ERR_FAULT = -7,     /* a fault is still latched (its cause has not gone) */
+    EMPC_ERR_REFUSED = -8    /* the FPGA refused it (coefficient swap: no complete valid image) */
 } empc_err;
 
 /* Build parameters of the bitstream (CAPS, PWM_HALF). */
@@ -91,8 +92,9 @@ int empc_init(empc_caps *caps);
 int empc_axis_config(const empc_caps *caps, uint32_t axis, const empc_axis_cfg *cfg);
 
 /* Upload a coefficient image into the inactive bank of an axis (nwords <= EMPC_COEF_WORDS), then
- * request the bank swap (taken at the next control period) and poll STATUS up to max_polls times
- * until it is done.  EMPC_ERR_BUSY if a swap was already pending. */
+ * request the bank swap (decided at the next control-period sample) and poll STATUS up to max_polls
+ * times until it is decided.  EMPC_ERR_BUSY if a swap was already pending, EMPC_ERR_REFUSED if the
+ * FPGA refused the image (STATUS.swap_refused: incomplete, bad checksum or another build's format). */
 int empc_coef_load(uint32_t axis, const uint32_t *image, uint32_t nwords, uint32_t max_polls);
 
 /* Switch the bridges on (run = 0: zero voltage, run = 1: control law) or off (enable = 0). */

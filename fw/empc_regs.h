@@ -32,7 +32,7 @@
 #define EMPC_COEF_STRIDE 0x00001000u  /* bytes per coefficient window */
 #define EMPC_COEF_WORDS  1024u        /* words in one coefficient window */
 #define EMPC_IMG_USED    768u         /* words of a coefficient image (gen/empc/image.py) */
-#define EMPC_IMG_LAYOUT  1u           /* image layout version (CAPS.img_layout) */
+#define EMPC_IMG_LAYOUT  2u           /* image layout version (CAPS.img_layout) */
 #define EMPC_ID_MAGIC    0x454D5043u  /* value of ID ('EMPC') */
 #define EMPC_IP_VERSION  0x00010000u  /* value of VERSION (major 31:16, minor 15:8, patch 7:0) */
 #define EMPC_WDOG_KEY    0x5A5Au      /* write to WDOG_KICK to restart the watchdog */
@@ -205,7 +205,7 @@
 #define EMPC_A_STATUS_ACCESS             EMPC_ACC_RO
 #define EMPC_A_STATUS_RESET              0x00000000u
 #define EMPC_A_STATUS_RESET_MASK         0x00000000u
-#define EMPC_A_STATUS_BITS               0x000001FFu
+#define EMPC_A_STATUS_BITS               0x000007FFu
 #define EMPC_A_STATUS_SIGNED             0
 #define EMPC_A_STATUS_RUNNING_SHIFT      0u
 #define EMPC_A_STATUS_RUNNING_MASK       0x00000001u
@@ -234,12 +234,18 @@
 #define EMPC_A_STATUS_FAULT_SHIFT        8u
 #define EMPC_A_STATUS_FAULT_MASK         0x00000100u
 #define EMPC_A_STATUS_FAULT_WIDTH        1u
+#define EMPC_A_STATUS_COEF_VALID_SHIFT   9u
+#define EMPC_A_STATUS_COEF_VALID_MASK    0x00000200u
+#define EMPC_A_STATUS_COEF_VALID_WIDTH   1u
+#define EMPC_A_STATUS_SWAP_REFUSED_SHIFT 10u
+#define EMPC_A_STATUS_SWAP_REFUSED_MASK  0x00000400u
+#define EMPC_A_STATUS_SWAP_REFUSED_WIDTH 1u
 /* FAULT (RO): Latched (sticky) fault causes; cleared by CMD.fault_clear once the cause has gone. */
 #define EMPC_A_FAULT                   0x00Cu
 #define EMPC_A_FAULT_ACCESS            EMPC_ACC_RO
 #define EMPC_A_FAULT_RESET             0x00000000u
 #define EMPC_A_FAULT_RESET_MASK        0x00000000u
-#define EMPC_A_FAULT_BITS              0x0000007Fu
+#define EMPC_A_FAULT_BITS              0x00000FFFu
 #define EMPC_A_FAULT_SIGNED            0
 #define EMPC_A_FAULT_OVERCURRENT_SHIFT 0u
 #define EMPC_A_FAULT_OVERCURRENT_MASK  0x00000001u
@@ -262,13 +268,28 @@
 #define EMPC_A_FAULT_ADC_SHIFT         6u
 #define EMPC_A_FAULT_ADC_MASK          0x00000040u
 #define EMPC_A_FAULT_ADC_WIDTH         1u
+#define EMPC_A_FAULT_PSTAGE_SHIFT      7u
+#define EMPC_A_FAULT_PSTAGE_MASK       0x00000080u
+#define EMPC_A_FAULT_PSTAGE_WIDTH      1u
+#define EMPC_A_FAULT_CLOCK_SHIFT       8u
+#define EMPC_A_FAULT_CLOCK_MASK        0x00000100u
+#define EMPC_A_FAULT_CLOCK_WIDTH       1u
+#define EMPC_A_FAULT_COEF_SHIFT        9u
+#define EMPC_A_FAULT_COEF_MASK         0x00000200u
+#define EMPC_A_FAULT_COEF_WIDTH        1u
+#define EMPC_A_FAULT_HALL_ENC_SHIFT    10u
+#define EMPC_A_FAULT_HALL_ENC_MASK     0x00000400u
+#define EMPC_A_FAULT_HALL_ENC_WIDTH    1u
+#define EMPC_A_FAULT_ENC_BREAK_SHIFT   11u
+#define EMPC_A_FAULT_ENC_BREAK_MASK    0x00000800u
+#define EMPC_A_FAULT_ENC_BREAK_WIDTH   1u
 /* FAULT_MASK (RW): Fault causes that switch the bridges off (same bits as FAULT). Masked causes are
-   still recorded in FAULT. */
+   still recorded in FAULT; pstage, clock and coef always trip. */
 #define EMPC_A_FAULT_MASK            0x010u
 #define EMPC_A_FAULT_MASK_ACCESS     EMPC_ACC_RW
-#define EMPC_A_FAULT_MASK_RESET      0x0000007Fu
+#define EMPC_A_FAULT_MASK_RESET      0x00000FFFu
 #define EMPC_A_FAULT_MASK_RESET_MASK 0xFFFFFFFFu
-#define EMPC_A_FAULT_MASK_BITS       0x0000007Fu
+#define EMPC_A_FAULT_MASK_BITS       0x00000FFFu
 #define EMPC_A_FAULT_MASK_SIGNED     0
 /* DEAD_TIME (RW): Dead time in fabric clocks (complementary mode). */
 #define EMPC_A_DEAD_TIME            0x014u
@@ -647,6 +668,13 @@
 #define EMPC_A_CNT_ENC_ERR_RESET_MASK 0x00000000u
 #define EMPC_A_CNT_ENC_ERR_BITS       0x0000FFFFu
 #define EMPC_A_CNT_ENC_ERR_SIGNED     0
+/* CNT_SWAP_REF (RO): Refused coefficient swaps (8-bit, saturating; CMD.clear_counters zeroes it). */
+#define EMPC_A_CNT_SWAP_REF            0x0FCu
+#define EMPC_A_CNT_SWAP_REF_ACCESS     EMPC_ACC_RO
+#define EMPC_A_CNT_SWAP_REF_RESET      0x00000000u
+#define EMPC_A_CNT_SWAP_REF_RESET_MASK 0x00000000u
+#define EMPC_A_CNT_SWAP_REF_BITS       0x000000FFu
+#define EMPC_A_CNT_SWAP_REF_SIGNED     0
 
 /* X(NAME) for every axis register: EMPC_A_##NAME, EMPC_A_##NAME##_ACCESS, ... */
 #define EMPC_AXIS_REGS(X) \
@@ -656,6 +684,6 @@
     X(SEG_FLAGS) X(SEG_START) X(POS) X(SPEED) X(THETA) X(I_D) X(I_Q) X(U_D) X(U_Q) X(REF) X(IABC0) \
     X(IABC1) X(LATENCY) X(PERIODS) X(SAT_OPERAND) X(SAT_GAIN) X(SAT_TERM) X(SAT_ACC) X(SAT_DU) \
     X(SAT_U) X(SAT_EBAR) X(SAT_EBAR_INC) X(SAT_LIMIT) X(SAT_WN) X(SAT_SIGNAL) X(SAT_FRONT) \
-    X(CNT_OVERRUN) X(CNT_ADC_MISS) X(CNT_ENC_ERR)
+    X(CNT_OVERRUN) X(CNT_ADC_MISS) X(CNT_ENC_ERR) X(CNT_SWAP_REF)
 
 #endif /* EMPC_REGS_H */

@@ -41,6 +41,8 @@ module axis_regs (
     input  wire        status_coef_bank,     // STATUS.coef_bank value
     input  wire        status_swap_pending,  // STATUS.swap_pending value
     input  wire        status_fault,         // STATUS.fault value
+    input  wire        status_coef_valid,    // STATUS.coef_valid value
+    input  wire        status_swap_refused,  // STATUS.swap_refused value
     input  wire        fault_overcurrent,    // FAULT.overcurrent value
     input  wire        fault_hall,           // FAULT.hall value
     input  wire        fault_encoder,        // FAULT.encoder value
@@ -48,7 +50,12 @@ module axis_regs (
     input  wire        fault_dclink,         // FAULT.dclink value
     input  wire        fault_overrun,        // FAULT.overrun value
     input  wire        fault_adc,            // FAULT.adc value
-    output reg  [6:0]  fault_mask,           // FAULT_MASK (RW)
+    input  wire        fault_pstage,         // FAULT.pstage value
+    input  wire        fault_clock,          // FAULT.clock value
+    input  wire        fault_coef,           // FAULT.coef value
+    input  wire        fault_hall_enc,       // FAULT.hall_enc value
+    input  wire        fault_enc_break,      // FAULT.enc_break value
+    output reg  [11:0] fault_mask,           // FAULT_MASK (RW)
     output reg  [7:0]  dead_time,            // DEAD_TIME (RW)
     output reg  [17:0] kdc,                  // KDC (RW)
     output reg  [15:0] udc,                  // UDC (RW)
@@ -82,6 +89,7 @@ module axis_regs (
     output wire        cnt_re,               // read of a word of window cnt (combinational)
     input  wire [7:0]  cnt_adc_miss,         // CNT_ADC_MISS value
     input  wire [15:0] cnt_enc_err,          // CNT_ENC_ERR value
+    input  wire [7:0]  cnt_swap_ref,         // CNT_SWAP_REF value
     input  wire [31:0] seg_rdata,            // window read data (0 unless read)
     input  wire [31:0] smem_rdata            // window read data (0 unless read)
 );
@@ -115,7 +123,7 @@ module axis_regs (
             ctrl_run <= 1'd0;
             ctrl_complementary <= 1'd0;
             ctrl_pwm_per_control <= `EMPC_PWM_PER_CONTROL;
-            fault_mask <= 7'h7f;
+            fault_mask <= 12'hfff;
             dead_time <= 8'd50;
             kdc <= 18'h10000;
             udc <= 16'd36000;
@@ -149,7 +157,7 @@ module axis_regs (
                         cmd_align_clear <= reg_wdata[5];
                     end
                     5'h4: begin   // FAULT_MASK
-                        fault_mask <= reg_wdata[6:0];
+                        fault_mask <= reg_wdata[11:0];
                     end
                     5'h5: begin   // DEAD_TIME
                         dead_time <= reg_wdata[7:0];
@@ -214,9 +222,9 @@ module axis_regs (
     wire rd_p0 = reg_rd && (reg_addr[7:5] == 3'd0);
     wire rd_p1 = reg_rd && (reg_addr[7:5] == 3'd1);
     reg  [10:0]  q_ctrl;
-    reg  [8:0]   q_status;
-    reg  [6:0]   q_fault;
-    reg  [6:0]   q_fault_mask;
+    reg  [10:0]  q_status;
+    reg  [11:0]  q_fault;
+    reg  [11:0]  q_fault_mask;
     reg  [7:0]   q_dead_time;
     reg  [17:0]  q_kdc;
     reg  [15:0]  q_udc;
@@ -239,15 +247,17 @@ module axis_regs (
     reg  [15:0]  q_latency;
     reg  [7:0]   q_cnt_adc_miss;
     reg  [15:0]  q_cnt_enc_err;
+    reg  [7:0]   q_cnt_swap_ref;
     always @(posedge clk) begin
         q_ctrl <= (rd_p0 && reg_addr[4:0] == 5'h0) ? {ctrl_pwm_per_control, ctrl_complementary, ctrl_run,
             ctrl_enable} : 11'd0;
-        q_status <= (rd_p0 && reg_addr[4:0] == 5'h2) ? {status_fault, status_swap_pending, status_coef_bank,
-            status_core_ready, status_adc_cal_done, status_adc_cal_busy, status_aligned, status_bridges_on,
-            status_running} : 9'd0;
-        q_fault <= (rd_p0 && reg_addr[4:0] == 5'h3) ? {fault_adc, fault_overrun, fault_dclink, fault_watchdog,
-            fault_encoder, fault_hall, fault_overcurrent} : 7'd0;
-        q_fault_mask <= (rd_p0 && reg_addr[4:0] == 5'h4) ? fault_mask : 7'd0;
+        q_status <= (rd_p0 && reg_addr[4:0] == 5'h2) ? {status_swap_refused, status_coef_valid, status_fault,
+            status_swap_pending, status_coef_bank, status_core_ready, status_adc_cal_done, status_adc_cal_busy,
+            status_aligned, status_bridges_on, status_running} : 11'd0;
+        q_fault <= (rd_p0 && reg_addr[4:0] == 5'h3) ? {fault_enc_break, fault_hall_enc, fault_coef,
+            fault_clock, fault_pstage, fault_adc, fault_overrun, fault_dclink, fault_watchdog, fault_encoder,
+            fault_hall, fault_overcurrent} : 12'd0;
+        q_fault_mask <= (rd_p0 && reg_addr[4:0] == 5'h4) ? fault_mask : 12'd0;
         q_dead_time <= (rd_p0 && reg_addr[4:0] == 5'h5) ? dead_time : 8'd0;
         q_kdc <= (rd_p0 && reg_addr[4:0] == 5'h6) ? kdc : 18'd0;
         q_udc <= (rd_p0 && reg_addr[4:0] == 5'h7) ? udc : 16'd0;
@@ -270,11 +280,12 @@ module axis_regs (
         q_latency <= (rd_p1 && reg_addr[4:0] == 5'ha) ? latency : 16'd0;
         q_cnt_adc_miss <= (rd_p1 && reg_addr[4:0] == 5'h1d) ? cnt_adc_miss : 8'd0;
         q_cnt_enc_err <= (rd_p1 && reg_addr[4:0] == 5'h1e) ? cnt_enc_err : 16'd0;
+        q_cnt_swap_ref <= (rd_p1 && reg_addr[4:0] == 5'h1f) ? cnt_swap_ref : 8'd0;
         if (rst) begin
             q_ctrl <= 11'd0;
-            q_status <= 9'd0;
-            q_fault <= 7'd0;
-            q_fault_mask <= 7'd0;
+            q_status <= 11'd0;
+            q_fault <= 12'd0;
+            q_fault_mask <= 12'd0;
             q_dead_time <= 8'd0;
             q_kdc <= 18'd0;
             q_udc <= 16'd0;
@@ -297,14 +308,15 @@ module axis_regs (
             q_latency <= 16'd0;
             q_cnt_adc_miss <= 8'd0;
             q_cnt_enc_err <= 16'd0;
+            q_cnt_swap_ref <= 8'd0;
         end
     end
     assign reg_rdata = seg_rdata
                      | smem_rdata
                      | {16'd0, q_ctrl[10:3], 5'd0, q_ctrl[2:0]}
-                     | {23'd0, q_status}
-                     | {25'd0, q_fault}
-                     | {25'd0, q_fault_mask}
+                     | {21'd0, q_status}
+                     | {20'd0, q_fault}
+                     | {20'd0, q_fault_mask}
                      | {24'd0, q_dead_time}
                      | {14'd0, q_kdc}
                      | {16'd0, q_udc}
@@ -326,7 +338,8 @@ module axis_regs (
                      | {20'd0, q_iabc1}
                      | {16'd0, q_latency}
                      | {24'd0, q_cnt_adc_miss}
-                     | {16'd0, q_cnt_enc_err};
+                     | {16'd0, q_cnt_enc_err}
+                     | {24'd0, q_cnt_swap_ref};
     // reg_wdata bits that no register of this block stores
     wire unused = &{1'b0, reg_wdata[31:29], reg_wdata[23:18]};
 endmodule

@@ -10,7 +10,11 @@
 // Safety: after reset every axis is disabled (bridges off); the watchdog
 // (WDOG_TIMEOUT PWM periods, on by default) latches a fault on every axis when the
 // CPU stops writing WDOG_KICK; any latched, unmasked fault switches the bridges of
-// its axis off in the clock the cause is registered.
+// its axis off in the clock the cause is registered.  Clock-independent kill path
+// (out_kill, docs/safety.md): pwr_fault_n low, PLL unlock, a stopped fabric clock (clk_mon,
+// from the configuration oscillator) or rst_n_in low force every bridge output to 0
+// through one gate after the output registers, without a clock edge; the event is
+// latched as FAULT.pstage / FAULT.clock on every axis through the synchronised path.
 // Global registers: global_regs (generated from gen/empc/regmap.py); TIME, the interrupt
 // output and the LEDs are kept here.
 // Reset: rst_n_in (asynchronous, synchronised in clk_gen) and PLL lock.
@@ -41,6 +45,7 @@ module lx_rocon_top #(
     input  wire [NAXES-1:0]     irc_idx,
     input  wire [NAXES-1:0]     irc_mark,
     input  wire [3*NAXES-1:0]   hall,
+    input  wire                 pwr_fault_n,  // LX_PWR fault, active low: all bridges off without a clock
     // LX_PWR half-bridges: PWM (high-side command) + enable per half-bridge
     // (complementary mode, CTRL.complementary = 1: high and low switch)
     output wire [3*NAXES-1:0]   pwm_out,
@@ -54,6 +59,14 @@ module lx_rocon_top #(
     wire clk, rst, locked;
     clk_gen #(.CLKIN_PERIOD_NS(CLKIN_PERIOD_NS), .MULT(PLL_MULT), .DIV(PLL_DIV)) u_clk (
         .clk_in(clk_in), .rst_n_in(rst_n_in), .clk(clk), .rst(rst), .locked(locked));
+
+    // ---------------- clock-independent kill path ----------------
+    wire clk_dead, kill_pstage, kill_clock;
+    wire [3*NAXES-1:0] hi_r, lo_r;              // the axes' output registers
+    clk_mon u_clkmon (.clk(clk), .rst(rst), .dead(clk_dead));
+    out_kill #(.W(6*NAXES)) u_kill (
+        .clk(clk), .rst(rst), .d({lo_r, hi_r}), .pwr_fault_n(pwr_fault_n), .rst_n_in(rst_n_in),
+        .locked(locked), .clk_dead(clk_dead), .q({pwm_en, pwm_out}), .pstage(kill_pstage), .clock(kill_clock));
 
     // ---------------- CPU bus ----------------
     wire [31:0] emc_d_out;
@@ -153,10 +166,10 @@ module lx_rocon_top #(
                 .clk(clk), .rst(rst),
                 .reg_wr(reg_wr && sel), .reg_rd(reg_rd && sel), .reg_addr(reg_addr[7:0]), .reg_wdata(reg_wdata),
                 .reg_rdata(a_rdata[32*n +: 32]), .coef_we(reg_wr && csel), .coef_addr(reg_addr[9:0]),
-                .watchdog_expired(wdog_expired), .pwm_sync_in(n == 0 ? 1'b0 : sync_out[0]),
+                .watchdog_expired(wdog_expired), .ext_fault({kill_clock, kill_pstage}), .pwm_sync_in(n == 0 ? 1'b0 : sync_out[0]),
                 .pwm_sync_out(sync_out[n]),
                 .irc_a(irc_a[n]), .irc_b(irc_b[n]), .irc_idx(irc_idx[n]), .irc_mark(irc_mark[n]),
-                .hall(hall[3*n +: 3]), .pwm_hi(pwm_out[3*n +: 3]), .pwm_lo(pwm_en[3*n +: 3]),
+                .hall(hall[3*n +: 3]), .pwm_hi(hi_r[3*n +: 3]), .pwm_lo(lo_r[3*n +: 3]),
                 .adc_sclk(sclk_ax[n]), .adc_cs_n(cs_ax[n]), .adc_miso(adc_miso[3*n +: 3]),
                 .period_tick(period_tick[n]), .control_done(control_done[n]), .fault_any(fault_any[n]));
         end
@@ -175,6 +188,6 @@ module lx_rocon_top #(
     // clock after reg_rd as emc_bus expects (RD_LAT = 1)
     always @(*) reg_rdata = g_rdata | a_or;
 
-    wire unused = &{1'b0, locked, err_wr_short, err_rd_short, sclk_ax, cs_ax, sync_out, scratch};
+    wire unused = &{1'b0, err_wr_short, err_rd_short, sclk_ax, cs_ax, sync_out, scratch};
 endmodule
 `default_nettype wire

@@ -12,6 +12,10 @@
 // Safety: every cause in FAULT_MASK forces all six outputs off in the clock the
 // cause is registered (fault_ctrl.trip is combinational into pwm_center's fault,
 // whose outputs are registered); latched until CMD.fault_clear with the cause gone.
+// The power-stage, clock (ext_fault, from the top's clock-independent kill path) and
+// coefficient-image causes trip whatever FAULT_MASK says.  The bridges are enabled
+// only while the angle is valid (pos_sense) and the active coefficient bank holds a
+// valid image (a bad boot image keeps them off until a valid upload is swapped in).
 // Reset: CTRL.enable = 0 (outputs off), registers at their map reset values.
 `default_nettype none
 `include "empc_formats.vh"
@@ -35,6 +39,7 @@ module mpc_axis #(
     input  wire [9:0]  coef_addr,
     // global
     input  wire        watchdog_expired,
+    input  wire [1:0]  ext_fault,        // {clock, pstage}: out_kill causes (synchronous levels)
     input  wire        pwm_sync_in,      // restart the PWM period (phase-lock several axes)
     output wire        pwm_sync_out,
     // pins
@@ -55,6 +60,8 @@ module mpc_axis #(
 );
     localparam integer CW = $clog2(`EMPC_PWM_HALF_PERIOD + 1);
     localparam integer NCAUSE = `EMPC_A_FAULT_W;
+    // causes that trip whatever FAULT_MASK says
+    localparam [NCAUSE-1:0] NOMASK = (1 << `EMPC_A_FAULT_PSTAGE) | (1 << `EMPC_A_FAULT_CLOCK) | (1 << `EMPC_A_FAULT_COEF);
     localparam integer RAW = (N < 2) ? 1 : $clog2(N + 1);
 
     // ---------------- register outputs (axis_regs, instance at the end) ----------------
@@ -86,7 +93,8 @@ module mpc_axis #(
 
     // signals that run against the dataflow (PWM timing, fault trip)
     wire        period_start, adc_trig, trip;
-    wire        bridges_on = ctrl_enable && !trip;
+    wire        core_img_ok;
+    wire        bridges_on = ctrl_enable && !trip && theta_valid && core_img_ok;
     wire        running = ctrl_run && bridges_on;
 
     // ---------------- sensors: encoder, HALL, position ----------------
@@ -124,6 +132,11 @@ module mpc_axis #(
         .speed(ps_speed), .speed_q(ps_speed_q), .speed_sat(speed_sat), .pos_at_sample(pos_at_sample),
         .theta_at_sample(theta_at_sample), .sample_valid(sample_valid));
     /* verilator lint_on PINCONNECTEMPTY */
+    wire        hall_enc, enc_break;
+    sens_check u_sens (
+        .clk(clk), .rst(rst), .theta_hi(theta[15:10]), .theta_valid(theta_valid), .hall_off_hi(hall_offset[15:10]),
+        .hall_sector(hall_sector), .hall_valid(hall_valid), .hall_change(hall_change), .pos_q(pos[11:3]),
+        .hall_enc(hall_enc), .enc_break(enc_break));
 
     // ---------------- sensors: current ADC ----------------
     wire        adc_busy, adc_trig_miss, adc_valid, adc_sat, adc_cal_busy, adc_cal_done, adc_oc, adc_frame_err;
@@ -182,6 +195,7 @@ module mpc_axis #(
     wire [10:0]                     core_flags;
     wire [7:0]                      core_latency;
     wire                            core_ready, core_bank, core_swap_pending, core_boot_ok;
+    wire                            core_upl_ok, core_swap_refused, core_refused;
     wire                            seq_front_sat, overrun;
     wire [15:0]                     seq_latency;
     wire signed [`EMPC_I_W-1:0]     st_id, st_iq;
@@ -210,8 +224,16 @@ module mpc_axis #(
         .in_wdata(core_in_wdata), .busy(core_busy),
         .done(core_done), .u(core_u), .du(core_du), .u_raw(core_u_raw), .ebar(core_ebar), .wn(core_wn),
         .flags(core_flags), .latency(core_latency), .cfg_we(coef_we), .cfg_addr(coef_addr),
-        .cfg_wdata(reg_wdata), .cfg_swap(cmd_coef_swap), .ready(core_ready), .bank(core_bank),
-        .swap_pending(core_swap_pending), .boot_ok(core_boot_ok), .task_pos(task_pos));
+        .cfg_wdata(reg_wdata), .cfg_swap(cmd_coef_swap), .swap_at(pos_sample), .ready(core_ready), .bank(core_bank),
+        .swap_pending(core_swap_pending), .boot_ok(core_boot_ok), .img_ok(core_img_ok), .upl_ok(core_upl_ok),
+        .swap_refused(core_swap_refused), .refused(core_refused), .task_pos(task_pos));
+    wire img_bad = core_ready && !core_img_ok;
+    // refused swaps: 8-bit saturating counter (CNT_SWAP_REF)
+    reg  [`EMPC_A_CNT_SWAP_REF_W-1:0] cnt_swap_ref;
+    always @(posedge clk) begin
+        if (rst || cmd_clear_counters)              cnt_swap_ref <= 0;
+        else if (core_refused && !(&cnt_swap_ref)) cnt_swap_ref <= cnt_swap_ref + 1'b1;
+    end
 
     // ---------------- faults ----------------
     // cause bit k = FAULT field at bit k (positions from the register map)
@@ -224,9 +246,14 @@ module mpc_axis #(
     assign causes[`EMPC_A_FAULT_DCLINK] = udc_bad;
     assign causes[`EMPC_A_FAULT_OVERRUN] = overrun;
     assign causes[`EMPC_A_FAULT_ADC] = adc_frame_err;
+    assign causes[`EMPC_A_FAULT_PSTAGE] = ext_fault[0];
+    assign causes[`EMPC_A_FAULT_CLOCK] = ext_fault[1];
+    assign causes[`EMPC_A_FAULT_COEF] = img_bad;
+    assign causes[`EMPC_A_FAULT_HALL_ENC] = hall_enc;
+    assign causes[`EMPC_A_FAULT_ENC_BREAK] = enc_break;
     wire [NCAUSE-1:0] fault_latched;
     fault_ctrl #(.NCAUSE(NCAUSE)) u_fault (
-        .clk(clk), .rst(rst), .cause_in(causes), .mask(fault_mask), .clear(cmd_fault_clear),
+        .clk(clk), .rst(rst), .cause_in(causes), .mask(fault_mask | NOMASK), .clear(cmd_fault_clear),
         .fault_latched(fault_latched), .trip(trip));
     assign fault_any = |fault_latched;
 
@@ -266,7 +293,10 @@ module mpc_axis #(
         .fault_overcurrent(fault_latched[`EMPC_A_FAULT_OVERCURRENT]), .fault_hall(fault_latched[`EMPC_A_FAULT_HALL]),
         .fault_encoder(fault_latched[`EMPC_A_FAULT_ENCODER]), .fault_watchdog(fault_latched[`EMPC_A_FAULT_WATCHDOG]),
         .fault_dclink(fault_latched[`EMPC_A_FAULT_DCLINK]), .fault_overrun(fault_latched[`EMPC_A_FAULT_OVERRUN]),
-        .fault_adc(fault_latched[`EMPC_A_FAULT_ADC]),
+        .fault_adc(fault_latched[`EMPC_A_FAULT_ADC]), .fault_pstage(fault_latched[`EMPC_A_FAULT_PSTAGE]),
+        .fault_clock(fault_latched[`EMPC_A_FAULT_CLOCK]), .fault_coef(fault_latched[`EMPC_A_FAULT_COEF]),
+        .fault_hall_enc(fault_latched[`EMPC_A_FAULT_HALL_ENC]), .fault_enc_break(fault_latched[`EMPC_A_FAULT_ENC_BREAK]),
+        .status_coef_valid(core_upl_ok), .status_swap_refused(core_swap_refused), .cnt_swap_ref(cnt_swap_ref),
         .fault_mask(fault_mask), .dead_time(dead_time), .kdc(kdc), .udc(udc), .udc_min(udc_min),
         .udc_max(udc_max), .oc_thresh(oc_thresh),
         .adc_off_we(adc_off_we), .adc_off_wdata(adc_off_wdata), .adc_off0(off0), .adc_off1(off1), .adc_off2(off2),
@@ -279,7 +309,7 @@ module mpc_axis #(
 
     // adc_trig_miss: counted by adc_spi itself (miss_cnt -> CNT_ADC_MISS)
     wire unused = &{1'b0, dir, index_seen, index_dir, mark_pos, mark_seen, mark_event, enc_err_flag,
-                    enc_in_state, enc_ready, hall_code, hall_ready, hall_fault, theta_valid, speed_sat,
+                    enc_in_state, enc_ready, hall_code, hall_ready, hall_fault, speed_sat,
                     sample_valid, ps_speed, pos_at_sample, ps_speed_q, theta_at_sample,
                     pwm_fault_latched, mode_eff, adc_busy, adc_trig_miss, oc_ch, core_busy, core_du, core_u_raw,
                     core_wn, core_latency, core_boot_ok, theta_trig, ref_busy, st_id, st_iq};

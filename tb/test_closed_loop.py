@@ -26,7 +26,7 @@ import pytest
 
 import cocotb
 from cocotb.clock import Clock
-from cocotb.triggers import ClockCycles, RisingEdge, ReadOnly
+from cocotb.triggers import ClockCycles, RisingEdge, ReadOnly, Timer
 from cocotb.utils import get_sim_time
 
 from empc import closedloop as cl
@@ -47,6 +47,8 @@ COSIM = {
     "overcurrent": ("position_alg2", 0.030, "overcurrent"),
     "encoder": ("position_alg2", 0.030, "encoder"),
     "watchdog": ("position_alg2", 0.040, "watchdog"),
+    "pstage": ("position_alg2", 0.030, "pstage"),
+    "clock": ("position_alg2", 0.030, "clock"),
     "position_alg1": ("position_alg1", 0.70, None),
     "position_alg2": ("position_alg2", 0.70, None),
     "speed_steps": ("speed_steps", 0.40, None),
@@ -97,6 +99,9 @@ class CoSim:
         self.u_applied = (0, 0)
         self.reg_checks = 0
         self.t_profile0 = None     # sim time of profile time 0 (see pwm_period)
+        self.swap_params = None    # a coefficient swap requested: applied at the next control period
+        self.kill = {}             # kill-path measurements (pstage / clock scenarios)
+        self.clk = None
 
     # ------------------------------------------------------------------ pins
     def drive_plant_pins(self):
@@ -128,6 +133,8 @@ class CoSim:
         t_trig = get_sim_time("ps")
         self.regs.run = bool(int(dut.dbg_running.value))
         control = self.seq.per_cnt + 1 >= self.regs.pwm_per_control
+        if control and self.swap_params is not None:      # the RTL swaps at this control sample
+            self.seq.params, self.swap_params = self.swap_params, None
         ref_w = self.ref.advance() if control else None
         if control and self.started and self.t_profile0 is None:
             # this advance loads the profile's first value into the head w_{k+N}: the
@@ -186,6 +193,69 @@ class CoSim:
         self.t += 0.5 * self.Tpwm
 
 
+OSC_PERIOD_PS = 19_970                # clk_mon oscillator stand-in: ~50 MHz, not a multiple of clk
+PSTAGE_PULSE_PS = 3_000              # power-stage fault pulse, shorter than a clock period
+CLOCK_STOP_PS = 3_000_000            # fabric clock stopped for 3 us
+OSC_BOUND = 19                       # clk_mon: oscillator cycles from the last clock edge to dead
+
+
+async def pstage_pulse(dut, cs) -> None:
+    """A 3 ns power-stage fault pulse while the bridges switch: the pins go off with no clock
+    edge, the output registers follow through the fault latch, FAULT.pstage stays latched."""
+    await RisingEdge(dut.clk)
+    await Timer(2, unit="ns")
+    assert int(dut.pwm_en.value) == 0b111, "bridges not on before the power-stage pulse"
+    dut.pwr_fault_n.value = 0
+    await Timer(1, unit="ns")
+    pins, regs = int(dut.pwm_en.value) | int(dut.pwm_out.value), int(dut.dbg_out_reg.value)
+    assert pins == 0 and regs != 0, f"pins {pins:#x} not off at once (registers {regs:#x})"
+    await Timer(PSTAGE_PULSE_PS - 1000, unit="ps")
+    dut.pwr_fault_n.value = 1
+    n = 0
+    while True:
+        await RisingEdge(dut.clk)
+        await ReadOnly()
+        n += 1
+        assert int(dut.pwm_en.value) == 0 and int(dut.pwm_out.value) == 0, f"pins back on {n} clocks after the pulse"
+        if int(dut.dbg_out_reg.value) == 0:
+            break
+        assert n < 10, "output registers not off 10 clocks after the pulse"
+    cs.kill.update(pulse_ps=PSTAGE_PULSE_PS, pins_off_clock_edges=0, registers_off_clocks=n)
+    await RisingEdge(dut.clk)
+
+
+async def clock_stop(dut, cs) -> None:
+    """The fabric clock stops for 3 us while the bridges switch: clk_mon (oscillator stand-in)
+    declares it dead and the pins go off without a clock; after the restart FAULT.clock holds."""
+    await RisingEdge(dut.clk)
+    await Timer(3, unit="ns")
+    assert int(dut.pwm_en.value) == 0b111, "bridges not on before the clock stop"
+    cs.clk.stop()
+    t0 = cocotb.utils.get_sim_time("ps")
+    while int(dut.pwm_en.value) | int(dut.pwm_out.value):
+        await Timer(1, unit="ns")
+        assert cocotb.utils.get_sim_time("ps") - t0 < CLOCK_STOP_PS, "pins not off with the clock stopped"
+    t_off = cocotb.utils.get_sim_time("ps") - t0
+    assert int(dut.dbg_out_reg.value) != 0, "registers changed without a clock"
+    assert t_off <= (OSC_BOUND + 1) * OSC_PERIOD_PS, f"pins off {t_off} ps after the stop"
+    await Timer(CLOCK_STOP_PS - t_off, unit="ps")
+    assert int(dut.pwm_en.value) == 0 and int(dut.pwm_out.value) == 0
+    cs.clk = Clock(dut.clk, CLK_PERIOD_NS, unit="ns")
+    cs.clk.start()
+    n = 0
+    while True:
+        await RisingEdge(dut.clk)
+        await ReadOnly()
+        n += 1
+        assert int(dut.pwm_en.value) == 0 and int(dut.pwm_out.value) == 0, f"pins back on {n} clocks after the restart"
+        if int(dut.dbg_out_reg.value) == 0:
+            break
+        assert n < 200, "output registers not off 200 clocks after the restart"
+    cs.kill.update(stop_ps=CLOCK_STOP_PS, pins_off_after_stop_ns=t_off / 1000, osc_period_ps=OSC_PERIOD_PS,
+                   pins_off_osc_cycles=round(t_off / OSC_PERIOD_PS, 1), registers_off_clocks_after_restart=n)
+    await RisingEdge(dut.clk)
+
+
 async def check_global_regs(dut, bus, drv) -> None:
     """Global register read path (lx_rocon_top): constants, RW readback, TIME, and that the
     axis and coefficient-window addresses do not leak into a global read."""
@@ -218,7 +288,11 @@ async def run_cosim(dut, name: str) -> dict:
     bus = EmcBfm(dut, pins=dict(cs_n="cpu_cs_n", oe_n="cpu_oe_n", we_n="cpu_we_n", a="cpu_a", d="cpu_d",
                                 d_oe="cpu_d_oe", bus="emc_d_seen"))
     drv = driver.Drive(bus)
-    cocotb.start_soon(Clock(dut.clk, CLK_PERIOD_NS, unit="ns").start())
+    cs.clk = Clock(dut.clk, CLK_PERIOD_NS, unit="ns")
+    cs.clk.start()
+    if cs.fault == "clock":                  # the configuration-oscillator stand-in of clk_mon
+        Clock(dut.u_top.u_clkmon.osc_sim, OSC_PERIOD_PS, unit="ps").start()
+    dut.pwr_fault_n.value = 1
     dut.rst_n.value = 0
     dut.enc_target.value = 0
     dut.idx_enable.value = 0
@@ -261,14 +335,10 @@ async def run_cosim(dut, name: str) -> dict:
             plan.append([up])
 
         async def swap():
+            assert (await drv.read("STATUS") >> 9) & 1, "STATUS.coef_valid: the upload was not accepted as complete"
             await drv.command(coef_swap=1)
+            cs.swap_params = cs.params
         plan.append([swap])
-
-        async def check_swap():
-            st = await drv.read("STATUS")
-            assert (st >> 7) & 1 == 0, "coefficient swap still pending while the core is idle"
-            cs.seq.params = cs.params
-        plan.append([check_swap])
 
     async def ref_setup():
         await drv.command(ref_sync=1)         # head = measured position (0) / speed (0)
@@ -312,6 +382,10 @@ async def run_cosim(dut, name: str) -> dict:
         await drv.kick()
 
     async def enable():
+        st = await drv.read("STATUS")
+        if cs.params != cs.boot:          # the swap was decided at a control sample since
+            assert (st >> 7) & 1 == 0 and (st >> 10) & 1 == 0 and (st >> 6) & 1 == 1 and cs.swap_params is None, \
+                f"coefficient swap not applied (STATUS {st:#x})"
         await w("SEG_START", 0)
         cs.ref.start(0)
         cs.started = True
@@ -326,6 +400,10 @@ async def run_cosim(dut, name: str) -> dict:
             acts.append(kick)
         if cs.fault == "overcurrent" and k == fault_at:
             cs.inject = True
+        if cs.fault == "pstage" and k == fault_at:
+            acts.append(lambda: pstage_pulse(dut, cs))
+        if cs.fault == "clock" and k == fault_at:
+            acts.append(lambda: clock_stop(dut, cs))
         if cs.fault == "encoder" and k == fault_at:
             async def glitch():
                 for _ in range(5):             # both channels toggle in one sample: illegal transitions
@@ -431,7 +509,8 @@ async def closed_loop(dut, name: str):
         _plot(cs, tr, ftr, REPORTS / f"closed_loop_{name}.png")
     else:
         assert res["fault_seen"] is not None, f"{cs.fault}: no fault tripped"
-        bit = {"overcurrent": 0, "encoder": 2, "watchdog": 3}[cs.fault]
+        bit = {"overcurrent": 0, "encoder": 2, "watchdog": 3, "pstage": 7, "clock": 8}[cs.fault]
+        report["kill_path"] = cs.kill
         assert (res["status"]["FAULT"] >> bit) & 1, f"{cs.fault}: FAULT register {res['status']['FAULT']:#x}"
         # cleared only by the CPU: still latched now, clears once the cause has gone
         cs.inject = False
@@ -499,6 +578,16 @@ async def cosim_fault_watchdog(dut):
     await closed_loop(dut, "watchdog")
 
 
+@cocotb.test(skip=os.environ.get("EMPC_COSIM_SET", "ci") != "ci")
+async def cosim_fault_pstage(dut):
+    await closed_loop(dut, "pstage")
+
+
+@cocotb.test(skip=os.environ.get("EMPC_COSIM_SET", "ci") != "ci")
+async def cosim_fault_clock(dut):
+    await closed_loop(dut, "clock")
+
+
 # two groups of about equal wall time, one per xdist worker (one simulator build each)
 FULL_GROUPS = ("position_alg2,load_step", "position_alg1,speed_steps")
 
@@ -511,7 +600,7 @@ async def cosim_full(dut):
 
 # ---------------------------------------------------------------- pytest entries
 def test_closed_loop():
-    """Short position scenario (bit-exact against the model) and the three fault injections, on Verilator."""
+    """Short position scenario (bit-exact against the model) and the five fault injections, on Verilator."""
     from runner import run
     run(toplevel="cosim_top", test_module="test_closed_loop", sim="verilator", name="cosim",
         extra_env={"EMPC_COSIM_SET": "ci"})

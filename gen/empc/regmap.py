@@ -231,19 +231,22 @@ AXIS = (
         Field("fault_clear", 0, 1, "clear latched faults (only those whose cause has gone)"),
         Field("adc_cal", 1, 1, "start ADC offset calibration (keep enable = 0: bridges off)"),
         Field("ref_sync", 2, 1, "set the reference generator to the measured output (bumpless start)"),
-        Field("coef_swap", 3, 1, "make the uploaded coefficient bank active at the next control period"),
+        Field("coef_swap", 3, 1, "make the uploaded coefficient bank active at the next control-period sample "
+              "instant; refused (STATUS.swap_refused, CNT_SWAP_REF) unless it holds a complete valid image"),
         Field("clear_counters", 4, 1, "zero the saturation and event counters"),
         Field("align_clear", 5, 1, "forget the index alignment (back to HALL alignment)"))),
     Reg("STATUS", 0x02, "RO", 0, "Axis state.", (
         Field("running", 0, 1, "control law running"),
-        Field("bridges_on", 1, 1, "outputs enabled (enable and no fault)"),
+        Field("bridges_on", 1, 1, "outputs enabled (enable, no fault, angle valid, valid coefficient image)"),
         Field("aligned", 2, 1, "angle aligned at the encoder index (else HALL rough alignment)"),
         Field("adc_cal_busy", 3, 1, "ADC offset calibration in progress"),
         Field("adc_cal_done", 4, 1, "ADC calibration has completed since reset"),
         Field("core_ready", 5, 1, "MPC core loaded its boot coefficients"),
         Field("coef_bank", 6, 1, "active coefficient bank"),
         Field("swap_pending", 7, 1, "a bank swap waits for the next control period"),
-        Field("fault", 8, 1, "a fault is latched (bridges forced off)"))),
+        Field("fault", 8, 1, "a fault is latched (bridges forced off)"),
+        Field("coef_valid", 9, 1, "the inactive bank holds a complete valid upload (a swap would be accepted)"),
+        Field("swap_refused", 10, 1, "the last decided coefficient swap was refused (until a swap is accepted)"))),
     Reg("FAULT", 0x03, "RO", 0, "Latched (sticky) fault causes; cleared by CMD.fault_clear once the cause has gone.", (
         Field("overcurrent", 0, 1, "|phase current| above OC_THRESH"),
         Field("hall", 1, 1, "illegal HALL code 000 or 111"),
@@ -251,9 +254,15 @@ AXIS = (
         Field("watchdog", 3, 1, "CPU did not kick the watchdog in time"),
         Field("dclink", 4, 1, "UDC outside UDC_MIN..UDC_MAX"),
         Field("overrun", 5, 1, "the control computation did not finish before the PWM update"),
-        Field("adc", 6, 1, "ADC frame error (leading zero bit read as 1)"))),
-    Reg("FAULT_MASK", 0x04, "RW", 0x7f, "Fault causes that switch the bridges off (same bits as FAULT). "
-        "Masked causes are still recorded in FAULT.", width=7),
+        Field("adc", 6, 1, "ADC frame error (leading zero bit read as 1)"),
+        Field("pstage", 7, 1, "power-stage fault input pwr_fault_n was low (clock-independent kill; not maskable)"),
+        Field("clock", 8, 1, "PLL lock lost or fabric clock stopped (clock-independent kill; not maskable)"),
+        Field("coef", 9, 1, "the active coefficient bank holds no valid image (bad boot image; not maskable)"),
+        Field("hall_enc", 10, 1, "HALL sector and encoder disagree (angle 2+ sectors apart, HALL against or "
+              "beyond the encoder)"),
+        Field("enc_break", 11, 1, "encoder line break: a whole HALL sector crossed with under half its counts"))),
+    Reg("FAULT_MASK", 0x04, "RW", 0xfff, "Fault causes that switch the bridges off (same bits as FAULT). "
+        "Masked causes are still recorded in FAULT; pstage, clock and coef always trip.", width=12),
     Reg("DEAD_TIME", 0x05, "RW", 50, "Dead time in fabric clocks (complementary mode).", width=8),
     Reg("KDC", 0x06, "RW", 1 << 16, "DC-link compensation Udc_nominal / Udc, unsigned Q2.16 (1.0 = 0x10000).",
         width=18),
@@ -330,6 +339,8 @@ AXIS = (
     Reg("CNT_ADC_MISS", 0x3d, "RO", 0, "ADC triggers ignored while busy (8-bit, saturating; not cleared by "
         "CMD.clear_counters).", width=8),
     Reg("CNT_ENC_ERR", 0x3e, "RO", 0, "Illegal quadrature transitions (16-bit, saturating).", width=16),
+    Reg("CNT_SWAP_REF", 0x3f, "RO", 0, "Refused coefficient swaps (8-bit, saturating; CMD.clear_counters zeroes "
+        "it).", width=8),
 )
 
 

@@ -44,7 +44,9 @@ def test_map_layout_lines_short():
 
 def test_vh_widths_and_build_resets():
     vh = regmap.render_vh()
-    assert "`define EMPC_A_KDC_W 18\n" in vh and "`define EMPC_A_FAULT_W 7\n" in vh
+    nfault = len(regmap.axis_reg("FAULT").fields)        # one bit per cause, contiguous from bit 0
+    assert "`define EMPC_A_KDC_W 18\n" in vh and f"`define EMPC_A_FAULT_W {nfault}\n" in vh
+    assert f"`define EMPC_A_FAULT_MASK_W {nfault}\n" in vh
     assert "`define EMPC_A_ADC_OFF0_RESET `EMPC_ADC_OFFSET\n" in vh
     assert "`define EMPC_A_CTRL_PWM_PER_CONTROL_W 8\n" in vh
 

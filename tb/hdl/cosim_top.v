@@ -5,7 +5,9 @@
 // per half PWM period) and adc_spi_slave (answers the ADC SPI with the phase
 // currents' codes written by Python).  The CPU bus pins are driven by the EMC
 // bus-functional model (tb/emc_bfm.py) through cpu_* and the resolved bus emc_d.
-// HALL pins are driven directly from Python (slow signals).
+// HALL pins and the power-stage fault pin are driven directly from Python (slow signals).
+// The loss-of-clock monitor's oscillator stand-in is u_top.u_clkmon.osc_sim (clk_mon): a test
+// that wants the monitor starts a clock on it; otherwise the monitor stays disarmed-idle.
 `default_nettype none
 module cosim_top #(
     parameter integer CPR = 4000,
@@ -28,6 +30,7 @@ module cosim_top #(
     input  wire        mark,
     input  wire        enc_glitch,     // fault injection: toggle A and B together
     input  wire [2:0]  hall,
+    input  wire        pwr_fault_n,    // power-stage fault pin (active low)
     input  wire [11:0] adc_code0,
     input  wire [11:0] adc_code1,
     input  wire [11:0] adc_code2,
@@ -43,7 +46,8 @@ module cosim_top #(
     output wire [35:0] dbg_cmp,
     output wire [7:0]  dbg_per_cnt,
     output wire        dbg_running,
-    output wire        dbg_trip
+    output wire        dbg_trip,
+    output wire [5:0]  dbg_out_reg     // the bridge-command registers before the kill gate {lo, hi}
 );
     wire [31:0] emc_d;
     assign emc_d = cpu_d_oe ? cpu_d : 32'bz;
@@ -64,7 +68,7 @@ module cosim_top #(
     lx_rocon_top #(.NAXES(1)) u_top (
         .clk_in(clk), .rst_n_in(rst_n), .emc_cs_n(cpu_cs_n), .emc_oe_n(cpu_oe_n), .emc_we_n(cpu_we_n),
         .emc_a(cpu_a), .emc_d(emc_d), .cpu_irq(cpu_irq), .irc_a(enc_a), .irc_b(enc_b), .irc_idx(enc_idx),
-        .irc_mark(mark), .hall(hall), .pwm_out(pwm_out), .pwm_en(pwm_en), .adc_sclk(adc_sclk),
+        .irc_mark(mark), .hall(hall), .pwr_fault_n(pwr_fault_n), .pwm_out(pwm_out), .pwm_en(pwm_en), .adc_sclk(adc_sclk),
         .adc_cs_n(adc_cs_n), .adc_miso(adc_miso), .led(led));
 
     assign dbg_period_start = u_top.g_axis[0].u_axis.period_start;
@@ -74,5 +78,6 @@ module cosim_top #(
     assign dbg_per_cnt = u_top.g_axis[0].u_axis.u_seq.per_cnt;
     assign dbg_running = u_top.g_axis[0].u_axis.running;
     assign dbg_trip = u_top.g_axis[0].u_axis.trip;
+    assign dbg_out_reg = {u_top.lo_r, u_top.hi_r};
 endmodule
 `default_nettype wire

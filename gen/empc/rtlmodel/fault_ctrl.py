@@ -8,7 +8,8 @@ recorded too.
 from __future__ import annotations
 
 # bit order of the AXIS FAULT register (gen/empc/regmap.py)
-CAUSES = ("overcurrent", "hall", "encoder", "watchdog", "dclink", "overrun", "adc")
+CAUSES = ("overcurrent", "hall", "encoder", "watchdog", "dclink", "overrun", "adc",
+          "pstage", "clock", "coef", "hall_enc", "enc_break")
 
 
 class FaultCtrl:
