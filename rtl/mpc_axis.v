@@ -53,17 +53,17 @@ module mpc_axis #(
     output wire        fault_any
 );
     localparam integer CW = $clog2(`EMPC_PWM_HALF_PERIOD + 1);
-    localparam integer NCAUSE = 7;
+    localparam integer NCAUSE = 10;
     localparam integer RAW = (N < 2) ? 1 : $clog2(N + 1);
 
     // ---------------- registers ----------------
     reg         r_enable, r_run, r_compl;
     reg  [7:0]  r_ppc;
-    reg  [6:0]  r_fault_mask;
+    reg  [NCAUSE-1:0] r_fault_mask;
     reg  [7:0]  r_dead;
     reg  [17:0] r_kdc;
     reg  [15:0] r_udc, r_udc_min, r_udc_max;
-    reg  [11:0] r_oc_thresh;
+    reg  [11:0] r_oc_thresh, r_sum_thresh;
     reg  [15:0] r_angle_cal, r_hall_offset;
     reg  signed [17:0] r_kacc;
     reg  [4:0]  r_kacc_shift;
@@ -93,7 +93,7 @@ module mpc_axis #(
 
     // write decode: one enable per register from a shared predecode (offsets 0x00..0x1f)
     wire        wr_lo = reg_wr && (reg_addr[7:5] == 3'd0);
-    localparam [7:0] W_ADC_OFF0 = `EMPC_A_ADC_OFF0, W_ADC_OFF1 = `EMPC_A_ADC_OFF1, W_ADC_OFF2 = `EMPC_A_ADC_OFF2, W_ANGLE_CAL = `EMPC_A_ANGLE_CAL, W_CMD = `EMPC_A_CMD, W_CTRL = `EMPC_A_CTRL, W_DEAD_TIME = `EMPC_A_DEAD_TIME, W_FAULT_MASK = `EMPC_A_FAULT_MASK, W_HALL_OFFSET = `EMPC_A_HALL_OFFSET, W_ID_REF = `EMPC_A_ID_REF, W_IQ_REF = `EMPC_A_IQ_REF, W_KACC = `EMPC_A_KACC, W_KDC = `EMPC_A_KDC, W_OC_THRESH = `EMPC_A_OC_THRESH, W_SEG_ADDR = `EMPC_A_SEG_ADDR, W_SEG_START = `EMPC_A_SEG_START, W_UDC = `EMPC_A_UDC, W_UDC_MAX = `EMPC_A_UDC_MAX, W_UDC_MIN = `EMPC_A_UDC_MIN;
+    localparam [7:0] W_ADC_OFF0 = `EMPC_A_ADC_OFF0, W_ADC_OFF1 = `EMPC_A_ADC_OFF1, W_ADC_OFF2 = `EMPC_A_ADC_OFF2, W_ANGLE_CAL = `EMPC_A_ANGLE_CAL, W_CMD = `EMPC_A_CMD, W_CTRL = `EMPC_A_CTRL, W_DEAD_TIME = `EMPC_A_DEAD_TIME, W_FAULT_MASK = `EMPC_A_FAULT_MASK, W_HALL_OFFSET = `EMPC_A_HALL_OFFSET, W_ID_REF = `EMPC_A_ID_REF, W_IQ_REF = `EMPC_A_IQ_REF, W_KACC = `EMPC_A_KACC, W_KDC = `EMPC_A_KDC, W_OC_THRESH = `EMPC_A_OC_THRESH, W_SEG_ADDR = `EMPC_A_SEG_ADDR, W_SEG_START = `EMPC_A_SEG_START, W_UDC = `EMPC_A_UDC, W_UDC_MAX = `EMPC_A_UDC_MAX, W_UDC_MIN = `EMPC_A_UDC_MIN, W_ADC_SUM_THRESH = `EMPC_A_ADC_SUM_THRESH;
     always @(posedge clk) begin
         c_ref_sync_d <= c_ref_sync && !rst;     // sync after the value latch
         c_fault_clear <= 1'b0;
@@ -116,6 +116,7 @@ module mpc_axis #(
             r_udc_min <= `EMPC_A_UDC_MIN_RESET;
             r_udc_max <= `EMPC_A_UDC_MAX_RESET;
             r_oc_thresh <= `EMPC_A_OC_THRESH_RESET;
+            r_sum_thresh <= `EMPC_A_ADC_SUM_THRESH_RESET;
             r_angle_cal <= `EMPC_A_ANGLE_CAL_RESET;
             r_hall_offset <= `EMPC_A_HALL_OFFSET_RESET;
             r_kacc <= `EMPC_KACC;
@@ -142,13 +143,14 @@ module mpc_axis #(
                     c_clear_cnt <= reg_wdata[`EMPC_A_CMD_CLEAR_COUNTERS];
                     c_align_clear <= reg_wdata[`EMPC_A_CMD_ALIGN_CLEAR];
                 end
-                W_FAULT_MASK[4:0]: r_fault_mask <= reg_wdata[6:0];
+                W_FAULT_MASK[4:0]: r_fault_mask <= reg_wdata[NCAUSE-1:0];
                 W_DEAD_TIME[4:0]: r_dead <= reg_wdata[7:0];
                 W_KDC[4:0]: r_kdc <= reg_wdata[17:0];
                 W_UDC[4:0]: r_udc <= reg_wdata[15:0];
                 W_UDC_MIN[4:0]: r_udc_min <= reg_wdata[15:0];
                 W_UDC_MAX[4:0]: r_udc_max <= reg_wdata[15:0];
                 W_OC_THRESH[4:0]: r_oc_thresh <= reg_wdata[11:0];
+                W_ADC_SUM_THRESH[4:0]: r_sum_thresh <= reg_wdata[11:0];
                 W_ADC_OFF0[4:0]: begin c_off_we <= 3'b001; c_off_wdata <= reg_wdata[11:0]; end
                 W_ADC_OFF1[4:0]: begin c_off_we <= 3'b010; c_off_wdata <= reg_wdata[11:0]; end
                 W_ADC_OFF2[4:0]: begin c_off_we <= 3'b100; c_off_wdata <= reg_wdata[11:0]; end
@@ -204,9 +206,9 @@ module mpc_axis #(
     /* verilator lint_on PINCONNECTEMPTY */
 
     // ---------------- faults ----------------
-    wire        adc_oc, adc_frame_err, overrun;
+    wire        adc_oc, adc_frame_err, adc_stuck, adc_sum_err, adc_frozen, overrun;
     wire        udc_bad = (r_udc < r_udc_min) || (r_udc > r_udc_max);
-    wire [NCAUSE-1:0] causes = {adc_frame_err, overrun, udc_bad, watchdog_expired, enc_err_pulse,
+    wire [NCAUSE-1:0] causes = {adc_frozen, adc_sum_err, adc_stuck, adc_frame_err, overrun, udc_bad, watchdog_expired, enc_err_pulse,
                                 hall_fault_pulse, adc_oc};
     wire [NCAUSE-1:0] fault_latched;
     wire        trip;
@@ -228,18 +230,25 @@ module mpc_axis #(
     assign period_tick = period_start;
 
     // ---------------- current ADC ----------------
-    wire        adc_busy, adc_trig_miss, adc_valid, adc_sat, adc_cal_busy, adc_cal_done;
+    // Back-to-back frames on a grid re-phased at every period boundary, the controller's
+    // sample = the mean of the frames centred on adc_trig; every frame checked (overcurrent,
+    // frame, rails, sum of the currents), frozen channels per period (docs/blocks/adc_spi.md).
+    wire        adc_busy, adc_trig_miss, adc_valid, adc_fvalid, adc_sat, adc_cal_busy, adc_cal_done, adc_refused;
     wire [7:0]  adc_miss_cnt;
     wire [11:0] code0, code1, code2, off0, off1, off2;
     wire signed [12:0] cur0, cur1, cur2;
     wire [2:0]  oc_ch;
+    wire [19:0] psum0, psum1, psum2;
+    wire [6:0]  pcount;
     adc_spi u_adc (
-        .clk(clk), .rst(rst), .trig(adc_trig), .busy(adc_busy), .trig_miss(adc_trig_miss), .miss_cnt(adc_miss_cnt),
-        .cs_n(adc_cs_n), .sclk(adc_sclk), .miso(adc_miso), .valid(adc_valid), .code0(code0), .code1(code1),
-        .code2(code2), .cur0(cur0), .cur1(cur1), .cur2(cur2), .sat(adc_sat), .frame_err(adc_frame_err),
-        .oc_thr(r_oc_thresh), .oc(adc_oc), .oc_ch(oc_ch), .off_we(c_off_we), .off_wdata(c_off_wdata),
-        .offset0(off0), .offset1(off1), .offset2(off2), .cal_start(c_adc_cal), .cal_busy(adc_cal_busy),
-        .cal_done(adc_cal_done));
+        .clk(clk), .rst(rst), .period_start(period_start), .trig(adc_trig), .bridges_on(bridges_on), .busy(adc_busy),
+        .trig_miss(adc_trig_miss), .miss_cnt(adc_miss_cnt), .cs_n(adc_cs_n), .sclk(adc_sclk), .miso(adc_miso),
+        .fvalid(adc_fvalid), .code0(code0), .code1(code1), .code2(code2), .frame_err(adc_frame_err),
+        .oc_thr(r_oc_thresh), .oc(adc_oc), .oc_ch(oc_ch), .sum_thr(r_sum_thresh), .sum_err(adc_sum_err),
+        .stuck(adc_stuck), .frozen(adc_frozen), .valid(adc_valid), .cur0(cur0), .cur1(cur1), .cur2(cur2),
+        .sat(adc_sat), .psum0(psum0), .psum1(psum1), .psum2(psum2), .pcount(pcount), .off_we(c_off_we),
+        .off_wdata(c_off_wdata), .offset0(off0), .offset1(off1), .offset2(off2), .cal_start(c_adc_cal),
+        .cal_busy(adc_cal_busy), .cal_done(adc_cal_done), .refused(adc_refused), .refused_clear(c_clear_cnt));
 
     // ---------------- reference generator ----------------
     // SEG_LEN .. SEG_FLAGS go straight into slot SEG_ADDR (field = offset - SEG_LEN).
@@ -388,32 +397,34 @@ module mpc_axis #(
     // their address and 0 in every other clock (flip-flop reset: no multiplexer); reg_rdata,
     // valid the clock after reg_rd, is the OR of the copies, of the block RAM read and of
     // ref_gen's field read.
-    localparam [7:0] R_ADC_OFF0 = `EMPC_A_ADC_OFF0, R_ADC_OFF1 = `EMPC_A_ADC_OFF1, R_ADC_OFF2 = `EMPC_A_ADC_OFF2, R_ANGLE_CAL = `EMPC_A_ANGLE_CAL, R_CNT_ADC_MISS = `EMPC_A_CNT_ADC_MISS, R_CNT_ENC_ERR = `EMPC_A_CNT_ENC_ERR, R_CTRL = `EMPC_A_CTRL, R_DEAD_TIME = `EMPC_A_DEAD_TIME, R_FAULT = `EMPC_A_FAULT, R_FAULT_MASK = `EMPC_A_FAULT_MASK, R_HALL_OFFSET = `EMPC_A_HALL_OFFSET, R_IABC0 = `EMPC_A_IABC0, R_IABC1 = `EMPC_A_IABC1, R_ID_REF = `EMPC_A_ID_REF, R_IQ_REF = `EMPC_A_IQ_REF, R_KACC = `EMPC_A_KACC, R_KDC = `EMPC_A_KDC, R_LATENCY = `EMPC_A_LATENCY, R_OC_THRESH = `EMPC_A_OC_THRESH, R_POS = `EMPC_A_POS, R_SEG_ADDR = `EMPC_A_SEG_ADDR, R_STATUS = `EMPC_A_STATUS, R_THETA = `EMPC_A_THETA, R_UDC = `EMPC_A_UDC, R_UDC_MAX = `EMPC_A_UDC_MAX, R_UDC_MIN = `EMPC_A_UDC_MIN;
+    localparam [7:0] R_ADC_OFF0 = `EMPC_A_ADC_OFF0, R_ADC_OFF1 = `EMPC_A_ADC_OFF1, R_ADC_OFF2 = `EMPC_A_ADC_OFF2, R_ANGLE_CAL = `EMPC_A_ANGLE_CAL, R_CNT_ADC_MISS = `EMPC_A_CNT_ADC_MISS, R_CNT_ENC_ERR = `EMPC_A_CNT_ENC_ERR, R_CTRL = `EMPC_A_CTRL, R_DEAD_TIME = `EMPC_A_DEAD_TIME, R_FAULT = `EMPC_A_FAULT, R_FAULT_MASK = `EMPC_A_FAULT_MASK, R_HALL_OFFSET = `EMPC_A_HALL_OFFSET, R_IABC0 = `EMPC_A_IABC0, R_IABC1 = `EMPC_A_IABC1, R_ID_REF = `EMPC_A_ID_REF, R_IQ_REF = `EMPC_A_IQ_REF, R_KACC = `EMPC_A_KACC, R_KDC = `EMPC_A_KDC, R_LATENCY = `EMPC_A_LATENCY, R_OC_THRESH = `EMPC_A_OC_THRESH, R_POS = `EMPC_A_POS, R_SEG_ADDR = `EMPC_A_SEG_ADDR, R_STATUS = `EMPC_A_STATUS, R_THETA = `EMPC_A_THETA, R_UDC = `EMPC_A_UDC, R_UDC_MAX = `EMPC_A_UDC_MAX, R_UDC_MIN = `EMPC_A_UDC_MIN, R_ADC_SUM_THRESH = `EMPC_A_ADC_SUM_THRESH, R_ADC_PSUM0 = `EMPC_A_ADC_PSUM0, R_ADC_PSUM1 = `EMPC_A_ADC_PSUM1, R_ADC_PSUM2 = `EMPC_A_ADC_PSUM2;
     wire rd_lo = reg_rd && (reg_addr[7:5] == 3'd0);
     wire rd_hi = reg_rd && (reg_addr[7:5] == 3'd1);
     reg  [10:0] q_ctrl;
-    reg  [8:0]  q_status;
-    reg  [6:0]  q_fault, q_fmask;
+    reg  [9:0]  q_status;
+    reg  [NCAUSE-1:0] q_fault, q_fmask;
     reg  [7:0]  q_dead, q_miss;
     reg  [17:0] q_kdc, q_kacc, q_idr, q_iqr;
     reg  [4:0]  q_ksh;
     reg  [15:0] q_udc, q_udcmin, q_udcmax, q_acal, q_hoff, q_theta, q_lat, q_enc;
-    reg  [11:0] q_oc, q_off0, q_off1, q_off2, q_iabc1;
+    reg  [11:0] q_oc, q_sthr, q_off0, q_off1, q_off2, q_iabc1;
+    reg  [26:0] q_ps0, q_ps1, q_ps2;
     reg  [3:0]  q_sega;
     reg  [31:0] q_pos;
     reg  [23:0] q_iabc0;
     always @(posedge clk) begin
         q_ctrl    <= (rd_lo && reg_addr[4:0] == R_CTRL[4:0]) ? {r_ppc, r_compl, r_run, r_enable} : 11'd0;
-        q_status  <= (rd_lo && reg_addr[4:0] == R_STATUS[4:0]) ? {fault_any, core_swap_pending, core_bank,
-                     core_ready, adc_cal_done, adc_cal_busy, aligned, bridges_on, running} : 9'd0;
-        q_fault   <= (rd_lo && reg_addr[4:0] == R_FAULT[4:0]) ? fault_latched : 7'd0;
-        q_fmask   <= (rd_lo && reg_addr[4:0] == R_FAULT_MASK[4:0]) ? r_fault_mask : 7'd0;
+        q_status  <= (rd_lo && reg_addr[4:0] == R_STATUS[4:0]) ? {adc_refused, fault_any, core_swap_pending, core_bank,
+                     core_ready, adc_cal_done, adc_cal_busy, aligned, bridges_on, running} : 10'd0;
+        q_fault   <= (rd_lo && reg_addr[4:0] == R_FAULT[4:0]) ? fault_latched : {NCAUSE{1'b0}};
+        q_fmask   <= (rd_lo && reg_addr[4:0] == R_FAULT_MASK[4:0]) ? r_fault_mask : {NCAUSE{1'b0}};
         q_dead    <= (rd_lo && reg_addr[4:0] == R_DEAD_TIME[4:0]) ? r_dead : 8'd0;
         q_kdc     <= (rd_lo && reg_addr[4:0] == R_KDC[4:0]) ? r_kdc : 18'd0;
         q_udc     <= (rd_lo && reg_addr[4:0] == R_UDC[4:0]) ? r_udc : 16'd0;
         q_udcmin  <= (rd_lo && reg_addr[4:0] == R_UDC_MIN[4:0]) ? r_udc_min : 16'd0;
         q_udcmax  <= (rd_lo && reg_addr[4:0] == R_UDC_MAX[4:0]) ? r_udc_max : 16'd0;
         q_oc      <= (rd_lo && reg_addr[4:0] == R_OC_THRESH[4:0]) ? r_oc_thresh : 12'd0;
+        q_sthr    <= (rd_lo && reg_addr[4:0] == R_ADC_SUM_THRESH[4:0]) ? r_sum_thresh : 12'd0;
         q_off0    <= (rd_lo && reg_addr[4:0] == R_ADC_OFF0[4:0]) ? off0 : 12'd0;
         q_off1    <= (rd_lo && reg_addr[4:0] == R_ADC_OFF1[4:0]) ? off1 : 12'd0;
         q_off2    <= (rd_lo && reg_addr[4:0] == R_ADC_OFF2[4:0]) ? off2 : 12'd0;
@@ -429,20 +440,25 @@ module mpc_axis #(
         q_iabc0   <= (rd_hi && reg_addr[4:0] == R_IABC0[4:0]) ? {code1, code0} : 24'd0;
         q_iabc1   <= (rd_hi && reg_addr[4:0] == R_IABC1[4:0]) ? code2 : 12'd0;
         q_lat     <= (rd_hi && reg_addr[4:0] == R_LATENCY[4:0]) ? seq_latency : 16'd0;
+        q_ps0     <= (rd_hi && reg_addr[4:0] == R_ADC_PSUM0[4:0]) ? {pcount, psum0} : 27'd0;
+        q_ps1     <= (rd_hi && reg_addr[4:0] == R_ADC_PSUM1[4:0]) ? {pcount, psum1} : 27'd0;
+        q_ps2     <= (rd_hi && reg_addr[4:0] == R_ADC_PSUM2[4:0]) ? {pcount, psum2} : 27'd0;
         q_miss    <= (rd_hi && reg_addr[4:0] == R_CNT_ADC_MISS[4:0]) ? adc_miss_cnt : 8'd0;
         q_enc     <= (rd_hi && reg_addr[4:0] == R_CNT_ENC_ERR[4:0]) ? enc_err_cnt : 16'd0;
         if (rst) begin
-            q_ctrl <= 11'd0; q_status <= 9'd0; q_fault <= 7'd0; q_fmask <= 7'd0; q_dead <= 8'd0; q_kdc <= 18'd0;
+            q_ctrl <= 11'd0; q_status <= 10'd0; q_fault <= {NCAUSE{1'b0}}; q_fmask <= {NCAUSE{1'b0}}; q_dead <= 8'd0; q_kdc <= 18'd0;
             q_udc <= 16'd0; q_udcmin <= 16'd0; q_udcmax <= 16'd0; q_oc <= 12'd0; q_off0 <= 12'd0; q_off1 <= 12'd0;
             q_off2 <= 12'd0; q_acal <= 16'd0; q_hoff <= 16'd0; q_kacc <= 18'd0; q_ksh <= 5'd0; q_idr <= 18'd0;
             q_iqr <= 18'd0; q_sega <= 4'd0; q_pos <= 32'd0; q_theta <= 16'd0; q_iabc0 <= 24'd0; q_iabc1 <= 12'd0;
-            q_lat <= 16'd0; q_miss <= 8'd0; q_enc <= 16'd0;
+            q_lat <= 16'd0; q_miss <= 8'd0; q_enc <= 16'd0; q_sthr <= 12'd0; q_ps0 <= 27'd0; q_ps1 <= 27'd0;
+            q_ps2 <= 27'd0;
         end
     end
     always @(*) begin
         reg_rdata = seg_rdata | s_q | q_pos
-                  | {16'd0, q_ctrl[10:3], 5'd0, q_ctrl[2:0]} | {23'd0, q_status} | {25'd0, q_fault}
-                  | {25'd0, q_fmask} | {24'd0, q_dead} | {14'd0, q_kdc} | {16'd0, q_udc} | {16'd0, q_udcmin}
+                  | {16'd0, q_ctrl[10:3], 5'd0, q_ctrl[2:0]} | {22'd0, q_status} | {{(32-NCAUSE){1'b0}}, q_fault}
+                  | {{(32-NCAUSE){1'b0}}, q_fmask} | {20'd0, q_sthr} | {1'b0, q_ps0[26:20], 4'd0, q_ps0[19:0]}
+                  | {1'b0, q_ps1[26:20], 4'd0, q_ps1[19:0]} | {1'b0, q_ps2[26:20], 4'd0, q_ps2[19:0]} | {24'd0, q_dead} | {14'd0, q_kdc} | {16'd0, q_udc} | {16'd0, q_udcmin}
                   | {16'd0, q_udcmax} | {20'd0, q_oc} | {20'd0, q_off0} | {20'd0, q_off1} | {20'd0, q_off2}
                   | {16'd0, q_acal} | {16'd0, q_hoff} | {3'd0, q_ksh, 6'd0, q_kacc}
                   | {{14{q_idr[17]}}, q_idr} | {{14{q_iqr[17]}}, q_iqr} | {28'd0, q_sega} | {16'd0, q_theta}
@@ -454,7 +470,7 @@ module mpc_axis #(
     wire unused = &{1'b0, dir, index_seen, index_dir, mark_pos, mark_seen, mark_event, enc_err_flag,
                     enc_in_state, enc_ready, hall_code, hall_ready, hall_fault, theta_valid, speed_sat,
                     sample_valid, ps_speed, pos_at_sample, ps_speed_q, theta_at_sample,
-                    pwm_fault_latched, mode_eff, adc_busy, adc_trig_miss, oc_ch, core_busy, core_du, core_u_raw,
+                    pwm_fault_latched, mode_eff, adc_busy, adc_trig_miss, adc_fvalid, oc_ch, core_busy, core_du, core_u_raw,
                     core_wn, core_latency, core_boot_ok, theta_trig, seg_off[7:3], ref_busy, st_id, st_iq};
 endmodule
 `default_nettype wire
