@@ -1,5 +1,6 @@
 sim/adc_spi_slave.v
 sim/adc_spi_tb.v
+sim/adc_ripple.v
 sim/pwm_center_sync2.v
 sim/mpc_core_stream.v
 sim/emc_regs_tb.v
