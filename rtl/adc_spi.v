@@ -8,8 +8,9 @@
 //
 // Frame schedule.  Frames run continuously on a grid of TF clocks (FRAME_PERIOD; 0 = the
 // shortest period a frame allows, rounded up to even when AVG_LOG2 > 0) that is re-phased
-// at every PWM period boundary (`period_start`, cycle 0 of the period): grid points at
-// cycles t = G0 + m*TF (m = 0, 1, ..), placed so that the 2^AVG_LOG2 "window" frames
+// at every PWM period boundary (`period_start`, cycle 0 of the period, reloads the grid at
+// its edge): grid points at cycles t = G0 + m*TF (m = 0, 1, .., 1 <= G0 <= TF), placed so
+// that the 2^AVG_LOG2 "window" frames
 // m = M0 .. M0 + 2^AVG_LOG2 - 1 start (CS falls) symmetrically about the PWM centre
 // (cycle HALF_PERIOD, where pwm_center's adc_trig is): at HALF_PERIOD + (j - (2^K-1)/2)*TF.
 // A frame starts at a grid point unless the previous one is still busy (only possible at
@@ -168,6 +169,9 @@ module adc_spi #(
     localparam integer Q_LAST_I     = (CS_QUIET > 1) ? CS_QUIET - 2 : 0;
     localparam [HB_W-1:0]   HB_LAST    = HB_LAST_I[HB_W-1:0];
     localparam [HB_W-1:0]   HB_LLAUNCH = HB_LLAUNCH_I[HB_W-1:0];
+    localparam integer HB_CB0_I = 2 * (LEAD_ZEROS + 1), HB_CB1_I = 2 * (LEAD_ZEROS + ADC_BITS - 1);
+    localparam [HB_W-1:0]   HB_CB0 = HB_CB0_I[HB_W-1:0];     // launch half-bits of the code bits after the MSB
+    localparam [HB_W-1:0]   HB_CB1 = HB_CB1_I[HB_W-1:0];
     localparam [DIV_W-1:0]  DIV_LAST   = DIV_LAST_I[DIV_W-1:0];
     localparam [Q_W-1:0]    Q_LAST     = Q_LAST_I[Q_W-1:0];
     localparam [CAL_LOG2-1:0] CAL_LAST = {CAL_LOG2{1'b1}};
@@ -185,8 +189,8 @@ module adc_spi #(
     localparam integer NW     = 1 << AVG_LOG2;                 // window frames
     localparam integer WLEAD  = ((NW - 1) * TF) / 2;           // first window frame before the centre
     localparam integer T0     = HALF_PERIOD - WLEAD;           // its cycle in the period
-    localparam integer G0     = T0 % TF;                       // first grid point
-    localparam integer M0     = T0 / TF;                       // grid index of the window
+    localparam integer G0     = (T0 % TF == 0) ? TF : T0 % TF; // first grid point (>= 1)
+    localparam integer M0     = (T0 - G0) / TF;                // grid index of the window
     localparam integer GC_C   = ((G0 - HALF_PERIOD) % TF + TF) % TF;            // grid state at
     localparam integer GP_C   = (HALF_PERIOD > G0) ? (HALF_PERIOD - 1 - G0) / TF + 1 : 0;  // the centre
     localparam integer GP_MAXI = (2 * HALF_PERIOD) / TF + 2;
@@ -198,7 +202,8 @@ module adc_spi #(
     localparam [GP_W-1:0] W_LASTG = W_LASTI[GP_W-1:0];
     localparam [GP_W-1:0] GP_CEN  = GP_C[GP_W-1:0];
     localparam [GC_W-1:0] GC_CEN  = GC_C[GC_W-1:0];
-    localparam [GC_W-1:0] GC_G0   = G0[GC_W-1:0];
+    localparam integer GC_G0I = G0 - 1;
+    localparam [GC_W-1:0] GC_G0   = GC_G0I[GC_W-1:0];          // gc after period_start
     localparam integer GC_TOPI = TF - 1;
     localparam [GC_W-1:0] GC_TOP  = GC_TOPI[GC_W-1:0];
     // serial pass after every frame: window (AW), sum check (SW), period sums (PSW) bits
@@ -247,11 +252,13 @@ module adc_spi #(
 
     // ------------------------------------------------------------ frame grid
     // gc counts down to the next grid point (0 = grid point now), gp counts the grid
-    // points of this period so far; both restart at period_start.
+    // points of this period so far; period_start reloads both at its edge, so the new grid
+    // has its first point G0 >= 1 cycles after the boundary cycle (in the boundary cycle
+    // itself the old grid still applies: no multiplexer in front of the counters).
     reg  [GC_W-1:0] gc;
     reg  [GP_W-1:0] gp;
-    wire [GC_W-1:0] gc_e = period_start ? GC_G0 : gc;
-    wire [GP_W-1:0] gp_e = period_start ? {GP_W{1'b0}} : gp;
+    wire [GC_W-1:0] gc_e = gc;
+    wire [GP_W-1:0] gp_e = gp;
     wire            go   = (gc_e == {GC_W{1'b0}});
     wire            w_in    = (gp_e >= W_FIRST) && (gp_e <= W_LASTG);
     wire            w_first = (gp_e == W_FIRST);
@@ -270,6 +277,9 @@ module adc_spi #(
     reg              llast;                // ... and it was the last bit of the frame
     reg [PIPE_N-1:0] spipe;                // lstb delayed; spipe[PIPE_N-1] = capture now
     reg [PIPE_N-1:0] lpipe;                // llast delayed: the last capture
+    reg              lcb;                  // bit launched at the previous edge is a code bit after the MSB
+    reg [PIPE_N-1:0] cpipe;                // lcb delayed
+    reg [2:0]        ctr;                  // a code bit differed from the code bit before it (per channel)
     reg              all_cap;              // every bit of the frame captured
     reg [CODE_MSB:0] shc;                  // code (+ trailing) bits of channel cal_ch (calibration)
     reg [1:0]        cal_ch;               // channel being calibrated
@@ -298,8 +308,8 @@ module adc_spi #(
             trig_miss <= 1'b0;
             miss_cnt  <= {MISS_W{1'b0}};
         end else begin
-            gc <= go ? GC_TOP : gc_e - 1'b1;
-            gp <= (go && gp_e != GP_MAX) ? gp_e + 1'b1 : gp_e;
+            gc <= period_start ? GC_G0 : go ? GC_TOP : gc_e - 1'b1;
+            gp <= period_start ? {GP_W{1'b0}} : (go && gp_e != GP_MAX) ? gp_e + 1'b1 : gp_e;
             trig_miss <= miss_now;
             if (miss_now && !miss_p1[MISS_W])
                 miss_cnt <= miss_p1[MISS_W-1:0];
@@ -324,9 +334,11 @@ module adc_spi #(
             qcnt      <= {Q_W{1'b0}};
             lstb      <= 1'b0;
             llast     <= 1'b0;
+            lcb       <= 1'b0;
         end else begin
             lstb      <= 1'b0;
             llast     <= 1'b0;
+            lcb       <= 1'b0;
             case (st)
                 S_IDLE: if (accept) begin
                     cs_n <= 1'b0;                   // conversion start, bit 0 launched
@@ -352,6 +364,7 @@ module adc_spi #(
                         end else begin
                             sclk <= hb_n[0];        // half-bits 0,1 high (CS setup), then low/high
                             lstb <= ~hb_n[0] && (hb_n <= HB_LLAUNCH);
+                            lcb  <= ~hb_n[0] && (hb_n >= HB_CB0) && (hb_n <= HB_CB1);
                             llast <= (hb_n == HB_LLAUNCH);
                         end
                     end else begin
@@ -378,9 +391,11 @@ module adc_spi #(
                 if (rst) begin
                     spipe <= {PIPE_N{1'b0}};
                     lpipe <= {PIPE_N{1'b0}};
+                    cpipe <= {PIPE_N{1'b0}};
                 end else begin
                     spipe <= {spipe[PIPE_N-2:0], lstb};
                     lpipe <= {lpipe[PIPE_N-2:0], llast};
+                    cpipe <= {cpipe[PIPE_N-2:0], lcb};
                 end
             end
         end else begin : g_pipe1
@@ -388,9 +403,11 @@ module adc_spi #(
                 if (rst) begin
                     spipe <= 1'b0;
                     lpipe <= 1'b0;
+                    cpipe <= 1'b0;
                 end else begin
                     spipe <= lstb;
                     lpipe <= llast;
+                    cpipe <= lcb;
                 end
             end
         end
@@ -406,6 +423,7 @@ module adc_spi #(
             sh2     <= {FRAME_BITS{1'b0}};
             shc     <= {(CODE_MSB+1){1'b0}};
             fchg    <= 3'b000;
+            ctr     <= 3'b000;
             capdone <= 1'b0;
         end else begin
             capdone <= cap_last;
@@ -417,6 +435,12 @@ module adc_spi #(
                 fchg <= 3'b000;
             else if (cap)
                 fchg <= fchg | ({sh2[FRAME_BITS-1], sh1[FRAME_BITS-1], sh0[FRAME_BITS-1]} ^ miso_s);
+            // a code at a rail (0 or full scale) has all its bits equal: no code bit after the
+            // MSB differs from the one captured before it (sh_i[0])
+            if (accept)
+                ctr <= 3'b000;
+            else if (cap && cpipe[PIPE_N-1])
+                ctr <= ctr | ({sh2[0], sh1[0], sh0[0]} ^ miso_s);
             if (cap) begin
                 sh0  <= {sh0[FRAME_BITS-2:0], miso_s[0]};
                 sh1  <= {sh1[FRAME_BITS-2:0], miso_s[1]};
@@ -432,9 +456,7 @@ module adc_spi #(
     wire [ADC_BITS-1:0] fcode2 = sh2[CODE_MSB -: ADC_BITS];
     wire lead_bad = (|sh0[FRAME_BITS-1 -: LEAD_ZEROS]) | (|sh1[FRAME_BITS-1 -: LEAD_ZEROS])
                   | (|sh2[FRAME_BITS-1 -: LEAD_ZEROS]);
-    // a code at a rail (0 or full scale) has all bits equal
-    wire rail = (fcode0 == {ADC_BITS{fcode0[0]}}) | (fcode1 == {ADC_BITS{fcode1[0]}})
-              | (fcode2 == {ADC_BITS{fcode2[0]}});
+    wire rail = ~&ctr;                     // some channel's code at a rail
 
     reg [D_W-1:0]        diff0, diff1, diff2;   // code - offset, exact (-4095..4095), two's complement
     reg                  lead_bad_a, rail_a;

@@ -117,12 +117,10 @@ class Bench:
         c = self.t
         while True:
             ps = self.ps_at(c)
-            gc_e = p.g0 if ps else gc
-            gp_e = 0 if ps else gp
-            if gc_e == 0 and c > busy_to:
-                return c, (None if gp_e >= p.gp_max else gp_e)
-            gc = p.tf - 1 if gc_e == 0 else gc_e - 1
-            gp = gp_e + 1 if gc_e == 0 and gp_e != p.gp_max else gp_e
+            if gc == 0 and c > busy_to:
+                return c, (None if gp >= p.gp_max else gp)
+            gc, gp = (p.g0 - 1, 0) if ps else (p.tf - 1 if gc == 0 else gc - 1,
+                                                  gp + 1 if gc == 0 and gp != p.gp_max else gp)
             c += 1
 
     def next_codes(self):
@@ -463,6 +461,9 @@ async def test_sum_stuck(dut):
                 c[ch] = rail
                 seq += [(tuple(c), (0, 0, 0), f"rail{rail}ch{ch}x{n_bad}")] * n_bad
                 seq += [good()] * 2
+    # one bit away from a rail (LSB or MSB alone differs): never stuck
+    for c in (1, m - 1, 1 << (p.adc_bits - 1), (1 << (p.adc_bits - 1)) - 1, 2, m - 2):
+        seq += [good()] * 2 + [((c, c, c), (0, 0, 0), f"near{c}")] * (K + 1) + [good()] * 2
     seq += [((0, 0, 0), (0, 0, 0), "stucklow")] * (K + 2) + [good()] * 2
     seq += [((m, m, m), ((1 << p.lead_zeros) - 1,) * 3, "stuckhigh")] * (K + 2) + [good()] * 2
     k0 = 2
@@ -496,6 +497,9 @@ async def test_sum_stuck(dut):
             got = flag_after(sum_hi, ks[-1], p.sum_delay())
             assert bool(got) == want, (tag, got)
             assert not flag_after(sum_hi, ks[-1] + 1, p.sum_delay()), f"{tag}: not cleared by a good frame"
+            n += 1
+        elif tag.startswith("near"):
+            assert not any(flag_after(stuck_hi, k, 0) for k in ks), f"{tag}: stuck one bit away from a rail"
             n += 1
         elif tag.startswith("rail") or tag in ("stucklow", "stuckhigh"):
             nb = len(ks) if tag in ("stucklow", "stuckhigh") else int(tag.split("x")[1])

@@ -140,11 +140,13 @@ class AdcSpiParams:
 
     @property
     def g0(self) -> int:
-        return self.t0 % self.tf
+        """First grid point, cycles after the period_start cycle (1 .. tf)."""
+        return self.t0 % self.tf or self.tf
 
     @property
     def m0(self) -> int:
-        return self.t0 // self.tf
+        """Grid index of the first window frame."""
+        return (self.t0 - self.g0) // self.tf
 
     @property
     def gp_max(self) -> int:
@@ -367,13 +369,13 @@ class AdcSpiCycle:
         bon = bool(i.bridges_on)
         nx = {}                                  # next-state values, committed at the end
 
-        # grid, window flags, centre check
-        gc_e = self.G0 if ps else self.gc
-        gp_e = 0 if ps else self.gp
+        # grid (period_start reloads it at its edge: first new grid point G0 >= 1 cycles later),
+        # window flags, centre check
+        gc_e, gp_e = self.gc, self.gp
         go = gc_e == 0
         accept = go and not self.busy(c)
-        nx["gc"] = self.TF - 1 if go else gc_e - 1
-        nx["gp"] = gp_e + 1 if go and gp_e != self.GPMAX else gp_e
+        nx["gc"] = self.G0 - 1 if ps else self.TF - 1 if go else gc_e - 1
+        nx["gp"] = 0 if ps else gp_e + 1 if go and gp_e != self.GPMAX else gp_e
         w_in = self.M0 <= gp_e <= self.M0 + self.NW - 1
         w_first, w_last = gp_e == self.M0, gp_e == self.M0 + self.NW - 1
         trig_ok = gc_e == self.GC_C and gp_e == self.GP_C
