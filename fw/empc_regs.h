@@ -205,7 +205,7 @@
 #define EMPC_A_STATUS_ACCESS             EMPC_ACC_RO
 #define EMPC_A_STATUS_RESET              0x00000000u
 #define EMPC_A_STATUS_RESET_MASK         0x00000000u
-#define EMPC_A_STATUS_BITS               0x000007FFu
+#define EMPC_A_STATUS_BITS               0x00000FFFu
 #define EMPC_A_STATUS_SIGNED             0
 #define EMPC_A_STATUS_RUNNING_SHIFT      0u
 #define EMPC_A_STATUS_RUNNING_MASK       0x00000001u
@@ -240,12 +240,15 @@
 #define EMPC_A_STATUS_SWAP_REFUSED_SHIFT 10u
 #define EMPC_A_STATUS_SWAP_REFUSED_MASK  0x00000400u
 #define EMPC_A_STATUS_SWAP_REFUSED_WIDTH 1u
+#define EMPC_A_STATUS_ADC_REFUSED_SHIFT  11u
+#define EMPC_A_STATUS_ADC_REFUSED_MASK   0x00000800u
+#define EMPC_A_STATUS_ADC_REFUSED_WIDTH  1u
 /* FAULT (RO): Latched (sticky) fault causes; cleared by CMD.fault_clear once the cause has gone. */
 #define EMPC_A_FAULT                   0x00Cu
 #define EMPC_A_FAULT_ACCESS            EMPC_ACC_RO
 #define EMPC_A_FAULT_RESET             0x00000000u
 #define EMPC_A_FAULT_RESET_MASK        0x00000000u
-#define EMPC_A_FAULT_BITS              0x00000FFFu
+#define EMPC_A_FAULT_BITS              0x00007FFFu
 #define EMPC_A_FAULT_SIGNED            0
 #define EMPC_A_FAULT_OVERCURRENT_SHIFT 0u
 #define EMPC_A_FAULT_OVERCURRENT_MASK  0x00000001u
@@ -283,13 +286,22 @@
 #define EMPC_A_FAULT_ENC_BREAK_SHIFT   11u
 #define EMPC_A_FAULT_ENC_BREAK_MASK    0x00000800u
 #define EMPC_A_FAULT_ENC_BREAK_WIDTH   1u
+#define EMPC_A_FAULT_ADC_STUCK_SHIFT   12u
+#define EMPC_A_FAULT_ADC_STUCK_MASK    0x00001000u
+#define EMPC_A_FAULT_ADC_STUCK_WIDTH   1u
+#define EMPC_A_FAULT_ADC_SUM_SHIFT     13u
+#define EMPC_A_FAULT_ADC_SUM_MASK      0x00002000u
+#define EMPC_A_FAULT_ADC_SUM_WIDTH     1u
+#define EMPC_A_FAULT_ADC_FROZEN_SHIFT  14u
+#define EMPC_A_FAULT_ADC_FROZEN_MASK   0x00004000u
+#define EMPC_A_FAULT_ADC_FROZEN_WIDTH  1u
 /* FAULT_MASK (RW): Fault causes that switch the bridges off (same bits as FAULT). Masked causes are
    still recorded in FAULT; pstage, clock and coef always trip. */
 #define EMPC_A_FAULT_MASK            0x010u
 #define EMPC_A_FAULT_MASK_ACCESS     EMPC_ACC_RW
-#define EMPC_A_FAULT_MASK_RESET      0x00000FFFu
+#define EMPC_A_FAULT_MASK_RESET      0x00007FFFu
 #define EMPC_A_FAULT_MASK_RESET_MASK 0xFFFFFFFFu
-#define EMPC_A_FAULT_MASK_BITS       0x00000FFFu
+#define EMPC_A_FAULT_MASK_BITS       0x00007FFFu
 #define EMPC_A_FAULT_MASK_SIGNED     0
 /* DEAD_TIME (RW): Dead time in fabric clocks (complementary mode). */
 #define EMPC_A_DEAD_TIME            0x014u
@@ -326,14 +338,15 @@
 #define EMPC_A_UDC_MAX_RESET_MASK 0xFFFFFFFFu
 #define EMPC_A_UDC_MAX_BITS       0x0000FFFFu
 #define EMPC_A_UDC_MAX_SIGNED     0
-/* OC_THRESH (RW): Overcurrent threshold, ADC LSB of |code - offset| (per phase). */
+/* OC_THRESH (RW): Overcurrent threshold, ADC LSB of |code - offset| (per phase, every frame). */
 #define EMPC_A_OC_THRESH            0x028u
 #define EMPC_A_OC_THRESH_ACCESS     EMPC_ACC_RW
 #define EMPC_A_OC_THRESH_RESET      0x00000708u
 #define EMPC_A_OC_THRESH_RESET_MASK 0xFFFFFFFFu
 #define EMPC_A_OC_THRESH_BITS       0x00000FFFu
 #define EMPC_A_OC_THRESH_SIGNED     0
-/* ADC_OFF0 (RW, in adc_off): ADC offset phase A (calibration writes it; reads the active value). */
+/* ADC_OFF0 (RW, in adc_off): ADC offset phase A (calibration writes it; reads the active value; writes
+   refused while calibrating or with the bridges on: STATUS.adc_refused). */
 #define EMPC_A_ADC_OFF0            0x02Cu
 #define EMPC_A_ADC_OFF0_ACCESS     EMPC_ACC_RW
 #define EMPC_A_ADC_OFF0_RESET      0x00000000u
@@ -469,6 +482,14 @@
 #define EMPC_A_SEG_START_RESET_MASK 0xFFFFFFFFu
 #define EMPC_A_SEG_START_BITS       0x0000000Fu
 #define EMPC_A_SEG_START_SIGNED     0
+/* ADC_SUM_THRESH (RW): Sum-of-currents threshold, ADC LSB of |d_a + d_b + d_c| (d = code - offset),
+   checked on every frame (FAULT.adc_sum). */
+#define EMPC_A_ADC_SUM_THRESH            0x070u
+#define EMPC_A_ADC_SUM_THRESH_ACCESS     EMPC_ACC_RW
+#define EMPC_A_ADC_SUM_THRESH_RESET      0x0000012Cu
+#define EMPC_A_ADC_SUM_THRESH_RESET_MASK 0xFFFFFFFFu
+#define EMPC_A_ADC_SUM_THRESH_BITS       0x00000FFFu
+#define EMPC_A_ADC_SUM_THRESH_SIGNED     0
 /* POS (RO): Encoder count (x4, modular 32 bit). */
 #define EMPC_A_POS            0x080u
 #define EMPC_A_POS_ACCESS     EMPC_ACC_RO
@@ -560,6 +581,46 @@
 #define EMPC_A_PERIODS_RESET_MASK 0x00000000u
 #define EMPC_A_PERIODS_BITS       0xFFFFFFFFu
 #define EMPC_A_PERIODS_SIGNED     0
+/* ADC_PSUM0 (RO): Phase A: sum of code - offset over the ADC frames of the last complete PWM period,
+   and their number (period mean = sum / count; both from the same period). */
+#define EMPC_A_ADC_PSUM0             0x0B0u
+#define EMPC_A_ADC_PSUM0_ACCESS      EMPC_ACC_RO
+#define EMPC_A_ADC_PSUM0_RESET       0x00000000u
+#define EMPC_A_ADC_PSUM0_RESET_MASK  0x00000000u
+#define EMPC_A_ADC_PSUM0_BITS        0x7F0FFFFFu
+#define EMPC_A_ADC_PSUM0_SIGNED      0
+#define EMPC_A_ADC_PSUM0_SUM_SHIFT   0u
+#define EMPC_A_ADC_PSUM0_SUM_MASK    0x000FFFFFu
+#define EMPC_A_ADC_PSUM0_SUM_WIDTH   20u
+#define EMPC_A_ADC_PSUM0_COUNT_SHIFT 24u
+#define EMPC_A_ADC_PSUM0_COUNT_MASK  0x7F000000u
+#define EMPC_A_ADC_PSUM0_COUNT_WIDTH 7u
+/* ADC_PSUM1 (RO): Phase B: as ADC_PSUM0. */
+#define EMPC_A_ADC_PSUM1             0x0B4u
+#define EMPC_A_ADC_PSUM1_ACCESS      EMPC_ACC_RO
+#define EMPC_A_ADC_PSUM1_RESET       0x00000000u
+#define EMPC_A_ADC_PSUM1_RESET_MASK  0x00000000u
+#define EMPC_A_ADC_PSUM1_BITS        0x7F0FFFFFu
+#define EMPC_A_ADC_PSUM1_SIGNED      0
+#define EMPC_A_ADC_PSUM1_SUM_SHIFT   0u
+#define EMPC_A_ADC_PSUM1_SUM_MASK    0x000FFFFFu
+#define EMPC_A_ADC_PSUM1_SUM_WIDTH   20u
+#define EMPC_A_ADC_PSUM1_COUNT_SHIFT 24u
+#define EMPC_A_ADC_PSUM1_COUNT_MASK  0x7F000000u
+#define EMPC_A_ADC_PSUM1_COUNT_WIDTH 7u
+/* ADC_PSUM2 (RO): Phase C: as ADC_PSUM0. */
+#define EMPC_A_ADC_PSUM2             0x0B8u
+#define EMPC_A_ADC_PSUM2_ACCESS      EMPC_ACC_RO
+#define EMPC_A_ADC_PSUM2_RESET       0x00000000u
+#define EMPC_A_ADC_PSUM2_RESET_MASK  0x00000000u
+#define EMPC_A_ADC_PSUM2_BITS        0x7F0FFFFFu
+#define EMPC_A_ADC_PSUM2_SIGNED      0
+#define EMPC_A_ADC_PSUM2_SUM_SHIFT   0u
+#define EMPC_A_ADC_PSUM2_SUM_MASK    0x000FFFFFu
+#define EMPC_A_ADC_PSUM2_SUM_WIDTH   20u
+#define EMPC_A_ADC_PSUM2_COUNT_SHIFT 24u
+#define EMPC_A_ADC_PSUM2_COUNT_MASK  0x7F000000u
+#define EMPC_A_ADC_PSUM2_COUNT_WIDTH 7u
 /* SAT_OPERAND (RO, in cnt): Saturation counter: core operand. SAT_* and CNT_OVERRUN count control
    periods in which the event happened (32-bit, saturating; updated after the control period's
    modulation). */
@@ -653,7 +714,8 @@
 #define EMPC_A_CNT_OVERRUN_RESET_MASK 0x00000000u
 #define EMPC_A_CNT_OVERRUN_BITS       0xFFFFFFFFu
 #define EMPC_A_CNT_OVERRUN_SIGNED     0
-/* CNT_ADC_MISS (RO): ADC triggers ignored while busy (8-bit, saturating; not cleared by
+/* CNT_ADC_MISS (RO): PWM centres that missed the ADC sampling window (trigger off the frame grid, or a
+   sync restart cut the window: no current sample that period; 8-bit, saturating; not cleared by
    CMD.clear_counters). */
 #define EMPC_A_CNT_ADC_MISS            0x0F4u
 #define EMPC_A_CNT_ADC_MISS_ACCESS     EMPC_ACC_RO
@@ -681,9 +743,10 @@
     X(CTRL) X(CMD) X(STATUS) X(FAULT) X(FAULT_MASK) X(DEAD_TIME) X(KDC) X(UDC) X(UDC_MIN) X(UDC_MAX) \
     X(OC_THRESH) X(ADC_OFF0) X(ADC_OFF1) X(ADC_OFF2) X(ANGLE_CAL) X(HALL_OFFSET) X(KACC) X(ID_REF) \
     X(IQ_REF) X(SEG_ADDR) X(SEG_LEN) X(SEG_R0_LO) X(SEG_R0_HI) X(SEG_D1_LO) X(SEG_D1_HI) X(SEG_D2) \
-    X(SEG_FLAGS) X(SEG_START) X(POS) X(SPEED) X(THETA) X(I_D) X(I_Q) X(U_D) X(U_Q) X(REF) X(IABC0) \
-    X(IABC1) X(LATENCY) X(PERIODS) X(SAT_OPERAND) X(SAT_GAIN) X(SAT_TERM) X(SAT_ACC) X(SAT_DU) \
-    X(SAT_U) X(SAT_EBAR) X(SAT_EBAR_INC) X(SAT_LIMIT) X(SAT_WN) X(SAT_SIGNAL) X(SAT_FRONT) \
-    X(CNT_OVERRUN) X(CNT_ADC_MISS) X(CNT_ENC_ERR) X(CNT_SWAP_REF)
+    X(SEG_FLAGS) X(SEG_START) X(ADC_SUM_THRESH) X(POS) X(SPEED) X(THETA) X(I_D) X(I_Q) X(U_D) X(U_Q) \
+    X(REF) X(IABC0) X(IABC1) X(LATENCY) X(PERIODS) X(ADC_PSUM0) X(ADC_PSUM1) X(ADC_PSUM2) \
+    X(SAT_OPERAND) X(SAT_GAIN) X(SAT_TERM) X(SAT_ACC) X(SAT_DU) X(SAT_U) X(SAT_EBAR) X(SAT_EBAR_INC) \
+    X(SAT_LIMIT) X(SAT_WN) X(SAT_SIGNAL) X(SAT_FRONT) X(CNT_OVERRUN) X(CNT_ADC_MISS) X(CNT_ENC_ERR) \
+    X(CNT_SWAP_REF)
 
 #endif /* EMPC_REGS_H */

@@ -43,6 +43,7 @@ module axis_regs (
     input  wire        status_fault,         // STATUS.fault value
     input  wire        status_coef_valid,    // STATUS.coef_valid value
     input  wire        status_swap_refused,  // STATUS.swap_refused value
+    input  wire        status_adc_refused,   // STATUS.adc_refused value
     input  wire        fault_overcurrent,    // FAULT.overcurrent value
     input  wire        fault_hall,           // FAULT.hall value
     input  wire        fault_encoder,        // FAULT.encoder value
@@ -55,7 +56,10 @@ module axis_regs (
     input  wire        fault_coef,           // FAULT.coef value
     input  wire        fault_hall_enc,       // FAULT.hall_enc value
     input  wire        fault_enc_break,      // FAULT.enc_break value
-    output reg  [11:0] fault_mask,           // FAULT_MASK (RW)
+    input  wire        fault_adc_stuck,      // FAULT.adc_stuck value
+    input  wire        fault_adc_sum,        // FAULT.adc_sum value
+    input  wire        fault_adc_frozen,     // FAULT.adc_frozen value
+    output reg  [14:0] fault_mask,           // FAULT_MASK (RW)
     output reg  [7:0]  dead_time,            // DEAD_TIME (RW)
     output reg  [17:0] kdc,                  // KDC (RW)
     output reg  [15:0] udc,                  // UDC (RW)
@@ -79,6 +83,7 @@ module axis_regs (
     output wire [2:0]  seg_idx,              // word index in the window (SEG_LEN = 0)
     output reg         seg_start,            // SEG_START: pulse
     output reg  [3:0]  seg_start_data,       // SEG_START: written value
+    output reg  [11:0] adc_sum_thresh,       // ADC_SUM_THRESH (RW)
     input  wire [31:0] pos,                  // POS value
     output wire        stat_re,              // read of a word of window stat (combinational)
     input  wire [15:0] theta,                // THETA value
@@ -87,6 +92,12 @@ module axis_regs (
     input  wire [11:0] iabc1,                // IABC1 value
     input  wire [15:0] latency,              // LATENCY value
     output wire        cnt_re,               // read of a word of window cnt (combinational)
+    input  wire [19:0] adc_psum0_sum,        // ADC_PSUM0.sum value
+    input  wire [6:0]  adc_psum0_count,      // ADC_PSUM0.count value
+    input  wire [19:0] adc_psum1_sum,        // ADC_PSUM1.sum value
+    input  wire [6:0]  adc_psum1_count,      // ADC_PSUM1.count value
+    input  wire [19:0] adc_psum2_sum,        // ADC_PSUM2.sum value
+    input  wire [6:0]  adc_psum2_count,      // ADC_PSUM2.count value
     input  wire [7:0]  cnt_adc_miss,         // CNT_ADC_MISS value
     input  wire [15:0] cnt_enc_err,          // CNT_ENC_ERR value
     input  wire [7:0]  cnt_swap_ref,         // CNT_SWAP_REF value
@@ -123,7 +134,7 @@ module axis_regs (
             ctrl_run <= 1'd0;
             ctrl_complementary <= 1'd0;
             ctrl_pwm_per_control <= `EMPC_PWM_PER_CONTROL;
-            fault_mask <= 12'hfff;
+            fault_mask <= 15'h7fff;
             dead_time <= 8'd50;
             kdc <= 18'h10000;
             udc <= 16'd36000;
@@ -138,6 +149,7 @@ module axis_regs (
             iq_ref <= 18'd0;
             seg_addr <= 4'd0;
             seg_start_data <= 4'd0;
+            adc_sum_thresh <= 12'd300;
             adc_off_wdata <= 12'd0;
         end else begin
             if (wr_p0) begin
@@ -157,7 +169,7 @@ module axis_regs (
                         cmd_align_clear <= reg_wdata[5];
                     end
                     5'h4: begin   // FAULT_MASK
-                        fault_mask <= reg_wdata[11:0];
+                        fault_mask <= reg_wdata[14:0];
                     end
                     5'h5: begin   // DEAD_TIME
                         dead_time <= reg_wdata[7:0];
@@ -212,6 +224,9 @@ module axis_regs (
                         seg_start <= 1'b1;
                         seg_start_data <= reg_wdata[3:0];
                     end
+                    5'h1c: begin   // ADC_SUM_THRESH
+                        adc_sum_thresh <= reg_wdata[11:0];
+                    end
                     default: ;
                 endcase
             end
@@ -222,9 +237,9 @@ module axis_regs (
     wire rd_p0 = reg_rd && (reg_addr[7:5] == 3'd0);
     wire rd_p1 = reg_rd && (reg_addr[7:5] == 3'd1);
     reg  [10:0]  q_ctrl;
-    reg  [10:0]  q_status;
-    reg  [11:0]  q_fault;
-    reg  [11:0]  q_fault_mask;
+    reg  [11:0]  q_status;
+    reg  [14:0]  q_fault;
+    reg  [14:0]  q_fault_mask;
     reg  [7:0]   q_dead_time;
     reg  [17:0]  q_kdc;
     reg  [15:0]  q_udc;
@@ -240,24 +255,29 @@ module axis_regs (
     reg  [17:0]  q_id_ref;
     reg  [17:0]  q_iq_ref;
     reg  [3:0]   q_seg_addr;
+    reg  [11:0]  q_adc_sum_thresh;
     reg  [31:0]  q_pos;
     reg  [15:0]  q_theta;
     reg  [23:0]  q_iabc0;
     reg  [11:0]  q_iabc1;
     reg  [15:0]  q_latency;
+    reg  [26:0]  q_adc_psum0;
+    reg  [26:0]  q_adc_psum1;
+    reg  [26:0]  q_adc_psum2;
     reg  [7:0]   q_cnt_adc_miss;
     reg  [15:0]  q_cnt_enc_err;
     reg  [7:0]   q_cnt_swap_ref;
     always @(posedge clk) begin
         q_ctrl <= (rd_p0 && reg_addr[4:0] == 5'h0) ? {ctrl_pwm_per_control, ctrl_complementary, ctrl_run,
             ctrl_enable} : 11'd0;
-        q_status <= (rd_p0 && reg_addr[4:0] == 5'h2) ? {status_swap_refused, status_coef_valid, status_fault,
-            status_swap_pending, status_coef_bank, status_core_ready, status_adc_cal_done, status_adc_cal_busy,
-            status_aligned, status_bridges_on, status_running} : 11'd0;
-        q_fault <= (rd_p0 && reg_addr[4:0] == 5'h3) ? {fault_enc_break, fault_hall_enc, fault_coef,
-            fault_clock, fault_pstage, fault_adc, fault_overrun, fault_dclink, fault_watchdog, fault_encoder,
-            fault_hall, fault_overcurrent} : 12'd0;
-        q_fault_mask <= (rd_p0 && reg_addr[4:0] == 5'h4) ? fault_mask : 12'd0;
+        q_status <= (rd_p0 && reg_addr[4:0] == 5'h2) ? {status_adc_refused, status_swap_refused,
+            status_coef_valid, status_fault, status_swap_pending, status_coef_bank, status_core_ready,
+            status_adc_cal_done, status_adc_cal_busy, status_aligned, status_bridges_on,
+            status_running} : 12'd0;
+        q_fault <= (rd_p0 && reg_addr[4:0] == 5'h3) ? {fault_adc_frozen, fault_adc_sum, fault_adc_stuck,
+            fault_enc_break, fault_hall_enc, fault_coef, fault_clock, fault_pstage, fault_adc, fault_overrun,
+            fault_dclink, fault_watchdog, fault_encoder, fault_hall, fault_overcurrent} : 15'd0;
+        q_fault_mask <= (rd_p0 && reg_addr[4:0] == 5'h4) ? fault_mask : 15'd0;
         q_dead_time <= (rd_p0 && reg_addr[4:0] == 5'h5) ? dead_time : 8'd0;
         q_kdc <= (rd_p0 && reg_addr[4:0] == 5'h6) ? kdc : 18'd0;
         q_udc <= (rd_p0 && reg_addr[4:0] == 5'h7) ? udc : 16'd0;
@@ -273,19 +293,23 @@ module axis_regs (
         q_id_ref <= (rd_p0 && reg_addr[4:0] == 5'h11) ? id_ref : 18'd0;
         q_iq_ref <= (rd_p0 && reg_addr[4:0] == 5'h12) ? iq_ref : 18'd0;
         q_seg_addr <= (rd_p0 && reg_addr[4:0] == 5'h13) ? seg_addr : 4'd0;
+        q_adc_sum_thresh <= (rd_p0 && reg_addr[4:0] == 5'h1c) ? adc_sum_thresh : 12'd0;
         q_pos <= (rd_p1 && reg_addr[4:0] == 5'h0) ? pos : 32'd0;
         q_theta <= (rd_p1 && reg_addr[4:0] == 5'h2) ? theta : 16'd0;
         q_iabc0 <= (rd_p1 && reg_addr[4:0] == 5'h8) ? {iabc0_b, iabc0_a} : 24'd0;
         q_iabc1 <= (rd_p1 && reg_addr[4:0] == 5'h9) ? iabc1 : 12'd0;
         q_latency <= (rd_p1 && reg_addr[4:0] == 5'ha) ? latency : 16'd0;
+        q_adc_psum0 <= (rd_p1 && reg_addr[4:0] == 5'hc) ? {adc_psum0_count, adc_psum0_sum} : 27'd0;
+        q_adc_psum1 <= (rd_p1 && reg_addr[4:0] == 5'hd) ? {adc_psum1_count, adc_psum1_sum} : 27'd0;
+        q_adc_psum2 <= (rd_p1 && reg_addr[4:0] == 5'he) ? {adc_psum2_count, adc_psum2_sum} : 27'd0;
         q_cnt_adc_miss <= (rd_p1 && reg_addr[4:0] == 5'h1d) ? cnt_adc_miss : 8'd0;
         q_cnt_enc_err <= (rd_p1 && reg_addr[4:0] == 5'h1e) ? cnt_enc_err : 16'd0;
         q_cnt_swap_ref <= (rd_p1 && reg_addr[4:0] == 5'h1f) ? cnt_swap_ref : 8'd0;
         if (rst) begin
             q_ctrl <= 11'd0;
-            q_status <= 11'd0;
-            q_fault <= 12'd0;
-            q_fault_mask <= 12'd0;
+            q_status <= 12'd0;
+            q_fault <= 15'd0;
+            q_fault_mask <= 15'd0;
             q_dead_time <= 8'd0;
             q_kdc <= 18'd0;
             q_udc <= 16'd0;
@@ -301,11 +325,15 @@ module axis_regs (
             q_id_ref <= 18'd0;
             q_iq_ref <= 18'd0;
             q_seg_addr <= 4'd0;
+            q_adc_sum_thresh <= 12'd0;
             q_pos <= 32'd0;
             q_theta <= 16'd0;
             q_iabc0 <= 24'd0;
             q_iabc1 <= 12'd0;
             q_latency <= 16'd0;
+            q_adc_psum0 <= 27'd0;
+            q_adc_psum1 <= 27'd0;
+            q_adc_psum2 <= 27'd0;
             q_cnt_adc_miss <= 8'd0;
             q_cnt_enc_err <= 16'd0;
             q_cnt_swap_ref <= 8'd0;
@@ -314,9 +342,9 @@ module axis_regs (
     assign reg_rdata = seg_rdata
                      | smem_rdata
                      | {16'd0, q_ctrl[10:3], 5'd0, q_ctrl[2:0]}
-                     | {21'd0, q_status}
-                     | {20'd0, q_fault}
-                     | {20'd0, q_fault_mask}
+                     | {20'd0, q_status}
+                     | {17'd0, q_fault}
+                     | {17'd0, q_fault_mask}
                      | {24'd0, q_dead_time}
                      | {14'd0, q_kdc}
                      | {16'd0, q_udc}
@@ -332,11 +360,15 @@ module axis_regs (
                      | {{14{q_id_ref[17]}}, q_id_ref[17:0]}
                      | {{14{q_iq_ref[17]}}, q_iq_ref[17:0]}
                      | {28'd0, q_seg_addr}
+                     | {20'd0, q_adc_sum_thresh}
                      | q_pos
                      | {16'd0, q_theta}
                      | {4'd0, q_iabc0[23:12], 4'd0, q_iabc0[11:0]}
                      | {20'd0, q_iabc1}
                      | {16'd0, q_latency}
+                     | {1'd0, q_adc_psum0[26:20], 4'd0, q_adc_psum0[19:0]}
+                     | {1'd0, q_adc_psum1[26:20], 4'd0, q_adc_psum1[19:0]}
+                     | {1'd0, q_adc_psum2[26:20], 4'd0, q_adc_psum2[19:0]}
                      | {24'd0, q_cnt_adc_miss}
                      | {16'd0, q_cnt_enc_err}
                      | {24'd0, q_cnt_swap_ref};

@@ -76,6 +76,7 @@ module mpc_axis #(
     wire [`EMPC_A_UDC_MIN_W-1:0]             udc_min;
     wire [`EMPC_A_UDC_MAX_W-1:0]             udc_max;
     wire [`EMPC_A_OC_THRESH_W-1:0]           oc_thresh;
+    wire [`EMPC_A_ADC_SUM_THRESH_W-1:0]      adc_sum_thresh;
     wire [`EMPC_A_ADC_OFF_N-1:0]             adc_off_we;       // phases A, B, C
     wire [`EMPC_A_ADC_OFF0_W-1:0]            adc_off_wdata;
     wire [`EMPC_A_ANGLE_CAL_W-1:0]           angle_cal;
@@ -139,18 +140,26 @@ module mpc_axis #(
         .hall_enc(hall_enc), .enc_break(enc_break));
 
     // ---------------- sensors: current ADC ----------------
-    wire        adc_busy, adc_trig_miss, adc_valid, adc_sat, adc_cal_busy, adc_cal_done, adc_oc, adc_frame_err;
+    // Back-to-back frames on a grid re-phased at every period boundary, the controller's
+    // sample = the mean of the frames centred on adc_trig; every frame checked (overcurrent,
+    // frame, rails, sum of the currents), frozen channels per period (docs/blocks/adc_spi.md).
+    wire        adc_busy, adc_trig_miss, adc_valid, adc_fvalid, adc_sat, adc_cal_busy, adc_cal_done, adc_refused;
+    wire        adc_oc, adc_frame_err, adc_stuck, adc_sum_err, adc_frozen;
     wire [7:0]  adc_miss_cnt;
     wire [11:0] code0, code1, code2, off0, off1, off2;
     wire signed [12:0] cur0, cur1, cur2;
     wire [2:0]  oc_ch;
-    adc_spi #(.OFFSET_RESET(`EMPC_A_ADC_OFF0_RESET)) u_adc (
-        .clk(clk), .rst(rst), .trig(adc_trig), .busy(adc_busy), .trig_miss(adc_trig_miss), .miss_cnt(adc_miss_cnt),
-        .cs_n(adc_cs_n), .sclk(adc_sclk), .miso(adc_miso), .valid(adc_valid), .code0(code0), .code1(code1),
-        .code2(code2), .cur0(cur0), .cur1(cur1), .cur2(cur2), .sat(adc_sat), .frame_err(adc_frame_err),
-        .oc_thr(oc_thresh), .oc(adc_oc), .oc_ch(oc_ch), .off_we(adc_off_we), .off_wdata(adc_off_wdata),
-        .offset0(off0), .offset1(off1), .offset2(off2), .cal_start(cmd_adc_cal), .cal_busy(adc_cal_busy),
-        .cal_done(adc_cal_done));
+    wire [`EMPC_A_ADC_PSUM0_SUM_W-1:0]   psum0, psum1, psum2;
+    wire [`EMPC_A_ADC_PSUM0_COUNT_W-1:0] pcount;
+    adc_spi #(.OFFSET_RESET(`EMPC_A_ADC_OFF0_RESET), .PCNT_W(`EMPC_A_ADC_PSUM0_COUNT_W)) u_adc (
+        .clk(clk), .rst(rst), .period_start(period_start), .trig(adc_trig), .bridges_on(bridges_on), .busy(adc_busy),
+        .trig_miss(adc_trig_miss), .miss_cnt(adc_miss_cnt), .cs_n(adc_cs_n), .sclk(adc_sclk), .miso(adc_miso),
+        .fvalid(adc_fvalid), .code0(code0), .code1(code1), .code2(code2), .frame_err(adc_frame_err),
+        .oc_thr(oc_thresh), .oc(adc_oc), .oc_ch(oc_ch), .sum_thr(adc_sum_thresh), .sum_err(adc_sum_err),
+        .stuck(adc_stuck), .frozen(adc_frozen), .valid(adc_valid), .cur0(cur0), .cur1(cur1), .cur2(cur2),
+        .sat(adc_sat), .psum0(psum0), .psum1(psum1), .psum2(psum2), .pcount(pcount), .off_we(adc_off_we),
+        .off_wdata(adc_off_wdata), .offset0(off0), .offset1(off1), .offset2(off2), .cal_start(cmd_adc_cal),
+        .cal_busy(adc_cal_busy), .cal_done(adc_cal_done), .refused(adc_refused), .refused_clear(cmd_clear_counters));
 
     // ---------------- reference generator ----------------
     // SEG_LEN .. SEG_FLAGS go straight into slot SEG_ADDR (field = seg_idx).
@@ -251,6 +260,9 @@ module mpc_axis #(
     assign causes[`EMPC_A_FAULT_COEF] = img_bad;
     assign causes[`EMPC_A_FAULT_HALL_ENC] = hall_enc;
     assign causes[`EMPC_A_FAULT_ENC_BREAK] = enc_break;
+    assign causes[`EMPC_A_FAULT_ADC_STUCK] = adc_stuck;
+    assign causes[`EMPC_A_FAULT_ADC_SUM] = adc_sum_err;
+    assign causes[`EMPC_A_FAULT_ADC_FROZEN] = adc_frozen;
     wire [NCAUSE-1:0] fault_latched;
     fault_ctrl #(.NCAUSE(NCAUSE)) u_fault (
         .clk(clk), .rst(rst), .cause_in(causes), .mask(fault_mask | NOMASK), .clear(cmd_fault_clear),
@@ -296,7 +308,12 @@ module mpc_axis #(
         .fault_adc(fault_latched[`EMPC_A_FAULT_ADC]), .fault_pstage(fault_latched[`EMPC_A_FAULT_PSTAGE]),
         .fault_clock(fault_latched[`EMPC_A_FAULT_CLOCK]), .fault_coef(fault_latched[`EMPC_A_FAULT_COEF]),
         .fault_hall_enc(fault_latched[`EMPC_A_FAULT_HALL_ENC]), .fault_enc_break(fault_latched[`EMPC_A_FAULT_ENC_BREAK]),
-        .status_coef_valid(core_upl_ok), .status_swap_refused(core_swap_refused), .cnt_swap_ref(cnt_swap_ref),
+        .fault_adc_stuck(fault_latched[`EMPC_A_FAULT_ADC_STUCK]), .fault_adc_sum(fault_latched[`EMPC_A_FAULT_ADC_SUM]),
+        .fault_adc_frozen(fault_latched[`EMPC_A_FAULT_ADC_FROZEN]),
+        .status_coef_valid(core_upl_ok), .status_swap_refused(core_swap_refused), .status_adc_refused(adc_refused),
+        .cnt_swap_ref(cnt_swap_ref), .adc_sum_thresh(adc_sum_thresh),
+        .adc_psum0_sum(psum0), .adc_psum0_count(pcount), .adc_psum1_sum(psum1), .adc_psum1_count(pcount),
+        .adc_psum2_sum(psum2), .adc_psum2_count(pcount),
         .fault_mask(fault_mask), .dead_time(dead_time), .kdc(kdc), .udc(udc), .udc_min(udc_min),
         .udc_max(udc_max), .oc_thresh(oc_thresh),
         .adc_off_we(adc_off_we), .adc_off_wdata(adc_off_wdata), .adc_off0(off0), .adc_off1(off1), .adc_off2(off2),
@@ -311,7 +328,7 @@ module mpc_axis #(
     wire unused = &{1'b0, dir, index_seen, index_dir, mark_pos, mark_seen, mark_event, enc_err_flag,
                     enc_in_state, enc_ready, hall_code, hall_ready, hall_fault, speed_sat,
                     sample_valid, ps_speed, pos_at_sample, ps_speed_q, theta_at_sample,
-                    pwm_fault_latched, mode_eff, adc_busy, adc_trig_miss, oc_ch, core_busy, core_du, core_u_raw,
+                    pwm_fault_latched, mode_eff, adc_busy, adc_trig_miss, adc_fvalid, oc_ch, core_busy, core_du, core_u_raw,
                     core_wn, core_latency, core_boot_ok, theta_trig, ref_busy, st_id, st_iq};
 endmodule
 `default_nettype wire

@@ -21,6 +21,12 @@
 //              fingerprint EMPC_IMG_FMT_ID); acc += word (csum word: acc -= word)
 //   ok <= (this word is USED-1, in sequence, !bad, acc after it == 0): the words since the
 //   last word 0 are exactly one complete image with a valid checksum for this build.
+//   The header compares run one clock behind the port, on a copy of the header word (hq,
+//   loaded only at header words): the block RAM output `data` then feeds only the write
+//   port and the accumulator, so the mapper cannot share the coefficient clamp's wide tests
+//   with the compares (it did: 9 LUT levels, 93 MHz).  A compare result arriving with a
+//   word 0 belongs to the abandoned image and is dropped; the header words are words 0..11,
+//   so every result is in `bad` long before the last word.
 //   Any later write (another word, a rewrite) clears ok; so does ok_clr (the core swapped
 //   the upload in: the inactive bank is the old one again) and the end of the boot stream.
 // Ports: cfg_we, cfg_addr, cfg_wdata (CPU, used when ready); ok_clr (pulse); we, addr, data
@@ -91,15 +97,24 @@ module mpc_boot #(
     reg         last;                                 // the clock after the last boot word
     reg  [9:0]  nexp;                                 // previous word's address + 1
     reg         csw, w0, wcfg, wused, wfmt;           // decodes of the port address (registered: a_next)
+    reg  [31:0] hq;                                   // the last header word (compared one clock later)
+    reg         h0, hcfg, hused, hfmt;                // which header word hq holds (pulses, one clock)
     // acc + (data ^ csw) + csw, the carry-in as an extra LSB (keeps acc on the carry chain's DI inputs)
     wire [32:0] acc_nx = {acc, 1'b1} + {data ^ {32{csw}}, csw};
     wire [31:0] acc_n = acc_nx[32:1];
     wire        we_n = ready ? cfg_we : (a_next < USED[9:0]);
     // header words: one comparator against the constant of the word (MAGIC, USED or the format id)
-    wire [31:0] hexp = w0 ? MAGIC : wused ? USED_W : FMT_ID;
-    wire        cfg_bad = (data[31:24] != LAYOUT) || (data[23:15] != 9'd0) || (data[14:13] == 2'd0) ||
-                          (data[14:13] == 2'd3) || (data[11:8] != N_W[3:0]) || data[7] || (data[6:0] > MAXC);
-    wire        hdr_bad = ((w0 || wused || wfmt) && (data != hexp)) || (wcfg && cfg_bad);
+    wire [31:0] hexp = h0 ? MAGIC : hused ? USED_W : FMT_ID;
+    wire        cfg_bad = (hq[31:24] != LAYOUT) || (hq[23:15] != 9'd0) || (hq[14:13] == 2'd0) ||
+                          (hq[14:13] == 2'd3) || (hq[11:8] != N_W[3:0]) || hq[7] || (hq[6:0] > MAXC);
+    wire        hdr_bad = ((h0 || hused || hfmt) && (hq != hexp)) || (hcfg && cfg_bad);
+    always @(posedge clk) begin
+        if (we && (w0 || wcfg || wused || wfmt)) hq <= data;
+        h0    <= we && w0 && !rst;
+        hcfg  <= we && wcfg && !rst;
+        hused <= we && wused && !rst;
+        hfmt  <= we && wfmt && !rst;
+    end
     wire        in_seq = (addr == nexp);
     always @(posedge clk) begin
         if (rst || (we_n && a_next == 10'd0)) acc <= 32'd0;    // restart: cleared before word 0
@@ -137,10 +152,11 @@ module mpc_boot #(
             end
             if (we) begin
                 nexp   <= addr + 10'd1;
-                bad    <= w0 ? hdr_bad : (bad || hdr_bad || !in_seq);
+                bad    <= w0 ? 1'b0 : (bad || hdr_bad || !in_seq);
                 upl_ok <= !w0 && in_seq && !bad && (addr == LAST) && (acc_n == 32'd0);
-            end else if (last || ok_clr) begin
-                upl_ok <= 1'b0;
+            end else begin
+                if (hdr_bad) bad <= 1'b1;             // the compare of the word before (no word now)
+                if (last || ok_clr) upl_ok <= 1'b0;
             end
         end
     end

@@ -2,8 +2,11 @@
 
 The Python PMSM model (gen/empc/pmsm.py) drives the encoder (tb/hdl/quad_gen.v,
 a target count per half PWM period), the HALL pins and the ADC SPI slave
-(tb/hdl/adc_spi_slave.v, phase-current codes per period), and reads the compare
-values the drive loads every PWM period.  The CPU side is the EMC bus-functional
+(tb/hdl/adc_spi_slave.v via tb/hdl/adc_ripple.v: the phase-current codes of the period
+plus PWM ripple and noise on every back-to-back frame), and reads the compare
+values the drive loads every PWM period.  The controller's sample is the ADC's
+window mean, which the Python side computes from the same ripple function
+(AdcRipple, bit for bit the Verilog one) and the bit-accurate ADC model.  The CPU side is the EMC bus-functional
 model (tb/emc_bfm.py) through the register-map driver (gen/empc/driver.py).
 
 In lockstep, the bit-accurate Python model of the sequencer (front end, MPC core,
@@ -33,6 +36,7 @@ from empc import closedloop as cl
 from empc import config, driver, header, image, pmsm, regmap, scenarios
 from empc import formats as F
 from empc.rtlmodel import pos_sense
+from empc.rtlmodel.adc_spi import AdcSpiParams, window_cur
 from empc.rtlmodel.ctrl_seq import CtrlSeq, Regs
 from empc.rtlmodel.hall_decoder import DEFAULT_SEQUENCE
 from empc.rtlmodel.ref_gen import RefGen, segments_from_points
@@ -54,6 +58,26 @@ COSIM = {
     "speed_steps": ("speed_steps", 0.40, None),
     "load_step": ("load_step", 0.30, None),
 }
+
+
+class AdcRipple:
+    """Python twin of tb/hdl/adc_ripple.v: the code of channel ``ch`` of a frame accepted ``tau``
+    clocks from the PWM centre (same integer arithmetic, same 32-bit hash)."""
+    M = 0xFFFFFFFF
+
+    def __init__(self, half_period: int, adc_bits: int = 12):
+        self.P, self.hq, self.cmax = half_period, half_period // 2, (1 << adc_bits) - 1
+
+    def code(self, tau: int, base: int, amp: int, ch: int, seed: int, noise: int) -> int:
+        at = abs(tau)
+        u = tau if at <= self.hq else (-(self.P - at) if tau < 0 else self.P - at)
+        x = amp * u
+        r = (abs(x) // self.hq) * (1 if x >= 0 else -1)            # toward zero, as Verilog
+        h = (seed ^ ((tau * 2654435761) & self.M) ^ (ch * 40503)) & self.M
+        h = ((h ^ (h >> 15)) * 2246822519) & self.M
+        h ^= h >> 13
+        n = h % (2 * noise + 1) - noise
+        return min(max(base + r + n, 0), self.cmax)
 
 
 def hall_code(theta_e: float) -> int:
@@ -93,7 +117,6 @@ class CoSim:
         self.rec = {k: [] for k in ("t", "i_d", "i_q", "w_e", "theta_e", "u_d", "u_q", "ref", "ipk")}
         self.period = 0
         self.t = 0.0
-        self.inject = False
         self.started = False       # SEG_START written: the next control period takes the profile
         self.last_control = None   # model outputs of the last control period (status words)
         self.u_applied = (0, 0)
@@ -102,20 +125,48 @@ class CoSim:
         self.swap_params = None    # a coefficient swap requested: applied at the next control period
         self.kill = {}             # kill-path measurements (pstage / clock scenarios)
         self.clk = None
+        # ADC: back-to-back frames, the controller takes the window mean (rtl defaults)
+        self.adcp = AdcSpiParams(half_period=self.P)
+        self.ripple = AdcRipple(self.P)
+        self.adc_rng = np.random.default_rng(int(os.environ.get("EMPC_SEED", "4088")))
+        self.adc_noise = 2          # LSB peak, on every frame (plus the sensor model's own noise)
+        # amplitude of the odd ripple triangle per unit of (d_i - mean d): Udc * (P/2 clk) / L, in LSB
+        m = self.cfg.motor
+        self.ripple_k = self.cfg.inverter.Udc * (self.P / 2) * (CLK_PERIOD_NS * 1e-9) / (0.5 * (m.Ld + m.Lq)) \
+            / self.cfg.sensors.adc_amps_per_lsb
+        self.inj = None            # (tau, channel, code) of a single-frame fault in this period
+        self.adc_set = None        # (base codes, amps, seed) of this period
 
     # ------------------------------------------------------------------ pins
-    def drive_plant_pins(self):
+    def drive_plant_pins(self, duties=None):
+        """Pins for this PWM period: encoder target, HALL, the ADC base codes (the period's mean
+        current), ripple amplitudes (from the duties; 0 with the bridges off), noise seed and a
+        single-frame fault.  Returns the controller's sample (window mean - offset) and the count."""
         st = self.plant.state
         codes = self.sensors.adc_codes(self.plant.phase_currents())
-        if self.fault == "overcurrent" and self.inject:
-            codes = [4095, codes[1], codes[2]]
         count = self.sensors.encoder_count(st.theta_e)
-        self.dut.enc_target.value = count & 0xFFFFFFFF
-        self.dut.adc_code0.value = codes[0]
-        self.dut.adc_code1.value = codes[1]
-        self.dut.adc_code2.value = codes[2]
-        self.dut.hall.value = hall_code(st.theta_e)
-        return codes, count
+        if duties is None:
+            amps = [0, 0, 0]
+        else:
+            dm = float(np.mean(duties))
+            amps = [int(round(-self.ripple_k * (d - dm))) for d in duties]
+        seed = int(self.adc_rng.integers(0, 1 << 32))
+        d = self.dut
+        d.enc_target.value = count & 0xFFFFFFFF
+        for i in range(3):
+            getattr(d, f"adc_code{i}").value = codes[i]
+            getattr(d, f"adc_amp{i}").value = amps[i]
+        d.adc_seed.value = seed
+        d.adc_noise.value = self.adc_noise
+        d.adc_inj_en.value = int(self.inj is not None)
+        if self.inj is not None:
+            d.adc_inj_tau.value, d.adc_inj_ch.value, d.adc_inj_code.value = self.inj
+        d.hall.value = hall_code(st.theta_e)
+        self.adc_set = (codes, amps, seed)
+        frames = [tuple(self.ripple.code(tau, codes[i], amps[i], i, seed, self.adc_noise) for i in range(3))
+                  for tau in self.adcp.window_taus()]
+        off = self.cfg.sensors.adc_offset
+        return window_cur(frames, (off, off, off), self.adcp), count
 
     # ------------------------------------------------------------------ one PWM period
     async def pwm_period(self, actions, at_boundary: bool = False):
@@ -124,10 +175,11 @@ class CoSim:
             await RisingEdge(dut.dbg_period_start)
         bridges_on = int(dut.pwm_en.value) == 0b111
         duties = np.array(self.cmp_rtl, dtype=float) / self.P if bridges_on else None
+        # plant to the centre and the pins at once: the ADC window starts before the centre
+        self._plant_half(duties)
+        cur, count = self.drive_plant_pins(duties)
         for act in actions:            # CPU accesses in the first half period (mirrored in the model)
             await act()
-        self._plant_half(duties)
-        codes, count = self.drive_plant_pins()
         await RisingEdge(dut.dbg_adc_trig)
         await ReadOnly()
         t_trig = get_sim_time("ps")
@@ -141,8 +193,7 @@ class CoSim:
             # sample instant is profile time -N Ts
             self.t_profile0 = self.t + self.cfg.control.N * self.cfg.control.Ts
         theta16 = pos_sense.angle(count, self.cfg.sensors.encoder_cpr, self.cfg.motor.p, base=0)
-        off = self.cfg.sensors.adc_offset
-        out = self.seq.period(theta16, count & 0xFFFFFFFF, tuple(c - off for c in codes), self.regs, ref_w)
+        out = self.seq.period(theta16, count & 0xFFFFFFFF, cur, self.regs, ref_w)
         if control:
             self.last_control = dict(out, ref_w0=self.ref.w[0])
         self.u_applied = self.seq.u
@@ -302,6 +353,10 @@ async def run_cosim(dut, name: str) -> dict:
     off = cs.cfg.sensors.adc_offset
     for i in range(3):
         getattr(dut, f"adc_code{i}").value = off
+        getattr(dut, f"adc_amp{i}").value = 0
+    dut.adc_seed.value = 12345
+    dut.adc_noise.value = cs.adc_noise
+    dut.adc_inj_en.value = 0
     bus.idle()
     await ClockCycles(dut.clk, 20)
     dut.rst_n.value = 1
@@ -394,12 +449,35 @@ async def run_cosim(dut, name: str) -> dict:
     n_periods = int(round(cs.duration / cs.Tpwm))
     fault_at = n_periods // 3
     fault_seen = None
+    oc_meas = {}
+
+    async def oc_monitor(tau):
+        """From the boundary of the injection period: the cycle of the last SCLK rising edge before
+        the bridge outputs switch off, and that cycle."""
+        await RisingEdge(dut.dbg_period_start)
+        n, prev_sclk, last_rise = 0, 1, None
+        while n < 4 * cs.P:
+            await RisingEdge(dut.clk)
+            await ReadOnly()
+            n += 1
+            sclk = int(dut.dbg_adc_sclk.value)
+            if sclk and not prev_sclk:
+                last_rise = n
+            prev_sclk = sclk
+            if int(dut.pwm_en.value) == 0:
+                oc_meas.update(off=n, last_rise=last_rise)
+                return
     for k in range(len(plan) + n_periods):
         acts = list(plan[k]) if k < len(plan) else []
         if k % 100 == 50 and not (cs.fault == "watchdog" and k >= fault_at):
             acts.append(kick)
         if cs.fault == "overcurrent" and k == fault_at:
-            cs.inject = True
+            # one frame over the threshold, 10 frames before the window, between good frames
+            tau_inj = cs.adcp.window_taus()[0] - 10 * cs.adcp.tf
+            cs.inj = (tau_inj, 0, 4095)
+            cocotb.start_soon(oc_monitor(tau_inj))
+        if cs.fault == "overcurrent" and k == fault_at + 1:
+            cs.inj = None
         if cs.fault == "pstage" and k == fault_at:
             acts.append(lambda: pstage_pulse(dut, cs))
         if cs.fault == "clock" and k == fault_at:
@@ -428,7 +506,21 @@ async def run_cosim(dut, name: str) -> dict:
     # read back status over the bus
     status = {n: await drv.read(n) for n in ("STATUS", "FAULT", "LATENCY", "PERIODS", "SAT_LIMIT", "SAT_EBAR_INC",
                                               "SAT_WN", "SAT_OPERAND", "SAT_TERM", "SAT_ACC", "SAT_DU", "SAT_U",
-                                              "SAT_FRONT", "CNT_ADC_MISS", "CNT_ENC_ERR", "CNT_OVERRUN")}
+                                              "SAT_FRONT", "CNT_ADC_MISS", "CNT_ENC_ERR", "CNT_OVERRUN",
+                                              "ADC_PSUM0", "ADC_PSUM1", "ADC_PSUM2")}
+    # period sums of the ADC (every frame of the last complete PWM period): the number of frames
+    # of the schedule, and a mean within ripple + noise of the period's code (read late in a period:
+    # its base codes are those of the period being summed only approximately, allow the step too)
+    fpp = cs.adcp.frames_per_period()
+    codes, amps, _ = cs.adc_set
+    psum = []
+    for i in range(3):
+        v = status[f"ADC_PSUM{i}"]
+        sm, cnt = v & 0xFFFFF, (v >> 24) & 0x7F
+        sm -= (sm >> 19) << 20
+        assert cnt == fpp, f"ADC_PSUM{i}: {cnt} frames, the schedule has {fpp} per period"
+        psum.append(sm / cnt)
+    cs.adc_psum_mean = psum
     # status words of the last control period (and the u applied) against the model
     lc = cs.last_control
     m32 = 0xFFFFFFFF
@@ -446,7 +538,7 @@ async def run_cosim(dut, name: str) -> dict:
     for n in ("PERIODS", "SAT_OPERAND", "SAT_EBAR_INC", "SAT_LIMIT", "CNT_OVERRUN"):
         assert await drv.read(n) < 2, f"{n} not zeroed"
     cs.reg_checks += 9
-    return {"cs": cs, "wall": wall, "status": status, "fault_seen": fault_seen}
+    return {"cs": cs, "wall": wall, "status": status, "fault_seen": fault_seen, "oc_meas": oc_meas}
 
 
 def metrics_report(cs: CoSim, res: dict) -> dict:
@@ -492,7 +584,14 @@ async def closed_loop(dut, name: str):
               "status_registers": res["status"],
               "latency_adc_trigger_to_pwm_update_cycles": res["status"]["LATENCY"],
               "latency_max_cycles": dict(cs.lat_max),
-              "fault_seen_period": res["fault_seen"]}
+              "fault_seen_period": res["fault_seen"],
+              "adc": {"avg_log2": cs.adcp.avg_log2, "frame_period_clk": cs.adcp.tf,
+                      "window_taus_clk": cs.adcp.window_taus(), "valid_after_trig_clk": cs.adcp.valid_delay(),
+                      "frames_per_period": cs.adcp.frames_per_period(), "noise_lsb_peak": cs.adc_noise,
+                      "ripple_lsb_per_duty": cs.ripple_k, "period_mean_minus_offset": cs.adc_psum_mean}}
+    if res["oc_meas"]:
+        report["adc"]["oc_injected_frame_pins_off_after_last_sclk_rise_clk"] = \
+            res["oc_meas"]["off"] - res["oc_meas"]["last_rise"]
     if cs.fault is None:
         assert not cs.mismatches, f"RTL compare values differ from the bit-accurate model: {cs.mismatches[:3]}"
         tr, sc_cut, m = metrics_report(cs, res)
@@ -506,14 +605,22 @@ async def closed_loop(dut, name: str):
         report["rms_error_rtl_vs_float_rel"] = abs(m["rms_error"] - fm["rms_error"]) / max(fm["rms_error"], 1e-12)
         assert report["rms_error_rtl_vs_float_rel"] < 0.10, report["rms_error_rtl_vs_float_rel"]
         assert res["status"]["CNT_OVERRUN"] == 0 and res["status"]["FAULT"] == 0, res["status"]
+        assert res["status"]["CNT_ADC_MISS"] == 0, "PWM centre off the ADC frame grid"
         _plot(cs, tr, ftr, REPORTS / f"closed_loop_{name}.png")
     else:
         assert res["fault_seen"] is not None, f"{cs.fault}: no fault tripped"
-        bit = {"overcurrent": 0, "encoder": 2, "watchdog": 3, "pstage": 7, "clock": 8}[cs.fault]
+        bit = next(f.lsb for f in regmap.axis_reg("FAULT").fields if f.name == cs.fault)
         report["kill_path"] = cs.kill
+        if cs.fault == "overcurrent":
+            # the single bad frame (accepted at centre + tau) switched the bridges off oc_to_pins()
+            # clocks after its last SCLK rising edge, 2 + VL clocks after its start
+            om, ap = res["oc_meas"], cs.adcp
+            tau = ap.window_taus()[0] - 10 * ap.tf
+            assert om and om["off"] - om["last_rise"] == ap.oc_to_pins(), om
+            assert om["off"] == cs.P + tau + ap.valid_latency() + 2, (om, cs.P + tau + ap.valid_latency() + 2)
         assert (res["status"]["FAULT"] >> bit) & 1, f"{cs.fault}: FAULT register {res['status']['FAULT']:#x}"
         # cleared only by the CPU: still latched now, clears once the cause has gone
-        cs.inject = False
+        cs.inj = None
         drv = driver.Drive(__import__("emc_bfm").EmcBfm(dut, pins=dict(cs_n="cpu_cs_n", oe_n="cpu_oe_n",
                            we_n="cpu_we_n", a="cpu_a", d="cpu_d", d_oe="cpu_d_oe", bus="emc_d_seen")))
         await drv.kick()

@@ -140,8 +140,13 @@ class Env:
         d.mark.value = 0
         d.enc_glitch.value = 0
         d.hall.value = 0b001
+        d.pwr_fault_n.value = 1
         for i in range(3):
             getattr(d, f"adc_code{i}").value = self.macros["ADC_OFFSET"]
+            getattr(d, f"adc_amp{i}").value = 0          # tb/hdl/adc_ripple.v: no ripple, no noise
+        d.adc_seed.value = 0
+        d.adc_noise.value = 0
+        d.adc_inj_en.value = 0
         self.bfm.idle()
         await ClockCycles(d.clk, 20)
         d.rst_n.value = 1

@@ -50,6 +50,10 @@ WDOG_KEY = 0x5A5A
 EMC_CS0_BASE = 0x80000000
 WORD_BYTES = 4
 ACCESS = ("RO", "RW", "WO", "W1C")
+# ADC plausibility persistence (build-time, rtl/adc_spi.v parameter defaults via empc_regs.vh)
+ADC_STUCK_FRAMES = 4      # consecutive frames with a code at a rail -> FAULT.adc_stuck
+ADC_SUM_FRAMES = 4        # consecutive frames with |sum of the phase currents| > ADC_SUM_THRESH -> FAULT.adc_sum
+ADC_FROZEN_PERIODS = 4    # consecutive PWM periods (bridges on) with a channel bit-identical -> FAULT.adc_frozen
 
 
 @dataclass(frozen=True)
@@ -219,6 +223,30 @@ GLOBAL = (
         "(status AND enable).", width=2),
 )
 
+# FAULT: one bit per cause, contiguous from bit 0 (FAULT_MASK has the same bits; mpc_axis: NCAUSE =
+# EMPC_A_FAULT_W).  Adding a cause = one line here plus its signal in mpc_axis.v.
+FAULT_CAUSES = (
+    Field("overcurrent", 0, 1, "|phase current| above OC_THRESH in some ADC frame (every frame is "
+          "checked)"),
+    Field("hall", 1, 1, "illegal HALL code 000 or 111"),
+    Field("encoder", 2, 1, "illegal quadrature transition"),
+    Field("watchdog", 3, 1, "CPU did not kick the watchdog in time"),
+    Field("dclink", 4, 1, "UDC outside UDC_MIN..UDC_MAX"),
+    Field("overrun", 5, 1, "the control computation did not finish before the PWM update"),
+    Field("adc", 6, 1, "ADC frame error (leading zero bit read as 1)"),
+    Field("pstage", 7, 1, "power-stage fault input pwr_fault_n was low (clock-independent kill; not maskable)"),
+    Field("clock", 8, 1, "PLL lock lost or fabric clock stopped (clock-independent kill; not maskable)"),
+    Field("coef", 9, 1, "the active coefficient bank holds no valid image (bad boot image; not maskable)"),
+    Field("hall_enc", 10, 1, "HALL sector and encoder disagree (angle 2+ sectors apart, HALL against or "
+          "beyond the encoder)"),
+    Field("enc_break", 11, 1, "encoder line break: a whole HALL sector crossed with under half its counts"),
+    Field("adc_stuck", 12, 1, f"an ADC code at a rail (0 or full scale) in {ADC_STUCK_FRAMES} consecutive frames"),
+    Field("adc_sum", 13, 1, f"|i_a + i_b + i_c| above ADC_SUM_THRESH in {ADC_SUM_FRAMES} consecutive frames"),
+    Field("adc_frozen", 14, 1, f"an ADC channel bit-identical in every frame of {ADC_FROZEN_PERIODS} PWM "
+          "periods with the bridges on"),
+)
+ADC_PSUM_FIELDS = (Field("sum", 0, 20, "signed 20-bit sum, ADC LSB"), Field("count", 24, 7, "frames"))
+
 AXIS = (
     Reg("CTRL", 0x00, "RW", 0, "Axis control.", (
         Field("enable", 0, 1, "bridges may switch (PWM running, outputs enabled) unless a fault is latched"),
@@ -229,7 +257,8 @@ AXIS = (
               reset="EMPC_PWM_PER_CONTROL", floor=1))),
     Reg("CMD", 0x01, "WO", 0, "Command pulses (write 1).", (
         Field("fault_clear", 0, 1, "clear latched faults (only those whose cause has gone)"),
-        Field("adc_cal", 1, 1, "start ADC offset calibration (keep enable = 0: bridges off)"),
+        Field("adc_cal", 1, 1, "start ADC offset calibration (refused while the bridges are on; bridges on "
+              "abort it)"),
         Field("ref_sync", 2, 1, "set the reference generator to the measured output (bumpless start)"),
         Field("coef_swap", 3, 1, "make the uploaded coefficient bank active at the next control-period sample "
               "instant; refused (STATUS.swap_refused, CNT_SWAP_REF) unless it holds a complete valid image"),
@@ -246,23 +275,14 @@ AXIS = (
         Field("swap_pending", 7, 1, "a bank swap waits for the next control period"),
         Field("fault", 8, 1, "a fault is latched (bridges forced off)"),
         Field("coef_valid", 9, 1, "the inactive bank holds a complete valid upload (a swap would be accepted)"),
-        Field("swap_refused", 10, 1, "the last decided coefficient swap was refused (until a swap is accepted)"))),
-    Reg("FAULT", 0x03, "RO", 0, "Latched (sticky) fault causes; cleared by CMD.fault_clear once the cause has gone.", (
-        Field("overcurrent", 0, 1, "|phase current| above OC_THRESH"),
-        Field("hall", 1, 1, "illegal HALL code 000 or 111"),
-        Field("encoder", 2, 1, "illegal quadrature transition"),
-        Field("watchdog", 3, 1, "CPU did not kick the watchdog in time"),
-        Field("dclink", 4, 1, "UDC outside UDC_MIN..UDC_MAX"),
-        Field("overrun", 5, 1, "the control computation did not finish before the PWM update"),
-        Field("adc", 6, 1, "ADC frame error (leading zero bit read as 1)"),
-        Field("pstage", 7, 1, "power-stage fault input pwr_fault_n was low (clock-independent kill; not maskable)"),
-        Field("clock", 8, 1, "PLL lock lost or fabric clock stopped (clock-independent kill; not maskable)"),
-        Field("coef", 9, 1, "the active coefficient bank holds no valid image (bad boot image; not maskable)"),
-        Field("hall_enc", 10, 1, "HALL sector and encoder disagree (angle 2+ sectors apart, HALL against or "
-              "beyond the encoder)"),
-        Field("enc_break", 11, 1, "encoder line break: a whole HALL sector crossed with under half its counts"))),
-    Reg("FAULT_MASK", 0x04, "RW", 0xfff, "Fault causes that switch the bridges off (same bits as FAULT). "
-        "Masked causes are still recorded in FAULT; pstage, clock and coef always trip.", width=12),
+        Field("swap_refused", 10, 1, "the last decided coefficient swap was refused (until a swap is accepted)"),
+        Field("adc_refused", 11, 1, "an ADC calibration or offset write was refused or a calibration aborted "
+              "(bridges on / calibrating); CMD.clear_counters clears it"))),
+    Reg("FAULT", 0x03, "RO", 0, "Latched (sticky) fault causes; cleared by CMD.fault_clear once the cause has gone.",
+        FAULT_CAUSES),
+    Reg("FAULT_MASK", 0x04, "RW", (1 << len(FAULT_CAUSES)) - 1, "Fault causes that switch the bridges off (same "
+        "bits as FAULT). Masked causes are still recorded in FAULT; pstage, clock and coef always trip.",
+        width=len(FAULT_CAUSES)),
     Reg("DEAD_TIME", 0x05, "RW", 50, "Dead time in fabric clocks (complementary mode).", width=8),
     Reg("KDC", 0x06, "RW", 1 << 16, "DC-link compensation Udc_nominal / Udc, unsigned Q2.16 (1.0 = 0x10000).",
         width=18),
@@ -270,9 +290,11 @@ AXIS = (
         width=16),
     Reg("UDC_MIN", 0x08, "RW", 0, "Lowest allowed DC link, mV (0 disables the lower check).", width=16),
     Reg("UDC_MAX", 0x09, "RW", 0xffff, "Highest allowed DC link, mV.", width=16),
-    Reg("OC_THRESH", 0x0a, "RW", 1800, "Overcurrent threshold, ADC LSB of |code - offset| (per phase).", width=12),
+    Reg("OC_THRESH", 0x0a, "RW", 1800, "Overcurrent threshold, ADC LSB of |code - offset| (per phase, every "
+        "frame).", width=12),
     Reg("ADC_OFF0", 0x0b, "RW", "EMPC_ADC_OFFSET", "ADC offset phase A (calibration writes it; reads the active "
-        "value).", width=12, ext="adc_off"),
+        "value; writes refused while calibrating or with the bridges on: STATUS.adc_refused).", width=12,
+        ext="adc_off"),
     Reg("ADC_OFF1", 0x0c, "RW", "EMPC_ADC_OFFSET", "ADC offset phase B.", width=12, ext="adc_off"),
     Reg("ADC_OFF2", 0x0d, "RW", "EMPC_ADC_OFFSET", "ADC offset phase C.", width=12, ext="adc_off"),
     Reg("ANGLE_CAL", 0x0e, "RW", 0, "Electrical angle at the encoder index (2^16 = one electrical turn).", width=16),
@@ -302,6 +324,8 @@ AXIS = (
         Field("last", 1, 1, "hold at the end of this segment instead of moving to the next slot")), ext="seg"),
     Reg("SEG_START", 0x1b, "WO", 0, "Write a slot number to start the profile there at the next control period.",
         width=4),
+    Reg("ADC_SUM_THRESH", 0x1c, "RW", 300, "Sum-of-currents threshold, ADC LSB of |d_a + d_b + d_c| (d = code - "
+        "offset), checked on every frame (FAULT.adc_sum).", width=12),
     Reg("POS", 0x20, "RO", 0, "Encoder count (x4, modular 32 bit)."),
     Reg("SPEED", 0x21, "RO", 0, "Speed estimate at the last control period, counts per Ts, signed Q16.16.",
         ext="stat"),
@@ -321,6 +345,10 @@ AXIS = (
         "period.",
         width=16),
     Reg("PERIODS", 0x2b, "RO", 0, "Control periods run since enable.", ext="cnt"),
+    Reg("ADC_PSUM0", 0x2c, "RO", 0, "Phase A: sum of code - offset over the ADC frames of the last complete PWM "
+        "period, and their number (period mean = sum / count; both from the same period).", ADC_PSUM_FIELDS),
+    Reg("ADC_PSUM1", 0x2d, "RO", 0, "Phase B: as ADC_PSUM0.", ADC_PSUM_FIELDS),
+    Reg("ADC_PSUM2", 0x2e, "RO", 0, "Phase C: as ADC_PSUM0.", ADC_PSUM_FIELDS),
     Reg("SAT_OPERAND", 0x30, "RO", 0, "Saturation counter: core operand. SAT_* and CNT_OVERRUN count control "
         "periods in which the event happened (32-bit, saturating; updated after the control period's "
         "modulation).", ext="cnt"),
@@ -336,7 +364,8 @@ AXIS = (
     Reg("SAT_SIGNAL", 0x3a, "RO", 0, "Saturation counter: core signal (SIG_W).", ext="cnt"),
     Reg("SAT_FRONT", 0x3b, "RO", 0, "Saturation counter: front end (transforms, speed, duty).", ext="cnt"),
     Reg("CNT_OVERRUN", 0x3c, "RO", 0, "Control computations that missed their PWM update.", ext="cnt"),
-    Reg("CNT_ADC_MISS", 0x3d, "RO", 0, "ADC triggers ignored while busy (8-bit, saturating; not cleared by "
+    Reg("CNT_ADC_MISS", 0x3d, "RO", 0, "PWM centres that missed the ADC sampling window (trigger off the frame "
+        "grid, or a sync restart cut the window: no current sample that period; 8-bit, saturating; not cleared by "
         "CMD.clear_counters).", width=8),
     Reg("CNT_ENC_ERR", 0x3e, "RO", 0, "Illegal quadrature transitions (16-bit, saturating).", width=16),
     Reg("CNT_SWAP_REF", 0x3f, "RO", 0, "Refused coefficient swaps (8-bit, saturating; CMD.clear_counters zeroes "
@@ -529,7 +558,8 @@ def render_vh() -> str:
              f"`define EMPC_REG_AXIS_BASE {AXIS_BASE}", f"`define EMPC_REG_AXIS_STRIDE {AXIS_STRIDE}",
              f"`define EMPC_REG_COEF_BASE {COEF_BASE}", f"`define EMPC_REG_COEF_STRIDE {COEF_STRIDE}",
              f"`define EMPC_ID_MAGIC 32'h{ID_MAGIC:08x}", f"`define EMPC_VERSION 32'h{VERSION:08x}",
-             f"`define EMPC_WDOG_KEY {WDOG_KEY}"]
+             f"`define EMPC_WDOG_KEY {WDOG_KEY}", f"`define EMPC_ADC_STUCK_FRAMES {ADC_STUCK_FRAMES}",
+             f"`define EMPC_ADC_SUM_FRAMES {ADC_SUM_FRAMES}", f"`define EMPC_ADC_FROZEN_PERIODS {ADC_FROZEN_PERIODS}"]
     names = set()
     for b in BLOCKS:
         for name, v in _macros(b.scope, b.regs, b.ext):
