@@ -95,7 +95,12 @@ module mpc_axis #(
     // signals that run against the dataflow (PWM timing, fault trip)
     wire        period_start, adc_trig, trip;
     wire        core_img_ok;
-    wire        bridges_on = ctrl_enable && !trip && theta_valid && core_img_ok;
+    // bridges_req asks pwm_center to switch (it also takes `trip` and its own latch);
+    // bridges_on is what the outputs do (pwm_center.on, registered with the pins): STATUS,
+    // the controller (the law runs only while the outputs switch: with them off ctrl_seq
+    // holds u = 0 and restarts from u_prev = ebar = 0, a bumpless restart) and the ADC checks
+    wire        bridges_req = ctrl_enable && theta_valid && core_img_ok;
+    wire        bridges_on;
     wire        running = ctrl_run && bridges_on;
 
     // ---------------- sensors: encoder, HALL, position ----------------
@@ -271,11 +276,16 @@ module mpc_axis #(
 
     // ---------------- PWM ----------------
     wire            pwm_fault_latched, mode_eff, cmp_clip;
+    // pwm_center's own latch is cleared one clock after CMD.fault_clear: in the clear's clock
+    // `trip` still holds fault_ctrl's latched bits and would latch it again (issue 14 item 1);
+    // a clock later trip is low unless a cause is still present
+    reg             clear_d;
+    always @(posedge clk) clear_d <= cmd_fault_clear && !rst;
     pwm_center u_pwm (
-        .clk(clk), .rst(rst), .enable(bridges_on), .mode(!ctrl_complementary), .dead(dead_time), .cmp_in(cmp),
-        .cmp_load(cmp_load), .sync_in(pwm_sync_in), .fault(trip), .fault_clear(cmd_fault_clear),
+        .clk(clk), .rst(rst), .enable(bridges_req), .mode(!ctrl_complementary), .dead(dead_time), .cmp_in(cmp),
+        .cmp_load(cmp_load), .sync_in(pwm_sync_in), .fault(trip), .fault_clear(clear_d),
         .hi(pwm_hi), .lo(pwm_lo), .period_start(period_start), .adc_trig(adc_trig), .sync_out(pwm_sync_out),
-        .fault_latched(pwm_fault_latched), .mode_eff(mode_eff), .cmp_clip(cmp_clip));
+        .fault_latched(pwm_fault_latched), .mode_eff(mode_eff), .cmp_clip(cmp_clip), .on(bridges_on));
     assign period_tick = period_start;
 
     // ---------------- status words and counters: one block RAM ----------------
