@@ -16,7 +16,11 @@
 // through one gate after the output registers, without a clock edge; the event is
 // latched as FAULT.pstage / FAULT.clock on every axis through the synchronised path.
 // Global registers: global_regs (generated from gen/empc/regmap.py); TIME, the interrupt
-// output and the LEDs are kept here.
+// output and the LEDs are kept here; refused global writes are counted by every axis.  WDOG_TIMEOUT changes only
+// with every axis off (no CTRL.enable, no output switching) and right after UNLOCK, within
+// 1..WDOG_TIMEOUT_MAX (the watchdog cannot be disabled).
+// Parameters: COMPLEMENTARY is the board's bridge mode (0 = PWM + enable for LX_PWR, 1 =
+// complementary high/low with dead time), a build parameter, reported in CAPS.
 // Reset: rst_n_in (asynchronous, synchronised in clk_gen) and PLL lock.
 `default_nettype none
 `include "empc_formats.vh"
@@ -28,7 +32,8 @@ module lx_rocon_top #(
     parameter integer PLL_MULT = 12,
     parameter integer PLL_DIV = 6,
     parameter BOOT_FILE = "coef_boot.hex",
-    parameter RSQRT_FILE = "rsqrt.hex"
+    parameter RSQRT_FILE = "rsqrt.hex",
+    parameter integer COMPLEMENTARY = 0    // bridge mode of the board (see above)
 ) (
     input  wire                 clk_in,    // board oscillator (PLL: clk_in * PLL_MULT / PLL_DIV = 100 MHz)
     input  wire                 rst_n_in,  // external reset, active low, asynchronous
@@ -47,7 +52,7 @@ module lx_rocon_top #(
     input  wire [3*NAXES-1:0]   hall,
     input  wire                 pwr_fault_n,  // LX_PWR fault, active low: all bridges off without a clock
     // LX_PWR half-bridges: PWM (high-side command) + enable per half-bridge
-    // (complementary mode, CTRL.complementary = 1: high and low switch)
+    // (COMPLEMENTARY = 1 builds: high and low switch)
     output wire [3*NAXES-1:0]   pwm_out,
     output wire [3*NAXES-1:0]   pwm_en,
     // current ADCs (3 simultaneous-sampling channels per axis, shared SCLK/CS)
@@ -112,11 +117,13 @@ module lx_rocon_top #(
     wire [`EMPC_G_WDOG_TIMEOUT_W-1:0] wdog_timeout;
     wire        wdog_kick, irq_period, irq_fault;
     wire [`EMPC_G_IRQ_ENABLE_W-1:0] irq_enable;
-    wire [NAXES-1:0] period_tick, control_done, fault_any;
+    wire [NAXES-1:0] period_tick, control_done, fault_any, live;
+    wire        g_wr_refused;                               // counted by every axis (CNT_WR_REFUSED)
     reg  [`EMPC_G_TIME_W-1:0] time_cnt;                    // TIME: PWM periods of axis 0
     reg         fault_any_d;
     wire        wdog_expired;
-    watchdog u_wdog (.clk(clk), .rst(rst), .tick(period_tick[0]), .kick(wdog_kick), .timeout(wdog_timeout),
+    watchdog #(.TW(`EMPC_G_WDOG_TIMEOUT_W)) u_wdog (.clk(clk), .rst(rst), .tick(period_tick[0]), .kick(wdog_kick),
+                     .timeout(wdog_timeout),
                      .expired(wdog_expired));
 
     always @(posedge clk) begin
@@ -140,16 +147,18 @@ module lx_rocon_top #(
     localparam [31:0] CAP_N_W = `EMPC_N;
     localparam [31:0] CAP_LAYOUT_W = `EMPC_IMG_LAYOUT;
     localparam [31:0] CAP_PPC_W = `EMPC_PWM_PER_CONTROL;
+    localparam [0:0]  CAP_COMPL = (COMPLEMENTARY != 0);
     global_regs u_gregs (
         .clk(clk), .rst(rst), .reg_wr(reg_wr && in_global), .reg_rd(reg_rd && in_global),
         .reg_addr(reg_addr[7:0]), .reg_wdata(reg_wdata), .reg_rdata(g_rdata),
         .caps_naxes(NAXES_W[`EMPC_G_CAPS_NAXES_W-1:0]), .caps_horizon(CAP_N_W[`EMPC_G_CAPS_HORIZON_W-1:0]),
         .caps_img_layout(CAP_LAYOUT_W[`EMPC_G_CAPS_IMG_LAYOUT_W-1:0]),
-        .caps_pwm_per_control(CAP_PPC_W[`EMPC_G_CAPS_PWM_PER_CONTROL_W-1:0]),
+        .caps_pwm_per_control(CAP_PPC_W[`EMPC_G_CAPS_PWM_PER_CONTROL_W-1:0]), .caps_complementary(CAP_COMPL),
         .pwm_half(PWM_HALF_W), .scratch(scratch), .wdog_timeout(wdog_timeout), .wdog_kick(wdog_kick),
         .time_cnt(time_cnt), .irq_status_period(irq_period), .irq_status_period_set(control_done[0]),
         .irq_status_fault(irq_fault), .irq_status_fault_set((|fault_any) && !fault_any_d),
-        .irq_enable(irq_enable));
+        .irq_enable(irq_enable), .bridges_live(|live), .wdog_unlock_tick(period_tick[0]),
+        .wr_refused(g_wr_refused));
 
     // ---------------- axes ----------------
     wire [32*NAXES-1:0] a_rdata;
@@ -162,16 +171,17 @@ module lx_rocon_top #(
             localparam [31:0] CP = COEF_PAGE + n;
             wire sel = (apage == AP[EMC_AW-9:0]);
             wire csel = (cpage == CP[EMC_AW-11:0]);
-            mpc_axis #(.BOOT_FILE(BOOT_FILE), .RSQRT_FILE(RSQRT_FILE)) u_axis (
+            mpc_axis #(.BOOT_FILE(BOOT_FILE), .RSQRT_FILE(RSQRT_FILE), .COMPLEMENTARY(COMPLEMENTARY)) u_axis (
                 .clk(clk), .rst(rst),
                 .reg_wr(reg_wr && sel), .reg_rd(reg_rd && sel), .reg_addr(reg_addr[7:0]), .reg_wdata(reg_wdata),
                 .reg_rdata(a_rdata[32*n +: 32]), .coef_we(reg_wr && csel), .coef_addr(reg_addr[9:0]),
-                .watchdog_expired(wdog_expired), .ext_fault({kill_clock, kill_pstage}), .pwm_sync_in(n == 0 ? 1'b0 : sync_out[0]),
+                .watchdog_expired(wdog_expired), .g_wr_refused(g_wr_refused), .ext_fault({kill_clock, kill_pstage}), .pwm_sync_in(n == 0 ? 1'b0 : sync_out[0]),
                 .pwm_sync_out(sync_out[n]),
                 .irc_a(irc_a[n]), .irc_b(irc_b[n]), .irc_idx(irc_idx[n]), .irc_mark(irc_mark[n]),
                 .hall(hall[3*n +: 3]), .pwm_hi(hi_r[3*n +: 3]), .pwm_lo(lo_r[3*n +: 3]),
                 .adc_sclk(sclk_ax[n]), .adc_cs_n(cs_ax[n]), .adc_miso(adc_miso[3*n +: 3]),
-                .period_tick(period_tick[n]), .control_done(control_done[n]), .fault_any(fault_any[n]));
+                .period_tick(period_tick[n]), .control_done(control_done[n]), .fault_any(fault_any[n]),
+                .bridges_live(live[n]));
         end
     endgenerate
     assign adc_sclk = sclk_ax[0];

@@ -12,10 +12,18 @@
 // Safety: every cause in FAULT_MASK forces all six outputs off in the clock the
 // cause is registered (fault_ctrl.trip is combinational into pwm_center's fault,
 // whose outputs are registered); latched until CMD.fault_clear with the cause gone.
-// The power-stage, clock (ext_fault, from the top's clock-independent kill path) and
-// coefficient-image causes trip whatever FAULT_MASK says.  The bridges are enabled
+// The watchdog, overrun (also a stalled sequencer: no compare values for SEQ_STALL_PERIODS
+// PWM periods), power-stage, clock (ext_fault, from the top's clock-independent kill path)
+// and coefficient-image causes trip whatever FAULT_MASK says.  The bridges are enabled
 // only while the angle is valid (pos_sense) and the active coefficient bank holds a
 // valid image (a bad boot image keeps them off until a valid upload is swapped in).
+// Safety settings (issue 14 item 2, attributes in the map): refused while bridges_live
+// (CTRL.enable set or the outputs switching), FAULT_MASK only right after UNLOCK, build
+// limits as legal values; refused writes are counted (CNT_WR_REFUSED, STATUS.wr_refused).
+// UDC must be rewritten every UDC_FRESH_PERIODS PWM periods (else FAULT.dclink); it resets
+// to 0, below UDC_MIN: a missing or stale DC-link value trips.
+// Parameters: COMPLEMENTARY (bridge mode of the board, build time: 0 = PWM + enable for
+// LX_PWR, 1 = complementary high/low with dead time >= DEAD_TIME_MIN).
 // Reset: CTRL.enable = 0 (outputs off), registers at their map reset values.
 `default_nettype none
 `include "empc_formats.vh"
@@ -25,7 +33,8 @@ module mpc_axis #(
     parameter BOOT_FILE = "coef_boot.hex",
     parameter RSQRT_FILE = "rsqrt.hex",
     parameter integer HALL_DEBOUNCE = 1000,
-    parameter integer ENC_FILTER = 8
+    parameter integer ENC_FILTER = 8,
+    parameter integer COMPLEMENTARY = 0
 ) (
     input  wire        clk,
     input  wire        rst,
@@ -39,6 +48,7 @@ module mpc_axis #(
     input  wire [9:0]  coef_addr,
     // global
     input  wire        watchdog_expired,
+    input  wire        g_wr_refused,     // a global register write was refused (counted here too)
     input  wire [1:0]  ext_fault,        // {clock, pstage}: out_kill causes (synchronous levels)
     input  wire        pwm_sync_in,      // restart the PWM period (phase-lock several axes)
     output wire        pwm_sync_out,
@@ -56,16 +66,19 @@ module mpc_axis #(
     // status for the top
     output wire        period_tick,      // PWM period boundary
     output wire        control_done,     // pulse per control period
-    output wire        fault_any
+    output wire        fault_any,
+    output wire        bridges_live      // CTRL.enable or outputs switching (guard of the global safety settings)
 );
     localparam integer CW = $clog2(`EMPC_PWM_HALF_PERIOD + 1);
     localparam integer NCAUSE = `EMPC_A_FAULT_W;
     // causes that trip whatever FAULT_MASK says
-    localparam [NCAUSE-1:0] NOMASK = (1 << `EMPC_A_FAULT_PSTAGE) | (1 << `EMPC_A_FAULT_CLOCK) | (1 << `EMPC_A_FAULT_COEF);
+    localparam [NCAUSE-1:0] NOMASK = (1 << `EMPC_A_FAULT_PSTAGE) | (1 << `EMPC_A_FAULT_CLOCK) |
+                                    (1 << `EMPC_A_FAULT_COEF) | (1 << `EMPC_A_FAULT_WATCHDOG) |
+                                    (1 << `EMPC_A_FAULT_OVERRUN);
     localparam integer RAW = (N < 2) ? 1 : $clog2(N + 1);
 
     // ---------------- register outputs (axis_regs, instance at the end) ----------------
-    wire                                     ctrl_enable, ctrl_run, ctrl_complementary;
+    wire                                     ctrl_enable, ctrl_run;
     wire [`EMPC_A_CTRL_PWM_PER_CONTROL_W-1:0] ctrl_pwm_per_control;
     wire                                     cmd_fault_clear, cmd_adc_cal, cmd_ref_sync, cmd_coef_swap;
     wire                                     cmd_clear_counters, cmd_align_clear;
@@ -102,6 +115,7 @@ module mpc_axis #(
     wire        bridges_req = ctrl_enable && theta_valid && core_img_ok;
     wire        bridges_on;
     wire        running = ctrl_run && bridges_on;
+    assign      bridges_live = ctrl_enable || bridges_on;   // guard: safety settings change only when low
 
     // ---------------- sensors: encoder, HALL, position ----------------
     wire [31:0] pos, index_pos, mark_pos;
@@ -242,6 +256,20 @@ module mpc_axis #(
         .swap_pending(core_swap_pending), .boot_ok(core_boot_ok), .img_ok(core_img_ok), .upl_ok(core_upl_ok),
         .swap_refused(core_swap_refused), .refused(core_refused), .task_pos(task_pos));
     wire img_bad = core_ready && !core_img_ok;
+    // refused register writes (axis_regs and global_regs: guard, unlock, legal): 8-bit saturating
+    // counter and a sticky flag, both cleared by CMD.clear_counters
+    wire        wr_refused;
+    reg         wr_ref_flag;
+    reg  [`EMPC_A_CNT_WR_REFUSED_W-1:0] cnt_wr_refused;
+    always @(posedge clk) begin
+        if (rst || cmd_clear_counters) begin
+            cnt_wr_refused <= 0;
+            wr_ref_flag <= 1'b0;
+        end else if (wr_refused || g_wr_refused) begin
+            wr_ref_flag <= 1'b1;
+            if (!(&cnt_wr_refused)) cnt_wr_refused <= cnt_wr_refused + 1'b1;
+        end
+    end
     // refused swaps: 8-bit saturating counter (CNT_SWAP_REF)
     reg  [`EMPC_A_CNT_SWAP_REF_W-1:0] cnt_swap_ref;
     always @(posedge clk) begin
@@ -251,14 +279,32 @@ module mpc_axis #(
 
     // ---------------- faults ----------------
     // cause bit k = FAULT field at bit k (positions from the register map)
-    wire        udc_bad = (udc < udc_min) || (udc > udc_max);
+    // DC link: limits, and freshness (UDC rewritten at least every UDC_FRESH_PERIODS PWM periods)
+    localparam integer FRW = $clog2(`EMPC_UDC_FRESH_PERIODS + 1);
+    localparam [FRW-1:0] FRESH_N = `EMPC_UDC_FRESH_PERIODS;
+    wire        udc_wr;
+    reg  [FRW-1:0] udc_age;                 // PWM periods since the last UDC write, saturating
+    always @(posedge clk) begin
+        if (rst || udc_wr)                      udc_age <= 0;
+        else if (period_start && udc_age != FRESH_N) udc_age <= udc_age + 1'b1;
+    end
+    wire        udc_bad = (udc < udc_min) || (udc > udc_max) || (udc_age == FRESH_N);
+    // stalled sequencer: no compare values (cmp_load, every PWM period) for SEQ_STALL_PERIODS periods
+    localparam integer STW = $clog2(`EMPC_SEQ_STALL_PERIODS + 1);
+    localparam [STW-1:0] STALL_N = `EMPC_SEQ_STALL_PERIODS;
+    reg  [STW-1:0] seq_idle;
+    always @(posedge clk) begin
+        if (rst || cmp_load)                          seq_idle <= 0;
+        else if (period_start && seq_idle != STALL_N) seq_idle <= seq_idle + 1'b1;
+    end
+    wire        seq_stall = (seq_idle == STALL_N);
     wire [NCAUSE-1:0] causes;
     assign causes[`EMPC_A_FAULT_OVERCURRENT] = adc_oc;
     assign causes[`EMPC_A_FAULT_HALL] = hall_fault_pulse;
     assign causes[`EMPC_A_FAULT_ENCODER] = enc_err_pulse;
     assign causes[`EMPC_A_FAULT_WATCHDOG] = watchdog_expired;
     assign causes[`EMPC_A_FAULT_DCLINK] = udc_bad;
-    assign causes[`EMPC_A_FAULT_OVERRUN] = overrun;
+    assign causes[`EMPC_A_FAULT_OVERRUN] = overrun || seq_stall;
     assign causes[`EMPC_A_FAULT_ADC] = adc_frame_err;
     assign causes[`EMPC_A_FAULT_PSTAGE] = ext_fault[0];
     assign causes[`EMPC_A_FAULT_CLOCK] = ext_fault[1];
@@ -282,7 +328,7 @@ module mpc_axis #(
     reg             clear_d;
     always @(posedge clk) clear_d <= cmd_fault_clear && !rst;
     pwm_center u_pwm (
-        .clk(clk), .rst(rst), .enable(bridges_req), .mode(!ctrl_complementary), .dead(dead_time), .cmp_in(cmp),
+        .clk(clk), .rst(rst), .enable(bridges_req), .mode(COMPLEMENTARY == 0), .dead(dead_time), .cmp_in(cmp),
         .cmp_load(cmp_load), .sync_in(pwm_sync_in), .fault(trip), .fault_clear(clear_d),
         .hi(pwm_hi), .lo(pwm_lo), .period_start(period_start), .adc_trig(adc_trig), .sync_out(pwm_sync_out),
         .fault_latched(pwm_fault_latched), .mode_eff(mode_eff), .cmp_clip(cmp_clip), .on(bridges_on));
@@ -305,7 +351,7 @@ module mpc_axis #(
     axis_regs u_regs (
         .clk(clk), .rst(rst), .reg_wr(reg_wr), .reg_rd(reg_rd), .reg_addr(reg_addr), .reg_wdata(reg_wdata),
         .reg_rdata(reg_rdata),
-        .ctrl_enable(ctrl_enable), .ctrl_run(ctrl_run), .ctrl_complementary(ctrl_complementary),
+        .ctrl_enable(ctrl_enable), .ctrl_run(ctrl_run),
         .ctrl_pwm_per_control(ctrl_pwm_per_control),
         .cmd_fault_clear(cmd_fault_clear), .cmd_adc_cal(cmd_adc_cal), .cmd_ref_sync(cmd_ref_sync),
         .cmd_coef_swap(cmd_coef_swap), .cmd_clear_counters(cmd_clear_counters), .cmd_align_clear(cmd_align_clear),
@@ -321,7 +367,9 @@ module mpc_axis #(
         .fault_adc_stuck(fault_latched[`EMPC_A_FAULT_ADC_STUCK]), .fault_adc_sum(fault_latched[`EMPC_A_FAULT_ADC_SUM]),
         .fault_adc_frozen(fault_latched[`EMPC_A_FAULT_ADC_FROZEN]),
         .status_coef_valid(core_upl_ok), .status_swap_refused(core_swap_refused), .status_adc_refused(adc_refused),
-        .cnt_swap_ref(cnt_swap_ref), .adc_sum_thresh(adc_sum_thresh),
+        .cnt_swap_ref(cnt_swap_ref), .adc_sum_thresh(adc_sum_thresh), .udc_wr(udc_wr),
+        .status_wr_refused(wr_ref_flag), .cnt_wr_refused(cnt_wr_refused), .bridges_live(bridges_live),
+        .unlock_tick(period_start), .wr_refused(wr_refused),
         .adc_psum0_sum(psum0), .adc_psum0_count(pcount), .adc_psum1_sum(psum1), .adc_psum1_count(pcount),
         .adc_psum2_sum(psum2), .adc_psum2_count(pcount),
         .fault_mask(fault_mask), .dead_time(dead_time), .kdc(kdc), .udc(udc), .udc_min(udc_min),

@@ -14,8 +14,9 @@
 //              else sign(tau) * (HALF_PERIOD - |tau|): the odd triangle of centre-aligned
 //              PWM ripple (zero, i.e. the period's mean, at the centre and the boundaries)
 //   n_i(tau) = (h mod (2*noise+1)) - noise, h = a 32-bit hash of (seed, tau, i)
+//   or base_i exactly if hold[i] (a frozen or stuck channel: the fault co-simulations)
 // Ports: clk, period_start (from the axis), base0..2, amp0..2 (signed), seed, noise (peak
-// LSB), inj_*; code0..2 to adc_spi_slave.
+// LSB), inj_*, hold; code0..2 to adc_spi_slave.
 `default_nettype none
 module adc_ripple #(
     parameter integer HALF_PERIOD = 2500,
@@ -35,6 +36,7 @@ module adc_ripple #(
     input  wire signed [15:0]   inj_tau,
     input  wire [1:0]           inj_ch,
     input  wire [ADC_BITS-1:0]  inj_code,
+    input  wire [2:0]           hold,
     output wire [ADC_BITS-1:0]  code0,
     output wire [ADC_BITS-1:0]  code1,
     output wire [ADC_BITS-1:0]  code2
@@ -63,7 +65,8 @@ module adc_ripple #(
             n = h % (2 * na + 1);
             n = n - na;
             v = b + r + n;
-            if (inj_en && t == inj_tau && ch == inj_ch) f = inj_code;
+            if (hold[ch]) f = base;
+            else if (inj_en && t == inj_tau && ch == inj_ch) f = inj_code;
             else f = (v < 0) ? {ADC_BITS{1'b0}} : (v > (1 << ADC_BITS) - 1) ? {ADC_BITS{1'b1}} : v[ADC_BITS-1:0];
         end
     endfunction

@@ -45,6 +45,8 @@ module cosim_top #(
     input  wire signed [15:0] adc_inj_tau,
     input  wire [1:0]  adc_inj_ch,
     input  wire [11:0] adc_inj_code,
+    input  wire [2:0]  adc_hold,       // channel i outputs adc_code<i> exactly (frozen / stuck ADC)
+    input  wire [11:0] adc_lead,       // leading-bit pattern of the frames (0 = correct; else frame error)
     output wire [31:0] enc_count,
     output wire        enc_at_target,
     output wire [2:0]  pwm_out,
@@ -78,10 +80,10 @@ module cosim_top #(
     adc_ripple #(.HALF_PERIOD(`EMPC_PWM_HALF_PERIOD)) u_ripple (
         .clk(clk), .period_start(dbg_period_start), .base0(adc_code0), .base1(adc_code1), .base2(adc_code2),
         .amp0(adc_amp0), .amp1(adc_amp1), .amp2(adc_amp2), .seed(adc_seed), .noise(adc_noise),
-        .inj_en(adc_inj_en), .inj_tau(adc_inj_tau), .inj_ch(adc_inj_ch), .inj_code(adc_inj_code),
+        .inj_en(adc_inj_en), .inj_tau(adc_inj_tau), .inj_ch(adc_inj_ch), .inj_code(adc_inj_code), .hold(adc_hold),
         .code0(rc0), .code1(rc1), .code2(rc2));
     adc_spi_slave u_adc (.sclk(adc_sclk), .cs_n(adc_cs_n), .code0(rc0), .code1(rc1), .code2(rc2),
-                         .lead(12'd0), .miso(adc_miso));
+                         .lead(adc_lead), .miso(adc_miso));
     assign dbg_adc_sclk = adc_sclk;
 
     lx_rocon_top #(.NAXES(1)) u_top (
