@@ -5,6 +5,8 @@
   algorithm 1 keeps a constant lag on ramps, algorithm 2's ramp error goes to ~0.
 - load_step: position hold with algorithm 2 under a load-torque step (offset-free).
 - speed_alg2: speed steps and a ramp with algorithm 2.
+- fault_step: a 20 rad position step at 0.5 ms (algorithm 2), the base of the short fault
+  co-simulations of issue 14 (not a paper experiment).
 Angles and speeds are electrical (rad, rad/s); the motor has p = 4 pole pairs.
 """
 from __future__ import annotations
@@ -23,6 +25,7 @@ POINTS = {
     "speed_alg2": [(0.01, 300.0, "step"), (0.11, 600.0, "step"), (0.21, 600.0, "step"), (0.31, 100.0, "ramp")],
 }
 POINTS["position_alg2"] = POINTS["position_alg1"]
+POINTS["fault_step"] = [(0.0005, 20.0, "step")]
 
 
 def _speed_steps() -> Scenario:
@@ -50,6 +53,13 @@ def _load_step() -> Scenario:
                     description="position step to 10 rad, then a 0.05 N m load-torque step at 0.1 s, algorithm 2")
 
 
+def _fault_step() -> Scenario:
+    segs = [("step", 0.0005, 0.02, 0.0, 20.0)]
+    return Scenario("fault_step", "position", 0.02, steps_and_ramps(POINTS["fault_step"]), segments=segs,
+                    description="position step 20 rad at 0.5 ms (electrical), algorithm 2: the short fault "
+                                "co-simulations (tb/test_closed_loop.py)")
+
+
 def _speed_alg2() -> Scenario:
     pts = POINTS["speed_alg2"]
     segs = [("step", 0.01, 0.11, 0.0, 300.0), ("step", 0.11, 0.21, 300.0, 600.0), ("ramp", 0.21, 0.31, 600.0, 100.0)]
@@ -63,6 +73,7 @@ SCENARIOS = {
     "position_alg2": (lambda: _position(2), 2),
     "load_step": (_load_step, 2),
     "speed_alg2": (_speed_alg2, 2),
+    "fault_step": (_fault_step, 2),
 }
 
 
