@@ -107,6 +107,7 @@ module axis_regs (
     input  wire [31:0] smem_rdata,           // window read data (0 unless read)
     input  wire        bridges_live,         // guard: writes to its registers are refused while high
     input  wire        unlock_tick,          // timebase of the UNLOCK unlock (pulses)
+    output wire [1:0]  unlock_armed,         // UNLOCK unlock: ticks left, 0 = not armed (status, proofs)
     output reg         wr_refused            // pulse: a write was refused (guard, unlock or illegal value)
 );
     // legal values of CTRL.pwm_per_control as a table (one LUT, no compares)
@@ -132,6 +133,7 @@ module axis_regs (
     // unlock: UNLOCK armed with its key until the 2th unlock_tick; the next write of the block consumes it
     reg  [1:0] unl_cnt;
     wire unl = |unl_cnt;
+    assign unlock_armed = unl_cnt;
     always @(posedge clk) begin
         cmd_fault_clear <= 1'd0;
         cmd_adc_cal <= 1'd0;

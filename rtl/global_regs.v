@@ -38,6 +38,7 @@ module global_regs (
     output reg  [1:0]  irq_enable,            // IRQ_ENABLE (RW)
     input  wire        bridges_live,          // guard: writes to its registers are refused while high
     input  wire        wdog_unlock_tick,      // timebase of the WDOG_UNLOCK unlock (pulses)
+    output wire [1:0]  wdog_unlock_armed,     // WDOG_UNLOCK unlock: ticks left, 0 = not armed (status, proofs)
     output reg         wr_refused             // pulse: a write was refused (guard, unlock or illegal value)
 );
 
@@ -46,6 +47,7 @@ module global_regs (
     // unlock: WDOG_UNLOCK armed with its key until the 2th wdog_unlock_tick; the next write of the block consumes it
     reg  [1:0] unl_cnt;
     wire unl = |unl_cnt;
+    assign wdog_unlock_armed = unl_cnt;
     always @(posedge clk) begin
         wdog_kick <= 1'b0;
         wr_refused <= 1'b0;
@@ -77,8 +79,8 @@ module global_regs (
                         wdog_kick <= (reg_wdata[15:0] == 16'd23130);
                     end
                     4'hb: begin   // IRQ_STATUS
-                        irq_status_period <= (irq_status_period | irq_status_period_set) & ~reg_wdata[0];
-                        irq_status_fault <= (irq_status_fault | irq_status_fault_set) & ~reg_wdata[1];
+                        irq_status_period <= (irq_status_period & ~reg_wdata[0]) | irq_status_period_set;
+                        irq_status_fault <= (irq_status_fault & ~reg_wdata[1]) | irq_status_fault_set;
                     end
                     4'hc: begin   // IRQ_ENABLE
                         irq_enable <= reg_wdata[1:0];

@@ -119,6 +119,7 @@ module lx_rocon_top #(
     wire [`EMPC_G_IRQ_ENABLE_W-1:0] irq_enable;
     wire [NAXES-1:0] period_tick, control_done, fault_any, live;
     wire        g_wr_refused;                               // counted by every axis (CNT_WR_REFUSED)
+    wire [`EMPC_UNLOCK_ARM_W-1:0] wdog_armed;                              // WDOG_UNLOCK: ticks left (unused)
     reg  [`EMPC_G_TIME_W-1:0] time_cnt;                    // TIME: PWM periods of axis 0
     reg         fault_any_d;
     wire        wdog_expired;
@@ -157,7 +158,7 @@ module lx_rocon_top #(
         .pwm_half(PWM_HALF_W), .scratch(scratch), .wdog_timeout(wdog_timeout), .wdog_kick(wdog_kick),
         .time_cnt(time_cnt), .irq_status_period(irq_period), .irq_status_period_set(control_done[0]),
         .irq_status_fault(irq_fault), .irq_status_fault_set((|fault_any) && !fault_any_d),
-        .irq_enable(irq_enable), .bridges_live(|live), .wdog_unlock_tick(period_tick[0]),
+        .irq_enable(irq_enable), .bridges_live(|live), .wdog_unlock_tick(period_tick[0]), .wdog_unlock_armed(wdog_armed),
         .wr_refused(g_wr_refused));
 
     // ---------------- axes ----------------
@@ -198,6 +199,6 @@ module lx_rocon_top #(
     // clock after reg_rd as emc_bus expects (RD_LAT = 1)
     always @(*) reg_rdata = g_rdata | a_or;
 
-    wire unused = &{1'b0, err_wr_short, err_rd_short, sclk_ax, cs_ax, sync_out, scratch};
+    wire unused = &{1'b0, err_wr_short, err_rd_short, sclk_ax, cs_ax, sync_out, scratch, wdog_armed};
 endmodule
 `default_nettype wire

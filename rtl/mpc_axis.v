@@ -23,7 +23,9 @@
 // UDC must be rewritten every UDC_FRESH_PERIODS PWM periods (else FAULT.dclink); it resets
 // to 0, below UDC_MIN: a missing or stale DC-link value trips.
 // Parameters: COMPLEMENTARY (bridge mode of the board, build time: 0 = PWM + enable for
-// LX_PWR, 1 = complementary high/low with dead time >= DEAD_TIME_MIN).
+// LX_PWR, 1 = complementary high/low with dead time >= DEAD_TIME_MIN); PWM_HALF_PERIOD (the
+// build's EMPC_PWM_HALF_PERIOD; only the axis-level proof overrides it, with the sequencer and
+// the ADC cut out), UDC_FRESH (the map's UDC_FRESH_PERIODS; the proof shortens it to reach it).  Properties (formal/mpc_axis_props.vh) are included under FORMAL.
 // Reset: CTRL.enable = 0 (outputs off), registers at their map reset values.
 `default_nettype none
 `include "empc_formats.vh"
@@ -34,7 +36,9 @@ module mpc_axis #(
     parameter RSQRT_FILE = "rsqrt.hex",
     parameter integer HALL_DEBOUNCE = 1000,
     parameter integer ENC_FILTER = 8,
-    parameter integer COMPLEMENTARY = 0
+    parameter integer COMPLEMENTARY = 0,
+    parameter integer PWM_HALF_PERIOD = `EMPC_PWM_HALF_PERIOD,  // the build's; formal/mpc_axis.sby shrinks it
+    parameter integer UDC_FRESH = `EMPC_UDC_FRESH_PERIODS        // the map's; the proofs shrink it too
 ) (
     input  wire        clk,
     input  wire        rst,
@@ -69,7 +73,7 @@ module mpc_axis #(
     output wire        fault_any,
     output wire        bridges_live      // CTRL.enable or outputs switching (guard of the global safety settings)
 );
-    localparam integer CW = $clog2(`EMPC_PWM_HALF_PERIOD + 1);
+    localparam integer CW = $clog2(PWM_HALF_PERIOD + 1);
     localparam integer NCAUSE = `EMPC_A_FAULT_W;
     // causes that trip whatever FAULT_MASK says
     localparam [NCAUSE-1:0] NOMASK = (1 << `EMPC_A_FAULT_PSTAGE) | (1 << `EMPC_A_FAULT_CLOCK) |
@@ -259,6 +263,7 @@ module mpc_axis #(
     // refused register writes (axis_regs and global_regs: guard, unlock, legal): 8-bit saturating
     // counter and a sticky flag, both cleared by CMD.clear_counters
     wire        wr_refused;
+    wire [`EMPC_UNLOCK_ARM_W-1:0] unlock_armed;                   // FAULT_MASK unlock: ticks left (the proofs tie it to the bus)
     reg         wr_ref_flag;
     reg  [`EMPC_A_CNT_WR_REFUSED_W-1:0] cnt_wr_refused;
     always @(posedge clk) begin
@@ -280,8 +285,9 @@ module mpc_axis #(
     // ---------------- faults ----------------
     // cause bit k = FAULT field at bit k (positions from the register map)
     // DC link: limits, and freshness (UDC rewritten at least every UDC_FRESH_PERIODS PWM periods)
-    localparam integer FRW = $clog2(`EMPC_UDC_FRESH_PERIODS + 1);
-    localparam [FRW-1:0] FRESH_N = `EMPC_UDC_FRESH_PERIODS;
+    localparam integer FRW = $clog2(UDC_FRESH + 1);
+    localparam [31:0] FRESH_32 = UDC_FRESH;
+    localparam [FRW-1:0] FRESH_N = FRESH_32[FRW-1:0];
     wire        udc_wr;
     reg  [FRW-1:0] udc_age;                 // PWM periods since the last UDC write, saturating
     always @(posedge clk) begin
@@ -327,7 +333,7 @@ module mpc_axis #(
     // a clock later trip is low unless a cause is still present
     reg             clear_d;
     always @(posedge clk) clear_d <= cmd_fault_clear && !rst;
-    pwm_center u_pwm (
+    pwm_center #(.PWM_HALF_PERIOD(PWM_HALF_PERIOD)) u_pwm (
         .clk(clk), .rst(rst), .enable(bridges_req), .mode(COMPLEMENTARY == 0), .dead(dead_time), .cmp_in(cmp),
         .cmp_load(cmp_load), .sync_in(pwm_sync_in), .fault(trip), .fault_clear(clear_d),
         .hi(pwm_hi), .lo(pwm_lo), .period_start(period_start), .adc_trig(adc_trig), .sync_out(pwm_sync_out),
@@ -369,7 +375,7 @@ module mpc_axis #(
         .status_coef_valid(core_upl_ok), .status_swap_refused(core_swap_refused), .status_adc_refused(adc_refused),
         .cnt_swap_ref(cnt_swap_ref), .adc_sum_thresh(adc_sum_thresh), .udc_wr(udc_wr),
         .status_wr_refused(wr_ref_flag), .cnt_wr_refused(cnt_wr_refused), .bridges_live(bridges_live),
-        .unlock_tick(period_start), .wr_refused(wr_refused),
+        .unlock_tick(period_start), .unlock_armed(unlock_armed), .wr_refused(wr_refused),
         .adc_psum0_sum(psum0), .adc_psum0_count(pcount), .adc_psum1_sum(psum1), .adc_psum1_count(pcount),
         .adc_psum2_sum(psum2), .adc_psum2_count(pcount),
         .fault_mask(fault_mask), .dead_time(dead_time), .kdc(kdc), .udc(udc), .udc_min(udc_min),
@@ -386,7 +392,10 @@ module mpc_axis #(
     wire unused = &{1'b0, dir, index_seen, index_dir, mark_pos, mark_seen, mark_event, enc_err_flag,
                     enc_in_state, enc_ready, hall_code, hall_ready, hall_fault, speed_sat,
                     sample_valid, ps_speed, pos_at_sample, ps_speed_q, theta_at_sample,
-                    pwm_fault_latched, mode_eff, adc_busy, adc_trig_miss, adc_fvalid, oc_ch, core_busy, core_du, core_u_raw,
+                    pwm_fault_latched, mode_eff, unlock_armed, adc_busy, adc_trig_miss, adc_fvalid, oc_ch, core_busy, core_du, core_u_raw,
                     core_wn, core_latency, core_boot_ok, theta_trig, ref_busy, st_id, st_iq};
+`ifdef FORMAL
+`include "mpc_axis_props.vh"
+`endif
 endmodule
 `default_nettype wire

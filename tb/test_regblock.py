@@ -90,7 +90,8 @@ async def run_block(dut, b: Block, n: int) -> None:
     g = m.g
     ins_ports = [(p[1], p[2]) for p in m.ports if p[0] == "input" and p[1] != "clk"]
     outs = [p[1] for p in m.ports if p[0] == "output"]
-    comb_outs = {"reg_rdata"} | {f"{e.name}_{s}" for e in g.windows for s in ("we", "re", "idx")}
+    comb_outs = {"reg_rdata"} | {f"{e.name}_{s}" for e in g.windows for s in ("we", "re", "idx")} \
+        | {f"{a.base}_armed" for a in g.arms}
     offsets = [r.offset for r in b.regs]
     locked_offs = [r.offset for r in b.regs if r.unlock]
     key_offs = [r.offset for r in b.regs if r.arm is not None]
@@ -256,15 +257,17 @@ def test_model_guard_and_legal():
     assert out["win_we"] == 1 and s["wr_refused"] == 0
     out = _step(m, reg_rd=1, reg_addr=a["W2"], armed=1)
     assert out["win_re"] == 1 and s["wr_refused"] == 0                   # reads are never refused
-    # W1C: a set in the clock of a write of the register survives unless that write clears the bit
-    # (issue 14 item 6: an event must not be lost by an acknowledge of another bit)
+    # W1C: a set in the clock of a write of the register survives, even a write that clears that bit
+    # (issue 14 item 6: an event arriving with the acknowledge is not lost)
     _step(m, irq_p_set=1)
     assert s["irq_p"] == 1
     _step(m, reg_wr=1, reg_addr=a["IRQ"], reg_wdata=0, irq_q_set=1)
     assert s["irq_p"] == 1 and s["irq_q"] == 1
     _step(m, reg_wr=1, reg_addr=a["IRQ"], reg_wdata=0x1, irq_q_set=1)     # clears p, q set again
     assert s["irq_p"] == 0 and s["irq_q"] == 1
-    _step(m, reg_wr=1, reg_addr=a["IRQ"], reg_wdata=0x4, irq_q_set=1)     # clear and set together: cleared
+    _step(m, reg_wr=1, reg_addr=a["IRQ"], reg_wdata=0x4, irq_q_set=1)     # clear and set together: kept
+    assert s["irq_q"] == 1
+    _step(m, reg_wr=1, reg_addr=a["IRQ"], reg_wdata=0x4)                   # cleared without a set
     assert s["irq_q"] == 0
     # read path: signed, constant, fields with gaps; 0 in the clock without a read
     _step(m, reg_rd=1, reg_addr=a["SREF"])

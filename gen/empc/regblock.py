@@ -12,8 +12,8 @@ What the generated module owns (one register = one line of gen/empc/regmap.py):
   register the block decodes itself), stored registers with their reset values, command
   pulses (fields of a WO register; a ``key`` register pulses only on its key; a field-less
   WO register pulses and keeps the written data), W1C bits with set inputs (a write of the
-  register computes (old OR set) AND NOT data: a set in the clock of a write that does not
-  clear that bit is kept), ``floor``;
+  register computes (old AND NOT data) OR set: an event in the clock of any write, even the
+  write that acknowledges that bit, is kept), ``floor``;
 * the read path: a "copy" register has a gated copy, loaded with its value in the clock of
   reg_rd of its word and 0 in every other clock (cleared through the flip-flop reset, no
   multiplexer); "mux" registers share one read register (a case, cleared when no mux
@@ -268,6 +268,8 @@ class _Gen:
             P.append(("input", g, 1, False, "guard: writes to its registers are refused while high"))
         for a in self.arms:
             P.append(("input", f"{a.base}_tick", 1, False, f"timebase of the {a.name} unlock (pulses)"))
+            P.append(("output", f"{a.base}_armed", self.arm_w(), False,
+                      f"{a.name} unlock: ticks left, 0 = not armed (status, proofs)"))
         if self.refuse:
             P.append(("output", "wr_refused", 1, False, "pulse: a write was refused (guard, unlock or illegal value)"))
         return P
@@ -326,7 +328,8 @@ class _Gen:
 
     def is_reg_out(self, name: str) -> bool:
         return name not in ("reg_rdata",) and not any(name == f"{e.name}_{s}" for e in self.windows
-                                                     for s in ("we", "re", "idx"))
+                                                     for s in ("we", "re", "idx")) \
+            and not any(name == f"{a.base}_armed" for a in self.arms)
 
     def render_legal_tables(self) -> list[str]:
         L = []
@@ -359,6 +362,7 @@ class _Gen:
                      "the block consumes it")
             L.append(f"    reg  {_rng(self.arm_w())} unl_cnt;")
             L.append("    wire unl = |unl_cnt;")
+            L.append(f"    assign {a.base}_armed = unl_cnt;")
         L.append("    always @(posedge clk) begin")
         for r, k, f, p in self.each_part(wregs):         # pulses default to 0
             if k.pulses:
@@ -442,7 +446,7 @@ class _Gen:
             p = r.part_port(f)
             d = _wd(f)
             if k.w1c:
-                out.append(f"{p} <= ({p} | {p}_set) & ~{d};")
+                out.append(f"{p} <= ({p} & ~{d}) | {p}_set;")
             elif k.stored:
                 if f.floor is not None:
                     cond = f"{d} == {_vlit(f.width, 0)}" if f.floor == 1 else f"{d} < {_vlit(f.width, f.floor)}"
@@ -670,6 +674,8 @@ class Model:
         for p in {e.rdata_port for e in self.g.windows}:
             rd |= ins[p]
         out["reg_rdata"] = rd
+        for a in self.g.arms:
+            out[f"{a.base}_armed"] = self.unl
         return out
 
     def _ok(self, r: Reg, ins: dict, wd: int, unl: int) -> bool:
@@ -742,7 +748,7 @@ class Model:
                     p = r.part_port(f)
                     x = (wd >> f.lsb) & ((1 << f.width) - 1)
                     if k.w1c:
-                        s[p] = (old[p] | ins[f"{p}_set"]) & ~x & 1
+                        s[p] = ((old[p] & ~x) | ins[f"{p}_set"]) & 1
                     elif k.stored:
                         s[p] = f.floor if (f.floor is not None and x < f.floor) else x
                     elif k.pulses:

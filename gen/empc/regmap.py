@@ -663,7 +663,10 @@ def render_vh() -> str:
              f"`define EMPC_WDOG_KEY {WDOG_KEY}", f"`define EMPC_ADC_STUCK_FRAMES {ADC_STUCK_FRAMES}",
              f"`define EMPC_ADC_SUM_FRAMES {ADC_SUM_FRAMES}", f"`define EMPC_ADC_FROZEN_PERIODS {ADC_FROZEN_PERIODS}",
              f"`define EMPC_UDC_FRESH_PERIODS {UDC_FRESH_PERIODS}",
-             f"`define EMPC_SEQ_STALL_PERIODS {SEQ_STALL_PERIODS}"]
+             f"`define EMPC_SEQ_STALL_PERIODS {SEQ_STALL_PERIODS}",
+             f"`define EMPC_UNLOCK_KEY {UNLOCK_KEY}", f"`define EMPC_UNLOCK_ARM {UNLOCK_ARM}",
+             f"`define EMPC_UNLOCK_ARM_W {UNLOCK_ARM.bit_length()}",
+             f"`define EMPC_DEAD_TIME_MIN {DEAD_TIME_MIN}", f"`define EMPC_OC_THRESH_MAX {OC_THRESH_MAX}"]
     names = set()
     for b in BLOCKS:
         for name, v in _macros(b.scope, b.regs, b.ext):
