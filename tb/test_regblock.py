@@ -19,6 +19,7 @@ state, reg_rdata and the window strobes combinationally).
 """
 from __future__ import annotations
 
+import json
 import os
 import random
 from pathlib import Path
@@ -162,6 +163,12 @@ async def run_block(dut, b: Block, n: int) -> None:
         stats["pulses"] += any(m.state[p] for p in pulse_ports)
         await FallingEdge(dut.clk)
     dut._log.info("%s: %d clocks vs model (seed %d, EMPC_SEED): %s", b.module, n, seed, stats)
+    rep = ROOT / "build" / "reports"
+    rep.mkdir(parents=True, exist_ok=True)
+    (rep / f"regblock_{b.module}.json").write_text(json.dumps(
+        {"block": b.module, "clocks": n, "seed": seed, "writes": stats["wr"], "refused_writes": stats["refused"],
+         "unlocked_writes": stats["unlocked"], "compared_with": "regblock.Model, every output every clock"},
+        indent=1) + "\n")
     assert stats["rdata_nz"] > n // 20 and stats["pulses"] > 0 and stats["rst"] > 2
     if g.refuse:
         assert stats["refused"] > 0
