@@ -1,3 +1,4 @@
+import os
 import sys
 from pathlib import Path
 
@@ -5,6 +6,10 @@ ROOT = Path(__file__).resolve().parents[2]
 for p in (ROOT / "flow", ROOT / "tb", ROOT / "gen"):
     if str(p) not in sys.path:
         sys.path.insert(0, str(p))
+
+# subprocesses (empc CLI, simulators) must import this checkout's generator too, whatever the shared
+# venv's editable install points at
+os.environ["PYTHONPATH"] = os.pathsep.join([str(ROOT / "gen")] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p])
 
 
 def pytest_configure(config):
