@@ -137,7 +137,7 @@ def motors_table() -> str | None:
     """Bundled motors: ratings, worst radius / damping over the robustness box and Omega_e (all
     designs, configured Ts), fit error, the Ts variants, scenario figures (`empc check --scenarios`)."""
     rows = ["| motor | Udc V | P W | J kg m^2 | i_max A | Ts us | designs pass (Ts / 250 / 50 us) | worst radius (bound; where) "
-            "| worst damping (where) | worst fit % | speed_steps fixed: RMS err, peak A | position_alg2 fixed: RMS err, peak A |",
+            "| worst damping (where) | worst fit % | speed_steps fixed: RMS err, peak A | position_alg1 fixed: RMS err, peak A |",
             "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
     for name in MOTORS:
         r = _load(R / f"design_{name}.json")
@@ -166,7 +166,7 @@ def motors_table() -> str | None:
                     f"{wr['worst_radius']['plant']}, {wr['worst_radius']['omega_e']:.0f} rad/s) | "
                     f"{wz['worst_damping']['value']:.3f} ({wz['worst_damping']['plant']}, "
                     f"{wz['worst_damping']['omega_e']:.0f} rad/s, {wz['worst_damping']['freq_hz']:.0f} Hz) | "
-                    f"{100 * fit:.1f} | {scen('speed_steps')} | {scen('position_alg2')} |")
+                    f"{100 * fit:.1f} | {scen('speed_steps')} | {scen('position_alg1')} |")
     return "\n".join(rows) if len(rows) > 2 else None
 
 
