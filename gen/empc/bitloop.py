@@ -41,7 +41,7 @@ def simulate(cfg, scenario: cl.Scenario, params=None, seed: int = 0, substeps: i
     references of control period k (default: the scenario profile sampled and rounded)."""
     c = cfg.control
     alg_task = (c.algorithm, scenario.task)
-    params = params or design_mod.design(cfg.with_control(task=scenario.task), *alg_task)["params"]
+    params = params or design_mod.design(cfg.with_control(task=scenario.task), *alg_task, force=True)["params"]
     M = cfg.pwm_per_control
     P = cfg.pwm_half_period
     Tpwm = 1.0 / cfg.inverter.f_pwm
