@@ -274,8 +274,8 @@ async def random_periods(dut):
 
 def _run(task: str):
     from runner import run
-    run(toplevel="ctrl_seq_tb", test_module="test_ctrl_seq", sim="verilator", name=f"ctrl_seq_{task}",
-        extra_env={"CS_TASK": task})
+    run(toplevel="ctrl_seq_tb", test_module="test_ctrl_seq", sim="verilator", name="ctrl_seq", run_name=task,
+        extra_env={"CS_TASK": task})        # one Verilator build for both tasks
 
 
 def test_ctrl_seq_speed():
