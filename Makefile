@@ -46,12 +46,11 @@ check-tools:
 roms: $(STAMP) ## coefficient ROMs, Verilog header and manifest for CONFIG (default: BLWR233D, paper 000)
 	$(EMPC) roms $(CONFIG_ARG) --out $(ROMS)
 
-sim: $(STAMP) check-tools roms ## the regression (CI): model tests, every block's cocotb test, formal proofs (tb/test_formal.py), short closed loop
-	$(PY) -m pytest -n $(JOBS) -q -m "not full"
+sim: $(STAMP) check-tools roms ## the regression (CI): model tests, every block's cocotb test, formal proofs, the RTL co-simulations (paper scenarios, fault runs)
+	$(PY) -m pytest -n $(JOBS) -q -m "not full" --durations=15
 
-sim-full: $(STAMP) check-tools roms ## long tests, then the paper-length co-simulations (two groups, one per core)
-	EMPC_FULL=1 $(PY) -m pytest -n $(JOBS) -q -m full tb --deselect tb/test_closed_loop.py::test_closed_loop_full
-	EMPC_FULL=1 $(PY) -m pytest -n $(JOBS) -q -m full tb/test_closed_loop.py
+sim-full: $(STAMP) check-tools roms ## long tests: the soak co-simulations, angle sweep, synthesis benchmark
+	EMPC_FULL=1 $(PY) -m pytest -n $(JOBS) -q -m full --durations=15
 
 lint: $(STAMP) roms ## verilator --lint-only -Wall on every RTL module as its own top, zero warnings
 	$(PY) flow/lint.py

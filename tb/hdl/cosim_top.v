@@ -6,12 +6,20 @@
 // currents' codes written by Python).  The CPU bus pins are driven by the EMC
 // bus-functional model (tb/emc_bfm.py) through cpu_* and the resolved bus emc_d.
 // HALL pins are driven directly from Python (slow signals).
+//
+// The clock runs here (Verilog delay, Verilator --timing), so Python never wakes up per clock
+// edge.  Python wakes once per PWM period, at dbg_period_start: the per-period observation
+// registers below hold what it used to wait for inside the period (the compare values loaded,
+// the trigger-to-load latency, the run flag at the trigger, how many triggers and loads the
+// period had) and a sticky monitor checks the bridges off on every clock after a trip.
 `default_nettype none
+`timescale 1ns / 1ps
 module cosim_top #(
     parameter integer CPR = 4000,
-    parameter integer STEP_CLKS = 16
+    parameter integer STEP_CLKS = 16,
+    parameter integer CLK_HALF_PS = 5000
 ) (
-    input  wire        clk,            // fabric clock (clk_gen passes clk_in through in simulation)
+    output reg         clk,            // fabric clock, generated here (clk_gen passes clk_in through)
     input  wire        rst_n,
     // CPU bus (BFM)
     input  wire        cpu_cs_n,
@@ -43,8 +51,19 @@ module cosim_top #(
     output wire [35:0] dbg_cmp,
     output wire [7:0]  dbg_per_cnt,
     output wire        dbg_running,
-    output wire        dbg_trip
+    output wire        dbg_trip,
+    // per-period observation (registered; read by Python at the next dbg_period_start)
+    output reg  [35:0] dbg_cmp_q,      // compare values at the last cmp_load
+    output reg  [15:0] dbg_lat_q,      // clocks from the last adc_trig to that cmp_load
+    output reg         dbg_run_trig,   // `running` at the last adc_trig
+    output reg  [3:0]  dbg_n_trig,     // adc_trig pulses since the last period start
+    output reg  [3:0]  dbg_n_load,     // cmp_load pulses since the last period start
+    output reg         dbg_unsafe      // sticky: a bridge enable or PWM output high in a clock after one with trip
 );
+    // the clock runs in the simulator (Verilator --timing), not as a Python/GPI callback per edge
+    initial clk = 1'b0;
+    always #(CLK_HALF_PS / 1000.0) clk = ~clk;
+
     wire [31:0] emc_d;
     assign emc_d = cpu_d_oe ? cpu_d : 32'bz;
     assign emc_d_seen = emc_d;
@@ -74,5 +93,31 @@ module cosim_top #(
     assign dbg_per_cnt = u_top.g_axis[0].u_axis.u_seq.per_cnt;
     assign dbg_running = u_top.g_axis[0].u_axis.running;
     assign dbg_trip = u_top.g_axis[0].u_axis.trip;
+
+    reg [15:0] lat_cnt;
+    reg        tripped;
+    always @(posedge clk) begin
+        if (!rst_n) begin
+            dbg_cmp_q <= 36'd0;
+            dbg_lat_q <= 16'd0;
+            dbg_run_trig <= 1'b0;
+            dbg_n_trig <= 4'd0;
+            dbg_n_load <= 4'd0;
+            dbg_unsafe <= 1'b0;
+            lat_cnt <= 16'd0;
+            tripped <= 1'b0;
+        end else begin
+            lat_cnt <= dbg_adc_trig ? 16'd1 : (&lat_cnt ? lat_cnt : lat_cnt + 16'd1);
+            if (dbg_adc_trig) dbg_run_trig <= dbg_running;
+            if (dbg_cmp_load) begin
+                dbg_cmp_q <= dbg_cmp;
+                dbg_lat_q <= lat_cnt;
+            end
+            dbg_n_trig <= (dbg_period_start ? 4'd0 : dbg_n_trig) + {3'd0, dbg_adc_trig};
+            dbg_n_load <= (dbg_period_start ? 4'd0 : dbg_n_load) + {3'd0, dbg_cmp_load};
+            tripped <= dbg_trip;
+            if (tripped && (|pwm_en || |pwm_out)) dbg_unsafe <= 1'b1;
+        end
+    end
 endmodule
 `default_nettype wire
