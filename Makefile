@@ -14,6 +14,9 @@ export PYTHONPATH := $(abspath gen)$(if $(PYTHONPATH),:$(PYTHONPATH),)
 CONFIG   ?=
 ROMS     ?= build/roms/default
 JOBS     ?= 2
+# --maxschedchunk 1: pytest-xdist hands out one test at a time in collection order, which tb/conftest.py
+# sorts costliest first (@pytest.mark.cost); its default hands each worker a run of consecutive tests,
+# which would put all the long co-simulations on one worker
 EMPC     := $(PY) -m empc.cli
 CONFIG_ARG := $(if $(CONFIG),--config $(CONFIG),)
 export EMPC_ROMS := $(abspath $(ROMS))
@@ -47,10 +50,10 @@ roms: $(STAMP) ## coefficient ROMs, Verilog header and manifest for CONFIG (defa
 	$(EMPC) roms $(CONFIG_ARG) --out $(ROMS)
 
 sim: $(STAMP) check-tools roms ## the regression (CI): model tests, every block's cocotb test, formal proofs, the RTL co-simulations (paper scenarios, fault runs)
-	$(PY) -m pytest -n $(JOBS) -q -m "not full" --durations=15
+	$(PY) -m pytest -n $(JOBS) --maxschedchunk 1 -q -m "not full" --durations=15
 
 sim-full: $(STAMP) check-tools roms ## long tests: the soak co-simulations, angle sweep, synthesis benchmark
-	EMPC_FULL=1 $(PY) -m pytest -n $(JOBS) -q -m full --durations=15
+	EMPC_FULL=1 $(PY) -m pytest -n $(JOBS) --maxschedchunk 1 -q -m full --durations=15
 
 lint: $(STAMP) roms ## verilator --lint-only -Wall on every RTL module as its own top, zero warnings
 	$(PY) flow/lint.py
