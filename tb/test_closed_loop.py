@@ -529,7 +529,7 @@ def build_and_run(names: str):
         extra_env={"EMPC_COSIM": names})
 
 
-SIM_MS_PER_S = 9.0          # co-simulation speed on one core (build/reports/closed_loop_*.json), for the order
+SIM_MS_PER_S = 10.0         # co-simulation speed on one core (build/reports/closed_loop_*.json), for the order
 
 
 @pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.cost(5 + COSIM[n][1] * 1e3 / SIM_MS_PER_S))
@@ -541,7 +541,8 @@ def test_closed_loop(name):
 
 
 @pytest.mark.full
-@pytest.mark.parametrize("name", SOAK)
+@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.cost(5 + COSIM[n][1] * 1e3 / SIM_MS_PER_S))
+                                  for n in SOAK])
 def test_closed_loop_soak(name):
     """Longer runs for make sim-full (see SOAK)."""
     build_and_run(name)
