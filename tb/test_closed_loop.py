@@ -6,12 +6,17 @@ a target count per half PWM period), the HALL pins and the ADC SPI slave
 values the drive loads every PWM period.  The CPU side is the EMC bus-functional
 model (tb/emc_bfm.py) through the register-map driver (gen/empc/driver.py).
 
-In lockstep, the bit-accurate Python model of the sequencer (front end, MPC core,
-modulation: gen/empc/rtlmodel/ctrl_seq.py) and of the reference generator sees
-the same inputs at every ADC trigger; every compare value the RTL loads must
-equal the model's (bit-exact).  The resulting trajectory is also compared with
-the float closed loop (closedloop.py, fitted gains) within the stated tolerance.
-Reports: build/reports/closed_loop_<scenario>.{json,png}.
+In lockstep, the bit-accurate axis model (gen/empc/bitloop.py AxisModel: sequencer
+with front end, MPC core and modulation, gen/empc/rtlmodel/ctrl_seq.py, and the
+reference generator's model) sees the same inputs at every ADC trigger; every
+compare value the RTL loads must equal the model's (bit-exact).  The resulting
+trajectory is also compared with the float closed loop (closedloop.py, fitted
+gains) within the stated tolerance.  Reports: build/reports/closed_loop_<scenario>.{json,png}.
+
+Speed (issue 17): Verilator sees only cosim_top's ports through VPI (tb/hdl/cosim_top.vlt),
+cosim_top runs the clock (--timing), and Python wakes once per PWM period, at its start
+(CoSim.end_period / begin_period); the harness registers what happens inside the period.
+COSIM is the scenario table; every entry not in SOAK is one pytest test of make sim.
 """
 from __future__ import annotations
 
