@@ -114,6 +114,7 @@ class CoSim:
         self.duties = None         # duties of the running period (None: bridges off)
         self.sampled = None        # (ADC codes, encoder count) the running period's trigger samples
         self.py_cpu = 0.0          # CPU seconds in the per-period Python (plant, pins, axis model, check)
+        self.lockstep = hasattr(dut, "dbg_ls_errors")   # COSIM_LOCKSTEP build: gated vs ungated MPC core
 
     @property
     def last_control(self):
@@ -156,6 +157,10 @@ class CoSim:
         cmp_load) against the axis model fed with the trigger's samples, then the plant's second half."""
         c0 = time.process_time()
         dut = self.dut
+        if self.lockstep and int(dut.dbg_ls_errors.value):
+            raise AssertionError(f"period {self.period}: the gated MPC core differs from its ungated copy in "
+                                 f"{int(dut.dbg_ls_errors.value)} clocks, first at lockstep clock "
+                                 f"{int(dut.dbg_ls_first.value)} (EMPC_SIM_GATE in rtl/mpc_core.v)")
         n_trig, n_load = int(dut.dbg_n_trig.value), int(dut.dbg_n_load.value)
         lat = int(dut.dbg_lat_q.value)
         assert n_trig == 1 and n_load == 1 and lat < self.P, \
@@ -450,6 +455,12 @@ async def closed_loop(dut, name: str):
               "latency_adc_trigger_to_pwm_update_cycles": res["status"]["LATENCY"],
               "latency_max_cycles": dict(cs.lat_max),
               "fault_seen_period": res["fault_seen"]}
+    if cs.lockstep:
+        report["lockstep"] = {"clocks_compared": int(dut.dbg_ls_clocks.value),
+                              "clocks_core_clock_stopped": int(dut.dbg_ls_gated.value),
+                              "clocks_differing": int(dut.dbg_ls_errors.value)}
+        dut._log.info("lockstep: %s", report["lockstep"])
+        assert report["lockstep"]["clocks_differing"] == 0, report["lockstep"]
     if cs.fault is None:
         assert not cs.mismatches, f"RTL compare values differ from the bit-accurate model: {cs.mismatches[:3]}"
         tr, sc_cut, m = metrics_report(cs, res)
@@ -463,7 +474,8 @@ async def closed_loop(dut, name: str):
         report["rms_error_rtl_vs_float_rel"] = abs(m["rms_error"] - fm["rms_error"]) / max(fm["rms_error"], 1e-12)
         assert report["rms_error_rtl_vs_float_rel"] < 0.10, report["rms_error_rtl_vs_float_rel"]
         assert res["status"]["CNT_OVERRUN"] == 0 and res["status"]["FAULT"] == 0, res["status"]
-        _plot(cs, tr, ftr, REPORTS / f"closed_loop_{name}.png")
+        if not cs.lockstep:
+            _plot(cs, tr, ftr, REPORTS / f"closed_loop_{name}.png")
     else:
         assert res["fault_seen"] is not None, f"{cs.fault}: no fault tripped"
         bit = {"overcurrent": 0, "encoder": 2, "watchdog": 3}[cs.fault]
@@ -484,7 +496,8 @@ async def closed_loop(dut, name: str):
         for k, v in res["status"].items():
             assert v < 0xFFFFFFFF, f"counter {k} saturated/wrapped"
     REPORTS.mkdir(parents=True, exist_ok=True)
-    (REPORTS / f"closed_loop_{name}.json").write_text(json.dumps(report, indent=1, default=float) + "\n")
+    tag = "_lockstep" if cs.lockstep else ""
+    (REPORTS / f"closed_loop_{name}{tag}.json").write_text(json.dumps(report, indent=1, default=float) + "\n")
 
 
 def _plot(cs, tr, ftr, path):
@@ -523,15 +536,19 @@ async def cosim(dut):
 # ---------------------------------------------------------------- pytest entries
 # make sim runs every scenario of COSIM except SOAK (make sim-full), one pytest test each, so that
 # pytest-xdist spreads them over its workers; all of them share one Verilator build (tb/runner.py).
+# The builds stop the MPC core's clock while it is idle (EMPC_SIM_GATE, rtl/mpc_core.v); the
+# LOCKSTEP runs prove that against an ungated copy of the core, every output every clock.
 SOAK = ("soak", "speed_alg2")
+LOCKSTEP = ("short", "overcurrent", "encoder", "watchdog", "speed_steps")   # make sim; the rest: sim-full
 VLT = ROOT / "tb" / "hdl" / "cosim_top.vlt"       # the signals Python touches through VPI
 
 
-def build_and_run(names: str):
+def build_and_run(names: str, lockstep: bool = False):
     from runner import run
+    defines = {"EMPC_SIM_GATE": 1, **({"COSIM_LOCKSTEP": 1} if lockstep else {})}
     run(toplevel="cosim_top", test_module="test_closed_loop", sim="verilator", name="cosim", public=VLT,
-        timing=True, parameters={"CLK_HALF_PS": CLK_PERIOD_NS * 500}, run_name=names.replace(",", "+"),
-        extra_env={"EMPC_COSIM": names})
+        timing=True, parameters={"CLK_HALF_PS": CLK_PERIOD_NS * 500}, defines=defines,
+        run_name=names.replace(",", "+"), extra_env={"EMPC_COSIM": names})
 
 
 SIM_MS_PER_S = 10.0         # co-simulation speed on one core (build/reports/closed_loop_*.json), for the order
@@ -551,3 +568,12 @@ def test_closed_loop(name):
 def test_closed_loop_soak(name):
     """Longer runs for make sim-full (see SOAK)."""
     build_and_run(name)
+
+
+@pytest.mark.parametrize("name", [
+    pytest.param(n, marks=[pytest.mark.cost(5 + COSIM[n][1] * 1e3 / SIM_MS_PER_S * 1.3)]
+                 + ([] if n in LOCKSTEP else [pytest.mark.full])) for n in COSIM])
+def test_closed_loop_lockstep(name):
+    """The scenario with the gated MPC core next to an ungated copy: every output equal every clock
+    (the proof of EMPC_SIM_GATE), plus all the checks of test_closed_loop."""
+    build_and_run(name, lockstep=True)
