@@ -551,7 +551,7 @@ def build_and_run(names: str, lockstep: bool = False):
         run_name=names.replace(",", "+"), extra_env={"EMPC_COSIM": names})
 
 
-SIM_MS_PER_S = 10.0         # co-simulation speed on one core (build/reports/closed_loop_*.json), for the order
+SIM_MS_PER_S = 13.0         # co-simulation speed on one core (build/reports/closed_loop_*.json), for the order
 
 
 @pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.cost(5 + COSIM[n][1] * 1e3 / SIM_MS_PER_S))
@@ -571,7 +571,7 @@ def test_closed_loop_soak(name):
 
 
 @pytest.mark.parametrize("name", [
-    pytest.param(n, marks=[pytest.mark.cost(5 + COSIM[n][1] * 1e3 / SIM_MS_PER_S * 1.3)]
+    pytest.param(n, marks=[pytest.mark.cost(5 + COSIM[n][1] * 1e3 / SIM_MS_PER_S * 1.4)]
                  + ([] if n in LOCKSTEP else [pytest.mark.full])) for n in COSIM])
 def test_closed_loop_lockstep(name):
     """The scenario with the gated MPC core next to an ungated copy: every output equal every clock

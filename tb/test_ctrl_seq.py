@@ -28,6 +28,7 @@ import re
 from pathlib import Path
 
 import cocotb
+import pytest
 from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, FallingEdge
 
@@ -278,9 +279,11 @@ def _run(task: str):
         extra_env={"CS_TASK": task})        # one Verilator build for both tasks
 
 
+@pytest.mark.cost(20)          # Verilator build (shared by the two) + 400 periods
 def test_ctrl_seq_speed():
     _run("speed")
 
 
+@pytest.mark.cost(20)
 def test_ctrl_seq_position():
     _run("position")
