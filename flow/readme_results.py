@@ -6,8 +6,8 @@ Usage: .venv/bin/python flow/readme_results.py            print every table (mar
 A block in README.md is ``<!-- BEGIN NAME -->`` ... ``<!-- END NAME -->`` (NAME one of TABLES);
 ``--write`` rewrites the text between the markers and leaves everything else alone.  A table whose
 reports do not exist yet is left as it is (the script says which command produces them).
-Producers: `make sim` (sim_*.json, closed_loop_short/fault json, mpc_core.json vectors),
-`make sim-full` (closed_loop_<paper scenario>.json), `make bench` (mpc_core.json resources: flow/synth.py
+Producers: `make sim` (sim_*.json, closed_loop_<co-simulation>.json, mpc_core.json vectors),
+`make sim-full` (closed_loop_<soak run>.json), `make bench` (mpc_core.json resources: flow/synth.py
 --top mpc_core --summary),
 `make synth` (synth.json), `empc compare` (compare.json; `--quick` in make sim: compare_quick/),
 `empc check --scenarios --config gen/empc/configs/<motor>.toml` (design_<motor>.json).
@@ -51,15 +51,18 @@ def sim_table() -> str | None:
 
 
 def cosim_table() -> str | None:
-    rows = ["| co-simulation | simulated ms | compare sets checked | mismatches vs model | max latency control / other period (clk) | RTL vs float RMS error (rel.) | sim ms / wall s |",
-            "| --- | --- | --- | --- | --- | --- | --- |"]
+    rows = ["| co-simulation | simulated ms | compare sets checked | mismatches vs model | max latency control / other period (clk) | RTL vs float RMS error (rel.) | sim ms / wall s | sim ms / CPU s | clocks / CPU s |",
+            "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
     for p in sorted(R.glob("closed_loop_*.json")):
+        if p.stem.endswith("_lockstep"):          # proofs of the core's clock gating, same runs
+            continue
         r = json.loads(p.read_text())
         lm = r.get("latency_max_cycles")
         lat = f"{lm['control']} / {lm['modulation']}" if lm else r["latency_adc_trigger_to_pwm_update_cycles"]
         rows.append(f"| {r['scenario']} | {fmt(r['simulated_ms'])} | {r['compare_sets_checked']} | "
                     f"{r['mismatches_vs_bit_accurate_model']} | {lat} | "
-                    f"{fmt(r.get('rms_error_rtl_vs_float_rel'))} | {fmt(r['sim_ms_per_wall_s'])} |")
+                    f"{fmt(r.get('rms_error_rtl_vs_float_rel'))} | {fmt(r['sim_ms_per_wall_s'])} | "
+                    f"{fmt(r.get('sim_ms_per_cpu_s'))} | {fmt(r.get('clocks_per_cpu_s'))} |")
     return "\n".join(rows) if len(rows) > 2 else None
 
 
