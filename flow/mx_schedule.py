@@ -431,6 +431,9 @@ def run_all(quick: bool = False, seed: int = 1) -> dict:
     rep["dual_4"] = {"latency_last_bit": r.latency_last_bit, "slack": r.slack, "overruns": r.overruns,
                      "conflicts": r.conflicts, "ref_late": r.ref_late,
                      "busy_per_period": {u: round(v) for u, v in r.busy.items()}}
+    r = simulate([AxisCfg() for _ in range(4)], DUAL_TIMING, dual=True, sync_axis=1)
+    rep["dual_sync_4"] = {"latency_last_bit": r.latency_last_bit, "overruns": r.overruns, "conflicts": r.conflicts,
+                          "ref_late": r.ref_late}
     # every combination of Ts in 1..TSX with every phase, every NAXES; tasks mixed
     tsx = 3 if quick else 4
     rng = random.Random(seed)
@@ -483,7 +486,7 @@ def main(argv=None) -> int:
         print(f"worst {k}: {v}")
     print(f"no stagger, 4 axes: {rep['no_stagger_4']}")
     print(f"sync on axis 2, 4 axes: {rep['sync_4']}")
-    print(f"double update, 4 axes: {rep['dual_4']}")
+    print(f"double update, 4 axes: {rep['dual_4']}; with a sync: {rep['dual_sync_4']}")
     print(f"sweep: {rep['sweep']}")
     print(f"adc grid: {rep['adc_grid']}")
     print(f"delays: {rep['delays']}")

@@ -86,6 +86,7 @@ def test_every_ts_combination_quick():
     assert sw["combinations"] > 1500
     assert sw["overruns"] == 0 and sw["conflicts"] == 0 and sw["worst_latency_last_bit"] <= 300
     assert rep["sync_4"]["ref_late"] == 0 and rep["dual_4"]["overruns"] == 0
+    assert rep["dual_sync_4"]["ref_late"] == 0 and rep["dual_sync_4"]["overruns"] == 0
 
 
 def test_doc_quotes_the_schedule():
