@@ -6,15 +6,22 @@ a target count per half PWM period), the HALL pins and the ADC SPI slave
 plus PWM ripple and noise on every back-to-back frame), and reads the compare
 values the drive loads every PWM period.  The controller's sample is the ADC's
 window mean, which the Python side computes from the same ripple function
-(AdcRipple, bit for bit the Verilog one) and the bit-accurate ADC model.  The CPU side is the EMC bus-functional
-model (tb/emc_bfm.py) through the register-map driver (gen/empc/driver.py).
+(AdcRipple, bit for bit the Verilog one) and the bit-accurate ADC model.  The CPU side is
+the EMC bus-functional model (tb/emc_bfm.py) through the register-map driver (gen/empc/driver.py).
 
-In lockstep, the bit-accurate Python model of the sequencer (front end, MPC core,
-modulation: gen/empc/rtlmodel/ctrl_seq.py) and of the reference generator sees
-the same inputs at every ADC trigger; every compare value the RTL loads must
-equal the model's (bit-exact).  The resulting trajectory is also compared with
-the float closed loop (closedloop.py, fitted gains) within the stated tolerance.
-Reports: build/reports/closed_loop_<scenario>.{json,png}.
+In lockstep, the bit-accurate axis model (gen/empc/bitloop.py AxisModel: sequencer
+with front end, MPC core and modulation, gen/empc/rtlmodel/ctrl_seq.py, and the
+reference generator's model) sees the same inputs at every ADC trigger; every
+compare value the RTL loads must equal the model's (bit-exact).  The resulting
+trajectory is also compared with the float closed loop (closedloop.py, fitted
+gains) within the stated tolerance.  Reports: build/reports/closed_loop_<scenario>.{json,png}.
+
+Speed (issue 17): Verilator sees only cosim_top's ports through VPI (tb/hdl/cosim_top.vlt),
+cosim_top runs the clock (--timing), and Python wakes once per PWM period, at its start
+(CoSim.end_period / begin_period); the harness registers what happens inside the period.
+The fault runs (issue 14, FAULTS) also wait for the pin events of the fault inside its periods
+(harness ports dbg_*), nothing else.  COSIM is the scenario table; every entry not in SOAK is
+one pytest test of make sim.
 """
 from __future__ import annotations
 
@@ -28,16 +35,15 @@ import numpy as np
 import pytest
 
 import cocotb
-from cocotb.clock import Clock
-from cocotb.triggers import ClockCycles, Edge, First, RisingEdge, FallingEdge, ReadOnly, Timer
+from cocotb.triggers import ClockCycles, First, RisingEdge, FallingEdge, ReadOnly, Timer
 from cocotb.utils import get_sim_time
 
 from empc import closedloop as cl
 from empc import config, driver, header, image, pmsm, regmap, scenarios
 from empc import formats as F
-from empc.rtlmodel import pos_sense
+from empc.bitloop import AxisModel
 from empc.rtlmodel.adc_spi import AdcSpiParams, window_cur
-from empc.rtlmodel.ctrl_seq import CtrlSeq, Regs
+from empc.rtlmodel.ctrl_seq import Regs
 from empc.rtlmodel.hall_decoder import DEFAULT_SEQUENCE
 from empc.rtlmodel.ref_gen import RefGen, segments_from_points
 
@@ -66,7 +72,9 @@ COSIM = {
     "position_alg1": ("position_alg1", 0.70, None),
     "position_alg2": ("position_alg2", 0.70, None),
     "speed_steps": ("speed_steps", 0.40, None),
-    "load_step": ("load_step", 0.30, None),
+    "load_step": ("load_step", 0.30, None),    # make sim-full (SOAK): algorithm 2 on the speed task, and 2 s of position_alg2 (1.3 s of hold at 0 after the profile)
+    "speed_alg2": ("speed_alg2", 0.40, None),
+    "soak": ("position_alg2", 2.0, None),
 }
 
 
@@ -98,6 +106,14 @@ def hall_code(theta_e: float) -> int:
 
 
 class CoSim:
+    """One co-simulation run: the plant, its pins, and the axis model the RTL is checked against.
+
+    Python wakes once per PWM period, at the period start (:meth:`end_period` of the period
+    that just ended, then :meth:`begin_period` of the new one); the harness (tb/hdl/cosim_top.v)
+    registers what happened inside the period (compare values loaded, latency, run flag at the
+    trigger).  The pins change at the same instants as when Python waited for each event.
+    """
+
     def __init__(self, dut, name: str):
         self.dut = dut
         self.name = name
@@ -115,9 +131,12 @@ class CoSim:
         self.boot = image.decode(image.read_hex(roms_dir / "coef_boot.hex"))
         self.params = image.decode(self.image)
         kacc, ksh = header.speed_correction_raw(self.cfg)
-        self.regs = Regs(pwm_per_control=self.M, kacc=kacc, kacc_shift=ksh, half_period=self.P, run=False)
-        self.seq = CtrlSeq(params=self.boot, N=c.N)
-        self.ref = RefGen(c.N)
+        # the bit-accurate axis (gen/empc/bitloop.py), fed with what the RTL's trigger sampled;
+        # CPU writes are mirrored into regs / seq / ref by the actions that make them
+        self.axis = AxisModel(self.cfg, self.boot, refgen=RefGen(c.N),
+                              regs=Regs(pwm_per_control=self.M, kacc=kacc, kacc_shift=ksh, half_period=self.P,
+                                        run=False))
+        self.regs, self.seq, self.ref = self.axis.regs, self.axis.seq, self.axis.ref
         unit = 1.0 / (self.cfg.rad_per_count if self.sc.task == "position" else self.cfg.rad_s_per_count_ts)
         self.ref_unit = unit
         self.slots = segments_from_points(scenarios.POINTS[self.sc.name], unit, c.Ts)
@@ -125,18 +144,18 @@ class CoSim:
         self.mismatches = []
         self.checked = 0
         self.lat_max = {"control": 0, "modulation": 0}   # adc_trig -> cmp_load, clock cycles
-        self.clk_ps = CLK_PERIOD_NS * 1000
         self.rec = {k: [] for k in ("t", "i_d", "i_q", "w_e", "theta_e", "u_d", "u_q", "ref", "ipk")}
         self.period = 0
         self.t = 0.0
         self.started = False       # SEG_START written: the next control period takes the profile
-        self.last_control = None   # model outputs of the last control period (status words)
-        self.u_applied = (0, 0)
         self.reg_checks = 0
-        self.t_profile0 = None     # sim time of profile time 0 (see pwm_period)
+        self.t_profile0 = None     # sim time of profile time 0 (see end_period)
+        self.duties = None         # duties of the running period (None: bridges off)
+        self.sampled = None        # (ADC codes, encoder count) the running period's trigger samples
+        self.py_cpu = 0.0          # CPU seconds in the per-period Python (plant, pins, axis model, check)
+        self.lockstep = hasattr(dut, "dbg_ls_errors")   # COSIM_LOCKSTEP build: gated vs ungated MPC core
         self.swap_params = None    # a coefficient swap requested: applied at the next control period
         self.kill = {}             # kill-path measurements (pstage / clock scenarios)
-        self.clk = None
         # ADC: back-to-back frames, the controller takes the window mean (rtl defaults)
         self.adcp = AdcSpiParams(half_period=self.P)
         self.ripple = AdcRipple(self.P)
@@ -157,8 +176,16 @@ class CoSim:
         self.hall_map = None       # None or a function of the HALL code
         self.enc_hold = None       # None or the frozen encoder count
         self.ipk_now = 0.0         # peak |phase current| of the plant since the last reset of it
-        self.boundary_seen = False # the last period ended without cmp_load (overrun): already at a boundary
-        self.missed = 0            # periods without compare values
+        self.missed = 0            # periods without compare values (overrun run)
+
+    @property
+    def last_control(self):
+        """Model outputs of the last control period (status words)."""
+        return self.axis.last_control
+
+    @property
+    def u_applied(self):
+        return self.axis.u
 
     # ------------------------------------------------------------------ pins
     def drive_plant_pins(self, duties=None):
@@ -198,80 +225,78 @@ class CoSim:
         return window_cur(frames, (off, off, off), self.adcp), count
 
     # ------------------------------------------------------------------ one PWM period
-    async def pwm_period(self, actions, at_boundary: bool = False):
-        dut = self.dut
-        if not at_boundary and not self.boundary_seen:
-            await RisingEdge(dut.dbg_period_start)
-        self.boundary_seen = False
-        bridges_on = int(dut.pwm_en.value) == 0b111
-        duties = np.array(self.cmp_rtl, dtype=float) / self.P if bridges_on else None
+    async def begin_period(self, actions):
+        """At the period start: the duties of this period, the CPU accesses of its first half
+        (mirrored in the model), the plant to the period centre, the pins the trigger samples."""
+        bridges_on = int(self.dut.pwm_en.value) == 0b111
+        self.duties = np.array(self.cmp_rtl, dtype=float) / self.P if bridges_on else None
+        c0 = time.process_time()
         # plant to the centre and the pins at once: the ADC window starts before the centre
-        self._plant_half(duties)
-        cur, count = self.drive_plant_pins(duties)
-        for act in actions:            # CPU accesses in the first half period (mirrored in the model)
+        self._plant_half(self.duties)
+        self.sampled = self.drive_plant_pins(self.duties)
+        self.py_cpu += time.process_time() - c0
+        for act in actions:
             await act()
-        await RisingEdge(dut.dbg_adc_trig)
-        await ReadOnly()
-        t_trig = get_sim_time("ps")
-        self.regs.run = bool(int(dut.dbg_running.value))
-        control = self.seq.per_cnt + 1 >= self.regs.pwm_per_control
+
+    def end_period(self):
+        """At the next period start: the period's compare values (registered by the harness at
+        cmp_load) against the axis model fed with the trigger's samples, then the plant's second half.
+        A period without compare values (the overrun run: the sequencer lost its sample) is counted
+        in ``missed`` and not compared."""
+        c0 = time.process_time()
+        dut = self.dut
+        if self.lockstep and int(dut.dbg_ls_errors.value):
+            raise AssertionError(f"period {self.period}: the gated MPC core differs from its ungated copy in "
+                                 f"{int(dut.dbg_ls_errors.value)} clocks, first at lockstep clock "
+                                 f"{int(dut.dbg_ls_first.value)} (EMPC_SIM_GATE in rtl/mpc_core.v)")
+        n_trig, n_load = int(dut.dbg_n_trig.value), int(dut.dbg_n_load.value)
+        lat = int(dut.dbg_lat_q.value)
+        lost = self.fault == "overrun" and n_load == 0 and n_trig == 1
+        assert lost or (n_trig == 1 and n_load == 1 and lat < self.P), \
+            f"period {self.period}: {n_trig} ADC triggers, {n_load} compare loads, load {lat} clocks after the trigger"
+        self.regs.run = bool(int(dut.dbg_run_trig.value))
+        control = self.axis.control_next
         if control and self.swap_params is not None:      # the RTL swaps at this control sample
             self.seq.params, self.swap_params = self.swap_params, None
-        ref_w = self.ref.advance() if control else None
         if control and self.started and self.t_profile0 is None:
             # this advance loads the profile's first value into the head w_{k+N}: the
             # sample instant is profile time -N Ts
             self.t_profile0 = self.t + self.cfg.control.N * self.cfg.control.Ts
-        theta16 = pos_sense.angle(count, self.cfg.sensors.encoder_cpr, self.cfg.motor.p, base=0)
-        out = self.seq.period(theta16, count & 0xFFFFFFFF, cur, self.regs, ref_w)
-        if control:
-            self.last_control = dict(out, ref_w0=self.ref.w[0])
-        self.u_applied = self.seq.u
-        got = await First(RisingEdge(dut.dbg_cmp_load), RisingEdge(dut.dbg_period_start))
-        await ReadOnly()
-        if not int(dut.dbg_cmp_load.value):          # no compare values this period (overrun)
-            self.boundary_seen = True
+        cur, count = self.sampled
+        out = self.axis.period(count, cur=cur)
+        if lost:
             self.missed += 1
-            self._plant_half(duties)
+            self._plant_half(self.duties)
             self.period += 1
-            await Timer(1, unit="ns")                  # leave ReadOnly: the next period drives the pins
+            self.py_cpu += time.process_time() - c0
             return
-        del got
-        lat = round((get_sim_time("ps") - t_trig) / self.clk_ps)
         kind = "control" if control else "modulation"
         self.lat_max[kind] = max(self.lat_max[kind], lat)
-        v = int(dut.dbg_cmp.value)
+        v = int(dut.dbg_cmp_q.value)
         self.cmp_rtl = tuple((v >> (12 * i)) & 0xFFF for i in range(3))
-        if os.environ.get("EMPC_COSIM_TRACE"):
-            dut._log.info("period %d control %s run %s per_cnt %d model u %s cmp %s rtl %s pins %s w_e %.1f "
-                          "theta %.2f count %d", self.period, control, self.regs.run, self.seq.per_cnt, self.seq.u,
-                          out["cmp"], self.cmp_rtl, int(dut.pwm_en.value), self.plant.state.w_e,
-                          self.plant.state.theta_e, count)
         self.checked += 1
         if self.cmp_rtl != tuple(out["cmp"]):
             self.mismatches.append((self.period, self.cmp_rtl, tuple(out["cmp"])))
-            if len(self.mismatches) == 1 and os.environ.get("EMPC_COSIM_DEBUG"):
-                seq = dut.u_top.g_axis[0].u_axis.u_seq
-                names = ("u_st0", "u_st1", "i_d", "i_q", "omega", "pos_trig", "pos_prev", "theta_trig")
-                for n in names:
-                    h = getattr(seq, n)
-                    self.dut._log.error("RTL %s = %s", n, hex(int(h.value)))
-                self.dut._log.error("model out %s run %s ref_w %s", {k: v for k, v in out.items() if k != "core"},
-                                    self.regs.run, ref_w)
+            if len(self.mismatches) == 1:
+                dut._log.error("first mismatch, period %d (%s): RTL cmp %s, model %s; trigger samples: count %d, "
+                               "ADC window means %s, run %s; model %s", self.period, kind, self.cmp_rtl, tuple(out["cmp"]),
+                               count, list(cur), self.regs.run,
+                               {k: v for k, v in out.items() if k not in ("cmp", "core", "ref_w")})
                 if "core" in out:
-                    self.dut._log.error("model core %s", out["core"])
-        self._plant_half(duties)
+                    dut._log.error("model core %s; references %s", out["core"], out["ref_w"])
+        self._plant_half(self.duties)
         if control:
             st = self.plant.state
             vpu = self.cfg.volts_per_tick / 256
             self.rec["t"].append(self.t - 0.5 * self.Tpwm)
             for k, val in (("i_d", st.i_d), ("i_q", st.i_q), ("w_e", st.w_e), ("theta_e", st.theta_e),
-                           ("u_d", self.seq.u[0] * vpu), ("u_q", self.seq.u[1] * vpu)):
+                           ("u_d", self.axis.u[0] * vpu), ("u_q", self.axis.u[1] * vpu)):
                 self.rec[k].append(val)
             self.rec["ipk"].append(float(np.max(np.abs(self.plant.phase_currents()))))
-            w0 = self.ref.w[0]
+            w0 = out["ref_w"][0]
             self.rec["ref"].append((w0 - (1 << 64) if w0 >> 63 else w0) / 2.0 ** 32 / self.ref_unit)
         self.period += 1
+        self.py_cpu += time.process_time() - c0
 
     def _plant_half(self, duties):
         if duties is None:           # bridges off: currents decay through the diodes, motor coasts
@@ -288,7 +313,7 @@ class CoSim:
         self.ipk_now = max(self.ipk_now, float(np.max(np.abs(self.plant.phase_currents()))))
 
 
-OSC_PERIOD_PS = 19_970                # clk_mon oscillator stand-in: ~50 MHz, not a multiple of clk
+OSC_PERIOD_PS = 19_970                # clk_mon oscillator stand-in (cosim_top OSC_HALF_PS): ~50 MHz, not a multiple of clk
 PSTAGE_PULSE_PS = 3_000              # power-stage fault pulse, shorter than a clock period
 CLOCK_STOP_PS = 3_000_000            # fabric clock stopped for 3 us
 OSC_BOUND = 19                       # clk_mon: oscillator cycles from the last clock edge to dead
@@ -326,19 +351,18 @@ async def clock_stop(dut, cs, fr) -> None:
     await RisingEdge(dut.clk)
     await Timer(3, unit="ns")
     assert int(dut.pwm_en.value) == 0b111, "bridges not on before the clock stop"
-    cs.clk.stop()
-    t0 = cocotb.utils.get_sim_time("ps")
+    dut.clk_stop.value = 1                       # the harness's clock stays low from its next edge
+    t0 = get_sim_time("ps")
     fr.t_event = t0 - 3000                       # the last clock edge
     while int(dut.pwm_en.value) | int(dut.pwm_out.value):
         await Timer(1, unit="ns")
-        assert cocotb.utils.get_sim_time("ps") - t0 < CLOCK_STOP_PS, "pins not off with the clock stopped"
-    t_off = cocotb.utils.get_sim_time("ps") - t0
+        assert get_sim_time("ps") - t0 < CLOCK_STOP_PS, "pins not off with the clock stopped"
+    t_off = get_sim_time("ps") - t0
     assert int(dut.dbg_out_reg.value) != 0, "registers changed without a clock"
     assert t_off <= (OSC_BOUND + 1) * OSC_PERIOD_PS, f"pins off {t_off} ps after the stop"
     await Timer(CLOCK_STOP_PS - t_off, unit="ps")
     assert int(dut.pwm_en.value) == 0 and int(dut.pwm_out.value) == 0
-    cs.clk = Clock(dut.clk, CLK_PERIOD_NS, unit="ns")
-    cs.clk.start()
+    dut.clk_stop.value = 0
     n = 0
     while True:
         await RisingEdge(dut.clk)
@@ -428,7 +452,7 @@ class FaultRun:
     async def watch_on(self) -> None:
         budget = 2 * self.cs.P + 20                     # one PWM period (+ the clocks of the write's decode)
         while _pins_state(self.dut) != 1:
-            await First(self.dut.pwm_en.value_change, ClockCycles(self.dut.clk, budget))
+            await First(self.dut.pwm_en.value_change, Timer(budget * CLK_PERIOD_NS + 1, unit="ns"))
             assert self.now() - self.t_clear <= budget * CLK_PERIOD_NS * 1000, \
                 "the bridges did not restart within one PWM period of the clear"
         self.restart_clk = (self.now() - self.t_clear) / (CLK_PERIOD_NS * 1000)
@@ -455,7 +479,7 @@ async def _inj_overcurrent(fr):
         await RisingEdge(dut.dbg_period_start)
         t0 = fr.now()
         while True:
-            await FallingEdge(dut.adc_cs_n)
+            await FallingEdge(dut.dbg_adc_cs_n)
             if fr.now() - t0 >= (cs.P + tau - 2) * CLK_PERIOD_NS * 1000:
                 fr.t_event = fr.now()
                 break
@@ -476,7 +500,7 @@ def _persistent_adc(setup):
 
         async def first_frame():
             await RisingEdge(fr.dut.dbg_period_start)
-            await FallingEdge(fr.dut.adc_cs_n)
+            await FallingEdge(fr.dut.dbg_adc_cs_n)
             fr.t_event = fr.now()
         cocotb.start_soon(first_frame())
     return inj
@@ -515,7 +539,7 @@ async def _inj_encoder(fr):
         await ClockCycles(fr.dut.clk, 400)
 
         async def err():
-            await RisingEdge(fr.dut.u_top.g_axis[0].u_axis.enc_err_pulse)
+            await RisingEdge(fr.dut.dbg_enc_err)
             fr.extra["err_pulse_clk"] = (fr.now() - fr.t_event) / (CLK_PERIOD_NS * 1000)
         fr.t_event = fr.now()
         cocotb.start_soon(err())
@@ -541,7 +565,7 @@ async def _inj_watchdog(fr):
     fr.cs.kicks = False
 
     async def expiry():
-        await RisingEdge(fr.dut.u_top.wdog_expired)
+        await RisingEdge(fr.dut.dbg_wdog_expired)
         fr.t_event = fr.now()
     cocotb.start_soon(expiry())
 
@@ -557,14 +581,14 @@ async def _inj_overrun(fr):
     just after it was set; Verilator has no VPI force, a deposit on the flag holds until the next
     sample): the period is still running at the PWM update, `overrun` pulses at that boundary,
     the next period's trigger is ignored and its sample completes the late period."""
-    axis = fr.dut.u_top.g_axis[0].u_axis
+    seq = fr.dut.u_top.g_axis[0].u_axis.u_seq          # adc_seen: public in tb/hdl/cosim_top.vlt
 
     async def run():
         await RisingEdge(fr.dut.dbg_period_start)
-        await RisingEdge(axis.adc_valid)
+        await RisingEdge(fr.dut.dbg_adc_valid)
         await RisingEdge(fr.dut.clk)                    # adc_seen set at this edge
         await FallingEdge(fr.dut.clk)
-        axis.u_seq.adc_seen.value = 0
+        seq.adc_seen.value = 0
         await RisingEdge(fr.dut.dbg_period_start)       # the PWM update the period missed
         fr.t_event = fr.now()
     cocotb.start_soon(run())
@@ -672,10 +696,8 @@ async def run_cosim(dut, name: str) -> dict:
     bus = EmcBfm(dut, pins=dict(cs_n="cpu_cs_n", oe_n="cpu_oe_n", we_n="cpu_we_n", a="cpu_a", d="cpu_d",
                                 d_oe="cpu_d_oe", bus="emc_d_seen"))
     drv = driver.Drive(bus)
-    cs.clk = Clock(dut.clk, CLK_PERIOD_NS, unit="ns")
-    cs.clk.start()
-    if cs.fault == "clock":                  # the configuration-oscillator stand-in of clk_mon
-        Clock(dut.u_top.u_clkmon.osc_sim, OSC_PERIOD_PS, unit="ps").start()
+    dut.clk_stop.value = 0
+    dut.osc_run.value = int(cs.fault == "clock")   # the configuration-oscillator stand-in of clk_mon
     dut.pwr_fault_n.value = 1
     dut.rst_n.value = 0
     dut.enc_target.value = 0
@@ -699,13 +721,14 @@ async def run_cosim(dut, name: str) -> dict:
     assert await drv.read("ID") == regmap.ID_MAGIC, "bus or bitstream: ID register"
     await check_global_regs(dut, bus, drv)
     wall0 = time.perf_counter()
+    cpu0 = time.process_time()
     # lockstep from the first PWM period after alignment: the sequencer's state so far is known
     # (disabled, zero currents: every control period just shifted its counter), take it over
     await RisingEdge(dut.dbg_period_start)
     await ReadOnly()
     cs.seq.per_cnt = int(dut.dbg_per_cnt.value)
     cs.seq.first = False
-    await RisingEdge(dut.clk)           # the loop's first period continues from this boundary
+    await RisingEdge(dut.clk)           # the loop's first period begins one clock after this boundary
 
     async def w(name, value):
         await drv.write(name, value)
@@ -820,7 +843,25 @@ async def run_cosim(dut, name: str) -> dict:
             await fr.status_vs_pins("after the restart")
             fr.extra["fault_after_clear"] = await drv.read("FAULT")
     k_restart = None
-    for k in range(len(plan) + n_periods):
+    for k in range(len(plan) + n_periods + 1):
+        if k > 0:                              # one wake-up per PWM period: period k - 1 has ended
+            kp = k - 1
+            await RisingEdge(dut.dbg_period_start)
+            cs.end_period()
+            assert not int(dut.dbg_unsafe.value), f"period {cs.period}: a bridge or PWM output on after a trip"
+            if fr:
+                if k_on < kp < k_f:
+                    fr.pre_peak = max(fr.pre_peak, cs.ipk_now)
+                if fr.t_off is not None and kp < k_clr:      # from the trip to the clear: every output off
+                    assert _pins_state(dut) == 0, f"{name}: outputs not safe in period {kp} after the fault"
+                if fr.restart_clk is not None and k_restart is None:
+                    k_restart = kp
+                if k_restart is not None and k_restart < kp <= k_restart + RESTART_PERIODS:
+                    fr.post_peak = max(fr.post_peak, cs.ipk_now)
+            if cs.mismatches and cs.fault is None:
+                break
+        if k == len(plan) + n_periods:
+            break
         acts = list(plan[k]) if k < len(plan) else []
         if k >= k_on and k % KICK_EVERY == KICK_EVERY // 2 and cs.kicks and not (fr and k in (k_rm, k_clr, k_chk)):
             acts.append(kick)
@@ -833,20 +874,9 @@ async def run_cosim(dut, name: str) -> dict:
         if fr and k == k_chk:
             acts.append(restart_check)
         cs.ipk_now = 0.0
-        await cs.pwm_period(acts, at_boundary=(k == 0))
-        if fr:
-            if k_on < k < k_f:
-                fr.pre_peak = max(fr.pre_peak, cs.ipk_now)
-            if fr.t_off is not None and k < k_clr:         # from the trip to the clear: every output off
-                assert _pins_state(dut) == 0, f"{name}: outputs not safe in period {k} after the fault"
-            if fr.restart_clk is not None and k_restart is None:
-                k_restart = k
-            if k_restart is not None and k_restart < k <= k_restart + RESTART_PERIODS:
-                fr.post_peak = max(fr.post_peak, cs.ipk_now)
-        if cs.mismatches and cs.fault is None:
-            break
+        await cs.begin_period(acts)
     wall = time.perf_counter() - wall0
-    await RisingEdge(dut.clk)             # leave the ReadOnly phase before driving the bus
+    cpu = time.process_time() - cpu0
     if cs.mismatches:
         dut._log.error("first mismatches (period, RTL cmp, model cmp): %s", cs.mismatches[:5])
     # read back status over the bus
@@ -885,7 +915,7 @@ async def run_cosim(dut, name: str) -> dict:
     for n in ("PERIODS", "SAT_OPERAND", "SAT_EBAR_INC", "SAT_LIMIT", "CNT_OVERRUN"):
         assert await drv.read(n) < 2, f"{n} not zeroed"
     cs.reg_checks += 9
-    return {"cs": cs, "wall": wall, "status": status, "fault": fr}
+    return {"cs": cs, "wall": wall, "cpu": cpu, "status": status, "fault": fr}
 
 
 def metrics_report(cs: CoSim, res: dict) -> dict:
@@ -919,12 +949,17 @@ async def closed_loop(dut, name: str):
     res = await run_cosim(dut, name)
     cs = res["cs"]
     sim_ms = cs.period * cs.Tpwm * 1e3
-    dut._log.info("%s: %d PWM periods (%.1f ms simulated) in %.1f s wall; %d compare sets checked, %d mismatches; "
-                  "%d register read-backs checked", name, cs.period, sim_ms, res["wall"], cs.checked,
-                  len(cs.mismatches), cs.reg_checks)
+    clocks = cs.period * 2 * cs.P            # fabric clocks of the checked periods
+    dut._log.info("%s: %d PWM periods (%.1f ms simulated) in %.1f s wall, %.1f s CPU (%.2f sim ms per CPU s); "
+                  "%d compare sets checked, %d mismatches; %d register read-backs checked", name, cs.period, sim_ms,
+                  res["wall"], res["cpu"], sim_ms / res["cpu"], cs.checked, len(cs.mismatches), cs.reg_checks)
     report = {"scenario": name, "paper_scenario": cs.sc.name, "fault_injection": cs.fault,
               "pwm_periods": cs.period, "simulated_ms": sim_ms, "wall_s": res["wall"],
-              "sim_ms_per_wall_s": sim_ms / res["wall"], "compare_sets_checked": cs.checked,
+              "sim_ms_per_wall_s": sim_ms / res["wall"], "clocks_per_wall_s": clocks / res["wall"],
+              # CPU time of the simulator process (Verilator + Python): the speed on an idle core
+              "cpu_s": res["cpu"], "sim_ms_per_cpu_s": sim_ms / res["cpu"], "clocks_per_cpu_s": clocks / res["cpu"],
+              "python_per_period_cpu_s": cs.py_cpu, "load_avg_1min": os.getloadavg()[0],
+              "compare_sets_checked": cs.checked,
               "mismatches_vs_bit_accurate_model": len(cs.mismatches),
               "register_readbacks_checked": cs.reg_checks,
               "first_mismatches": [list(map(list, [[m[0]], m[1], m[2]])) for m in cs.mismatches[:5]],
@@ -935,6 +970,12 @@ async def closed_loop(dut, name: str):
                       "window_taus_clk": cs.adcp.window_taus(), "valid_after_trig_clk": cs.adcp.valid_delay(),
                       "frames_per_period": cs.adcp.frames_per_period(), "noise_lsb_peak": cs.adc_noise,
                       "ripple_lsb_per_duty": cs.ripple_k, "period_mean_minus_offset": cs.adc_psum_mean}}
+    if cs.lockstep:
+        report["lockstep"] = {"clocks_compared": int(dut.dbg_ls_clocks.value),
+                              "clocks_core_clock_stopped": int(dut.dbg_ls_gated.value),
+                              "clocks_differing": int(dut.dbg_ls_errors.value)}
+        dut._log.info("lockstep: %s", report["lockstep"])
+        assert report["lockstep"]["clocks_differing"] == 0, report["lockstep"]
     if cs.fault is None:
         assert not cs.mismatches, f"RTL compare values differ from the bit-accurate model: {cs.mismatches[:3]}"
         tr, sc_cut, m = metrics_report(cs, res)
@@ -949,7 +990,8 @@ async def closed_loop(dut, name: str):
         assert report["rms_error_rtl_vs_float_rel"] < 0.10, report["rms_error_rtl_vs_float_rel"]
         assert res["status"]["CNT_OVERRUN"] == 0 and res["status"]["FAULT"] == 0, res["status"]
         assert res["status"]["CNT_ADC_MISS"] == 0, "PWM centre off the ADC frame grid"
-        _plot(cs, tr, ftr, REPORTS / f"closed_loop_{name}.png")
+        if not cs.lockstep:
+            _plot(cs, tr, ftr, REPORTS / f"closed_loop_{name}.png")
     else:
         fr = res["fault"]
         spec = fr.spec
@@ -981,7 +1023,8 @@ async def closed_loop(dut, name: str):
         for k, v in res["status"].items():
             assert v < 0xFFFFFFFF, f"counter {k} saturated/wrapped"
     REPORTS.mkdir(parents=True, exist_ok=True)
-    (REPORTS / f"closed_loop_{name}.json").write_text(json.dumps(report, indent=1, default=float) + "\n")
+    tag = "_lockstep" if cs.lockstep else ""
+    (REPORTS / f"closed_loop_{name}{tag}.json").write_text(json.dumps(report, indent=1, default=float) + "\n")
 
 
 def _plot(cs, tr, ftr, path):
@@ -1009,51 +1052,55 @@ def _plot(cs, tr, ftr, path):
     plt.close(fig)
 
 
-# ---------------------------------------------------------------- cocotb tests
-# One simulator build runs several scenarios in sequence (each starts with its own reset).
-@cocotb.test(skip=os.environ.get("EMPC_COSIM_SET", "ci") != "ci")
-async def cosim_short(dut):
-    await closed_loop(dut, "short")
-
-
-def _fault_test(name: str):
-    async def run(dut):
-        await closed_loop(dut, name)
-    run.__name__ = run.__qualname__ = f"cosim_fault_{name}"
-    return cocotb.test(skip=os.environ.get("EMPC_COSIM_SET", "ci") != "ci")(run)
-
-
-# one cocotb test per fault co-simulation (the COSIM entries with a fault), all in the CI build
-for _name in [n for n, v in COSIM.items() if v[2] is not None]:
-    globals()[f"cosim_fault_{_name}"] = _fault_test(_name)
-
-
-# two groups of about equal wall time, one per xdist worker (one simulator build each)
-FULL_GROUPS = ("position_alg2,load_step", "position_alg1,speed_steps")
-
-
-@cocotb.test(skip=os.environ.get("EMPC_COSIM_SET", "ci") != "full")
-async def cosim_full(dut):
-    for name in os.environ.get("EMPC_COSIM_FULL", ",".join(FULL_GROUPS)).split(","):
+# ---------------------------------------------------------------- cocotb test
+@cocotb.test()
+async def cosim(dut):
+    """The scenarios named in EMPC_COSIM (comma-separated), in sequence, each from its own reset."""
+    for name in os.environ["EMPC_COSIM"].split(","):
         await closed_loop(dut, name)
 
 
 # ---------------------------------------------------------------- pytest entries
-def test_closed_loop():
-    """Short position scenario (bit-exact against the model) and one short run per fault cause, on Verilator."""
+# make sim runs every scenario of COSIM except SOAK (make sim-full), one pytest test each, so that
+# pytest-xdist spreads them over its workers; all of them share one Verilator build (tb/runner.py).
+# The builds stop the MPC core's clock while it is idle (EMPC_SIM_GATE, rtl/mpc_core.v); the
+# LOCKSTEP runs prove that against an ungated copy of the core, every output every clock.
+SOAK = ("soak", "speed_alg2")
+LOCKSTEP = ("short", "overcurrent", "encoder", "watchdog", "speed_steps")   # make sim; the rest: sim-full
+VLT = ROOT / "tb" / "hdl" / "cosim_top.vlt"       # the signals Python touches through VPI
+
+
+def build_and_run(names: str, lockstep: bool = False):
     from runner import run
-    run(toplevel="cosim_top", test_module="test_closed_loop", sim="verilator", name="cosim",
-        extra_env={"EMPC_COSIM_SET": "ci"})
+    defines = {"EMPC_SIM_GATE": 1, **({"COSIM_LOCKSTEP": 1} if lockstep else {})}
+    run(toplevel="cosim_top", test_module="test_closed_loop", sim="verilator", name="cosim", public=VLT,
+        timing=True, parameters={"CLK_HALF_PS": CLK_PERIOD_NS * 500}, defines=defines,
+        run_name=names.replace(",", "+"), extra_env={"EMPC_COSIM": names})
+
+
+SIM_MS_PER_S = 13.0         # co-simulation speed on one core (build/reports/closed_loop_*.json), for the order
+
+
+@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.cost(5 + COSIM[n][1] * 1e3 / SIM_MS_PER_S))
+                                  for n in COSIM if n not in SOAK])
+def test_closed_loop(name):
+    """RTL in the loop (Verilator): every compare value bit-exact against the model, the trajectory
+    against the float loop, or (fault runs) the fault trips, the bridges stay off, the CPU clears it."""
+    build_and_run(name)
 
 
 @pytest.mark.full
-@pytest.mark.parametrize("group", FULL_GROUPS)
-def test_closed_loop_full(group):
-    """Paper-length scenarios (make sim-full; EMPC_COSIM_FULL=a,b runs just those, in the first group)."""
-    from runner import run
-    chosen = os.environ.get("EMPC_COSIM_FULL")
-    if chosen and group != FULL_GROUPS[0]:
-        pytest.skip(f"EMPC_COSIM_FULL={chosen} runs in the first group")
-    run(toplevel="cosim_top", test_module="test_closed_loop", sim="verilator",
-        name=f"cosim_full_{group.split(',')[0]}",
-        extra_env={"EMPC_COSIM_SET": "full", "EMPC_COSIM_FULL": chosen or group})
+@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.cost(5 + COSIM[n][1] * 1e3 / SIM_MS_PER_S))
+                                  for n in SOAK])
+def test_closed_loop_soak(name):
+    """Longer runs for make sim-full (see SOAK)."""
+    build_and_run(name)
+
+
+@pytest.mark.parametrize("name", [
+    pytest.param(n, marks=[pytest.mark.cost(5 + COSIM[n][1] * 1e3 / SIM_MS_PER_S * 1.4)]
+                 + ([] if n in LOCKSTEP else [pytest.mark.full])) for n in COSIM])
+def test_closed_loop_lockstep(name):
+    """The scenario with the gated MPC core next to an ungated copy: every output equal every clock
+    (the proof of EMPC_SIM_GATE), plus all the checks of test_closed_loop."""
+    build_and_run(name, lockstep=True)

@@ -28,6 +28,7 @@ import re
 from pathlib import Path
 
 import cocotb
+import pytest
 from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, FallingEdge
 
@@ -281,14 +282,16 @@ async def random_periods(dut):
 
 def _run(task: str):
     from runner import run
-    run(toplevel="ctrl_seq_tb", test_module="test_ctrl_seq", sim="verilator", name=f"ctrl_seq_{task}",
-        extra_env={"CS_TASK": task})
+    run(toplevel="ctrl_seq_tb", test_module="test_ctrl_seq", sim="verilator", name="ctrl_seq", run_name=task,
+        extra_env={"CS_TASK": task})        # one Verilator build for both tasks
 
 
+@pytest.mark.cost(20)          # Verilator build (shared by the two) + 400 periods
 def test_ctrl_seq_speed():
     _run("speed")
 
 
+@pytest.mark.cost(20)
 def test_ctrl_seq_position():
     _run("position")
 

@@ -2,15 +2,20 @@
 
 Per PWM period: the plant runs half a period with the current duties; at the
 period centre the ADC codes and the encoder count are sampled (the ADC
-trigger), the sequencer model (rtlmodel/ctrl_seq.py: front end, MPC core,
-modulation) computes the compare values, and they take effect at the next
-period boundary, half a period later - exactly the RTL's timing.  The RTL
-co-simulation (tb/test_closed_loop.py) is compared against this loop.
+trigger), the axis model (:class:`AxisModel`: sequencer model rtlmodel/ctrl_seq.py
+with front end, MPC core and modulation, plus the reference) computes the compare
+values, and they take effect at the next period boundary, half a period later -
+exactly the RTL's timing.
+
+:class:`AxisModel` is the one implementation of the axis's per-PWM-period loop: the
+closed loop here (:func:`simulate`, plant in Python) and the RTL co-simulation's checker
+(tb/test_closed_loop.py, plant on the RTL's pins, every compare value checked against
+:meth:`AxisModel.period`) both step it.
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
+from typing import Callable
 
 import numpy as np
 
@@ -19,6 +24,75 @@ from . import formats as F
 from . import design as design_mod, header, pmsm
 from .rtlmodel import pos_sense
 from .rtlmodel.ctrl_seq import CtrlSeq, Regs
+from .rtlmodel.ref_gen import RefGen
+
+M32 = (1 << 32) - 1
+
+
+class AxisModel:
+    """One RTL axis, one PWM period at a time (bit-accurate).
+
+    Owns the sequencer model (:class:`CtrlSeq`: front end, MPC core, modulation), its
+    register values (:class:`Regs`) and the reference of the control periods: either the
+    reference generator's model (``refgen``, a :class:`RefGen` the caller programs as the
+    CPU programs the RTL's) or a function ``refs(k, t)`` giving the N+1 Q.32 references
+    of control period k sampled at time t.  :meth:`period` takes what the ADC trigger
+    samples (encoder count, ADC codes) and returns the sequencer's outputs for the
+    period (``cmp``: the compare values the RTL loads for the next period).
+    """
+
+    def __init__(self, cfg, params, *, regs: Regs | None = None, refgen: RefGen | None = None,
+                 refs: Callable[[int, float], list] | None = None, cal_offset: int = 0):
+        if (refgen is None) == (refs is None):
+            raise ValueError("AxisModel needs exactly one reference source: refgen or refs")
+        self.cfg = cfg
+        if regs is None:
+            kacc, kacc_shift = header.speed_correction_raw(cfg)
+            regs = Regs(pwm_per_control=cfg.pwm_per_control, kacc=kacc, kacc_shift=kacc_shift,
+                        half_period=cfg.pwm_half_period)
+        self.regs = regs
+        self.seq = CtrlSeq(params=params, N=cfg.control.N)
+        self.ref = refgen
+        self.refs = refs
+        self.cal_offset = cal_offset
+        self.periods = 0            # PWM periods evaluated
+        self.k = 0                  # control periods evaluated
+        self.last_control = None    # outputs of the last control period (+ ref_w0: the w_k it applied)
+
+    @property
+    def control_next(self) -> bool:
+        """True if the next :meth:`period` is a control period (the sequencer's period counter)."""
+        return self.seq.per_cnt + 1 >= self.regs.pwm_per_control
+
+    @property
+    def u(self) -> tuple:
+        """u_dq (Q.8 PWM ticks) the modulation applies (held between control periods)."""
+        return self.seq.u
+
+    def period(self, count: int, codes=None, t: float = 0.0, cur=None) -> dict:
+        """One PWM period from the ADC trigger's samples: ``count`` (encoder, any int), ``codes``
+        (three raw ADC codes) or ``cur`` (the ADC's offset-corrected window means, as adc_spi hands
+        them to the sequencer: the co-simulation with back-to-back frames), ``t`` (trigger time, for
+        ``refs``).  Returns the sequencer's outputs (:meth:`CtrlSeq.period`) plus ``ref_w`` (the N+1
+        references of a control period)."""
+        if (codes is None) == (cur is None):
+            raise ValueError("AxisModel.period needs exactly one of codes and cur")
+        cfg = self.cfg
+        control = self.control_next
+        ref_w = None
+        if control:
+            ref_w = self.ref.advance() if self.ref is not None else self.refs(self.k, t)
+        theta16 = pos_sense.angle(count, cfg.sensors.encoder_cpr, cfg.motor.p, base=self.cal_offset)
+        off = cfg.sensors.adc_offset
+        if cur is None:
+            cur = tuple(c - off for c in codes)
+        out = self.seq.period(theta16, count & M32, tuple(cur), self.regs, ref_w)
+        out["ref_w"] = ref_w
+        if control:
+            self.last_control = dict(out, ref_w0=ref_w[0])
+            self.k += 1
+        self.periods += 1
+        return out
 
 
 def ref_q32(cfg, task: str, value_si: float) -> int:
@@ -41,24 +115,24 @@ def simulate(cfg, scenario: cl.Scenario, params=None, seed: int = 0, substeps: i
     references of control period k (default: the scenario profile sampled and rounded)."""
     c = cfg.control
     alg_task = (c.algorithm, scenario.task)
-    params = params or design_mod.design(cfg.with_control(task=scenario.task), *alg_task)["params"]
+    params = params or design_mod.design(cfg.with_control(task=scenario.task), *alg_task, force=True)["params"]
     M = cfg.pwm_per_control
     P = cfg.pwm_half_period
     Tpwm = 1.0 / cfg.inverter.f_pwm
     plant = pmsm.Plant(cfg.motor, cfg.inverter.Udc, cfg.inverter.f_pwm, substeps=substeps)
     plant.state = pmsm.PlantState(*scenario.x0)
     sensors = pmsm.Sensors(cfg, rng=np.random.default_rng(seed))
-    kacc, kacc_shift = header.speed_correction_raw(cfg)
-    regs = regs or Regs(pwm_per_control=M, kacc=kacc, kacc_shift=kacc_shift, half_period=P)
-    seq = CtrlSeq(params=params, N=c.N)
-    cpr, p = cfg.sensors.encoder_cpr, cfg.motor.p
+    if refs is not None:
+        ref_fn = lambda k, t: refs(k)                                              # noqa: E731
+    else:
+        ref_fn = lambda k, t: [ref_q32(cfg, scenario.task, scenario.profile(t + j * c.Ts)[2])  # noqa: E731
+                               for j in range(c.N + 1)]
+    axis = AxisModel(cfg, params, regs=regs, refs=ref_fn, cal_offset=cal_offset)
     n = int(round(scenario.duration / c.Ts))
     rec = {k: [] for k in ("t", "i_d", "i_q", "w_e", "theta_e", "u_d", "u_q", "ipk", "sat", "w_meas")}
     ref_rec, cmp_rec, counts_rec, records = [], [], [], []
     duties = np.zeros(3)
     t = 0.0
-    k = 0
-    off = cfg.sensors.adc_offset
     vpu = cfg.volts_per_tick / (1 << F.U_FRAC)
     ipk = 0.0
     for period in range(n * M):
@@ -70,16 +144,8 @@ def simulate(cfg, scenario: cl.Scenario, params=None, seed: int = 0, substeps: i
         st = plant.state
         codes = sensors.adc_codes(plant.phase_currents())
         count = sensors.encoder_count(st.theta_e)
-        theta16 = pos_sense.angle(count, cpr, p, base=cal_offset)
-        cur = tuple(code - off for code in codes)
-        control = seq.per_cnt + 1 >= regs.pwm_per_control
-        ref_w = None
-        if control:
-            if refs is not None:
-                ref_w = refs(k)
-            else:
-                ref_w = [ref_q32(cfg, scenario.task, scenario.profile(t + j * c.Ts)[2]) for j in range(c.N + 1)]
-        out = seq.period(theta16, count & 0xFFFFFFFF, cur, regs, ref_w)
+        out = axis.period(count, codes, t)
+        control = out["control"]
         plant.step(0.5 * Tpwm, duties)
         t += 0.5 * Tpwm
         ipk = max(ipk, float(np.max(np.abs(plant.phase_currents()))))
@@ -93,16 +159,15 @@ def simulate(cfg, scenario: cl.Scenario, params=None, seed: int = 0, substeps: i
             rec["i_q"].append(st.i_q)
             rec["w_e"].append(st.w_e)
             rec["theta_e"].append(st.theta_e)
-            rec["u_d"].append(seq.u[0] * vpu)
-            rec["u_q"].append(seq.u[1] * vpu)
+            rec["u_d"].append(axis.u[0] * vpu)
+            rec["u_q"].append(axis.u[1] * vpu)
             r = out.get("core")
             rec["sat"].append(1 if r is not None and r.counts.get("limit") else 0)
             rec["w_meas"].append(out["omega"] / (1 << F.W_FRAC) * cfg.rad_s_per_count_ts)
             rec["ipk"].append(ipk)
             ipk = 0.0
-            records.append({"omega": out["omega"], "i_d": out["i_d"], "i_q": out["i_q"], "u": seq.u,
+            records.append({"omega": out["omega"], "i_d": out["i_d"], "i_q": out["i_q"], "u": axis.u,
                             "flags": r.flags if r is not None else 0})
-            k += 1
     a = {kk: np.array(v) for kk, v in rec.items()}
     tr = cl.Trace(a["t"], np.array(ref_rec), a["i_d"], a["i_q"], a["w_e"], a["theta_e"], a["u_d"], a["u_q"],
                   a["ipk"], a["sat"], a["w_meas"])

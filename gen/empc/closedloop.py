@@ -153,6 +153,9 @@ def metrics(tr: Trace, sc: Scenario, settle_floor: float = 0.0, preview: float =
     window in which the controller already sees the next segment's references),
     ramps: mean and max |error| over the second half of the ramp (the constant lag
     of algorithm 1 vs ~0 for algorithm 2), peak phase current, saturations.
+    ``settling_time_max`` is the largest settling time, or the string "unsettled (n of m
+    steps)" when a step never settles (``unsettled_steps`` counts them,
+    ``settling_time_max_settled`` is the maximum over the settled ones).
     """
     y = tr.output(sc.task)
     r = tr.ref[:, 2]
@@ -160,7 +163,7 @@ def metrics(tr: Trace, sc: Scenario, settle_floor: float = 0.0, preview: float =
     out = {"segments": [], "peak_i_d": float(np.max(np.abs(tr.i_d))), "peak_i_q": float(np.max(np.abs(tr.i_q))),
            "peak_phase_current": float(np.max(tr.i_phase_peak)), "saturations": int(np.sum(tr.sat)),
            "rms_error": float(np.sqrt(np.mean(e * e)))}
-    ramp_means, overshoots, settles = [], [], []
+    ramp_means, overshoots, settles, unsettled = [], [], [], 0
     for kind, t0, t1, v0, v1 in sc.segments:
         sel = (tr.t >= t0) & (tr.t < t1)
         if not np.any(sel):
@@ -186,6 +189,8 @@ def metrics(tr: Trace, sc: Scenario, settle_floor: float = 0.0, preview: float =
                 seg["settling_time"] = float(ts[outside[-1] + 1] - t0)
             if seg["settling_time"] is not None:
                 settles.append(seg["settling_time"])
+            else:
+                unsettled += 1
             tail = e[sel][-max(1, len(ys) // 2):]
             seg["final_error"] = float(np.mean(np.abs(tail[-max(1, len(ys) // 10):])))
             seg["final_error_mean"] = float(np.mean(tail))       # signed: zero-symmetric error -> ~0
@@ -200,5 +205,12 @@ def metrics(tr: Trace, sc: Scenario, settle_floor: float = 0.0, preview: float =
         out["segments"].append(seg)
     out["ramp_error_mean_abs"] = float(np.mean(ramp_means)) if ramp_means else None
     out["overshoot_pct_max"] = float(np.max(overshoots)) if overshoots else None
-    out["settling_time_max"] = float(np.max(settles)) if settles else None
+    # a step that never settles is reported as such, not dropped from the maximum
+    n_steps = len(settles) + unsettled
+    out["unsettled_steps"] = unsettled
+    out["settling_time_max_settled"] = float(np.max(settles)) if settles else None
+    if unsettled:
+        out["settling_time_max"] = f"unsettled ({unsettled} of {n_steps} steps)"
+    else:
+        out["settling_time_max"] = float(np.max(settles)) if settles else None
     return out
