@@ -57,6 +57,39 @@ class Weights:
 
 
 @dataclass(frozen=True)
+class Governor:
+    """Reference governor in the reference generator (current limit, issue 15 item 4).
+
+    The task reference is shaped, N periods ahead of its use, into a trajectory whose
+    acceleration needs at most ``accel_current`` x i_max at the robustness-box corner
+    (inertia x ``box_J``, flux x ``box_psi``), with the position reference's speed at most
+    ``speed_frac`` of the no-load base speed u_max / psi (and of Omega_e); the reference
+    holds its acceleration (speed) or speed (position) while |i_q| > ``hold_current`` x i_max
+    or the voltage limiter was active.  See gen/empc/governor.py."""
+    enable: bool = True
+    accel_current: float = 0.6
+    box_J: float = 1.3
+    box_psi: float = 0.8
+    speed_frac: float = 0.85
+    hold_current: float = 0.8
+    shift_speed: int = 3
+    shift_position: int = 4
+    jerk_periods: int = 4
+
+
+@dataclass(frozen=True)
+class FieldWeakening:
+    """Field weakening from the voltage margin (issue 15 item 6): the d-current reference
+    moves by ``step`` x i_max per control period toward -``i_max_frac`` x i_max while
+    |u_raw| > ``u_hi`` x u_max, back toward 0 while |u_raw| < ``u_lo`` x u_max."""
+    enable: bool = True
+    u_hi: float = 0.90
+    u_lo: float = 0.82
+    step: float = 0.02
+    i_max_frac: float = 0.6
+
+
+@dataclass(frozen=True)
 class Control:
     algorithm: int
     task: str
@@ -70,6 +103,9 @@ class Control:
     i_max: float
     speed_estimate: str
     weights: dict = field(default_factory=dict)   # {(alg, task): Weights}
+    speed_load_shift: int = 6                     # "accel_load": load estimate gain 2^-shift per period
+    governor: Governor = field(default_factory=Governor)
+    field_weakening: FieldWeakening = field(default_factory=FieldWeakening)
 
     def weights_for(self, algorithm: int | None = None, task: str | None = None) -> Weights:
         key = (algorithm or self.algorithm, task or self.task)
@@ -124,11 +160,18 @@ class Config:
         Eq. 37 is the mean speed over the last period, i.e. the speed half a period ago;
         the model state wants the speed now.  The torque equation gives the missing
         (Ts/2) * dw/dt = (Ts/2) * 1.5 p^2 psi / J * i_q.  0 when speed_estimate = "eq37".
+        With "accel_load" a load estimate removes the part of i_q that holds a load
+        (gen/empc/estimator.py), so that the estimate is offset-free under load.
         """
-        if self.control.speed_estimate != "accel":
+        if self.control.speed_estimate not in ("accel", "accel_load"):
             return 0.0
         m = self.motor
         return 0.5 * self.control.Ts * 1.5 * m.p * m.p * m.psi / m.J
+
+    @property
+    def speed_load_shift(self) -> int:
+        """Load-estimate gain 2^-shift of the "accel_load" estimate; 0 = no load estimate."""
+        return self.control.speed_load_shift if self.control.speed_estimate == "accel_load" else 0
 
     @property
     def u_max(self) -> float:
@@ -170,6 +213,64 @@ def _bools(value, n: int, name: str) -> tuple:
     if not any(value):
         raise ConfigError(f"{name} must integrate at least one output, got {value!r}")
     return tuple(value)
+
+
+def _fraction(value, name: str, lo: float = 0.0, hi: float = 1.0):
+    v = _positive(value, name, allow_zero=True)
+    if not lo < v <= hi:
+        raise ConfigError(f"{name} must be in ({lo}, {hi}], got {value!r}")
+    return v
+
+
+def _int_in(value, name: str, lo: int, hi: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or not lo <= value <= hi:
+        raise ConfigError(f"{name} must be an integer in {lo}..{hi}, got {value!r}")
+    return value
+
+
+def _flag(value, name: str) -> bool:
+    if not isinstance(value, bool):
+        raise ConfigError(f"{name} must be true or false, got {value!r}")
+    return value
+
+
+def _governor(d: dict) -> Governor:
+    g = Governor()
+    if not isinstance(d, dict):
+        raise ConfigError(f"[governor] must be a table, got {d!r}")
+    unknown = set(d) - set(g.__dataclass_fields__)
+    if unknown:
+        raise ConfigError(f"governor.{sorted(unknown)[0]} is not a governor setting")
+    return Governor(
+        enable=_flag(d.get("enable", g.enable), "governor.enable"),
+        accel_current=_fraction(d.get("accel_current", g.accel_current), "governor.accel_current"),
+        box_J=_positive(d.get("box_J", g.box_J), "governor.box_J"),
+        box_psi=_fraction(d.get("box_psi", g.box_psi), "governor.box_psi"),
+        speed_frac=_fraction(d.get("speed_frac", g.speed_frac), "governor.speed_frac"),
+        hold_current=_fraction(d.get("hold_current", g.hold_current), "governor.hold_current"),
+        shift_speed=_int_in(d.get("shift_speed", g.shift_speed), "governor.shift_speed", 0, 31),
+        shift_position=_int_in(d.get("shift_position", g.shift_position), "governor.shift_position", 0, 31),
+        jerk_periods=_int_in(d.get("jerk_periods", g.jerk_periods), "governor.jerk_periods", 1, 1 << 16),
+    )
+
+
+def _field_weakening(d: dict) -> FieldWeakening:
+    f = FieldWeakening()
+    if not isinstance(d, dict):
+        raise ConfigError(f"[field_weakening] must be a table, got {d!r}")
+    unknown = set(d) - set(f.__dataclass_fields__)
+    if unknown:
+        raise ConfigError(f"field_weakening.{sorted(unknown)[0]} is not a field-weakening setting")
+    fw = FieldWeakening(
+        enable=_flag(d.get("enable", f.enable), "field_weakening.enable"),
+        u_hi=_fraction(d.get("u_hi", f.u_hi), "field_weakening.u_hi"),
+        u_lo=_fraction(d.get("u_lo", f.u_lo), "field_weakening.u_lo"),
+        step=_fraction(d.get("step", f.step), "field_weakening.step"),
+        i_max_frac=_fraction(d.get("i_max_frac", f.i_max_frac), "field_weakening.i_max_frac"),
+    )
+    if fw.u_lo >= fw.u_hi:
+        raise ConfigError(f"field_weakening.u_lo ({fw.u_lo!r}) must be below field_weakening.u_hi ({fw.u_hi!r})")
+    return fw
 
 
 def _choice(value, options: tuple, name: str):
@@ -254,8 +355,12 @@ def from_dict(d: dict, source: str = "<dict>") -> Config:
         algorithm=alg, task=task, N=N, Ts=Ts, omega_min=wmin, omega_max=wmax, omega_points=npts,
         design_quantised=bool(c.get("design_quantised", True)), voltage_limit=vl,
         i_max=_positive(c.get("i_max", 10.0), "control.i_max"),
-        speed_estimate=_choice(c.get("speed_estimate", "accel"), ("eq37", "accel"), "control.speed_estimate"),
+        speed_estimate=_choice(c.get("speed_estimate", "accel_load"), ("eq37", "accel", "accel_load"),
+                               "control.speed_estimate"),
         weights=weights,
+        speed_load_shift=_int_in(c.get("speed_load_shift", 6), "control.speed_load_shift", 1, 15),
+        governor=_governor(d.get("governor", {})),
+        field_weakening=_field_weakening(d.get("field_weakening", {})),
     )
     cfg = Config(motor=motor, inverter=inverter, sensors=sensors, f_clk=f_clk, control=control, source=source)
     ratio = Ts * inverter.f_pwm
