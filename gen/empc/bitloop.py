@@ -6,6 +6,8 @@ trigger), the sequencer model (rtlmodel/ctrl_seq.py: front end, MPC core,
 modulation) computes the compare values, and they take effect at the next
 period boundary, half a period later - exactly the RTL's timing.  The RTL
 co-simulation (tb/test_closed_loop.py) is compared against this loop.
+The task references pass through the reference generator's integer governor
+(rtlmodel/ref_gen.gov_step) with the hold flag of the sequencer model, as in the RTL.
 """
 from __future__ import annotations
 
@@ -19,12 +21,32 @@ from . import formats as F
 from . import design as design_mod, header, pmsm
 from .rtlmodel import pos_sense
 from .rtlmodel.ctrl_seq import CtrlSeq, Regs
+from .rtlmodel.ref_gen import M64, gov_step
 
 
 def ref_q32(cfg, task: str, value_si: float) -> int:
     """Task-output reference in the ref_gen's Q.32 unit (counts, or counts per Ts), modulo 2^64."""
     unit = cfg.rad_per_count if task == "position" else cfg.rad_s_per_count_ts
     return int(round(value_si / unit * (1 << 32))) & ((1 << 64) - 1)
+
+
+def regs_for(cfg, task: str, **kw) -> Regs:
+    """Sequencer registers as the generator's header sets them after reset (``kw`` overrides)."""
+    kacc, kacc_shift = header.speed_correction_raw(cfg)
+    fw = header.field_weakening_raw(cfg)
+    gov = header.governor_raw(cfg, task)
+    base = dict(pwm_per_control=cfg.pwm_per_control, kacc=kacc, kacc_shift=kacc_shift,
+                half_period=cfg.pwm_half_period, load_shift=cfg.speed_load_shift, fw_step=fw["FW_STEP"],
+                fw_max=fw["FW_MAX"], fw_thr=(fw["FW_R2_HI"], fw["FW_R2_LO"]), iq_hold=gov["IQ_HOLD"])
+    base.update(kw)
+    return Regs(**base)
+
+
+def gov_params(cfg, task: str) -> dict:
+    """The reference generator's governor words of ``task`` as the engine reads them."""
+    g = header.governor_raw(cfg, task)
+    return {"enable": bool(g["GOV_EN"]), "ksh": g["GOV_KSH"], "vmax": g["GOV_VMAX_LO"] | g["GOV_VMAX_HI"] << 32,
+            "a": g["GOV_A_LO"] | g["GOV_A_HI"] << 32}
 
 
 @dataclass
@@ -36,20 +58,25 @@ class BitLoopResult:
 
 
 def simulate(cfg, scenario: cl.Scenario, params=None, seed: int = 0, substeps: int = 4,
-             refs=None, cal_offset: int = 0, regs: Regs | None = None) -> BitLoopResult:
+             refs=None, cal_offset: int = 0, regs: Regs | None = None, plant_motor=None,
+             gov: dict | None = None) -> BitLoopResult:
     """Closed loop with the bit-accurate axis model.  ``refs(k)`` may supply the N+1 Q.32
-    references of control period k (default: the scenario profile sampled and rounded)."""
+    target references of control period k (default: the scenario profile sampled and rounded);
+    they pass through the governor ``gov`` (default: the header's for the task).
+    ``plant_motor`` lets the plant differ from the design motor."""
     c = cfg.control
     alg_task = (c.algorithm, scenario.task)
     params = params or design_mod.design(cfg.with_control(task=scenario.task), *alg_task)["params"]
     M = cfg.pwm_per_control
     P = cfg.pwm_half_period
     Tpwm = 1.0 / cfg.inverter.f_pwm
-    plant = pmsm.Plant(cfg.motor, cfg.inverter.Udc, cfg.inverter.f_pwm, substeps=substeps)
+    plant = pmsm.Plant(plant_motor or cfg.motor, cfg.inverter.Udc, cfg.inverter.f_pwm, substeps=substeps)
     plant.state = pmsm.PlantState(*scenario.x0)
     sensors = pmsm.Sensors(cfg, rng=np.random.default_rng(seed))
-    kacc, kacc_shift = header.speed_correction_raw(cfg)
-    regs = regs or Regs(pwm_per_control=M, kacc=kacc, kacc_shift=kacc_shift, half_period=P)
+    regs = regs or regs_for(cfg, scenario.task)
+    gp = gov if gov is not None else gov_params(cfg, scenario.task)
+    task_pos = scenario.task == "position"
+    gdl, r_prev, v_gov, gov_clamps = None, 0, 0, 0
     seq = CtrlSeq(params=params, N=c.N)
     cpr, p = cfg.sensors.encoder_cpr, cfg.motor.p
     n = int(round(scenario.duration / c.Ts))
@@ -76,9 +103,17 @@ def simulate(cfg, scenario: cl.Scenario, params=None, seed: int = 0, substeps: i
         ref_w = None
         if control:
             if refs is not None:
-                ref_w = refs(k)
+                target = refs(k)
             else:
-                ref_w = [ref_q32(cfg, scenario.task, scenario.profile(t + j * c.Ts)[2]) for j in range(c.N + 1)]
+                target = [ref_q32(cfg, scenario.task, scenario.profile(t + j * c.Ts)[2]) for j in range(c.N + 1)]
+            if gdl is None:                  # bumpless start: the target window
+                gdl = [x & M64 for x in target]
+            else:
+                g_new, v_gov, clamped = gov_step(gp, v_gov, r_prev, target[-1] & M64, gdl[-1], seq.hold, task_pos)
+                gdl = gdl[1:] + [g_new]
+                gov_clamps += int(clamped)
+            r_prev = target[-1] & M64
+            ref_w = list(gdl)
         out = seq.period(theta16, count & 0xFFFFFFFF, cur, regs, ref_w)
         plant.step(0.5 * Tpwm, duties)
         t += 0.5 * Tpwm
@@ -101,7 +136,8 @@ def simulate(cfg, scenario: cl.Scenario, params=None, seed: int = 0, substeps: i
             rec["ipk"].append(ipk)
             ipk = 0.0
             records.append({"omega": out["omega"], "i_d": out["i_d"], "i_q": out["i_q"], "u": seq.u,
-                            "flags": r.flags if r is not None else 0})
+                            "flags": r.flags if r is not None else 0, "w_k": ref_w[0], "i_fw": out["i_fw"],
+                            "hold": out["hold"], "gov_clamps": gov_clamps})
             k += 1
     a = {kk: np.array(v) for kk, v in rec.items()}
     tr = cl.Trace(a["t"], np.array(ref_rec), a["i_d"], a["i_q"], a["w_e"], a["theta_e"], a["u_d"], a["u_q"],

@@ -41,6 +41,34 @@ def speed_correction_raw(cfg) -> tuple[int, int]:
     return int(round(k * (1 << shift))), shift
 
 
+def u_max_v(cfg) -> int:
+    """Voltage limit |u| <= Udc/sqrt(3) in PWM ticks (Q.4) at the nominal DC link."""
+    return int(math.floor(cfg.pwm_half_period / math.sqrt(3.0) * (1 << formats.V_FRAC)))
+
+
+def field_weakening_raw(cfg) -> dict[str, int]:
+    """FW register (step, max: Q.4 ADC LSB) and FW_R2 thresholds on the limiter's r >> FW_R_SHIFT."""
+    from .rtlmodel.mpc_core import FW_R_SHIFT
+    c = cfg.control
+    fw = c.field_weakening
+    q = (1 << formats.I_FRAC) / cfg.amps_per_lsb
+    um = u_max_v(cfg)
+    hi = min(int(math.floor((fw.u_hi * um) ** 2)) >> FW_R_SHIFT, 0xFFFF)
+    lo = min(int(math.floor((fw.u_lo * um) ** 2)) >> FW_R_SHIFT, 0xFFFF)
+    return {"FW_STEP": max(1, int(round(fw.step * c.i_max * q))) if fw.enable else 0,
+            "FW_MAX": min(int(round(fw.i_max_frac * c.i_max * q)), 0xFFFF) if fw.enable else 0,
+            "FW_R2_HI": hi, "FW_R2_LO": lo}
+
+
+def governor_raw(cfg, task: str | None = None) -> dict[str, int]:
+    """Reference-governor words of ``task`` (default: the boot design's): GOV_* and IQ_HOLD."""
+    from . import governor
+    g = governor.raw_params(cfg, task or cfg.control.task)
+    return {"GOV_EN": int(g["enable"]), "GOV_KSH": g["ksh"], "GOV_VMAX_LO": g["vmax"] & 0xFFFFFFFF,
+            "GOV_VMAX_HI": g["vmax"] >> 32, "GOV_A_LO": g["a"] & 0xFFFFFFFF, "GOV_A_HI": g["a"] >> 32,
+            "IQ_HOLD": min(governor.hold_current_raw(cfg), 0xFFF) if g["enable"] else 0}
+
+
 def config_constants(cfg) -> dict[str, int]:
     """Integer constants the RTL needs from the configuration (raw units)."""
     p = cfg.motor.p
@@ -49,6 +77,9 @@ def config_constants(cfg) -> dict[str, int]:
     return {
         "KACC": kacc,
         "KACC_SHIFT": kacc_shift,
+        "KACC_LOAD_SHIFT": cfg.speed_load_shift,
+        **field_weakening_raw(cfg),
+        **governor_raw(cfg),
         "CLK_HZ": int(round(cfg.f_clk)),
         "PWM_HALF_PERIOD": cfg.pwm_half_period,
         "PWM_PER_CONTROL": cfg.pwm_per_control,
@@ -56,7 +87,7 @@ def config_constants(cfg) -> dict[str, int]:
         "POLE_PAIRS": p,
         "ADC_OFFSET": cfg.sensors.adc_offset,
         # voltage limit |u| <= Udc/sqrt(3) in PWM ticks (Q.4) at the nominal DC link
-        "U_MAX_V": int(math.floor(cfg.pwm_half_period / math.sqrt(3.0) * (1 << formats.V_FRAC))),
+        "U_MAX_V": u_max_v(cfg),
     }
 
 

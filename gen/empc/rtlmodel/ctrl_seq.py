@@ -6,6 +6,24 @@ it returns the compare values the RTL loads for the next PWM period, and on a
 control period also runs the front end, the MPC core model and updates the
 loop state exactly like the RTL.
 
+Front end of a control period (issue 15 items 1 and 6), raw units:
+
+    spd   = sat32(dpos << 16)                                  eq. 37, counts/Ts Q16.16
+    ka    = rshift_round(kacc * i_q, kacc_shift)               (Ts/2) accel from i_q
+    u1    = ka - D
+    omega = sat32(spd + u1)
+    load_shift > 0:  t2 = 2 u1 - (spd - spd_prev);  D = D + (t2 >> (load_shift + 1))
+    (load_shift = 0: D = 0, the plain "accel" estimate; kacc = 0 as well: eq. 37).
+    t2 / 2 = u1 - (spd - spd_prev) / 2: the load estimate's error (float form: estimator.py).
+    D is not saturated: it is a low-pass of ka - (spd - spd_prev) / 2, so |D| < 2^35 (|ka| <=
+    2^34, |spd| < 2^31), and the sequencer keeps it in 40 bits (never wraps).
+    field weakening (rtl/mpc_axis.v; fw_nmax > 0, law running): n = min(n + 1, fw_nmax) if
+        fw_hi, max(n - 1, 0) if fw_lo (the core's flags of the previous update); the
+        d-current references are sat18(id_ref - (n << fw_shift))
+    hold (for the reference governor, rtl/mpc_axis.v): after the core update of a running
+        control period, (iq_hold > 0 and (i_q >= 16 iq_hold or i_q < -16 iq_hold)) or the
+        voltage limiter was active; 0 when the law is off.
+
 The second half of this module is the RTL's microprogram: the tables (ops, pass table,
 programs) from which ``empc.ucode`` generates rtl/ctrl_seq_ucode.vh and rtl/ctrl_seq_rom.vh
 (``python -m empc.ucode``).  They describe how the RTL computes, not what: the model above
@@ -42,6 +60,47 @@ class Regs:
     iq_ref: int = 0
     half_period: int = 2500
     run: bool = True
+    load_shift: int = 0            # KACC.load_shift: load estimate of the speed (0 = off)
+    fw_shift: int = 8              # EMPC_FW_SHIFT: field-weakening step 2^fw_shift Q.4 ADC LSB
+    fw_nmax: int = 0               # FW.nmax: steps of the d-current offset (0 = field weakening off)
+    fw_thr: tuple = (0xFFFF, 0)    # FW_R2 (hi, lo): thresholds on the limiter's r >> 20
+    iq_hold: int = 0               # IQ_HOLD: |i_q| hold threshold of the governor, ADC LSB (0 = off)
+
+
+def speed_estimate(dpos: int, i_q: int, regs: "Regs", state: dict) -> tuple[int, bool]:
+    """omega (Q16.16) of one control period; ``state`` holds D and spd_prev (updated).
+    Returns (omega, saturated)."""
+    spd = dpos << F.W_FRAC
+    spd_s = F.sat(spd, F.W_W)
+    ka = F.rshift_round(regs.kacc * i_q, regs.kacc_shift) if regs.kacc_shift else regs.kacc * i_q
+    u1 = ka - state["D"]
+    om = spd_s + u1
+    omega = F.sat(om, F.W_W)
+    sat = spd_s != spd or omega != om
+    if regs.load_shift:
+        t2 = 2 * u1 - (spd_s - state["spd_prev"])
+        state["D"] = state["D"] + (t2 >> (regs.load_shift + 1))
+    else:
+        state["D"] = 0
+    state["spd_prev"] = spd_s
+    return omega, sat
+
+
+def fw_update(n: int, hi: bool, lo: bool, regs: "Regs") -> int:
+    """Field-weakening step count n after one control period (offset -n << fw_shift)."""
+    if not regs.fw_nmax:
+        return 0
+    n = min(n + 1, regs.fw_nmax) if hi else max(n - 1, 0) if lo else n
+    return min(n, regs.fw_nmax)
+
+
+def fw_offset(n: int, regs: "Regs") -> int:
+    return -(n << regs.fw_shift)
+
+
+def hold_flag(i_q: int, limited: bool, regs: "Regs") -> bool:
+    h = regs.iq_hold
+    return bool(limited or (h > 0 and (i_q >= 16 * h or i_q < -16 * h)))
 
 
 @dataclass
@@ -58,6 +117,10 @@ class CtrlSeq:
     u: tuple = (0, 0)
     ebar: tuple = (0, 0, 0)
     last: dict = field(default_factory=dict)
+    est: dict = field(default_factory=lambda: {"D": 0, "spd_prev": 0})
+    fw_n: int = 0
+    fw_flags: tuple = (False, False)
+    hold: bool = False
 
     def period(self, theta: int, pos: int, cur: tuple, regs: Regs, ref_w=None) -> dict:
         """One PWM period.  theta: 16-bit angle at the trigger; pos: encoder count (32-bit);
@@ -76,6 +139,7 @@ class CtrlSeq:
             self.per_cnt += 1
         if not regs.run:
             self.u, self.ebar = (0, 0), (0, 0, 0)
+            self.fw_n, self.fw_flags, self.hold = 0, (False, False), False
         # modulation chain for the held u
         sh = F.U_FRAC - F.V_FRAC
         ud = F.sat(F.rshift_round(self.u[0], sh), F.V_W)
@@ -97,12 +161,11 @@ class CtrlSeq:
         s, c = sincos(theta)
         i_d, i_q, sat1 = park(ia, ib, s, c)
         dpos = F.wrap(pos - self.pos_prev, F.POS_W)
-        spd = dpos << F.W_FRAC
-        spd_s = F.sat(spd, F.W_W)
-        ka = F.rshift_round(regs.kacc * i_q, regs.kacc_shift) if regs.kacc_shift else regs.kacc * i_q
-        om = spd_s + ka
-        omega = F.sat(om, F.W_W)
-        out["front_sat"] |= bool(sat0 or sat1 or spd_s != spd or omega != om)
+        omega, esat = speed_estimate(dpos, i_q, regs, self.est)
+        out["front_sat"] |= bool(sat0 or sat1 or esat)
+        if regs.run:
+            self.fw_n = fw_update(self.fw_n, *self.fw_flags, regs)
+        id_eff = F.sat(regs.id_ref + fw_offset(self.fw_n, regs), F.I_W)
         task_pos = self.params.task == "position"
         sw = core.SIG_W
         wref = []
@@ -113,7 +176,7 @@ class CtrlSeq:
                 w3 = F.sat(F.rshift_round(rel, 32 - F.TH_FRAC), sw)
             else:
                 w3 = F.sat(F.rshift_round(F.wrap(wv, 64), 32 - F.W_FRAC), sw)
-            wref.append((regs.id_ref, regs.iq_ref, w3))
+            wref.append((id_eff, regs.iq_ref, w3))
         # dx in the core's SIG_W-bit words: the speed and angle increments saturate (only for
         # impossible jumps: 2^15 counts/Ts of speed change, 2^23 counts per Ts)
         dom = F.sat(omega - self.omega_prev, sw)
@@ -121,13 +184,16 @@ class CtrlSeq:
         out["front_sat"] |= bool(dom != omega - self.omega_prev or dth != dpos << F.TH_FRAC)
         dx = (i_d - self.id_prev, i_q - self.iq_prev, dom, dth, 0)
         x = core.Inputs(y=(i_d, i_q, 0 if task_pos else omega), omega=omega, dx=dx, wref=tuple(wref),
-                        u_prev=self.u, ebar_prev=self.ebar)
+                        u_prev=self.u, ebar_prev=self.ebar, fw_thr=regs.fw_thr)
         self.id_prev, self.iq_prev, self.omega_prev, self.pos_prev = i_d, i_q, omega, pos
-        out.update(i_d=i_d, i_q=i_q, omega=omega, dpos=dpos)
+        out.update(i_d=i_d, i_q=i_q, omega=omega, dpos=dpos, i_fw=fw_offset(self.fw_n, regs), id_eff=id_eff)
         if regs.run:
             r = core.update(self.params, x)
             self.u, self.ebar = r.u, r.ebar
+            self.fw_flags = (r.fw_hi, r.fw_lo)
+            self.hold = hold_flag(i_q, bool(r.flags >> core.FLAG_BITS["limit"] & 1), regs)
             out["core"] = r
+        out["hold"] = self.hold
 
 
 # ==============================================================================================
