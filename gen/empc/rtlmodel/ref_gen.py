@@ -26,7 +26,7 @@ timing clock by clock, the other methods act at once.  Slots are written one
 Reference governor (issue 15 item 4, gen/empc/governor.py for the float form): with the
 governor enabled the profile above runs on the *target* r, and the head w_{k+N} is the
 governed g.  Per advance, r_old -> r_new (the profile's advance), and in 64-bit two's
-complement Q.32 (exact integers where stated):
+complement Q.32 (exact integers where stated; s64 = the signed value of a 64-bit word):
 
     vd  = s64(r_new - r_old) + (s64(r_old - g) >> ksh)              (exact, 65 bit)
     vd  = vmax if vd > vmax, -vmax if vd < -vmax;  speed task and hold: vd = 0
@@ -39,7 +39,8 @@ vmax and a are 63-bit unsigned (bit 63 of each reads as 0); they sit with ksh an
 field 7 of slots 0..4 (:data:`GOV_SLOTS`, register SEG_GOV).  ``hold`` and the task come from
 the axis (``advance(hold=..., task_pos=...)``).  Disabled: g = r, v = 0 (the plain generator).
 A sync sets r, g and the delay line to the sync value and v to 0.  ``clamped`` tells whether
-the last advance changed the reference (hold or a clamp: the SAT_GOV event).
+the last advance changed the reference (hold or a clamp: the SAT_GOV event).  A held target is
+reached to within 2^ksh LSB of Q.32 (where e >> ksh becomes 0): 2^-29 counts for ksh = 3.
 """
 from __future__ import annotations
 
@@ -93,11 +94,11 @@ def gov_step(gp: dict, v: int, r_old: int, r_new: int, g: int, hold: bool, task_
     if not gp["enable"]:
         return r_new & M64, 0, False
     vmax, a = gp["vmax"], gp["a"]
-    vd0 = s64(r_new - r_old) + (s64(r_old - g) >> gp["ksh"])
+    vd0 = wrap(r_new - r_old, 64) + (wrap(r_old - g, 64) >> gp["ksh"])
     vd = vmax if vd0 > vmax else -vmax if vd0 < -vmax else vd0
     if hold and not task_pos:
         vd = 0
-    vs = s64(v)
+    vs = wrap(v, 64)
     dv0 = vd - vs
     dv = a if dv0 > a else -a if dv0 < -a else dv0
     if hold and task_pos and dv != 0 and vs != 0 and (dv > 0) == (vs > 0):
