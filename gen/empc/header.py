@@ -47,7 +47,9 @@ def u_max_v(cfg) -> int:
 
 
 def field_weakening_raw(cfg) -> dict[str, int]:
-    """FW register (step, max: Q.4 ADC LSB) and FW_R2 thresholds on the limiter's r >> FW_R_SHIFT."""
+    """Field weakening in raw units: the d-current reference offset is -n * 2^FW_SHIFT (Q.4 ADC
+    LSB), n = 0 .. FW_NMAX (register FW; 0 = off) moved by one per control period by the core's
+    flags; FW_R2_HI / LO: thresholds on the limiter's r >> FW_R_SHIFT (register FW_R2)."""
     from .rtlmodel.mpc_core import FW_R_SHIFT
     c = cfg.control
     fw = c.field_weakening
@@ -55,9 +57,16 @@ def field_weakening_raw(cfg) -> dict[str, int]:
     um = u_max_v(cfg)
     hi = min(int(math.floor((fw.u_hi * um) ** 2)) >> FW_R_SHIFT, 0xFFFF)
     lo = min(int(math.floor((fw.u_lo * um) ** 2)) >> FW_R_SHIFT, 0xFFFF)
-    return {"FW_STEP": max(1, int(round(fw.step * c.i_max * q))) if fw.enable else 0,
-            "FW_MAX": min(int(round(fw.i_max_frac * c.i_max * q)), 0xFFFF) if fw.enable else 0,
-            "FW_R2_HI": hi, "FW_R2_LO": lo}
+    shift = max(0, min(15, int(round(math.log2(max(fw.step * c.i_max * q, 1.0))))))
+    nmax = max(1, min(255, int(round(fw.i_max_frac * c.i_max * q / (1 << shift))))) if fw.enable else 0
+    return {"FW_SHIFT": shift, "FW_NMAX": nmax, "FW_R2_HI": hi, "FW_R2_LO": lo}
+
+
+def field_weakening_si(cfg) -> tuple[float, float]:
+    """(step, limit) of the d-current offset in A, as the raw counter realises them."""
+    f = field_weakening_raw(cfg)
+    step = (1 << f["FW_SHIFT"]) * cfg.amps_per_lsb / (1 << formats.I_FRAC)
+    return step, f["FW_NMAX"] * step
 
 
 def governor_raw(cfg, task: str | None = None) -> dict[str, int]:
@@ -99,7 +108,8 @@ def core_constants(cfg) -> dict[str, int]:
             "SIG_DX": core.SIG_DX, "N": c.N,
             "IN_Y": core.IN_Y, "IN_OMEGA": core.IN_OMEGA, "IN_DX": core.IN_DX, "IN_UPREV": core.IN_UPREV,
             "IN_EBAR": core.IN_EBAR, "IN_WREF": core.IN_WREF, "IN_WORDS": core.IN_WORDS,
-            "BOOT_ALGORITHM": c.algorithm, "BOOT_TASK_POSITION": 1 if c.task == "position" else 0}
+            "BOOT_ALGORITHM": c.algorithm, "BOOT_TASK_POSITION": 1 if c.task == "position" else 0,
+            **{f"FLAG_{name.upper()}": bit for name, bit in core.FLAG_BITS.items()}}       # core flags bits
 
 
 def constants(cfg) -> dict[str, dict[str, int]]:

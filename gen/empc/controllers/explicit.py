@@ -17,9 +17,9 @@ Around the law, as in the RTL (issue 15): the speed estimate of ``control.speed_
 (estimator.py), the reference governor on the task reference (governor.py: the current
 limit; ``hold`` after a period with |i_q| above the hold current or the voltage limit
 active) and field weakening, a d-current reference from the voltage margin:
-i_fw moves by fw.step x i_max per period toward -fw.i_max_frac x i_max while the last
-|u_raw| > fw.u_hi x u_max, back toward 0 while it is < fw.u_lo x u_max, and is added to
-the i_d references.
+i_fw moves by about fw.step x i_max per period (2^FW_SHIFT Q.4 ADC LSB, as the RTL's
+counter) toward about -fw.i_max_frac x i_max while the last |u_raw| > fw.u_hi x u_max,
+back toward 0 while it is < fw.u_lo x u_max, and is added to the i_d references.
 """
 from __future__ import annotations
 
@@ -28,7 +28,7 @@ import numpy as np
 from .. import estimator as est_mod
 from .. import fit as fit_mod
 from .. import governor as gov_mod
-from .. import model, mpc
+from .. import header, model, mpc
 from .base import Controller, limit_circle
 
 
@@ -51,6 +51,7 @@ class ExplicitMPC(Controller):
             raise ValueError(f"gains must be 'poly' or 'exact', got {gains!r}")
         self.ebar_max = self._ebar_clamp()
         self.estimator = est_mod.SpeedEstimator(cfg)
+        self.fw_step, self.fw_max = header.field_weakening_si(cfg)     # the RTL's counter steps
         self.refpath = gov_mod.ReferencePath(cfg, self.task)
         self.reset()
 
@@ -92,12 +93,11 @@ class ExplicitMPC(Controller):
         w_k[2], W[:, 2] = g0, gW
         fw = c.field_weakening
         if fw.enable:
-            step = fw.step * c.i_max
             if self.u_raw_mag > fw.u_hi * self.cfg.u_max:
-                self.i_fw -= step
+                self.i_fw -= self.fw_step
             elif self.u_raw_mag < fw.u_lo * self.cfg.u_max:
-                self.i_fw += step
-            self.i_fw = min(max(self.i_fw, -fw.i_max_frac * c.i_max), 0.0)
+                self.i_fw += self.fw_step
+            self.i_fw = min(max(self.i_fw, -self.fw_max), 0.0)
         w_k[0] += self.i_fw
         W[:, 0] += self.i_fw
         return w_k, W

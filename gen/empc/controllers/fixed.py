@@ -33,7 +33,7 @@ class FixedMPC(Controller):
         self.kacc, self.kacc_shift = header.speed_correction_raw(cfg)
         fw = header.field_weakening_raw(cfg)
         self.regs = seq_mod.Regs(pwm_per_control=cfg.pwm_per_control, kacc=self.kacc, kacc_shift=self.kacc_shift,
-                                 load_shift=cfg.speed_load_shift, fw_step=fw["FW_STEP"], fw_max=fw["FW_MAX"],
+                                 load_shift=cfg.speed_load_shift, fw_shift=fw["FW_SHIFT"], fw_nmax=fw["FW_NMAX"],
                                  fw_thr=(fw["FW_R2_HI"], fw["FW_R2_LO"]),
                                  iq_hold=header.governor_raw(cfg, self.task)["IQ_HOLD"])
         self.refpath = gov_mod.ReferencePath(cfg, self.task)
@@ -58,7 +58,7 @@ class FixedMPC(Controller):
         self.saturations = 0
         self.flag_counts: dict = {}
         self.est = {"D": 0, "spd_prev": 0}
-        self.i_fw = 0
+        self.fw_n = 0
         self.fw_flags = (False, False)
         self.hold = False
         self.refpath.reset()
@@ -77,8 +77,9 @@ class FixedMPC(Controller):
         g0, gW = self.refpath.window(float(meas.w_k[2]), [float(r[2]) for r in meas.W], self.hold)
         self.gov_clamps = self.refpath.clamps
         refs = [(meas.w_k[0], meas.w_k[1], g0)] + [(r[0], r[1], g) for r, g in zip(meas.W, gW)]
-        self.i_fw = seq_mod.fw_update(self.i_fw, *self.fw_flags, self.regs)
-        wref = tuple((F.sat(self.i_raw(r[0]) + self.i_fw, F.I_W), self.i_raw(r[1]), self.out3_raw(r[2]))
+        self.fw_n = seq_mod.fw_update(self.fw_n, *self.fw_flags, self.regs)
+        i_fw = seq_mod.fw_offset(self.fw_n, self.regs)
+        wref = tuple((F.sat(self.i_raw(r[0]) + i_fw, F.I_W), self.i_raw(r[1]), self.out3_raw(r[2]))
                      for r in refs)
         out = core.update(self.params, core.Inputs(y=(i_d, i_q, y2), omega=omega, dx=dx, wref=wref,
                                                    u_prev=self.u_raw, ebar_prev=self.ebar, fw_thr=self.regs.fw_thr))
