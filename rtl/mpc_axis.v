@@ -232,6 +232,7 @@ module mpc_axis #(
         .pwm_per_control(ctrl_pwm_per_control),
         .run(running), .theta(theta), .pos(pos), .pos_sample(pos_sample), .adc_valid(adc_valid),
         .cur0(cur0), .cur1(cur1), .cur2(cur2), .kdc(kdc), .kacc(kacc), .kacc_shift(kacc_shift),
+        .load_shift(kacc_load_shift),
         .id_ref(id_eff), .iq_ref(iq_ref), .task_pos(task_pos), .ref_advance(ref_advance), .ref_ok(ref_ok),
         .ref_age(ref_age), .ref_bit(ref_bit), .ref_q(ref_q),
         .core_start(core_start), .core_in_we(core_in_we), .core_in_addr(core_in_addr),
@@ -285,7 +286,8 @@ module mpc_axis #(
     axis_status u_status (
         .clk(clk), .rst(rst), .reg_rd(reg_rd), .reg_addr(reg_addr), .cnt_re(cnt_re), .stat_re(stat_re), .rdata(s_q), .cnt_clear(cmd_clear_counters),
         .core_done(core_done), .core_flags(core_flags), .front_sat(seq_front_sat || adc_sat || cmp_clip),
-        .overrun(overrun), .period(control_done && running), .st_sh(st_sh), .st_d(st_d), .st_wr(st_wr),
+        .overrun(overrun), .period(control_done && running), .gov(gov_ev && running), .st_sh(st_sh), .st_d(st_d),
+        .st_wr(st_wr),
         .st_addr(st_addr), .st_bit(st_bit), .sw_req(sw_req), .sw_all(sw_all), .sw_go(sw_go), .sw_end(sw_end),
         .ctl_go(ctl_go));
 
@@ -321,7 +323,6 @@ module mpc_axis #(
                     enc_in_state, enc_ready, hall_code, hall_ready, hall_fault, theta_valid, speed_sat,
                     sample_valid, ps_speed, pos_at_sample, ps_speed_q, theta_at_sample,
                     pwm_fault_latched, mode_eff, adc_busy, adc_trig_miss, oc_ch, core_busy, core_du, core_u_raw,
-                    core_wn, core_latency, core_boot_ok, theta_trig, ref_busy, st_id, st_iq[3:0],
-                    kacc_load_shift, gov_ev};   // (the sequencer takes these two in the next commit)
+                    core_wn, core_latency, core_boot_ok, theta_trig, ref_busy, st_id, st_iq[3:0]};
 endmodule
 `default_nettype wire

@@ -211,14 +211,14 @@ class CtrlSeq:
 # ==============================================================================================
 NUC_MAX = 64                    # control program rows 0..63 (7-bit pc; status programs from 64)
 OP = {"POS": 0, "ZERO": 1, "COPY": 2, "REF": 3, "DIFF": 4, "OM": 5, "FIX3": 6, "W6": 7, "ZPOS": 8, "END": 9,
-      "STAT": 10, "SEND": 11, "CNT": 12, "CEND": 13}
+      "STAT": 10, "SEND": 11, "CNT": 12, "CEND": 13, "LD": 14}
 # sources of the COPY / STAT / DIFF / POS steps: stage registers, selected one-hot (ub.nsel, active low)
 SRC = {"POS": 0, "E0": 1, "E1": 2, "E2": 3, "U0": 4, "U1": 5, "IDR": 6, "IQR": 7, "ID": 8, "IQ": 9}
 N_SRC = len(SRC)
 # pass kinds (rows 64 k .. 64 k + 63 of the pass table); the reference kinds are {1, 0, task_pos,
 # m == 0}: the microword holds REFS / REFS0 and the RTL ORs task_pos into bit 1 (REFP / REFP0)
 PK = {"POS": 0, "DIFF": 1, "OM": 2, "FIX3": 3, "W6": 4, "STAT": 5, "CNT": 6, "FIX": 7, "REFS": 8, "REFS0": 9,
-      "REFP": 10, "REFP0": 11}
+      "REFP": 10, "REFP0": 11, "LD": 12}
 
 
 @dataclass(frozen=True)
@@ -244,7 +244,7 @@ OPS = {
     "COPY": Op("stage"),                                         # core word = a stage (copied through X)
     "REF":  Op("ref_ok", "REFS", sat=True, status=True),         # w3[m] from ref_gen (REF status word: m = 0)
     "DIFF": Op("front", "DIFF", sub=True, status=True),          # y = i_d / i_q, dx = y - y_prev (I_D / I_Q)
-    "OM":   Op("product", "OM", back=True),                      # omega (raw) = spd + ka
+    "OM":   Op("product", "OM", back=True),                      # omega (raw) = spd + ka - D, t2 (load term)
     "FIX3": Op("pass", "FIX3", status=True),                     # omega saturated -> core, SPEED
     "W6":   Op("pass", "W6", sat=True, sub=True),                # dx2 = omega - omega_prev
     "ZPOS": Op("zero"),                                          # y2 = 0 (position task only)
@@ -253,21 +253,24 @@ OPS = {
     "SEND": Op("idle"),                                          # status program done
     "CNT":  Op("pass", "CNT", back=True, status=True),           # a sweep word (bits from axis_status)
     "CEND": Op("idle"),                                          # counter sweep done
+    "LD":   Op("pass", "LD", back=True),                         # D += t2 >>> (load_shift + 1)
 }
 # op flags in uw (registered as is_*): the ops whose pass the datapath treats apart (not CNT: the
 # sweep words' bits come from axis_status)
 FLAG_OPS = ("POS", "REF", "DIFF", "OM", "FIX3", "W6", "STAT")
 
 # uw: op (read by the test bench only), src (bit 0: DIFF i_q), wa (core word), age (ref_age = N - m),
-# st (status / sweep word offset), op flags, sub, pk (pass kind bits 2:0)
+# st (status / sweep word offset), op flags, sub, pk (pass kind; the RTL ORs task_pos into bit 1
+# of a reference kind)
 UW = U.Layout((("op", 4), ("src", 4), ("wa", 6), ("age", 4), ("st", 6))
-              + tuple((n.lower(), 1) for n in FLAG_OPS) + (("sub", 1), ("pk", 3), ("spare", 1)))
+              + tuple((n.lower(), 1) for n in FLAG_OPS) + (("sub", 1), ("pk", 4)))
 # ub: stage selects (active low, one per SRC), next state from E_OP (to E_STG / E_PASS / E_IDLE; the
 # waits are the op flags), zero is "next step in E_OP" (ZERO, ZPOS), end markers (END: core start;
 # CEND: sweep done), COPY (E_LD -> E_WR), the zero writes (ZERO; ZPOS for the position task), the
-# pass-end actions: back to E_OP, saturated to SIG_W, writes a status / sweep word
+# pass-end actions: back to E_OP, saturated to SIG_W, writes a status / sweep word; ld: the load-
+# estimate pass (its datapath apart, like the uw op flags)
 UB = U.Layout((("nsel", N_SRC), ("to_stg", 1), ("to_pass", 1), ("zero", 1), ("to_idle", 1), ("end", 1), ("cend", 1),
-               ("copy", 1), ("wz", 1), ("zpos", 1), ("back", 1), ("sat", 1), ("stw", 1), ("spare", 14)))
+               ("copy", 1), ("wz", 1), ("zpos", 1), ("back", 1), ("sat", 1), ("stw", 1), ("ld", 1), ("spare", 13)))
 assert UW.width == UB.width == 36
 
 # Pass table: per kind, the bits b (0..63) of the pass in which each control bit is set.
@@ -296,6 +299,7 @@ PASSES = {
     "REFS0": dict(_REFS, SS=range(16, 48)),                  # m = 0: also the REF status word
     "REFP":  _REFP,
     "REFP0": dict(_REFP, SS=range(24, 56)),
+    "LD":    dict(PE=[39]),                                  # D += t2 >>> (load_shift + 1): own adder
 }
 assert list(PASSES) == list(PK)
 
@@ -321,7 +325,7 @@ def _a(name: str) -> int:
 
 STATUS_WORDS = ("SPEED", "I_D", "I_Q", "U_D", "U_Q", "REF")
 COUNTERS = ("SAT_OPERAND", "SAT_GAIN", "SAT_TERM", "SAT_ACC", "SAT_DU", "SAT_U", "SAT_EBAR", "SAT_EBAR_INC",
-            "SAT_LIMIT", "SAT_WN", "SAT_SIGNAL", "SAT_FRONT", "CNT_OVERRUN", "PERIODS")
+            "SAT_LIMIT", "SAT_WN", "SAT_SIGNAL", "SAT_FRONT", "CNT_OVERRUN", "PERIODS", "SAT_GOV")
 
 
 def control_program(n: int) -> list[Step]:
@@ -336,12 +340,13 @@ def control_program(n: int) -> list[Step]:
                  Step("REF", wa=a + 2, m=m, note=f"w3[{m}] from w_(k+{m}))")]
     prog += [Step("DIFF", "ID", core.IN_Y + 0, note="y0 = i_d, dx0 (at +4); waits for the front"),
              Step("DIFF", "IQ", core.IN_Y + 1, note="y1 = i_q, dx1; feeds the multiplier"),
-             Step("OM", note="omega = spd + ka; waits for the product"),
+             Step("OM", note="omega = spd + ka - D, t2 = 2 (ka - D) - spd + spd_prev; waits for the product"),
+             Step("LD", note="D += t2 >>> (load_shift + 1) (the load estimate of the speed)"),
              Step("FIX3", wa=core.IN_OMEGA, note="omega saturated (and y2 = omega for the speed task)"),
              Step("W6", wa=core.IN_DX + 2, note="dx2 = omega - omega_prev"),
              Step("ZPOS", wa=core.IN_Y + 2, note="y2 = 0 (position task)"),
              Step("END", note="core start")]
-    assert len(prog) == 14 + 3 * (n + 1) <= NUC_MAX
+    assert len(prog) == 15 + 3 * (n + 1) <= NUC_MAX
     return prog
 
 
@@ -369,12 +374,13 @@ def words(s: Step, n: int) -> tuple[int, int]:
         kind = "REFS0"
     st = {"REF": _a("REF"), "DIFF": _a("I_D") + (src & 1), "FIX3": _a("SPEED")}.get(s.op, s.wa)
     # (every field range-checked by pack: no silent truncation, e.g. of m or N - m)
-    uw = UW.pack(op=OP[s.op], src=src, wa=s.wa, age=n - s.m, st=st, sub=int(d.sub), pk=PK[kind] & 7,
+    uw = UW.pack(op=OP[s.op], src=src, wa=s.wa, age=n - s.m, st=st, sub=int(d.sub), pk=PK[kind],
                  **({s.op.lower(): 1} if s.op in FLAG_OPS else {}))
     ub = UB.pack(nsel=((1 << N_SRC) - 1) & ~(1 << src), to_stg=int(d.go == "stage"), to_pass=int(d.go == "pass"),
                  zero=int(d.go == "zero"), to_idle=int(d.go == "idle"), end=int(s.op == "END"),
                  cend=int(s.op == "CEND"), copy=int(s.op == "COPY"), wz=int(s.op == "ZERO"), zpos=int(s.op == "ZPOS"),
-                 back=int(d.back), sat=int(d.sat), stw=int(d.status and (not ref or s.m == 0)))
+                 back=int(d.back), sat=int(d.sat), stw=int(d.status and (not ref or s.m == 0)),
+                 ld=int(s.op == "LD"))
     return uw, ub
 
 
