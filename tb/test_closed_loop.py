@@ -30,12 +30,12 @@ from cocotb.triggers import ClockCycles, RisingEdge, ReadOnly
 from cocotb.utils import get_sim_time
 
 from empc import closedloop as cl
-from empc import config, driver, header, image, pmsm, regmap, scenarios
+from empc import bitloop, config, driver, header, image, pmsm, regmap, scenarios
 from empc import formats as F
 from empc.rtlmodel import pos_sense
 from empc.rtlmodel.ctrl_seq import CtrlSeq, Regs
 from empc.rtlmodel.hall_decoder import DEFAULT_SEQUENCE
-from empc.rtlmodel.ref_gen import RefGen, segments_from_points
+from empc.rtlmodel.ref_gen import GOV_FIELD, RefGen, gov_words, segments_from_points
 
 ROOT = Path(__file__).resolve().parents[1]
 REPORTS = ROOT / "build" / "reports"
@@ -76,10 +76,13 @@ class CoSim:
         self.image = image.read_hex(roms_dir / f"coef_alg{alg}_{self.sc.task}.hex")
         self.boot = image.decode(image.read_hex(roms_dir / "coef_boot.hex"))
         self.params = image.decode(self.image)
-        kacc, ksh = header.speed_correction_raw(self.cfg)
-        self.regs = Regs(pwm_per_control=self.M, kacc=kacc, kacc_shift=ksh, half_period=self.P, run=False)
+        # the sequencer's registers as after reset (header values), the law off until enabled
+        self.regs = bitloop.regs_for(self.cfg, self.sc.task, run=False)
         self.seq = CtrlSeq(params=self.boot, N=c.N)
         self.ref = RefGen(c.N)
+        gp = bitloop.gov_params(self.cfg, self.sc.task)          # the governor words the CPU writes
+        self.ref.write_gov(gp["vmax"], gp["a"], gp["ksh"], gp["enable"])
+        self.gov = gp
         unit = 1.0 / (self.cfg.rad_per_count if self.sc.task == "position" else self.cfg.rad_s_per_count_ts)
         self.ref_unit = unit
         self.slots = segments_from_points(scenarios.POINTS[self.sc.name], unit, c.Ts)
@@ -128,7 +131,7 @@ class CoSim:
         t_trig = get_sim_time("ps")
         self.regs.run = bool(int(dut.dbg_running.value))
         control = self.seq.per_cnt + 1 >= self.regs.pwm_per_control
-        ref_w = self.ref.advance() if control else None
+        ref_w = self.ref.advance(hold=self.seq.hold, task_pos=self.sc.task == "position") if control else None
         if control and self.started and self.t_profile0 is None:
             # this advance loads the profile's first value into the head w_{k+N}: the
             # sample instant is profile time -N Ts
@@ -275,6 +278,17 @@ async def run_cosim(dut, name: str) -> dict:
         cs.ref.sync(0)
     plan.append([ref_setup])
 
+    async def gov_setup():
+        # the reference governor's words for the scenario's task (the bitstream holds the boot
+        # task's): SEG_GOV = field 7 of slot SEG_ADDR, read back (the model has them already)
+        for slot, word in gov_words(cs.gov["vmax"], cs.gov["a"], cs.gov["ksh"], cs.gov["enable"]).items():
+            await w("SEG_ADDR", slot)
+            await w("SEG_GOV", word)
+            got = await drv.read("SEG_GOV")
+            assert got == word == cs.ref.read_field(slot, GOV_FIELD), f"governor word of slot {slot}: {got:#x}"
+            cs.reg_checks += 1
+    plan.append([gov_setup])
+
     async def regcheck():
         # RW registers read back in the format of the register map (width mask, sign extension,
         # fields): random words written and read back, then the run's values restored (all
@@ -381,13 +395,27 @@ def metrics_report(cs: CoSim, res: dict) -> dict:
     sel = t >= 0
     prof = cs.sc.profile
     ref = np.array([prof(x) for x in t[sel]])
-    # The task-output reference is the w_k the RTL's reference generator actually applied; it
-    # must equal the profile except at step edges (one sample each, by the same rounding).
+    # The task-output reference is the w_k the RTL's reference generator actually applied: with the
+    # governor off it must equal the profile except at step edges (one sample each, by the same
+    # rounding); with the governor on, the profile shaped within the governor's limits: increments
+    # of at most vmax, changing by at most a per period, the profile's value wherever the profile
+    # has held still for 240 periods (60 ms: after the move and the 2^-ksh catch-up).
     applied = rec["ref"][sel]
     off = np.abs(applied - ref[:, 2]) > 1e-6 * max(1.0, float(np.max(np.abs(ref[:, 2]))))
-    n_steps = sum(1 for p in scenarios.POINTS[cs.sc.name] if p[2] == "step")
-    assert off.sum() <= n_steps, f"applied reference differs from the profile in {off.sum()} samples"
-    ref[:, 2] = applied
+    if not cs.gov["enable"]:
+        n_steps = sum(1 for p in scenarios.POINTS[cs.sc.name] if p[2] == "step")
+        assert off.sum() <= n_steps, f"applied reference differs from the profile in {off.sum()} samples"
+    else:
+        unit_q32 = 2.0 ** 32 * cs.ref_unit          # Q.32 words per SI unit
+        d = np.diff(applied) * unit_q32
+        lsb = 4.0                                    # rounding of the recorded SI values
+        assert np.all(np.abs(d) <= cs.gov["vmax"] + lsb), f"governed increment {np.max(np.abs(d))} > vmax"
+        assert np.all(np.abs(np.diff(d)) <= cs.gov["a"] + 2 * lsb), "governed increment changed by more than a"
+        still = np.array([all(abs(prof(x - k * Ts)[2] - prof(x)[2]) < 1e-12 for k in range(1, 241)) for x in t[sel]])
+        assert not np.any(off & still), f"governed reference off the held profile in {np.sum(off & still)} samples"
+    if not cs.gov["enable"]:
+        ref[:, 2] = applied
+    # (with the governor the errors are taken against the profile, as the float loop's are)
     tr = cl.Trace(t[sel], ref, rec["i_d"][sel], rec["i_q"][sel], rec["w_e"][sel], rec["theta_e"][sel],
                   rec["u_d"][sel], rec["u_q"][sel], rec["ipk"][sel], np.zeros(sel.sum()), np.zeros(sel.sum()))
     sc = cs.sc

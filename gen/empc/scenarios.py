@@ -5,6 +5,13 @@
   algorithm 1 keeps a constant lag on ramps, algorithm 2's ramp error goes to ~0.
 - load_step: position hold with algorithm 2 under a load-torque step (offset-free).
 - speed_alg2: speed steps and a ramp with algorithm 2.
+Issue 15 (off the paper's path; BLWR233D: i_max = 10 A, no-load base speed u_max / psi = 1039 rad/s):
+- speed_limit: 150 -> 900 -> 150 rad/s steps, algorithm 1: the current limit (reference governor).
+- position_large: 200 rad position step and back, algorithm 2: the current and speed limit.
+- load_speed: speed hold at 300 rad/s, a rated-torque load (0.227 N m, 1.9 A) from 0.1 to 0.25 s,
+  algorithm 2: the speed estimate offset-free under load.
+- field_weakening: speed ramp 0 -> 1400 rad/s (1.35 x base speed) and back under the rated load,
+  algorithm 1: field weakening (i_d < 0) within |i| <= i_max.
 Angles and speeds are electrical (rad, rad/s); the motor has p = 4 pole pairs.
 """
 from __future__ import annotations
@@ -21,7 +28,12 @@ POINTS = {
                       (0.56, 20.0, "ramp"), (0.60, 0.0, "step")],
     "load_step": [(0.01, 10.0, "step")],
     "speed_alg2": [(0.01, 300.0, "step"), (0.11, 600.0, "step"), (0.21, 600.0, "step"), (0.31, 100.0, "ramp")],
+    "speed_limit": [(0.01, 150.0, "step"), (0.11, 900.0, "step"), (0.21, 150.0, "step")],
+    "position_large": [(0.01, 200.0, "step"), (0.31, 0.0, "step")],
+    "load_speed": [(0.01, 300.0, "step")],
+    "field_weakening": [(0.02, 0.0, "step"), (0.22, 1400.0, "ramp"), (0.32, 1400.0, "step"), (0.52, 0.0, "ramp")],
 }
+RATED_LOAD = 0.227      # N m: the BLWR233D's 95 W at 4000 rpm
 POINTS["position_alg2"] = POINTS["position_alg1"]
 
 
@@ -57,12 +69,43 @@ def _speed_alg2() -> Scenario:
                     description="speed steps 0 -> 300 -> 600 rad/s and a ramp to 100 rad/s, algorithm 2")
 
 
+def _speed_limit() -> Scenario:
+    segs = [("step", 0.01, 0.11, 0.0, 150.0), ("step", 0.11, 0.21, 150.0, 900.0), ("step", 0.21, 0.30, 900.0, 150.0)]
+    return Scenario("speed_limit", "speed", 0.30, steps_and_ramps(POINTS["speed_limit"]), segments=segs,
+                    description="speed steps 150 -> 900 -> 150 rad/s, algorithm 1 (current limit)")
+
+
+def _position_large() -> Scenario:
+    segs = [("step", 0.01, 0.31, 0.0, 200.0), ("step", 0.31, 0.60, 200.0, 0.0)]
+    return Scenario("position_large", "position", 0.60, steps_and_ramps(POINTS["position_large"]), segments=segs,
+                    description="position step 0 -> 200 -> 0 rad (50 turns of the rotor), algorithm 2 (current limit)")
+
+
+def _load_speed() -> Scenario:
+    segs = [("step", 0.01, 0.10, 0.0, 300.0), ("step", 0.10, 0.25, 300.0, 300.0), ("step", 0.25, 0.35, 300.0, 300.0)]
+    return Scenario("load_speed", "speed", 0.35, steps_and_ramps(POINTS["load_speed"]), segments=segs,
+                    load=lambda t: RATED_LOAD if 0.10 <= t < 0.25 else 0.0,
+                    description="speed hold 300 rad/s, rated load 0.227 N m from 0.1 to 0.25 s, algorithm 2")
+
+
+def _field_weakening() -> Scenario:
+    segs = [("ramp", 0.02, 0.22, 0.0, 1400.0), ("step", 0.22, 0.32, 1400.0, 1400.0), ("ramp", 0.32, 0.52, 1400.0, 0.0)]
+    return Scenario("field_weakening", "speed", 0.56, steps_and_ramps(POINTS["field_weakening"]), segments=segs,
+                    load=lambda t: RATED_LOAD,
+                    description="speed ramp 0 -> 1400 rad/s (1.35 x the no-load base speed) and back under the "
+                                "rated load, algorithm 1 (field weakening)")
+
+
 SCENARIOS = {
     "speed_steps": (_speed_steps, 1),
     "position_alg1": (lambda: _position(1), 1),
     "position_alg2": (lambda: _position(2), 2),
     "load_step": (_load_step, 2),
     "speed_alg2": (_speed_alg2, 2),
+    "speed_limit": (_speed_limit, 1),
+    "position_large": (_position_large, 2),
+    "load_speed": (_load_speed, 2),
+    "field_weakening": (_field_weakening, 1),
 }
 
 
