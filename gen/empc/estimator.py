@@ -59,26 +59,28 @@ class SpeedEstimator:
 def state_space(cfg) -> dict:
     """The estimator as a discrete linear block, one step per control period.
 
-    Inputs v_k = [theta_k (rad, the measured angle), i_q,k (A)], output w_k (rad/s),
-    state z_k = [theta_{k-1}, w37_{k-1}, D_{k-1}]:
+    Inputs v_k = [dtheta_k (rad: theta_k - theta_{k-1}, the encoder's count difference),
+    i_q,k (A)], output w_k (rad/s), state z_k = [w37_{k-1}, D_{k-1}]:
 
         z_{k+1} = A z_k + B v_k,      w_k = C z_k + D v_k
 
-    (eq. 37 alone: the D state stays 0; "eq37": kc = 0 as well).  The encoder quantisation
-    (eq. 38) acts on theta_k before this block.  Returns {"A", "B", "C", "D", "states", "inputs"}.
+    ("eq37": kc = 0 and no load state; "accel": no load state).  The angle enters only as its
+    difference, so a loop with this block has no structural eigenvalue 1 from theta; the
+    encoder quantisation (eq. 38) acts on dtheta before the block.  ``mpc.closed_loop_matrix``
+    takes the dict as ``estimator=`` (the law then sees w_k instead of the plant's speed).
+    Returns {"A", "B", "C", "D", "states", "inputs"}.
     """
     Ts = cfg.control.Ts
     kc = cfg.speed_correction
     g = 2.0 ** -cfg.speed_load_shift if cfg.speed_load_shift else 0.0
-    # w37_k = (theta_k - z0) / Ts;  u1 = kc i - z2;  w = w37_k + u1
-    # z0' = theta_k;  z1' = w37_k;  z2' = z2 + g (u1 - (w37_k - z1) / 2)
-    A = np.array([[0.0, 0.0, 0.0],
-                  [-1.0 / Ts, 0.0, 0.0],
-                  [g * 0.5 / Ts, g * 0.5, 1.0 - g]])
-    B = np.array([[1.0, 0.0],
-                  [1.0 / Ts, 0.0],
+    # w37 = dtheta / Ts;  u1 = kc i - z1;  w = w37 + u1
+    # z0' = w37;  z1' = z1 + g (u1 - (w37 - z0) / 2)
+    A = np.array([[0.0, 0.0],
+                  [g * 0.5, 1.0 - g]])
+    B = np.array([[1.0 / Ts, 0.0],
                   [-g * 0.5 / Ts, g * kc]])
-    C = np.array([[-1.0 / Ts, 0.0, -1.0]])
+    C = np.array([[0.0, -1.0]])
     D = np.array([[1.0 / Ts, kc]])
-    return {"A": A, "B": B, "C": C, "D": D, "states": ("theta_prev", "w37_prev", "D_load"),
-            "inputs": ("theta", "i_q")}
+    if not g:       # no load state (it would be a constant: a structural eigenvalue 1)
+        return {"A": A[:1, :1], "B": B[:1], "C": C[:, :1], "D": D, "states": ("w37_prev",), "inputs": ("dtheta", "i_q")}
+    return {"A": A, "B": B, "C": C, "D": D, "states": ("w37_prev", "D_load"), "inputs": ("dtheta", "i_q")}
