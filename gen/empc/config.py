@@ -67,11 +67,11 @@ class Governor:
     holds its acceleration (speed) or speed (position) while |i_q| > ``hold_current`` x i_max
     or the voltage limiter was active.  See gen/empc/governor.py."""
     enable: bool = True
-    accel_current: float = 0.6
+    accel_current: float = 0.5
     box_J: float = 1.3
     box_psi: float = 0.8
-    speed_frac: float = 0.85
-    hold_current: float = 0.8
+    speed_frac: float = 0.7
+    hold_current: float = 0.7
     shift_speed: int = 3
     shift_position: int = 4
     jerk_periods: int = 4

@@ -29,7 +29,7 @@ POINTS = {
     "load_step": [(0.01, 10.0, "step")],
     "speed_alg2": [(0.01, 300.0, "step"), (0.11, 600.0, "step"), (0.21, 600.0, "step"), (0.31, 100.0, "ramp")],
     "speed_limit": [(0.01, 150.0, "step"), (0.11, 900.0, "step"), (0.21, 150.0, "step")],
-    "position_large": [(0.01, 200.0, "step"), (0.31, 0.0, "step")],
+    "position_large": [(0.01, 200.0, "step"), (0.36, 0.0, "step")],
     "load_speed": [(0.01, 300.0, "step")],
     "field_weakening": [(0.02, 0.0, "step"), (0.22, 1400.0, "ramp"), (0.32, 1400.0, "step"), (0.52, 0.0, "ramp")],
 }
@@ -76,8 +76,8 @@ def _speed_limit() -> Scenario:
 
 
 def _position_large() -> Scenario:
-    segs = [("step", 0.01, 0.31, 0.0, 200.0), ("step", 0.31, 0.60, 200.0, 0.0)]
-    return Scenario("position_large", "position", 0.60, steps_and_ramps(POINTS["position_large"]), segments=segs,
+    segs = [("step", 0.01, 0.36, 0.0, 200.0), ("step", 0.36, 0.72, 200.0, 0.0)]
+    return Scenario("position_large", "position", 0.72, steps_and_ramps(POINTS["position_large"]), segments=segs,
                     description="position step 0 -> 200 -> 0 rad (50 turns of the rotor), algorithm 2 (current limit)")
 
 
