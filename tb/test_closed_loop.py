@@ -528,7 +528,7 @@ async def cosim_fault_watchdog(dut):
 
 
 # two groups of about equal wall time, one per xdist worker (one simulator build each)
-FULL_GROUPS = ("position_alg2,load_step", "position_alg1,speed_steps")
+FULL_GROUPS = ("position_alg2,load_step,field_weakening", "position_alg1,speed_steps,speed_limit")
 
 
 @cocotb.test(skip=os.environ.get("EMPC_COSIM_SET", "ci") != "full")

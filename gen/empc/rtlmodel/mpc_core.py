@@ -64,7 +64,8 @@ N_SIGNALS = SIG_DX + 5  # 59
 N_SIG_INDEX = 64        # col_sig is 6 bit; indices N_SIGNALS..63 read 0
 MAX_COLS = 64
 RSQRT_BITS = 10
-FW_R_SHIFT = 20         # field-weakening flags compare r[35:20] (r < 2^36) with 16-bit thresholds
+FW_THR_W = 16           # field-weakening thresholds (register FW_R2 hi / lo)
+FW_R_SHIFT = 2 * OPW - FW_THR_W   # 20: the flags compare the top 16 bits r[35:20] of r < 2^(2 OPW)
 OP_MAX = (1 << (OPW - 1)) - 1
 EBAR_LIM_MAX = (1 << (SIG_W - 1)) - 1   # ebar_lim is stored clamped to this (a SIG_W-bit operand)
 
