@@ -51,6 +51,8 @@ COSIM = {
     "position_alg2": ("position_alg2", 0.70, None),
     "speed_steps": ("speed_steps", 0.40, None),
     "load_step": ("load_step", 0.30, None),
+    "speed_limit": ("speed_limit", 0.30, None),
+    "field_weakening": ("field_weakening", 0.56, None),
 }
 
 
