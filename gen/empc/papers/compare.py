@@ -292,12 +292,17 @@ def case_fw(quick: bool) -> Case:
                         polygon=voltage_polygon())
     ramp = 0.9 * cfg.control.i_max * m.p * 1.5 * m.p * m.psi / m.J    # rad/s^2 el. at 90 % of I_max
     fw_circle = FieldWeakening(m.R, m.Ld, m.psi, cfg.u_max, cfg.control.i_max, i_d_min_abs=cfg.control.i_max / math.sqrt(2))
+    cfg_ours = cfg.with_control(governor=dataclasses.replace(cfg.control.governor, enable=False),
+                                field_weakening=dataclasses.replace(cfg.control.field_weakening, enable=False))
     ctls = [
         ("online MPC 002 (GI) + PI + FW", lambda: Cascade(OnlineMPC(cfg), cfg, T_slow=1e-3, field_weakening=fw)),
         ("FOC-PI + PI + FW", lambda: Cascade(FocPI(cfg), cfg, T_slow=1e-3, field_weakening=fw_circle)),
         ("CCS-MPCC (IPM) + PI + FW", lambda: Cascade(CcsMPCC(cfg), cfg, T_slow=1e-3, field_weakening=fw_circle)),
+        # the wrappers play the RTL's reference governor and field weakening here (002's rule, its
+        # ramp at 90 % of I_max), so the law's own ones are off (issue 15: see the notes)
         ("ours: explicit MPC alg.1 speed + FW + ramp",
-         lambda: RampReference(FWReference(ExplicitMPC(cfg, algorithm=1, task="speed"), cfg, fw_circle), cfg, rate=ramp)),
+         lambda: RampReference(FWReference(ExplicitMPC(cfg_ours, algorithm=1, task="speed"), cfg_ours, fw_circle),
+                               cfg_ours, rate=ramp)),
     ]
     title = "002: speed steps 0 -> 150 -> 320 rad/s with field weakening (SPMSM, I_max = 20 A)"
     if quick:
@@ -709,8 +714,12 @@ symmetric optimum, position P + feed-forward, field weakening 002 eqs. 3-6), our
   J/20 and times/20, so its figures differ from the full run.
 - **Our MPC in fw_002**: the explicit law has only the voltage limit, no current constraint.  It gets
   the speed steps through a ramp limiter (90 % of the acceleration at I_max) and i_d* from the same
-  field-weakening rule.  In the field-weakening region the available torque is lower than the ramp
-  asks for, the speed error grows and |i| exceeds I_max (peak in the table) - the cascades clamp i_q*.
+  field-weakening rule (the RTL's reference governor and field weakening are switched off for this
+  run).  In the field-weakening region the available torque is lower than the ramp asks for, the
+  speed error grows and |i| exceeds I_max (peak in the table) - the cascades clamp i_q*.  With the
+  RTL's own governor at 0.9 I_max of acceleration and its field weakening instead, the entry into
+  field weakening at full current also overshoots (26-33 A, issue 15 notes): the governor bounds the
+  reference's acceleration, not the current the law draws when the voltage margin returns.
 - **Cascades** for the 000 scenarios (BLWR233D): speed PI by the symmetric optimum with a reference
   prefilter (speed task), P position gain 1/(6 T_sw) + reference-derivative feed-forward (position
   task), i_q* clamped to I_max.  Our MPC runs with the Table II/III designs of configs/blwr233d.toml.
