@@ -36,8 +36,10 @@ reference derivative as speed feed-forward in the position task.
 from __future__ import annotations
 
 import dataclasses
+import io
 import json
 import math
+import os
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -537,9 +539,18 @@ def run(quick: bool = False, out: str | Path = "build/reports", only: list | Non
             plot_case(case, traces, out / res["plot"])
         report["cases"][case.key] = res
     report["wall_s"] = time.perf_counter() - t0
-    (out / "compare.json").write_text(json.dumps(report, indent=1, default=_json_default) + "\n")
-    (out / "compare.md").write_text(markdown(report))
+    _write_atomic(out / "compare.json", (json.dumps(report, indent=1, default=_json_default) + "\n").encode())
+    _write_atomic(out / "compare.md", markdown(report).encode())
     return report
+
+
+def _write_atomic(path: Path, data: bytes) -> None:
+    """Write through a private temporary file and rename: two test workers may write the same
+    report at once (pytest-xdist spreads a module's tests), and a reader must never see a
+    truncated file."""
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    tmp.write_bytes(data)
+    os.replace(tmp, path)
 
 
 def _json_default(o):
@@ -594,8 +605,10 @@ def plot_case(case: Case, traces: dict, path: Path) -> None:
         a.set_xlabel("t [s]")
     fig.suptitle(case.title, fontsize=10)
     fig.tight_layout()
-    fig.savefig(path, dpi=90)
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=90)
     plt.close(fig)
+    _write_atomic(Path(path), buf.getvalue())
 
 
 def _f(v, fmt="{:.3g}", unit=""):
