@@ -63,6 +63,7 @@ module axis_regs (
     output reg  [15:0] angle_cal,            // ANGLE_CAL (RW)
     output reg  [15:0] hall_offset,          // HALL_OFFSET (RW)
     output reg  [17:0] kacc,                 // KACC.kacc (RW)
+    output reg  [3:0]  kacc_load_shift,      // KACC.load_shift (RW)
     output reg  [4:0]  kacc_shift,           // KACC.shift (RW)
     output reg  signed [17:0] id_ref,        // ID_REF (RW)
     output reg  signed [17:0] iq_ref,        // IQ_REF (RW)
@@ -72,6 +73,12 @@ module axis_regs (
     output wire [2:0]  seg_idx,              // word index in the window (SEG_LEN = 0)
     output reg         seg_start,            // SEG_START: pulse
     output reg  [3:0]  seg_start_data,       // SEG_START: written value
+    output wire        gov_we,               // write of a word of window gov (combinational)
+    output wire        gov_re,               // read of a word of window gov (combinational)
+    output reg  [7:0]  fw_nmax,              // FW.nmax (RW)
+    output reg  [15:0] fw_r2_hi,             // FW_R2.hi (RW)
+    output reg  [15:0] fw_r2_lo,             // FW_R2.lo (RW)
+    output reg  [11:0] iq_hold,              // IQ_HOLD (RW)
     input  wire [31:0] pos,                  // POS value
     output wire        stat_re,              // read of a word of window stat (combinational)
     input  wire [15:0] theta,                // THETA value
@@ -92,10 +99,14 @@ module axis_regs (
     assign seg_we = reg_wr && seg_sel;
     assign seg_re = reg_rd && seg_sel;
     assign seg_idx = reg_addr[2:0] - 3'd4;   // word - SEG_LEN
+    localparam [255:0] GOV_WORDS = 256'h0000000000000000000000000000000000000000000000000000000010000000;
+    wire gov_sel = GOV_WORDS[reg_addr];
+    assign gov_we = reg_wr && gov_sel;
+    assign gov_re = reg_rd && gov_sel;
     localparam [255:0] STAT_WORDS = 256'h000000000000000000000000000000000000000000000000000000fa00000000;
     wire stat_sel = STAT_WORDS[reg_addr];
     assign stat_re = reg_rd && stat_sel;
-    localparam [255:0] CNT_WORDS = 256'h0000000000000000000000000000000000000000000000001fff080000000000;
+    localparam [255:0] CNT_WORDS = 256'h0000000000000000000000000000000000000000000000009fff080000000000;
     wire cnt_sel = CNT_WORDS[reg_addr];
     assign cnt_re = reg_rd && cnt_sel;
 
@@ -125,11 +136,16 @@ module axis_regs (
             angle_cal <= 16'd0;
             hall_offset <= 16'd0;
             kacc <= `EMPC_KACC;
+            kacc_load_shift <= `EMPC_KACC_LOAD_SHIFT;
             kacc_shift <= `EMPC_KACC_SHIFT;
             id_ref <= 18'd0;
             iq_ref <= 18'd0;
             seg_addr <= 4'd0;
             seg_start_data <= 4'd0;
+            fw_nmax <= `EMPC_FW_NMAX;
+            fw_r2_hi <= `EMPC_FW_R2_HI;
+            fw_r2_lo <= `EMPC_FW_R2_LO;
+            iq_hold <= `EMPC_IQ_HOLD;
             adc_off_wdata <= 12'd0;
         end else begin
             if (wr_p0) begin
@@ -189,6 +205,7 @@ module axis_regs (
                     end
                     5'h10: begin   // KACC
                         kacc <= reg_wdata[17:0];
+                        kacc_load_shift <= reg_wdata[21:18];
                         kacc_shift <= reg_wdata[28:24];
                     end
                     5'h11: begin   // ID_REF
@@ -203,6 +220,16 @@ module axis_regs (
                     5'h1b: begin   // SEG_START
                         seg_start <= 1'b1;
                         seg_start_data <= reg_wdata[3:0];
+                    end
+                    5'h1d: begin   // FW
+                        fw_nmax <= reg_wdata[7:0];
+                    end
+                    5'h1e: begin   // FW_R2
+                        fw_r2_hi <= reg_wdata[15:0];
+                        fw_r2_lo <= reg_wdata[31:16];
+                    end
+                    5'h1f: begin   // IQ_HOLD
+                        iq_hold <= reg_wdata[11:0];
                     end
                     default: ;
                 endcase
@@ -228,10 +255,13 @@ module axis_regs (
     reg  [11:0]  q_adc_off2;
     reg  [15:0]  q_angle_cal;
     reg  [15:0]  q_hall_offset;
-    reg  [22:0]  q_kacc;
+    reg  [26:0]  q_kacc;
     reg  [17:0]  q_id_ref;
     reg  [17:0]  q_iq_ref;
     reg  [3:0]   q_seg_addr;
+    reg  [7:0]   q_fw;
+    reg  [31:0]  q_fw_r2;
+    reg  [11:0]  q_iq_hold;
     reg  [31:0]  q_pos;
     reg  [15:0]  q_theta;
     reg  [23:0]  q_iabc0;
@@ -259,10 +289,13 @@ module axis_regs (
         q_adc_off2 <= (rd_p0 && reg_addr[4:0] == 5'hd) ? adc_off2 : 12'd0;
         q_angle_cal <= (rd_p0 && reg_addr[4:0] == 5'he) ? angle_cal : 16'd0;
         q_hall_offset <= (rd_p0 && reg_addr[4:0] == 5'hf) ? hall_offset : 16'd0;
-        q_kacc <= (rd_p0 && reg_addr[4:0] == 5'h10) ? {kacc_shift, kacc} : 23'd0;
+        q_kacc <= (rd_p0 && reg_addr[4:0] == 5'h10) ? {kacc_shift, kacc_load_shift, kacc} : 27'd0;
         q_id_ref <= (rd_p0 && reg_addr[4:0] == 5'h11) ? id_ref : 18'd0;
         q_iq_ref <= (rd_p0 && reg_addr[4:0] == 5'h12) ? iq_ref : 18'd0;
         q_seg_addr <= (rd_p0 && reg_addr[4:0] == 5'h13) ? seg_addr : 4'd0;
+        q_fw <= (rd_p0 && reg_addr[4:0] == 5'h1d) ? fw_nmax : 8'd0;
+        q_fw_r2 <= (rd_p0 && reg_addr[4:0] == 5'h1e) ? {fw_r2_lo, fw_r2_hi} : 32'd0;
+        q_iq_hold <= (rd_p0 && reg_addr[4:0] == 5'h1f) ? iq_hold : 12'd0;
         q_pos <= (rd_p1 && reg_addr[4:0] == 5'h0) ? pos : 32'd0;
         q_theta <= (rd_p1 && reg_addr[4:0] == 5'h2) ? theta : 16'd0;
         q_iabc0 <= (rd_p1 && reg_addr[4:0] == 5'h8) ? {iabc0_b, iabc0_a} : 24'd0;
@@ -286,10 +319,13 @@ module axis_regs (
             q_adc_off2 <= 12'd0;
             q_angle_cal <= 16'd0;
             q_hall_offset <= 16'd0;
-            q_kacc <= 23'd0;
+            q_kacc <= 27'd0;
             q_id_ref <= 18'd0;
             q_iq_ref <= 18'd0;
             q_seg_addr <= 4'd0;
+            q_fw <= 8'd0;
+            q_fw_r2 <= 32'd0;
+            q_iq_hold <= 12'd0;
             q_pos <= 32'd0;
             q_theta <= 16'd0;
             q_iabc0 <= 24'd0;
@@ -316,10 +352,13 @@ module axis_regs (
                      | {20'd0, q_adc_off2}
                      | {16'd0, q_angle_cal}
                      | {16'd0, q_hall_offset}
-                     | {3'd0, q_kacc[22:18], 6'd0, q_kacc[17:0]}
+                     | {3'd0, q_kacc[26:22], 2'd0, q_kacc[21:0]}
                      | {{14{q_id_ref[17]}}, q_id_ref[17:0]}
                      | {{14{q_iq_ref[17]}}, q_iq_ref[17:0]}
                      | {28'd0, q_seg_addr}
+                     | {24'd0, q_fw}
+                     | q_fw_r2
+                     | {20'd0, q_iq_hold}
                      | q_pos
                      | {16'd0, q_theta}
                      | {4'd0, q_iabc0[23:12], 4'd0, q_iabc0[11:0]}
@@ -327,7 +366,5 @@ module axis_regs (
                      | {16'd0, q_latency}
                      | {24'd0, q_cnt_adc_miss}
                      | {16'd0, q_cnt_enc_err};
-    // reg_wdata bits that no register of this block stores
-    wire unused = &{1'b0, reg_wdata[31:29], reg_wdata[23:18]};
 endmodule
 `default_nettype wire
