@@ -37,16 +37,18 @@ def _load(p: Path):
 
 
 def sim_table() -> str | None:
-    rows = ["| scenario | run | RMS error | max overshoot % | settling s | ramp error (mean abs) | peak phase current A | limiter active (periods) | sim ms / wall s |",
-            "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
-    for name in ("speed_steps", "speed_alg2", "position_alg1", "position_alg2", "load_step"):
+    rows = ["| scenario | run | RMS error | max overshoot % | settling s | ramp error (mean abs) | peak phase current A | peak abs(i_dq) A | limiter active (periods) | sim ms / wall s |",
+            "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
+    for name in ("speed_steps", "speed_alg2", "position_alg1", "position_alg2", "load_step",
+                 "speed_limit", "position_large", "load_speed", "field_weakening"):
         r = _load(R / f"sim_{name}.json")
         if r is None:
             continue
         for run, m in r["runs"].items():
             rows.append(f"| {name} | {run} | {fmt(m['rms_error'])} | {fmt(m['overshoot_pct_max'])} | "
                         f"{fmt(m['settling_time_max'])} | {fmt(m['ramp_error_mean_abs'])} | "
-                        f"{fmt(m['peak_phase_current'])} | {m['saturations']} | {fmt(m['sim_ms_per_wall_s'])} |")
+                        f"{fmt(m['peak_phase_current'])} | {fmt(m.get('peak_current'))} | {m['saturations']} | "
+                        f"{fmt(m['sim_ms_per_wall_s'])} |")
     return "\n".join(rows) if len(rows) > 2 else None
 
 

@@ -424,20 +424,23 @@
 #define EMPC_A_HALL_OFFSET_RESET_MASK 0xFFFFFFFFu
 #define EMPC_A_HALL_OFFSET_BITS       0x0000FFFFu
 #define EMPC_A_HALL_OFFSET_SIGNED     0
-/* KACC (RW): Speed-estimate acceleration term: omega += (KACC * i_q) >> KACC_SHIFT (reset from the
-   header; 0 = plain eq. 37). */
-#define EMPC_A_KACC             0x040u
-#define EMPC_A_KACC_ACCESS      EMPC_ACC_RW
-#define EMPC_A_KACC_RESET       0x00000000u
-#define EMPC_A_KACC_RESET_MASK  0xE0FC0000u
-#define EMPC_A_KACC_BITS        0x1F03FFFFu
-#define EMPC_A_KACC_SIGNED      0
-#define EMPC_A_KACC_KACC_SHIFT  0u
-#define EMPC_A_KACC_KACC_MASK   0x0003FFFFu
-#define EMPC_A_KACC_KACC_WIDTH  18u
-#define EMPC_A_KACC_SHIFT_SHIFT 24u
-#define EMPC_A_KACC_SHIFT_MASK  0x1F000000u
-#define EMPC_A_KACC_SHIFT_WIDTH 5u
+/* KACC (RW): Speed estimate (docs/blocks/ctrl_seq.md): omega = eq. 37 + (KACC * i_q) >> KACC_SHIFT - D,
+   D the load estimate (reset from the header; kacc = 0: plain eq. 37). */
+#define EMPC_A_KACC                  0x040u
+#define EMPC_A_KACC_ACCESS           EMPC_ACC_RW
+#define EMPC_A_KACC_RESET            0x00000000u
+#define EMPC_A_KACC_RESET_MASK       0xE0C00000u
+#define EMPC_A_KACC_BITS             0x1F3FFFFFu
+#define EMPC_A_KACC_SIGNED           0
+#define EMPC_A_KACC_KACC_SHIFT       0u
+#define EMPC_A_KACC_KACC_MASK        0x0003FFFFu
+#define EMPC_A_KACC_KACC_WIDTH       18u
+#define EMPC_A_KACC_LOAD_SHIFT_SHIFT 18u
+#define EMPC_A_KACC_LOAD_SHIFT_MASK  0x003C0000u
+#define EMPC_A_KACC_LOAD_SHIFT_WIDTH 4u
+#define EMPC_A_KACC_SHIFT_SHIFT      24u
+#define EMPC_A_KACC_SHIFT_MASK       0x1F000000u
+#define EMPC_A_KACC_SHIFT_WIDTH      5u
 /* ID_REF (RW): d-current reference, ADC LSB Q.4 (signed 18 bit). */
 #define EMPC_A_ID_REF            0x044u
 #define EMPC_A_ID_REF_ACCESS     EMPC_ACC_RW
@@ -525,24 +528,49 @@
 #define EMPC_A_SEG_START_RESET_MASK 0xFFFFFFFFu
 #define EMPC_A_SEG_START_BITS       0x0000000Fu
 #define EMPC_A_SEG_START_SIGNED     0
-/* ADC_SUM_THRESH (RW, refused while bridges_live, legal 1..1900): Sum-of-currents threshold, ADC LSB of
-   |d_a + d_b + d_c| (d = code - offset), checked on every frame (FAULT.adc_sum; 1..1900). */
-#define EMPC_A_ADC_SUM_THRESH            0x070u
-#define EMPC_A_ADC_SUM_THRESH_ACCESS     EMPC_ACC_RW
-#define EMPC_A_ADC_SUM_THRESH_RESET      0x0000012Cu
-#define EMPC_A_ADC_SUM_THRESH_RESET_MASK 0xFFFFFFFFu
-#define EMPC_A_ADC_SUM_THRESH_BITS       0x00000FFFu
-#define EMPC_A_ADC_SUM_THRESH_SIGNED     0
-#define EMPC_A_ADC_SUM_THRESH_LEGAL_MIN  1u
-#define EMPC_A_ADC_SUM_THRESH_LEGAL_MAX  1900u
-/* UNLOCK (WO, key 0xc0de, key arms one write for 2 clocks): Write 0xc0de to let the next write of this
-   axis change FAULT_MASK (within the arm time; any other value is refused). */
-#define EMPC_A_UNLOCK            0x074u
-#define EMPC_A_UNLOCK_ACCESS     EMPC_ACC_WO
-#define EMPC_A_UNLOCK_RESET      0x00000000u
-#define EMPC_A_UNLOCK_RESET_MASK 0xFFFFFFFFu
-#define EMPC_A_UNLOCK_BITS       0x0000FFFFu
-#define EMPC_A_UNLOCK_SIGNED     0
+/* SEG_GOV (RW, in gov): Reference-governor word of slot SEG_ADDR (slot memory field 7;
+   docs/blocks/ref_gen.md): slots 0/1 vmax low/high, 2/3 a low/high (Q.32, 63 bit), 4 bit 0 enable and
+   bits 12:8 ksh; the header's values (boot task) after configuration (after reset SEG_ADDR = 0: vmax
+   low). */
+#define EMPC_A_SEG_GOV            0x070u
+#define EMPC_A_SEG_GOV_ACCESS     EMPC_ACC_RW
+#define EMPC_A_SEG_GOV_RESET      0x00000000u
+#define EMPC_A_SEG_GOV_RESET_MASK 0x00000000u
+#define EMPC_A_SEG_GOV_BITS       0xFFFFFFFFu
+#define EMPC_A_SEG_GOV_SIGNED     0
+/* FW (RW): Field weakening: the d-current references get -n * 2^EMPC_FW_SHIFT (Q.4 ADC LSB); n steps up
+   by one per control period (to nmax) while FW_R2.hi < |u_raw|^2 >> 20, down (to 0) while |u_raw|^2 >>
+   20 < FW_R2.lo; 0 while the law is off. */
+#define EMPC_A_FW            0x074u
+#define EMPC_A_FW_ACCESS     EMPC_ACC_RW
+#define EMPC_A_FW_RESET      0x00000000u
+#define EMPC_A_FW_RESET_MASK 0xFFFFFF00u
+#define EMPC_A_FW_BITS       0x000000FFu
+#define EMPC_A_FW_SIGNED     0
+#define EMPC_A_FW_NMAX_SHIFT 0u
+#define EMPC_A_FW_NMAX_MASK  0x000000FFu
+#define EMPC_A_FW_NMAX_WIDTH 8u
+/* FW_R2 (RW): Field-weakening band on the limiter's |u_raw|^2 (PWM ticks Q.4, squared, >> 20). */
+#define EMPC_A_FW_R2            0x078u
+#define EMPC_A_FW_R2_ACCESS     EMPC_ACC_RW
+#define EMPC_A_FW_R2_RESET      0x00000000u
+#define EMPC_A_FW_R2_RESET_MASK 0x00000000u
+#define EMPC_A_FW_R2_BITS       0xFFFFFFFFu
+#define EMPC_A_FW_R2_SIGNED     0
+#define EMPC_A_FW_R2_HI_SHIFT   0u
+#define EMPC_A_FW_R2_HI_MASK    0x0000FFFFu
+#define EMPC_A_FW_R2_HI_WIDTH   16u
+#define EMPC_A_FW_R2_LO_SHIFT   16u
+#define EMPC_A_FW_R2_LO_MASK    0xFFFF0000u
+#define EMPC_A_FW_R2_LO_WIDTH   16u
+/* IQ_HOLD (RW): Reference-governor hold: a control period with |i_q| >= IQ_HOLD ADC LSB (or the voltage
+   limit active) holds the reference's acceleration in the next (0 = no current hold). */
+#define EMPC_A_IQ_HOLD            0x07Cu
+#define EMPC_A_IQ_HOLD_ACCESS     EMPC_ACC_RW
+#define EMPC_A_IQ_HOLD_RESET      0x00000000u
+#define EMPC_A_IQ_HOLD_RESET_MASK 0xFFFFF000u
+#define EMPC_A_IQ_HOLD_BITS       0x00000FFFu
+#define EMPC_A_IQ_HOLD_SIGNED     0
 /* POS (RO): Encoder count (x4, modular 32 bit). */
 #define EMPC_A_POS            0x080u
 #define EMPC_A_POS_ACCESS     EMPC_ACC_RO
@@ -791,8 +819,34 @@
 #define EMPC_A_CNT_ENC_ERR_RESET_MASK 0x00000000u
 #define EMPC_A_CNT_ENC_ERR_BITS       0x0000FFFFu
 #define EMPC_A_CNT_ENC_ERR_SIGNED     0
+/* SAT_GOV (RO, in cnt): Counter: the reference governor shaped the reference (current limit: a clamp or
+   its hold was active). */
+#define EMPC_A_SAT_GOV            0x0FCu
+#define EMPC_A_SAT_GOV_ACCESS     EMPC_ACC_RO
+#define EMPC_A_SAT_GOV_RESET      0x00000000u
+#define EMPC_A_SAT_GOV_RESET_MASK 0x00000000u
+#define EMPC_A_SAT_GOV_BITS       0xFFFFFFFFu
+#define EMPC_A_SAT_GOV_SIGNED     0
+/* ADC_SUM_THRESH (RW, refused while bridges_live, legal 1..1900): Sum-of-currents threshold, ADC LSB of
+   |d_a + d_b + d_c| (d = code - offset), checked on every frame (FAULT.adc_sum; 1..1900). */
+#define EMPC_A_ADC_SUM_THRESH            0x100u
+#define EMPC_A_ADC_SUM_THRESH_ACCESS     EMPC_ACC_RW
+#define EMPC_A_ADC_SUM_THRESH_RESET      0x0000012Cu
+#define EMPC_A_ADC_SUM_THRESH_RESET_MASK 0xFFFFFFFFu
+#define EMPC_A_ADC_SUM_THRESH_BITS       0x00000FFFu
+#define EMPC_A_ADC_SUM_THRESH_SIGNED     0
+#define EMPC_A_ADC_SUM_THRESH_LEGAL_MIN  1u
+#define EMPC_A_ADC_SUM_THRESH_LEGAL_MAX  1900u
+/* UNLOCK (WO, key 0xc0de, key arms one write for 2 clocks): Write 0xc0de to let the next write of this
+   axis change FAULT_MASK (within the arm time; any other value is refused). */
+#define EMPC_A_UNLOCK            0x104u
+#define EMPC_A_UNLOCK_ACCESS     EMPC_ACC_WO
+#define EMPC_A_UNLOCK_RESET      0x00000000u
+#define EMPC_A_UNLOCK_RESET_MASK 0xFFFFFFFFu
+#define EMPC_A_UNLOCK_BITS       0x0000FFFFu
+#define EMPC_A_UNLOCK_SIGNED     0
 /* CNT_SWAP_REF (RO): Refused coefficient swaps (8-bit, saturating; CMD.clear_counters zeroes it). */
-#define EMPC_A_CNT_SWAP_REF            0x0FCu
+#define EMPC_A_CNT_SWAP_REF            0x108u
 #define EMPC_A_CNT_SWAP_REF_ACCESS     EMPC_ACC_RO
 #define EMPC_A_CNT_SWAP_REF_RESET      0x00000000u
 #define EMPC_A_CNT_SWAP_REF_RESET_MASK 0x00000000u
@@ -804,10 +858,11 @@
     X(CTRL) X(CMD) X(STATUS) X(FAULT) X(FAULT_MASK) X(DEAD_TIME) X(KDC) X(UDC) X(UDC_MIN) X(UDC_MAX) \
     X(OC_THRESH) X(ADC_OFF0) X(ADC_OFF1) X(ADC_OFF2) X(ANGLE_CAL) X(HALL_OFFSET) X(KACC) X(ID_REF) \
     X(IQ_REF) X(SEG_ADDR) X(SEG_LEN) X(SEG_R0_LO) X(SEG_R0_HI) X(SEG_D1_LO) X(SEG_D1_HI) X(SEG_D2) \
-    X(SEG_FLAGS) X(SEG_START) X(ADC_SUM_THRESH) X(UNLOCK) X(POS) X(SPEED) X(THETA) X(I_D) X(I_Q) \
-    X(U_D) X(U_Q) X(REF) X(IABC0) X(IABC1) X(LATENCY) X(PERIODS) X(ADC_PSUM0) X(ADC_PSUM1) \
+    X(SEG_FLAGS) X(SEG_START) X(SEG_GOV) X(FW) X(FW_R2) X(IQ_HOLD) X(POS) X(SPEED) X(THETA) X(I_D) \
+    X(I_Q) X(U_D) X(U_Q) X(REF) X(IABC0) X(IABC1) X(LATENCY) X(PERIODS) X(ADC_PSUM0) X(ADC_PSUM1) \
     X(ADC_PSUM2) X(CNT_WR_REFUSED) X(SAT_OPERAND) X(SAT_GAIN) X(SAT_TERM) X(SAT_ACC) X(SAT_DU) \
     X(SAT_U) X(SAT_EBAR) X(SAT_EBAR_INC) X(SAT_LIMIT) X(SAT_WN) X(SAT_SIGNAL) X(SAT_FRONT) \
-    X(CNT_OVERRUN) X(CNT_ADC_MISS) X(CNT_ENC_ERR) X(CNT_SWAP_REF)
+    X(CNT_OVERRUN) X(CNT_ADC_MISS) X(CNT_ENC_ERR) X(SAT_GOV) X(ADC_SUM_THRESH) X(UNLOCK) \
+    X(CNT_SWAP_REF)
 
 #endif /* EMPC_REGS_H */

@@ -75,6 +75,7 @@ module axis_regs (
     output reg  [15:0] angle_cal,            // ANGLE_CAL (RW)
     output reg  [15:0] hall_offset,          // HALL_OFFSET (RW)
     output reg  [17:0] kacc,                 // KACC.kacc (RW)
+    output reg  [3:0]  kacc_load_shift,      // KACC.load_shift (RW)
     output reg  [4:0]  kacc_shift,           // KACC.shift (RW)
     output reg  signed [17:0] id_ref,        // ID_REF (RW)
     output reg  signed [17:0] iq_ref,        // IQ_REF (RW)
@@ -84,7 +85,12 @@ module axis_regs (
     output wire [2:0]  seg_idx,              // word index in the window (SEG_LEN = 0)
     output reg         seg_start,            // SEG_START: pulse
     output reg  [3:0]  seg_start_data,       // SEG_START: written value
-    output reg  [11:0] adc_sum_thresh,       // ADC_SUM_THRESH (RW)
+    output wire        gov_we,               // write of a word of window gov (combinational)
+    output wire        gov_re,               // read of a word of window gov (combinational)
+    output reg  [7:0]  fw_nmax,              // FW.nmax (RW)
+    output reg  [15:0] fw_r2_hi,             // FW_R2.hi (RW)
+    output reg  [15:0] fw_r2_lo,             // FW_R2.lo (RW)
+    output reg  [11:0] iq_hold,              // IQ_HOLD (RW)
     input  wire [31:0] pos,                  // POS value
     output wire        stat_re,              // read of a word of window stat (combinational)
     input  wire [15:0] theta,                // THETA value
@@ -102,6 +108,7 @@ module axis_regs (
     input  wire [7:0]  cnt_wr_refused,       // CNT_WR_REFUSED value
     input  wire [7:0]  cnt_adc_miss,         // CNT_ADC_MISS value
     input  wire [15:0] cnt_enc_err,          // CNT_ENC_ERR value
+    output reg  [11:0] adc_sum_thresh,       // ADC_SUM_THRESH (RW)
     input  wire [7:0]  cnt_swap_ref,         // CNT_SWAP_REF value
     input  wire [31:0] seg_rdata,            // window read data (0 unless read)
     input  wire [31:0] smem_rdata,           // window read data (0 unless read)
@@ -121,15 +128,19 @@ module axis_regs (
     assign seg_we = reg_wr && seg_sel;
     assign seg_re = reg_rd && seg_sel;
     assign seg_idx = reg_addr[2:0] - 3'd4;   // word - SEG_LEN
+    localparam [255:0] GOV_WORDS = 256'h0000000000000000000000000000000000000000000000000000000010000000;
+    wire gov_sel = GOV_WORDS[reg_addr];
+    assign gov_we = reg_wr && gov_sel;
+    assign gov_re = reg_rd && gov_sel;
     localparam [255:0] STAT_WORDS = 256'h000000000000000000000000000000000000000000000000000000fa00000000;
     wire stat_sel = STAT_WORDS[reg_addr];
     assign stat_re = reg_rd && stat_sel;
-    localparam [255:0] CNT_WORDS = 256'h0000000000000000000000000000000000000000000000001fff080000000000;
+    localparam [255:0] CNT_WORDS = 256'h0000000000000000000000000000000000000000000000009fff080000000000;
     wire cnt_sel = CNT_WORDS[reg_addr];
     assign cnt_re = reg_rd && cnt_sel;
 
     // ---------------- write decode: one predecode per page, a case on the low bits
-    wire wr_p0 = reg_wr && (reg_addr[7:5] == 3'd0);
+    wire wr_p0 = reg_wr && (reg_addr[7:7] == 1'd0);
     // unlock: UNLOCK armed with its key until the 2th unlock_tick; the next write of the block consumes it
     reg  [1:0] unl_cnt;
     wire unl = |unl_cnt;
@@ -159,11 +170,16 @@ module axis_regs (
             angle_cal <= 16'd0;
             hall_offset <= 16'd0;
             kacc <= `EMPC_KACC;
+            kacc_load_shift <= `EMPC_KACC_LOAD_SHIFT;
             kacc_shift <= `EMPC_KACC_SHIFT;
             id_ref <= 18'd0;
             iq_ref <= 18'd0;
             seg_addr <= 4'd0;
             seg_start_data <= 4'd0;
+            fw_nmax <= `EMPC_FW_NMAX;
+            fw_r2_hi <= `EMPC_FW_R2_HI;
+            fw_r2_lo <= `EMPC_FW_R2_LO;
+            iq_hold <= `EMPC_IQ_HOLD;
             adc_sum_thresh <= 12'd300;
             adc_off_wdata <= 12'd0;
             unl_cnt <= 2'd0;
@@ -171,8 +187,8 @@ module axis_regs (
             if (reg_wr) unl_cnt <= 2'd0;   // consumed by any write
             else if (unl && unlock_tick) unl_cnt <= unl_cnt - 1'b1;
             if (wr_p0) begin
-                case (reg_addr[4:0])
-                    5'h0: begin   // CTRL
+                case (reg_addr[6:0])
+                    7'h0: begin   // CTRL
                         if (LEGAL_CTRL_PWM_PER_CONTROL[reg_wdata[15:8]] && (!bridges_live || reg_wdata[15:8] == ctrl_pwm_per_control)) begin
                             ctrl_enable <= reg_wdata[0];
                             ctrl_run <= reg_wdata[1];
@@ -183,7 +199,7 @@ module axis_regs (
                             if (reg_wdata[1] == 1'd0) ctrl_run <= 1'd0;
                         end
                     end
-                    5'h1: begin   // CMD
+                    7'h1: begin   // CMD
                         if ((!bridges_live || reg_wdata[1] == 1'd0)) begin
                             cmd_fault_clear <= reg_wdata[0];
                             cmd_adc_cal <= reg_wdata[1];
@@ -195,49 +211,49 @@ module axis_regs (
                             wr_refused <= 1'b1;
                         end
                     end
-                    5'h4: begin   // FAULT_MASK
+                    7'h4: begin   // FAULT_MASK
                         if (!bridges_live && unl) begin
                             fault_mask <= reg_wdata[14:0];
                         end else begin
                             wr_refused <= 1'b1;
                         end
                     end
-                    5'h5: begin   // DEAD_TIME
+                    7'h5: begin   // DEAD_TIME
                         if (!bridges_live && LEGAL_DEAD_TIME[reg_wdata[7:0]]) begin
                             dead_time <= reg_wdata[7:0];
                         end else begin
                             wr_refused <= 1'b1;
                         end
                     end
-                    5'h6: begin   // KDC
+                    7'h6: begin   // KDC
                         kdc <= reg_wdata[17:0];
                     end
-                    5'h7: begin   // UDC
+                    7'h7: begin   // UDC
                         udc <= reg_wdata[15:0];
                         udc_wr <= 1'b1;
                     end
-                    5'h8: begin   // UDC_MIN
+                    7'h8: begin   // UDC_MIN
                         if (!bridges_live && (reg_wdata[15:0] >= 16'd1) && (reg_wdata[15:0] <= 16'd65534)) begin
                             udc_min <= reg_wdata[15:0];
                         end else begin
                             wr_refused <= 1'b1;
                         end
                     end
-                    5'h9: begin   // UDC_MAX
+                    7'h9: begin   // UDC_MAX
                         if (!bridges_live && (reg_wdata[15:0] >= 16'd1) && (reg_wdata[15:0] <= 16'd65534)) begin
                             udc_max <= reg_wdata[15:0];
                         end else begin
                             wr_refused <= 1'b1;
                         end
                     end
-                    5'ha: begin   // OC_THRESH
+                    7'ha: begin   // OC_THRESH
                         if (!bridges_live && (reg_wdata[11:0] >= 12'd1) && (reg_wdata[11:0] <= 12'd1900)) begin
                             oc_thresh <= reg_wdata[11:0];
                         end else begin
                             wr_refused <= 1'b1;
                         end
                     end
-                    5'hb: begin   // ADC_OFF0
+                    7'hb: begin   // ADC_OFF0
                         if (!bridges_live && (reg_wdata[11:0] >= 12'd1901) && (reg_wdata[11:0] <= 12'd2194)) begin
                             adc_off_we <= 3'b001;
                             adc_off_wdata <= reg_wdata[11:0];
@@ -245,7 +261,7 @@ module axis_regs (
                             wr_refused <= 1'b1;
                         end
                     end
-                    5'hc: begin   // ADC_OFF1
+                    7'hc: begin   // ADC_OFF1
                         if (!bridges_live && (reg_wdata[11:0] >= 12'd1901) && (reg_wdata[11:0] <= 12'd2194)) begin
                             adc_off_we <= 3'b010;
                             adc_off_wdata <= reg_wdata[11:0];
@@ -253,7 +269,7 @@ module axis_regs (
                             wr_refused <= 1'b1;
                         end
                     end
-                    5'hd: begin   // ADC_OFF2
+                    7'hd: begin   // ADC_OFF2
                         if (!bridges_live && (reg_wdata[11:0] >= 12'd1901) && (reg_wdata[11:0] <= 12'd2194)) begin
                             adc_off_we <= 3'b100;
                             adc_off_wdata <= reg_wdata[11:0];
@@ -261,45 +277,56 @@ module axis_regs (
                             wr_refused <= 1'b1;
                         end
                     end
-                    5'he: begin   // ANGLE_CAL
+                    7'he: begin   // ANGLE_CAL
                         if (!bridges_live) begin
                             angle_cal <= reg_wdata[15:0];
                         end else begin
                             wr_refused <= 1'b1;
                         end
                     end
-                    5'hf: begin   // HALL_OFFSET
+                    7'hf: begin   // HALL_OFFSET
                         if (!bridges_live) begin
                             hall_offset <= reg_wdata[15:0];
                         end else begin
                             wr_refused <= 1'b1;
                         end
                     end
-                    5'h10: begin   // KACC
+                    7'h10: begin   // KACC
                         kacc <= reg_wdata[17:0];
+                        kacc_load_shift <= reg_wdata[21:18];
                         kacc_shift <= reg_wdata[28:24];
                     end
-                    5'h11: begin   // ID_REF
+                    7'h11: begin   // ID_REF
                         id_ref <= reg_wdata[17:0];
                     end
-                    5'h12: begin   // IQ_REF
+                    7'h12: begin   // IQ_REF
                         iq_ref <= reg_wdata[17:0];
                     end
-                    5'h13: begin   // SEG_ADDR
+                    7'h13: begin   // SEG_ADDR
                         seg_addr <= reg_wdata[3:0];
                     end
-                    5'h1b: begin   // SEG_START
+                    7'h1b: begin   // SEG_START
                         seg_start <= 1'b1;
                         seg_start_data <= reg_wdata[3:0];
                     end
-                    5'h1c: begin   // ADC_SUM_THRESH
+                    7'h1d: begin   // FW
+                        fw_nmax <= reg_wdata[7:0];
+                    end
+                    7'h1e: begin   // FW_R2
+                        fw_r2_hi <= reg_wdata[15:0];
+                        fw_r2_lo <= reg_wdata[31:16];
+                    end
+                    7'h1f: begin   // IQ_HOLD
+                        iq_hold <= reg_wdata[11:0];
+                    end
+                    7'h40: begin   // ADC_SUM_THRESH
                         if (!bridges_live && (reg_wdata[11:0] >= 12'd1) && (reg_wdata[11:0] <= 12'd1900)) begin
                             adc_sum_thresh <= reg_wdata[11:0];
                         end else begin
                             wr_refused <= 1'b1;
                         end
                     end
-                    5'h1d: begin   // UNLOCK
+                    7'h41: begin   // UNLOCK
                         if (reg_wdata[15:0] == 16'd49374) unl_cnt <= 2'd2;
                         else wr_refused <= 1'b1;
                     end
@@ -310,8 +337,7 @@ module axis_regs (
     end
 
     // ---------------- read path: gated copies / shared read register, ORed
-    wire rd_p0 = reg_rd && (reg_addr[7:5] == 3'd0);
-    wire rd_p1 = reg_rd && (reg_addr[7:5] == 3'd1);
+    wire rd_p0 = reg_rd && (reg_addr[7:7] == 1'd0);
     reg  [9:0]   q_ctrl;
     reg  [12:0]  q_status;
     reg  [14:0]  q_fault;
@@ -327,11 +353,13 @@ module axis_regs (
     reg  [11:0]  q_adc_off2;
     reg  [15:0]  q_angle_cal;
     reg  [15:0]  q_hall_offset;
-    reg  [22:0]  q_kacc;
+    reg  [26:0]  q_kacc;
     reg  [17:0]  q_id_ref;
     reg  [17:0]  q_iq_ref;
     reg  [3:0]   q_seg_addr;
-    reg  [11:0]  q_adc_sum_thresh;
+    reg  [7:0]   q_fw;
+    reg  [31:0]  q_fw_r2;
+    reg  [11:0]  q_iq_hold;
     reg  [31:0]  q_pos;
     reg  [15:0]  q_theta;
     reg  [23:0]  q_iabc0;
@@ -343,45 +371,49 @@ module axis_regs (
     reg  [7:0]   q_cnt_wr_refused;
     reg  [7:0]   q_cnt_adc_miss;
     reg  [15:0]  q_cnt_enc_err;
+    reg  [11:0]  q_adc_sum_thresh;
     reg  [7:0]   q_cnt_swap_ref;
     always @(posedge clk) begin
-        q_ctrl <= (rd_p0 && reg_addr[4:0] == 5'h0) ? {ctrl_pwm_per_control, ctrl_run, ctrl_enable} : 10'd0;
-        q_status <= (rd_p0 && reg_addr[4:0] == 5'h2) ? {status_wr_refused, status_adc_refused,
+        q_ctrl <= (rd_p0 && reg_addr[6:0] == 7'h0) ? {ctrl_pwm_per_control, ctrl_run, ctrl_enable} : 10'd0;
+        q_status <= (rd_p0 && reg_addr[6:0] == 7'h2) ? {status_wr_refused, status_adc_refused,
             status_swap_refused, status_coef_valid, status_fault, status_swap_pending, status_coef_bank,
             status_core_ready, status_adc_cal_done, status_adc_cal_busy, status_aligned, status_bridges_on,
             status_running} : 13'd0;
-        q_fault <= (rd_p0 && reg_addr[4:0] == 5'h3) ? {fault_adc_frozen, fault_adc_sum, fault_adc_stuck,
+        q_fault <= (rd_p0 && reg_addr[6:0] == 7'h3) ? {fault_adc_frozen, fault_adc_sum, fault_adc_stuck,
             fault_enc_break, fault_hall_enc, fault_coef, fault_clock, fault_pstage, fault_adc, fault_overrun,
             fault_dclink, fault_watchdog, fault_encoder, fault_hall, fault_overcurrent} : 15'd0;
-        q_fault_mask <= (rd_p0 && reg_addr[4:0] == 5'h4) ? fault_mask : 15'd0;
-        q_dead_time <= (rd_p0 && reg_addr[4:0] == 5'h5) ? dead_time : 8'd0;
-        q_kdc <= (rd_p0 && reg_addr[4:0] == 5'h6) ? kdc : 18'd0;
-        q_udc <= (rd_p0 && reg_addr[4:0] == 5'h7) ? udc : 16'd0;
-        q_udc_min <= (rd_p0 && reg_addr[4:0] == 5'h8) ? udc_min : 16'd0;
-        q_udc_max <= (rd_p0 && reg_addr[4:0] == 5'h9) ? udc_max : 16'd0;
-        q_oc_thresh <= (rd_p0 && reg_addr[4:0] == 5'ha) ? oc_thresh : 12'd0;
-        q_adc_off0 <= (rd_p0 && reg_addr[4:0] == 5'hb) ? adc_off0 : 12'd0;
-        q_adc_off1 <= (rd_p0 && reg_addr[4:0] == 5'hc) ? adc_off1 : 12'd0;
-        q_adc_off2 <= (rd_p0 && reg_addr[4:0] == 5'hd) ? adc_off2 : 12'd0;
-        q_angle_cal <= (rd_p0 && reg_addr[4:0] == 5'he) ? angle_cal : 16'd0;
-        q_hall_offset <= (rd_p0 && reg_addr[4:0] == 5'hf) ? hall_offset : 16'd0;
-        q_kacc <= (rd_p0 && reg_addr[4:0] == 5'h10) ? {kacc_shift, kacc} : 23'd0;
-        q_id_ref <= (rd_p0 && reg_addr[4:0] == 5'h11) ? id_ref : 18'd0;
-        q_iq_ref <= (rd_p0 && reg_addr[4:0] == 5'h12) ? iq_ref : 18'd0;
-        q_seg_addr <= (rd_p0 && reg_addr[4:0] == 5'h13) ? seg_addr : 4'd0;
-        q_adc_sum_thresh <= (rd_p0 && reg_addr[4:0] == 5'h1c) ? adc_sum_thresh : 12'd0;
-        q_pos <= (rd_p1 && reg_addr[4:0] == 5'h0) ? pos : 32'd0;
-        q_theta <= (rd_p1 && reg_addr[4:0] == 5'h2) ? theta : 16'd0;
-        q_iabc0 <= (rd_p1 && reg_addr[4:0] == 5'h8) ? {iabc0_b, iabc0_a} : 24'd0;
-        q_iabc1 <= (rd_p1 && reg_addr[4:0] == 5'h9) ? iabc1 : 12'd0;
-        q_latency <= (rd_p1 && reg_addr[4:0] == 5'ha) ? latency : 16'd0;
-        q_adc_psum0 <= (rd_p1 && reg_addr[4:0] == 5'hc) ? {adc_psum0_count, adc_psum0_sum} : 27'd0;
-        q_adc_psum1 <= (rd_p1 && reg_addr[4:0] == 5'hd) ? {adc_psum1_count, adc_psum1_sum} : 27'd0;
-        q_adc_psum2 <= (rd_p1 && reg_addr[4:0] == 5'he) ? {adc_psum2_count, adc_psum2_sum} : 27'd0;
-        q_cnt_wr_refused <= (rd_p1 && reg_addr[4:0] == 5'hf) ? cnt_wr_refused : 8'd0;
-        q_cnt_adc_miss <= (rd_p1 && reg_addr[4:0] == 5'h1d) ? cnt_adc_miss : 8'd0;
-        q_cnt_enc_err <= (rd_p1 && reg_addr[4:0] == 5'h1e) ? cnt_enc_err : 16'd0;
-        q_cnt_swap_ref <= (rd_p1 && reg_addr[4:0] == 5'h1f) ? cnt_swap_ref : 8'd0;
+        q_fault_mask <= (rd_p0 && reg_addr[6:0] == 7'h4) ? fault_mask : 15'd0;
+        q_dead_time <= (rd_p0 && reg_addr[6:0] == 7'h5) ? dead_time : 8'd0;
+        q_kdc <= (rd_p0 && reg_addr[6:0] == 7'h6) ? kdc : 18'd0;
+        q_udc <= (rd_p0 && reg_addr[6:0] == 7'h7) ? udc : 16'd0;
+        q_udc_min <= (rd_p0 && reg_addr[6:0] == 7'h8) ? udc_min : 16'd0;
+        q_udc_max <= (rd_p0 && reg_addr[6:0] == 7'h9) ? udc_max : 16'd0;
+        q_oc_thresh <= (rd_p0 && reg_addr[6:0] == 7'ha) ? oc_thresh : 12'd0;
+        q_adc_off0 <= (rd_p0 && reg_addr[6:0] == 7'hb) ? adc_off0 : 12'd0;
+        q_adc_off1 <= (rd_p0 && reg_addr[6:0] == 7'hc) ? adc_off1 : 12'd0;
+        q_adc_off2 <= (rd_p0 && reg_addr[6:0] == 7'hd) ? adc_off2 : 12'd0;
+        q_angle_cal <= (rd_p0 && reg_addr[6:0] == 7'he) ? angle_cal : 16'd0;
+        q_hall_offset <= (rd_p0 && reg_addr[6:0] == 7'hf) ? hall_offset : 16'd0;
+        q_kacc <= (rd_p0 && reg_addr[6:0] == 7'h10) ? {kacc_shift, kacc_load_shift, kacc} : 27'd0;
+        q_id_ref <= (rd_p0 && reg_addr[6:0] == 7'h11) ? id_ref : 18'd0;
+        q_iq_ref <= (rd_p0 && reg_addr[6:0] == 7'h12) ? iq_ref : 18'd0;
+        q_seg_addr <= (rd_p0 && reg_addr[6:0] == 7'h13) ? seg_addr : 4'd0;
+        q_fw <= (rd_p0 && reg_addr[6:0] == 7'h1d) ? fw_nmax : 8'd0;
+        q_fw_r2 <= (rd_p0 && reg_addr[6:0] == 7'h1e) ? {fw_r2_lo, fw_r2_hi} : 32'd0;
+        q_iq_hold <= (rd_p0 && reg_addr[6:0] == 7'h1f) ? iq_hold : 12'd0;
+        q_pos <= (rd_p0 && reg_addr[6:0] == 7'h20) ? pos : 32'd0;
+        q_theta <= (rd_p0 && reg_addr[6:0] == 7'h22) ? theta : 16'd0;
+        q_iabc0 <= (rd_p0 && reg_addr[6:0] == 7'h28) ? {iabc0_b, iabc0_a} : 24'd0;
+        q_iabc1 <= (rd_p0 && reg_addr[6:0] == 7'h29) ? iabc1 : 12'd0;
+        q_latency <= (rd_p0 && reg_addr[6:0] == 7'h2a) ? latency : 16'd0;
+        q_adc_psum0 <= (rd_p0 && reg_addr[6:0] == 7'h2c) ? {adc_psum0_count, adc_psum0_sum} : 27'd0;
+        q_adc_psum1 <= (rd_p0 && reg_addr[6:0] == 7'h2d) ? {adc_psum1_count, adc_psum1_sum} : 27'd0;
+        q_adc_psum2 <= (rd_p0 && reg_addr[6:0] == 7'h2e) ? {adc_psum2_count, adc_psum2_sum} : 27'd0;
+        q_cnt_wr_refused <= (rd_p0 && reg_addr[6:0] == 7'h2f) ? cnt_wr_refused : 8'd0;
+        q_cnt_adc_miss <= (rd_p0 && reg_addr[6:0] == 7'h3d) ? cnt_adc_miss : 8'd0;
+        q_cnt_enc_err <= (rd_p0 && reg_addr[6:0] == 7'h3e) ? cnt_enc_err : 16'd0;
+        q_adc_sum_thresh <= (rd_p0 && reg_addr[6:0] == 7'h40) ? adc_sum_thresh : 12'd0;
+        q_cnt_swap_ref <= (rd_p0 && reg_addr[6:0] == 7'h42) ? cnt_swap_ref : 8'd0;
         if (rst) begin
             q_ctrl <= 10'd0;
             q_status <= 13'd0;
@@ -398,11 +430,13 @@ module axis_regs (
             q_adc_off2 <= 12'd0;
             q_angle_cal <= 16'd0;
             q_hall_offset <= 16'd0;
-            q_kacc <= 23'd0;
+            q_kacc <= 27'd0;
             q_id_ref <= 18'd0;
             q_iq_ref <= 18'd0;
             q_seg_addr <= 4'd0;
-            q_adc_sum_thresh <= 12'd0;
+            q_fw <= 8'd0;
+            q_fw_r2 <= 32'd0;
+            q_iq_hold <= 12'd0;
             q_pos <= 32'd0;
             q_theta <= 16'd0;
             q_iabc0 <= 24'd0;
@@ -414,6 +448,7 @@ module axis_regs (
             q_cnt_wr_refused <= 8'd0;
             q_cnt_adc_miss <= 8'd0;
             q_cnt_enc_err <= 16'd0;
+            q_adc_sum_thresh <= 12'd0;
             q_cnt_swap_ref <= 8'd0;
         end
     end
@@ -434,11 +469,13 @@ module axis_regs (
                      | {20'd0, q_adc_off2}
                      | {16'd0, q_angle_cal}
                      | {16'd0, q_hall_offset}
-                     | {3'd0, q_kacc[22:18], 6'd0, q_kacc[17:0]}
+                     | {3'd0, q_kacc[26:22], 2'd0, q_kacc[21:0]}
                      | {{14{q_id_ref[17]}}, q_id_ref[17:0]}
                      | {{14{q_iq_ref[17]}}, q_iq_ref[17:0]}
                      | {28'd0, q_seg_addr}
-                     | {20'd0, q_adc_sum_thresh}
+                     | {24'd0, q_fw}
+                     | q_fw_r2
+                     | {20'd0, q_iq_hold}
                      | q_pos
                      | {16'd0, q_theta}
                      | {4'd0, q_iabc0[23:12], 4'd0, q_iabc0[11:0]}
@@ -450,8 +487,7 @@ module axis_regs (
                      | {24'd0, q_cnt_wr_refused}
                      | {24'd0, q_cnt_adc_miss}
                      | {16'd0, q_cnt_enc_err}
+                     | {20'd0, q_adc_sum_thresh}
                      | {24'd0, q_cnt_swap_ref};
-    // reg_wdata bits that no register of this block stores
-    wire unused = &{1'b0, reg_wdata[31:29], reg_wdata[23:18]};
 endmodule
 `default_nettype wire

@@ -2,7 +2,7 @@
 //
 // Words (register offsets, empc_regs.vh): the status words SPEED, I_D, I_Q, U_D, U_Q, REF and
 // the counters SAT_OPERAND .. CNT_OVERRUN (13 words from SAT_OPERAND on, counter i counts
-// event i) and PERIODS, stored at their offsets in a 64 x 32 block RAM.  This block owns the
+// event i), PERIODS and SAT_GOV, stored at their offsets in a 64 x 32 block RAM.  This block owns the
 // memory, the events of the control period, the zero and counter sweeps' bookkeeping and the
 // counter increment; ctrl_seq's engine supplies the clock of the sweeps (their steps are
 // microprogram steps: they occupy the engine, which matters for its timing) and the status
@@ -23,7 +23,8 @@
 // a zero sweep has run to its end: the hidden words read 0 from the command on).
 // Events (held from the update to the end of the next sweep, so SAT_* and CNT_OVERRUN count
 // the control periods in which the event happened): core_flags at core_done (SAT_OPERAND ..
-// SAT_SIGNAL), front_sat (SAT_FRONT), overrun (CNT_OVERRUN), period (PERIODS).
+// SAT_SIGNAL), front_sat (SAT_FRONT), overrun (CNT_OVERRUN), period (PERIODS), gov (SAT_GOV: the
+// reference governor shaped the reference).
 //
 // Ports: reg_rd / reg_addr -> rdata, valid the clock after reg_rd, 0 unless a word of this
 // block is read (ORed into the axis read data).  Latency: a word written by st_wr reads from
@@ -49,6 +50,7 @@ module axis_status (
     input  wire        front_sat,       // pulse: a front-end block saturated (SAT_FRONT)
     input  wire        overrun,         // pulse: a period missed its boundary (CNT_OVERRUN)
     input  wire        period,          // pulse: a control period ran with the law active (PERIODS)
+    input  wire        gov,             // pulse: the reference governor clamped or held (SAT_GOV)
     // word stream from ctrl_seq
     input  wire        st_sh,
     input  wire        st_d,
@@ -67,30 +69,33 @@ module axis_status (
     localparam integer A_CNT_LAST = A_CNT0 + NEV - 1;
 
     generate if (`EMPC_A_CNT_OVERRUN != A_CNT_LAST || `EMPC_A_SAT_FRONT != A_CNT_LAST - 1 || A_CNT_LAST > 63 ||
-                 `EMPC_A_PERIODS > 63 || `EMPC_A_I_D > 63 || `EMPC_A_REF > 63 || `EMPC_A_SPEED > 63)
+                 `EMPC_A_PERIODS > 63 || `EMPC_A_SAT_GOV > 63 || `EMPC_A_I_D > 63 || `EMPC_A_REF > 63 ||
+                 `EMPC_A_SPEED > 63)
     begin : g_bad_map
         axis_status_unsupported_register_map u_error ();   // no such module: elaboration stops here
     end endgenerate
 
     // ---------------- events of the control period ----------------
     reg  [10:0] ev_core;
-    reg         ev_front, ev_ovr, ev_per;
+    reg         ev_front, ev_ovr, ev_per, ev_gov;
     always @(posedge clk) begin
         if (rst || sw_end) begin
             ev_core <= 11'd0;
             ev_front <= 1'b0;
             ev_ovr <= 1'b0;
             ev_per <= 1'b0;
+            ev_gov <= 1'b0;
         end else begin
             if (core_done) ev_core <= core_flags;
             if (front_sat) ev_front <= 1'b1;
             if (overrun) ev_ovr <= 1'b1;
             if (period) ev_per <= 1'b1;
+            if (gov) ev_gov <= 1'b1;
         end
     end
     // event bit of each word (0 for the status words)
     wire [63:0] ev_at = ({{(64 - NEV){1'b0}}, ev_ovr, ev_front, ev_core} << A_CNT0) |
-                        ({63'd0, ev_per} << `EMPC_A_PERIODS);
+                        ({63'd0, ev_per} << `EMPC_A_PERIODS) | ({63'd0, ev_gov} << `EMPC_A_SAT_GOV);
 
     // ---------------- sweeps ----------------
     reg         hide_st, hide_cnt;  // status words / counters hidden until a zero sweep ends

@@ -10,8 +10,10 @@
 // In the last PWM period of each control period (pwm_per_control periods), before
 // the modulation it runs the control law:
 //   xform front: clarke(i_abc) -> park(theta_trig) -> i_d, i_q
-//   omega = sat32(sat32((pos_trig - pos_prev) << 16) + rshift_round(kacc * i_q, kacc_shift))
-//           (eq. 37 in counts per Ts, plus the (Ts/2) acceleration term)
+//   omega = sat32(spd + ka - D), spd = sat32((pos_trig - pos_prev) << 16) (eq. 37 in counts per
+//           Ts), ka = rshift_round(kacc * i_q, kacc_shift) (the (Ts/2) acceleration term), D the
+//           load estimate: D += (2 (ka - D) - (spd - spd_prev)) >>> (load_shift + 1) (0 if
+//           load_shift = 0; 40 bit, never wraps: |D| < 2^35), docs/blocks/ctrl_seq.md
 //   core inputs (raw units), written one word per clock into the core's input buffer:
 //   y = (i_d, i_q, omega | 0), omega, dx = x_k - x_{k-1} (dx2 = omega - omega_prev and
 //   dx3 = dpos << 8 saturated to SIG_W, front_sat), u_prev, ebar_prev, and the
@@ -45,6 +47,11 @@
 //            bit; its product stream is shifted through a 41-bit register for s + 40
 //            steps (s = kacc_shift), which leaves ka = product >> s in bits 40:1 and the
 //            rounding bit product[s-1] in bit 0 (0 for s = 0).
+//   load     the speed estimate's load term: rings ldd (D, 40 bit), spp (spd of the previous
+//            control period, 32) and ldt (t2, 40); the OM pass forms u1 = ka - D (own subtractor,
+//            carry-in 1 + rounding bit), omega = spd + u1 and t2 = 2 u1 - spd + spd_prev (two
+//            more 1-bit adders) and refills spp; the LD pass D += t2 >>> (load_shift + 1) (a
+//            tap of ldt, which shifts arithmetically).
 // The theta unit has its own 1-bit adder: theta_mod = 2 theta_trig - theta_prev (theta_trig if
 // first), written into the xform angle register after the front has started.
 //
@@ -91,6 +98,7 @@ module ctrl_seq #(
     input  wire [17:0]                    kdc,
     input  wire signed [17:0]             kacc,
     input  wire [4:0]                     kacc_shift,
+    input  wire [3:0]                     load_shift,      // KACC.load_shift (0: no load estimate)
     input  wire signed [`EMPC_I_W-1:0]    id_ref,
     input  wire signed [`EMPC_I_W-1:0]    iq_ref,
     input  wire                           task_pos,        // active coefficient bank: position task
@@ -407,7 +415,7 @@ module ctrl_seq #(
     wire op_w6   = uw[UW_W6];
     wire op_stat = uw[UW_STAT];
     wire op_sub  = uw[UW_SUB] || (op_ref && task_pos);     // the pass subtracts B
-    reg  is_pos, is_ref, is_diff, is_om, is_fix3, is_w6, is_stat, diff_q, sub, is_sat, is_back, is_stw;
+    reg  is_pos, is_ref, is_diff, is_om, is_fix3, is_w6, is_stat, diff_q, sub, is_sat, is_back, is_stw, is_ld;
     always @(posedge clk) begin
         {is_pos, is_ref, is_diff, is_om, is_fix3, is_w6, is_stat} <=
             {op_pos, op_ref, op_diff, op_om, op_fix3, op_w6, op_stat};
@@ -416,6 +424,7 @@ module ctrl_seq #(
         is_sat  <= ub[UB_SAT];      // result saturated to SW bits (POS, REF, W6)
         is_back <= ub[UB_BACK];     // back to E_OP at the pass end (OM, STAT, CNT)
         is_stw  <= ub[UB_STW];      // writes a status word at the pass end
+        is_ld   <= ub[UB_LD];       // the load-estimate pass
     end
     wire in_pass = (est == E_PASS);
 
@@ -476,6 +485,15 @@ module ctrl_seq #(
     reg           w_trk, w_r, w_ovf, fix_sgn;   // SW-bit saturation of the word in X (from bit G)
     reg  [17:0]   pw;               // pass control word of (pass kind, j)
     reg  [17:0]   pwf;              // E_FIX table word of j (kind PK_FIX, second port of the pass table)
+    // load estimate of the speed: D (ldd), spd_prev (spp), t2 (ldt); see the header
+    reg  [39:0]   ldd, ldt;
+    reg  [WW-1:0] spp;
+    reg           cu0, cu1;         // u1 = ka - D: carry-in 1 + rounding bit (0..2, as c0 / c1)
+    reg           u1d, cs1, cs2;    // u1 of the previous bit (2 u1), carries of t2 = 2 u1 - spd + spp
+    reg           sph, cl;          // spp sign above bit 31, carry of the LD pass
+    wire          u1b  = ka[1] ^ ~ldd[0] ^ cu0;
+    wire          u1m  = (ka[1] & ~ldd[0]) | (cu0 & (ka[1] ^ ~ldd[0]));
+    wire          sppb = (j > 6'd31) ? sph : spp[0];
 
     // reference pass: first bit j0 = the rounding bit (the REF window of w_k lies above it)
     wire [5:0] ref_j0  = task_pos ? 6'd23 : 6'd15;
@@ -501,11 +519,15 @@ module ctrl_seq #(
         if (is_pos) b_raw = pp[0];
         else if (is_ref) b_raw = p_r1 && pp[0];
         else if (is_diff) b_raw = diff_q ? iqp[0] : idp[0];
-        else if (is_om) b_raw = ka[1];
+        else if (is_om) b_raw = u1b;
         else if (is_w6) b_raw = omp[0];
         else b_raw = 1'b0;
     end
     wire       b_bit  = p_hb ? b_h : b_raw;
+    wire       s1b    = u1d ^ ~a_bit ^ cs1;
+    wire       t2b    = s1b ^ sppb ^ cs2;
+    wire       ltap   = ldt[{2'b00, load_shift} + 6'd1];          // bit j + load_shift + 1 of t2
+    wire       ldb    = (load_shift != 4'd0) && (ldd[0] ^ ltap ^ cl);
     wire       b_eff  = b_bit ^ sub;
     wire       r      = a_bit ^ b_eff ^ c0;
     wire       maj    = (a_bit & b_eff) | (c0 & (a_bit ^ b_eff));
@@ -555,7 +577,7 @@ module ctrl_seq #(
         else pc_next = pc;
     end
     reg  [5:0]  j_nx;
-    wire [3:0]  pk = {op_ref, uw[UW_PK + 2], uw[UW_PK + 1] | (op_ref & task_pos), uw[UW_PK]};
+    wire [3:0]  pk = {uw[UW_PK + 3], uw[UW_PK + 2], uw[UW_PK + 1] | (op_ref & task_pos), uw[UW_PK]};
     always @(*) begin
         j_nx = j;
         if (est == E_OP) j_nx = op_ref ? ref_j0 : 6'd0;
@@ -636,7 +658,7 @@ module ctrl_seq #(
                 c0 <= task_pos ? ~ref_q : ref_q;       // the value of the clock j = ja - 1 stays
                 c1 <= task_pos & ref_q;
             end else begin
-                c0 <= op_sub | (op_om & ka[0]);
+                c0 <= op_sub;                          // (OM: the rounding bit enters u1)
                 c1 <= 1'b0;
             end
         end else begin
@@ -687,6 +709,29 @@ module ctrl_seq #(
         if (in_pass && p_r1 && is_diff && diff_q) iqp <= {a_bit, iqp[IW-1:1]};
         if (in_pass && p_r1 && is_w6) omp <= {a_bit, omp[WW-1:1]};
         if (in_pass && p_r2) om <= {r, om[WW-1:1]};
+        // load estimate: OM pass (40 bits): u1, t2 into ldt, spd into spp; LD pass: D += t2 >>> ls+1
+        if (in_pass && is_om) begin
+            ldd <= {ldd[0], ldd[39:1]};
+            ldt <= {t2b, ldt[39:1]};
+            u1d <= u1b;
+            cu0 <= u1m ^ cu1;
+            cu1 <= u1m & cu1;
+            cs1 <= (u1d & ~a_bit) | (cs1 & (u1d ^ ~a_bit));
+            cs2 <= (s1b & sppb) | (cs2 & (s1b ^ sppb));
+            if (j < 6'd32) spp <= {a_bit, spp[WW-1:1]};
+            if (j == 6'd31) sph <= spp[0];
+        end else if (in_pass && is_ld) begin
+            ldd <= {ldb, ldd[39:1]};
+            ldt <= {ldt[39], ldt[39:1]};
+            cl <= (ldd[0] & ltap) | (cl & (ldd[0] ^ ltap));
+        end else begin
+            u1d <= 1'b0;
+            cu0 <= ~ka[0];
+            cu1 <= ka[0];
+            cs1 <= 1'b1;
+            cs2 <= 1'b0;
+            cl <= 1'b0;
+        end
         // multiplier: s + 40 steps through ka, which keeps the last 41 product bits (mk, ms: not
         // reset by rst, m_start loads them before mrun rises)
         if (m_start) begin
@@ -702,6 +747,8 @@ module ctrl_seq #(
         end
         if (in_pass && is_diff && p_cb) msg <= x[0];        // i_q sign (bit 17 of the W5 pass)
         if (rst) begin
+            ldd <= 40'd0;
+            spp <= {WW{1'b0}};
             pp <= {PW{1'b0}};
             idp <= {IW{1'b0}};
             iqp <= {IW{1'b0}};
@@ -732,7 +779,7 @@ module ctrl_seq #(
 
     // the op code stays in the microword (the test bench reads it), so do the source's upper bits;
     // the words' top bits are spare
-    wire unused = &{1'b0, uw[UW_SRC-1:0], uw[UW_SRC+3:UW_SRC+1], uw[UW_AGE + 3], uw[35:UW_PK+3],
-                    ub[35:UB_STW+1], per_cnt};   // (age bit 3: N = 8 only)
+    wire unused = &{1'b0, uw[UW_SRC-1:0], uw[UW_SRC+3:UW_SRC+1], uw[UW_AGE + 3],
+                    ub[35:UB_LD+1], per_cnt};   // (age bit 3: N = 8 only)
 endmodule
 `default_nettype wire

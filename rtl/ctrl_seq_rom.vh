@@ -62,7 +62,8 @@ for (ui = 32; ui <= 54; ui = ui + 1) crom[704 + ui] = 18'h04485;   // REFP0 32: 
 crom[704 + 55] = 18'h24485;   // REFP0 55: XS SS R1 AL F2 G
 for (ui = 56; ui <= 62; ui = ui + 1) crom[704 + ui] = 18'h04481;   // REFP0 56: XS R1 AL F2
 crom[704 + 63] = 18'h04483;   // REFP0 63: XS PE R1 AL F2
-// microprogram urom: uw (op[4], src[4], wa[6], age[4], st[6], pos[1], ref[1], diff[1], om[1], fix3[1], w6[1], stat[1], sub[1], pk[3], spare[1]) at pc, ub (nsel[10], to_stg[1], to_pass[1], zero[1], to_idle[1], end[1], cend[1], copy[1], wz[1], zpos[1], back[1], sat[1], stw[1], spare[14]) at 128 + pc, for the horizon N (the age field, the control program's length)
+crom[768 + 39] = 18'h00002;   // LD 39: PE
+// microprogram urom: uw (op[4], src[4], wa[6], age[4], st[6], pos[1], ref[1], diff[1], om[1], fix3[1], w6[1], stat[1], sub[1], pk[4]) at pc, ub (nsel[10], to_stg[1], to_pass[1], zero[1], to_idle[1], end[1], cend[1], copy[1], wz[1], zpos[1], back[1], sat[1], stw[1], ld[1], spare[13]) at 128 + pc, for the horizon N (the age field, the control program's length)
 if (N == 1) begin
     for (ui = 0; ui < 128; ui = ui + 1) begin urom[ui] = 36'h60000400b; urom[128 + ui] = 36'h0000023fe; end   // SEND
     urom[0] = 36'h0811c4700; urom[128] = 36'h0001007fe;   // pc 0 POS POS -> 7: dx3 = dpos << 8 (and dpos, the speed)
@@ -74,17 +75,18 @@ if (N == 1) begin
     urom[6] = 36'h600284a52; urom[134] = 36'h0000107df;   // pc 6 COPY U1 -> 10: u_prev[1]
     urom[7] = 36'h600405062; urom[135] = 36'h0000107bf;   // pc 7 COPY IDR -> 16: wref[0] = (id_ref,
     urom[8] = 36'h600445172; urom[136] = 36'h00001077f;   // pc 8 COPY IQR -> 17: iq_ref,
-    urom[9] = 36'h1029c5203; urom[137] = 36'h0003003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
+    urom[9] = 36'h9029c5203; urom[137] = 36'h0003003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
     urom[10] = 36'h6004c5362; urom[138] = 36'h0000107bf;   // pc 10 COPY IDR -> 19: wref[1] = (id_ref,
     urom[11] = 36'h600505472; urom[139] = 36'h00001077f;   // pc 11 COPY IQR -> 20: iq_ref,
-    urom[12] = 36'h0029c1503; urom[140] = 36'h0001003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
+    urom[12] = 36'h8029c1503; urom[140] = 36'h0001003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
     urom[13] = 36'h1848c4084; urom[141] = 36'h0002002ff;   // pc 13 DIFF ID -> 0: y0 = i_d, dx0 (at +4); waits for the front
     urom[14] = 36'h184904194; urom[142] = 36'h0002001ff;   // pc 14 DIFF IQ -> 1: y1 = i_q, dx1; feeds the multiplier
-    urom[15] = 36'h208004005; urom[143] = 36'h0000803fe;   // pc 15 OM: omega = spd + ka; waits for the product
-    urom[16] = 36'h310844306; urom[144] = 36'h000200bfe;   // pc 16 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
-    urom[17] = 36'h4a0184607; urom[145] = 36'h000100bfe;   // pc 17 W6 -> 6: dx2 = omega - omega_prev
-    urom[18] = 36'h600084208; urom[146] = 36'h0000413fe;   // pc 18 ZPOS -> 2: y2 = 0 (position task)
-    urom[19] = 36'h600004009; urom[147] = 36'h0000063fe;   // pc 19 END: core start
+    urom[15] = 36'h208004005; urom[143] = 36'h0000803fe;   // pc 15 OM: omega = spd + ka - D, t2 = 2 (ka - D) - spd + spd_prev; waits for the product
+    urom[16] = 36'hc0000400e; urom[144] = 36'h000480bfe;   // pc 16 LD -> 0: D += t2 >>> (load_shift + 1) (the load estimate of the speed)
+    urom[17] = 36'h310844306; urom[145] = 36'h000200bfe;   // pc 17 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
+    urom[18] = 36'h4a0184607; urom[146] = 36'h000100bfe;   // pc 18 W6 -> 6: dx2 = omega - omega_prev
+    urom[19] = 36'h600084208; urom[147] = 36'h0000413fe;   // pc 19 ZPOS -> 2: y2 = 0 (position task)
+    urom[20] = 36'h600004009; urom[148] = 36'h0000063fe;   // pc 20 END: core start
     urom[64] = 36'h54094654a; urom[192] = 36'h0002807ef;   // pc 64 STAT U0 -> 37: U_D = the u applied
     urom[65] = 36'h54098665a; urom[193] = 36'h0002807df;   // pc 65 STAT U1 -> 38: U_Q
     urom[66] = 36'h60000400b; urom[194] = 36'h0000023fe;   // pc 66 SEND
@@ -108,7 +110,8 @@ if (N == 1) begin
     urom[84] = 36'h600ec7b0c; urom[212] = 36'h000280bfe;   // pc 84 CNT -> 59: SAT_FRONT
     urom[85] = 36'h600f07c0c; urom[213] = 36'h000280bfe;   // pc 85 CNT -> 60: CNT_OVERRUN
     urom[86] = 36'h600ac6b0c; urom[214] = 36'h000280bfe;   // pc 86 CNT -> 43: PERIODS
-    urom[87] = 36'h60000400d; urom[215] = 36'h00000a3fe;   // pc 87 CEND
+    urom[87] = 36'h600fc7f0c; urom[215] = 36'h000280bfe;   // pc 87 CNT -> 63: SAT_GOV
+    urom[88] = 36'h60000400d; urom[216] = 36'h00000a3fe;   // pc 88 CEND
 end
 if (N == 2) begin
     for (ui = 0; ui < 128; ui = ui + 1) begin urom[ui] = 36'h60000800b; urom[128 + ui] = 36'h0000023fe; end   // SEND
@@ -121,20 +124,21 @@ if (N == 2) begin
     urom[6] = 36'h600288a52; urom[134] = 36'h0000107df;   // pc 6 COPY U1 -> 10: u_prev[1]
     urom[7] = 36'h600409062; urom[135] = 36'h0000107bf;   // pc 7 COPY IDR -> 16: wref[0] = (id_ref,
     urom[8] = 36'h600449172; urom[136] = 36'h00001077f;   // pc 8 COPY IQR -> 17: iq_ref,
-    urom[9] = 36'h1029c9203; urom[137] = 36'h0003003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
+    urom[9] = 36'h9029c9203; urom[137] = 36'h0003003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
     urom[10] = 36'h6004c9362; urom[138] = 36'h0000107bf;   // pc 10 COPY IDR -> 19: wref[1] = (id_ref,
     urom[11] = 36'h600509472; urom[139] = 36'h00001077f;   // pc 11 COPY IQR -> 20: iq_ref,
-    urom[12] = 36'h0029c5503; urom[140] = 36'h0001003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
+    urom[12] = 36'h8029c5503; urom[140] = 36'h0001003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
     urom[13] = 36'h600589662; urom[141] = 36'h0000107bf;   // pc 13 COPY IDR -> 22: wref[2] = (id_ref,
     urom[14] = 36'h6005c9772; urom[142] = 36'h00001077f;   // pc 14 COPY IQR -> 23: iq_ref,
-    urom[15] = 36'h0029c1803; urom[143] = 36'h0001003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
+    urom[15] = 36'h8029c1803; urom[143] = 36'h0001003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
     urom[16] = 36'h1848c8084; urom[144] = 36'h0002002ff;   // pc 16 DIFF ID -> 0: y0 = i_d, dx0 (at +4); waits for the front
     urom[17] = 36'h184908194; urom[145] = 36'h0002001ff;   // pc 17 DIFF IQ -> 1: y1 = i_q, dx1; feeds the multiplier
-    urom[18] = 36'h208008005; urom[146] = 36'h0000803fe;   // pc 18 OM: omega = spd + ka; waits for the product
-    urom[19] = 36'h310848306; urom[147] = 36'h000200bfe;   // pc 19 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
-    urom[20] = 36'h4a0188607; urom[148] = 36'h000100bfe;   // pc 20 W6 -> 6: dx2 = omega - omega_prev
-    urom[21] = 36'h600088208; urom[149] = 36'h0000413fe;   // pc 21 ZPOS -> 2: y2 = 0 (position task)
-    urom[22] = 36'h600008009; urom[150] = 36'h0000063fe;   // pc 22 END: core start
+    urom[18] = 36'h208008005; urom[146] = 36'h0000803fe;   // pc 18 OM: omega = spd + ka - D, t2 = 2 (ka - D) - spd + spd_prev; waits for the product
+    urom[19] = 36'hc0000800e; urom[147] = 36'h000480bfe;   // pc 19 LD -> 0: D += t2 >>> (load_shift + 1) (the load estimate of the speed)
+    urom[20] = 36'h310848306; urom[148] = 36'h000200bfe;   // pc 20 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
+    urom[21] = 36'h4a0188607; urom[149] = 36'h000100bfe;   // pc 21 W6 -> 6: dx2 = omega - omega_prev
+    urom[22] = 36'h600088208; urom[150] = 36'h0000413fe;   // pc 22 ZPOS -> 2: y2 = 0 (position task)
+    urom[23] = 36'h600008009; urom[151] = 36'h0000063fe;   // pc 23 END: core start
     urom[64] = 36'h54094a54a; urom[192] = 36'h0002807ef;   // pc 64 STAT U0 -> 37: U_D = the u applied
     urom[65] = 36'h54098a65a; urom[193] = 36'h0002807df;   // pc 65 STAT U1 -> 38: U_Q
     urom[66] = 36'h60000800b; urom[194] = 36'h0000023fe;   // pc 66 SEND
@@ -158,7 +162,8 @@ if (N == 2) begin
     urom[84] = 36'h600ecbb0c; urom[212] = 36'h000280bfe;   // pc 84 CNT -> 59: SAT_FRONT
     urom[85] = 36'h600f0bc0c; urom[213] = 36'h000280bfe;   // pc 85 CNT -> 60: CNT_OVERRUN
     urom[86] = 36'h600acab0c; urom[214] = 36'h000280bfe;   // pc 86 CNT -> 43: PERIODS
-    urom[87] = 36'h60000800d; urom[215] = 36'h00000a3fe;   // pc 87 CEND
+    urom[87] = 36'h600fcbf0c; urom[215] = 36'h000280bfe;   // pc 87 CNT -> 63: SAT_GOV
+    urom[88] = 36'h60000800d; urom[216] = 36'h00000a3fe;   // pc 88 CEND
 end
 if (N == 3) begin
     for (ui = 0; ui < 128; ui = ui + 1) begin urom[ui] = 36'h60000c00b; urom[128 + ui] = 36'h0000023fe; end   // SEND
@@ -171,23 +176,24 @@ if (N == 3) begin
     urom[6] = 36'h60028ca52; urom[134] = 36'h0000107df;   // pc 6 COPY U1 -> 10: u_prev[1]
     urom[7] = 36'h60040d062; urom[135] = 36'h0000107bf;   // pc 7 COPY IDR -> 16: wref[0] = (id_ref,
     urom[8] = 36'h60044d172; urom[136] = 36'h00001077f;   // pc 8 COPY IQR -> 17: iq_ref,
-    urom[9] = 36'h1029cd203; urom[137] = 36'h0003003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
+    urom[9] = 36'h9029cd203; urom[137] = 36'h0003003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
     urom[10] = 36'h6004cd362; urom[138] = 36'h0000107bf;   // pc 10 COPY IDR -> 19: wref[1] = (id_ref,
     urom[11] = 36'h60050d472; urom[139] = 36'h00001077f;   // pc 11 COPY IQR -> 20: iq_ref,
-    urom[12] = 36'h0029c9503; urom[140] = 36'h0001003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
+    urom[12] = 36'h8029c9503; urom[140] = 36'h0001003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
     urom[13] = 36'h60058d662; urom[141] = 36'h0000107bf;   // pc 13 COPY IDR -> 22: wref[2] = (id_ref,
     urom[14] = 36'h6005cd772; urom[142] = 36'h00001077f;   // pc 14 COPY IQR -> 23: iq_ref,
-    urom[15] = 36'h0029c5803; urom[143] = 36'h0001003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
+    urom[15] = 36'h8029c5803; urom[143] = 36'h0001003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
     urom[16] = 36'h60064d962; urom[144] = 36'h0000107bf;   // pc 16 COPY IDR -> 25: wref[3] = (id_ref,
     urom[17] = 36'h60068da72; urom[145] = 36'h00001077f;   // pc 17 COPY IQR -> 26: iq_ref,
-    urom[18] = 36'h0029c1b03; urom[146] = 36'h0001003fe;   // pc 18 REF -> 27 m 3: w3[3] from w_(k+3))
+    urom[18] = 36'h8029c1b03; urom[146] = 36'h0001003fe;   // pc 18 REF -> 27 m 3: w3[3] from w_(k+3))
     urom[19] = 36'h1848cc084; urom[147] = 36'h0002002ff;   // pc 19 DIFF ID -> 0: y0 = i_d, dx0 (at +4); waits for the front
     urom[20] = 36'h18490c194; urom[148] = 36'h0002001ff;   // pc 20 DIFF IQ -> 1: y1 = i_q, dx1; feeds the multiplier
-    urom[21] = 36'h20800c005; urom[149] = 36'h0000803fe;   // pc 21 OM: omega = spd + ka; waits for the product
-    urom[22] = 36'h31084c306; urom[150] = 36'h000200bfe;   // pc 22 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
-    urom[23] = 36'h4a018c607; urom[151] = 36'h000100bfe;   // pc 23 W6 -> 6: dx2 = omega - omega_prev
-    urom[24] = 36'h60008c208; urom[152] = 36'h0000413fe;   // pc 24 ZPOS -> 2: y2 = 0 (position task)
-    urom[25] = 36'h60000c009; urom[153] = 36'h0000063fe;   // pc 25 END: core start
+    urom[21] = 36'h20800c005; urom[149] = 36'h0000803fe;   // pc 21 OM: omega = spd + ka - D, t2 = 2 (ka - D) - spd + spd_prev; waits for the product
+    urom[22] = 36'hc0000c00e; urom[150] = 36'h000480bfe;   // pc 22 LD -> 0: D += t2 >>> (load_shift + 1) (the load estimate of the speed)
+    urom[23] = 36'h31084c306; urom[151] = 36'h000200bfe;   // pc 23 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
+    urom[24] = 36'h4a018c607; urom[152] = 36'h000100bfe;   // pc 24 W6 -> 6: dx2 = omega - omega_prev
+    urom[25] = 36'h60008c208; urom[153] = 36'h0000413fe;   // pc 25 ZPOS -> 2: y2 = 0 (position task)
+    urom[26] = 36'h60000c009; urom[154] = 36'h0000063fe;   // pc 26 END: core start
     urom[64] = 36'h54094e54a; urom[192] = 36'h0002807ef;   // pc 64 STAT U0 -> 37: U_D = the u applied
     urom[65] = 36'h54098e65a; urom[193] = 36'h0002807df;   // pc 65 STAT U1 -> 38: U_Q
     urom[66] = 36'h60000c00b; urom[194] = 36'h0000023fe;   // pc 66 SEND
@@ -211,7 +217,8 @@ if (N == 3) begin
     urom[84] = 36'h600ecfb0c; urom[212] = 36'h000280bfe;   // pc 84 CNT -> 59: SAT_FRONT
     urom[85] = 36'h600f0fc0c; urom[213] = 36'h000280bfe;   // pc 85 CNT -> 60: CNT_OVERRUN
     urom[86] = 36'h600aceb0c; urom[214] = 36'h000280bfe;   // pc 86 CNT -> 43: PERIODS
-    urom[87] = 36'h60000c00d; urom[215] = 36'h00000a3fe;   // pc 87 CEND
+    urom[87] = 36'h600fcff0c; urom[215] = 36'h000280bfe;   // pc 87 CNT -> 63: SAT_GOV
+    urom[88] = 36'h60000c00d; urom[216] = 36'h00000a3fe;   // pc 88 CEND
 end
 if (N == 4) begin
     for (ui = 0; ui < 128; ui = ui + 1) begin urom[ui] = 36'h60001000b; urom[128 + ui] = 36'h0000023fe; end   // SEND
@@ -224,26 +231,27 @@ if (N == 4) begin
     urom[6] = 36'h600290a52; urom[134] = 36'h0000107df;   // pc 6 COPY U1 -> 10: u_prev[1]
     urom[7] = 36'h600411062; urom[135] = 36'h0000107bf;   // pc 7 COPY IDR -> 16: wref[0] = (id_ref,
     urom[8] = 36'h600451172; urom[136] = 36'h00001077f;   // pc 8 COPY IQR -> 17: iq_ref,
-    urom[9] = 36'h1029d1203; urom[137] = 36'h0003003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
+    urom[9] = 36'h9029d1203; urom[137] = 36'h0003003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
     urom[10] = 36'h6004d1362; urom[138] = 36'h0000107bf;   // pc 10 COPY IDR -> 19: wref[1] = (id_ref,
     urom[11] = 36'h600511472; urom[139] = 36'h00001077f;   // pc 11 COPY IQR -> 20: iq_ref,
-    urom[12] = 36'h0029cd503; urom[140] = 36'h0001003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
+    urom[12] = 36'h8029cd503; urom[140] = 36'h0001003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
     urom[13] = 36'h600591662; urom[141] = 36'h0000107bf;   // pc 13 COPY IDR -> 22: wref[2] = (id_ref,
     urom[14] = 36'h6005d1772; urom[142] = 36'h00001077f;   // pc 14 COPY IQR -> 23: iq_ref,
-    urom[15] = 36'h0029c9803; urom[143] = 36'h0001003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
+    urom[15] = 36'h8029c9803; urom[143] = 36'h0001003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
     urom[16] = 36'h600651962; urom[144] = 36'h0000107bf;   // pc 16 COPY IDR -> 25: wref[3] = (id_ref,
     urom[17] = 36'h600691a72; urom[145] = 36'h00001077f;   // pc 17 COPY IQR -> 26: iq_ref,
-    urom[18] = 36'h0029c5b03; urom[146] = 36'h0001003fe;   // pc 18 REF -> 27 m 3: w3[3] from w_(k+3))
+    urom[18] = 36'h8029c5b03; urom[146] = 36'h0001003fe;   // pc 18 REF -> 27 m 3: w3[3] from w_(k+3))
     urom[19] = 36'h600711c62; urom[147] = 36'h0000107bf;   // pc 19 COPY IDR -> 28: wref[4] = (id_ref,
     urom[20] = 36'h600751d72; urom[148] = 36'h00001077f;   // pc 20 COPY IQR -> 29: iq_ref,
-    urom[21] = 36'h0029c1e03; urom[149] = 36'h0001003fe;   // pc 21 REF -> 30 m 4: w3[4] from w_(k+4))
+    urom[21] = 36'h8029c1e03; urom[149] = 36'h0001003fe;   // pc 21 REF -> 30 m 4: w3[4] from w_(k+4))
     urom[22] = 36'h1848d0084; urom[150] = 36'h0002002ff;   // pc 22 DIFF ID -> 0: y0 = i_d, dx0 (at +4); waits for the front
     urom[23] = 36'h184910194; urom[151] = 36'h0002001ff;   // pc 23 DIFF IQ -> 1: y1 = i_q, dx1; feeds the multiplier
-    urom[24] = 36'h208010005; urom[152] = 36'h0000803fe;   // pc 24 OM: omega = spd + ka; waits for the product
-    urom[25] = 36'h310850306; urom[153] = 36'h000200bfe;   // pc 25 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
-    urom[26] = 36'h4a0190607; urom[154] = 36'h000100bfe;   // pc 26 W6 -> 6: dx2 = omega - omega_prev
-    urom[27] = 36'h600090208; urom[155] = 36'h0000413fe;   // pc 27 ZPOS -> 2: y2 = 0 (position task)
-    urom[28] = 36'h600010009; urom[156] = 36'h0000063fe;   // pc 28 END: core start
+    urom[24] = 36'h208010005; urom[152] = 36'h0000803fe;   // pc 24 OM: omega = spd + ka - D, t2 = 2 (ka - D) - spd + spd_prev; waits for the product
+    urom[25] = 36'hc0001000e; urom[153] = 36'h000480bfe;   // pc 25 LD -> 0: D += t2 >>> (load_shift + 1) (the load estimate of the speed)
+    urom[26] = 36'h310850306; urom[154] = 36'h000200bfe;   // pc 26 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
+    urom[27] = 36'h4a0190607; urom[155] = 36'h000100bfe;   // pc 27 W6 -> 6: dx2 = omega - omega_prev
+    urom[28] = 36'h600090208; urom[156] = 36'h0000413fe;   // pc 28 ZPOS -> 2: y2 = 0 (position task)
+    urom[29] = 36'h600010009; urom[157] = 36'h0000063fe;   // pc 29 END: core start
     urom[64] = 36'h54095254a; urom[192] = 36'h0002807ef;   // pc 64 STAT U0 -> 37: U_D = the u applied
     urom[65] = 36'h54099265a; urom[193] = 36'h0002807df;   // pc 65 STAT U1 -> 38: U_Q
     urom[66] = 36'h60001000b; urom[194] = 36'h0000023fe;   // pc 66 SEND
@@ -267,7 +275,8 @@ if (N == 4) begin
     urom[84] = 36'h600ed3b0c; urom[212] = 36'h000280bfe;   // pc 84 CNT -> 59: SAT_FRONT
     urom[85] = 36'h600f13c0c; urom[213] = 36'h000280bfe;   // pc 85 CNT -> 60: CNT_OVERRUN
     urom[86] = 36'h600ad2b0c; urom[214] = 36'h000280bfe;   // pc 86 CNT -> 43: PERIODS
-    urom[87] = 36'h60001000d; urom[215] = 36'h00000a3fe;   // pc 87 CEND
+    urom[87] = 36'h600fd3f0c; urom[215] = 36'h000280bfe;   // pc 87 CNT -> 63: SAT_GOV
+    urom[88] = 36'h60001000d; urom[216] = 36'h00000a3fe;   // pc 88 CEND
 end
 if (N == 5) begin
     for (ui = 0; ui < 128; ui = ui + 1) begin urom[ui] = 36'h60001400b; urom[128 + ui] = 36'h0000023fe; end   // SEND
@@ -280,29 +289,30 @@ if (N == 5) begin
     urom[6] = 36'h600294a52; urom[134] = 36'h0000107df;   // pc 6 COPY U1 -> 10: u_prev[1]
     urom[7] = 36'h600415062; urom[135] = 36'h0000107bf;   // pc 7 COPY IDR -> 16: wref[0] = (id_ref,
     urom[8] = 36'h600455172; urom[136] = 36'h00001077f;   // pc 8 COPY IQR -> 17: iq_ref,
-    urom[9] = 36'h1029d5203; urom[137] = 36'h0003003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
+    urom[9] = 36'h9029d5203; urom[137] = 36'h0003003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
     urom[10] = 36'h6004d5362; urom[138] = 36'h0000107bf;   // pc 10 COPY IDR -> 19: wref[1] = (id_ref,
     urom[11] = 36'h600515472; urom[139] = 36'h00001077f;   // pc 11 COPY IQR -> 20: iq_ref,
-    urom[12] = 36'h0029d1503; urom[140] = 36'h0001003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
+    urom[12] = 36'h8029d1503; urom[140] = 36'h0001003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
     urom[13] = 36'h600595662; urom[141] = 36'h0000107bf;   // pc 13 COPY IDR -> 22: wref[2] = (id_ref,
     urom[14] = 36'h6005d5772; urom[142] = 36'h00001077f;   // pc 14 COPY IQR -> 23: iq_ref,
-    urom[15] = 36'h0029cd803; urom[143] = 36'h0001003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
+    urom[15] = 36'h8029cd803; urom[143] = 36'h0001003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
     urom[16] = 36'h600655962; urom[144] = 36'h0000107bf;   // pc 16 COPY IDR -> 25: wref[3] = (id_ref,
     urom[17] = 36'h600695a72; urom[145] = 36'h00001077f;   // pc 17 COPY IQR -> 26: iq_ref,
-    urom[18] = 36'h0029c9b03; urom[146] = 36'h0001003fe;   // pc 18 REF -> 27 m 3: w3[3] from w_(k+3))
+    urom[18] = 36'h8029c9b03; urom[146] = 36'h0001003fe;   // pc 18 REF -> 27 m 3: w3[3] from w_(k+3))
     urom[19] = 36'h600715c62; urom[147] = 36'h0000107bf;   // pc 19 COPY IDR -> 28: wref[4] = (id_ref,
     urom[20] = 36'h600755d72; urom[148] = 36'h00001077f;   // pc 20 COPY IQR -> 29: iq_ref,
-    urom[21] = 36'h0029c5e03; urom[149] = 36'h0001003fe;   // pc 21 REF -> 30 m 4: w3[4] from w_(k+4))
+    urom[21] = 36'h8029c5e03; urom[149] = 36'h0001003fe;   // pc 21 REF -> 30 m 4: w3[4] from w_(k+4))
     urom[22] = 36'h6007d5f62; urom[150] = 36'h0000107bf;   // pc 22 COPY IDR -> 31: wref[5] = (id_ref,
     urom[23] = 36'h600816072; urom[151] = 36'h00001077f;   // pc 23 COPY IQR -> 32: iq_ref,
-    urom[24] = 36'h0029c2103; urom[152] = 36'h0001003fe;   // pc 24 REF -> 33 m 5: w3[5] from w_(k+5))
+    urom[24] = 36'h8029c2103; urom[152] = 36'h0001003fe;   // pc 24 REF -> 33 m 5: w3[5] from w_(k+5))
     urom[25] = 36'h1848d4084; urom[153] = 36'h0002002ff;   // pc 25 DIFF ID -> 0: y0 = i_d, dx0 (at +4); waits for the front
     urom[26] = 36'h184914194; urom[154] = 36'h0002001ff;   // pc 26 DIFF IQ -> 1: y1 = i_q, dx1; feeds the multiplier
-    urom[27] = 36'h208014005; urom[155] = 36'h0000803fe;   // pc 27 OM: omega = spd + ka; waits for the product
-    urom[28] = 36'h310854306; urom[156] = 36'h000200bfe;   // pc 28 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
-    urom[29] = 36'h4a0194607; urom[157] = 36'h000100bfe;   // pc 29 W6 -> 6: dx2 = omega - omega_prev
-    urom[30] = 36'h600094208; urom[158] = 36'h0000413fe;   // pc 30 ZPOS -> 2: y2 = 0 (position task)
-    urom[31] = 36'h600014009; urom[159] = 36'h0000063fe;   // pc 31 END: core start
+    urom[27] = 36'h208014005; urom[155] = 36'h0000803fe;   // pc 27 OM: omega = spd + ka - D, t2 = 2 (ka - D) - spd + spd_prev; waits for the product
+    urom[28] = 36'hc0001400e; urom[156] = 36'h000480bfe;   // pc 28 LD -> 0: D += t2 >>> (load_shift + 1) (the load estimate of the speed)
+    urom[29] = 36'h310854306; urom[157] = 36'h000200bfe;   // pc 29 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
+    urom[30] = 36'h4a0194607; urom[158] = 36'h000100bfe;   // pc 30 W6 -> 6: dx2 = omega - omega_prev
+    urom[31] = 36'h600094208; urom[159] = 36'h0000413fe;   // pc 31 ZPOS -> 2: y2 = 0 (position task)
+    urom[32] = 36'h600014009; urom[160] = 36'h0000063fe;   // pc 32 END: core start
     urom[64] = 36'h54095654a; urom[192] = 36'h0002807ef;   // pc 64 STAT U0 -> 37: U_D = the u applied
     urom[65] = 36'h54099665a; urom[193] = 36'h0002807df;   // pc 65 STAT U1 -> 38: U_Q
     urom[66] = 36'h60001400b; urom[194] = 36'h0000023fe;   // pc 66 SEND
@@ -326,7 +336,8 @@ if (N == 5) begin
     urom[84] = 36'h600ed7b0c; urom[212] = 36'h000280bfe;   // pc 84 CNT -> 59: SAT_FRONT
     urom[85] = 36'h600f17c0c; urom[213] = 36'h000280bfe;   // pc 85 CNT -> 60: CNT_OVERRUN
     urom[86] = 36'h600ad6b0c; urom[214] = 36'h000280bfe;   // pc 86 CNT -> 43: PERIODS
-    urom[87] = 36'h60001400d; urom[215] = 36'h00000a3fe;   // pc 87 CEND
+    urom[87] = 36'h600fd7f0c; urom[215] = 36'h000280bfe;   // pc 87 CNT -> 63: SAT_GOV
+    urom[88] = 36'h60001400d; urom[216] = 36'h00000a3fe;   // pc 88 CEND
 end
 if (N == 6) begin
     for (ui = 0; ui < 128; ui = ui + 1) begin urom[ui] = 36'h60001800b; urom[128 + ui] = 36'h0000023fe; end   // SEND
@@ -339,32 +350,33 @@ if (N == 6) begin
     urom[6] = 36'h600298a52; urom[134] = 36'h0000107df;   // pc 6 COPY U1 -> 10: u_prev[1]
     urom[7] = 36'h600419062; urom[135] = 36'h0000107bf;   // pc 7 COPY IDR -> 16: wref[0] = (id_ref,
     urom[8] = 36'h600459172; urom[136] = 36'h00001077f;   // pc 8 COPY IQR -> 17: iq_ref,
-    urom[9] = 36'h1029d9203; urom[137] = 36'h0003003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
+    urom[9] = 36'h9029d9203; urom[137] = 36'h0003003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
     urom[10] = 36'h6004d9362; urom[138] = 36'h0000107bf;   // pc 10 COPY IDR -> 19: wref[1] = (id_ref,
     urom[11] = 36'h600519472; urom[139] = 36'h00001077f;   // pc 11 COPY IQR -> 20: iq_ref,
-    urom[12] = 36'h0029d5503; urom[140] = 36'h0001003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
+    urom[12] = 36'h8029d5503; urom[140] = 36'h0001003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
     urom[13] = 36'h600599662; urom[141] = 36'h0000107bf;   // pc 13 COPY IDR -> 22: wref[2] = (id_ref,
     urom[14] = 36'h6005d9772; urom[142] = 36'h00001077f;   // pc 14 COPY IQR -> 23: iq_ref,
-    urom[15] = 36'h0029d1803; urom[143] = 36'h0001003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
+    urom[15] = 36'h8029d1803; urom[143] = 36'h0001003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
     urom[16] = 36'h600659962; urom[144] = 36'h0000107bf;   // pc 16 COPY IDR -> 25: wref[3] = (id_ref,
     urom[17] = 36'h600699a72; urom[145] = 36'h00001077f;   // pc 17 COPY IQR -> 26: iq_ref,
-    urom[18] = 36'h0029cdb03; urom[146] = 36'h0001003fe;   // pc 18 REF -> 27 m 3: w3[3] from w_(k+3))
+    urom[18] = 36'h8029cdb03; urom[146] = 36'h0001003fe;   // pc 18 REF -> 27 m 3: w3[3] from w_(k+3))
     urom[19] = 36'h600719c62; urom[147] = 36'h0000107bf;   // pc 19 COPY IDR -> 28: wref[4] = (id_ref,
     urom[20] = 36'h600759d72; urom[148] = 36'h00001077f;   // pc 20 COPY IQR -> 29: iq_ref,
-    urom[21] = 36'h0029c9e03; urom[149] = 36'h0001003fe;   // pc 21 REF -> 30 m 4: w3[4] from w_(k+4))
+    urom[21] = 36'h8029c9e03; urom[149] = 36'h0001003fe;   // pc 21 REF -> 30 m 4: w3[4] from w_(k+4))
     urom[22] = 36'h6007d9f62; urom[150] = 36'h0000107bf;   // pc 22 COPY IDR -> 31: wref[5] = (id_ref,
     urom[23] = 36'h60081a072; urom[151] = 36'h00001077f;   // pc 23 COPY IQR -> 32: iq_ref,
-    urom[24] = 36'h0029c6103; urom[152] = 36'h0001003fe;   // pc 24 REF -> 33 m 5: w3[5] from w_(k+5))
+    urom[24] = 36'h8029c6103; urom[152] = 36'h0001003fe;   // pc 24 REF -> 33 m 5: w3[5] from w_(k+5))
     urom[25] = 36'h60089a262; urom[153] = 36'h0000107bf;   // pc 25 COPY IDR -> 34: wref[6] = (id_ref,
     urom[26] = 36'h6008da372; urom[154] = 36'h00001077f;   // pc 26 COPY IQR -> 35: iq_ref,
-    urom[27] = 36'h0029c2403; urom[155] = 36'h0001003fe;   // pc 27 REF -> 36 m 6: w3[6] from w_(k+6))
+    urom[27] = 36'h8029c2403; urom[155] = 36'h0001003fe;   // pc 27 REF -> 36 m 6: w3[6] from w_(k+6))
     urom[28] = 36'h1848d8084; urom[156] = 36'h0002002ff;   // pc 28 DIFF ID -> 0: y0 = i_d, dx0 (at +4); waits for the front
     urom[29] = 36'h184918194; urom[157] = 36'h0002001ff;   // pc 29 DIFF IQ -> 1: y1 = i_q, dx1; feeds the multiplier
-    urom[30] = 36'h208018005; urom[158] = 36'h0000803fe;   // pc 30 OM: omega = spd + ka; waits for the product
-    urom[31] = 36'h310858306; urom[159] = 36'h000200bfe;   // pc 31 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
-    urom[32] = 36'h4a0198607; urom[160] = 36'h000100bfe;   // pc 32 W6 -> 6: dx2 = omega - omega_prev
-    urom[33] = 36'h600098208; urom[161] = 36'h0000413fe;   // pc 33 ZPOS -> 2: y2 = 0 (position task)
-    urom[34] = 36'h600018009; urom[162] = 36'h0000063fe;   // pc 34 END: core start
+    urom[30] = 36'h208018005; urom[158] = 36'h0000803fe;   // pc 30 OM: omega = spd + ka - D, t2 = 2 (ka - D) - spd + spd_prev; waits for the product
+    urom[31] = 36'hc0001800e; urom[159] = 36'h000480bfe;   // pc 31 LD -> 0: D += t2 >>> (load_shift + 1) (the load estimate of the speed)
+    urom[32] = 36'h310858306; urom[160] = 36'h000200bfe;   // pc 32 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
+    urom[33] = 36'h4a0198607; urom[161] = 36'h000100bfe;   // pc 33 W6 -> 6: dx2 = omega - omega_prev
+    urom[34] = 36'h600098208; urom[162] = 36'h0000413fe;   // pc 34 ZPOS -> 2: y2 = 0 (position task)
+    urom[35] = 36'h600018009; urom[163] = 36'h0000063fe;   // pc 35 END: core start
     urom[64] = 36'h54095a54a; urom[192] = 36'h0002807ef;   // pc 64 STAT U0 -> 37: U_D = the u applied
     urom[65] = 36'h54099a65a; urom[193] = 36'h0002807df;   // pc 65 STAT U1 -> 38: U_Q
     urom[66] = 36'h60001800b; urom[194] = 36'h0000023fe;   // pc 66 SEND
@@ -388,7 +400,8 @@ if (N == 6) begin
     urom[84] = 36'h600edbb0c; urom[212] = 36'h000280bfe;   // pc 84 CNT -> 59: SAT_FRONT
     urom[85] = 36'h600f1bc0c; urom[213] = 36'h000280bfe;   // pc 85 CNT -> 60: CNT_OVERRUN
     urom[86] = 36'h600adab0c; urom[214] = 36'h000280bfe;   // pc 86 CNT -> 43: PERIODS
-    urom[87] = 36'h60001800d; urom[215] = 36'h00000a3fe;   // pc 87 CEND
+    urom[87] = 36'h600fdbf0c; urom[215] = 36'h000280bfe;   // pc 87 CNT -> 63: SAT_GOV
+    urom[88] = 36'h60001800d; urom[216] = 36'h00000a3fe;   // pc 88 CEND
 end
 if (N == 7) begin
     for (ui = 0; ui < 128; ui = ui + 1) begin urom[ui] = 36'h60001c00b; urom[128 + ui] = 36'h0000023fe; end   // SEND
@@ -401,35 +414,36 @@ if (N == 7) begin
     urom[6] = 36'h60029ca52; urom[134] = 36'h0000107df;   // pc 6 COPY U1 -> 10: u_prev[1]
     urom[7] = 36'h60041d062; urom[135] = 36'h0000107bf;   // pc 7 COPY IDR -> 16: wref[0] = (id_ref,
     urom[8] = 36'h60045d172; urom[136] = 36'h00001077f;   // pc 8 COPY IQR -> 17: iq_ref,
-    urom[9] = 36'h1029dd203; urom[137] = 36'h0003003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
+    urom[9] = 36'h9029dd203; urom[137] = 36'h0003003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
     urom[10] = 36'h6004dd362; urom[138] = 36'h0000107bf;   // pc 10 COPY IDR -> 19: wref[1] = (id_ref,
     urom[11] = 36'h60051d472; urom[139] = 36'h00001077f;   // pc 11 COPY IQR -> 20: iq_ref,
-    urom[12] = 36'h0029d9503; urom[140] = 36'h0001003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
+    urom[12] = 36'h8029d9503; urom[140] = 36'h0001003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
     urom[13] = 36'h60059d662; urom[141] = 36'h0000107bf;   // pc 13 COPY IDR -> 22: wref[2] = (id_ref,
     urom[14] = 36'h6005dd772; urom[142] = 36'h00001077f;   // pc 14 COPY IQR -> 23: iq_ref,
-    urom[15] = 36'h0029d5803; urom[143] = 36'h0001003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
+    urom[15] = 36'h8029d5803; urom[143] = 36'h0001003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
     urom[16] = 36'h60065d962; urom[144] = 36'h0000107bf;   // pc 16 COPY IDR -> 25: wref[3] = (id_ref,
     urom[17] = 36'h60069da72; urom[145] = 36'h00001077f;   // pc 17 COPY IQR -> 26: iq_ref,
-    urom[18] = 36'h0029d1b03; urom[146] = 36'h0001003fe;   // pc 18 REF -> 27 m 3: w3[3] from w_(k+3))
+    urom[18] = 36'h8029d1b03; urom[146] = 36'h0001003fe;   // pc 18 REF -> 27 m 3: w3[3] from w_(k+3))
     urom[19] = 36'h60071dc62; urom[147] = 36'h0000107bf;   // pc 19 COPY IDR -> 28: wref[4] = (id_ref,
     urom[20] = 36'h60075dd72; urom[148] = 36'h00001077f;   // pc 20 COPY IQR -> 29: iq_ref,
-    urom[21] = 36'h0029cde03; urom[149] = 36'h0001003fe;   // pc 21 REF -> 30 m 4: w3[4] from w_(k+4))
+    urom[21] = 36'h8029cde03; urom[149] = 36'h0001003fe;   // pc 21 REF -> 30 m 4: w3[4] from w_(k+4))
     urom[22] = 36'h6007ddf62; urom[150] = 36'h0000107bf;   // pc 22 COPY IDR -> 31: wref[5] = (id_ref,
     urom[23] = 36'h60081e072; urom[151] = 36'h00001077f;   // pc 23 COPY IQR -> 32: iq_ref,
-    urom[24] = 36'h0029ca103; urom[152] = 36'h0001003fe;   // pc 24 REF -> 33 m 5: w3[5] from w_(k+5))
+    urom[24] = 36'h8029ca103; urom[152] = 36'h0001003fe;   // pc 24 REF -> 33 m 5: w3[5] from w_(k+5))
     urom[25] = 36'h60089e262; urom[153] = 36'h0000107bf;   // pc 25 COPY IDR -> 34: wref[6] = (id_ref,
     urom[26] = 36'h6008de372; urom[154] = 36'h00001077f;   // pc 26 COPY IQR -> 35: iq_ref,
-    urom[27] = 36'h0029c6403; urom[155] = 36'h0001003fe;   // pc 27 REF -> 36 m 6: w3[6] from w_(k+6))
+    urom[27] = 36'h8029c6403; urom[155] = 36'h0001003fe;   // pc 27 REF -> 36 m 6: w3[6] from w_(k+6))
     urom[28] = 36'h60095e562; urom[156] = 36'h0000107bf;   // pc 28 COPY IDR -> 37: wref[7] = (id_ref,
     urom[29] = 36'h60099e672; urom[157] = 36'h00001077f;   // pc 29 COPY IQR -> 38: iq_ref,
-    urom[30] = 36'h0029c2703; urom[158] = 36'h0001003fe;   // pc 30 REF -> 39 m 7: w3[7] from w_(k+7))
+    urom[30] = 36'h8029c2703; urom[158] = 36'h0001003fe;   // pc 30 REF -> 39 m 7: w3[7] from w_(k+7))
     urom[31] = 36'h1848dc084; urom[159] = 36'h0002002ff;   // pc 31 DIFF ID -> 0: y0 = i_d, dx0 (at +4); waits for the front
     urom[32] = 36'h18491c194; urom[160] = 36'h0002001ff;   // pc 32 DIFF IQ -> 1: y1 = i_q, dx1; feeds the multiplier
-    urom[33] = 36'h20801c005; urom[161] = 36'h0000803fe;   // pc 33 OM: omega = spd + ka; waits for the product
-    urom[34] = 36'h31085c306; urom[162] = 36'h000200bfe;   // pc 34 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
-    urom[35] = 36'h4a019c607; urom[163] = 36'h000100bfe;   // pc 35 W6 -> 6: dx2 = omega - omega_prev
-    urom[36] = 36'h60009c208; urom[164] = 36'h0000413fe;   // pc 36 ZPOS -> 2: y2 = 0 (position task)
-    urom[37] = 36'h60001c009; urom[165] = 36'h0000063fe;   // pc 37 END: core start
+    urom[33] = 36'h20801c005; urom[161] = 36'h0000803fe;   // pc 33 OM: omega = spd + ka - D, t2 = 2 (ka - D) - spd + spd_prev; waits for the product
+    urom[34] = 36'hc0001c00e; urom[162] = 36'h000480bfe;   // pc 34 LD -> 0: D += t2 >>> (load_shift + 1) (the load estimate of the speed)
+    urom[35] = 36'h31085c306; urom[163] = 36'h000200bfe;   // pc 35 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
+    urom[36] = 36'h4a019c607; urom[164] = 36'h000100bfe;   // pc 36 W6 -> 6: dx2 = omega - omega_prev
+    urom[37] = 36'h60009c208; urom[165] = 36'h0000413fe;   // pc 37 ZPOS -> 2: y2 = 0 (position task)
+    urom[38] = 36'h60001c009; urom[166] = 36'h0000063fe;   // pc 38 END: core start
     urom[64] = 36'h54095e54a; urom[192] = 36'h0002807ef;   // pc 64 STAT U0 -> 37: U_D = the u applied
     urom[65] = 36'h54099e65a; urom[193] = 36'h0002807df;   // pc 65 STAT U1 -> 38: U_Q
     urom[66] = 36'h60001c00b; urom[194] = 36'h0000023fe;   // pc 66 SEND
@@ -453,7 +467,8 @@ if (N == 7) begin
     urom[84] = 36'h600edfb0c; urom[212] = 36'h000280bfe;   // pc 84 CNT -> 59: SAT_FRONT
     urom[85] = 36'h600f1fc0c; urom[213] = 36'h000280bfe;   // pc 85 CNT -> 60: CNT_OVERRUN
     urom[86] = 36'h600adeb0c; urom[214] = 36'h000280bfe;   // pc 86 CNT -> 43: PERIODS
-    urom[87] = 36'h60001c00d; urom[215] = 36'h00000a3fe;   // pc 87 CEND
+    urom[87] = 36'h600fdff0c; urom[215] = 36'h000280bfe;   // pc 87 CNT -> 63: SAT_GOV
+    urom[88] = 36'h60001c00d; urom[216] = 36'h00000a3fe;   // pc 88 CEND
 end
 if (N == 8) begin
     for (ui = 0; ui < 128; ui = ui + 1) begin urom[ui] = 36'h60002000b; urom[128 + ui] = 36'h0000023fe; end   // SEND
@@ -466,38 +481,39 @@ if (N == 8) begin
     urom[6] = 36'h6002a0a52; urom[134] = 36'h0000107df;   // pc 6 COPY U1 -> 10: u_prev[1]
     urom[7] = 36'h600421062; urom[135] = 36'h0000107bf;   // pc 7 COPY IDR -> 16: wref[0] = (id_ref,
     urom[8] = 36'h600461172; urom[136] = 36'h00001077f;   // pc 8 COPY IQR -> 17: iq_ref,
-    urom[9] = 36'h1029e1203; urom[137] = 36'h0003003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
+    urom[9] = 36'h9029e1203; urom[137] = 36'h0003003fe;   // pc 9 REF -> 18 m 0: w3[0] from w_(k+0))
     urom[10] = 36'h6004e1362; urom[138] = 36'h0000107bf;   // pc 10 COPY IDR -> 19: wref[1] = (id_ref,
     urom[11] = 36'h600521472; urom[139] = 36'h00001077f;   // pc 11 COPY IQR -> 20: iq_ref,
-    urom[12] = 36'h0029dd503; urom[140] = 36'h0001003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
+    urom[12] = 36'h8029dd503; urom[140] = 36'h0001003fe;   // pc 12 REF -> 21 m 1: w3[1] from w_(k+1))
     urom[13] = 36'h6005a1662; urom[141] = 36'h0000107bf;   // pc 13 COPY IDR -> 22: wref[2] = (id_ref,
     urom[14] = 36'h6005e1772; urom[142] = 36'h00001077f;   // pc 14 COPY IQR -> 23: iq_ref,
-    urom[15] = 36'h0029d9803; urom[143] = 36'h0001003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
+    urom[15] = 36'h8029d9803; urom[143] = 36'h0001003fe;   // pc 15 REF -> 24 m 2: w3[2] from w_(k+2))
     urom[16] = 36'h600661962; urom[144] = 36'h0000107bf;   // pc 16 COPY IDR -> 25: wref[3] = (id_ref,
     urom[17] = 36'h6006a1a72; urom[145] = 36'h00001077f;   // pc 17 COPY IQR -> 26: iq_ref,
-    urom[18] = 36'h0029d5b03; urom[146] = 36'h0001003fe;   // pc 18 REF -> 27 m 3: w3[3] from w_(k+3))
+    urom[18] = 36'h8029d5b03; urom[146] = 36'h0001003fe;   // pc 18 REF -> 27 m 3: w3[3] from w_(k+3))
     urom[19] = 36'h600721c62; urom[147] = 36'h0000107bf;   // pc 19 COPY IDR -> 28: wref[4] = (id_ref,
     urom[20] = 36'h600761d72; urom[148] = 36'h00001077f;   // pc 20 COPY IQR -> 29: iq_ref,
-    urom[21] = 36'h0029d1e03; urom[149] = 36'h0001003fe;   // pc 21 REF -> 30 m 4: w3[4] from w_(k+4))
+    urom[21] = 36'h8029d1e03; urom[149] = 36'h0001003fe;   // pc 21 REF -> 30 m 4: w3[4] from w_(k+4))
     urom[22] = 36'h6007e1f62; urom[150] = 36'h0000107bf;   // pc 22 COPY IDR -> 31: wref[5] = (id_ref,
     urom[23] = 36'h600822072; urom[151] = 36'h00001077f;   // pc 23 COPY IQR -> 32: iq_ref,
-    urom[24] = 36'h0029ce103; urom[152] = 36'h0001003fe;   // pc 24 REF -> 33 m 5: w3[5] from w_(k+5))
+    urom[24] = 36'h8029ce103; urom[152] = 36'h0001003fe;   // pc 24 REF -> 33 m 5: w3[5] from w_(k+5))
     urom[25] = 36'h6008a2262; urom[153] = 36'h0000107bf;   // pc 25 COPY IDR -> 34: wref[6] = (id_ref,
     urom[26] = 36'h6008e2372; urom[154] = 36'h00001077f;   // pc 26 COPY IQR -> 35: iq_ref,
-    urom[27] = 36'h0029ca403; urom[155] = 36'h0001003fe;   // pc 27 REF -> 36 m 6: w3[6] from w_(k+6))
+    urom[27] = 36'h8029ca403; urom[155] = 36'h0001003fe;   // pc 27 REF -> 36 m 6: w3[6] from w_(k+6))
     urom[28] = 36'h600962562; urom[156] = 36'h0000107bf;   // pc 28 COPY IDR -> 37: wref[7] = (id_ref,
     urom[29] = 36'h6009a2672; urom[157] = 36'h00001077f;   // pc 29 COPY IQR -> 38: iq_ref,
-    urom[30] = 36'h0029c6703; urom[158] = 36'h0001003fe;   // pc 30 REF -> 39 m 7: w3[7] from w_(k+7))
+    urom[30] = 36'h8029c6703; urom[158] = 36'h0001003fe;   // pc 30 REF -> 39 m 7: w3[7] from w_(k+7))
     urom[31] = 36'h600a22862; urom[159] = 36'h0000107bf;   // pc 31 COPY IDR -> 40: wref[8] = (id_ref,
     urom[32] = 36'h600a62972; urom[160] = 36'h00001077f;   // pc 32 COPY IQR -> 41: iq_ref,
-    urom[33] = 36'h0029c2a03; urom[161] = 36'h0001003fe;   // pc 33 REF -> 42 m 8: w3[8] from w_(k+8))
+    urom[33] = 36'h8029c2a03; urom[161] = 36'h0001003fe;   // pc 33 REF -> 42 m 8: w3[8] from w_(k+8))
     urom[34] = 36'h1848e0084; urom[162] = 36'h0002002ff;   // pc 34 DIFF ID -> 0: y0 = i_d, dx0 (at +4); waits for the front
     urom[35] = 36'h184920194; urom[163] = 36'h0002001ff;   // pc 35 DIFF IQ -> 1: y1 = i_q, dx1; feeds the multiplier
-    urom[36] = 36'h208020005; urom[164] = 36'h0000803fe;   // pc 36 OM: omega = spd + ka; waits for the product
-    urom[37] = 36'h310860306; urom[165] = 36'h000200bfe;   // pc 37 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
-    urom[38] = 36'h4a01a0607; urom[166] = 36'h000100bfe;   // pc 38 W6 -> 6: dx2 = omega - omega_prev
-    urom[39] = 36'h6000a0208; urom[167] = 36'h0000413fe;   // pc 39 ZPOS -> 2: y2 = 0 (position task)
-    urom[40] = 36'h600020009; urom[168] = 36'h0000063fe;   // pc 40 END: core start
+    urom[36] = 36'h208020005; urom[164] = 36'h0000803fe;   // pc 36 OM: omega = spd + ka - D, t2 = 2 (ka - D) - spd + spd_prev; waits for the product
+    urom[37] = 36'hc0002000e; urom[165] = 36'h000480bfe;   // pc 37 LD -> 0: D += t2 >>> (load_shift + 1) (the load estimate of the speed)
+    urom[38] = 36'h310860306; urom[166] = 36'h000200bfe;   // pc 38 FIX3 -> 3: omega saturated (and y2 = omega for the speed task)
+    urom[39] = 36'h4a01a0607; urom[167] = 36'h000100bfe;   // pc 39 W6 -> 6: dx2 = omega - omega_prev
+    urom[40] = 36'h6000a0208; urom[168] = 36'h0000413fe;   // pc 40 ZPOS -> 2: y2 = 0 (position task)
+    urom[41] = 36'h600020009; urom[169] = 36'h0000063fe;   // pc 41 END: core start
     urom[64] = 36'h54096254a; urom[192] = 36'h0002807ef;   // pc 64 STAT U0 -> 37: U_D = the u applied
     urom[65] = 36'h5409a265a; urom[193] = 36'h0002807df;   // pc 65 STAT U1 -> 38: U_Q
     urom[66] = 36'h60002000b; urom[194] = 36'h0000023fe;   // pc 66 SEND
@@ -521,5 +537,6 @@ if (N == 8) begin
     urom[84] = 36'h600ee3b0c; urom[212] = 36'h000280bfe;   // pc 84 CNT -> 59: SAT_FRONT
     urom[85] = 36'h600f23c0c; urom[213] = 36'h000280bfe;   // pc 85 CNT -> 60: CNT_OVERRUN
     urom[86] = 36'h600ae2b0c; urom[214] = 36'h000280bfe;   // pc 86 CNT -> 43: PERIODS
-    urom[87] = 36'h60002000d; urom[215] = 36'h00000a3fe;   // pc 87 CEND
+    urom[87] = 36'h600fe3f0c; urom[215] = 36'h000280bfe;   // pc 87 CNT -> 63: SAT_GOV
+    urom[88] = 36'h60002000d; urom[216] = 36'h00000a3fe;   // pc 88 CEND
 end

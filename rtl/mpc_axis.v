@@ -100,6 +100,7 @@ module mpc_axis #(
     wire [`EMPC_A_HALL_OFFSET_W-1:0]         hall_offset;
     wire signed [`EMPC_A_KACC_KACC_W-1:0]    kacc;
     wire [`EMPC_A_KACC_SHIFT_W-1:0]          kacc_shift;
+    wire [`EMPC_A_KACC_LOAD_SHIFT_W-1:0]     kacc_load_shift;
     wire signed [`EMPC_A_ID_REF_W-1:0]       id_ref;
     wire signed [`EMPC_A_IQ_REF_W-1:0]       iq_ref;
     wire [`EMPC_A_SEG_ADDR_W-1:0]            seg_addr;
@@ -107,6 +108,11 @@ module mpc_axis #(
     wire [`EMPC_A_SEG_IDX_W-1:0]             seg_idx;
     wire                                     seg_start;
     wire [`EMPC_A_SEG_START_W-1:0]           seg_start_data;
+    wire                                     gov_we, gov_re;   // SEG_GOV: field 7 of slot SEG_ADDR
+    wire [`EMPC_A_FW_NMAX_W-1:0]             fw_nmax;
+    wire [`EMPC_A_FW_R2_HI_W-1:0]            fw_r2_hi;
+    wire [`EMPC_A_FW_R2_LO_W-1:0]            fw_r2_lo;
+    wire [`EMPC_A_IQ_HOLD_W-1:0]             iq_hold;
     wire                                     stat_re, cnt_re;  // status words / counters (block RAM)
 
     // signals that run against the dataflow (PWM timing, fault trip)
@@ -185,7 +191,8 @@ module mpc_axis #(
         .cal_busy(adc_cal_busy), .cal_done(adc_cal_done), .refused(adc_refused), .refused_clear(cmd_clear_counters));
 
     // ---------------- reference generator ----------------
-    // SEG_LEN .. SEG_FLAGS go straight into slot SEG_ADDR (field = seg_idx).
+    // SEG_LEN .. SEG_FLAGS go straight into slot SEG_ADDR (field = seg_idx), SEG_GOV into its
+    // field 7 (the governor words).
     wire              ref_advance, ref_ok, ref_q, ref_busy;
     wire [RAW-1:0]    ref_age;
     wire [5:0]        ref_bit, sync_idx;
@@ -209,12 +216,15 @@ module mpc_axis #(
     wire sync_bit = task_pos ? (sync_idx[5] && sync_pos[sync_idx[4:0]]) :
                     (sync_idx < 6'd16) ? 1'b0 : (sync_idx >= 6'd48) ? sync_om[31] :
                     sync_om[{~sync_idx[4], sync_idx[3:0]}];
+    wire              gov_ev;
+    reg               gov_hold;
     ref_gen #(.N(N)) u_ref (
-        .clk(clk), .rst(rst), .seg_we(seg_we), .seg_re(seg_re), .seg_slot(seg_addr),
-        .seg_field(seg_idx), .seg_wdata(reg_wdata), .seg_rdata(seg_rdata),
+        .clk(clk), .rst(rst), .seg_we(seg_we || gov_we), .seg_re(seg_re || gov_re), .seg_slot(seg_addr),
+        .seg_field((gov_we || gov_re) ? 3'd7 : seg_idx), .seg_wdata(reg_wdata), .seg_rdata(seg_rdata),
         .start(seg_start), .start_slot(seg_start_data),
         .sync(ref_sync_d), .sync_idx(sync_idx), .sync_bit(sync_bit), .advance(ref_advance),
-        .rd_age(ref_age), .rd_bit(ref_bit), .rd_q(ref_q), .w_ok(ref_ok), .busy(ref_busy));
+        .rd_age(ref_age), .rd_bit(ref_bit), .rd_q(ref_q), .w_ok(ref_ok), .busy(ref_busy),
+        .hold(gov_hold), .task_pos(task_pos), .gov_ev(gov_ev));
 
     // ---------------- sequencer (front end, modulation) and MPC core ----------------
     wire                            core_start, core_done, core_busy;
@@ -237,12 +247,39 @@ module mpc_axis #(
     wire                            st_sh, st_d, st_wr;
     wire [5:0]                      st_addr;
 
+    // ---------------- field weakening and the governor's hold (rtlmodel/ctrl_seq.py) ----------------
+    // n (0 .. FW.nmax) steps with the core's flags of each update while the law runs; the law's
+    // d-current reference is sat18(ID_REF - (n << EMPC_FW_SHIFT)).  gov_hold: the update had
+    // |i_q| >= IQ_HOLD ADC LSB or the voltage limit; taken by the next control period's advance.
+    localparam integer FWS = `EMPC_FW_SHIFT;
+    wire              core_fw_hi, core_fw_lo;
+    reg  [`EMPC_A_FW_NMAX_W-1:0] fw_n;
+    wire              fw_up = core_fw_hi && (fw_n < fw_nmax);
+    wire              fw_dn = core_fw_lo && !core_fw_hi && (fw_n != 0);
+    always @(posedge clk) begin
+        if (rst || !running) fw_n <= 0;
+        else if (fw_n > fw_nmax) fw_n <= fw_nmax;                // FW.nmax lowered
+        else if (core_done && fw_up) fw_n <= fw_n + 1'b1;
+        else if (core_done && fw_dn) fw_n <= fw_n - 1'b1;
+    end
+    wire signed [`EMPC_I_W:0]   id_sum = {id_ref[`EMPC_I_W-1], id_ref} - ({{(`EMPC_I_W+1-`EMPC_A_FW_NMAX_W){1'b0}}, fw_n} << FWS);
+    wire signed [`EMPC_I_W-1:0] id_eff = (id_sum[`EMPC_I_W] != id_sum[`EMPC_I_W-1]) ?
+                                         {id_sum[`EMPC_I_W], {(`EMPC_I_W-1){~id_sum[`EMPC_I_W]}}} : id_sum[`EMPC_I_W-1:0];
+    wire [`EMPC_I_W-5:0] iq_int = st_iq[`EMPC_I_W-1:4];           // floor(i_q / 16): ADC LSB
+    wire [`EMPC_I_W-5:0] iq_mag = iq_int[`EMPC_I_W-5] ? ~iq_int : iq_int;   // |i_q| >= 16 H <=> iq_mag >= H
+    always @(posedge clk) begin
+        if (rst || !running) gov_hold <= 1'b0;
+        else if (core_done) gov_hold <= core_flags[`EMPC_FLAG_LIMIT] ||
+                                       (iq_hold != 0 && iq_mag >= {{(`EMPC_I_W-4-`EMPC_A_IQ_HOLD_W){1'b0}}, iq_hold});
+    end
+
     ctrl_seq #(.N(N)) u_seq (
         .clk(clk), .rst(rst), .adc_trig(adc_trig), .period_start(period_start),
         .pwm_per_control(ctrl_pwm_per_control),
         .run(running), .theta(theta), .pos(pos), .pos_sample(pos_sample), .adc_valid(adc_valid),
         .cur0(cur0), .cur1(cur1), .cur2(cur2), .kdc(kdc), .kacc(kacc), .kacc_shift(kacc_shift),
-        .id_ref(id_ref), .iq_ref(iq_ref), .task_pos(task_pos), .ref_advance(ref_advance), .ref_ok(ref_ok),
+        .load_shift(kacc_load_shift),
+        .id_ref(id_eff), .iq_ref(iq_ref), .task_pos(task_pos), .ref_advance(ref_advance), .ref_ok(ref_ok),
         .ref_age(ref_age), .ref_bit(ref_bit), .ref_q(ref_q),
         .core_start(core_start), .core_in_we(core_in_we), .core_in_addr(core_in_addr),
         .core_in_wdata(core_in_wdata), .core_done(core_done), .core_u(core_u), .core_ebar(core_ebar),
@@ -255,7 +292,8 @@ module mpc_axis #(
         .clk(clk), .rst(rst), .start(core_start), .in_we(core_in_we), .in_addr(core_in_addr),
         .in_wdata(core_in_wdata), .busy(core_busy),
         .done(core_done), .u(core_u), .du(core_du), .u_raw(core_u_raw), .ebar(core_ebar), .wn(core_wn),
-        .flags(core_flags), .latency(core_latency), .cfg_we(coef_we), .cfg_addr(coef_addr),
+        .flags(core_flags), .latency(core_latency), .fw_thr({fw_r2_lo, fw_r2_hi}), .fw_hi(core_fw_hi),
+        .fw_lo(core_fw_lo), .cfg_we(coef_we), .cfg_addr(coef_addr),
         .cfg_wdata(reg_wdata), .cfg_swap(cmd_coef_swap), .swap_at(pos_sample), .ready(core_ready), .bank(core_bank),
         .swap_pending(core_swap_pending), .boot_ok(core_boot_ok), .img_ok(core_img_ok), .upl_ok(core_upl_ok),
         .swap_refused(core_swap_refused), .refused(core_refused), .task_pos(task_pos));
@@ -349,7 +387,8 @@ module mpc_axis #(
     axis_status u_status (
         .clk(clk), .rst(rst), .reg_rd(reg_rd), .reg_addr(reg_addr), .cnt_re(cnt_re), .stat_re(stat_re), .rdata(s_q), .cnt_clear(cmd_clear_counters),
         .core_done(core_done), .core_flags(core_flags), .front_sat(seq_front_sat || adc_sat || cmp_clip),
-        .overrun(overrun), .period(control_done && running), .st_sh(st_sh), .st_d(st_d), .st_wr(st_wr),
+        .overrun(overrun), .period(control_done && running), .gov(gov_ev && running), .st_sh(st_sh), .st_d(st_d),
+        .st_wr(st_wr),
         .st_addr(st_addr), .st_bit(st_bit), .sw_req(sw_req), .sw_all(sw_all), .sw_go(sw_go), .sw_end(sw_end),
         .ctl_go(ctl_go));
 
@@ -381,9 +420,11 @@ module mpc_axis #(
         .fault_mask(fault_mask), .dead_time(dead_time), .kdc(kdc), .udc(udc), .udc_min(udc_min),
         .udc_max(udc_max), .oc_thresh(oc_thresh),
         .adc_off_we(adc_off_we), .adc_off_wdata(adc_off_wdata), .adc_off0(off0), .adc_off1(off1), .adc_off2(off2),
-        .angle_cal(angle_cal), .hall_offset(hall_offset), .kacc(kacc), .kacc_shift(kacc_shift),
-        .id_ref(id_ref), .iq_ref(iq_ref), .seg_addr(seg_addr),
+        .angle_cal(angle_cal), .hall_offset(hall_offset), .kacc(kacc), .kacc_load_shift(kacc_load_shift),
+        .kacc_shift(kacc_shift), .id_ref(id_ref), .iq_ref(iq_ref), .seg_addr(seg_addr),
         .seg_we(seg_we), .seg_re(seg_re), .seg_idx(seg_idx), .seg_start(seg_start), .seg_start_data(seg_start_data),
+        .gov_we(gov_we), .gov_re(gov_re), .fw_nmax(fw_nmax), .fw_r2_hi(fw_r2_hi), .fw_r2_lo(fw_r2_lo),
+        .iq_hold(iq_hold),
         .pos(pos), .stat_re(stat_re), .theta(theta), .iabc0_a(code0), .iabc0_b(code1), .iabc1(code2),
         .latency(seq_latency), .cnt_re(cnt_re), .cnt_adc_miss(adc_miss_cnt), .cnt_enc_err(enc_err_cnt),
         .seg_rdata(seg_rdata), .smem_rdata(s_q));
@@ -393,7 +434,7 @@ module mpc_axis #(
                     enc_in_state, enc_ready, hall_code, hall_ready, hall_fault, speed_sat,
                     sample_valid, ps_speed, pos_at_sample, ps_speed_q, theta_at_sample,
                     pwm_fault_latched, mode_eff, unlock_armed, adc_busy, adc_trig_miss, adc_fvalid, oc_ch, core_busy, core_du, core_u_raw,
-                    core_wn, core_latency, core_boot_ok, theta_trig, ref_busy, st_id, st_iq};
+                    core_wn, core_latency, core_boot_ok, theta_trig, ref_busy, st_id, st_iq[3:0]};
 `ifdef FORMAL
 `include "mpc_axis_props.vh"
 `endif

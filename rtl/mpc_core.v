@@ -58,6 +58,8 @@
 //   Status: ready, bank (active), swap_pending, boot_ok, img_ok, upl_ok, swap_refused,
 //   refused (pulse), task_pos (task of the active bank, 1 = position: the front end
 //   selects y2 / references accordingly), latency.
+//   Field weakening (model step 7): fw_thr = {lo, hi} (register FW_R2) in; fw_hi, fw_lo out,
+//   loaded with the other outputs (|u_raw|^2 of the update above hi / below lo).
 // Parameters: N (horizon inputs, default EMPC_N), BOOT_FILE, RSQRT_FILE ($readmemh paths).
 // Resources: 6 DSP48A1 (3 per lane, the limiter reuses them), block RAM for the boot
 // ROM (1024 x 32), RSQRT (1024 x 18) and the coefficient memories, LUT RAM for the input
@@ -89,6 +91,9 @@ module mpc_core #(
     output reg  signed [`EMPC_OPW-1:0]     wn,
     output reg  [10:0]                     flags,
     output wire [7:0]                      latency,
+    input  wire [31:0]                     fw_thr,
+    output reg                             fw_hi,
+    output reg                             fw_lo,
     // coefficient banks
     input  wire                            cfg_we,
     input  wire [9:0]                      cfg_addr,
@@ -271,7 +276,7 @@ module mpc_core #(
     wire fg_d, ft_d, fa_d, fd_d, fg_q, ft_q, fa_q, fd_q;
     wire m3u = |tl[U_M3RND:U_M3U0];
     // limiter inactive: mul3 passes u_raw (u = lim ? scaled : u_raw without a multiplexer)
-    wire lim;
+    wire lim, fwh, fwl;
     wire m3ur = tl[U_M3RND] & ~lim;
     wire signed [UW-1:0] ur_d, ur_q;
     mpc_lane u_lane_d (
@@ -312,6 +317,7 @@ module mpc_core #(
     // ---- limiter ----
     mpc_limiter #(.RSQRT_FILE(RSQRT_FILE)) u_lim (
         .clk(cclk), .rst(rst), .acc(acc_d), .ld_r(tl[U_LDR]), .ld_lim(tl[U_LDLIM]), .ut(prod2_d),
+        .fw_thr_hi(fw_thr[15:0]), .fw_thr_lo(fw_thr[31:16]), .fw_hi(fwh), .fw_lo(fwl),
         .lim(lim), .t(lim_t), .f(lim_f)
     );
 
@@ -327,6 +333,8 @@ module mpc_core #(
             ebar  <= {(3*SW){1'b0}};
             wn    <= {OPW{1'b0}};
             flags <= 11'd0;
+            fw_hi <= 1'b0;
+            fw_lo <= 1'b0;
         end else begin
             if (tl[U_DU]) du_s <= {dun_q, dun_d};
             done <= tl[U_FIRE];
@@ -338,6 +346,8 @@ module mpc_core #(
                 wn    <= wn_s;
                 flags <= {f_signal, f_wn, lim, f_ebar_inc, f_ebar, f_u, fd_q,      // fd/fa/ft_q include lane d's
                           fa_q, ft_q, fg_d | fg_q, f_operand};
+                fw_hi <= fwh;
+                fw_lo <= fwl;
             end
         end
         // scaled u (lim): its low VSH bits are 0 (flip-flop reset), else those of u_raw

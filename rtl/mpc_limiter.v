@@ -12,7 +12,10 @@
 //   when lim = 0, f is not used.
 // RSQRT[i] = floor(2^16 / sqrt((i + 1) / 1024)) (rsqrt.hex written by `empc roms`);
 // bit-exact to limit_circle() in rtlmodel/mpc_core.py.
-// Ports: acc (lane d accumulator), ld_r, ld_lim, ut (lane d mul1); lim, t (L+2), f.
+// Field-weakening flags (model step 7), from the registered r (valid from L+1 until the next
+// ld_r): fw_hi = r[35:20] > fw_thr_hi, fw_lo = r[35:20] < fw_thr_lo (combinational).
+// Ports: acc (lane d accumulator), ld_r, ld_lim, ut (lane d mul1), fw_thr_hi / lo (register
+// FW_R2); lim, t (L+2), f, fw_hi, fw_lo.
 // Parameters: RSQRT_FILE ($readmemh file, RSQRT_BITS address bits, 18-bit words).
 // Latency: see above (fixed).  Resources: 1 RAMB16 (1024 x 18), no DSP.
 // Reset: registers clear to 0 (the ROM contents are constant).
@@ -27,6 +30,10 @@ module mpc_limiter #(
     input  wire                            ld_r,
     input  wire                            ld_lim,
     input  wire signed [`EMPC_ACCW-1:0]    ut,
+    input  wire [15:0]                     fw_thr_hi,
+    input  wire [15:0]                     fw_thr_lo,
+    output wire                            fw_hi,
+    output wire                            fw_lo,
     output reg                             lim,
     output reg  signed [`EMPC_OPW-1:0]     t,
     output wire signed [`EMPC_OPW-1:0]     f
@@ -80,6 +87,10 @@ module mpc_limiter #(
     end
     wire [OPW-2:0] fs = x1[{3'b0, pidx[1:0]} +: OPW-1];
     assign f = {1'b0, fs};
+
+    // field-weakening band (r < 2^36: r[35:20] is 16 bit)
+    assign fw_hi = r[PW-1:PW-16] > fw_thr_hi;
+    assign fw_lo = r[PW-1:PW-16] < fw_thr_lo;
 
     // acc = r - umax^2 in (-2^34, 2^35]: bit PW is its sign
     wire gt0 = ~acc[PW] & (|acc[PW:0]);

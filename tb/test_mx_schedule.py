@@ -97,13 +97,16 @@ def test_doc_quotes_the_schedule():
     assert re.search(rf"\b{S.simulate([S.AxisCfg(ncols=64)]).latency_last_bit[0]}\b", text)
 
 
-@pytest.mark.parametrize("task, adc, trig_to_load, indep, dep", [("position_alg2", 195, 680, 314, 215)])
+@pytest.mark.parametrize("task, adc, trig_to_load, indep, dep", [("position_alg2", 195, 981, 574, 256)])
 def test_todays_sequencer_timeline(task, adc, trig_to_load, indep, dep):
-    """Today's bit-serial sequencer, measured (the baseline docs/four_axes.md starts from).  When
-    the shared engine replaces ctrl_seq, this tool and test go with it."""
+    """Today's bit-serial sequencer, measured.  docs/four_axes.md starts from the figures before
+    issue 15 (680 / 314 / 215 / sweep 477) and quotes these after it (the reference governor's
+    passes in the first REF wait, the load-estimate step LD, the SAT_GOV sweep word).  When the
+    shared engine replaces ctrl_seq, this tool and test go with it."""
     r = seq_timeline.measure(task, adc)
     assert r["cmp_load"] == trig_to_load
     assert r["engine_clocks_adc_independent"] == indep
     assert sum(s["clocks"] for s in r["engine_steps_adc_dependent"]) == dep
     assert r["core_clocks"] == 61 and r["mod_clocks"] == 85
-    assert r["sweep_clocks"] == 477
+    assert r["sweep_clocks"] == 511
+    assert f"**{trig_to_load} clk**" in DOC.read_text()

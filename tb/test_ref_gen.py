@@ -24,7 +24,15 @@ readout port (rd_age, rd_bit -> rd_q).
   the slot an advance in progress is loading), the same-clock combinations
   start+advance, sync+advance, sync+start, a write of the slot that an advance
   beginning in that clock loads; busy / w_ok and (when w_ok) the whole delay
-  line compared bit-exact with the clock-level model every clock.
+  line compared bit-exact with the clock-level model every clock.  With
+  EMPC_REFGEN_GOV=1 (test_ref_gen_governed) the same with the governor enabled and
+  re-programmed at random (vmax, a incl. 0 and 2^63-1, ksh 0..31), hold and task_pos
+  random every clock, the gov_ev pulses counted against the model's clamps.
+* governor (model-independent parts and vs model): the boot words (header) read back
+  through field 7; a 64-bit target step is shaped into a trajectory whose increment
+  never exceeds vmax and changes by at most a per period (speed and position task, with
+  and without hold), ending exactly on the target; the extreme words (a step of 2^63,
+  vmax = a = 2^63 - 1, ksh = 31) bit-exact against gov_step.
 """
 from __future__ import annotations
 
@@ -37,11 +45,19 @@ from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, FallingEdge, Timer
 
 from empc.formats import wrap
-from empc.rtlmodel.ref_gen import (FIELDS, M32, M64, NSLOT, RefGen, Slot, q32, segments_from_points,
-                                   slot_field)
+from empc.rtlmodel.ref_gen import (FIELDS, GOV_FIELD, GOV_SLOTS, M32, M63, M64, NSLOT, RefGen, Slot, gov_words,
+                                   q32, segments_from_points, slot_field)
 
 DEFAULT_SEED = 20240
+FRESH = True            # the simulation has just started: the RAM holds its configuration contents
 PARAMS = {"N": 4}
+
+
+def _header() -> dict:
+    from pathlib import Path
+    from empc import header
+    roms = Path(os.environ.get("EMPC_ROMS", Path(__file__).resolve().parents[1] / "build" / "roms" / "default"))
+    return header.read(roms / "empc_formats.vh")
 
 
 def _rev64(x: int) -> int:
@@ -79,7 +95,7 @@ class Env:
         if not getattr(self, "driving", False):
             cocotb.start_soon(self.sync_driver())
 
-    async def start(self):
+    async def start(self, governor=False):
         d = self.dut
         Clock(d.clk, 10, unit="ns").start()
         d.sync_bit.value = 0
@@ -91,11 +107,36 @@ class Env:
         self.model.reset()                 # the RTL clears its delay line after rst (sync to 0)
         await self.wait_idle()
         self.check()
+        # governor words (field 7 of slots 0..4; block RAM and the enable / ksh register keep them
+        # over rst): after configuration the header's, afterwards what the last test wrote
+        global FRESH
+        h = _header()
+        boot = {GOV_SLOTS["vmax_lo"]: h["GOV_VMAX_LO"], GOV_SLOTS["vmax_hi"]: h["GOV_VMAX_HI"],
+                GOV_SLOTS["a_lo"]: h["GOV_A_LO"], GOV_SLOTS["a_hi"]: h["GOV_A_HI"],
+                GOV_SLOTS["cfg"]: (h["GOV_EN"] & 1) | (h["GOV_KSH"] << 8)}
+        for slot, word in boot.items():
+            d.seg_re.value, d.seg_slot.value, d.seg_field.value = 1, slot, GOV_FIELD
+            await FallingEdge(d.clk)
+            got = int(d.seg_rdata.value)
+            if FRESH:
+                assert got == word, f"governor word of slot {slot} after configuration {got:#x} != header {word:#x}"
+            self.model.write_field(slot, GOV_FIELD, got)
+        FRESH = False
+        self._idle()
+        self.check()
+        if not governor:
+            await self.set_gov(0, 0, 0, False)
+
+    async def set_gov(self, vmax, a, ksh, enable):
+        for slot, word in gov_words(vmax, a, ksh, enable).items():
+            await self.cycle(seg=(slot, GOV_FIELD, word))
 
     def _idle(self):
         d = self.dut
         for s in ("seg_we", "seg_re", "start", "sync", "advance"):
             getattr(d, s).value = 0
+        d.hold.value = getattr(self, "hold", 0)
+        d.task_pos.value = getattr(self, "task_pos", 0)
         d.seg_slot.value = 0
         d.seg_field.value = 0
         d.seg_wdata.value = 0
@@ -140,16 +181,21 @@ class Env:
             self.sync_value = sync_value & M64
             self.drive_sync()
         d.advance.value = int(advance)
+        was_op = self.model._op is not None and self.model._op["kind"] == "advance"
         self.model.step(seg_we=seg is not None, seg_slot=seg[0] if seg else 0, seg_field=seg[1] if seg else 0,
                         seg_wdata=seg[2] if seg else 0, start=start_slot is not None, start_slot=start_slot or 0,
                         sync=sync_value is not None, sync_value=getattr(self, "sync_value", 0),
-                        advance=advance)
+                        advance=advance, hold=bool(getattr(self, "hold", 0)),
+                        task_pos=bool(getattr(self, "task_pos", 0)))
         await FallingEdge(d.clk)
         self.n += 1
         self.n_adv += int(advance)
+        self.gov_ev = getattr(self, "gov_ev", 0) + int(d.gov_ev.value)
+        if was_op and self.model._op is None:
+            self.model_ev = getattr(self, "model_ev", 0) + int(self.model.clamped)
         if seg_read is not None:
             got = int(d.seg_rdata.value)
-            assert got == exp_rd, f"clock {self.n}: slot {seg_read[0]} field {FIELDS[seg_read[1]]} read {got:#x} " \
+            assert got == exp_rd, f"clock {self.n}: slot {seg_read[0]} field {seg_read[1]} read {got:#x} " \
                                   f"expected {exp_rd:#x}"
             self.n_seg += 1
         elif int(d.seg_rdata.value) != 0:
@@ -160,14 +206,19 @@ class Env:
     async def wait_idle(self, limit=10000):
         """Clocks without inputs until the engine is idle (model and RTL), checked at the end."""
         n = 0
+        ev0 = int(self.dut.gov_ev.value)
         while self.model.busy:
-            self.model.step()
+            was_op = self.model._op is not None and self.model._op["kind"] == "advance"
+            self.model.step(hold=bool(getattr(self, "hold", 0)), task_pos=bool(getattr(self, "task_pos", 0)))
+            if was_op and self.model._op is None:
+                self.model_ev = getattr(self, "model_ev", 0) + int(self.model.clamped)
             n += 1
             assert n < limit, "engine does not finish"
         self._idle()
-        if n:
-            await ClockCycles(self.dut.clk, n, rising=False)
-            self.n += n
+        for _ in range(n):
+            await FallingEdge(self.dut.clk)
+            self.gov_ev = getattr(self, "gov_ev", 0) + int(self.dut.gov_ev.value)
+        self.n += n
         self.check()
 
     async def readout(self, count):
@@ -320,12 +371,23 @@ def rand_slot(rng):
     return Slot(length, rng.getrandbits(64), d1, d2, relative=rng.random() < 0.4, last=rng.random() < 0.15)
 
 
+def rand_gov(rng, task_pos):
+    """Random governor words: realistic magnitudes mostly, extremes sometimes."""
+    big = rng.random() < 0.15
+    vmax = rng.choice([0, 1, M63, rng.getrandbits(63)]) if big else rng.getrandbits(rng.choice([20, 30, 36, 40]))
+    a = rng.choice([0, 1, M63, rng.getrandbits(63)]) if big else max(1, vmax >> rng.randrange(0, 12))
+    return vmax, a, rng.choice([0, 1, 3, 4, 6, rng.randrange(32)]), rng.random() < 0.9
+
+
 @cocotb.test()
 async def random_vs_model(dut):
     env = Env(dut)
-    await env.start()
+    gov = os.environ.get("EMPC_REFGEN_GOV", "0") == "1"
+    await env.start(governor=gov)
     rng = env.rng
     m = env.model
+    if gov:
+        await env.set_gov(*rand_gov(rng, False))
     await env.program([rand_slot(rng) for _ in range(NSLOT)], readback=False)
     await env.cycle(start_slot=rng.randrange(NSLOT))
     n_clocks = int(os.environ.get("EMPC_REFGEN_CLOCKS", 60000))
@@ -367,19 +429,93 @@ async def random_vs_model(dut):
         elif r < 0.045:
             kw["seg_read"] = (rng.randrange(NSLOT), rng.randrange(len(FIELDS)))
             stats["read"] += 1
+        if gov:
+            # hold and task change at random (taken when an advance begins); the governor
+            # words are rewritten only while the engine is idle (the passes read them)
+            if rng.random() < 0.2:
+                env.hold = int(rng.random() < 0.3)
+                env.task_pos = int(rng.random() < 0.5)
+            if "seg" not in kw and not m.busy and rng.random() < 0.003:
+                words = gov_words(*rand_gov(rng, env.task_pos))
+                slot = rng.choice(list(words))
+                kw["seg"] = (slot, GOV_FIELD, words[slot])
+                stats["gov_write"] = stats.get("gov_write", 0) + 1
+            elif "seg" not in kw and "seg_read" not in kw and rng.random() < 0.002:
+                kw["seg_read"] = (rng.randrange(NSLOT), GOV_FIELD)
         await env.cycle(**kw)
         if m.w_ok and rng.random() < 0.01:
             await env.readout(8)
             stats["readouts"] += 1
+    await env.wait_idle()
     assert stats["adv_busy"] > 50 and stats["write_load"] > 3 and stats["start_adv"] > 0 and stats["sync_adv"] >= 0
-    dut._log.info("random: %d clocks, %d advances, %d delay-line compares, %d readout bits, %d field read-backs "
-                  "bit-exact vs model (seed %d); %s", env.n, env.n_adv, env.n_w, env.n_rd, env.n_seg, env.seed, stats)
+    assert getattr(env, "gov_ev", 0) == getattr(env, "model_ev", 0), \
+        f"gov_ev pulses {getattr(env, 'gov_ev', 0)} != model clamps {getattr(env, 'model_ev', 0)}"
+    if gov:
+        assert env.model_ev > 20, "the governor never clamped"
+    dut._log.info("random%s: %d clocks, %d advances, %d delay-line compares, %d readout bits, %d field read-backs "
+                  "bit-exact vs model (seed %d), %d governor clamps; %s", " (governor)" if gov else "", env.n,
+                  env.n_adv, env.n_w, env.n_rd, env.n_seg, env.seed, getattr(env, "model_ev", 0), stats)
+
+
+@cocotb.test()
+async def governor(dut):
+    """Target steps shaped within vmax / a, both tasks, with and without hold; extremes vs gov_step."""
+    env = Env(dut)
+    await env.start(governor=True)
+    N = env.N
+    checks = 0
+    for task_pos in (0, 1):
+        for hold_mode in (0, 1):
+            env.task_pos = task_pos
+            vmax, a, ksh = 3 << 32, 1 << 30, 3
+            await env.set_gov(vmax, a, ksh, True)
+            await env.cycle(sync_value=0)
+            await env.wait_idle()
+            target = 200 << 32
+            await env.program([Slot(0, target, 0, 0, last=True)], base=9)
+            await env.cycle(start_slot=9)
+            heads, vs = [], []
+            for p in range(420):
+                env.hold = int(hold_mode and 40 <= p < 60)          # a hold while speeding up
+                w = await env.advance()
+                heads.append(wrap(w[N], 64))
+                vs.append(wrap(env.model.v, 64))
+            d = [b - a_ for a_, b in zip([0] + heads, heads)]
+            assert max(abs(x) for x in d) <= vmax, "governed increment above vmax"
+            assert max(abs(y - x) for x, y in zip([0] + d, d)) <= a, "increment changed by more than a"
+            # ends on the target to within the catch-up's resolution 2^ksh LSB of Q.32 (e >> ksh = 0)
+            assert abs(heads[-1] - target) < (1 << ksh) and d[-1] == 0, f"does not end on the target: {heads[-1]:#x}"
+            if hold_mode and task_pos:
+                assert all(abs(d[p + 1]) <= abs(d[p]) for p in range(40, 59)), "position hold raised the speed"
+            if hold_mode and not task_pos:
+                assert all(abs(d[p + 1]) <= abs(d[p]) for p in range(41, 59)), "speed hold did not decay"
+            checks += 1
+    # extremes: a 2^63 step, vmax = a = 2^63 - 1, ksh 31 and 0 (bit-exact vs the model via check())
+    env.hold = 0
+    for vmax, a, ksh in ((M63, M63, 0), (M63, 1, 31), (0, M63, 5), (1, 0, 0)):
+        await env.set_gov(vmax, a, ksh, True)
+        await env.program([Slot(0, 1 << 63, 0, 0, last=True), Slot(0, 0x7FFF_FFFF_FFFF_FFFF, 0, 0, last=True)], base=3)
+        for start in (3, 4, 3):
+            await env.cycle(start_slot=start)
+            for _ in range(5):
+                await env.advance()
+                checks += 1
+    await env.wait_idle()
+    assert env.gov_ev == env.model_ev
+    dut._log.info("governor: %d checks, %d clamps", checks, env.model_ev)
 
 
 def test_ref_gen():
     from runner import run
     run(toplevel="ref_gen", test_module="test_ref_gen", parameters=PARAMS,
         extra_env={"TB_PARAMS": json.dumps(PARAMS)})
+
+
+def test_ref_gen_governed():
+    from runner import run
+    run(toplevel="ref_gen", test_module="test_ref_gen", parameters=PARAMS,
+        extra_env={"TB_PARAMS": json.dumps(PARAMS), "EMPC_REFGEN_GOV": "1", "EMPC_REFGEN_CLOCKS": "80000"},
+        testcase=["random_vs_model"], name="test_ref_gen_governed")
 
 
 def test_ref_gen_n1():

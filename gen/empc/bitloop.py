@@ -3,14 +3,16 @@
 Per PWM period: the plant runs half a period with the current duties; at the
 period centre the ADC codes and the encoder count are sampled (the ADC
 trigger), the axis model (:class:`AxisModel`: sequencer model rtlmodel/ctrl_seq.py
-with front end, MPC core and modulation, plus the reference) computes the compare
-values, and they take effect at the next period boundary, half a period later -
-exactly the RTL's timing.
+with front end, MPC core and modulation, plus the reference and its governor)
+computes the compare values, and they take effect at the next period boundary,
+half a period later - exactly the RTL's timing.
 
 :class:`AxisModel` is the one implementation of the axis's per-PWM-period loop: the
 closed loop here (:func:`simulate`, plant in Python) and the RTL co-simulation's checker
 (tb/test_closed_loop.py, plant on the RTL's pins, every compare value checked against
-:meth:`AxisModel.period`) both step it.
+:meth:`AxisModel.period`) both step it.  The task references pass through the reference
+generator's integer governor (rtlmodel/ref_gen.gov_step) with the sequencer model's hold
+flag, as in the RTL (issue 15 item 4).
 """
 from __future__ import annotations
 
@@ -24,40 +26,63 @@ from . import formats as F
 from . import design as design_mod, header, pmsm
 from .rtlmodel import pos_sense
 from .rtlmodel.ctrl_seq import CtrlSeq, Regs
-from .rtlmodel.ref_gen import RefGen
+from .rtlmodel.ref_gen import M64, RefGen, gov_step
 
 M32 = (1 << 32) - 1
+
+
+def regs_for(cfg, task: str, **kw) -> Regs:
+    """Sequencer registers as the generator's header sets them after reset (``kw`` overrides)."""
+    kacc, kacc_shift = header.speed_correction_raw(cfg)
+    fw = header.field_weakening_raw(cfg)
+    gov = header.governor_raw(cfg, task)
+    base = dict(pwm_per_control=cfg.pwm_per_control, kacc=kacc, kacc_shift=kacc_shift,
+                half_period=cfg.pwm_half_period, load_shift=cfg.speed_load_shift, fw_shift=fw["FW_SHIFT"],
+                fw_nmax=fw["FW_NMAX"], fw_thr=(fw["FW_R2_HI"], fw["FW_R2_LO"]), iq_hold=gov["IQ_HOLD"])
+    base.update(kw)
+    return Regs(**base)
+
+
+def gov_params(cfg, task: str) -> dict:
+    """The reference generator's governor words of ``task`` as the engine reads them."""
+    g = header.governor_raw(cfg, task)
+    return {"enable": bool(g["GOV_EN"]), "ksh": g["GOV_KSH"], "vmax": g["GOV_VMAX_LO"] | g["GOV_VMAX_HI"] << 32,
+            "a": g["GOV_A_LO"] | g["GOV_A_HI"] << 32}
 
 
 class AxisModel:
     """One RTL axis, one PWM period at a time (bit-accurate).
 
     Owns the sequencer model (:class:`CtrlSeq`: front end, MPC core, modulation), its
-    register values (:class:`Regs`) and the reference of the control periods: either the
-    reference generator's model (``refgen``, a :class:`RefGen` the caller programs as the
-    CPU programs the RTL's) or a function ``refs(k, t)`` giving the N+1 Q.32 references
-    of control period k sampled at time t.  :meth:`period` takes what the ADC trigger
-    samples (encoder count, ADC codes) and returns the sequencer's outputs for the
-    period (``cmp``: the compare values the RTL loads for the next period).
+    register values (:class:`Regs`, default: the header's, :func:`regs_for`) and the
+    reference of the control periods: either the reference generator's model (``refgen``,
+    a :class:`RefGen` the caller programs as the CPU programs the RTL's, governor words
+    included) or a function ``refs(k, t)`` giving the N+1 Q.32 *target* references of
+    control period k sampled at time t, which pass through the generator's governor
+    (``gov``, default: the header's words for the task of ``params``; the head w_{k+N} is
+    governed, a delay line keeps the earlier ones, bumpless start with the first window).
+    Either way the governor sees the sequencer's hold flag of the previous control period.
+    :meth:`period` takes what the ADC trigger samples (encoder count, ADC codes) and
+    returns the sequencer's outputs for the period (``cmp``: the compare values the RTL
+    loads for the next period).
     """
 
     def __init__(self, cfg, params, *, regs: Regs | None = None, refgen: RefGen | None = None,
-                 refs: Callable[[int, float], list] | None = None, cal_offset: int = 0):
+                 refs: Callable[[int, float], list] | None = None, cal_offset: int = 0, gov: dict | None = None):
         if (refgen is None) == (refs is None):
             raise ValueError("AxisModel needs exactly one reference source: refgen or refs")
         self.cfg = cfg
-        if regs is None:
-            kacc, kacc_shift = header.speed_correction_raw(cfg)
-            regs = Regs(pwm_per_control=cfg.pwm_per_control, kacc=kacc, kacc_shift=kacc_shift,
-                        half_period=cfg.pwm_half_period)
-        self.regs = regs
+        self.regs = regs if regs is not None else regs_for(cfg, params.task)
         self.seq = CtrlSeq(params=params, N=cfg.control.N)
         self.ref = refgen
         self.refs = refs
+        self.gov = gov if gov is not None else gov_params(cfg, params.task)
         self.cal_offset = cal_offset
         self.periods = 0            # PWM periods evaluated
         self.k = 0                  # control periods evaluated
         self.last_control = None    # outputs of the last control period (+ ref_w0: the w_k it applied)
+        self.gov_clamps = 0         # control periods in which the governor shaped the reference (SAT_GOV)
+        self._gdl, self._r_prev, self._v_gov = None, 0, 0     # governor of the refs path
 
     @property
     def control_next(self) -> bool:
@@ -69,6 +94,23 @@ class AxisModel:
         """u_dq (Q.8 PWM ticks) the modulation applies (held between control periods)."""
         return self.seq.u
 
+    def _reference(self, t: float) -> list:
+        task_pos = self.seq.params.task == "position"
+        if self.ref is not None:
+            w = self.ref.advance(hold=self.seq.hold, task_pos=task_pos)
+            self.gov_clamps += int(self.ref.clamped)
+            return w
+        target = [x & M64 for x in self.refs(self.k, t)]
+        if self._gdl is None:                      # bumpless start: the target window
+            self._gdl = list(target)
+        else:
+            g_new, self._v_gov, clamped = gov_step(self.gov, self._v_gov, self._r_prev, target[-1], self._gdl[-1],
+                                                   self.seq.hold, task_pos)
+            self._gdl = self._gdl[1:] + [g_new]
+            self.gov_clamps += int(clamped)
+        self._r_prev = target[-1]
+        return list(self._gdl)
+
     def period(self, count: int, codes=None, t: float = 0.0, cur=None) -> dict:
         """One PWM period from the ADC trigger's samples: ``count`` (encoder, any int), ``codes``
         (three raw ADC codes) or ``cur`` (the ADC's offset-corrected window means, as adc_spi hands
@@ -79,9 +121,7 @@ class AxisModel:
             raise ValueError("AxisModel.period needs exactly one of codes and cur")
         cfg = self.cfg
         control = self.control_next
-        ref_w = None
-        if control:
-            ref_w = self.ref.advance() if self.ref is not None else self.refs(self.k, t)
+        ref_w = self._reference(t) if control else None
         theta16 = pos_sense.angle(count, cfg.sensors.encoder_cpr, cfg.motor.p, base=self.cal_offset)
         off = cfg.sensors.adc_offset
         if cur is None:
@@ -101,6 +141,25 @@ def ref_q32(cfg, task: str, value_si: float) -> int:
     return int(round(value_si / unit * (1 << 32))) & ((1 << 64) - 1)
 
 
+def regs_for(cfg, task: str, **kw) -> Regs:
+    """Sequencer registers as the generator's header sets them after reset (``kw`` overrides)."""
+    kacc, kacc_shift = header.speed_correction_raw(cfg)
+    fw = header.field_weakening_raw(cfg)
+    gov = header.governor_raw(cfg, task)
+    base = dict(pwm_per_control=cfg.pwm_per_control, kacc=kacc, kacc_shift=kacc_shift,
+                half_period=cfg.pwm_half_period, load_shift=cfg.speed_load_shift, fw_shift=fw["FW_SHIFT"],
+                fw_nmax=fw["FW_NMAX"], fw_thr=(fw["FW_R2_HI"], fw["FW_R2_LO"]), iq_hold=gov["IQ_HOLD"])
+    base.update(kw)
+    return Regs(**base)
+
+
+def gov_params(cfg, task: str) -> dict:
+    """The reference generator's governor words of ``task`` as the engine reads them."""
+    g = header.governor_raw(cfg, task)
+    return {"enable": bool(g["GOV_EN"]), "ksh": g["GOV_KSH"], "vmax": g["GOV_VMAX_LO"] | g["GOV_VMAX_HI"] << 32,
+            "a": g["GOV_A_LO"] | g["GOV_A_HI"] << 32}
+
+
 @dataclass
 class BitLoopResult:
     trace: cl.Trace
@@ -110,16 +169,19 @@ class BitLoopResult:
 
 
 def simulate(cfg, scenario: cl.Scenario, params=None, seed: int = 0, substeps: int = 4,
-             refs=None, cal_offset: int = 0, regs: Regs | None = None) -> BitLoopResult:
+             refs=None, cal_offset: int = 0, regs: Regs | None = None, plant_motor=None,
+             gov: dict | None = None) -> BitLoopResult:
     """Closed loop with the bit-accurate axis model.  ``refs(k)`` may supply the N+1 Q.32
-    references of control period k (default: the scenario profile sampled and rounded)."""
+    target references of control period k (default: the scenario profile sampled and rounded);
+    they pass through the governor ``gov`` (default: the header's for the task).
+    ``plant_motor`` lets the plant differ from the design motor."""
     c = cfg.control
     alg_task = (c.algorithm, scenario.task)
     params = params or design_mod.design(cfg.with_control(task=scenario.task), *alg_task, force=True)["params"]
     M = cfg.pwm_per_control
     P = cfg.pwm_half_period
     Tpwm = 1.0 / cfg.inverter.f_pwm
-    plant = pmsm.Plant(cfg.motor, cfg.inverter.Udc, cfg.inverter.f_pwm, substeps=substeps)
+    plant = pmsm.Plant(plant_motor or cfg.motor, cfg.inverter.Udc, cfg.inverter.f_pwm, substeps=substeps)
     plant.state = pmsm.PlantState(*scenario.x0)
     sensors = pmsm.Sensors(cfg, rng=np.random.default_rng(seed))
     if refs is not None:
@@ -127,7 +189,8 @@ def simulate(cfg, scenario: cl.Scenario, params=None, seed: int = 0, substeps: i
     else:
         ref_fn = lambda k, t: [ref_q32(cfg, scenario.task, scenario.profile(t + j * c.Ts)[2])  # noqa: E731
                                for j in range(c.N + 1)]
-    axis = AxisModel(cfg, params, regs=regs, refs=ref_fn, cal_offset=cal_offset)
+    axis = AxisModel(cfg, params, regs=regs if regs is not None else regs_for(cfg, scenario.task), refs=ref_fn,
+                     cal_offset=cal_offset, gov=gov if gov is not None else gov_params(cfg, scenario.task))
     n = int(round(scenario.duration / c.Ts))
     rec = {k: [] for k in ("t", "i_d", "i_q", "w_e", "theta_e", "u_d", "u_q", "ipk", "sat", "w_meas")}
     ref_rec, cmp_rec, counts_rec, records = [], [], [], []
@@ -167,7 +230,8 @@ def simulate(cfg, scenario: cl.Scenario, params=None, seed: int = 0, substeps: i
             rec["ipk"].append(ipk)
             ipk = 0.0
             records.append({"omega": out["omega"], "i_d": out["i_d"], "i_q": out["i_q"], "u": axis.u,
-                            "flags": r.flags if r is not None else 0})
+                            "flags": r.flags if r is not None else 0, "w_k": out["ref_w"][0], "i_fw": out["i_fw"],
+                            "hold": out["hold"], "gov_clamps": axis.gov_clamps})
     a = {kk: np.array(v) for kk, v in rec.items()}
     tr = cl.Trace(a["t"], np.array(ref_rec), a["i_d"], a["i_q"], a["w_e"], a["theta_e"], a["u_d"], a["u_q"],
                   a["ipk"], a["sat"], a["w_meas"])

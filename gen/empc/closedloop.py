@@ -152,7 +152,8 @@ def metrics(tr: Trace, sc: Scenario, settle_floor: float = 0.0, preview: float =
     settle_floor) and staying there until the segment ends, less the ``preview``
     window in which the controller already sees the next segment's references),
     ramps: mean and max |error| over the second half of the ramp (the constant lag
-    of algorithm 1 vs ~0 for algorithm 2), peak phase current, saturations.
+    of algorithm 1 vs ~0 for algorithm 2), peak phase current, peak |i_dq|, peak output,
+    saturations; steps also the mean i_d over their second half (field weakening).
     ``settling_time_max`` is the largest settling time, or the string "unsettled (n of m
     steps)" when a step never settles (``unsettled_steps`` counts them,
     ``settling_time_max_settled`` is the maximum over the settled ones).
@@ -162,6 +163,7 @@ def metrics(tr: Trace, sc: Scenario, settle_floor: float = 0.0, preview: float =
     e = r - y
     out = {"segments": [], "peak_i_d": float(np.max(np.abs(tr.i_d))), "peak_i_q": float(np.max(np.abs(tr.i_q))),
            "peak_phase_current": float(np.max(tr.i_phase_peak)), "saturations": int(np.sum(tr.sat)),
+           "peak_current": float(np.max(np.hypot(tr.i_d, tr.i_q))), "peak_output": float(np.max(y)),
            "rms_error": float(np.sqrt(np.mean(e * e)))}
     ramp_means, overshoots, settles, unsettled = [], [], [], 0
     for kind, t0, t1, v0, v1 in sc.segments:
@@ -194,6 +196,7 @@ def metrics(tr: Trace, sc: Scenario, settle_floor: float = 0.0, preview: float =
             tail = e[sel][-max(1, len(ys) // 2):]
             seg["final_error"] = float(np.mean(np.abs(tail[-max(1, len(ys) // 10):])))
             seg["final_error_mean"] = float(np.mean(tail))       # signed: zero-symmetric error -> ~0
+            seg["i_d_mean"] = float(np.mean(tr.i_d[sel][-max(1, len(ys) // 2):]))
         elif kind == "ramp":
             half = sel & (tr.t >= 0.5 * (t0 + t1))
             if not np.any(half):

@@ -1,4 +1,5 @@
-"""Configuration (TOML): motor, inverter, sensors, FPGA clock, ratings, MPC design, robustness box.
+"""Configuration (TOML): motor, inverter, sensors, FPGA clock, ratings, MPC design, robustness box,
+reference governor, field weakening.
 
 ``load(path)`` returns a validated :class:`Config`; bad input raises :class:`ConfigError`
 with one line naming the key, the value and the allowed range.  Validation is driven by
@@ -6,9 +7,9 @@ one table, :data:`SCHEMA` (tables and keys with type, default, range and unit): 
 tables and keys are refused with a did-you-mean, types are strict (no bool or string
 where a number belongs, no float where an integer belongs), and every value the RTL
 stores is checked against its field (:data:`RTL_LIMITS`, derived quantities named by the
-keys they come from).  Other keys (speed estimator, current limit, field weakening, ...)
-are added by appending :class:`Key` rows to :data:`SCHEMA` and reading them in
-:func:`from_dict`.
+keys they come from).  A new key is one :class:`Key` row in :data:`SCHEMA`, read in
+:func:`from_dict` (tables without a field of their own, like ``[governor]`` and
+``[field_weakening]``, map one to one onto their dataclass).
 
 Weights are per unit of the motor's ratings (``[weights] units = "pu"``, the default
 when a configuration has no ``[weights]`` table: :data:`DEFAULT_WEIGHTS_PU`), or SI
@@ -86,6 +87,8 @@ TABLES = {
     "fpga": (False, "FPGA clock"),
     "control": (True, "control law, horizon, period, operating range"),
     "ratings": (False, "the motor's ratings: the per-unit bases of the weights"),
+    "governor": (False, "reference governor: the current limit of the control law (gen/empc/governor.py)"),
+    "field_weakening": (False, "field weakening: a negative d-current reference from the voltage margin"),
     "robustness": (False, "the box of plant parameters and the margins the design check requires"),
     "weights": (False, "MPC weights (diagonals of Q_*): per unit of the ratings or SI"),
     "weights.alg1": (False, "algorithm 1 designs"),
@@ -123,7 +126,35 @@ SCHEMA: list[Key] = [
     Key("control", "design_quantised", "bool", True),
     Key("control", "voltage_limit", "str", "circle", choices=("circle",)),
     Key("control", "i_max", "float", 10.0, lo=0, lo_open=True, unit="A"),
-    Key("control", "speed_estimate", "str", "accel", choices=("eq37", "accel")),
+    Key("control", "speed_estimate", "str", "accel_load", choices=("eq37", "accel", "accel_load"),
+        doc="eq37: backward difference of the encoder angle; accel: + (Ts/2) acceleration from i_q; "
+            "accel_load: accel less a load estimate (offset-free under a constant load; estimator.py)"),
+    Key("control", "speed_load_shift", "int", 6, lo=1, hi=15,
+        doc="accel_load: load-estimate gain 2^-shift per control period (KACC.load_shift, 4 bit; 0 there = off)"),
+    Key("governor", "enable", "bool", True, doc="reference governor in rtl/ref_gen.v (the current limit)"),
+    Key("governor", "accel_current", "float", 0.5, lo=0, lo_open=True, hi=1,
+        doc="the governed reference's acceleration needs at most this x i_max at the box corner"),
+    Key("governor", "box_J", "float", None, lo=0.5, hi=3,
+        doc="inertia factor of that corner (default 1 + robustness.J)"),
+    Key("governor", "box_psi", "float", None, lo=0, lo_open=True, hi=1,
+        doc="flux factor of that corner (default 1 - robustness.psi)"),
+    Key("governor", "speed_frac", "float", 0.7, lo=0, lo_open=True, hi=1,
+        doc="position task: reference speed at most this x min(u_max / psi, Omega_e)"),
+    Key("governor", "hold_current", "float", 0.7, lo=0, lo_open=True, hi=1,
+        doc="hold the reference after a period with |i_q| >= this x i_max (IQ_HOLD, 12 bit ADC LSB)"),
+    Key("governor", "shift_speed", "int", 3, lo=0, hi=31, doc="catch-up gain 2^-shift per period, speed task (ksh, 5 bit)"),
+    Key("governor", "shift_position", "int", 4, lo=0, hi=31, doc="the same, position task"),
+    Key("governor", "jerk_periods", "int", 4, lo=1, hi=1 << 16,
+        doc="speed task: periods the acceleration takes to ramp to its limit"),
+    Key("field_weakening", "enable", "bool", True, doc="d-current reference from the voltage margin (FW register)"),
+    Key("field_weakening", "u_hi", "float", 0.90, lo=0, lo_open=True, hi=1,
+        doc="|u_raw| above this x u_max: the d-current reference steps down (FW_R2.hi)"),
+    Key("field_weakening", "u_lo", "float", 0.82, lo=0, lo_open=True, hi=1,
+        doc="|u_raw| below this x u_max: it steps back toward 0 (FW_R2.lo; below u_hi)"),
+    Key("field_weakening", "step", "float", 0.02, lo=0, lo_open=True, hi=1,
+        doc="step per control period, x i_max (rounded to a power of two of Q.4 ADC LSB: EMPC_FW_SHIFT)"),
+    Key("field_weakening", "i_max_frac", "float", 0.6, lo=0, lo_open=True, hi=1,
+        doc="deepest d-current reference, x i_max (FW.nmax steps, 8 bit)"),
     Key("ratings", "current", "float", None, lo=0, lo_open=True, unit="A",
         doc="rated current, phase peak (default control.i_max / 2)"),
     Key("ratings", "voltage", "float", None, lo=0, lo_open=True, unit="V",
@@ -351,6 +382,39 @@ class Robustness:
 
 
 @dataclass(frozen=True)
+class Governor:
+    """Reference governor in the reference generator (current limit, issue 15 item 4).
+
+    The task reference is shaped, N periods ahead of its use, into a trajectory whose
+    acceleration needs at most ``accel_current`` x i_max at the robustness-box corner
+    (inertia x ``box_J``, flux x ``box_psi``), with the position reference's speed at most
+    ``speed_frac`` of the no-load base speed u_max / psi (and of Omega_e); the reference
+    holds its acceleration (speed) or speed (position) while |i_q| > ``hold_current`` x i_max
+    or the voltage limiter was active.  See gen/empc/governor.py."""
+    enable: bool = True
+    accel_current: float = 0.5
+    box_J: float = 1.3
+    box_psi: float = 0.8
+    speed_frac: float = 0.7
+    hold_current: float = 0.7
+    shift_speed: int = 3
+    shift_position: int = 4
+    jerk_periods: int = 4
+
+
+@dataclass(frozen=True)
+class FieldWeakening:
+    """Field weakening from the voltage margin (issue 15 item 6): the d-current reference
+    moves by ``step`` x i_max per control period toward -``i_max_frac`` x i_max while
+    |u_raw| > ``u_hi`` x u_max, back toward 0 while |u_raw| < ``u_lo`` x u_max."""
+    enable: bool = True
+    u_hi: float = 0.90
+    u_lo: float = 0.82
+    step: float = 0.02
+    i_max_frac: float = 0.6
+
+
+@dataclass(frozen=True)
 class Control:
     algorithm: int
     task: str
@@ -365,6 +429,9 @@ class Control:
     speed_estimate: str
     weights: dict = field(default_factory=dict)   # {(alg, task): Weights}, SI units
     weight_units: str = "si"                      # how the configuration gave them
+    speed_load_shift: int = 6                     # "accel_load": load estimate gain 2^-shift per period
+    governor: Governor = field(default_factory=Governor)
+    field_weakening: FieldWeakening = field(default_factory=FieldWeakening)
 
     def weights_for(self, algorithm: int | None = None, task: str | None = None) -> Weights:
         key = (algorithm or self.algorithm, task or self.task)
@@ -421,11 +488,18 @@ class Config:
         Eq. 37 is the mean speed over the last period, i.e. the speed half a period ago;
         the model state wants the speed now.  The torque equation gives the missing
         (Ts/2) * dw/dt = (Ts/2) * 1.5 p^2 psi / J * i_q.  0 when speed_estimate = "eq37".
+        With "accel_load" a load estimate removes the part of i_q that holds a load
+        (gen/empc/estimator.py), so that the estimate is offset-free under load.
         """
-        if self.control.speed_estimate != "accel":
+        if self.control.speed_estimate not in ("accel", "accel_load"):
             return 0.0
         m = self.motor
         return 0.5 * self.control.Ts * 1.5 * m.p * m.p * m.psi / m.J
+
+    @property
+    def speed_load_shift(self) -> int:
+        """Load-estimate gain 2^-shift of the "accel_load" estimate; 0 = no load estimate."""
+        return self.control.speed_load_shift if self.control.speed_estimate == "accel_load" else 0
 
     @property
     def u_max(self) -> float:
@@ -558,6 +632,18 @@ def _rtl_limits():
         from .header import speed_correction_raw
         return speed_correction_raw(cfg)
 
+    fw_nmax_w = axis_reg("FW").fields[0].width
+    fw_r2_w = next(f for f in axis_reg("FW_R2").fields if f.name == "hi").width
+    iq_hold_w = axis_reg("IQ_HOLD").width
+
+    def fw(cfg):
+        from .header import field_weakening_raw
+        return field_weakening_raw(cfg)
+
+    def gov_vmax(cfg):
+        from .governor import raw_params
+        return max(raw_params(cfg, t)["vmax"] for t in ("speed", "position"))
+
     def counts_per_ts(cfg):
         c = cfg.control
         return max(abs(c.omega_min), abs(c.omega_max)) / cfg.rad_s_per_count_ts
@@ -567,7 +653,7 @@ def _rtl_limits():
          lambda cfg: cfg.control.Ts * cfg.inverter.f_pwm, 1, (1 << ctrl_ppc.width) - 1, ("control.Ts", "inverter.f_pwm")),
         ("PWM half period in clocks x 2^V_FRAC (phase voltages after eq. 36 span up to it, Q14.4 in %d bit)" % F.V_W,
          lambda cfg: cfg.pwm_half_period * (1 << F.V_FRAC), 0, vmax, ("inverter.f_pwm", "fpga.f_clk")),
-        ("PWM half period in clocks (the control computation, ~730 clocks for N = 4 (rtl/ctrl_seq.v), "
+        ("PWM half period in clocks (the control computation, ~1000 clocks for N = 4 (rtl/ctrl_seq.v), "
          "must end before the next PWM boundary)",
          lambda cfg: cfg.pwm_half_period, SEQ_LATENCY_MAX, None, ("inverter.f_pwm", "fpga.f_clk")),
         ("encoder counts per control period at max |Omega_e| (speed word Q16.16 in %d bit)" % F.W_W,
@@ -580,13 +666,27 @@ def _rtl_limits():
          ("control.speed_estimate", "motor.J", "motor.psi")),
         ("dead time in clocks (DEAD_TIME, %d bit)" % dead_w,
          lambda cfg: cfg.inverter.dead_time * cfg.f_clk, 0, (1 << dead_w) - 1, ("inverter.dead_time", "fpga.f_clk")),
+        ("field-weakening steps FW.nmax (%d bit; 1 at least when enabled)" % fw_nmax_w,
+         lambda cfg: fw(cfg)["FW_NMAX"] if cfg.control.field_weakening.enable else 1, 1, (1 << fw_nmax_w) - 1,
+         ("field_weakening.i_max_frac", "field_weakening.step", "control.i_max", "sensors.adc_amps_per_lsb")),
+        ("field-weakening step shift EMPC_FW_SHIFT (Q.4 ADC LSB)", lambda cfg: fw(cfg)["FW_SHIFT"], 0, 15,
+         ("field_weakening.step", "control.i_max", "sensors.adc_amps_per_lsb")),
+        ("field-weakening threshold FW_R2.hi (|u|^2 >> 20 in PWM ticks Q.4, %d bit)" % fw_r2_w,
+         lambda cfg: fw(cfg)["FW_R2_HI"], 0, (1 << fw_r2_w) - 1, ("field_weakening.u_hi", "inverter.f_pwm", "fpga.f_clk")),
+        ("governor hold current IQ_HOLD in ADC LSB (%d bit)" % iq_hold_w,
+         lambda cfg: cfg.control.governor.hold_current * cfg.control.i_max / cfg.sensors.adc_amps_per_lsb,
+         0, (1 << iq_hold_w) - 1, ("governor.hold_current", "control.i_max", "sensors.adc_amps_per_lsb")),
+        ("governor speed / acceleration limit vmax (Q.32 of the task unit, 63 bit)", gov_vmax, 1, (1 << 63) - 1,
+         ("governor.accel_current", "governor.speed_frac", "motor.J", "control.Ts", "sensors.encoder_cpr")),
         ("current limit in ADC LSB (the 12-bit ADC measures +-min(offset, 4095 - offset) LSB)",
          lambda cfg: cfg.control.i_max / cfg.sensors.adc_amps_per_lsb,
          0, None, ("control.i_max", "sensors.adc_amps_per_lsb", "sensors.adc_offset")),
     ]
 
 
-SEQ_LATENCY_MAX = 800   # clocks: control-period latency bound of rtl/ctrl_seq.v (693-728 measured, N = 4)
+# clocks: control-period latency bound of rtl/ctrl_seq.v (N = 4: 994 measured with the governor and the
+# load estimate, + 40 per saturated word; docs/blocks/ctrl_seq.md)
+SEQ_LATENCY_MAX = 1200
 
 
 def check_rtl_limits(cfg) -> None:
@@ -602,10 +702,17 @@ def check_rtl_limits(cfg) -> None:
 
 def _lookup(cfg, dotted: str):
     t, k = dotted.split(".")
-    obj = {"motor": cfg.motor, "inverter": cfg.inverter, "sensors": cfg.sensors, "control": cfg.control}.get(t)
+    obj = {"motor": cfg.motor, "inverter": cfg.inverter, "sensors": cfg.sensors, "control": cfg.control,
+           "governor": cfg.control.governor, "field_weakening": cfg.control.field_weakening}.get(t)
     if t == "fpga":
         return cfg.f_clk
     return getattr(obj, k)
+
+
+def _table(v: dict, table: str) -> dict:
+    """The validated keys of ``table`` with the schema's defaults (also when the table is absent)."""
+    got = v.get(table) or {}
+    return {name: got.get(name, k.default) for name, k in keys_of(table).items()}
 
 
 # ----------------------------------------------------------------------------------------------
@@ -627,6 +734,16 @@ def from_dict(d: dict, source: str = "<dict>") -> Config:
     ratings = derive_ratings(v.get("ratings", {}), motor, inverter, c["i_max"], c["N"] * c["Ts"])
     rb = v.get("robustness")
     robustness = Robustness(**rb) if rb else Robustness()
+    gv = _table(v, "governor")
+    governor = Governor(**dict(gv, box_J=1.0 + robustness.J if gv["box_J"] is None else gv["box_J"],
+                               box_psi=1.0 - robustness.psi if gv["box_psi"] is None else gv["box_psi"]))
+    if governor.box_psi <= 0.0:
+        raise ConfigError(f"robustness.psi = {_fmt(robustness.psi)}: the governor's flux corner 1 - psi is not "
+                          f"positive; allowed: robustness.psi < 1 or governor.box_psi given")
+    fw = FieldWeakening(**_table(v, "field_weakening"))
+    if fw.u_lo >= fw.u_hi:
+        raise ConfigError(f"field_weakening.u_lo = {_fmt(fw.u_lo)}, field_weakening.u_hi = {_fmt(fw.u_hi)}: "
+                          f"the band is empty; allowed: u_lo < u_hi")
     wv = v.get("weights")
     weights, units = {}, "pu"
     if wv is None:
@@ -656,7 +773,8 @@ def from_dict(d: dict, source: str = "<dict>") -> Config:
     control = Control(
         algorithm=alg, task=task, N=c["N"], Ts=c["Ts"], omega_min=c["omega_min"], omega_max=c["omega_max"],
         omega_points=c["omega_points"], design_quantised=c["design_quantised"], voltage_limit=c["voltage_limit"],
-        i_max=c["i_max"], speed_estimate=c["speed_estimate"], weights=weights, weight_units=units)
+        i_max=c["i_max"], speed_estimate=c["speed_estimate"], weights=weights, weight_units=units,
+        speed_load_shift=c["speed_load_shift"], governor=governor, field_weakening=fw)
     cfg = Config(motor=motor, inverter=inverter, sensors=sensors, f_clk=f_clk, control=control, source=source,
                  ratings=ratings, robustness=robustness)
     ratio = c["Ts"] * inverter.f_pwm

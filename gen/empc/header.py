@@ -42,6 +42,44 @@ def speed_correction_raw(cfg) -> tuple[int, int]:
     return int(round(k * (1 << shift))), shift
 
 
+def u_max_v(cfg) -> int:
+    """Voltage limit |u| <= Udc/sqrt(3) in PWM ticks (Q.4) at the nominal DC link."""
+    return int(math.floor(cfg.pwm_half_period / math.sqrt(3.0) * (1 << formats.V_FRAC)))
+
+
+def field_weakening_raw(cfg) -> dict[str, int]:
+    """Field weakening in raw units: the d-current reference offset is -n * 2^FW_SHIFT (Q.4 ADC
+    LSB), n = 0 .. FW_NMAX (register FW; 0 = off) moved by one per control period by the core's
+    flags; FW_R2_HI / LO: thresholds on the limiter's r >> FW_R_SHIFT (register FW_R2)."""
+    from .rtlmodel.mpc_core import FW_R_SHIFT
+    c = cfg.control
+    fw = c.field_weakening
+    q = (1 << formats.I_FRAC) / cfg.amps_per_lsb
+    um = u_max_v(cfg)
+    # (the field widths of FW_R2, FW.nmax and the shift are checked by config.check_rtl_limits)
+    hi = int(math.floor((fw.u_hi * um) ** 2)) >> FW_R_SHIFT
+    lo = int(math.floor((fw.u_lo * um) ** 2)) >> FW_R_SHIFT
+    shift = max(0, int(round(math.log2(max(fw.step * c.i_max * q, 1.0)))))
+    nmax = int(round(fw.i_max_frac * c.i_max * q / (1 << shift))) if fw.enable else 0
+    return {"FW_SHIFT": shift, "FW_NMAX": nmax, "FW_R2_HI": hi, "FW_R2_LO": lo}
+
+
+def field_weakening_si(cfg) -> tuple[float, float]:
+    """(step, limit) of the d-current offset in A, as the raw counter realises them."""
+    f = field_weakening_raw(cfg)
+    step = (1 << f["FW_SHIFT"]) * cfg.amps_per_lsb / (1 << formats.I_FRAC)
+    return step, f["FW_NMAX"] * step
+
+
+def governor_raw(cfg, task: str | None = None) -> dict[str, int]:
+    """Reference-governor words of ``task`` (default: the boot design's): GOV_* and IQ_HOLD."""
+    from . import governor
+    g = governor.raw_params(cfg, task or cfg.control.task)
+    return {"GOV_EN": int(g["enable"]), "GOV_KSH": g["ksh"], "GOV_VMAX_LO": g["vmax"] & 0xFFFFFFFF,
+            "GOV_VMAX_HI": g["vmax"] >> 32, "GOV_A_LO": g["a"] & 0xFFFFFFFF, "GOV_A_HI": g["a"] >> 32,
+            "IQ_HOLD": governor.hold_current_raw(cfg) if g["enable"] else 0}
+
+
 def config_constants(cfg) -> dict[str, int]:
     """Integer constants the RTL needs from the configuration (raw units)."""
     p = cfg.motor.p
@@ -50,6 +88,9 @@ def config_constants(cfg) -> dict[str, int]:
     return {
         "KACC": kacc,
         "KACC_SHIFT": kacc_shift,
+        "KACC_LOAD_SHIFT": cfg.speed_load_shift,
+        **field_weakening_raw(cfg),
+        **governor_raw(cfg),
         "CLK_HZ": int(round(cfg.f_clk)),
         "PWM_HALF_PERIOD": cfg.pwm_half_period,
         "PWM_PER_CONTROL": cfg.pwm_per_control,
@@ -57,7 +98,7 @@ def config_constants(cfg) -> dict[str, int]:
         "POLE_PAIRS": p,
         "ADC_OFFSET": cfg.sensors.adc_offset,
         # voltage limit |u| <= Udc/sqrt(3) in PWM ticks (Q.4) at the nominal DC link
-        "U_MAX_V": int(math.floor(cfg.pwm_half_period / math.sqrt(3.0) * (1 << formats.V_FRAC))),
+        "U_MAX_V": u_max_v(cfg),
     }
 
 
@@ -69,7 +110,8 @@ def core_constants(cfg) -> dict[str, int]:
             "SIG_DX": core.SIG_DX, "N": c.N,
             "IN_Y": core.IN_Y, "IN_OMEGA": core.IN_OMEGA, "IN_DX": core.IN_DX, "IN_UPREV": core.IN_UPREV,
             "IN_EBAR": core.IN_EBAR, "IN_WREF": core.IN_WREF, "IN_WORDS": core.IN_WORDS,
-            "BOOT_ALGORITHM": c.algorithm, "BOOT_TASK_POSITION": 1 if c.task == "position" else 0}
+            "BOOT_ALGORITHM": c.algorithm, "BOOT_TASK_POSITION": 1 if c.task == "position" else 0,
+            **{f"FLAG_{name.upper()}": bit for name, bit in core.FLAG_BITS.items()}}       # core flags bits
 
 
 def units(cfg) -> dict[str, float]:

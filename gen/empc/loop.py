@@ -24,7 +24,7 @@ Sensor quantisation (eq. 38 for the encoder, the ADC LSB for the currents) enter
 additive noise at the sampler; :func:`noise_gain` gives the RMS of i_q and of u that
 uniform quantisation noise drives through the loop (the "chatter" figure).
 
-Estimator interface (the other speed estimates plug in here): a discrete linear block
+Estimator interface (the speed estimates plug in here): a discrete linear block
 run once per control period, before the law,
 
     z_{k+1} = A z_k + B v_k + Bu u_k
@@ -35,6 +35,9 @@ u(k-1) is the voltage the law produced in the previous period) and u_k the law's
 of this period (for observers that predict one period ahead).  Register a constructor
 ``f(cfg) -> Estimator`` in :data:`ESTIMATORS` under the ``control.speed_estimate`` name;
 the matrices are designed from the configuration's nominal motor (the plant may differ).
+The three estimates of the RTL (eq37, accel, accel_load) come from their one linear form,
+``estimator.state_space`` (:func:`from_state_space`), the same the float controller steps
+(``estimator.SpeedEstimator``) and the sequencer computes in raw units.
 The estimator must be shift invariant in theta (a constant angle offset gives omega = 0
 in steady state), which every speed estimate from an incremental encoder is.
 """
@@ -69,26 +72,53 @@ class Estimator:
         return self.A.shape[0]
 
 
+def from_state_space(cfg, name: str | None = None) -> Estimator:
+    """The speed estimate of ``control.speed_estimate`` (or ``name``) as this interface's block, from
+    its one linear form :func:`empc.estimator.state_space` (inputs: the angle difference over the
+    period and i_q; states after it): the angle memory theta_{k-1} is prepended, so that
+    dtheta_k = theta_k - theta_{k-1} (the encoder's count difference; the estimator's states then
+    see no common angle shift).  Used for every estimate: eq. 37, accel and accel_load."""
+    from . import estimator as est_mod
+    if name is not None and name != cfg.control.speed_estimate:
+        cfg = cfg.with_control(speed_estimate=name)
+    ss = est_mod.state_space(cfg)
+    Ae, Be, Ce, De = (np.asarray(ss[k], dtype=float) for k in "ABCD")
+    ne = Ae.shape[0]
+    nz = 1 + ne
+    A = np.zeros((nz, nz)); B = np.zeros((nz, NV)); C = np.zeros((1, nz)); D = np.zeros((1, NV))
+    # z = [theta_{k-1}, estimator states];  dtheta = theta_k - z0
+    B[0, V_TH] = 1.0
+    A[1:, 0] = -Be[:, 0]
+    A[1:, 1:] = Ae
+    B[1:, V_TH] = Be[:, 0]
+    B[1:, V_IQ] = Be[:, 1]
+    C[0, 0] = -De[0, 0]
+    C[0, 1:] = Ce[0]
+    D[0, V_TH] = De[0, 0]
+    D[0, V_IQ] = De[0, 1]
+    doc = {"eq37": "backward difference of the encoder angle (eq. 37)",
+           "accel": "eq. 37 + (Ts/2) 1.5 p^2 psi / J * i_q",
+           "accel_load": "eq. 37 + (Ts/2) 1.5 p^2 psi / J * i_q less the load estimate (estimator.py)"}
+    kind = cfg.control.speed_estimate
+    return Estimator(kind, A, B, np.zeros((nz, 2)), C, D, doc.get(kind, ""))
+
+
 def estimator_eq37(cfg) -> Estimator:
     """Eq. 37: omega_k = (theta_k - theta_{k-1}) / Ts (one state: theta_{k-1})."""
-    Ts = cfg.control.Ts
-    B = np.zeros((1, NV)); B[0, V_TH] = 1.0
-    D = np.zeros((1, NV)); D[0, V_TH] = 1.0 / Ts
-    return Estimator("eq37", np.zeros((1, 1)), B, np.zeros((1, 2)), np.array([[-1.0 / Ts]]), D,
-                     "backward difference of the encoder angle (eq. 37)")
+    return from_state_space(cfg, "eq37")
 
 
 def estimator_accel(cfg) -> Estimator:
     """Eq. 37 plus the half-period acceleration term (Ts/2) 1.5 p^2 psi / J i_q (Config.speed_correction)."""
-    e = estimator_eq37(cfg)
-    e.name = "accel"
-    e.D = e.D.copy()
-    e.D[0, V_IQ] = cfg.speed_correction
-    e.doc = "eq. 37 + (Ts/2) 1.5 p^2 psi / J * i_q"
-    return e
+    return from_state_space(cfg, "accel")
 
 
-ESTIMATORS = {"eq37": estimator_eq37, "accel": estimator_accel}
+def estimator_accel_load(cfg) -> Estimator:
+    """accel less the load estimate D (states theta_{k-1}, w37_{k-1}, D_{k-1}; estimator.py)."""
+    return from_state_space(cfg, "accel_load")
+
+
+ESTIMATORS = {"eq37": estimator_eq37, "accel": estimator_accel, "accel_load": estimator_accel_load}
 
 
 def estimator_for(cfg) -> Estimator:

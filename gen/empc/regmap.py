@@ -380,9 +380,11 @@ AXIS = (
         guard="bridges_live"),
     Reg("HALL_OFFSET", 0x0f, "RW", 0, "Electrical angle of the HALL sector-1 start (2^16 = one turn).", width=16,
         guard="bridges_live"),
-    Reg("KACC", 0x10, "RW", 0, "Speed-estimate acceleration term: omega += (KACC * i_q) >> KACC_SHIFT "
-        "(reset from the header; 0 = plain eq. 37).", (
+    Reg("KACC", 0x10, "RW", 0, "Speed estimate (docs/blocks/ctrl_seq.md): omega = eq. 37 + (KACC * i_q) >> "
+        "KACC_SHIFT - D, D the load estimate (reset from the header; kacc = 0: plain eq. 37).", (
         Field("kacc", 0, 18, "signed gain", reset="EMPC_KACC"),
+        Field("load_shift", 18, 4, "load-estimate gain 2^-load_shift per control period (0 = no load estimate: "
+              "offset kacc i_load under a load)", reset="EMPC_KACC_LOAD_SHIFT"),
         Field("shift", 24, 5, "right shift", reset="EMPC_KACC_SHIFT"))),
     Reg("ID_REF", 0x11, "RW", 0, "d-current reference, ADC LSB Q.4 (signed 18 bit).", width=18, signed=True),
     Reg("IQ_REF", 0x12, "RW", 0, "q-current reference (feed-forward), ADC LSB Q.4 (signed 18 bit).", width=18,
@@ -405,11 +407,20 @@ AXIS = (
         Field("last", 1, 1, "hold at the end of this segment instead of moving to the next slot")), ext="seg"),
     Reg("SEG_START", 0x1b, "WO", 0, "Write a slot number to start the profile there at the next control period.",
         width=4),
-    Reg("ADC_SUM_THRESH", 0x1c, "RW", 300, f"Sum-of-currents threshold, ADC LSB of |d_a + d_b + d_c| (d = code - "
-        f"offset), checked on every frame (FAULT.adc_sum; 1..{OC_THRESH_MAX}).", width=ADC_CODE_BITS,
-        legal=range(1, OC_THRESH_MAX + 1), guard="bridges_live"),
-    Reg("UNLOCK", 0x1d, "WO", 0, f"Write {UNLOCK_KEY:#06x} to let the next write of this axis change FAULT_MASK "
-        "(within the arm time; any other value is refused).", width=16, key=UNLOCK_KEY, arm=UNLOCK_ARM),
+    Reg("SEG_GOV", 0x1c, "RW", "EMPC_GOV_VMAX_LO", "Reference-governor word of slot SEG_ADDR (slot memory field "
+        "7; docs/blocks/ref_gen.md): slots 0/1 vmax low/high, 2/3 a low/high (Q.32, 63 bit), 4 bit 0 enable and "
+        "bits 12:8 ksh; the header's values (boot task) after configuration (after reset SEG_ADDR = 0: vmax low).",
+        ext="gov"),
+    Reg("FW", 0x1d, "RW", 0, "Field weakening: the d-current references get -n * 2^EMPC_FW_SHIFT (Q.4 ADC LSB); "
+        "n steps up by one per control period (to nmax) while FW_R2.hi < |u_raw|^2 >> 20, down (to 0) while "
+        "|u_raw|^2 >> 20 < FW_R2.lo; 0 while the law is off.", (
+        Field("nmax", 0, 8, "largest n (0 = field weakening off)", reset="EMPC_FW_NMAX"),)),
+    Reg("FW_R2", 0x1e, "RW", 0, "Field-weakening band on the limiter's |u_raw|^2 (PWM ticks Q.4, squared, >> 20).", (
+        Field("hi", 0, 16, "above: n up (more negative d current)", reset="EMPC_FW_R2_HI"),
+        Field("lo", 16, 16, "below: n down", reset="EMPC_FW_R2_LO"))),
+    Reg("IQ_HOLD", 0x1f, "RW", "EMPC_IQ_HOLD", "Reference-governor hold: a control period with |i_q| >= IQ_HOLD "
+        "ADC LSB (or the voltage limit active) holds the reference's acceleration in the next (0 = no current "
+        "hold).", width=12),
     Reg("POS", 0x20, "RO", 0, "Encoder count (x4, modular 32 bit)."),
     Reg("SPEED", 0x21, "RO", 0, "Speed estimate at the last control period, counts per Ts, signed Q16.16.",
         ext="stat"),
@@ -454,7 +465,15 @@ AXIS = (
         "grid, or a sync restart cut the window: no current sample that period; 8-bit, saturating; not cleared by "
         "CMD.clear_counters).", width=8),
     Reg("CNT_ENC_ERR", 0x3e, "RO", 0, "Illegal quadrature transitions (16-bit, saturating).", width=16),
-    Reg("CNT_SWAP_REF", 0x3f, "RO", 0, "Refused coefficient swaps (8-bit, saturating; CMD.clear_counters zeroes "
+    Reg("SAT_GOV", 0x3f, "RO", 0, "Counter: the reference governor shaped the reference (current limit: a clamp "
+        "or its hold was active).", ext="cnt"),
+    # issue 14 (safety), beyond the 64-word status memory of axis_status (offsets 0x40..):
+    Reg("ADC_SUM_THRESH", 0x40, "RW", 300, f"Sum-of-currents threshold, ADC LSB of |d_a + d_b + d_c| (d = code - "
+        f"offset), checked on every frame (FAULT.adc_sum; 1..{OC_THRESH_MAX}).", width=ADC_CODE_BITS,
+        legal=range(1, OC_THRESH_MAX + 1), guard="bridges_live"),
+    Reg("UNLOCK", 0x41, "WO", 0, f"Write {UNLOCK_KEY:#06x} to let the next write of this axis change FAULT_MASK "
+        "(within the arm time; any other value is refused).", width=16, key=UNLOCK_KEY, arm=UNLOCK_ARM),
+    Reg("CNT_SWAP_REF", 0x42, "RO", 0, "Refused coefficient swaps (8-bit, saturating; CMD.clear_counters zeroes "
         "it).", width=8),
 )
 
@@ -462,6 +481,7 @@ AXIS = (
 EXT = (
     Ext("adc_off", "strobe", "adc_spi keeps the offsets (calibration writes them too)"),
     Ext("seg", "window", "ref_gen keeps the segment table: slot SEG_ADDR, field = word - SEG_LEN", idx=True),
+    Ext("gov", "window", "ref_gen keeps the governor words: field 7 of slot SEG_ADDR", rdata="seg_rdata"),
     Ext("stat", "window", "status words in the block RAM of mpc_axis", rdata="smem_rdata"),
     Ext("cnt", "window", "event counters in the block RAM of mpc_axis", rdata="smem_rdata"),
 )

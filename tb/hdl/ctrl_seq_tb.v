@@ -1,5 +1,6 @@
 // ctrl_seq_tb: simulation wrapper for tb/test_ctrl_seq.py: ctrl_seq with the blocks it talks to
-// (ref_gen, mpc_core, axis_status with no events and no CPU reads), driven directly by the test so
+// (ref_gen with its governor, mpc_core, axis_status with no events and no CPU reads; field weakening
+// and the governor's hold live in mpc_axis: hold is an input here), driven directly by the test so
 // that periods, registers and reference programs can be randomised far beyond what the closed
 // loop produces (large position jumps, saturated references, one control period per PWM period).
 `default_nettype none
@@ -9,7 +10,8 @@ module ctrl_seq_tb (
     input  wire adc_trig, input wire period_start, input wire [7:0] ppc, input wire run,
     input  wire [15:0] theta, input wire [31:0] pos, input wire adc_valid,
     input  wire signed [12:0] cur0, input wire signed [12:0] cur1, input wire signed [12:0] cur2,
-    input  wire [17:0] kdc, input wire signed [17:0] kacc, input wire [4:0] kacc_shift,
+    input  wire [17:0] kdc, input wire signed [17:0] kacc, input wire [4:0] kacc_shift, input wire [3:0] load_shift,
+    input  wire hold,
     input  wire signed [17:0] id_ref, input wire signed [17:0] iq_ref,
     input  wire seg_we, input wire [3:0] seg_slot, input wire [2:0] seg_field, input wire [31:0] seg_wdata,
     input  wire start, input wire [3:0] start_slot, input wire sync, input wire sync_bit, output wire [5:0] sync_idx,
@@ -29,10 +31,12 @@ module ctrl_seq_tb (
     ref_gen #(.N(4)) u_ref (.clk(clk), .rst(rst), .seg_we(seg_we), .seg_re(1'b0), .seg_slot(seg_slot),
         .seg_field(seg_field), .seg_wdata(seg_wdata), .seg_rdata(seg_rdata), .start(start), .start_slot(start_slot),
         .sync(sync), .sync_idx(sync_idx), .sync_bit(sync_bit), .advance(ref_advance), .rd_age(ref_age),
-        .rd_bit(ref_bit), .rd_q(ref_q), .w_ok(ref_ok), .busy(ref_busy));
+        .rd_bit(ref_bit), .rd_q(ref_q), .w_ok(ref_ok), .busy(ref_busy), .hold(hold), .task_pos(task_pos),
+        .gov_ev());
     ctrl_seq #(.N(4)) u_seq (.clk(clk), .rst(rst), .adc_trig(adc_trig), .period_start(period_start),
         .pwm_per_control(ppc), .run(run), .theta(theta), .pos(pos), .pos_sample(pos_sample), .adc_valid(adc_valid),
-        .cur0(cur0), .cur1(cur1), .cur2(cur2), .kdc(kdc), .kacc(kacc), .kacc_shift(kacc_shift), .id_ref(id_ref),
+        .cur0(cur0), .cur1(cur1), .cur2(cur2), .kdc(kdc), .kacc(kacc), .kacc_shift(kacc_shift),
+        .load_shift(load_shift), .id_ref(id_ref),
         .iq_ref(iq_ref), .task_pos(task_pos), .ref_advance(ref_advance), .ref_ok(ref_ok), .ref_age(ref_age),
         .ref_bit(ref_bit), .ref_q(ref_q), .core_start(core_start), .core_in_we(core_in_we),
         .core_in_addr(core_in_addr), .core_in_wdata(core_in_wdata), .core_done(core_done), .core_u(core_u),
@@ -41,12 +45,13 @@ module ctrl_seq_tb (
         .st_sh(st_sh), .st_d(st_d), .st_wr(st_wr), .st_addr(st_addr), .st_bit(st_bit), .sw_req(sw_req),
         .sw_all(sw_all), .sw_go(sw_go), .sw_end(sw_end), .ctl_go(ctl_go));
     axis_status u_status (.clk(clk), .rst(rst), .reg_rd(1'b0), .reg_addr(8'd0), .rdata(st_rdata), .cnt_clear(cnt_clear),
-        .core_done(1'b0), .core_flags(11'd0), .front_sat(1'b0), .overrun(1'b0), .period(1'b0), .st_sh(st_sh),
+        .core_done(1'b0), .core_flags(11'd0), .front_sat(1'b0), .overrun(1'b0), .period(1'b0), .gov(1'b0), .st_sh(st_sh),
         .st_d(st_d), .st_wr(st_wr), .st_addr(st_addr), .st_bit(st_bit), .sw_req(sw_req), .sw_all(sw_all),
         .sw_go(sw_go), .sw_end(sw_end), .ctl_go(ctl_go));
     mpc_core #(.N(4)) u_core (.clk(clk), .rst(rst), .start(core_start), .in_we(core_in_we), .in_addr(core_in_addr),
         .in_wdata(core_in_wdata), .busy(core_busy), .done(core_done), .u(core_u), .du(core_du), .u_raw(core_u_raw),
-        .ebar(core_ebar), .wn(core_wn), .flags(core_flags), .latency(core_latency), .cfg_we(cfg_we),
+        .ebar(core_ebar), .wn(core_wn), .flags(core_flags), .latency(core_latency), .fw_thr(32'd0), .fw_hi(),
+        .fw_lo(), .cfg_we(cfg_we),
         .cfg_addr(cfg_addr), .cfg_wdata(cfg_wdata), .cfg_swap(cfg_swap), .swap_at(pos_sample | swap_at),
         .ready(core_ready), .bank(core_bank), .swap_pending(swap_pending), .boot_ok(core_boot_ok), .img_ok(),
         .upl_ok(), .swap_refused(), .refused(), .task_pos(task_pos));

@@ -12,13 +12,23 @@ Position task: the law is invariant to a common shift of all angle signals
 (sum of the K_WL angle columns = K_y angle column, exactly), so angles are
 taken relative to the measured theta_k; this keeps the arithmetic small on a
 multi-turn axis and matches the RTL.
+
+Around the law, as in the RTL (issue 15): the speed estimate of ``control.speed_estimate``
+(estimator.py), the reference governor on the task reference (governor.py: the current
+limit; ``hold`` after a period with |i_q| above the hold current or the voltage limit
+active) and field weakening, a d-current reference from the voltage margin:
+i_fw moves by about fw.step x i_max per period (2^FW_SHIFT Q.4 ADC LSB, as the RTL's
+counter) toward about -fw.i_max_frac x i_max while the last |u_raw| > fw.u_hi x u_max,
+back toward 0 while it is < fw.u_lo x u_max, and is added to the i_d references.
 """
 from __future__ import annotations
 
 import numpy as np
 
+from .. import estimator as est_mod
 from .. import fit as fit_mod
-from .. import model, mpc
+from .. import governor as gov_mod
+from .. import header, model, mpc
 from .base import Controller, limit_circle
 
 
@@ -40,6 +50,9 @@ class ExplicitMPC(Controller):
         else:
             raise ValueError(f"gains must be 'poly' or 'exact', got {gains!r}")
         self.ebar_max = self._ebar_clamp()
+        self.estimator = est_mod.SpeedEstimator(cfg)
+        self.fw_step, self.fw_max = header.field_weakening_si(cfg)     # the RTL's counter steps
+        self.refpath = gov_mod.ReferencePath(cfg, self.task)
         self.reset()
 
     def _ebar_clamp(self) -> np.ndarray:
@@ -49,10 +62,15 @@ class ExplicitMPC(Controller):
     def reset(self) -> None:
         super().reset()
         self.x_prev = None
-        self.theta_prev = None
         self.ebar = np.zeros(3)
         self.saturations = 0
         self.last = {}
+        self.estimator.reset()
+        self.refpath.reset()
+        self.hold = False
+        self.i_fw = 0.0
+        self.u_raw_mag = 0.0
+        self.gov_clamps = 0
 
     def gains_at(self, w: float) -> dict:
         c = self.cfg.control
@@ -65,18 +83,33 @@ class ExplicitMPC(Controller):
         f = x - i
         return {n: (1 - f) * v[i] + f * v[i + 1] for n, v in tab.items()}
 
+    def references(self, meas) -> tuple[np.ndarray, np.ndarray]:
+        """w_k and W = w_{k+1..k+N} after the governor (task output) and field weakening (i_d)."""
+        c = self.cfg.control
+        W = np.array(meas.W, dtype=float)          # (N, 3): w_{k+1..k+N}
+        w_k = np.array(meas.w_k, dtype=float)
+        g0, gW = self.refpath.window(w_k[2], list(W[:, 2]), self.hold)
+        self.gov_clamps = self.refpath.clamps
+        w_k[2], W[:, 2] = g0, gW
+        fw = c.field_weakening
+        if fw.enable:
+            if self.u_raw_mag > fw.u_hi * self.cfg.u_max:
+                self.i_fw -= self.fw_step
+            elif self.u_raw_mag < fw.u_lo * self.cfg.u_max:
+                self.i_fw += self.fw_step
+            self.i_fw = min(max(self.i_fw, -self.fw_max), 0.0)
+        w_k[0] += self.i_fw
+        W[:, 0] += self.i_fw
+        return w_k, W
+
     def step(self, meas) -> np.ndarray:
-        Ts = self.cfg.control.Ts
         theta = meas.theta_e
-        w = 0.0 if self.theta_prev is None else (theta - self.theta_prev) / Ts   # eq. 37
-        w += self.cfg.speed_correction * meas.i_q
-        self.theta_prev = theta
+        w = self.estimator.step(theta, meas.i_q)
         x = np.array([meas.i_d, meas.i_q, w, theta, 0.0])
         dx = np.zeros(5) if self.x_prev is None else x - self.x_prev
         self.x_prev = x
         y = self.C @ x
-        W = np.array(meas.W, dtype=float)          # (N, 3): w_{k+1..k+N}
-        w_k = np.array(meas.w_k, dtype=float)
+        w_k, W = self.references(meas)
         if self.task == "position":                # relative angles (exact by invariance)
             W[:, 2] -= y[2]
             w_k = w_k.copy(); w_k[2] -= y[2]
@@ -88,10 +121,13 @@ class ExplicitMPC(Controller):
         else:
             self.ebar = self.ebar + np.clip(w_k - y, -self.ebar_max, self.ebar_max)   # (25), clamped
             du = g["K_ebar"] @ self.ebar + g["K_WL"] @ Wv - g["K_y"] @ y - g["K_dx"] @ dx
-        u, sat = limit_circle(self.u_dq + du, self.cfg.u_max)
+        u_raw = self.u_dq + du
+        u, sat = limit_circle(u_raw, self.cfg.u_max)
         self.saturations += int(sat)
         self.u_dq = u
-        self.last = {"w_sched": w, "du": du}
+        self.u_raw_mag = float(np.hypot(u_raw[0], u_raw[1]))
+        self.hold = sat or abs(meas.i_q) > self.cfg.control.governor.hold_current * self.cfg.control.i_max
+        self.last = {"w_sched": w, "du": du, "i_fw": self.i_fw}
         return u
 
 

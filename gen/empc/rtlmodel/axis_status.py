@@ -31,7 +31,7 @@ STATUS_ADDR = frozenset(ADDR[n] for n in STATUS_WORDS)
 COUNTER_ADDR = frozenset(ADDR[n] for n in COUNTERS)
 # the event of each counter: core flag bits 0..10 (SAT_OPERAND .. SAT_SIGNAL), then EVENTS
 EVENT_OF = {ADDR[n]: i for i, n in enumerate(COUNTERS)}
-EVENTS = ("front_sat", "overrun", "period")      # event indices 11, 12, 13 (the RTL port names)
+EVENTS = ("front_sat", "overrun", "period", "gov")   # event indices 11, 12, 13, 14 (the RTL port names)
 WRAPS = frozenset({ADDR["PERIODS"]})
 
 

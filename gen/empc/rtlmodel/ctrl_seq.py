@@ -6,6 +6,24 @@ it returns the compare values the RTL loads for the next PWM period, and on a
 control period also runs the front end, the MPC core model and updates the
 loop state exactly like the RTL.
 
+Front end of a control period (issue 15 items 1 and 6), raw units:
+
+    spd   = sat32(dpos << 16)                                  eq. 37, counts/Ts Q16.16
+    ka    = rshift_round(kacc * i_q, kacc_shift)               (Ts/2) accel from i_q
+    u1    = ka - D
+    omega = sat32(spd + u1)
+    load_shift > 0:  t2 = 2 u1 - (spd - spd_prev);  D = D + (t2 >> (load_shift + 1))
+    (load_shift = 0: D = 0, the plain "accel" estimate; kacc = 0 as well: eq. 37).
+    t2 / 2 = u1 - (spd - spd_prev) / 2: the load estimate's error (float form: estimator.py).
+    D is not saturated: it is a low-pass of ka - (spd - spd_prev) / 2, so |D| < 2^35 (|ka| <=
+    2^34, |spd| < 2^31), and the sequencer keeps it in 40 bits (never wraps).
+    field weakening (rtl/mpc_axis.v; fw_nmax > 0, law running): n = min(n + 1, fw_nmax) if
+        fw_hi, max(n - 1, 0) if fw_lo (the core's flags of the previous update); the
+        d-current references are sat18(id_ref - (n << fw_shift))
+    hold (for the reference governor, rtl/mpc_axis.v): after the core update of a running
+        control period, (iq_hold > 0 and (i_q >= 16 iq_hold or i_q < -16 iq_hold)) or the
+        voltage limiter was active; 0 when the law is off.
+
 The second half of this module is the RTL's microprogram: the tables (ops, pass table,
 programs) from which ``empc.ucode`` generates rtl/ctrl_seq_ucode.vh and rtl/ctrl_seq_rom.vh
 (``python -m empc.ucode``).  They describe how the RTL computes, not what: the model above
@@ -42,6 +60,47 @@ class Regs:
     iq_ref: int = 0
     half_period: int = 2500
     run: bool = True
+    load_shift: int = 0            # KACC.load_shift: load estimate of the speed (0 = off)
+    fw_shift: int = 8              # EMPC_FW_SHIFT: field-weakening step 2^fw_shift Q.4 ADC LSB
+    fw_nmax: int = 0               # FW.nmax: steps of the d-current offset (0 = field weakening off)
+    fw_thr: tuple = (0xFFFF, 0)    # FW_R2 (hi, lo): thresholds on the limiter's r >> 20
+    iq_hold: int = 0               # IQ_HOLD: |i_q| hold threshold of the governor, ADC LSB (0 = off)
+
+
+def speed_estimate(dpos: int, i_q: int, regs: "Regs", state: dict) -> tuple[int, bool]:
+    """omega (Q16.16) of one control period; ``state`` holds D and spd_prev (updated).
+    Returns (omega, saturated)."""
+    spd = dpos << F.W_FRAC
+    spd_s = F.sat(spd, F.W_W)
+    ka = F.rshift_round(regs.kacc * i_q, regs.kacc_shift) if regs.kacc_shift else regs.kacc * i_q
+    u1 = ka - state["D"]
+    om = spd_s + u1
+    omega = F.sat(om, F.W_W)
+    sat = spd_s != spd or omega != om
+    if regs.load_shift:
+        t2 = 2 * u1 - (spd_s - state["spd_prev"])
+        state["D"] = state["D"] + (t2 >> (regs.load_shift + 1))
+    else:
+        state["D"] = 0
+    state["spd_prev"] = spd_s
+    return omega, sat
+
+
+def fw_update(n: int, hi: bool, lo: bool, regs: "Regs") -> int:
+    """Field-weakening step count n after one control period (offset -n << fw_shift)."""
+    if not regs.fw_nmax:
+        return 0
+    n = min(n + 1, regs.fw_nmax) if hi else max(n - 1, 0) if lo else n
+    return min(n, regs.fw_nmax)
+
+
+def fw_offset(n: int, regs: "Regs") -> int:
+    return -(n << regs.fw_shift)
+
+
+def hold_flag(i_q: int, limited: bool, regs: "Regs") -> bool:
+    h = regs.iq_hold
+    return bool(limited or (h > 0 and (i_q >= 16 * h or i_q < -16 * h)))
 
 
 @dataclass
@@ -58,6 +117,10 @@ class CtrlSeq:
     u: tuple = (0, 0)
     ebar: tuple = (0, 0, 0)
     last: dict = field(default_factory=dict)
+    est: dict = field(default_factory=lambda: {"D": 0, "spd_prev": 0})
+    fw_n: int = 0
+    fw_flags: tuple = (False, False)
+    hold: bool = False
 
     def period(self, theta: int, pos: int, cur: tuple, regs: Regs, ref_w=None) -> dict:
         """One PWM period.  theta: 16-bit angle at the trigger; pos: encoder count (32-bit);
@@ -76,6 +139,7 @@ class CtrlSeq:
             self.per_cnt += 1
         if not regs.run:
             self.u, self.ebar = (0, 0), (0, 0, 0)
+            self.fw_n, self.fw_flags, self.hold = 0, (False, False), False
         # modulation chain for the held u
         sh = F.U_FRAC - F.V_FRAC
         ud = F.sat(F.rshift_round(self.u[0], sh), F.V_W)
@@ -97,12 +161,11 @@ class CtrlSeq:
         s, c = sincos(theta)
         i_d, i_q, sat1 = park(ia, ib, s, c)
         dpos = F.wrap(pos - self.pos_prev, F.POS_W)
-        spd = dpos << F.W_FRAC
-        spd_s = F.sat(spd, F.W_W)
-        ka = F.rshift_round(regs.kacc * i_q, regs.kacc_shift) if regs.kacc_shift else regs.kacc * i_q
-        om = spd_s + ka
-        omega = F.sat(om, F.W_W)
-        out["front_sat"] |= bool(sat0 or sat1 or spd_s != spd or omega != om)
+        omega, esat = speed_estimate(dpos, i_q, regs, self.est)
+        out["front_sat"] |= bool(sat0 or sat1 or esat)
+        if regs.run:
+            self.fw_n = fw_update(self.fw_n, *self.fw_flags, regs)
+        id_eff = F.sat(regs.id_ref + fw_offset(self.fw_n, regs), F.I_W)
         task_pos = self.params.task == "position"
         sw = core.SIG_W
         wref = []
@@ -113,7 +176,7 @@ class CtrlSeq:
                 w3 = F.sat(F.rshift_round(rel, 32 - F.TH_FRAC), sw)
             else:
                 w3 = F.sat(F.rshift_round(F.wrap(wv, 64), 32 - F.W_FRAC), sw)
-            wref.append((regs.id_ref, regs.iq_ref, w3))
+            wref.append((id_eff, regs.iq_ref, w3))
         # dx in the core's SIG_W-bit words: the speed and angle increments saturate (only for
         # impossible jumps: 2^15 counts/Ts of speed change, 2^23 counts per Ts)
         dom = F.sat(omega - self.omega_prev, sw)
@@ -121,13 +184,16 @@ class CtrlSeq:
         out["front_sat"] |= bool(dom != omega - self.omega_prev or dth != dpos << F.TH_FRAC)
         dx = (i_d - self.id_prev, i_q - self.iq_prev, dom, dth, 0)
         x = core.Inputs(y=(i_d, i_q, 0 if task_pos else omega), omega=omega, dx=dx, wref=tuple(wref),
-                        u_prev=self.u, ebar_prev=self.ebar)
+                        u_prev=self.u, ebar_prev=self.ebar, fw_thr=regs.fw_thr)
         self.id_prev, self.iq_prev, self.omega_prev, self.pos_prev = i_d, i_q, omega, pos
-        out.update(i_d=i_d, i_q=i_q, omega=omega, dpos=dpos)
+        out.update(i_d=i_d, i_q=i_q, omega=omega, dpos=dpos, i_fw=fw_offset(self.fw_n, regs), id_eff=id_eff)
         if regs.run:
             r = core.update(self.params, x)
             self.u, self.ebar = r.u, r.ebar
+            self.fw_flags = (r.fw_hi, r.fw_lo)
+            self.hold = hold_flag(i_q, bool(r.flags >> core.FLAG_BITS["limit"] & 1), regs)
             out["core"] = r
+        out["hold"] = self.hold
 
 
 # ==============================================================================================
@@ -145,14 +211,14 @@ class CtrlSeq:
 # ==============================================================================================
 NUC_MAX = 64                    # control program rows 0..63 (7-bit pc; status programs from 64)
 OP = {"POS": 0, "ZERO": 1, "COPY": 2, "REF": 3, "DIFF": 4, "OM": 5, "FIX3": 6, "W6": 7, "ZPOS": 8, "END": 9,
-      "STAT": 10, "SEND": 11, "CNT": 12, "CEND": 13}
+      "STAT": 10, "SEND": 11, "CNT": 12, "CEND": 13, "LD": 14}
 # sources of the COPY / STAT / DIFF / POS steps: stage registers, selected one-hot (ub.nsel, active low)
 SRC = {"POS": 0, "E0": 1, "E1": 2, "E2": 3, "U0": 4, "U1": 5, "IDR": 6, "IQR": 7, "ID": 8, "IQ": 9}
 N_SRC = len(SRC)
 # pass kinds (rows 64 k .. 64 k + 63 of the pass table); the reference kinds are {1, 0, task_pos,
 # m == 0}: the microword holds REFS / REFS0 and the RTL ORs task_pos into bit 1 (REFP / REFP0)
 PK = {"POS": 0, "DIFF": 1, "OM": 2, "FIX3": 3, "W6": 4, "STAT": 5, "CNT": 6, "FIX": 7, "REFS": 8, "REFS0": 9,
-      "REFP": 10, "REFP0": 11}
+      "REFP": 10, "REFP0": 11, "LD": 12}
 
 
 @dataclass(frozen=True)
@@ -178,7 +244,7 @@ OPS = {
     "COPY": Op("stage"),                                         # core word = a stage (copied through X)
     "REF":  Op("ref_ok", "REFS", sat=True, status=True),         # w3[m] from ref_gen (REF status word: m = 0)
     "DIFF": Op("front", "DIFF", sub=True, status=True),          # y = i_d / i_q, dx = y - y_prev (I_D / I_Q)
-    "OM":   Op("product", "OM", back=True),                      # omega (raw) = spd + ka
+    "OM":   Op("product", "OM", back=True),                      # omega (raw) = spd + ka - D, t2 (load term)
     "FIX3": Op("pass", "FIX3", status=True),                     # omega saturated -> core, SPEED
     "W6":   Op("pass", "W6", sat=True, sub=True),                # dx2 = omega - omega_prev
     "ZPOS": Op("zero"),                                          # y2 = 0 (position task only)
@@ -187,21 +253,24 @@ OPS = {
     "SEND": Op("idle"),                                          # status program done
     "CNT":  Op("pass", "CNT", back=True, status=True),           # a sweep word (bits from axis_status)
     "CEND": Op("idle"),                                          # counter sweep done
+    "LD":   Op("pass", "LD", back=True),                         # D += t2 >>> (load_shift + 1)
 }
 # op flags in uw (registered as is_*): the ops whose pass the datapath treats apart (not CNT: the
 # sweep words' bits come from axis_status)
 FLAG_OPS = ("POS", "REF", "DIFF", "OM", "FIX3", "W6", "STAT")
 
 # uw: op (read by the test bench only), src (bit 0: DIFF i_q), wa (core word), age (ref_age = N - m),
-# st (status / sweep word offset), op flags, sub, pk (pass kind bits 2:0)
+# st (status / sweep word offset), op flags, sub, pk (pass kind; the RTL ORs task_pos into bit 1
+# of a reference kind)
 UW = U.Layout((("op", 4), ("src", 4), ("wa", 6), ("age", 4), ("st", 6))
-              + tuple((n.lower(), 1) for n in FLAG_OPS) + (("sub", 1), ("pk", 3), ("spare", 1)))
+              + tuple((n.lower(), 1) for n in FLAG_OPS) + (("sub", 1), ("pk", 4)))
 # ub: stage selects (active low, one per SRC), next state from E_OP (to E_STG / E_PASS / E_IDLE; the
 # waits are the op flags), zero is "next step in E_OP" (ZERO, ZPOS), end markers (END: core start;
 # CEND: sweep done), COPY (E_LD -> E_WR), the zero writes (ZERO; ZPOS for the position task), the
-# pass-end actions: back to E_OP, saturated to SIG_W, writes a status / sweep word
+# pass-end actions: back to E_OP, saturated to SIG_W, writes a status / sweep word; ld: the load-
+# estimate pass (its datapath apart, like the uw op flags)
 UB = U.Layout((("nsel", N_SRC), ("to_stg", 1), ("to_pass", 1), ("zero", 1), ("to_idle", 1), ("end", 1), ("cend", 1),
-               ("copy", 1), ("wz", 1), ("zpos", 1), ("back", 1), ("sat", 1), ("stw", 1), ("spare", 14)))
+               ("copy", 1), ("wz", 1), ("zpos", 1), ("back", 1), ("sat", 1), ("stw", 1), ("ld", 1), ("spare", 13)))
 assert UW.width == UB.width == 36
 
 # Pass table: per kind, the bits b (0..63) of the pass in which each control bit is set.
@@ -230,6 +299,7 @@ PASSES = {
     "REFS0": dict(_REFS, SS=range(16, 48)),                  # m = 0: also the REF status word
     "REFP":  _REFP,
     "REFP0": dict(_REFP, SS=range(24, 56)),
+    "LD":    dict(PE=[39]),                                  # D += t2 >>> (load_shift + 1): own adder
 }
 assert list(PASSES) == list(PK)
 
@@ -255,7 +325,7 @@ def _a(name: str) -> int:
 
 STATUS_WORDS = ("SPEED", "I_D", "I_Q", "U_D", "U_Q", "REF")
 COUNTERS = ("SAT_OPERAND", "SAT_GAIN", "SAT_TERM", "SAT_ACC", "SAT_DU", "SAT_U", "SAT_EBAR", "SAT_EBAR_INC",
-            "SAT_LIMIT", "SAT_WN", "SAT_SIGNAL", "SAT_FRONT", "CNT_OVERRUN", "PERIODS")
+            "SAT_LIMIT", "SAT_WN", "SAT_SIGNAL", "SAT_FRONT", "CNT_OVERRUN", "PERIODS", "SAT_GOV")
 
 
 def control_program(n: int) -> list[Step]:
@@ -270,12 +340,13 @@ def control_program(n: int) -> list[Step]:
                  Step("REF", wa=a + 2, m=m, note=f"w3[{m}] from w_(k+{m}))")]
     prog += [Step("DIFF", "ID", core.IN_Y + 0, note="y0 = i_d, dx0 (at +4); waits for the front"),
              Step("DIFF", "IQ", core.IN_Y + 1, note="y1 = i_q, dx1; feeds the multiplier"),
-             Step("OM", note="omega = spd + ka; waits for the product"),
+             Step("OM", note="omega = spd + ka - D, t2 = 2 (ka - D) - spd + spd_prev; waits for the product"),
+             Step("LD", note="D += t2 >>> (load_shift + 1) (the load estimate of the speed)"),
              Step("FIX3", wa=core.IN_OMEGA, note="omega saturated (and y2 = omega for the speed task)"),
              Step("W6", wa=core.IN_DX + 2, note="dx2 = omega - omega_prev"),
              Step("ZPOS", wa=core.IN_Y + 2, note="y2 = 0 (position task)"),
              Step("END", note="core start")]
-    assert len(prog) == 14 + 3 * (n + 1) <= NUC_MAX
+    assert len(prog) == 15 + 3 * (n + 1) <= NUC_MAX
     return prog
 
 
@@ -303,12 +374,13 @@ def words(s: Step, n: int) -> tuple[int, int]:
         kind = "REFS0"
     st = {"REF": _a("REF"), "DIFF": _a("I_D") + (src & 1), "FIX3": _a("SPEED")}.get(s.op, s.wa)
     # (every field range-checked by pack: no silent truncation, e.g. of m or N - m)
-    uw = UW.pack(op=OP[s.op], src=src, wa=s.wa, age=n - s.m, st=st, sub=int(d.sub), pk=PK[kind] & 7,
+    uw = UW.pack(op=OP[s.op], src=src, wa=s.wa, age=n - s.m, st=st, sub=int(d.sub), pk=PK[kind],
                  **({s.op.lower(): 1} if s.op in FLAG_OPS else {}))
     ub = UB.pack(nsel=((1 << N_SRC) - 1) & ~(1 << src), to_stg=int(d.go == "stage"), to_pass=int(d.go == "pass"),
                  zero=int(d.go == "zero"), to_idle=int(d.go == "idle"), end=int(s.op == "END"),
                  cend=int(s.op == "CEND"), copy=int(s.op == "COPY"), wz=int(s.op == "ZERO"), zpos=int(s.op == "ZPOS"),
-                 back=int(d.back), sat=int(d.sat), stw=int(d.status and (not ref or s.m == 0)))
+                 back=int(d.back), sat=int(d.sat), stw=int(d.status and (not ref or s.m == 0)),
+                 ld=int(s.op == "LD"))
     return uw, ub
 
 

@@ -39,6 +39,10 @@ One update, in this order:
 
 Saturation events are reported per kind in ``flags`` (bit names in ``FLAG_BITS``).
 
+7. Field-weakening flags (issue 15 item 6), from the limiter's r = u18_d^2 + u18_q^2 of step 6
+   (computed in every update): ``fw_hi = (r >> FW_R_SHIFT) > fw_thr[0]``,
+   ``fw_lo = (r >> FW_R_SHIFT) < fw_thr[1]`` (thresholds: register FW_R2, 16 bit each).
+
 Image fields are used as the RTL stores them (``effective``): p0, p1, p2 saturated to
 18 bit, wn_min / wn_max clamped to +-OP_MAX, u_max to 0..OP_MAX, ebar_lim to 0..EBAR_LIM_MAX, ncols to MAX_COLS.
 Generated images are unaffected (they are always inside these ranges).
@@ -61,6 +65,8 @@ N_SIGNALS = SIG_DX + 5  # 59
 N_SIG_INDEX = 64        # col_sig is 6 bit; indices N_SIGNALS..63 read 0
 MAX_COLS = 64
 RSQRT_BITS = 10
+FW_THR_W = 16           # field-weakening thresholds (register FW_R2 hi / lo)
+FW_R_SHIFT = 2 * OPW - FW_THR_W   # 20: the flags compare the top 16 bits r[35:20] of r < 2^(2 OPW)
 OP_MAX = (1 << (OPW - 1)) - 1
 EBAR_LIM_MAX = (1 << (SIG_W - 1)) - 1   # ebar_lim is stored clamped to this (a SIG_W-bit operand)
 
@@ -125,6 +131,7 @@ class Inputs:
     wref: tuple                    # (N+1) x 3: w_k, w_{k+1}, ..., w_{k+N}
     u_prev: tuple                  # 2 x Q16.8
     ebar_prev: tuple = (0, 0, 0)
+    fw_thr: tuple = (0xFFFF, 0)    # field-weakening thresholds (hi, lo) on r >> FW_R_SHIFT (FW_R2)
 
 
 @dataclass
@@ -136,6 +143,8 @@ class Outputs:
     wn: int
     flags: int
     counts: dict = field(default_factory=dict)
+    fw_hi: bool = False            # |u_raw| above the field-weakening band (step 7)
+    fw_lo: bool = False            # |u_raw| below it
 
 
 def input_words(x: Inputs, N: int | None = None) -> dict[int, int]:
@@ -261,7 +270,17 @@ def update(p: Params, x: Inputs) -> Outputs:
     for name, n in counts.items():
         if n:
             flags |= 1 << FLAG_BITS[name]
-    return Outputs(tuple(u_out), tuple(du), tuple(u_raw), ebar, wn, flags, counts)
+    # 7. field-weakening flags
+    rt = voltage_r(u_raw) >> FW_R_SHIFT
+    return Outputs(tuple(u_out), tuple(du), tuple(u_raw), ebar, wn, flags, counts,
+                   fw_hi=rt > x.fw_thr[0], fw_lo=rt < x.fw_thr[1])
+
+
+def voltage_r(u_raw) -> int:
+    """r = u18_d^2 + u18_q^2 of the limiter (step 6), 0 <= r < 2^36."""
+    sh = U_FRAC - V_FRAC
+    u18 = [sat(rshift_round(v, sh), OPW) for v in u_raw]
+    return u18[0] * u18[0] + u18[1] * u18[1]
 
 
 def _clamp(v: int, lim: int) -> int:

@@ -22,6 +22,25 @@ timing clock by clock, the other methods act at once.  Slots are written one
 32-bit field at a time (:meth:`RefGen.write_field`, fields :data:`FIELDS`).
 
 :func:`segments_from_points` turns a step/ramp profile in SI units into slots.
+
+Reference governor (issue 15 item 4, gen/empc/governor.py for the float form): with the
+governor enabled the profile above runs on the *target* r, and the head w_{k+N} is the
+governed g.  Per advance, r_old -> r_new (the profile's advance), and in 64-bit two's
+complement Q.32 (exact integers where stated; s64 = the signed value of a 64-bit word):
+
+    vd  = s64(r_new - r_old) + (s64(r_old - g) >> ksh)              (exact, 65 bit)
+    vd  = vmax if vd > vmax, -vmax if vd < -vmax;  speed task and hold: vd = 0
+    dv  = vd - s64(v)                                                (exact)
+    dv  = a if dv > a, -a if dv < -a
+    position task, hold, dv != 0, v != 0 and sign(dv) = sign(v): dv = 0
+    v   = s64(v + dv);  g = g + v (mod 2^64)
+
+vmax and a are 63-bit unsigned (bit 63 of each reads as 0); they sit with ksh and enable in
+field 7 of slots 0..4 (:data:`GOV_SLOTS`, register SEG_GOV).  ``hold`` and the task come from
+the axis (``advance(hold=..., task_pos=...)``).  Disabled: g = r, v = 0 (the plain generator).
+A sync sets r, g and the delay line to the sync value and v to 0.  ``clamped`` tells whether
+the last advance changed the reference (hold or a clamp: the SAT_GOV event).  A held target is
+reached to within 2^ksh LSB of Q.32 (where e >> ksh becomes 0): 2^-29 counts for ksh = 3.
 """
 from __future__ import annotations
 
@@ -64,6 +83,38 @@ class Slot:
 
 
 FIELDS = ("len", "r0_lo", "r0_hi", "d1_lo", "d1_hi", "d2", "flags")   # seg_field 0..6 (SEG_LEN .. SEG_FLAGS)
+GOV_FIELD = 7                                                          # register SEG_GOV
+GOV_SLOTS = {"vmax_lo": 0, "vmax_hi": 1, "a_lo": 2, "a_hi": 3, "cfg": 4}  # field 7 of these slots
+GOV_KSH_LSB = 8                                                        # cfg word: bit 0 enable, ksh [12:8]
+M63 = (1 << 63) - 1
+
+
+def gov_step(gp: dict, v: int, r_old: int, r_new: int, g: int, hold: bool, task_pos: bool) -> tuple[int, int, bool]:
+    """One governor step (module docstring): returns (g_new, v_new, clamped), 64-bit words."""
+    if not gp["enable"]:
+        return r_new & M64, 0, False
+    vmax, a = gp["vmax"], gp["a"]
+    vd0 = wrap(r_new - r_old, 64) + (wrap(r_old - g, 64) >> gp["ksh"])
+    vd = vmax if vd0 > vmax else -vmax if vd0 < -vmax else vd0
+    if hold and not task_pos:
+        vd = 0
+    vs = wrap(v, 64)
+    dv0 = vd - vs
+    dv = a if dv0 > a else -a if dv0 < -a else dv0
+    if hold and task_pos and dv != 0 and vs != 0 and (dv > 0) == (vs > 0):
+        dv = 0
+    clamped = bool(hold or vd0 > vmax or vd0 < -vmax or dv0 > a or dv0 < -a)
+    v_new = (vs + dv) & M64
+    return (g + v_new) & M64, v_new, clamped
+
+
+def gov_words(vmax: int, a: int, ksh: int, enable: bool) -> dict[int, int]:
+    """Field-7 words {slot: word} that program the governor (see governor.raw_params)."""
+    if not (0 <= vmax <= M63 and 0 <= a <= M63 and 0 <= ksh < 32):
+        raise ValueError(f"governor parameters out of range: vmax={vmax} a={a} ksh={ksh}")
+    return {GOV_SLOTS["vmax_lo"]: vmax & M32, GOV_SLOTS["vmax_hi"]: vmax >> 32,
+            GOV_SLOTS["a_lo"]: a & M32, GOV_SLOTS["a_hi"]: a >> 32,
+            GOV_SLOTS["cfg"]: int(bool(enable)) | (ksh << GOV_KSH_LSB)}
 
 
 def slot_field(s: Slot, field: int) -> int:
@@ -91,7 +142,8 @@ def with_field(s: Slot, field: int, value: int) -> Slot:
 
 
 # engine timing of rtl/ref_gen.v (clocks per pass include the lead clock of the block RAM read)
-PASS_CLOCKS = {"flags": 3, "head": 65, "d1": 65, "d2": 33, "len": 33, "sync": 65}
+PASS_CLOCKS = {"flags": 3, "head": 65, "d1": 65, "d2": 33, "len": 33, "sync": 65, "gov": 65}
+GOV_PASSES = 4                  # governor passes after the head pass (the last one shifts the delay line)
 
 
 class RefGen:
@@ -113,6 +165,8 @@ class RefGen:
             raise ValueError("N must be >= 1")
         self.N = N
         self.mem = [Slot()] * NSLOT        # not cleared by reset (block RAM)
+        self.gmem = [0] * NSLOT            # field 7 of each slot (governor words), block RAM too
+        self.gcfg = 0                      # enable / ksh register (loaded by the field-7 write of slot 4)
         self.reset(settled=True)
 
     def reset(self, settled: bool = False) -> None:
@@ -130,8 +184,13 @@ class RefGen:
         self.adv_pend = False
         self.sync_pend = False
         self.dl = [0] * self.N
+        self.r = 0                         # target (the profile); = head when the governor is off
+        self.v = 0                         # governed increment per period
+        self.clamped = False
         self._op = None                    # running operation: dict(kind, clocks left, ...)
         self._sync_value = 0
+        self._hold = False
+        self._task_pos = False
         if not settled:
             self._begin_sync(0)
 
@@ -145,10 +204,28 @@ class RefGen:
         self.mem[idx % NSLOT] = slot.normalised()
 
     def write_field(self, idx: int, field: int, value: int) -> None:
+        if field == GOV_FIELD:
+            self.gmem[idx % NSLOT] = value & M32
+            if idx % NSLOT == GOV_SLOTS["cfg"]:
+                self.gcfg = value & (1 | (31 << GOV_KSH_LSB))
+            return
         self.mem[idx % NSLOT] = with_field(self.mem[idx % NSLOT], field, value)
 
     def read_field(self, idx: int, field: int) -> int:
+        if field == GOV_FIELD:
+            return self.gmem[idx % NSLOT]
         return slot_field(self.mem[idx % NSLOT], field)
+
+    def write_gov(self, vmax: int, a: int, ksh: int, enable: bool) -> None:
+        for slot, word in gov_words(vmax, a, ksh, enable).items():
+            self.write_field(slot, GOV_FIELD, word)
+
+    @property
+    def gov(self) -> dict:
+        g = self.gmem
+        return {"enable": bool(self.gcfg & 1), "ksh": (self.gcfg >> GOV_KSH_LSB) & 31,
+                "vmax": (g[GOV_SLOTS["vmax_lo"]] | g[GOV_SLOTS["vmax_hi"]] << 32) & M63,
+                "a": (g[GOV_SLOTS["a_lo"]] | g[GOV_SLOTS["a_hi"]] << 32) & M63}
 
     def start(self, slot: int) -> None:
         self.pend, self.pend_slot = True, slot % NSLOT
@@ -156,12 +233,13 @@ class RefGen:
     def sync(self, value: int) -> None:
         """Head and the whole delay line = ``value``, differences 0, hold (a pending start survives)."""
         v = value & M64
-        self.head = v
+        self.head = self.r = v
         self.dl = [v] * self.N
-        self.d1 = self.d2 = self.rem = 0
+        self.d1 = self.d2 = self.rem = self.v = 0
         self.ends = self.last = False
 
-    def advance(self) -> list[int]:
+    def advance(self, hold: bool = False, task_pos: bool = False) -> list[int]:
+        self._hold, self._task_pos = bool(hold), bool(task_pos)
         self._advance()
         return self.w
 
@@ -171,7 +249,8 @@ class RefGen:
 
     def _advance(self) -> None:
         old_head = self.head
-        h1 = (self.head + self.d1) & M64
+        r_old = self.r
+        h1 = (r_old + self.d1) & M64
         d1n = (self.d1 + self.d2) & M64
         seg_end = self.ends and self.rem == 1
         do_start = self.pend
@@ -179,19 +258,25 @@ class RefGen:
         self.pend = False
         if do_start or (seg_end and not self.last):
             s = self.mem[ld]
-            self.head = h1 if s.relative else s.r0
+            self.r = h1 if s.relative else s.r0
             self.d1, self.d2, self.rem = s.d1, s.d2, s.length
             self.ends, self.last, self.slot = s.length != 0, s.last, ld
         elif seg_end:                       # last: hold
-            self.head = h1
+            self.r = h1
             self.d1 = self.d2 = self.rem = 0
             self.ends = False
         else:
-            self.head = h1
+            self.r = h1
             self.d1 = d1n
             if self.ends:
                 self.rem -= 1
+        self.head = self._govern(r_old, self.r, old_head)
         self.dl = self.dl[1:] + [old_head]
+
+    def _govern(self, r_old: int, r_new: int, g: int) -> int:
+        """The governed head after an advance of the target from r_old to r_new (g: the old head)."""
+        g_new, self.v, self.clamped = gov_step(self.gov, self.v, r_old, r_new, g, self._hold, self._task_pos)
+        return g_new
 
     # ---- clock level (RTL engine timing) ----
     @property
@@ -221,19 +306,22 @@ class RefGen:
         snap = RefGen.__new__(RefGen)              # the result, applied in two steps
         snap.__dict__.update({k: v for k, v in self.__dict__.items() if k != "_op"})
         snap.dl = list(self.dl)
+        snap.gmem = list(self.gmem)
+        snap._hold, snap._task_pos = self._hold_in, self._task_pos_in
         snap._advance()
+        gov = self.gov["enable"]
+        w_left = PASS_CLOCKS["head"] + (GOV_PASSES * PASS_CLOCKS["gov"] if gov else 0)
+        clocks = w_left
         if load:
-            clocks = sum(PASS_CLOCKS[k] for k in ("flags", "head", "d1", "d2", "len"))
-            w_left = PASS_CLOCKS["flags"] + PASS_CLOCKS["head"]
-        else:
-            clocks = w_left = PASS_CLOCKS["head"]
+            clocks += sum(PASS_CLOCKS[k] for k in ("flags", "d1", "d2", "len"))
+            w_left += PASS_CLOCKS["flags"]
         self.pend = False                          # consumed (a start in this clock re-pends)
         self._op = {"kind": "advance", "left": clocks, "w_left": w_left, "w_done": False,
                     "load": load, "slot": ld, "result": snap}
 
     def step(self, seg_we: bool = False, seg_slot: int = 0, seg_field: int = 0, seg_wdata: int = 0,
              start: bool = False, start_slot: int = 0, sync: bool = False, sync_value: int = 0,
-             advance: bool = False) -> None:
+             advance: bool = False, hold: bool = False, task_pos: bool = False) -> None:
         """One rising clock edge with the given inputs (RTL priorities and timing).
         ``sync_value`` is sampled when the sync's first pass runs: keep it constant from the
         strobe until the sync has run (as the RTL requires); here it is taken at the strobe.  A field write
@@ -241,6 +329,7 @@ class RefGen:
         write :attr:`loading_slot` while that advance runs (undefined in the RTL)."""
         if seg_we:                                 # port A write: seen by an advance beginning now
             self.write_field(seg_slot, seg_field, seg_wdata)
+        self._hold_in, self._task_pos_in = bool(hold), bool(task_pos)   # sampled when an advance begins
         op = self._op
         if op is not None:                         # the running operation advances one clock
             op["left"] -= 1
@@ -253,10 +342,10 @@ class RefGen:
             if op["left"] == 0:
                 if op["kind"] == "sync":
                     v = op["value"]
-                    self.head, self.dl = v, [v] * self.N
+                    self.head, self.dl, self.r, self.v = v, [v] * self.N, v, 0
                 else:
                     r = op["result"]
-                    for k in ("d1", "d2", "rem", "ends", "last", "slot"):
+                    for k in ("d1", "d2", "rem", "ends", "last", "slot", "r", "v", "clamped"):
                         setattr(self, k, getattr(r, k))
                 self._op = None
         elif self.sync_pend:                       # idle: begin an operation

@@ -1,0 +1,144 @@
+"""Reference governor: the current limit of the control law (issue 15 item 4).
+
+The explicit law is linear and unconstrained (the paper's only constraint handling is the
+saturation of u).  Large reference changes therefore draw large currents: a 150 -> 900 rad/s
+speed step 12-19 A, a 200 rad position step 11-22 A over the plant box, with i_max = 10 A.
+The governor shapes the task reference where it is generated (rtl/ref_gen.v), N periods ahead
+of its use, into a trajectory the loop can follow within the current limit, so the law never
+sees an infeasible demand (no windup, no saturation) and its preview W_{k+1..k+N} stays
+consistent.  Per control period, with the target r (the CPU's profile) and the governed
+reference g (what the controller gets), its increment v:
+
+    vd = (r_k - r_{k-1}) + (r_{k-1} - g) >>> ksh      feed-forward + proportional catch-up
+    vd = clamp(vd, -vmax, vmax)
+    if hold and speed task: vd = 0
+    dv = clamp(vd - v, -a, a)
+    if hold and position task and dv would increase |v|: dv = 0
+    v += dv;  g += v
+
+Position task: v is the reference speed (<= vmax: speed_frac of the no-load base speed
+u_max/psi and of Omega_e), dv its change (<= a: the acceleration that needs accel_current x
+i_max at the box corner J x box_J, psi x box_psi).  Speed task: v is the reference's
+acceleration (<= vmax, the same acceleration limit), dv its change per period (a = vmax /
+jerk_periods).  ``hold`` (the previous control period had |i_q| > hold_current x i_max or the
+voltage limiter active) stops the reference from demanding more: the position reference does
+not speed up (it may slow down), the speed reference's acceleration decays to 0.  In steady tracking of a feasible
+profile (ramps within the limits) the governed reference equals the target exactly.
+
+Raw form (rtl/ref_gen.v, rtlmodel/ref_gen.py): values Q.32 of the task unit (counts, counts/Ts),
+64-bit two's complement; :func:`raw_params` gives vmax, a (Q.32) and ksh.  This module holds the
+float form (SI units) used by the float and fixed controllers.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Params:
+    task: str
+    vmax: float          # per control period: rad (position) or rad/s (speed)
+    a: float             # per control period^2: rad (position) or rad/s (speed)
+    ksh: int
+    enable: bool
+
+
+def accel_limit(cfg) -> float:
+    """Acceleration (rad/s^2, electrical) that needs accel_current x i_max at the box corner."""
+    m, g = cfg.motor, cfg.control.governor
+    return g.accel_current * cfg.control.i_max * 1.5 * m.p * m.p * m.psi * g.box_psi / (m.J * g.box_J)
+
+
+def speed_limit(cfg) -> float:
+    """Largest reference speed of the position task (rad/s, electrical)."""
+    c, g = cfg.control, cfg.control.governor
+    w_top = min(c.omega_max, -c.omega_min, cfg.u_max / cfg.motor.psi)
+    return g.speed_frac * w_top
+
+
+def params(cfg, task: str) -> Params:
+    c, g = cfg.control, cfg.control.governor
+    Ts = c.Ts
+    alpha = accel_limit(cfg)
+    if task == "speed":
+        vmax = alpha * Ts
+        return Params(task, vmax, vmax / g.jerk_periods, g.shift_speed, g.enable)
+    return Params(task, speed_limit(cfg) * Ts, alpha * Ts * Ts, g.shift_position, g.enable)
+
+
+def raw_params(cfg, task: str) -> dict:
+    """Q.32 register values (slot memory field 7, see rtlmodel/ref_gen.GOV_*): vmax, a, ksh, enable."""
+    p = params(cfg, task)
+    unit = cfg.rad_per_count if task == "position" else cfg.rad_s_per_count_ts
+    q = lambda x: int(math.floor(x / unit * 2.0 ** 32))
+    return {"vmax": q(p.vmax), "a": max(1, q(p.a)), "ksh": p.ksh, "enable": p.enable}
+
+
+def hold_current_raw(cfg) -> int:
+    """IQ_HOLD register: |i_q| threshold of the hold in ADC LSB (the integer part of i_q Q.4)."""
+    return int(round(cfg.control.governor.hold_current * cfg.control.i_max / cfg.amps_per_lsb))
+
+
+class Governor:
+    """Float governor of one task output (SI units), stepped once per control period at the head."""
+
+    def __init__(self, p: Params):
+        self.p = p
+        self.K = 2.0 ** -p.ksh
+        self.reset(0.0)
+        self.clamped = False
+
+    def reset(self, value: float) -> None:
+        self.r = value
+        self.g = value
+        self.v = 0.0
+
+    def step(self, r_new: float, hold: bool) -> float:
+        p = self.p
+        if not p.enable:
+            self.r = self.g = r_new
+            self.v = 0.0
+            self.clamped = False
+            return self.g
+        vd0 = (r_new - self.r) + self.K * (self.r - self.g)
+        vd = min(max(vd0, -p.vmax), p.vmax)
+        if hold and p.task == "speed":
+            vd = 0.0
+        dv0 = vd - self.v
+        dv = min(max(dv0, -p.a), p.a)
+        if hold and p.task == "position" and dv * self.v > 0:
+            dv = 0.0                        # no more speed while held (slowing down stays allowed)
+        self.clamped = bool(hold or vd != vd0 or dv != dv0)
+        self.v += dv
+        self.g += self.v
+        self.r = r_new
+        return self.g
+
+
+class ReferencePath:
+    """The governed reference window of a controller: w_k .. w_{k+N} of the task output.
+
+    ``window(meas_w_k, meas_W, hold)`` takes the profile's samples (what the CPU programmed)
+    and returns the governed ones; the governor runs on the head w_{k+N} (it is stepped once
+    per call) and a delay line keeps the N earlier governed values, as in rtl/ref_gen.v.
+    """
+
+    def __init__(self, cfg, task: str):
+        self.gov = Governor(params(cfg, task))
+        self.N = cfg.control.N
+        self.dl = None
+        self.clamps = 0
+
+    def reset(self) -> None:
+        self.dl = None
+        self.clamps = 0
+
+    def window(self, w_k: float, W: list, hold: bool) -> tuple[float, list]:
+        if self.dl is None:                  # bumpless start: the window as given, governor at the head
+            self.dl = [float(w_k)] + [float(x) for x in W]
+            self.gov.reset(self.dl[-1])
+        else:
+            self.dl = self.dl[1:] + [self.gov.step(float(W[-1]), hold)]
+            self.clamps += int(self.gov.clamped)
+        return self.dl[0], self.dl[1:]

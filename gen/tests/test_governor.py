@@ -1,0 +1,110 @@
+"""Reference governor (governor.py, issue 15 item 4): the limits it promises, a feasible profile
+passes unchanged, the hold, and the raw form (rtlmodel/ref_gen.gov_step, what rtl/ref_gen.v
+computes) against the float form."""
+import numpy as np
+import pytest
+
+from empc import config, governor as gov
+from empc.formats import wrap
+from empc.rtlmodel import ref_gen as rg
+
+CFG = config.default()
+SEED = 15
+
+
+def _run(p, target, hold=None):
+    g = gov.Governor(p)
+    g.reset(target[0])
+    out, vs = [], []
+    for k, r in enumerate(target):
+        out.append(g.step(r, bool(hold[k]) if hold is not None else False))
+        vs.append(g.v)
+    return np.array(out), np.array(vs)
+
+
+@pytest.mark.parametrize("task", ["speed", "position"])
+def test_step_within_limits_and_reaches_target(task):
+    p = gov.params(CFG, task)
+    big = 750.0 if task == "speed" else 200.0
+    tgt = np.concatenate([np.zeros(5), np.full(3000, big), np.full(3000, -0.3 * big)])
+    g, v = _run(p, tgt)
+    assert np.max(np.abs(np.diff(g))) <= p.vmax * (1 + 1e-12)
+    assert np.max(np.abs(np.diff(v))) <= p.a * (1 + 1e-12)
+    assert abs(g[3004] - big) < 1e-6 * big and abs(g[-1] + 0.3 * big) < 1e-6 * big
+    assert np.max(g) <= big * (1 + 1e-3)                         # no overshoot of the target
+
+
+@pytest.mark.parametrize("task", ["speed", "position"])
+def test_feasible_profile_unchanged(task):
+    """A ramp whose slope and changes are within the limits passes exactly (after its start)."""
+    p = gov.params(CFG, task)
+    slope = 0.5 * p.vmax                                      # reached with changes of 0.5 a
+    tgt = np.concatenate([np.zeros(10), np.cumsum(np.minimum(np.arange(400) * 0.5 * p.a, slope))])
+    g, _ = _run(p, tgt)
+    assert np.max(np.abs(g - tgt)) < 1e-9 * max(1.0, np.max(np.abs(tgt)))
+
+
+def test_limits_from_the_box():
+    """Speed task: the acceleration limit needs accel_current x i_max at the box corner (J up, psi
+    down); position: the speed limit is speed_frac of the base speed."""
+    m, c = CFG.motor, CFG.control
+    gp = c.governor
+    alpha = gov.accel_limit(CFG)
+    torque = 1.5 * m.p * m.psi * gp.box_psi * gp.accel_current * c.i_max
+    assert abs(alpha - torque * m.p / (m.J * gp.box_J)) < 1e-9 * alpha
+    ps = gov.params(CFG, "speed")
+    assert abs(ps.vmax - alpha * c.Ts) < 1e-12 and abs(ps.a * gp.jerk_periods - ps.vmax) < 1e-12
+    pp = gov.params(CFG, "position")
+    assert pp.vmax / c.Ts <= gp.speed_frac * CFG.u_max / m.psi * (1 + 1e-12)
+    assert pp.vmax / c.Ts <= c.omega_max
+
+
+def test_hold():
+    """Speed: under hold the increment decays to 0 (at most a per period); position: the
+    reference does not speed up while held."""
+    ps = gov.params(CFG, "speed")
+    tgt = np.concatenate([np.zeros(5), np.full(400, 900.0)])
+    hold = np.zeros(405, bool); hold[12:200] = True
+    g, v = _run(ps, tgt, hold)
+    assert abs(v[11]) > 0.5 * ps.vmax
+    k0 = 12 + int(np.ceil(abs(v[11]) / ps.a))
+    assert np.all(v[k0:200] == 0.0) and np.all(np.diff(g[k0:200]) == 0.0)
+    assert abs(g[-1] - 900.0) < 1e-6
+    pp = gov.params(CFG, "position")
+    tgt = np.concatenate([np.zeros(5), np.full(1500, 200.0)])
+    hold = np.zeros(1505, bool); hold[20:60] = True
+    g, v = _run(pp, tgt, hold)
+    assert np.all(np.abs(v[20:60]) <= np.abs(v[19]) + 1e-15)
+    assert abs(g[-1] - 200.0) < 1e-6
+
+
+@pytest.mark.parametrize("task", ["speed", "position"])
+def test_raw_form_tracks_float(task):
+    """gov_step on Q.32 words (the RTL's arithmetic) against the float governor on a random
+    profile of steps and ramps with random holds: within a few LSB of the task unit."""
+    rng = np.random.default_rng(SEED)
+    p = gov.params(CFG, task)
+    rp = gov.raw_params(CFG, task)
+    unit = CFG.rad_per_count if task == "position" else CFG.rad_s_per_count_ts
+    n = 4000
+    tgt, x = [], 0.0
+    for k in range(n):
+        if k % 400 == 0:
+            step = rng.uniform(-300, 300) if task == "speed" else rng.uniform(-150, 150)
+            slope = rng.uniform(-0.3, 0.3) * p.vmax
+        x = x + slope if (k // 400) % 2 else x + (step if k % 400 == 0 else 0.0)
+        tgt.append(x)
+    tgt = np.array(tgt)
+    raw = [rg.q32(t / unit) for t in tgt]
+    hold = rng.random(n) < 0.05
+    fl = gov.Governor(p); fl.reset(tgt[0])
+    g, v, r_old = raw[0], 0, raw[0]
+    worst = 0.0
+    for k in range(1, n):
+        gf = fl.step(tgt[k], bool(hold[k]))
+        g, v, _ = rg.gov_step(rp, v, r_old, raw[k], g, bool(hold[k]), task == "position")
+        r_old = raw[k]
+        gr = wrap(g, 64) / 2.0 ** 32 * unit
+        worst = max(worst, abs(gr - gf))
+    print(f"{task}: raw vs float governor max |diff| {worst:.3g} ({worst / unit:.3g} LSB of the task unit)")
+    assert worst < 0.05 * unit
