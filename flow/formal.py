@@ -14,11 +14,13 @@ re-runs <task> with <file> (path relative to formal/) textually mutated
 properties catch the bug.
 
 Usage: python flow/formal.py [--no-mutants] [name-or-name/task ...]
-Exit status 0 only if every proof passed and every mutant was caught.
+Exit status 0 only if every proof passed and every mutant was caught.  Results go to
+build/reports/formal.json (one entry per task and mutant; a partial run updates its entries).
 Solvers: the yowasp-* tools (Yosys, smtbmc) and z3 from the venv (or PATH).
 """
 from __future__ import annotations
 
+import json
 import os
 import re
 import shutil
@@ -31,6 +33,7 @@ from files import ROOT  # flow/ is on sys.path
 
 FORMAL = ROOT / "formal"
 OUT = ROOT / "build" / "formal"
+REPORT = ROOT / "build" / "reports" / "formal.json"
 VENV_BIN = Path(sys.executable).parent
 BAD_LOG = ("is used but has no driver", "is implicitly declared")
 
@@ -136,6 +139,12 @@ def main(argv: list[str]) -> int:
         print("no formal/*.sby")
         return 2
     results = []
+    entries = {}
+    if REPORT.exists():
+        try:
+            entries = json.loads(REPORT.read_text()).get("entries", {})
+        except ValueError:
+            entries = {}
     t_all = time.monotonic()
     for sby in files:
         text = sby.read_text()
@@ -147,6 +156,8 @@ def main(argv: list[str]) -> int:
             status, dt, tail = run_sby(cmd, sby, task, OUT / name / (task or "default"))
             ok = status == "PASS"
             results.append((label, ok))
+            entries[label] = {"proof": name, "task": task, "kind": "proof", "sby": status, "ok": ok,
+                              "seconds": round(dt, 1)}
             print(f"{'PASS' if ok else 'FAIL'}  {label:32s} {dt:6.1f} s  (sby: {status})", flush=True)
             if not ok:
                 print(tail)
@@ -162,16 +173,23 @@ def main(argv: list[str]) -> int:
             except ValueError as e:
                 print(f"FAIL  {label:32s}  stale mutant: {e}")
                 results.append((label, False))
+                entries[label] = {"proof": name, "task": mut["task"], "kind": "mutant", "what": mut["what"],
+                                  "sby": "STALE", "ok": False}
                 continue
             status, dt, tail = run_sby(cmd, msby, mut["task"], mdir / "run")
             ok = status == "FAIL"
             results.append((label, ok))
+            entries[label] = {"proof": name, "task": mut["task"], "kind": "mutant", "what": mut["what"],
+                              "sby": status, "ok": ok, "caught": ok, "seconds": round(dt, 1)}
             print(f"{'PASS' if ok else 'FAIL'}  {label:32s} {dt:6.1f} s  (mutant '{mut['what']}': "
                   f"{'caught' if ok else 'NOT caught, sby ' + status})", flush=True)
             if not ok:
                 print(tail)
     n_bad = sum(1 for _, ok in results if not ok)
     print(f"formal: {len(results) - n_bad}/{len(results)} passed in {time.monotonic() - t_all:.0f} s")
+    REPORT.parent.mkdir(parents=True, exist_ok=True)
+    REPORT.write_text(json.dumps({"tool": "flow/formal.py (SymbiYosys, smtbmc z3)", "entries": entries},
+                                 indent=1) + "\n")
     if not results:
         print("nothing selected")
         return 2

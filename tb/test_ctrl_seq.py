@@ -81,7 +81,7 @@ async def random_periods(dut):
     dut._log.info("ctrl_seq random periods: task %s, seed %d (EMPC_SEED), %d periods", task, seed, PERIODS)
     Clock(dut.clk, 10, unit="ns").start()
     for n in ("adc_trig", "period_start", "run", "adc_valid", "seg_we", "start", "sync", "sync_bit", "cfg_we",
-              "cfg_swap", "seg_slot", "seg_field", "seg_wdata", "start_slot", "cfg_addr", "cfg_wdata", "theta", "pos",
+              "cfg_swap", "swap_at", "seg_slot", "seg_field", "seg_wdata", "start_slot", "cfg_addr", "cfg_wdata", "theta", "pos",
               "cur0", "cur1", "cur2", "kacc", "kacc_shift", "load_shift", "hold", "id_ref", "iq_ref", "cnt_clear"):
         getattr(dut, n).value = 0
     dut.ppc.value = 1
@@ -102,6 +102,10 @@ async def random_periods(dut):
         dut.cfg_swap.value = 1
         await FallingEdge(dut.clk)
         dut.cfg_swap.value = 0
+        await ClockCycles(dut.clk, 3, rising=False)
+        dut.swap_at.value = 1                               # a control-period boundary: the swap is decided
+        await FallingEdge(dut.clk)
+        dut.swap_at.value = 0
         await ClockCycles(dut.clk, 10, rising=False)
         params = image.decode(words)
     assert int(dut.task_pos.value) == (task == "position")

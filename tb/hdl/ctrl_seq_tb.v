@@ -16,6 +16,7 @@ module ctrl_seq_tb (
     input  wire seg_we, input wire [3:0] seg_slot, input wire [2:0] seg_field, input wire [31:0] seg_wdata,
     input  wire start, input wire [3:0] start_slot, input wire sync, input wire sync_bit, output wire [5:0] sync_idx,
     input  wire cfg_we, input wire [9:0] cfg_addr, input wire [31:0] cfg_wdata, input wire cfg_swap,
+    input  wire swap_at,        // extra control-period boundary for a swap before the first period
     input  wire cnt_clear,
     output wire cmp_load, output wire [35:0] cmp, output wire ref_busy, output wire [15:0] latency,
     output wire front_sat, output wire task_pos, output wire core_ready, output wire swap_pending,
@@ -51,7 +52,8 @@ module ctrl_seq_tb (
         .in_wdata(core_in_wdata), .busy(core_busy), .done(core_done), .u(core_u), .du(core_du), .u_raw(core_u_raw),
         .ebar(core_ebar), .wn(core_wn), .flags(core_flags), .latency(core_latency), .fw_thr(32'd0), .fw_hi(),
         .fw_lo(), .cfg_we(cfg_we),
-        .cfg_addr(cfg_addr), .cfg_wdata(cfg_wdata), .cfg_swap(cfg_swap), .ready(core_ready), .bank(core_bank),
-        .swap_pending(swap_pending), .boot_ok(core_boot_ok), .task_pos(task_pos));
+        .cfg_addr(cfg_addr), .cfg_wdata(cfg_wdata), .cfg_swap(cfg_swap), .swap_at(pos_sample | swap_at),
+        .ready(core_ready), .bank(core_bank), .swap_pending(swap_pending), .boot_ok(core_boot_ok), .img_ok(),
+        .upl_ok(), .swap_refused(), .refused(), .task_pos(task_pos));
 endmodule
 `default_nettype wire
