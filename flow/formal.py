@@ -20,6 +20,7 @@ Solvers: the yowasp-* tools (Yosys, smtbmc) and z3 from the venv (or PATH).
 """
 from __future__ import annotations
 
+import fcntl
 import json
 import os
 import re
@@ -127,6 +128,34 @@ def mutant_sby(sby: Path, text: str, mut: dict, mdir: Path) -> Path:
     return out
 
 
+def write_report(entries: dict) -> None:
+    """Merge this run's entries into build/reports/formal.json under a lock: the test suite runs one
+    task or mutant per pytest worker, and concurrent read-modify-writes would drop entries."""
+    REPORT.parent.mkdir(parents=True, exist_ok=True)
+    with open(REPORT.with_suffix(".lock"), "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        old = {}
+        if REPORT.exists():
+            try:
+                old = json.loads(REPORT.read_text()).get("entries", {})
+            except ValueError:
+                old = {}
+        old.update(entries)
+        tmp = REPORT.with_suffix(f".{os.getpid()}.tmp")
+        tmp.write_text(json.dumps({"tool": "flow/formal.py (SymbiYosys, smtbmc z3)", "entries": old}, indent=1) + "\n")
+        os.replace(tmp, REPORT)
+
+
+def labels() -> list[str]:
+    """Every proof task and mutant as flow/formal.py selects it (``name/task``, ``name/mutantK:task``)."""
+    out = []
+    for sby in sorted(FORMAL.glob("*.sby")):
+        text = sby.read_text()
+        out += [f"{sby.stem}/{t}" if t else sby.stem for t in tasks_of(text)]
+        out += [f"{sby.stem}/mutant{k}:{m['task']}" for k, m in enumerate(mutants_of(text))]
+    return out
+
+
 def main(argv: list[str]) -> int:
     mutants = "--no-mutants" not in argv
     sel = [a for a in argv if not a.startswith("--")]
@@ -140,11 +169,6 @@ def main(argv: list[str]) -> int:
         return 2
     results = []
     entries = {}
-    if REPORT.exists():
-        try:
-            entries = json.loads(REPORT.read_text()).get("entries", {})
-        except ValueError:
-            entries = {}
     t_all = time.monotonic()
     for sby in files:
         text = sby.read_text()
@@ -187,9 +211,7 @@ def main(argv: list[str]) -> int:
                 print(tail)
     n_bad = sum(1 for _, ok in results if not ok)
     print(f"formal: {len(results) - n_bad}/{len(results)} passed in {time.monotonic() - t_all:.0f} s")
-    REPORT.parent.mkdir(parents=True, exist_ok=True)
-    REPORT.write_text(json.dumps({"tool": "flow/formal.py (SymbiYosys, smtbmc z3)", "entries": entries},
-                                 indent=1) + "\n")
+    write_report(entries)
     if not results:
         print("nothing selected")
         return 2
