@@ -16,12 +16,12 @@ sys.path.insert(0, str(ROOT / "flow"))
 import formal  # noqa: E402  (flow/formal.py)
 
 
-@pytest.mark.skipif(formal.sby_cmd() is None, reason="yowasp-sby not installed")
 # seconds on one idle core (make sim starts the costliest first; the rest are a few seconds)
 COST = {"mpc_axis/bmc_pe": 165, "mpc_axis/prove_cp": 105, "mpc_axis/mutant4:bmc_pe": 40, "mpc_axis/cover": 30,
         "mpc_axis/prove_pe": 25}
 
 
+@pytest.mark.skipif(formal.sby_cmd() is None, reason="yowasp-sby not installed")
 @pytest.mark.parametrize("label", [pytest.param(l, marks=pytest.mark.cost(COST.get(l, 5))) for l in formal.labels()])
 def test_formal(label):
     """One proof task or one mutant per test, so pytest-xdist spreads them over the workers."""
