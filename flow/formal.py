@@ -30,6 +30,7 @@ import sys
 import time
 from pathlib import Path
 
+from empc.fileio import write_atomic  # gen/ is on PYTHONPATH (Makefile, conftests)
 from files import ROOT  # flow/ is on sys.path
 
 FORMAL = ROOT / "formal"
@@ -141,9 +142,7 @@ def write_report(entries: dict) -> None:
             except ValueError:
                 old = {}
         old.update(entries)
-        tmp = REPORT.with_suffix(f".{os.getpid()}.tmp")
-        tmp.write_text(json.dumps({"tool": "flow/formal.py (SymbiYosys, smtbmc z3)", "entries": old}, indent=1) + "\n")
-        os.replace(tmp, REPORT)
+        write_atomic(REPORT, json.dumps({"tool": "flow/formal.py (SymbiYosys, smtbmc z3)", "entries": old}, indent=1) + "\n")
 
 
 def labels() -> list[str]:

@@ -971,10 +971,10 @@ def metrics_report(cs: CoSim, res: dict) -> dict:
         # ... and long enough for the distance left when the profile stopped moving, at vmax: a large
         # position step travels at the governor's speed limit for longer than the 240 periods.
         r2 = ref[:, 2]
-        moved = np.flatnonzero(np.diff(r2) != 0) + 1
-        last = np.maximum.accumulate(np.where(np.isin(np.arange(r2.size), moved), np.arange(r2.size), 0))
+        idx = np.arange(r2.size)
+        last = np.maximum.accumulate(np.where(np.r_[False, np.diff(r2) != 0], idx, 0))   # last profile move
         dist = np.abs(r2[last] - applied[last]) * unit_q32
-        still &= (np.arange(r2.size) - last) >= 240 + np.ceil(dist / max(cs.gov["vmax"], 1))
+        still &= (idx - last) >= 240 + np.ceil(dist / max(cs.gov["vmax"], 1))
         assert not np.any(off & still), (f"governed reference off the held profile in {np.sum(off & still)} samples "
                                          f"(first at t = {t[sel][np.argmax(off & still)]:.4f} s)")
     if not cs.gov["enable"]:

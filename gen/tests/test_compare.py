@@ -21,6 +21,7 @@ from pathlib import Path
 
 import pytest
 
+from empc.fileio import write_atomic
 from empc.papers import compare
 
 # quick results go beside the full report, not over it (`empc compare` writes build/reports/compare.*)
@@ -44,7 +45,7 @@ def rep(testrun_uid):
         r = compare.run(quick=True, out=OUT)
         d = json.loads((OUT / "compare.json").read_text())
         d["testrun_uid"] = testrun_uid
-        compare._write_atomic(OUT / "compare.json", (json.dumps(d, indent=1) + "\n").encode())
+        write_atomic(OUT / "compare.json", json.dumps(d, indent=1) + "\n")
     print(f"quick comparison: {len(r['cases'])} cases, {sum(len(c['runs']) for c in r['cases'].values())} "
           f"closed-loop runs in {r['wall_s']:.1f} s -> {OUT}/compare.md")
     return r
