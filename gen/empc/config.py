@@ -371,14 +371,14 @@ class Ratings:
 
 @dataclass(frozen=True)
 class Robustness:
-    L: float = 0.3
-    R: float = 0.3
-    J: float = 0.3
-    psi: float = 0.2
-    decay_min: float | None = None     # None: 0.01 / T_m (robust.decay_min)
-    damping_min: float = 0.05
-    speed_points: int = 25
-    fit_max: float = 0.5
+    L: float
+    R: float
+    J: float
+    psi: float
+    decay_min: float | None     # None: 0.01 / T_m (robust.decay_min)
+    damping_min: float
+    speed_points: int
+    fit_max: float
 
 
 @dataclass(frozen=True)
@@ -391,15 +391,15 @@ class Governor:
     ``speed_frac`` of the no-load base speed u_max / psi (and of Omega_e); the reference
     holds its acceleration (speed) or speed (position) while |i_q| > ``hold_current`` x i_max
     or the voltage limiter was active.  See gen/empc/governor.py."""
-    enable: bool = True
-    accel_current: float = 0.5
-    box_J: float = 1.3
-    box_psi: float = 0.8
-    speed_frac: float = 0.7
-    hold_current: float = 0.7
-    shift_speed: int = 3
-    shift_position: int = 4
-    jerk_periods: int = 4
+    enable: bool
+    accel_current: float
+    box_J: float
+    box_psi: float
+    speed_frac: float
+    hold_current: float
+    shift_speed: int
+    shift_position: int
+    jerk_periods: int
 
 
 @dataclass(frozen=True)
@@ -407,11 +407,11 @@ class FieldWeakening:
     """Field weakening from the voltage margin (issue 15 item 6): the d-current reference
     moves by ``step`` x i_max per control period toward -``i_max_frac`` x i_max while
     |u_raw| > ``u_hi`` x u_max, back toward 0 while |u_raw| < ``u_lo`` x u_max."""
-    enable: bool = True
-    u_hi: float = 0.90
-    u_lo: float = 0.82
-    step: float = 0.02
-    i_max_frac: float = 0.6
+    enable: bool
+    u_hi: float
+    u_lo: float
+    step: float
+    i_max_frac: float
 
 
 @dataclass(frozen=True)
@@ -732,8 +732,7 @@ def from_dict(d: dict, source: str = "<dict>") -> Config:
         raise ConfigError(f"control.omega_min = {_fmt(c['omega_min'])}, control.omega_max = {_fmt(c['omega_max'])}: "
                           f"Omega_e is empty; allowed: omega_min < omega_max")
     ratings = derive_ratings(v.get("ratings", {}), motor, inverter, c["i_max"], c["N"] * c["Ts"])
-    rb = v.get("robustness")
-    robustness = Robustness(**rb) if rb else Robustness()
+    robustness = Robustness(**_table(v, "robustness"))   # defaults: the schema (one source)
     gv = _table(v, "governor")
     governor = Governor(**dict(gv, box_J=1.0 + robustness.J if gv["box_J"] is None else gv["box_J"],
                                box_psi=1.0 - robustness.psi if gv["box_psi"] is None else gv["box_psi"]))
