@@ -17,7 +17,7 @@ import formal  # noqa: E402  (flow/formal.py)
 
 
 # seconds on one idle core (make sim starts the costliest first; the rest are a few seconds)
-COST = {"mpc_axis/bmc_pe": 165, "mpc_axis/prove_cp": 105, "mpc_axis/mutant4:bmc_pe": 40, "mpc_axis/cover": 30,
+COST = {"mpc_axis/bmc_pe": 90, "mpc_axis/prove_cp": 105, "mpc_axis/mutant4:bmc_pe": 45, "mpc_axis/cover": 30,
         "mpc_axis/prove_pe": 25}
 
 
