@@ -348,26 +348,26 @@
 #define EMPC_A_UDC_ACCESS     EMPC_ACC_RW
 #define EMPC_A_UDC_RESET      0x00000000u
 #define EMPC_A_UDC_RESET_MASK 0xFFFFFFFFu
-#define EMPC_A_UDC_BITS       0x0000FFFFu
+#define EMPC_A_UDC_BITS       0x000FFFFFu
 #define EMPC_A_UDC_SIGNED     0
-/* UDC_MIN (RW, refused while bridges_live, legal 1..65534): Lowest allowed DC link, mV (1..65534). */
+/* UDC_MIN (RW, refused while bridges_live, legal 1..1048574): Lowest allowed DC link, mV (1..1048574). */
 #define EMPC_A_UDC_MIN            0x020u
 #define EMPC_A_UDC_MIN_ACCESS     EMPC_ACC_RW
 #define EMPC_A_UDC_MIN_RESET      0x00002710u
 #define EMPC_A_UDC_MIN_RESET_MASK 0xFFFFFFFFu
-#define EMPC_A_UDC_MIN_BITS       0x0000FFFFu
+#define EMPC_A_UDC_MIN_BITS       0x000FFFFFu
 #define EMPC_A_UDC_MIN_SIGNED     0
 #define EMPC_A_UDC_MIN_LEGAL_MIN  1u
-#define EMPC_A_UDC_MIN_LEGAL_MAX  65534u
-/* UDC_MAX (RW, refused while bridges_live, legal 1..65534): Highest allowed DC link, mV (1..65534). */
+#define EMPC_A_UDC_MIN_LEGAL_MAX  1048574u
+/* UDC_MAX (RW, refused while bridges_live, legal 1..1048574): Highest allowed DC link, mV (1..1048574). */
 #define EMPC_A_UDC_MAX            0x024u
 #define EMPC_A_UDC_MAX_ACCESS     EMPC_ACC_RW
 #define EMPC_A_UDC_MAX_RESET      0x0000EA60u
 #define EMPC_A_UDC_MAX_RESET_MASK 0xFFFFFFFFu
-#define EMPC_A_UDC_MAX_BITS       0x0000FFFFu
+#define EMPC_A_UDC_MAX_BITS       0x000FFFFFu
 #define EMPC_A_UDC_MAX_SIGNED     0
 #define EMPC_A_UDC_MAX_LEGAL_MIN  1u
-#define EMPC_A_UDC_MAX_LEGAL_MAX  65534u
+#define EMPC_A_UDC_MAX_LEGAL_MAX  1048574u
 /* OC_THRESH (RW, refused while bridges_live, legal 1..1900): Overcurrent threshold, ADC LSB of |code -
    offset| (per phase, every frame; 1..1900, the board's limit). */
 #define EMPC_A_OC_THRESH            0x028u

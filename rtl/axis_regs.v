@@ -62,10 +62,10 @@ module axis_regs (
     output reg  [14:0] fault_mask,           // FAULT_MASK (RW)
     output reg  [7:0]  dead_time,            // DEAD_TIME (RW)
     output reg  [17:0] kdc,                  // KDC (RW)
-    output reg  [15:0] udc,                  // UDC (RW)
+    output reg  [19:0] udc,                  // UDC (RW)
     output reg         udc_wr,               // UDC: pulse when a write is accepted
-    output reg  [15:0] udc_min,              // UDC_MIN (RW)
-    output reg  [15:0] udc_max,              // UDC_MAX (RW)
+    output reg  [19:0] udc_min,              // UDC_MIN (RW)
+    output reg  [19:0] udc_max,              // UDC_MAX (RW)
     output reg  [11:0] oc_thresh,            // OC_THRESH (RW)
     output reg  [2:0]  adc_off_we,           // write pulse, one-hot: ADC_OFF0, ADC_OFF1, ADC_OFF2
     output reg  [11:0] adc_off_wdata,        // written value
@@ -163,9 +163,9 @@ module axis_regs (
             fault_mask <= 15'h7fff;
             dead_time <= 8'd50;
             kdc <= 18'h10000;
-            udc <= 16'd0;
-            udc_min <= 16'd10000;
-            udc_max <= 16'd60000;
+            udc <= 20'd0;
+            udc_min <= 20'd10000;
+            udc_max <= 20'd60000;
             oc_thresh <= 12'd1800;
             angle_cal <= 16'd0;
             hall_offset <= 16'd0;
@@ -229,19 +229,19 @@ module axis_regs (
                         kdc <= reg_wdata[17:0];
                     end
                     7'h7: begin   // UDC
-                        udc <= reg_wdata[15:0];
+                        udc <= reg_wdata[19:0];
                         udc_wr <= 1'b1;
                     end
                     7'h8: begin   // UDC_MIN
-                        if (!bridges_live && (reg_wdata[15:0] >= 16'd1) && (reg_wdata[15:0] <= 16'd65534)) begin
-                            udc_min <= reg_wdata[15:0];
+                        if (!bridges_live && (reg_wdata[19:0] >= 20'd1) && (reg_wdata[19:0] <= 20'd1048574)) begin
+                            udc_min <= reg_wdata[19:0];
                         end else begin
                             wr_refused <= 1'b1;
                         end
                     end
                     7'h9: begin   // UDC_MAX
-                        if (!bridges_live && (reg_wdata[15:0] >= 16'd1) && (reg_wdata[15:0] <= 16'd65534)) begin
-                            udc_max <= reg_wdata[15:0];
+                        if (!bridges_live && (reg_wdata[19:0] >= 20'd1) && (reg_wdata[19:0] <= 20'd1048574)) begin
+                            udc_max <= reg_wdata[19:0];
                         end else begin
                             wr_refused <= 1'b1;
                         end
@@ -344,9 +344,9 @@ module axis_regs (
     reg  [14:0]  q_fault_mask;
     reg  [7:0]   q_dead_time;
     reg  [17:0]  q_kdc;
-    reg  [15:0]  q_udc;
-    reg  [15:0]  q_udc_min;
-    reg  [15:0]  q_udc_max;
+    reg  [19:0]  q_udc;
+    reg  [19:0]  q_udc_min;
+    reg  [19:0]  q_udc_max;
     reg  [11:0]  q_oc_thresh;
     reg  [11:0]  q_adc_off0;
     reg  [11:0]  q_adc_off1;
@@ -385,9 +385,9 @@ module axis_regs (
         q_fault_mask <= (rd_p0 && reg_addr[6:0] == 7'h4) ? fault_mask : 15'd0;
         q_dead_time <= (rd_p0 && reg_addr[6:0] == 7'h5) ? dead_time : 8'd0;
         q_kdc <= (rd_p0 && reg_addr[6:0] == 7'h6) ? kdc : 18'd0;
-        q_udc <= (rd_p0 && reg_addr[6:0] == 7'h7) ? udc : 16'd0;
-        q_udc_min <= (rd_p0 && reg_addr[6:0] == 7'h8) ? udc_min : 16'd0;
-        q_udc_max <= (rd_p0 && reg_addr[6:0] == 7'h9) ? udc_max : 16'd0;
+        q_udc <= (rd_p0 && reg_addr[6:0] == 7'h7) ? udc : 20'd0;
+        q_udc_min <= (rd_p0 && reg_addr[6:0] == 7'h8) ? udc_min : 20'd0;
+        q_udc_max <= (rd_p0 && reg_addr[6:0] == 7'h9) ? udc_max : 20'd0;
         q_oc_thresh <= (rd_p0 && reg_addr[6:0] == 7'ha) ? oc_thresh : 12'd0;
         q_adc_off0 <= (rd_p0 && reg_addr[6:0] == 7'hb) ? adc_off0 : 12'd0;
         q_adc_off1 <= (rd_p0 && reg_addr[6:0] == 7'hc) ? adc_off1 : 12'd0;
@@ -421,9 +421,9 @@ module axis_regs (
             q_fault_mask <= 15'd0;
             q_dead_time <= 8'd0;
             q_kdc <= 18'd0;
-            q_udc <= 16'd0;
-            q_udc_min <= 16'd0;
-            q_udc_max <= 16'd0;
+            q_udc <= 20'd0;
+            q_udc_min <= 20'd0;
+            q_udc_max <= 20'd0;
             q_oc_thresh <= 12'd0;
             q_adc_off0 <= 12'd0;
             q_adc_off1 <= 12'd0;
@@ -460,9 +460,9 @@ module axis_regs (
                      | {17'd0, q_fault_mask}
                      | {24'd0, q_dead_time}
                      | {14'd0, q_kdc}
-                     | {16'd0, q_udc}
-                     | {16'd0, q_udc_min}
-                     | {16'd0, q_udc_max}
+                     | {12'd0, q_udc}
+                     | {12'd0, q_udc_min}
+                     | {12'd0, q_udc_max}
                      | {20'd0, q_oc_thresh}
                      | {20'd0, q_adc_off0}
                      | {20'd0, q_adc_off1}

@@ -39,6 +39,9 @@ from empc import header, image, regmap
 ROOT = Path(__file__).resolve().parents[1]
 EMC_BASE = 0x80000000
 AW = 14
+# a 320 V drive's DC link (the premo's): above 16 bits of mV, inside the 20-bit registers; the clear below
+# succeeds only if the FPGA compares all 20 bits (FAULT.dclink otherwise)
+UDC_MV, UDC_MIN_MV, UDC_MAX_MV = 320_000, 200_000, 400_000
 
 
 class HostReg(ctypes.Structure):
@@ -235,18 +238,19 @@ async def driver_flow(dut):
     # out of the build limits: the driver refuses before writing anything
     n0 = len(env.writes)
     for bad in (dict(dead_time=regmap.DEAD_TIME_MIN - 1), dict(oc_thresh=regmap.OC_THRESH_MAX + 1),
-                dict(udc_min_mv=0), dict(fault_mask=1 << len(regmap.FAULT_CAUSES))):
-        kw = dict(pwm_per_control=0, dead_time=40, fault_mask=0x7F, kdc=0x10000, udc_mv=24000, udc_min_mv=12000,
-                  udc_max_mv=40000, oc_thresh=1500, angle_cal=0x1234, hall_offset=0x4321)
+                dict(udc_min_mv=0), dict(udc_max_mv=regmap.UDC_LEGAL_MAX + 1),
+                dict(fault_mask=1 << len(regmap.FAULT_CAUSES))):
+        kw = dict(pwm_per_control=0, dead_time=40, fault_mask=0x7F, kdc=0x10000, udc_mv=UDC_MV, udc_min_mv=UDC_MIN_MV,
+                  udc_max_mv=UDC_MAX_MV, oc_thresh=1500, angle_cal=0x1234, hall_offset=0x4321)
         kw.update(bad)
         assert await env.call("empc_axis_config", ctypes.byref(caps), 0, ctypes.byref(AxisCfg(**kw))) == \
             EMPC_ERR_ARG, bad
     assert len(env.writes) == n0
-    cfg = AxisCfg(pwm_per_control=0, dead_time=40, fault_mask=0x7F, kdc=0x10000, udc_mv=24000,
-                  udc_min_mv=12000, udc_max_mv=40000, oc_thresh=1500, angle_cal=0x1234, hall_offset=0x4321)
+    cfg = AxisCfg(pwm_per_control=0, dead_time=40, fault_mask=0x7F, kdc=0x10000, udc_mv=UDC_MV,
+                  udc_min_mv=UDC_MIN_MV, udc_max_mv=UDC_MAX_MV, oc_thresh=1500, angle_cal=0x1234, hall_offset=0x4321)
     assert await env.call("empc_axis_config", ctypes.byref(caps), 0, ctypes.byref(cfg)) == EMPC_OK
-    want = {"DEAD_TIME": 40, "FAULT_MASK": 0x7F, "KDC": 0x10000, "UDC": 24000, "UDC_MIN": 12000,
-            "UDC_MAX": 40000, "OC_THRESH": 1500, "ANGLE_CAL": 0x1234, "HALL_OFFSET": 0x4321,
+    want = {"DEAD_TIME": 40, "FAULT_MASK": 0x7F, "KDC": 0x10000, "UDC": UDC_MV, "UDC_MIN": UDC_MIN_MV,
+            "UDC_MAX": UDC_MAX_MV, "OC_THRESH": 1500, "ANGLE_CAL": 0x1234, "HALL_OFFSET": 0x4321,
             "CTRL": m["PWM_PER_CONTROL"] << 8}
     got = {n: await env.read(n) for n in want}
     assert got == want, got
@@ -296,7 +300,7 @@ async def driver_flow(dut):
     assert await env.read("WDOG_TIMEOUT") == 400 and await env.read("CNT_WR_REFUSED") == ref0 + 1
     # watchdog fault: expires after one PWM period, the clear reports the cause until the kick
     assert await env.call("empc_wdog_set", 1) == EMPC_OK
-    await env.call("empc_udc_write", 0, 24000)
+    await env.call("empc_udc_write", 0, UDC_MV)
     await ClockCycles(dut.clk, 4 * 2 * m["PWM_HALF_PERIOD"])
     fault_bit = 1 << regmap.AXIS[3].fields[3].lsb
     assert regmap.AXIS[3].fields[3].name == "watchdog"

@@ -74,6 +74,8 @@ ADC_OFF_LEGAL = range(OC_THRESH_MAX + 1, (1 << ADC_CODE_BITS) - 1 - OC_THRESH_MA
 WDOG_TIMEOUT_BITS = 11    # WDOG_TIMEOUT: 1..2047 PWM periods (102 ms at 20 kHz); 0 (off) is refused: the watchdog
 WDOG_TIMEOUT_MAX = (1 << WDOG_TIMEOUT_BITS) - 1   # cannot be disabled
 UDC_FRESH_PERIODS = 200   # PWM periods (10 ms): UDC not rewritten for this long -> FAULT.dclink (stale value)
+UDC_W = 20                # DC-link registers in mV: 20 bits hold 1048 V (16 held 65 V, below a 320 V drive's link)
+UDC_LEGAL_MAX = (1 << UDC_W) - 2
 SEQ_STALL_PERIODS = 2     # PWM periods without new compare values -> FAULT.overrun (stalled sequencer)
 UNLOCK_KEY = 0xC0DE       # UNLOCK: arms one write of FAULT_MASK (axis) / WDOG_TIMEOUT (global)
 UNLOCK_ARM = 2            # the unlock ends at the 2nd PWM period start after the key (50..100 us) or at the
@@ -360,11 +362,11 @@ AXIS = (
         width=18),
     Reg("UDC", 0x07, "RW", 0, f"DC-link voltage in mV as measured by the CPU, checked against UDC_MIN..MAX; it "
         f"resets to 0 (missing: below UDC_MIN) and must be rewritten at least every {UDC_FRESH_PERIODS} PWM "
-        "periods (else stale: FAULT.dclink).", width=16, wstrobe=True),
-    Reg("UDC_MIN", 0x08, "RW", 10000, "Lowest allowed DC link, mV (1..65534).", width=16,
-        legal=range(1, 0xffff), guard="bridges_live"),
-    Reg("UDC_MAX", 0x09, "RW", 60000, "Highest allowed DC link, mV (1..65534).", width=16,
-        legal=range(1, 0xffff), guard="bridges_live"),
+        "periods (else stale: FAULT.dclink).", width=UDC_W, wstrobe=True),
+    Reg("UDC_MIN", 0x08, "RW", 10000, f"Lowest allowed DC link, mV (1..{UDC_LEGAL_MAX}).", width=UDC_W,
+        legal=range(1, UDC_LEGAL_MAX + 1), guard="bridges_live"),
+    Reg("UDC_MAX", 0x09, "RW", 60000, f"Highest allowed DC link, mV (1..{UDC_LEGAL_MAX}).", width=UDC_W,
+        legal=range(1, UDC_LEGAL_MAX + 1), guard="bridges_live"),
     Reg("OC_THRESH", 0x0a, "RW", 1800, f"Overcurrent threshold, ADC LSB of |code - offset| (per phase, every "
         f"frame; 1..{OC_THRESH_MAX}, the board's limit).", width=ADC_CODE_BITS,
         legal=range(1, OC_THRESH_MAX + 1), guard="bridges_live"),
