@@ -825,7 +825,7 @@ def operating_points(rng, p: core.Params, cfg, units: dict, n: int) -> dict:
     x = V.empty_inputs(n, N)
     imax = cfg.control.i_max / isc
     x["y"][:, 0:2] = rng.uniform(-0.5, 0.5, (n, 2)) * imax
-    om = rng.integers(p.wn_min << p.ws, (p.wn_max << p.ws) + 1, n)
+    om = rng.integers(V.lsh(p.wn_min, p.ws), V.lsh(p.wn_max, p.ws) + 1, n)
     x["omega"] = om
     x["y"][:, 2] = rng.integers(-(1 << 36), 1 << 36, n) if pos else om
     for m in range(N + 1):

@@ -21,7 +21,7 @@ One update, in this order:
    (angles relative to the measured theta_k: the law is invariant to a common shift).
 4. Per row i (d, q) and column j in order 0..min(ncols, MAX_COLS)-1
    (flag signal: a column reads a signal that saturated):
-   a    = sat18(rshift_round(S[sig_j], c_j))                       operand
+   a    = sat18(rshift_round(S[sig_j], c_j))                       operand (c_j >= -1: -1 = 2 S)
    h    = sat18(p1 + rshift_round(p2 * wn, 17))
    k    = sat18(p0 + rshift_round(h * wn, 17))                     gain, eq. 29
    term = sat48((k * a) << s_ij);   acc = sat48(acc + term)
@@ -109,13 +109,13 @@ class Params:
     algorithm: int
     task: str                      # "speed" | "position"
     N: int
-    ws: int                        # scheduling speed right shift
+    ws: int                        # scheduling speed right shift (image field: ws + SIG_SHIFT_BIAS)
     wn_min: int
     wn_max: int
     u_max: int                     # voltage limit, Q14.4 PWM ticks (V_FRAC)
     ebar_lim: tuple                # 3 raw clamps of the eq. 25 increments
     col_sig: list                  # per column: signal index into S
-    col_shift: list                # per column: operand right shift c_j
+    col_shift: list                # per column: operand right shift c_j (-1 = left shift; image: c_j + bias)
     coef: list                     # [row][col] -> (p0, p1, p2, s)
 
     @property
@@ -357,13 +357,12 @@ class Banks:
         for i in range(2):
             for j in range(ncols):
                 b = im.A_GAINS + 4 * (MAX_COLS * i + j)
-                coef[i].append((wrap(w[b], 32), wrap(w[b + 1], 32), wrap(w[b + 2], 32), w[b + 3] & 0xF))
-        from ..formats import SIG_SHIFT_BITS
+                coef[i].append((wrap(w[b], 32), wrap(w[b + 1], 32), wrap(w[b + 2], 32), w[b + 3] & im.PROD_SHIFT_MASK))
         return Params(algorithm=(cfgw >> 13) & 3, task="position" if (cfgw >> 12) & 1 else "speed",
-                      N=(cfgw >> 8) & 0xF, ws=w[im.A_WS] & ((1 << SIG_SHIFT_BITS) - 1), wn_min=wrap(w[im.A_WNMIN], 32),
+                      N=(cfgw >> 8) & 0xF, ws=im.field_shift(w[im.A_WS]), wn_min=wrap(w[im.A_WNMIN], 32),
                       wn_max=wrap(w[im.A_WNMAX], 32), u_max=w[im.A_UMAX], ebar_lim=tuple(w[im.A_EBAR + o] for o in range(3)),
                       col_sig=[w[im.A_COLS + j] & 0x3F for j in range(ncols)],
-                      col_shift=[(w[im.A_COLS + j] >> 8) & ((1 << SIG_SHIFT_BITS) - 1) for j in range(ncols)], coef=coef)
+                      col_shift=[im.field_shift(w[im.A_COLS + j] >> 8) for j in range(ncols)], coef=coef)
 
     def _hdr_bad(self, addr: int, v: int) -> bool:
         im = self._img
