@@ -1,10 +1,11 @@
 // mpc_operand: the MPC core's input buffer and operand ALU (model steps 1-3, the operand of
 // step 4, u_raw of step 5 and the limiter's operands).
 //
-// Input buffer: 64 x SIG_W-bit LUT RAM written through in_we / in_addr / in_wdata (word map
-// EMPC_IN_*: y[o] at IN_Y + o, omega, dx[n], u_prev[i], ebar_prev[o], wref[m][o] at
-// IN_WREF + 3 m + o).  It is read (not copied) during the update: the writer keeps it
-// stable from start to done.  Scratch RAM: 16 x SIG_W-bit LUT RAM written by the ALU
+// Input buffer: 64 words of SIG_W bit per axis (2^AXB x 64, block RAM), written through
+// in_we / in_addr = {axis, word} / in_wdata (word map EMPC_IN_*: y[o] at IN_Y + o, omega,
+// dx[n], u_prev[i], ebar_prev[o], wref[m][o] at IN_WREF + 3 m + o).  An update reads (does not
+// copy) the words of its axis `raxis`: the writer keeps them stable from start to done; the
+// other axes' words can be written meanwhile.  Scratch RAM: 16 x SIG_W-bit LUT RAM written by the ALU
 // (y[o] copies at 0..2, the eq. 25 increments inc[o] at 4..6).
 // ALU, one item per clock (kinds in mpc_items.vh), item token at O0:
 //   O0  decode (columns: descriptor {c, sig} from the coefficient memory, read one cycle
@@ -26,20 +27,25 @@
 //   c = U_FRAC - V_FRAC: op = u18[i]), UMX / NUMX (op = +-u_max), EBB o (ebar[o]).
 // Flags (sticky, cleared by clr): f_signal (a column's signal saturated to SIG_W bit),
 //   f_operand, f_wn (wn != unsaturated rshift_round(omega, ws)), f_ebar, f_ebar_inc, f_u.
-// Parameters: none (widths and the word map from empc_formats.vh).
+// Parameters: NAXES (axes), AXW (axis index width, max(1, clog2(NAXES))); widths and the word map
+//   from empc_formats.vh.
 // Reset: registers 0 (the buffers are LUT RAM: not reset, initial contents 0), except two
 //   copies each of c[3:2] (O3) and c[1:0] (O4) that reset to 3 or not at all: they only
 //   select among zeros until an item arrives.
 `default_nettype none
 `include "empc_formats.vh"
 `include "mpc_items.vh"
-module mpc_operand (
+module mpc_operand #(
+    parameter integer NAXES = 1,
+    parameter integer AXW = 1
+) (
     input  wire                          clk,
     input  wire                          rst,
     input  wire                          clr,        // start of an update: flags = 0
     // input buffer write port
     input  wire                          in_we,
-    input  wire [5:0]                    in_addr,
+    input  wire [5+$clog2(NAXES):0]      in_addr,    // {axis, word}
+    input  wire [AXW-1:0]                raxis,      // axis of the update (stable from start to done)
     input  wire signed [`EMPC_SIG_W-1:0] in_wdata,
     // item token at O0
     input  wire [3:0]                    kind,
@@ -126,11 +132,12 @@ module mpc_operand (
     localparam [64*TE-1:0] COLTAB = col_table(IN_WREF + 6'd3);
 
     // ---- buffers ----
-    reg [SW-1:0] abuf [0:`EMPC_IN_WORDS-1];
+    localparam integer AXB = $clog2(NAXES);
+    reg [SW-1:0] abuf [0:(`EMPC_IN_WORDS << AXB)-1];
     reg [SW-1:0] sbuf [0:15];
     integer bi;
     initial begin
-        for (bi = 0; bi < `EMPC_IN_WORDS; bi = bi + 1) abuf[bi] = {SW{1'b0}};
+        for (bi = 0; bi < (`EMPC_IN_WORDS << AXB); bi = bi + 1) abuf[bi] = {SW{1'b0}};
         for (bi = 0; bi < 16; bi = bi + 1) sbuf[bi] = {SW{1'b0}};
     end
     always @(posedge clk)
@@ -262,7 +269,13 @@ module mpc_operand (
         endcase
     end
     always @* hdr_field = hf1;
-    wire [SW-1:0] a_rd = abuf[a_addr];
+    wire [5+AXB:0] a_ra;
+    generate if (AXB == 0) begin : g_ra1
+        assign a_ra = a_addr;
+    end else begin : g_ran
+        assign a_ra = {raxis[AXB-1:0], a_addr};
+    end endgenerate
+    wire [SW-1:0] a_rd = abuf[a_ra];
     wire [SW-1:0] s_rd = sbuf[s_addr];
     reg  [SW-1:0] b_rd;
     always @* begin
@@ -512,6 +525,6 @@ module mpc_operand (
         end
     end
 
-    wire unused_ok = &{1'b0, y1e[SW+13:OPW+16], a1x[0], ccmpx[SW+1:0], d0x[0], wdx[0], wd[OPW-1:0], hdr[SW-1], y_x[3:0]};
+    wire unused_ok = &{1'b0, y1e[SW+13:OPW+16], a1x[0], ccmpx[SW+1:0], d0x[0], wdx[0], wd[OPW-1:0], hdr[SW-1], y_x[3:0], raxis};
 endmodule
 `default_nettype wire

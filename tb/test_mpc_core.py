@@ -300,6 +300,226 @@ class ImgBench(Bench):
         await self.RisingEdge(self.dut.clk)          # leave the ReadOnly phase
 
 
+class AxBench:
+    """Multi-axis driver (NAXES = dut parameter): every action mirrored in core.MxCore."""
+
+    def __init__(self, dut):
+        from cocotb.triggers import RisingEdge, ReadOnly
+        self.dut, self.RisingEdge, self.ReadOnly = dut, RisingEdge, ReadOnly
+        self.NA = int(os.environ["EMPC_NAXES"])
+        self.AXB = (self.NA - 1).bit_length()
+        h = header_consts()
+        self.N, self.fmt = h["N"], h["IMG_FMT_ID"]
+        self.rng = np.random.default_rng(SEED + 23)
+        self.refused_seen = [0] * self.NA
+        self.stats = {"updates": 0, "swaps_ok": 0, "swaps_refused": 0, "uploads": 0, "busy_swaps": 0,
+                      "busy_uploads": 0, "busy_inputs": 0, "no_decision": 0}
+        self.cpu_busy = False           # a background upload owns cfg_we
+        self.up_axis = None             # its axis
+        self.good = [load_image(n) for n in IMAGES]
+
+    async def reset(self) -> int:
+        dut = self.dut
+        dut.rst.value = 1
+        for sname in ("start", "cfg_we", "cfg_swap", "in_we", "fw_thr", "swap_at", "cfg_addr", "cfg_wdata",
+                      "in_addr", "in_wdata"):
+            getattr(dut, sname).value = 0
+        for _ in range(3):
+            await self.RisingEdge(dut.clk)
+        dut.rst.value = 0
+        n = 0
+        while True:
+            await self.RisingEdge(dut.clk)
+            n += 1
+            await self.ReadOnly()
+            if int(dut.ready.value):
+                break
+            assert n < 10000, "ready never rose"
+        await self.RisingEdge(dut.clk)
+        boot = image.read_hex(roms() / "coef_boot.hex")
+        self.m = core.MxCore(boot, self.N, self.fmt, self.NA)
+        dut._log.info(f"seed {SEED} (EMPC_SEED), NAXES {self.NA}: ready {n} cycles after reset")
+
+        async def watch():
+            while True:
+                await self.RisingEdge(dut.clk)
+                await self.ReadOnly()
+                r = int(dut.refused.value)
+                for a in range(self.NA):
+                    self.refused_seen[a] += (r >> a) & 1
+        cocotb.start_soon(watch())
+        return n
+
+    def bits(self, name: str) -> list[int]:
+        v = int(getattr(self.dut, name).value)
+        return [(v >> a) & 1 for a in range(self.NA)]
+
+    async def compare(self, label: str) -> None:
+        await self.ReadOnly()
+        b = self.m.banks
+        got = {k: self.bits(k) for k in ("bank", "swap_pending", "upl_ok", "img_ok", "swap_refused", "task_pos")}
+        got["boot_ok"] = int(self.dut.boot_ok.value)
+        got["refused_count"] = list(self.refused_seen)
+        exp = {"bank": b.bank_v, "swap_pending": [int(x) for x in b.pending_v], "upl_ok": [int(x) for x in b.upl_ok_v],
+               "img_ok": [int(x) for x in b.img_ok_v], "swap_refused": [int(x) for x in b.swap_refused_v],
+               "task_pos": [int(b.active(a).task == "position") for a in range(self.NA)],
+               "boot_ok": int(b.boot_ok), "refused_count": list(b.refused_v)}
+        assert got == exp, f"{label}: RTL {got} model {exp}"
+        await self.RisingEdge(self.dut.clk)
+
+    async def idle(self, n: int) -> None:
+        for _ in range(n):
+            await self.RisingEdge(self.dut.clk)
+
+    async def write_inputs(self, axis: int, words: dict[int, int]) -> None:
+        dut = self.dut
+        for a, v in words.items():
+            dut.in_we.value = 1
+            dut.in_addr.value = (axis << 6) | a
+            dut.in_wdata.value = _u(int(v), SW)
+            await self.RisingEdge(dut.clk)
+            self.m.write_input(axis, a, int(v))
+        dut.in_we.value = 0
+
+    def vector_words(self, axis: int) -> dict[int, int]:
+        p = self.m.banks.active(axis)
+        x = V.random_inputs(self.rng, 1, p, self.N)
+        return {**unused_words(self.rng, self.N), **input_words(x, 0, self.N)}
+
+    async def upload(self, axis: int, words) -> None:
+        """(addr, word) pairs into axis, one per clock (owns cfg_we until 2 clocks after the last)."""
+        dut = self.dut
+        self.cpu_busy, self.up_axis = True, axis
+        for a, v in words:
+            dut.cfg_we.value = 1
+            dut.cfg_addr.value = (axis << 10) | a
+            dut.cfg_wdata.value = v
+            await self.RisingEdge(dut.clk)
+            self.m.banks.write(a, v, axis)
+        dut.cfg_we.value = 0
+        await self.idle(2)
+        self.cpu_busy, self.up_axis = False, None
+        self.stats["uploads"] += 1
+
+    def image_for(self, axis: int):
+        """A valid image (generated or random) or, one time in four, a corrupted one."""
+        r = self.rng.random()
+        if r < 0.5:
+            w = list(self.good[int(self.rng.integers(0, len(self.good)))])
+        else:
+            w = list(V.random_image(self.rng, self.N, self.fmt, valid=True)[0])
+        if self.rng.random() < 0.25:
+            w[int(self.rng.integers(0, image.USED))] ^= 1 << int(self.rng.integers(0, 32))
+        return list(enumerate(w[:image.USED]))
+
+    async def swap(self, axis: int, busy_axis: int | None = None) -> None:
+        """cfg_swap[axis] then a swap_at[axis] pulse (decided there unless axis's own update runs)."""
+        dut = self.dut
+        dut.cfg_swap.value = 1 << axis
+        await self.RisingEdge(dut.clk)
+        dut.cfg_swap.value = 0
+        self.m.banks.request(axis)
+        await self.idle(int(self.rng.integers(0, 4)))
+        dut.swap_at.value = 1 << axis
+        await self.ReadOnly()
+        own_busy = int(dut.busy.value) == 1 and busy_axis == axis
+        in_flight = self.up_axis == axis
+        await self.RisingEdge(dut.clk)
+        dut.swap_at.value = 0
+        if own_busy:
+            self.stats["no_decision"] += 1
+        else:
+            r = self.m.banks.boundary(in_flight=in_flight, axis=axis)
+            if r is not None:
+                self.stats["swaps_ok" if r else "swaps_refused"] += 1
+        await self.idle(2)                      # the refused pulse is counted
+
+    async def update(self, axis: int, during=None) -> None:
+        """One update of axis (its inputs written first); ``during`` runs while it is busy."""
+        dut = self.dut
+        await self.write_inputs(axis, self.vector_words(axis))
+        thr = (int(self.rng.integers(0, 1 << 16)), int(self.rng.integers(0, 1 << 16)))
+        dut.fw_thr.value = thr[0] | (thr[1] << 16)
+        exp_o = self.m.start(axis, fw_thr=thr)
+        p = self.m.banks.active(axis)
+        exp = {**V.outputs_of(exp_o), "fw": (int(exp_o.fw_hi), int(exp_o.fw_lo))}
+        dut.start.value = 1 << axis
+        await self.RisingEdge(dut.clk)
+        dut.start.value = 0
+        task = cocotb.start_soon(during()) if during else None
+        n = 1
+        while True:
+            await self.ReadOnly()
+            if n == 2:
+                assert int(dut.latency.value) == core.latency(p.ncols), "latency port"
+            if int(dut.done.value):
+                break
+            await self.RisingEdge(dut.clk)
+            n += 1
+            assert n < 500, "done never came"
+        assert n == core.latency(p.ncols), f"axis {axis}: latency {n} != {core.latency(p.ncols)}"
+        err = _mismatch(read_out(dut), exp)
+        assert err is None, f"axis {axis} update {self.stats['updates']}: {err}"
+        self.stats["updates"] += 1
+        await self.RisingEdge(dut.clk)
+        if task is not None:
+            await task
+
+    async def run_random(self, n_ops: int) -> None:
+        rng = self.rng
+        NA = self.NA
+        for a in range(NA):                     # every axis from its boot bank
+            await self.update(a)
+        for k in range(n_ops):
+            op = rng.choice(["update", "upload_swap", "swap_busy", "upload_busy", "inputs_busy", "own_busy"],
+                            p=[0.3, 0.2, 0.15, 0.15, 0.1, 0.1])
+            a = int(rng.integers(0, NA))
+            b = int((a + 1 + rng.integers(0, NA - 1)) % NA) if NA > 1 else a
+            if op == "update":
+                await self.update(a)
+            elif op == "upload_swap":            # upload + swap on axis a, then updates of every axis
+                await self.upload(a, self.image_for(a))
+                await self.swap(a)
+            elif op == "swap_busy":              # a swap of axis b while axis a's update runs
+                if not self.m.banks.upl_ok_v[b]:
+                    await self.upload(b, self.image_for(b))
+
+                async def during():
+                    await self.idle(int(rng.integers(1, 20)))
+                    await self.swap(b, busy_axis=a)
+                await self.update(a, during)
+                self.stats["busy_swaps"] += 1
+            elif op == "upload_busy":            # an upload into axis b while axis a's updates run
+                up = cocotb.start_soon(self.upload(b, self.image_for(b)))
+                while not up.done():
+                    await self.update(a)
+                await up
+                self.stats["busy_uploads"] += 1
+            elif op == "inputs_busy":            # axis b's input words written during axis a's update
+                words = self.vector_words(b)
+
+                async def during():
+                    await self.write_inputs(b, words)
+                await self.update(a, during)
+                self.stats["busy_inputs"] += 1
+            else:                                # a boundary of axis a during its own update: no decision
+                if not self.m.banks.upl_ok_v[a]:
+                    await self.upload(a, self.image_for(a))
+
+                async def during():
+                    await self.idle(3)
+                    await self.swap(a, busy_axis=a)
+                await self.update(a, during)
+                if self.m.banks.pending_v[a]:
+                    await self.swap(a)           # (request again) decided at the next idle boundary
+            await self.compare(f"op {k} {op} a={a} b={b}")
+            for x in range(NA):                  # every axis still computes with its own bank
+                if rng.random() < 0.5:
+                    await self.update(x)
+        assert self.stats["swaps_ok"] > 0 and self.stats["swaps_refused"] > 0 and self.stats["no_decision"] > 0
+        self.dut._log.info(f"NAXES {NA}: {self.stats}; refused pulses per axis {self.refused_seen}")
+
+
 def foreign_builds(log) -> list[tuple[str, list[int]]]:
     """Boot images of the other motor configurations (their own fingerprint), generated once."""
     from empc import config, roms as roms_mod
@@ -593,6 +813,18 @@ try:
                       tb.refused_seen, tb.n_vec)
 
     @cocotb.test()
+    async def axes(dut):
+        """NAXES > 1: every axis's updates bit-exact against its own bank (core.MxCore) while the other
+        axes upload, swap and write their input words; per-axis bank state compared after every step."""
+        from cocotb.clock import Clock
+        cocotb.start_soon(Clock(dut.clk, 10, unit="ns").start())
+        tb = AxBench(dut)
+        n_ready = await tb.reset()
+        assert n_ready == core.boot_cycles(tb.NA), (n_ready, core.boot_cycles(tb.NA))
+        await tb.compare("boot")
+        await tb.run_random(int(os.environ.get("EMPC_AX_OPS", "120")))
+
+    @cocotb.test()
     async def stream(dut):
         """Streaming harness (tb/hdl/mpc_core_stream.v): many vectors back to back on Verilator."""
         if not hasattr(dut, "go"):
@@ -782,6 +1014,15 @@ def test_mpc_core_image_checks():
     """Image checker and swap protocol against core.Banks (Icarus)."""
     from runner import run
     run(toplevel="mpc_core", test_module="test_mpc_core", parameters=_file_params(), testcase="image_checks")
+
+
+@pytest.mark.parametrize("naxes", [4])
+def test_mpc_core_axes(naxes):
+    """NAXES = 4 (Icarus): per-axis updates bit-exact while other axes upload, swap and write inputs;
+    per-axis bank / pending / upl_ok / img_ok / refused against core.MxBanks after every step."""
+    from runner import run
+    run(toplevel="mpc_core", test_module="test_mpc_core", testcase="axes", name=f"mpc_core_ax{naxes}",
+        parameters={**_file_params(), "NAXES": naxes}, extra_env={"EMPC_NAXES": str(naxes)})
 
 
 @pytest.mark.cost(45)          # Verilator build ~20 s, 38 M clocks ~21 s
