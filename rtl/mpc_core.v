@@ -50,8 +50,17 @@
 // cfg_swap are ignored while ready = 0 (the input buffer can be written at any time).
 // All outputs clear to 0 at reset.
 //
+// Several axes (NAXES > 1, docs/four_axes.md piece 1): every axis a has its own bank pair and
+// 64 input words (in_addr = {axis, word}); start[a] (one-hot) starts an update of axis a with
+// its words and its active bank (axis latched for the update); cfg_addr = {axis, word} writes
+// into that axis's inactive bank; cfg_swap[a], swap_at[a], bank[a], swap_pending[a], upl_ok[a],
+// img_ok[a], swap_refused[a], refused[a], task_pos[a] are per axis, and axis a's swap is decided
+// at swap_at[a] unless an update of axis a runs (another axis's update or in-flight word does not
+// matter).  One upload at a time (a shared checker; an axis change breaks the sequence).  The
+// boot image goes into bank 0 of every axis: ready (NAXES-1) * 1024 + 771 cycles after reset.
+// NAXES = 1: every vector is one bit, the port list and behaviour are those of the one-axis core.
 // Ports (vectors flattened, element k at [k*W +: W]):
-//   in_we, in_addr[5:0], in_wdata[39:0]: input buffer write port
+//   in_we, in_addr[5+AXB:0], in_wdata[31:0]: input buffer write port
 //   outputs u, du, u_raw [2 x 24], ebar [3 x 40], wn (Q1.17), flags
 //   (bit = FLAG_BITS of the model: 0 operand, 1 gain, 2 term, 3 acc, 4 du, 5 u, 6 ebar,
 //   7 ebar_inc, 8 limit, 9 wn_clamp, 10 signal: that saturation happened in this update).
@@ -60,7 +69,8 @@
 //   selects y2 / references accordingly), latency.
 //   Field weakening (model step 7): fw_thr = {lo, hi} (register FW_R2) in; fw_hi, fw_lo out,
 //   loaded with the other outputs (|u_raw|^2 of the update above hi / below lo).
-// Parameters: N (horizon inputs, default EMPC_N), BOOT_FILE, RSQRT_FILE ($readmemh paths).
+// Parameters: N (horizon inputs, default EMPC_N), NAXES (axes, 1..8; AXB = clog2(NAXES)),
+// BOOT_FILE, RSQRT_FILE ($readmemh paths).
 // Resources: 6 DSP48A1 (3 per lane, the limiter reuses them), block RAM for the boot
 // ROM (1024 x 32), RSQRT (1024 x 18) and the coefficient memories, LUT RAM for the input
 // buffer, the scratch words and the bank headers.
