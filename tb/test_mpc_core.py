@@ -74,11 +74,12 @@ def input_words(x: dict, i: int, N: int) -> dict[int, int]:
     return core.input_words(V.to_inputs(x, i), N)
 
 
-async def write_inputs(dut, words: dict[int, int], RisingEdge) -> None:
-    """Write the words through in_we / in_addr / in_wdata, one per clock (ends after the last write edge)."""
+async def write_inputs(dut, words: dict[int, int], RisingEdge, axis: int = 0) -> None:
+    """Write the words through in_we / in_addr = {axis, word} / in_wdata, one per clock (ends after the
+    last write edge)."""
     for a, v in words.items():
         dut.in_we.value = 1
-        dut.in_addr.value = a
+        dut.in_addr.value = (axis << 6) | a
         dut.in_wdata.value = _u(int(v), SW)
         await RisingEdge(dut.clk)
     dut.in_we.value = 0
@@ -113,13 +114,21 @@ class Bench:
         self.rng = np.random.default_rng(SEED + 7)
         self.boundary_always = True      # swap_at = 1 every clock: a swap is decided at the first idle edge
         self.fw_seen = set()
+        # the axis the bench drives (cfg_addr / in_addr top bits, one-hot start, cfg_swap, swap_at)
+        self.NA = int(os.environ.get("EMPC_NAXES", "1"))
+        self.ax = int(os.environ.get("EMPC_IMG_AXIS", "0"))
+        self.sel = 1 << self.ax
+
+    def bit(self, name: str) -> int:
+        """The bench axis's bit of a per-axis output."""
+        return (int(getattr(self.dut, name).value) >> self.ax) & 1
 
     async def reset(self) -> int:
         dut = self.dut
         dut.rst.value = 1
         for s in ("start", "cfg_we", "cfg_swap", "in_we", "fw_thr"):
             getattr(dut, s).value = 0
-        dut.swap_at.value = 1 if self.boundary_always else 0
+        dut.swap_at.value = self.sel if self.boundary_always else 0
         dut.cfg_addr.value = 0
         dut.cfg_wdata.value = 0
         dut.in_addr.value = 0
@@ -141,7 +150,7 @@ class Bench:
         await self.RisingEdge(dut.clk)
         for a in range(image.USED):
             dut.cfg_we.value = 1
-            dut.cfg_addr.value = a
+            dut.cfg_addr.value = (self.ax << 10) | a
             dut.cfg_wdata.value = words[a]
             await self.RisingEdge(dut.clk)
         dut.cfg_we.value = 0
@@ -153,20 +162,20 @@ class Bench:
         w = input_words(x, i, self.N)
         if garbage:
             w = {**unused_words(self.rng, self.N), **w}
-        await write_inputs(self.dut, w, self.RisingEdge)
+        await write_inputs(self.dut, w, self.RisingEdge, self.ax)
 
     async def run(self, x: dict, i: int, swap_at: int | None = None, fw_thr=(0, 0)) -> tuple[dict, int]:
         """Write vector i, pulse start, wait for done; returns outputs and start->done cycles."""
         dut = self.dut
         await self.load(x, i)
         dut.fw_thr.value = fw_thr[0] | (fw_thr[1] << 16)
-        dut.start.value = 1
+        dut.start.value = self.sel
         await self.RisingEdge(dut.clk)
         dut.start.value = 0
         n = 1
         while True:
             if swap_at is not None and n == swap_at:
-                dut.cfg_swap.value = 1
+                dut.cfg_swap.value = self.sel
             await self.ReadOnly()
             assert int(dut.busy.value) == 1 or int(dut.done.value) == 1, f"busy low before done (cycle {n})"
             if int(dut.done.value):
@@ -177,6 +186,33 @@ class Bench:
             assert n < 500, "done never came"
         assert int(dut.busy.value) == 0
         return read_out(dut), n
+
+
+class AxisView:
+    """core.MxBanks seen from one axis (the scalar interface of core.Banks)."""
+
+    def __init__(self, mx: core.MxBanks, ax: int):
+        self.mx, self.ax = mx, ax
+
+    bank = property(lambda self: self.mx.bank_v[self.ax])
+    pending = property(lambda self: self.mx.pending_v[self.ax])
+    upl_ok = property(lambda self: self.mx.upl_ok_v[self.ax])
+    img_ok = property(lambda self: self.mx.img_ok_v[self.ax])
+    swap_refused = property(lambda self: self.mx.swap_refused_v[self.ax])
+    refused = property(lambda self: self.mx.refused_v[self.ax])
+    boot_ok = property(lambda self: self.mx.boot_ok)
+
+    def active(self) -> core.Params:
+        return self.mx.active(self.ax)
+
+    def write(self, addr: int, v: int) -> None:
+        self.mx.write(addr, v, self.ax)
+
+    def request(self) -> None:
+        self.mx.request(self.ax)
+
+    def boundary(self, in_flight: bool = False):
+        return self.mx.boundary(in_flight, self.ax)
 
 
 class ImgBench(Bench):
@@ -196,15 +232,18 @@ class ImgBench(Bench):
         from cocotb.triggers import RisingEdge, ReadOnly
         n = await super().reset()
         await RisingEdge(self.dut.clk)               # leave the ReadOnly phase
-        self.m = core.Banks(image.read_hex(Path(os.environ.get("EMPC_BOOT_HEX", roms() / "coef_boot.hex"))),
-                            self.N, self.fmt)
-        self.dut._log.info(f"seed {SEED} (EMPC_SEED); boot_ok model {self.m.boot_ok} RTL {int(self.dut.boot_ok.value)}")
+        self.mx = core.MxBanks(image.read_hex(Path(os.environ.get("EMPC_BOOT_HEX", roms() / "coef_boot.hex"))),
+                               self.N, self.fmt, self.NA)
+        self.m = AxisView(self.mx, self.ax)
+        self.dut._log.info(f"seed {SEED} (EMPC_SEED); NAXES {self.NA}, axis {self.ax}; boot_ok model "
+                           f"{self.m.boot_ok} RTL {int(self.dut.boot_ok.value)}")
 
         async def watch():
             while True:
                 await RisingEdge(self.dut.clk)
                 await ReadOnly()
-                self.refused_seen += int(self.dut.refused.value)
+                self.refused_seen += self.bit("refused")
+                assert int(self.dut.refused.value) & ~self.sel == 0, "another axis refused a swap"
         import cocotb
         cocotb.start_soon(watch())
         return n
@@ -219,7 +258,7 @@ class ImgBench(Bench):
         await self.RisingEdge(dut.clk)
         for a, v in words:
             dut.cfg_we.value = 1
-            dut.cfg_addr.value = a
+            dut.cfg_addr.value = (self.ax << 10) | a
             dut.cfg_wdata.value = v
             await self.RisingEdge(dut.clk)
             self.m.write(a, v)
@@ -228,7 +267,7 @@ class ImgBench(Bench):
 
     async def request(self) -> None:
         dut = self.dut
-        dut.cfg_swap.value = 1
+        dut.cfg_swap.value = self.sel
         await self.RisingEdge(dut.clk)
         dut.cfg_swap.value = 0
         self.m.request()
@@ -236,9 +275,9 @@ class ImgBench(Bench):
     async def boundary(self, write=None) -> None:
         """One swap_at pulse with the core idle (optionally a CPU word requested in that clock)."""
         dut = self.dut
-        dut.swap_at.value = 1
+        dut.swap_at.value = self.sel
         if write is not None:
-            dut.cfg_we.value, dut.cfg_addr.value, dut.cfg_wdata.value = 1, write[0], write[1]
+            dut.cfg_we.value, dut.cfg_addr.value, dut.cfg_wdata.value = 1, (self.ax << 10) | write[0], write[1]
         await self.RisingEdge(dut.clk)
         dut.swap_at.value = 0
         dut.cfg_we.value = 0
@@ -249,16 +288,16 @@ class ImgBench(Bench):
 
     async def request_at_boundary(self) -> None:
         dut = self.dut
-        dut.swap_at.value = 1
-        dut.cfg_swap.value = 1
-        b0 = int(dut.bank.value)
+        dut.swap_at.value = self.sel
+        dut.cfg_swap.value = self.sel
+        b0 = self.bit("bank")
         await self.RisingEdge(dut.clk)
         dut.swap_at.value = 0
         dut.cfg_swap.value = 0
         self.m.request()
         self.m.boundary()
         await self.ReadOnly()
-        assert int(dut.bank.value) == self.m.bank and (self.m.bank != b0) == (not self.m.swap_refused), \
+        assert self.bit("bank") == self.m.bank and (self.m.bank != b0) == (not self.m.swap_refused), \
             "request in the clock of a boundary: not decided at that edge"
         await self.idle(2)
 
@@ -266,11 +305,11 @@ class ImgBench(Bench):
         dut = self.dut
         x = V.random_inputs(self.rng, 1, self.m.active(), self.N)
         await self.load(x, 0)
-        dut.start.value = 1
+        dut.start.value = self.sel
         await self.RisingEdge(dut.clk)
         dut.start.value = 0
         await self.idle(5)
-        dut.swap_at.value = 1                    # busy: not a decision point
+        dut.swap_at.value = self.sel             # busy: not a decision point
         await self.RisingEdge(dut.clk)
         dut.swap_at.value = 0
         while not int(dut.done.value):
@@ -283,13 +322,19 @@ class ImgBench(Bench):
     async def compare(self, label: str) -> None:
         await self.ReadOnly()
         d = self.dut
-        got = {"bank": int(d.bank.value), "pending": int(d.swap_pending.value), "upl_ok": int(d.upl_ok.value),
-               "img_ok": int(d.img_ok.value), "boot_ok": int(d.boot_ok.value), "refused": int(d.swap_refused.value),
+        got = {"bank": self.bit("bank"), "pending": self.bit("swap_pending"), "upl_ok": self.bit("upl_ok"),
+               "img_ok": self.bit("img_ok"), "boot_ok": int(d.boot_ok.value), "refused": self.bit("swap_refused"),
                "refused_count": self.refused_seen}
         m = self.m
         exp = {"bank": m.bank, "pending": int(m.pending), "upl_ok": int(m.upl_ok), "img_ok": int(m.img_ok),
                "boot_ok": int(m.boot_ok), "refused": int(m.swap_refused), "refused_count": m.refused}
         assert got == exp, f"{label}: RTL {got} model {exp}"
+        # the other axes (NAXES > 1): untouched, as in the model
+        vec = lambda v: sum(int(b) << a for a, b in enumerate(v))
+        mx = self.mx
+        for name, v in (("bank", mx.bank_v), ("swap_pending", mx.pending_v), ("upl_ok", mx.upl_ok_v),
+                        ("img_ok", mx.img_ok_v), ("swap_refused", mx.swap_refused_v)):
+            assert int(getattr(d, name).value) == vec(v), f"{label}: {name} of the axes {int(getattr(d, name).value):#x}"
         self.dut._log.info(f"{label}: {got}")
         await self.RisingEdge(d.clk)
 
@@ -673,15 +718,15 @@ try:
         cocotb.start_soon(Clock(dut.clk, 10, unit="ns").start())
         tb = ImgBench(dut)
         n_ready = await tb.reset()
-        assert n_ready == core.BOOT_CYCLES and int(dut.boot_ok.value) == 0, (n_ready, int(dut.boot_ok.value))
+        assert n_ready == core.boot_cycles(tb.NA) and int(dut.boot_ok.value) == 0, (n_ready, int(dut.boot_ok.value))
         await tb.compare("bad boot")
-        assert int(dut.img_ok.value) == 0
+        assert tb.bit("img_ok") == 0
         w = load_image(IMAGES[3])
         await tb.upload(list(enumerate(w[:image.USED])))
         await tb.request()
         await tb.boundary()
         await tb.compare("valid upload after a bad boot")
-        assert int(dut.img_ok.value) == 1 and tb.m.img_ok
+        assert tb.bit("img_ok") == 1 and tb.m.img_ok
         await tb.vectors(4)
         dut._log.info("corrupted boot image: ready after 771 cycles, boot_ok = img_ok = 0; a valid upload and "
                       "swap: img_ok = 1, %d vectors bit-exact", tb.n_vec)
@@ -714,10 +759,10 @@ try:
                 await tb.request()
                 await tb.idle(int(rng.integers(0, 30)))
                 await tb.compare(label + " (pending)")
-                assert int(dut.swap_pending.value) == 1
+                assert tb.bit("swap_pending") == 1
                 await tb.boundary()
             await tb.compare(label)
-            got = not int(dut.swap_refused.value)
+            got = not tb.bit("swap_refused")
             assert got == expect, f"{label}: swap {'accepted' if got else 'refused'}, expected the opposite"
             acc, ref = acc + got, ref + (not got)
             await tb.vectors(2)
@@ -776,33 +821,33 @@ try:
         await swap("request in the clock of a boundary", True, full(good[0]), at_once=True)
         await tb.upload(full(good[1]))
         await tb.request()
-        b0 = int(dut.bank.value)
+        b0 = tb.bit("bank")
         for _ in range(200):
             await tb.idle(1)
-            assert int(dut.bank.value) == b0 and int(dut.swap_pending.value) == 1, "swap applied without a boundary"
+            assert tb.bit("bank") == b0 and tb.bit("swap_pending") == 1, "swap applied without a boundary"
         await tb.boundary()
         await tb.compare("swap applied exactly at the boundary")
-        assert int(dut.bank.value) != b0
+        assert tb.bit("bank") != b0
         acc += 1
         # a CPU word in flight at the boundary, and a word written while the swap is pending
         await tb.upload(full(good[2]))
         await tb.request()
         await tb.boundary(write=(0, good[2][0]))
         await tb.compare("word written in the clock of the boundary")
-        assert int(dut.swap_refused.value) == 1
+        assert tb.bit("swap_refused") == 1
         await tb.upload(full(good[3]))
         await tb.request()
         await tb.upload([(17, good[3][17])])
         await tb.boundary()
         await tb.compare("word written while the swap was pending")
-        assert int(dut.swap_refused.value) == 1
+        assert tb.bit("swap_refused") == 1
         ref += 2
         # a boundary while an update runs is no decision point: the update finishes with its bank
         await tb.upload(full(good[0]))
         await tb.request()
         await tb.boundary_during_update()
         await tb.compare("boundary during an update: still pending")
-        assert int(dut.swap_pending.value) == 1
+        assert tb.bit("swap_pending") == 1
         await tb.boundary()
         await tb.compare("next boundary, idle: applied")
         acc += 1
@@ -822,6 +867,15 @@ try:
         n_ready = await tb.reset()
         assert n_ready == core.boot_cycles(tb.NA), (n_ready, core.boot_cycles(tb.NA))
         await tb.compare("boot")
+        if tb.NA > 1:
+            # one upload at a time: an image whose words go to two axes is no image of either
+            w = list(enumerate(tb.good[1][:image.USED]))
+            await tb.upload(1, w[:400])
+            await tb.upload(0, w[400:])
+            for a in (0, 1):
+                await tb.swap(a)
+            await tb.compare("an image split over axes 1 and 0")
+            assert tb.bits("swap_refused")[:2] == [1, 1] and tb.bits("bank")[:2] == [0, 0]
         await tb.run_random(int(os.environ.get("EMPC_AX_OPS", "120")))
 
     @cocotb.test()
@@ -1014,6 +1068,14 @@ def test_mpc_core_image_checks():
     """Image checker and swap protocol against core.Banks (Icarus)."""
     from runner import run
     run(toplevel="mpc_core", test_module="test_mpc_core", parameters=_file_params(), testcase="image_checks")
+
+
+def test_mpc_core_image_checks_axis2():
+    """The same checks on axis 2 of a NAXES = 4 core (issue 14's checks hold per axis): every step also
+    compares the other three axes' bank state (untouched) and that only axis 2 refuses swaps."""
+    from runner import run
+    run(toplevel="mpc_core", test_module="test_mpc_core", testcase="image_checks", name="mpc_core_ax4",
+        parameters={**_file_params(), "NAXES": 4}, extra_env={"EMPC_NAXES": "4", "EMPC_IMG_AXIS": "2"})
 
 
 @pytest.mark.parametrize("naxes", [4])
