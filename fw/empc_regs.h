@@ -32,7 +32,7 @@
 #define EMPC_COEF_STRIDE        0x00001000u  /* bytes per coefficient window */
 #define EMPC_COEF_WORDS         1024u        /* words in one coefficient window */
 #define EMPC_IMG_USED           768u         /* words of a coefficient image (gen/empc/image.py) */
-#define EMPC_IMG_LAYOUT         2u           /* image layout version (CAPS.img_layout) */
+#define EMPC_IMG_LAYOUT         3u           /* image layout version (CAPS.img_layout) */
 #define EMPC_ID_MAGIC           0x454D5043u  /* value of ID ('EMPC') */
 #define EMPC_IP_VERSION         0x00010000u  /* value of VERSION (major 31:16, minor 15:8, patch 7:0) */
 #define EMPC_WDOG_KEY           0x5A5Au      /* write to WDOG_KICK to restart the watchdog */

@@ -1,6 +1,7 @@
-// mpc_coef_mem: the MPC core's two coefficient banks (image layout of gen/empc/image.py).
+// mpc_coef_mem: the MPC core's coefficient banks, two per axis (image layout of gen/empc/image.py).
 //
-// Write port: one 32-bit image word per clock (we, wbank, waddr = word address of the
+// Banks are addressed k = {axis, bank} (NAXES axes: 2^AXB bank pairs, AXB = clog2(NAXES)).
+// Write port: one 32-bit image word per clock (we, waxis, wbank, waddr = word address of the
 // image layout, wdata).  Decoded as it is written:
 //   A_CFG        algorithm[14:13], task[12] (1 = position), N[11:8], ncols[6:0] -> registers
 //   A_WS .. A_EBAR+2  header LUT RAM, one SIG_W-bit entry per field (sign-extended value):
@@ -13,28 +14,36 @@
 //                to 18 bit), k = 3 product shift [3:0]  -> coefficient / shift memories
 //   other addresses (magic, used, checksum, unused) are ignored.
 // ncols is clamped to MAX_COLS; neff = min(N_img, N, N_MAX) (horizon steps the core reads).
-// Read side (bank rbank): synchronous reads, data valid one clock after the address:
+// Read side (bank {raxis, rbank}): synchronous reads, data valid one clock after the address:
 // desc at ra_desc, p2 / p1 at ra_c, p0 at ra_p0, the product shifts at ra_s (s_clr reads 0 instead);
 // the header entry hdr_field is read asynchronously (hdr); the CFG fields are
-// combinational outputs of the bank registers.
-// Storage: block RAM (p0/p1/p2 x rows: 2 x 64 x 18 each; descriptors 2 x 64 x 10; shifts
-// 2 x 64 x {4, 4}); header: LUT RAM 2 x 8 x SIG_W; CFG fields: registers.
-// Parameters: N (horizon inputs of the core, <= EMPC_N_MAX).
+// combinational outputs of the bank registers; pos_v[a] = the task of axis a's bank bank_v[a].
+// Storage: block RAM (p0/p1/p2 x rows: 2 NA x 64 x 18 each; descriptors 2 NA x 64 x 10; shifts
+// 2 NA x 64 x {4, 4}; NA = 2^AXB: one RAMB8 each up to four axes); header: LUT RAM 2 NA x 8 x
+// SIG_W; CFG fields: registers.
+// Parameters: N (horizon inputs of the core, <= EMPC_N_MAX), NAXES, AXW (axis index width,
+// max(1, AXB)).
 // Reset: CFG registers of both banks clear to 0 (ncols = 0: an empty bank gives du = 0);
 // memories are not reset (LUT RAM initial contents 0); read registers clear to 0.
 `default_nettype none
 `include "empc_formats.vh"
 module mpc_coef_mem #(
     parameter integer N = `EMPC_N,
+    parameter integer NAXES = 1,
+    parameter integer AXW = 1,
     parameter integer DW = `EMPC_SIG_SHIFT_BITS + 6     // descriptor {c, sig}
 ) (
     input  wire                        clk,
     input  wire                        rst,
     input  wire                        we,
+    input  wire [AXW-1:0]              waxis,
     input  wire                        wbank,
     input  wire [9:0]                  waddr,
     input  wire [31:0]                 wdata,
+    input  wire [AXW-1:0]              raxis,
     input  wire                        rbank,
+    input  wire [NAXES-1:0]            bank_v,     // active bank of every axis (pos_v)
+    output wire [NAXES-1:0]            pos_v,
     input  wire [5:0]                  ra_desc,
     input  wire [5:0]                  ra_c,
     input  wire [5:0]                  ra_p0,
@@ -69,6 +78,18 @@ module mpc_coef_mem #(
     localparam [9:0] A_GEND  = `EMPC_IMG_A_GAINS + 8 * `EMPC_MAX_COLS;
     localparam [9:0] A_CEND  = `EMPC_IMG_A_COLS + `EMPC_MAX_COLS;
     localparam [2:0] F_WS = 3'd0, F_WNMIN = 3'd1, F_WNMAX = 3'd2, F_UMAX = 3'd3;
+    localparam integer AXB = $clog2(NAXES);         // axis bits of a bank index
+    localparam integer KW  = AXB + 1;               // bank index k = {axis, bank}
+    localparam integer NK  = 1 << KW;
+    // bank indices of the write and the read side
+    wire [KW-1:0] wk, rk;
+    generate if (AXB == 0) begin : g_k1
+        assign wk = wbank;
+        assign rk = rbank;
+    end else begin : g_kn
+        assign wk = {waxis[AXB-1:0], wbank};
+        assign rk = {raxis[AXB-1:0], rbank};
+    end endgenerate
 
     // ---- write decode ----
     wire [9:0] coff = waddr - A_COLS;
@@ -78,8 +99,8 @@ module mpc_coef_mem #(
     wire w_gain = we && waddr >= A_GAINS && waddr < A_GEND;
     wire w_hdr_a = waddr >= A_WS && waddr < A_HEND;
     wire w_hdr  = we && w_hdr_a;
-    wire [6:0] wa_col  = {wbank, coff[5:0]};
-    wire [6:0] wa_gain = {wbank, goff[7:2]};
+    wire [KW+5:0] wa_col  = {wk, coff[5:0]};
+    wire [KW+5:0] wa_gain = {wk, goff[7:2]};
     wire g_row = goff[8];
     wire [1:0] g_k = goff[1:0];
     wire [2:0] h_f = hoff[2:0];
@@ -132,51 +153,60 @@ module mpc_coef_mem #(
     generate if (MAXC != 64) begin : g_bad_maxc
         mpc_coef_mem_unsupported_parameters u_error ();  // no such module: elaboration stops here
     end endgenerate
-    reg        alg2_b [0:1];
-    reg        pos_b  [0:1];
-    reg [6:0]  ncols_b [0:1];
-    reg [3:0]  neff_b [0:1];
+    reg        alg2_b [0:NK-1];
+    reg        pos_b  [0:NK-1];
+    reg [6:0]  ncols_b [0:NK-1];
+    reg [3:0]  neff_b [0:NK-1];
     wire       w_cfg = we && waddr == A_CFG;
     integer b;
     always @(posedge clk) begin
-        for (b = 0; b < 2; b = b + 1) begin
+        for (b = 0; b < NK; b = b + 1) begin
             if (rst) begin
                 alg2_b[b]       <= 1'b0;
                 pos_b[b]        <= 1'b0;
                 ncols_b[b][6]   <= 1'b0;
                 neff_b[b]       <= 4'd0;
-            end else if (w_cfg && wbank == b[0]) begin
+            end else if (w_cfg && wk == b[KW-1:0]) begin
                 alg2_b[b]       <= (wdata[14:13] == 2'd2);
                 pos_b[b]        <= wdata[12];
                 ncols_b[b][6]   <= wdata[6];
                 neff_b[b]       <= w_ne;
             end
-            if (rst || (w_cfg && wbank == b[0] && wdata[6])) ncols_b[b][5:0] <= 6'd0;
-            else if (w_cfg && wbank == b[0])                  ncols_b[b][5:0] <= wdata[5:0];
+            if (rst || (w_cfg && wk == b[KW-1:0] && wdata[6])) ncols_b[b][5:0] <= 6'd0;
+            else if (w_cfg && wk == b[KW-1:0])                  ncols_b[b][5:0] <= wdata[5:0];
         end
     end
-    assign alg2  = alg2_b[rbank];
-    assign pos   = pos_b[rbank];
-    assign ncols = ncols_b[rbank];
-    assign neff  = neff_b[rbank];
+    assign alg2  = alg2_b[rk];
+    assign pos   = pos_b[rk];
+    assign ncols = ncols_b[rk];
+    assign neff  = neff_b[rk];
+    genvar ga;
+    generate for (ga = 0; ga < NAXES; ga = ga + 1) begin : g_pos
+        if (AXB == 0) begin : g_1
+            assign pos_v[ga] = pos_b[bank_v[ga]];
+        end else begin : g_n
+            localparam [AXW-1:0] GA = ga;
+            assign pos_v[ga] = pos_b[{GA[AXB-1:0], bank_v[ga]}];
+        end
+    end endgenerate
 
-    // ---- header LUT RAM: address {bank, field} ----
-    reg [SW-1:0] m_hdr [0:15];
+    // ---- header LUT RAM: address {axis, bank, field} ----
+    reg [SW-1:0] m_hdr [0:8*NK-1];
     integer hi;
-    initial for (hi = 0; hi < 16; hi = hi + 1) m_hdr[hi] = {SW{1'b0}};
+    initial for (hi = 0; hi < 8 * NK; hi = hi + 1) m_hdr[hi] = {SW{1'b0}};
     always @(posedge clk)
-        if (w_hdr) m_hdr[{wbank, h_f}] <= dd;
-    assign hdr = m_hdr[{rbank, hdr_field}];
+        if (w_hdr) m_hdr[{wk, h_f}] <= dd;
+    assign hdr = m_hdr[{rk, hdr_field}];
 
     // ---- block memories: address {bank, column} ----
-    (* ram_style = "block" *) reg [DW-1:0]  m_desc [0:2*MAXC-1];
-    (* ram_style = "block" *) reg [OPW-1:0] m_p0d [0:2*MAXC-1];
-    (* ram_style = "block" *) reg [OPW-1:0] m_p1d [0:2*MAXC-1];
-    (* ram_style = "block" *) reg [OPW-1:0] m_p2d [0:2*MAXC-1];
-    (* ram_style = "block" *) reg [OPW-1:0] m_p0q [0:2*MAXC-1];
-    (* ram_style = "block" *) reg [OPW-1:0] m_p1q [0:2*MAXC-1];
-    (* ram_style = "block" *) reg [OPW-1:0] m_p2q [0:2*MAXC-1];
-    (* ram_style = "block" *) reg [8:0]     m_s   [0:2*MAXC-1];     // {s_q, 1'b0, s_d}
+    (* ram_style = "block" *) reg [DW-1:0]  m_desc [0:NK*MAXC-1];
+    (* ram_style = "block" *) reg [OPW-1:0] m_p0d [0:NK*MAXC-1];
+    (* ram_style = "block" *) reg [OPW-1:0] m_p1d [0:NK*MAXC-1];
+    (* ram_style = "block" *) reg [OPW-1:0] m_p2d [0:NK*MAXC-1];
+    (* ram_style = "block" *) reg [OPW-1:0] m_p0q [0:NK*MAXC-1];
+    (* ram_style = "block" *) reg [OPW-1:0] m_p1q [0:NK*MAXC-1];
+    (* ram_style = "block" *) reg [OPW-1:0] m_p2q [0:NK*MAXC-1];
+    (* ram_style = "block" *) reg [8:0]     m_s   [0:NK*MAXC-1];     // {s_q, 1'b0, s_d}
 
     always @(posedge clk) begin
         if (w_col) m_desc[wa_col] <= {wdata[CB+7:8], wdata[5:0]};
@@ -200,18 +230,18 @@ module mpc_coef_mem #(
             p1_d <= {OPW{1'b0}}; p1_q <= {OPW{1'b0}};
             p0_d <= {OPW{1'b0}}; p0_q <= {OPW{1'b0}};
         end else begin
-            desc <= m_desc[{rbank, ra_desc}];
-            p2_d <= m_p2d[{rbank, ra_c}];
-            p2_q <= m_p2q[{rbank, ra_c}];
-            p1_d <= m_p1d[{rbank, ra_c}];
-            p1_q <= m_p1q[{rbank, ra_c}];
-            p0_d <= m_p0d[{rbank, ra_p0}];
-            p0_q <= m_p0q[{rbank, ra_p0}];
+            desc <= m_desc[{rk, ra_desc}];
+            p2_d <= m_p2d[{rk, ra_c}];
+            p2_q <= m_p2q[{rk, ra_c}];
+            p1_d <= m_p1d[{rk, ra_c}];
+            p1_q <= m_p1q[{rk, ra_c}];
+            p0_d <= m_p0d[{rk, ra_p0}];
+            p0_q <= m_p0q[{rk, ra_p0}];
         end
         if (rst || s_clr) s_r <= 9'd0;
-        else              s_r <= m_s[{rbank, ra_s}];
+        else              s_r <= m_s[{rk, ra_s}];
     end
 
-    wire unused_ok = &{1'b0, coff[9:6], goff[9], hoff[9:3], s_r[4]};
+    wire unused_ok = &{1'b0, coff[9:6], goff[9], hoff[9:3], s_r[4], waxis, raxis};
 endmodule
 `default_nettype wire

@@ -50,8 +50,17 @@
 // cfg_swap are ignored while ready = 0 (the input buffer can be written at any time).
 // All outputs clear to 0 at reset.
 //
+// Several axes (NAXES > 1, docs/four_axes.md piece 1): every axis a has its own bank pair and
+// 64 input words (in_addr = {axis, word}); start[a] (one-hot) starts an update of axis a with
+// its words and its active bank (axis latched for the update); cfg_addr = {axis, word} writes
+// into that axis's inactive bank; cfg_swap[a], swap_at[a], bank[a], swap_pending[a], upl_ok[a],
+// img_ok[a], swap_refused[a], refused[a], task_pos[a] are per axis, and axis a's swap is decided
+// at swap_at[a] unless an update of axis a runs (another axis's update or in-flight word does not
+// matter).  One upload at a time (a shared checker; an axis change breaks the sequence).  The
+// boot image goes into bank 0 of every axis: ready (NAXES-1) * 1024 + 771 cycles after reset.
+// NAXES = 1: every vector is one bit, the port list and behaviour are those of the one-axis core.
 // Ports (vectors flattened, element k at [k*W +: W]):
-//   in_we, in_addr[5:0], in_wdata[39:0]: input buffer write port
+//   in_we, in_addr[5+AXB:0], in_wdata[31:0]: input buffer write port
 //   outputs u, du, u_raw [2 x 24], ebar [3 x 40], wn (Q1.17), flags
 //   (bit = FLAG_BITS of the model: 0 operand, 1 gain, 2 term, 3 acc, 4 du, 5 u, 6 ebar,
 //   7 ebar_inc, 8 limit, 9 wn_clamp, 10 signal: that saturation happened in this update).
@@ -60,7 +69,8 @@
 //   selects y2 / references accordingly), latency.
 //   Field weakening (model step 7): fw_thr = {lo, hi} (register FW_R2) in; fw_hi, fw_lo out,
 //   loaded with the other outputs (|u_raw|^2 of the update above hi / below lo).
-// Parameters: N (horizon inputs, default EMPC_N), BOOT_FILE, RSQRT_FILE ($readmemh paths).
+// Parameters: N (horizon inputs, default EMPC_N), NAXES (axes, 1..8; AXB = clog2(NAXES)),
+// BOOT_FILE, RSQRT_FILE ($readmemh paths).
 // Resources: 6 DSP48A1 (3 per lane, the limiter reuses them), block RAM for the boot
 // ROM (1024 x 32), RSQRT (1024 x 18) and the coefficient memories, LUT RAM for the input
 // buffer, the scratch words and the bank headers.
@@ -69,6 +79,7 @@
 `include "mpc_items.vh"
 module mpc_core #(
     parameter integer N = `EMPC_N,
+    parameter integer NAXES = 1,            // axes sharing the core (1..8): a bank pair and input words each
     parameter BOOT_FILE = "coef_boot.hex",
     parameter RSQRT_FILE = "rsqrt.hex"
 `ifdef EMPC_SIM_GATE
@@ -78,9 +89,9 @@ module mpc_core #(
     input  wire                            clk,
     input  wire                            rst,
     // update
-    input  wire                            start,
+    input  wire [NAXES-1:0]                start,        // start[a]: an update of axis a (one-hot)
     input  wire                            in_we,
-    input  wire [5:0]                      in_addr,
+    input  wire [5+$clog2(NAXES):0]        in_addr,      // {axis, word}
     input  wire signed [`EMPC_SIG_W-1:0]   in_wdata,
     output reg                             busy,
     output reg                             done,
@@ -96,20 +107,22 @@ module mpc_core #(
     output reg                             fw_lo,
     // coefficient banks
     input  wire                            cfg_we,
-    input  wire [9:0]                      cfg_addr,
+    input  wire [9+$clog2(NAXES):0]        cfg_addr,     // {axis, image word}
     input  wire [31:0]                     cfg_wdata,
-    input  wire                            cfg_swap,
-    input  wire                            swap_at,      // control-period boundary (pulse)
+    input  wire [NAXES-1:0]                cfg_swap,
+    input  wire [NAXES-1:0]                swap_at,      // control-period boundary of each axis (pulse)
     output wire                            ready,
-    output reg                             bank,
-    output reg                             swap_pending,
+    output reg  [NAXES-1:0]                bank,
+    output reg  [NAXES-1:0]                swap_pending,
     output wire                            boot_ok,
-    output wire                            img_ok,       // the active bank holds a valid image
-    output wire                            upl_ok,       // the inactive bank holds a complete valid upload
-    output reg                             swap_refused, // the last decided swap was refused
-    output reg                             refused,      // pulse: a swap was refused
-    output wire                            task_pos      // active bank: 1 = position task
+    output wire [NAXES-1:0]                img_ok,       // the active bank holds a valid image
+    output wire [NAXES-1:0]                upl_ok,       // the inactive bank holds a complete valid upload
+    output reg  [NAXES-1:0]                swap_refused, // the last decided swap was refused
+    output reg  [NAXES-1:0]                refused,      // pulse: a swap was refused
+    output wire [NAXES-1:0]                task_pos      // active bank: 1 = position task
 );
+    localparam integer AXB  = $clog2(NAXES);    // axis bits of in_addr / cfg_addr
+    localparam integer AXW  = (AXB > 0) ? AXB : 1;
     localparam integer OPW  = `EMPC_OPW;
     localparam integer UW   = `EMPC_U_W;
     localparam integer SW   = `EMPC_SIG_W;
@@ -130,7 +143,7 @@ module mpc_core #(
     localparam [7:0] SIM_GATE_DRAIN = 8'd255;
     reg  [7:0] sim_drain;
     reg        sim_en;
-    wire       sim_act = rst | start | in_we | cfg_we | cfg_swap | busy | swap_pending | !ready | done;
+    wire       sim_act = rst | (|start) | in_we | cfg_we | (|cfg_swap) | busy | (|swap_pending) | !ready | done;
     always @(posedge clk) sim_drain <= sim_act ? SIM_GATE_DRAIN : sim_drain - {7'd0, sim_drain != 8'd0};
     // changes while clk is low: no glitch on cclk
     always @(negedge clk) sim_en <= (SIM_GATE == 0) | sim_act | (sim_drain != 8'd0);
@@ -143,32 +156,58 @@ module mpc_core #(
                        U_EBB = 13, U_ULD0 = 12, U_M3U0 = 13, U_CLR = 14, U_ACCX = 16, U_LDR = 18,
                        U_LDLIM = 20, U_M2T = 20, U_SELF = 22, U_M3RND = 23, U_FIRE = 25;
 
-    // ---- write port (registered): boot stream, then the CPU; a CPU word goes to the bank that
-    // is inactive in the cycle of the request ----
+    // ---- axes: the update's axis (latched at start), the CPU word's axis ----
+    reg  [AXW-1:0] axis_r;                               // axis of the running (or last) update
+    reg  [AXW-1:0] st_ax;                                // start: lowest axis whose start bit is set
+    wire [AXW-1:0] cfg_ax;
+    integer sa;
+    always @* begin
+        st_ax = {AXW{1'b0}};
+        for (sa = NAXES - 1; sa >= 0; sa = sa - 1)
+            if (start[sa]) st_ax = sa[AXW-1:0];
+    end
+    generate if (AXB == 0) begin : g_cax1
+        assign cfg_ax = 1'b0;
+    end else begin : g_caxn
+        assign cfg_ax = cfg_addr[9+AXB:10];
+    end endgenerate
+
+    // ---- write port (registered): boot stream (every axis), then the CPU; a CPU word goes to
+    // its axis's bank that is inactive in the cycle of the request ----
     wire        w_we;
+    wire [AXW-1:0] w_ax;
     wire [9:0]  w_addr;
     wire [31:0] w_data;
     wire        ready_r;
     reg         w_bank;
     assign ready = ready_r;
-    reg         swap_go;                             // the swap is applied at this edge
-    mpc_boot #(.BOOT_FILE(BOOT_FILE), .N(N)) u_boot (
-        .clk(cclk), .rst(rst), .cfg_we(cfg_we), .cfg_addr(cfg_addr), .cfg_wdata(cfg_wdata), .ok_clr(swap_go),
-        .we(w_we), .addr(w_addr), .data(w_data), .ready(ready_r), .ok(boot_ok), .upl_ok(upl_ok)
+    reg  [NAXES-1:0] swap_go;                            // axis a's swap is applied at this edge
+    mpc_boot #(.BOOT_FILE(BOOT_FILE), .N(N), .NAXES(NAXES), .AXW(AXW)) u_boot (
+        .clk(cclk), .rst(rst), .cfg_we(cfg_we), .cfg_axis(cfg_ax), .cfg_addr(cfg_addr[9:0]),
+        .cfg_wdata(cfg_wdata), .ok_clr(swap_go),
+        .we(w_we), .wax(w_ax), .addr(w_addr), .data(w_data), .ready(ready_r), .ok(boot_ok), .upl_ok(upl_ok)
     );
     always @(posedge cclk) begin
         if (rst) w_bank <= 1'b0;
-        else     w_bank <= ready_r & ~bank;
+        else     w_bank <= ready_r & ~bank[cfg_ax];
     end
 
-    // ---- bank swap decision ----
-    wire swap_dec = ready_r && (swap_pending || cfg_swap) && swap_at && !busy;
-    always @(*) swap_go = swap_dec && upl_ok && !cfg_we && !w_we;
-    reg  swapped;                                        // a swap was accepted since reset
-    assign img_ok = boot_ok || swapped;                  // (every accepted swap brings a valid image)
+    // ---- bank swap decisions, per axis: at the axis's boundary, with no update of that axis running ----
+    reg  [NAXES-1:0] swap_dec;
+    reg  [NAXES-1:0] swapped;                            // a swap was accepted since reset
+    integer xa;
+    always @(*) begin
+        for (xa = 0; xa < NAXES; xa = xa + 1) begin
+            swap_dec[xa] = ready_r && (swap_pending[xa] || cfg_swap[xa]) && swap_at[xa] &&
+                           !(busy && axis_r == xa[AXW-1:0]);
+            swap_go[xa]  = swap_dec[xa] && upl_ok[xa] && !(cfg_we && cfg_ax == xa[AXW-1:0]) &&
+                           !(w_we && w_ax == xa[AXW-1:0]);
+        end
+    end
+    assign img_ok = {NAXES{boot_ok}} | swapped;          // (every accepted swap brings a valid image)
 
     // ---- sequencing: one-hot pre-phase and tail, column counter ----
-    wire start_ok = start && ready_r && !busy;
+    wire start_ok = (|start) && ready_r && !busy;
     reg  [NPRE+1:0]  pre;         // pre[k]: cycle k (k = 0 .. T_COL-1)
     reg  [NTAIL-1:0] tl;          // tl[u]: tail step u
     reg              col_run;
@@ -193,11 +232,12 @@ module mpc_core #(
             col_run <= 1'b0;
             colv <= 6'd0;
             j1 <= 6'd0; j2 <= 6'd0; j3 <= 6'd0; j4 <= 6'd0; j5 <= 6'd0; j6 <= 6'd0;
-            bank <= 1'b0;
-            swap_pending <= 1'b0;
-            swapped <= 1'b0;
-            swap_refused <= 1'b0;
-            refused <= 1'b0;
+            axis_r <= {AXW{1'b0}};
+            bank <= {NAXES{1'b0}};
+            swap_pending <= {NAXES{1'b0}};
+            swapped <= {NAXES{1'b0}};
+            swap_refused <= {NAXES{1'b0}};
+            refused <= {NAXES{1'b0}};
         end else begin
             pre <= pre_n;
             tl <= tl_n;
@@ -207,17 +247,20 @@ module mpc_core #(
             {j6, j5, j4, j3, j2, j1} <= {j5, j4, j3, j2, j1, jc};
             if (start_ok) busy <= 1'b1;
             else if (tl[U_FIRE]) busy <= 1'b0;
-            // bank swap: decided at the control-period boundary, with no update running
-            refused <= swap_dec && !swap_go;
-            if (swap_dec) begin
-                swap_pending <= 1'b0;
-                swap_refused <= !swap_go;
-            end else if (cfg_swap && ready_r) begin
-                swap_pending <= 1'b1;
-            end
-            if (swap_go) begin
-                bank <= ~bank;
-                swapped <= 1'b1;
+            if (start_ok) axis_r <= st_ax;
+            // bank swaps: decided at the axis's control-period boundary, with no update of it running
+            refused <= swap_dec & ~swap_go;
+            for (xa = 0; xa < NAXES; xa = xa + 1) begin
+                if (swap_dec[xa]) begin
+                    swap_pending[xa] <= 1'b0;
+                    swap_refused[xa] <= !swap_go[xa];
+                end else if (cfg_swap[xa] && ready_r) begin
+                    swap_pending[xa] <= 1'b1;
+                end
+                if (swap_go[xa]) begin
+                    bank[xa] <= ~bank[xa];
+                    swapped[xa] <= 1'b1;
+                end
             end
         end
     end
@@ -259,11 +302,10 @@ module mpc_core #(
     wire [3:0] neff;
     wire [2:0] hdr_field;
     wire signed [SW-1:0] hdr;
-    assign task_pos = pos;
-    mpc_coef_mem #(.N(N)) u_mem (
+    mpc_coef_mem #(.N(N), .NAXES(NAXES), .AXW(AXW)) u_mem (
         .clk(cclk), .rst(rst),
-        .we(w_we), .wbank(w_bank), .waddr(w_addr), .wdata(w_data),
-        .rbank(bank), .ra_desc(jn[5:0]), .ra_c(jc), .ra_p0(j2), .ra_s(j6), .s_clr(!colv[6]),
+        .we(w_we), .waxis(w_ax), .wbank(w_bank), .waddr(w_addr), .wdata(w_data),
+        .raxis(axis_r), .rbank(bank[axis_r]), .bank_v(bank), .pos_v(task_pos), .ra_desc(jn[5:0]), .ra_c(jc), .ra_p0(j2), .ra_s(j6), .s_clr(!colv[6]),
         .desc(desc), .p2_d(p2_d), .p2_q(p2_q), .p1_d(p1_d), .p1_q(p1_q), .p0_d(p0_d), .p0_q(p0_q),
         .s_d(s_d), .s_q(s_q),
         .alg2(alg2), .pos(pos), .ncols(ncols), .neff(neff), .hdr_field(hdr_field), .hdr(hdr)
@@ -304,9 +346,9 @@ module mpc_core #(
     // ---- operand ALU ----
     wire [3*SW-1:0] ebar_c;
     wire f_signal, f_operand, f_wn, f_ebar, f_ebar_inc, f_u;
-    mpc_operand u_op (
+    mpc_operand #(.NAXES(NAXES), .AXW(AXW)) u_op (
         .clk(cclk), .rst(rst), .clr(start_ok),
-        .in_we(in_we), .in_addr(in_addr), .in_wdata(in_wdata),
+        .in_we(in_we), .in_addr(in_addr), .raxis(axis_r), .in_wdata(in_wdata),
         .kind(kind0), .idx(idx0), .desc(desc), .alg2(alg2), .pos(pos), .neff(neff),
         .hdr_field(hdr_field), .hdr(hdr), .du_d(dun_d), .du_q(dun_q), .sel_f(tl[U_SELF]), .f(lim_f),
         .op_next(op_next), .op(op), .wn(wn_c), .wn_s(wn_s), .ur_d(ur_d), .ur_q(ur_q), .ebar_s(ebar_c),

@@ -1,10 +1,11 @@
 // mpc_operand: the MPC core's input buffer and operand ALU (model steps 1-3, the operand of
 // step 4, u_raw of step 5 and the limiter's operands).
 //
-// Input buffer: 64 x SIG_W-bit LUT RAM written through in_we / in_addr / in_wdata (word map
-// EMPC_IN_*: y[o] at IN_Y + o, omega, dx[n], u_prev[i], ebar_prev[o], wref[m][o] at
-// IN_WREF + 3 m + o).  It is read (not copied) during the update: the writer keeps it
-// stable from start to done.  Scratch RAM: 16 x SIG_W-bit LUT RAM written by the ALU
+// Input buffer: 64 words of SIG_W bit per axis (2^AXB x 64, block RAM), written through
+// in_we / in_addr = {axis, word} / in_wdata (word map EMPC_IN_*: y[o] at IN_Y + o, omega,
+// dx[n], u_prev[i], ebar_prev[o], wref[m][o] at IN_WREF + 3 m + o).  An update reads (does not
+// copy) the words of its axis `raxis`: the writer keeps them stable from start to done; the
+// other axes' words can be written meanwhile.  Scratch RAM: 16 x SIG_W-bit LUT RAM written by the ALU
 // (y[o] copies at 0..2, the eq. 25 increments inc[o] at 4..6).
 // ALU, one item per clock (kinds in mpc_items.vh), item token at O0:
 //   O0  decode (columns: descriptor {c, sig} from the coefficient memory, read one cycle
@@ -13,31 +14,38 @@
 //       (the ebar_lim clamp of EBAR columns / EBB items is applied here)
 //   O2  D = A + B or A - B (SIG_W + 1 bit)
 //   O3  S = satSW(D) (UR: sat24(D), also u_raw); scratch write (YC, EBA), EBA clamp
-//       decision, EBB ebar; operand: Y1 = D << 1 >>> 4 c[3:2], fit test above that window
-//   O4  op = sat18(rshift_round(S, c)): Y1 >> c[1:0], round, saturate; op_next = f instead
+//       decision, EBB ebar; operand: Y1 = D << (1 + B) >>> 4 c[3:2], fit test above that window
+//   O4  op = sat18(rshift_round(S, c - B)): Y1 >> c[1:0], round, saturate; op_next = f instead
 //       when sel_f (limiter)
+//   c is the stored (biased) shift field, B = SIG_SHIFT_BIAS: c = B is no shift, c < B a left
+//   shift (column operands of large gains, model: rshift_round with a negative shift)
 //   O5  op valid; WN / LO / HI: wn register (clamp steps), UMX: wn_s = wn, wn = op
 // Items: YC o (copy y[o]), EBA o (inc = w_k[o] - y[o], clamp = |inc| > ebar_lim[o]),
-//   WN (omega >> ws), LO / HI (op = wn_min / wn_max; wn = max(wn, lo), then min(wn, hi)),
+//   WN (omega >> ws; c = the stored field ws + B), LO / HI (op = wn_min / wn_max; wn = max(wn, lo), then min(wn, hi)),
 //   COL (W_rel, E, Y, EBAR, DX per the signal layout SIG_*; m > neff and indices 59..63 read
 //   0; EBAR[o] = satSW(ebar_prev[o] + clamp(inc[o])) recomputed), UR i (u_prev[i] + du[i],
 //   c = U_FRAC - V_FRAC: op = u18[i]), UMX / NUMX (op = +-u_max), EBB o (ebar[o]).
 // Flags (sticky, cleared by clr): f_signal (a column's signal saturated to SIG_W bit),
 //   f_operand, f_wn (wn != unsaturated rshift_round(omega, ws)), f_ebar, f_ebar_inc, f_u.
-// Parameters: none (widths and the word map from empc_formats.vh).
+// Parameters: NAXES (axes), AXW (axis index width, max(1, clog2(NAXES))); widths and the word map
+//   from empc_formats.vh.
 // Reset: registers 0 (the buffers are LUT RAM: not reset, initial contents 0), except two
 //   copies each of c[3:2] (O3) and c[1:0] (O4) that reset to 3 or not at all: they only
 //   select among zeros until an item arrives.
 `default_nettype none
 `include "empc_formats.vh"
 `include "mpc_items.vh"
-module mpc_operand (
+module mpc_operand #(
+    parameter integer NAXES = 1,
+    parameter integer AXW = 1
+) (
     input  wire                          clk,
     input  wire                          rst,
     input  wire                          clr,        // start of an update: flags = 0
     // input buffer write port
     input  wire                          in_we,
-    input  wire [5:0]                    in_addr,
+    input  wire [5+$clog2(NAXES):0]      in_addr,    // {axis, word}
+    input  wire [AXW-1:0]                raxis,      // axis of the update (stable from start to done)
     input  wire signed [`EMPC_SIG_W-1:0] in_wdata,
     // item token at O0
     input  wire [3:0]                    kind,
@@ -71,9 +79,17 @@ module mpc_operand (
     localparam integer SW   = `EMPC_SIG_W;            // 32
     localparam integer OPW  = `EMPC_OPW;              // 18
     localparam integer UW   = `EMPC_U_W;              // 24
-    localparam integer CB   = `EMPC_SIG_SHIFT_BITS;   // 4 (operand shift 0..15)
-    localparam [CB-1:0] C_UR = `EMPC_U_FRAC - `EMPC_V_FRAC;
-    generate if (CB != 4 || SW < OPW + 4 || SW > OPW + 22 || `EMPC_U_FRAC - `EMPC_V_FRAC > UW - OPW) begin : g_bad_params
+    localparam integer CB   = `EMPC_SIG_SHIFT_BITS;   // 4 (shift field 0..15)
+    localparam integer B    = `EMPC_SIG_SHIFT_BIAS;   // 1: field c = shift + B (shift -1..14)
+    localparam integer C_URI = `EMPC_U_FRAC - `EMPC_V_FRAC + B;
+    localparam integer C_OKI = 14 + B;                // D overflow corners (O3, see y1e)
+    localparam integer C_O15I = 15 + B;
+    localparam [CB-1:0] C_UR  = C_URI[CB-1:0];
+    localparam [CB-1:0] C_0   = B[CB-1:0];            // no shift (LO, HI, UMX, NUMX)
+    localparam [4:0]    C_OK  = C_OKI[4:0];
+    localparam [4:0]    C_O15 = C_O15I[4:0];
+    generate if (CB != 4 || B < 0 || B > 2 || SW < OPW + 4 || SW > OPW + 22 - B ||
+                 `EMPC_U_FRAC - `EMPC_V_FRAC > UW - OPW) begin : g_bad_params
         mpc_operand_unsupported_parameters u_error ();   // no such module: elaboration stops here
     end endgenerate
     localparam signed [OPW-1:0] OMAX = {1'b0, {(OPW-1){1'b1}}};
@@ -116,11 +132,12 @@ module mpc_operand (
     localparam [64*TE-1:0] COLTAB = col_table(IN_WREF + 6'd3);
 
     // ---- buffers ----
-    reg [SW-1:0] abuf [0:`EMPC_IN_WORDS-1];
+    localparam integer AXB = $clog2(NAXES);
+    reg [SW-1:0] abuf [0:(`EMPC_IN_WORDS << AXB)-1];
     reg [SW-1:0] sbuf [0:15];
     integer bi;
     initial begin
-        for (bi = 0; bi < `EMPC_IN_WORDS; bi = bi + 1) abuf[bi] = {SW{1'b0}};
+        for (bi = 0; bi < (`EMPC_IN_WORDS << AXB); bi = bi + 1) abuf[bi] = {SW{1'b0}};
         for (bi = 0; bi < 16; bi = bi + 1) sbuf[bi] = {SW{1'b0}};
     end
     always @(posedge clk)
@@ -248,11 +265,17 @@ module mpc_operand (
             `MPC_K_WN:  c1 = hdr[CB-1:0];
             `MPC_K_COL: c1 = cd1;
             `MPC_K_UR:  c1 = C_UR;
-            default:    c1 = {CB{1'b0}};
+            default:    c1 = C_0;
         endcase
     end
     always @* hdr_field = hf1;
-    wire [SW-1:0] a_rd = abuf[a_addr];
+    wire [5+AXB:0] a_ra;
+    generate if (AXB == 0) begin : g_ra1
+        assign a_ra = a_addr;
+    end else begin : g_ran
+        assign a_ra = {raxis[AXB-1:0], a_addr};
+    end endgenerate
+    wire [SW-1:0] a_rd = abuf[a_ra];
     wire [SW-1:0] s_rd = sbuf[s_addr];
     reg  [SW-1:0] b_rd;
     always @* begin
@@ -296,14 +319,15 @@ module mpc_operand (
     wire [SW+1:0] lx    = {d_sgn, {2'b00, lim3} ^ {(SW+1){d_sgn}}};
     wire [SW+2:0] ccmpx = {dv[SW], dv, 1'b0} - {lx, 1'b1};
     wire          clamp = ccmpx[SW+2] ^ ~d_sgn;
-    // op = sat18(rshift_round(S, c)), c = 4 c[3:2] + c[1:0]: Y1 >>> 4 c[3:2] here (a 4:1
-    // multiplexer per bit), >> c[1:0], rounding and saturation at O4.  The shift takes the
-    // unsaturated D (SW + 1 bit; Y1 = D << 1), which keeps the multiplexers off the saturation
-    // logic: when D overflows SW bit, S and D give the same result for c <= 13 and for c = 14,
-    // D > 0 (saturated); for c = 14, D < 0 (OMIN) and c = 15 (+-2^16), both not saturated,
-    // O4 overrides it (o_k, o_15).  For UR items (S = sat24(D), c = C_UR) D gives the same
-    // operand too: both saturate when D does not fit 24 bit.
-    wire [SW+13:0] y1e = {{12{d_sgn}}, dv, 1'b0};
+    // op = sat18(rshift_round(S << B, c)) = sat18(rshift_round(S, c - B)), c = 4 c[3:2] + c[1:0]
+    // (the stored field): Y1 >>> 4 c[3:2] here (a 4:1 multiplexer per bit), >> c[1:0], rounding
+    // and saturation at O4.  The shift takes the unsaturated D (SW + 1 bit; Y1 = D << (1 + B)),
+    // which keeps the multiplexers off the saturation logic: when D overflows SW bit, S and D
+    // give the same result for c <= 13 + B and for c = 14 + B, D > 0 (saturated); for c = 14 + B,
+    // D < 0 (OMIN) and c = 15 + B (+-2^16; none for B >= 1), both not saturated, O4 overrides it
+    // (o_k, o_15).  For UR items (S = sat24(D), c = C_UR) D gives the same operand too: both
+    // saturate when D does not fit 24 bit.
+    wire [SW+13:0] y1e = {{(12-B){d_sgn}}, dv, {(B+1){1'b0}}};
     // c[3:2] in three copies, one per output bit group (i / 4) mod 3, for the same reason as
     // c[1:0] at O4 (bits 4 and 8 apart would share 2:1 halves): c3[3:2] and two more that
     // differ in their reset only (dv = 0 after reset, so y2 = 0 whatever they hold)
@@ -331,13 +355,13 @@ module mpc_operand (
             endcase
         end
     end
-    // the result fits 18 bit iff Y1 bits [SW-1 : 18 + c] equal the sign (Y1 bit p = S bit p-1):
-    // bits above the y2 window (>= 22 + 4 c[3:2]) by groups of 4, the rest in y2 (>= 18 + c[1:0])
-    // at O4; y_x holds positions 18..39, zero (= equal to the sign) above SW-1.  It is taken
+    // the result fits 18 bit iff Y1 bits [SW-1+B : 18 + c] equal the sign (Y1 bit p = S bit
+    // p-1-B): bits above the y2 window (>= 22 + 4 c[3:2]) by groups of 4, the rest in y2
+    // (>= 18 + c[1:0]) at O4; y_x holds positions 18..39, zero (= equal to the sign) above SW-1+B.  It is taken
     // from D (S bit = D bit unless D overflows SW bit: then all differ from the sign), which
     // keeps it off the saturation logic.  For UR items (S = sat24(D), c = C_UR) this can only
     // differ when D does not fit 24 bit; the operand then saturates anyway (nf_lo sees it).
-    wire [21:0]  y_x   = {{(22-SW+OPW){1'b0}}, (dv[SW-2:OPW-1] ^ {(SW-OPW){d_sgn}}) | {(SW-OPW){d_ovf}}};
+    wire [21:0]  y_x   = {{(22-SW+OPW-B){1'b0}}, (dv[SW-2:OPW-1-B] ^ {(SW-OPW+B){d_sgn}}) | {(SW-OPW+B){d_ovf}}};
     wire         g22   = |y_x[7:4];
     wire         g26   = |y_x[11:8];
     wire         g30   = |y_x[15:12];
@@ -455,8 +479,8 @@ module mpc_operand (
             // O3 -> O4
             y2r <= y2;
             nf_hr <= nf_hi;
-            o_k <= d_ovf && (c3 == 4'd15 || (c3 == 4'd14 && d_sgn));
-            o_15 <= d_ovf && c3 == 4'd15;
+            o_k <= d_ovf && ({1'b0, c3} == C_O15 || ({1'b0, c3} == C_OK && d_sgn));
+            o_15 <= d_ovf && {1'b0, c3} == C_O15;
             y_sgn <= d_sgn;
             c4a <= c3[1:0];
             for (o = 0; o < 3; o = o + 1)
@@ -501,6 +525,6 @@ module mpc_operand (
         end
     end
 
-    wire unused_ok = &{1'b0, y1e[SW+13:OPW+16], a1x[0], ccmpx[SW+1:0], d0x[0], wdx[0], wd[OPW-1:0], hdr[SW-1], y_x[3:0]};
+    wire unused_ok = &{1'b0, y1e[SW+13:OPW+16], a1x[0], ccmpx[SW+1:0], d0x[0], wdx[0], wd[OPW-1:0], hdr[SW-1], y_x[3:0], raxis};
 endmodule
 `default_nettype wire

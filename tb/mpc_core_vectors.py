@@ -24,10 +24,15 @@ ACCW = F.ACCW
 
 # ----------------------------------------------------------------------------- helpers
 def _rr(x, n: int):
-    """rshift_round for numpy int64 (n >= 0)."""
+    """rshift_round for numpy int64 (n < 0: left shift, as formats.rshift_round)."""
     if n <= 0:
-        return x
+        return x << (-n)
     return (x + (1 << (n - 1))) >> n
+
+
+def lsh(v: int, n: int) -> int:
+    """v << n for the omega that maps to wn = v (n = ws may be -1: a right shift then)."""
+    return v << n if n >= 0 else v >> -n
 
 
 def _sat(x, w: int):
@@ -221,7 +226,7 @@ def random_inputs(rng, n: int, p: core.Params, N: int) -> dict:
     """
     pos = p.task == "position"
     x = empty_inputs(n, N)
-    w_top = (1 << (p.ws + OPW - 1))           # |omega| that maps to wn = 1.0
+    w_top = lsh(1 << (OPW - 1), p.ws)         # |omega| that maps to wn = 1.0
     mode = rng.choice(4, n, p=[0.4, 0.3, 0.15, 0.15])
 
     def pick(real, width):
@@ -278,9 +283,10 @@ def corner_inputs(p: core.Params, N: int, rng) -> tuple[dict, list[str]]:
         # references full scale, measurements opposite: maximal errors
         add(f"err{nm}", y=-scale(fs["y"]) - 1, wref=scale(fs["wref"]))
     # scheduling speed: 0, +-edge of Omega_e, just beyond, int32 extremes
-    w_one = 1 << (p.ws + OPW - 1)
+    w_one = lsh(1 << (OPW - 1), p.ws)
+    ulp = lsh(1, p.ws) or 1
     for om in (0, 1, -1, w_one - 1, -(w_one - 1), w_one, -w_one, w_one * 2, -(w_one * 2), (1 << 31) - 1, -(1 << 31),
-               (p.wn_max << p.ws), (p.wn_max << p.ws) + (1 << p.ws), (p.wn_min << p.ws), (p.wn_min << p.ws) - (1 << p.ws)):
+               lsh(p.wn_max, p.ws), lsh(p.wn_max, p.ws) + ulp, lsh(p.wn_min, p.ws), lsh(p.wn_min, p.ws) - ulp):
         add(f"omega={om}", omega=om, y=[100, -100, om])
     # limiter: u exactly on / inside / outside the circle along the axes and at many angles
     umax = min(p.u_max, OP_MAX)

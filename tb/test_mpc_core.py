@@ -74,11 +74,12 @@ def input_words(x: dict, i: int, N: int) -> dict[int, int]:
     return core.input_words(V.to_inputs(x, i), N)
 
 
-async def write_inputs(dut, words: dict[int, int], RisingEdge) -> None:
-    """Write the words through in_we / in_addr / in_wdata, one per clock (ends after the last write edge)."""
+async def write_inputs(dut, words: dict[int, int], RisingEdge, axis: int = 0) -> None:
+    """Write the words through in_we / in_addr = {axis, word} / in_wdata, one per clock (ends after the
+    last write edge)."""
     for a, v in words.items():
         dut.in_we.value = 1
-        dut.in_addr.value = a
+        dut.in_addr.value = (axis << 6) | a
         dut.in_wdata.value = _u(int(v), SW)
         await RisingEdge(dut.clk)
     dut.in_we.value = 0
@@ -113,13 +114,21 @@ class Bench:
         self.rng = np.random.default_rng(SEED + 7)
         self.boundary_always = True      # swap_at = 1 every clock: a swap is decided at the first idle edge
         self.fw_seen = set()
+        # the axis the bench drives (cfg_addr / in_addr top bits, one-hot start, cfg_swap, swap_at)
+        self.NA = int(os.environ.get("EMPC_NAXES", "1"))
+        self.ax = int(os.environ.get("EMPC_IMG_AXIS", "0"))
+        self.sel = 1 << self.ax
+
+    def bit(self, name: str) -> int:
+        """The bench axis's bit of a per-axis output."""
+        return (int(getattr(self.dut, name).value) >> self.ax) & 1
 
     async def reset(self) -> int:
         dut = self.dut
         dut.rst.value = 1
         for s in ("start", "cfg_we", "cfg_swap", "in_we", "fw_thr"):
             getattr(dut, s).value = 0
-        dut.swap_at.value = 1 if self.boundary_always else 0
+        dut.swap_at.value = self.sel if self.boundary_always else 0
         dut.cfg_addr.value = 0
         dut.cfg_wdata.value = 0
         dut.in_addr.value = 0
@@ -141,7 +150,7 @@ class Bench:
         await self.RisingEdge(dut.clk)
         for a in range(image.USED):
             dut.cfg_we.value = 1
-            dut.cfg_addr.value = a
+            dut.cfg_addr.value = (self.ax << 10) | a
             dut.cfg_wdata.value = words[a]
             await self.RisingEdge(dut.clk)
         dut.cfg_we.value = 0
@@ -153,20 +162,20 @@ class Bench:
         w = input_words(x, i, self.N)
         if garbage:
             w = {**unused_words(self.rng, self.N), **w}
-        await write_inputs(self.dut, w, self.RisingEdge)
+        await write_inputs(self.dut, w, self.RisingEdge, self.ax)
 
     async def run(self, x: dict, i: int, swap_at: int | None = None, fw_thr=(0, 0)) -> tuple[dict, int]:
         """Write vector i, pulse start, wait for done; returns outputs and start->done cycles."""
         dut = self.dut
         await self.load(x, i)
         dut.fw_thr.value = fw_thr[0] | (fw_thr[1] << 16)
-        dut.start.value = 1
+        dut.start.value = self.sel
         await self.RisingEdge(dut.clk)
         dut.start.value = 0
         n = 1
         while True:
             if swap_at is not None and n == swap_at:
-                dut.cfg_swap.value = 1
+                dut.cfg_swap.value = self.sel
             await self.ReadOnly()
             assert int(dut.busy.value) == 1 or int(dut.done.value) == 1, f"busy low before done (cycle {n})"
             if int(dut.done.value):
@@ -177,6 +186,33 @@ class Bench:
             assert n < 500, "done never came"
         assert int(dut.busy.value) == 0
         return read_out(dut), n
+
+
+class AxisView:
+    """core.MxBanks seen from one axis (the scalar interface of core.Banks)."""
+
+    def __init__(self, mx: core.MxBanks, ax: int):
+        self.mx, self.ax = mx, ax
+
+    bank = property(lambda self: self.mx.bank_v[self.ax])
+    pending = property(lambda self: self.mx.pending_v[self.ax])
+    upl_ok = property(lambda self: self.mx.upl_ok_v[self.ax])
+    img_ok = property(lambda self: self.mx.img_ok_v[self.ax])
+    swap_refused = property(lambda self: self.mx.swap_refused_v[self.ax])
+    refused = property(lambda self: self.mx.refused_v[self.ax])
+    boot_ok = property(lambda self: self.mx.boot_ok)
+
+    def active(self) -> core.Params:
+        return self.mx.active(self.ax)
+
+    def write(self, addr: int, v: int) -> None:
+        self.mx.write(addr, v, self.ax)
+
+    def request(self) -> None:
+        self.mx.request(self.ax)
+
+    def boundary(self, in_flight: bool = False):
+        return self.mx.boundary(in_flight, self.ax)
 
 
 class ImgBench(Bench):
@@ -196,15 +232,18 @@ class ImgBench(Bench):
         from cocotb.triggers import RisingEdge, ReadOnly
         n = await super().reset()
         await RisingEdge(self.dut.clk)               # leave the ReadOnly phase
-        self.m = core.Banks(image.read_hex(Path(os.environ.get("EMPC_BOOT_HEX", roms() / "coef_boot.hex"))),
-                            self.N, self.fmt)
-        self.dut._log.info(f"seed {SEED} (EMPC_SEED); boot_ok model {self.m.boot_ok} RTL {int(self.dut.boot_ok.value)}")
+        self.mx = core.MxBanks(image.read_hex(Path(os.environ.get("EMPC_BOOT_HEX", roms() / "coef_boot.hex"))),
+                               self.N, self.fmt, self.NA)
+        self.m = AxisView(self.mx, self.ax)
+        self.dut._log.info(f"seed {SEED} (EMPC_SEED); NAXES {self.NA}, axis {self.ax}; boot_ok model "
+                           f"{self.m.boot_ok} RTL {int(self.dut.boot_ok.value)}")
 
         async def watch():
             while True:
                 await RisingEdge(self.dut.clk)
                 await ReadOnly()
-                self.refused_seen += int(self.dut.refused.value)
+                self.refused_seen += self.bit("refused")
+                assert int(self.dut.refused.value) & ~self.sel == 0, "another axis refused a swap"
         import cocotb
         cocotb.start_soon(watch())
         return n
@@ -219,7 +258,7 @@ class ImgBench(Bench):
         await self.RisingEdge(dut.clk)
         for a, v in words:
             dut.cfg_we.value = 1
-            dut.cfg_addr.value = a
+            dut.cfg_addr.value = (self.ax << 10) | a
             dut.cfg_wdata.value = v
             await self.RisingEdge(dut.clk)
             self.m.write(a, v)
@@ -228,7 +267,7 @@ class ImgBench(Bench):
 
     async def request(self) -> None:
         dut = self.dut
-        dut.cfg_swap.value = 1
+        dut.cfg_swap.value = self.sel
         await self.RisingEdge(dut.clk)
         dut.cfg_swap.value = 0
         self.m.request()
@@ -236,9 +275,9 @@ class ImgBench(Bench):
     async def boundary(self, write=None) -> None:
         """One swap_at pulse with the core idle (optionally a CPU word requested in that clock)."""
         dut = self.dut
-        dut.swap_at.value = 1
+        dut.swap_at.value = self.sel
         if write is not None:
-            dut.cfg_we.value, dut.cfg_addr.value, dut.cfg_wdata.value = 1, write[0], write[1]
+            dut.cfg_we.value, dut.cfg_addr.value, dut.cfg_wdata.value = 1, (self.ax << 10) | write[0], write[1]
         await self.RisingEdge(dut.clk)
         dut.swap_at.value = 0
         dut.cfg_we.value = 0
@@ -249,16 +288,16 @@ class ImgBench(Bench):
 
     async def request_at_boundary(self) -> None:
         dut = self.dut
-        dut.swap_at.value = 1
-        dut.cfg_swap.value = 1
-        b0 = int(dut.bank.value)
+        dut.swap_at.value = self.sel
+        dut.cfg_swap.value = self.sel
+        b0 = self.bit("bank")
         await self.RisingEdge(dut.clk)
         dut.swap_at.value = 0
         dut.cfg_swap.value = 0
         self.m.request()
         self.m.boundary()
         await self.ReadOnly()
-        assert int(dut.bank.value) == self.m.bank and (self.m.bank != b0) == (not self.m.swap_refused), \
+        assert self.bit("bank") == self.m.bank and (self.m.bank != b0) == (not self.m.swap_refused), \
             "request in the clock of a boundary: not decided at that edge"
         await self.idle(2)
 
@@ -266,11 +305,11 @@ class ImgBench(Bench):
         dut = self.dut
         x = V.random_inputs(self.rng, 1, self.m.active(), self.N)
         await self.load(x, 0)
-        dut.start.value = 1
+        dut.start.value = self.sel
         await self.RisingEdge(dut.clk)
         dut.start.value = 0
         await self.idle(5)
-        dut.swap_at.value = 1                    # busy: not a decision point
+        dut.swap_at.value = self.sel             # busy: not a decision point
         await self.RisingEdge(dut.clk)
         dut.swap_at.value = 0
         while not int(dut.done.value):
@@ -283,13 +322,19 @@ class ImgBench(Bench):
     async def compare(self, label: str) -> None:
         await self.ReadOnly()
         d = self.dut
-        got = {"bank": int(d.bank.value), "pending": int(d.swap_pending.value), "upl_ok": int(d.upl_ok.value),
-               "img_ok": int(d.img_ok.value), "boot_ok": int(d.boot_ok.value), "refused": int(d.swap_refused.value),
+        got = {"bank": self.bit("bank"), "pending": self.bit("swap_pending"), "upl_ok": self.bit("upl_ok"),
+               "img_ok": self.bit("img_ok"), "boot_ok": int(d.boot_ok.value), "refused": self.bit("swap_refused"),
                "refused_count": self.refused_seen}
         m = self.m
         exp = {"bank": m.bank, "pending": int(m.pending), "upl_ok": int(m.upl_ok), "img_ok": int(m.img_ok),
                "boot_ok": int(m.boot_ok), "refused": int(m.swap_refused), "refused_count": m.refused}
         assert got == exp, f"{label}: RTL {got} model {exp}"
+        # the other axes (NAXES > 1): untouched, as in the model
+        vec = lambda v: sum(int(b) << a for a, b in enumerate(v))
+        mx = self.mx
+        for name, v in (("bank", mx.bank_v), ("swap_pending", mx.pending_v), ("upl_ok", mx.upl_ok_v),
+                        ("img_ok", mx.img_ok_v), ("swap_refused", mx.swap_refused_v)):
+            assert int(getattr(d, name).value) == vec(v), f"{label}: {name} of the axes {int(getattr(d, name).value):#x}"
         self.dut._log.info(f"{label}: {got}")
         await self.RisingEdge(d.clk)
 
@@ -298,6 +343,226 @@ class ImgBench(Bench):
         x = V.random_inputs(self.rng, n, p, self.N)
         self.n_vec += await _check_vectors(self, p, x)
         await self.RisingEdge(self.dut.clk)          # leave the ReadOnly phase
+
+
+class AxBench:
+    """Multi-axis driver (NAXES = dut parameter): every action mirrored in core.MxCore."""
+
+    def __init__(self, dut):
+        from cocotb.triggers import RisingEdge, ReadOnly
+        self.dut, self.RisingEdge, self.ReadOnly = dut, RisingEdge, ReadOnly
+        self.NA = int(os.environ["EMPC_NAXES"])
+        self.AXB = (self.NA - 1).bit_length()
+        h = header_consts()
+        self.N, self.fmt = h["N"], h["IMG_FMT_ID"]
+        self.rng = np.random.default_rng(SEED + 23)
+        self.refused_seen = [0] * self.NA
+        self.stats = {"updates": 0, "swaps_ok": 0, "swaps_refused": 0, "uploads": 0, "busy_swaps": 0,
+                      "busy_uploads": 0, "busy_inputs": 0, "no_decision": 0}
+        self.cpu_busy = False           # a background upload owns cfg_we
+        self.up_axis = None             # its axis
+        self.good = [load_image(n) for n in IMAGES]
+
+    async def reset(self) -> int:
+        dut = self.dut
+        dut.rst.value = 1
+        for sname in ("start", "cfg_we", "cfg_swap", "in_we", "fw_thr", "swap_at", "cfg_addr", "cfg_wdata",
+                      "in_addr", "in_wdata"):
+            getattr(dut, sname).value = 0
+        for _ in range(3):
+            await self.RisingEdge(dut.clk)
+        dut.rst.value = 0
+        n = 0
+        while True:
+            await self.RisingEdge(dut.clk)
+            n += 1
+            await self.ReadOnly()
+            if int(dut.ready.value):
+                break
+            assert n < 10000, "ready never rose"
+        await self.RisingEdge(dut.clk)
+        boot = image.read_hex(roms() / "coef_boot.hex")
+        self.m = core.MxCore(boot, self.N, self.fmt, self.NA)
+        dut._log.info(f"seed {SEED} (EMPC_SEED), NAXES {self.NA}: ready {n} cycles after reset")
+
+        async def watch():
+            while True:
+                await self.RisingEdge(dut.clk)
+                await self.ReadOnly()
+                r = int(dut.refused.value)
+                for a in range(self.NA):
+                    self.refused_seen[a] += (r >> a) & 1
+        cocotb.start_soon(watch())
+        return n
+
+    def bits(self, name: str) -> list[int]:
+        v = int(getattr(self.dut, name).value)
+        return [(v >> a) & 1 for a in range(self.NA)]
+
+    async def compare(self, label: str) -> None:
+        await self.ReadOnly()
+        b = self.m.banks
+        got = {k: self.bits(k) for k in ("bank", "swap_pending", "upl_ok", "img_ok", "swap_refused", "task_pos")}
+        got["boot_ok"] = int(self.dut.boot_ok.value)
+        got["refused_count"] = list(self.refused_seen)
+        exp = {"bank": b.bank_v, "swap_pending": [int(x) for x in b.pending_v], "upl_ok": [int(x) for x in b.upl_ok_v],
+               "img_ok": [int(x) for x in b.img_ok_v], "swap_refused": [int(x) for x in b.swap_refused_v],
+               "task_pos": [int(b.active(a).task == "position") for a in range(self.NA)],
+               "boot_ok": int(b.boot_ok), "refused_count": list(b.refused_v)}
+        assert got == exp, f"{label}: RTL {got} model {exp}"
+        await self.RisingEdge(self.dut.clk)
+
+    async def idle(self, n: int) -> None:
+        for _ in range(n):
+            await self.RisingEdge(self.dut.clk)
+
+    async def write_inputs(self, axis: int, words: dict[int, int]) -> None:
+        dut = self.dut
+        for a, v in words.items():
+            dut.in_we.value = 1
+            dut.in_addr.value = (axis << 6) | a
+            dut.in_wdata.value = _u(int(v), SW)
+            await self.RisingEdge(dut.clk)
+            self.m.write_input(axis, a, int(v))
+        dut.in_we.value = 0
+
+    def vector_words(self, axis: int) -> dict[int, int]:
+        p = self.m.banks.active(axis)
+        x = V.random_inputs(self.rng, 1, p, self.N)
+        return {**unused_words(self.rng, self.N), **input_words(x, 0, self.N)}
+
+    async def upload(self, axis: int, words) -> None:
+        """(addr, word) pairs into axis, one per clock (owns cfg_we until 2 clocks after the last)."""
+        dut = self.dut
+        self.cpu_busy, self.up_axis = True, axis
+        for a, v in words:
+            dut.cfg_we.value = 1
+            dut.cfg_addr.value = (axis << 10) | a
+            dut.cfg_wdata.value = v
+            await self.RisingEdge(dut.clk)
+            self.m.banks.write(a, v, axis)
+        dut.cfg_we.value = 0
+        await self.idle(2)
+        self.cpu_busy, self.up_axis = False, None
+        self.stats["uploads"] += 1
+
+    def image_for(self, axis: int):
+        """A valid image (generated or random) or, one time in four, a corrupted one."""
+        r = self.rng.random()
+        if r < 0.5:
+            w = list(self.good[int(self.rng.integers(0, len(self.good)))])
+        else:
+            w = list(V.random_image(self.rng, self.N, self.fmt, valid=True)[0])
+        if self.rng.random() < 0.25:
+            w[int(self.rng.integers(0, image.USED))] ^= 1 << int(self.rng.integers(0, 32))
+        return list(enumerate(w[:image.USED]))
+
+    async def swap(self, axis: int, busy_axis: int | None = None) -> None:
+        """cfg_swap[axis] then a swap_at[axis] pulse (decided there unless axis's own update runs)."""
+        dut = self.dut
+        dut.cfg_swap.value = 1 << axis
+        await self.RisingEdge(dut.clk)
+        dut.cfg_swap.value = 0
+        self.m.banks.request(axis)
+        await self.idle(int(self.rng.integers(0, 4)))
+        dut.swap_at.value = 1 << axis
+        await self.ReadOnly()
+        own_busy = int(dut.busy.value) == 1 and busy_axis == axis
+        in_flight = self.up_axis == axis
+        await self.RisingEdge(dut.clk)
+        dut.swap_at.value = 0
+        if own_busy:
+            self.stats["no_decision"] += 1
+        else:
+            r = self.m.banks.boundary(in_flight=in_flight, axis=axis)
+            if r is not None:
+                self.stats["swaps_ok" if r else "swaps_refused"] += 1
+        await self.idle(2)                      # the refused pulse is counted
+
+    async def update(self, axis: int, during=None) -> None:
+        """One update of axis (its inputs written first); ``during`` runs while it is busy."""
+        dut = self.dut
+        await self.write_inputs(axis, self.vector_words(axis))
+        thr = (int(self.rng.integers(0, 1 << 16)), int(self.rng.integers(0, 1 << 16)))
+        dut.fw_thr.value = thr[0] | (thr[1] << 16)
+        exp_o = self.m.start(axis, fw_thr=thr)
+        p = self.m.banks.active(axis)
+        exp = {**V.outputs_of(exp_o), "fw": (int(exp_o.fw_hi), int(exp_o.fw_lo))}
+        dut.start.value = 1 << axis
+        await self.RisingEdge(dut.clk)
+        dut.start.value = 0
+        task = cocotb.start_soon(during()) if during else None
+        n = 1
+        while True:
+            await self.ReadOnly()
+            if n == 2:
+                assert int(dut.latency.value) == core.latency(p.ncols), "latency port"
+            if int(dut.done.value):
+                break
+            await self.RisingEdge(dut.clk)
+            n += 1
+            assert n < 500, "done never came"
+        assert n == core.latency(p.ncols), f"axis {axis}: latency {n} != {core.latency(p.ncols)}"
+        err = _mismatch(read_out(dut), exp)
+        assert err is None, f"axis {axis} update {self.stats['updates']}: {err}"
+        self.stats["updates"] += 1
+        await self.RisingEdge(dut.clk)
+        if task is not None:
+            await task
+
+    async def run_random(self, n_ops: int) -> None:
+        rng = self.rng
+        NA = self.NA
+        for a in range(NA):                     # every axis from its boot bank
+            await self.update(a)
+        for k in range(n_ops):
+            op = rng.choice(["update", "upload_swap", "swap_busy", "upload_busy", "inputs_busy", "own_busy"],
+                            p=[0.3, 0.2, 0.15, 0.15, 0.1, 0.1])
+            a = int(rng.integers(0, NA))
+            b = int((a + 1 + rng.integers(0, NA - 1)) % NA) if NA > 1 else a
+            if op == "update":
+                await self.update(a)
+            elif op == "upload_swap":            # upload + swap on axis a, then updates of every axis
+                await self.upload(a, self.image_for(a))
+                await self.swap(a)
+            elif op == "swap_busy":              # a swap of axis b while axis a's update runs
+                if not self.m.banks.upl_ok_v[b]:
+                    await self.upload(b, self.image_for(b))
+
+                async def during():
+                    await self.idle(int(rng.integers(1, 20)))
+                    await self.swap(b, busy_axis=a)
+                await self.update(a, during)
+                self.stats["busy_swaps"] += 1
+            elif op == "upload_busy":            # an upload into axis b while axis a's updates run
+                up = cocotb.start_soon(self.upload(b, self.image_for(b)))
+                while not up.done():
+                    await self.update(a)
+                await up
+                self.stats["busy_uploads"] += 1
+            elif op == "inputs_busy":            # axis b's input words written during axis a's update
+                words = self.vector_words(b)
+
+                async def during():
+                    await self.write_inputs(b, words)
+                await self.update(a, during)
+                self.stats["busy_inputs"] += 1
+            else:                                # a boundary of axis a during its own update: no decision
+                if not self.m.banks.upl_ok_v[a]:
+                    await self.upload(a, self.image_for(a))
+
+                async def during():
+                    await self.idle(3)
+                    await self.swap(a, busy_axis=a)
+                await self.update(a, during)
+                if self.m.banks.pending_v[a]:
+                    await self.swap(a)           # (request again) decided at the next idle boundary
+            await self.compare(f"op {k} {op} a={a} b={b}")
+            for x in range(NA):                  # every axis still computes with its own bank
+                if rng.random() < 0.5:
+                    await self.update(x)
+        assert self.stats["swaps_ok"] > 0 and self.stats["swaps_refused"] > 0 and self.stats["no_decision"] > 0
+        self.dut._log.info(f"NAXES {NA}: {self.stats}; refused pulses per axis {self.refused_seen}")
 
 
 def foreign_builds(log) -> list[tuple[str, list[int]]]:
@@ -453,15 +718,15 @@ try:
         cocotb.start_soon(Clock(dut.clk, 10, unit="ns").start())
         tb = ImgBench(dut)
         n_ready = await tb.reset()
-        assert n_ready == core.BOOT_CYCLES and int(dut.boot_ok.value) == 0, (n_ready, int(dut.boot_ok.value))
+        assert n_ready == core.boot_cycles(tb.NA) and int(dut.boot_ok.value) == 0, (n_ready, int(dut.boot_ok.value))
         await tb.compare("bad boot")
-        assert int(dut.img_ok.value) == 0
+        assert tb.bit("img_ok") == 0
         w = load_image(IMAGES[3])
         await tb.upload(list(enumerate(w[:image.USED])))
         await tb.request()
         await tb.boundary()
         await tb.compare("valid upload after a bad boot")
-        assert int(dut.img_ok.value) == 1 and tb.m.img_ok
+        assert tb.bit("img_ok") == 1 and tb.m.img_ok
         await tb.vectors(4)
         dut._log.info("corrupted boot image: ready after 771 cycles, boot_ok = img_ok = 0; a valid upload and "
                       "swap: img_ok = 1, %d vectors bit-exact", tb.n_vec)
@@ -494,10 +759,10 @@ try:
                 await tb.request()
                 await tb.idle(int(rng.integers(0, 30)))
                 await tb.compare(label + " (pending)")
-                assert int(dut.swap_pending.value) == 1
+                assert tb.bit("swap_pending") == 1
                 await tb.boundary()
             await tb.compare(label)
-            got = not int(dut.swap_refused.value)
+            got = not tb.bit("swap_refused")
             assert got == expect, f"{label}: swap {'accepted' if got else 'refused'}, expected the opposite"
             acc, ref = acc + got, ref + (not got)
             await tb.vectors(2)
@@ -556,33 +821,33 @@ try:
         await swap("request in the clock of a boundary", True, full(good[0]), at_once=True)
         await tb.upload(full(good[1]))
         await tb.request()
-        b0 = int(dut.bank.value)
+        b0 = tb.bit("bank")
         for _ in range(200):
             await tb.idle(1)
-            assert int(dut.bank.value) == b0 and int(dut.swap_pending.value) == 1, "swap applied without a boundary"
+            assert tb.bit("bank") == b0 and tb.bit("swap_pending") == 1, "swap applied without a boundary"
         await tb.boundary()
         await tb.compare("swap applied exactly at the boundary")
-        assert int(dut.bank.value) != b0
+        assert tb.bit("bank") != b0
         acc += 1
         # a CPU word in flight at the boundary, and a word written while the swap is pending
         await tb.upload(full(good[2]))
         await tb.request()
         await tb.boundary(write=(0, good[2][0]))
         await tb.compare("word written in the clock of the boundary")
-        assert int(dut.swap_refused.value) == 1
+        assert tb.bit("swap_refused") == 1
         await tb.upload(full(good[3]))
         await tb.request()
         await tb.upload([(17, good[3][17])])
         await tb.boundary()
         await tb.compare("word written while the swap was pending")
-        assert int(dut.swap_refused.value) == 1
+        assert tb.bit("swap_refused") == 1
         ref += 2
         # a boundary while an update runs is no decision point: the update finishes with its bank
         await tb.upload(full(good[0]))
         await tb.request()
         await tb.boundary_during_update()
         await tb.compare("boundary during an update: still pending")
-        assert int(dut.swap_pending.value) == 1
+        assert tb.bit("swap_pending") == 1
         await tb.boundary()
         await tb.compare("next boundary, idle: applied")
         acc += 1
@@ -591,6 +856,27 @@ try:
         dut._log.info("image checks: %d swaps accepted, %d refused (RTL refused pulses %d = model), %d vectors "
                       "bit-exact on the active bank; every step compared with the bank model", acc, ref,
                       tb.refused_seen, tb.n_vec)
+
+    @cocotb.test()
+    async def axes(dut):
+        """NAXES > 1: every axis's updates bit-exact against its own bank (core.MxCore) while the other
+        axes upload, swap and write their input words; per-axis bank state compared after every step."""
+        from cocotb.clock import Clock
+        cocotb.start_soon(Clock(dut.clk, 10, unit="ns").start())
+        tb = AxBench(dut)
+        n_ready = await tb.reset()
+        assert n_ready == core.boot_cycles(tb.NA), (n_ready, core.boot_cycles(tb.NA))
+        await tb.compare("boot")
+        if tb.NA > 1:
+            # one upload at a time: an image whose words go to two axes is no image of either
+            w = list(enumerate(tb.good[1][:image.USED]))
+            await tb.upload(1, w[:400])
+            await tb.upload(0, w[400:])
+            for a in (0, 1):
+                await tb.swap(a)
+            await tb.compare("an image split over axes 1 and 0")
+            assert tb.bits("swap_refused")[:2] == [1, 1] and tb.bits("bank")[:2] == [0, 0]
+        await tb.run_random(int(os.environ.get("EMPC_AX_OPS", "120")))
 
     @cocotb.test()
     async def stream(dut):
@@ -784,6 +1070,23 @@ def test_mpc_core_image_checks():
     run(toplevel="mpc_core", test_module="test_mpc_core", parameters=_file_params(), testcase="image_checks")
 
 
+def test_mpc_core_image_checks_axis2():
+    """The same checks on axis 2 of a NAXES = 4 core (issue 14's checks hold per axis): every step also
+    compares the other three axes' bank state (untouched) and that only axis 2 refuses swaps."""
+    from runner import run
+    run(toplevel="mpc_core", test_module="test_mpc_core", testcase="image_checks", name="mpc_core_ax4",
+        parameters={**_file_params(), "NAXES": 4}, extra_env={"EMPC_NAXES": "4", "EMPC_IMG_AXIS": "2"})
+
+
+@pytest.mark.parametrize("naxes", [4])
+def test_mpc_core_axes(naxes):
+    """NAXES = 4 (Icarus): per-axis updates bit-exact while other axes upload, swap and write inputs;
+    per-axis bank / pending / upl_ok / img_ok / refused against core.MxBanks after every step."""
+    from runner import run
+    run(toplevel="mpc_core", test_module="test_mpc_core", testcase="axes", name=f"mpc_core_ax{naxes}",
+        parameters={**_file_params(), "NAXES": naxes}, extra_env={"EMPC_NAXES": str(naxes)})
+
+
 @pytest.mark.cost(45)          # Verilator build ~20 s, 38 M clocks ~21 s
 def test_mpc_core_stream():
     from runner import run
@@ -825,7 +1128,7 @@ def operating_points(rng, p: core.Params, cfg, units: dict, n: int) -> dict:
     x = V.empty_inputs(n, N)
     imax = cfg.control.i_max / isc
     x["y"][:, 0:2] = rng.uniform(-0.5, 0.5, (n, 2)) * imax
-    om = rng.integers(p.wn_min << p.ws, (p.wn_max << p.ws) + 1, n)
+    om = rng.integers(V.lsh(p.wn_min, p.ws), V.lsh(p.wn_max, p.ws) + 1, n)
     x["omega"] = om
     x["y"][:, 2] = rng.integers(-(1 << 36), 1 << 36, n) if pos else om
     for m in range(N + 1):

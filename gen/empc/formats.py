@@ -44,7 +44,10 @@ KDC_W = 18
 # MPC core (see rtlmodel/mpc_core.py)
 COEF_W = OPW        # polynomial coefficient mantissa
 WN_FRAC = OPW - 1   # normalised scheduling speed, Q1.17
-SIG_SHIFT_BITS = 4  # per-column signal right shift 0..15 (enough for any 32-bit signal)
+SIG_SHIFT_BITS = 4  # per-column signal shift field 0..15 (enough for any 32-bit signal)
+SIG_SHIFT_BIAS = 1  # signal shifts are stored biased, field = shift + 1: shift -1..14, where -1 is a
+                    # left shift (a column operand a = 2 S lets a large gain keep its 18-bit mantissa
+                    # one product shift lower: the 50 us designs of the BLWR233D need it; issue 16)
 PROD_SHIFT_BITS = 4 # per-gain product left shift 0..15
 ACC_FRAC = 32         # accumulator LSB = 2**-32 PWM ticks: small gains keep 18-bit mantissas; range +-2**15 ticks
 

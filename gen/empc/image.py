@@ -5,13 +5,17 @@ what the CPU uploads through the register bus to swap tunings at run time.
 Addresses (words):
   0x000 magic 'EMPC'
   0x001 {layout[31:24], algorithm[14:13], task[12] (1 = position), N[11:8], ncols[6:0]}
-  0x002 ws (scheduling speed shift, < 2^SIG_SHIFT_BITS)   0x003 wn_min    0x004 wn_max
+  0x002 ws field (scheduling speed shift ws + SIG_SHIFT_BIAS, < 2^SIG_SHIFT_BITS)   0x003 wn_min    0x004 wn_max
   0x005 u_max (Q14.4 PWM ticks)          0x006..0x008 ebar_lim[0..2]
   0x009 number of used words             0x00a checksum (sum of words 0..0x2ff except 0x00a, mod 2^32)
   0x00b format fingerprint of the build (format_id: the constants that fix what a word means)
   (all other words below 0x300 are 0 in a generated image and count in the checksum)
-  0x040 + j            column j: {shift[11:8], sig[5:0]}  (shift < 2^SIG_SHIFT_BITS; higher bits ignored)
+  0x040 + j            column j: {shift field[11:8], sig[5:0]}  (field = operand shift c_j + SIG_SHIFT_BIAS
+                       < 2^SIG_SHIFT_BITS; higher bits ignored)
   0x100 + 4(64 i + j)  gain (row i, column j): p0, p1, p2 (sign-extended 18 bit), product shift
+                       (< 2^PROD_SHIFT_BITS; higher bits ignored)
+Signal shifts (ws, c_j) are stored biased: field f means rshift_round(x, f - SIG_SHIFT_BIAS), so
+f = 0 is a left shift by one (SIG_SHIFT_BIAS = 1; the model's Params hold the shifts themselves).
 
 The RTL accepts an upload (or the boot image) only as a whole: words 0..USED-1 written in
 ascending order starting at word 0, with the magic, this LAYOUT, the build's N, algorithm 1
@@ -27,7 +31,7 @@ from . import formats as F
 from .rtlmodel import mpc_core as core
 
 MAGIC = 0x454D5043
-LAYOUT = 2              # 2: format fingerprint word A_FMT (layout 1 had none)
+LAYOUT = 3              # 3: biased signal shift fields (2: format fingerprint word A_FMT; 1 had none)
 DEPTH = 1024
 A_MAGIC, A_CFG, A_WS, A_WNMIN, A_WNMAX, A_UMAX, A_EBAR, A_USED, A_CSUM, A_FMT = 0, 1, 2, 3, 4, 5, 6, 9, 10, 11
 A_COLS = 0x040
@@ -37,6 +41,23 @@ USED = A_GAINS + 4 * 2 * core.MAX_COLS    # 0x300
 
 def _u32(v: int) -> int:
     return v & 0xFFFFFFFF
+
+
+SHIFT_MIN = -F.SIG_SHIFT_BIAS                                  # signal shifts an image can hold
+SHIFT_MAX = (1 << F.SIG_SHIFT_BITS) - 1 - F.SIG_SHIFT_BIAS
+
+
+def shift_field(shift: int) -> int:
+    """Stored field of a signal shift (ws or a column's c_j)."""
+    return shift + F.SIG_SHIFT_BIAS
+
+
+def field_shift(word: int) -> int:
+    """Signal shift of a stored field (the low SIG_SHIFT_BITS of ``word``)."""
+    return (word & ((1 << F.SIG_SHIFT_BITS) - 1)) - F.SIG_SHIFT_BIAS
+
+
+PROD_SHIFT_MASK = (1 << F.PROD_SHIFT_BITS) - 1
 
 
 # header constants that do not change what an image word means (the boot-image choice, the
@@ -62,9 +83,9 @@ def encode(p: core.Params, fmt_id: int = 0) -> list[int]:
     w = [0] * DEPTH
     w[A_MAGIC] = MAGIC
     w[A_CFG] = (LAYOUT << 24) | (p.algorithm << 13) | ((1 if p.task == "position" else 0) << 12) | (p.N << 8) | p.ncols
-    if not 0 <= p.ws < (1 << F.SIG_SHIFT_BITS):
-        raise ValueError(f"ws={p.ws} does not fit {F.SIG_SHIFT_BITS} bits")
-    w[A_WS] = p.ws
+    if not SHIFT_MIN <= p.ws <= SHIFT_MAX:
+        raise ValueError(f"ws={p.ws} outside {SHIFT_MIN}..{SHIFT_MAX}")
+    w[A_WS] = shift_field(p.ws)
     w[A_WNMIN] = _u32(p.wn_min)
     w[A_WNMAX] = _u32(p.wn_max)
     w[A_UMAX] = p.u_max
@@ -75,11 +96,13 @@ def encode(p: core.Params, fmt_id: int = 0) -> list[int]:
     w[A_USED] = USED
     w[A_FMT] = fmt_id & 0xFFFFFFFF
     for j in range(p.ncols):
-        if not 0 <= p.col_shift[j] < (1 << F.SIG_SHIFT_BITS):
-            raise ValueError(f"column {j}: operand shift {p.col_shift[j]} does not fit {F.SIG_SHIFT_BITS} bits")
-        w[A_COLS + j] = (p.col_shift[j] << 8) | p.col_sig[j]
+        if not SHIFT_MIN <= p.col_shift[j] <= SHIFT_MAX:
+            raise ValueError(f"column {j}: operand shift {p.col_shift[j]} outside {SHIFT_MIN}..{SHIFT_MAX}")
+        w[A_COLS + j] = (shift_field(p.col_shift[j]) << 8) | p.col_sig[j]
         for i in range(2):
             p0, p1, p2, s = p.coef[i][j]
+            if not 0 <= s <= PROD_SHIFT_MASK:
+                raise ValueError(f"gain ({i}, {j}): product shift {s} outside 0..{PROD_SHIFT_MASK}")
             base = A_GAINS + 4 * (core.MAX_COLS * i + j)
             w[base:base + 4] = [_u32(p0), _u32(p1), _u32(p2), s]
     w[A_CSUM] = checksum(w)
@@ -132,13 +155,14 @@ def decode(w: list[int]) -> core.Params:
     for i in range(2):
         for j in range(ncols):
             base = A_GAINS + 4 * (core.MAX_COLS * i + j)
-            coef[i].append((F.wrap(w[base], 32), F.wrap(w[base + 1], 32), F.wrap(w[base + 2], 32), w[base + 3] & 0xF))
+            coef[i].append((F.wrap(w[base], 32), F.wrap(w[base + 1], 32), F.wrap(w[base + 2], 32),
+                            w[base + 3] & PROD_SHIFT_MASK))
     return core.Params(
         algorithm=(cfgw >> 13) & 3, task="position" if (cfgw >> 12) & 1 else "speed", N=(cfgw >> 8) & 0xF,
-        ws=w[A_WS] & ((1 << F.SIG_SHIFT_BITS) - 1), wn_min=F.wrap(w[A_WNMIN], 32), wn_max=F.wrap(w[A_WNMAX], 32), u_max=w[A_UMAX],
+        ws=field_shift(w[A_WS]), wn_min=F.wrap(w[A_WNMIN], 32), wn_max=F.wrap(w[A_WNMAX], 32), u_max=w[A_UMAX],
         ebar_lim=tuple(w[A_EBAR + o] for o in range(3)),
         col_sig=[w[A_COLS + j] & 0x3F for j in range(ncols)],
-        col_shift=[(w[A_COLS + j] >> 8) & ((1 << F.SIG_SHIFT_BITS) - 1) for j in range(ncols)], coef=coef)
+        col_shift=[field_shift(w[A_COLS + j] >> 8) for j in range(ncols)], coef=coef)
 
 
 def write_hex(words: list[int], path: Path, digits: int = 8) -> None:

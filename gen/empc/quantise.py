@@ -5,7 +5,10 @@ counts, counts per Ts) and accumulates PWM ticks: no conversion in the datapath.
 Each column j gets an operand right shift c_j (from the signal's useful range)
 and each gain (i, j) a product left shift s_ij chosen so the largest of
 |p0|, |p1|, |p2|, |p1 + p2 wn| and |k(wn)| over Omega_e uses the full 18-bit
-mantissa (per-gain power-of-two scaling).  See rtlmodel/mpc_core.py for the
+mantissa (per-gain power-of-two scaling).  A gain that would need s_ij above
+MAX_PROD_SHIFT (large gains: short Ts, small ADC LSB) takes it from its column
+instead: c_j goes down (to MIN_SIG_SHIFT = -1, a left shift of the operand) as far as
+the column's useful range allows, and both rows' s_ij with it; the term is the same.  See rtlmodel/mpc_core.py for the
 arithmetic these numbers feed.
 """
 from __future__ import annotations
@@ -21,7 +24,8 @@ from .mpc import ebar_step_limits
 from .rtlmodel import mpc_core as core
 
 MAX_PROD_SHIFT = (1 << F.PROD_SHIFT_BITS) - 1
-MAX_SIG_SHIFT = (1 << F.SIG_SHIFT_BITS) - 1
+MIN_SIG_SHIFT = -F.SIG_SHIFT_BIAS                                # stored field = shift + SIG_SHIFT_BIAS
+MAX_SIG_SHIFT = (1 << F.SIG_SHIFT_BITS) - 1 - F.SIG_SHIFT_BIAS
 
 
 class QuantisationError(ValueError):
@@ -134,21 +138,32 @@ def build(cfg, algorithm: int | None = None, task: str | None = None, gain_fit=N
         else:
             useful = 4.0 * u_max_v / kmax_si / scale if kmax_si > 0 else phys
             rng = min(phys, useful)
-        cj = min(MAX_SIG_SHIFT, max(0, _bits(rng) - (F.OPW - 1)))
-        col_shift.append(cj)
-        for i in range(2):
-            p = K[:, i] * scale * acc_per_volt                          # acc LSB per signal LSB
+        cj_range = _bits(rng) - (F.OPW - 1)          # smallest shift at which the useful range fits
+        cj = min(MAX_SIG_SHIFT, max(0, cj_range))
+        ps = [K[:, i] * scale * acc_per_volt for i in range(2)]        # acc LSB per signal LSB
+        cmaxs = []
+        for p in ps:
             h = p[1] + p[2] * s_grid
             k = p[0] + s_grid * h
-            cmax = max(abs(p[0]), abs(p[1]), abs(p[2]), float(np.max(np.abs(h))), float(np.max(np.abs(k))))
+            cmaxs.append(max(abs(p[0]), abs(p[1]), abs(p[2]), float(np.max(np.abs(h))), float(np.max(np.abs(k)))))
+
+        def prod_shift(cmax, c):
             if cmax == 0:
-                s = 0
-            else:
-                s = max(0, math.ceil(math.log2(cmax * 2.0 ** cj / (one - 1) * (1 + 1e-12))))
+                return 0
+            return max(0, math.ceil(math.log2(cmax * 2.0 ** c / (one - 1) * (1 + 1e-12))))
+        over = max(prod_shift(cm, cj) for cm in cmaxs) - MAX_PROD_SHIFT
+        if over > 0:            # take the excess from the operand (same term, less operand range)
+            cj = max(cj - over, MIN_SIG_SHIFT, min(cj, cj_range))
+        col_shift.append(cj)
+        for i in range(2):
+            p, cmax = ps[i], cmaxs[i]
+            k = p[0] + s_grid * (p[1] + p[2] * s_grid)
+            s = prod_shift(cmax, cj)
             if s > MAX_PROD_SHIFT:
                 raise QuantisationError(
-                    f"gain {col.gain}[{i},{col.gain_col}] needs product shift {s} > {MAX_PROD_SHIFT}: "
-                    f"coefficient too large for the accumulator format (ACC_FRAC={F.ACC_FRAC})")
+                    f"gain {col.gain}[{i},{col.gain_col}] needs product shift {s} > {MAX_PROD_SHIFT} "
+                    f"with operand shift {cj} (>= {max(MIN_SIG_SHIFT, min(cj, cj_range))}: the operand's useful "
+                    f"range): coefficient too large for the accumulator format (ACC_FRAC={F.ACC_FRAC})")
             q = [int(round(v * 2.0 ** (cj - s))) for v in p]
             q = [max(min(v, one - 1), -(one - 1)) for v in q]
             coef[i].append((q[0], q[1], q[2], s))

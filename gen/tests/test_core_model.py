@@ -129,3 +129,62 @@ def test_limiter_keeps_inside_circle_and_direction():
     assert worst_in > 0.997, worst_in
     inside = [int(0.5 * u_max) << 4, -(int(0.5 * u_max) << 4)]
     assert core.limit_circle(inside, u_max) == (inside, False)
+
+
+# ---- Ts = 50 us: the biased operand shift (formats.SIG_SHIFT_BIAS, issue 16 item 5) ----
+MOTORS = ("blwr233d", "ec45flat_24v", "ipmsm_001", "premo_320v", "spmsm_002")
+
+
+def _quantised(name: str, ts: float | None):
+    ov = {} if ts is None else {"control.Ts": ts, "inverter.f_pwm": 20000.0}
+    cfg = config.load(config.DEFAULT_CONFIG.parent / f"{name}.toml", ov or None)
+    return {k: quantise.build(cfg, *k)[0] for k in sorted(cfg.control.weights)}
+
+
+@pytest.mark.parametrize("name", MOTORS)
+def test_every_design_quantises_at_50us(name):
+    """Every design of every bundled motor fits the coefficient format at 50 us (BLWR233D and the
+    EC 45 flat need product shift 16 on some gains: their column takes the bit, c_j = -1), and at
+    the configured Ts and 250 us no column needs the left shift (the designs there are unchanged)."""
+    neg = 0
+    for key, p in _quantised(name, 50e-6).items():
+        assert min(p.col_shift) >= quantise.MIN_SIG_SHIFT == -F.SIG_SHIFT_BIAS
+        assert max(c[3] for row in p.coef for c in row) <= quantise.MAX_PROD_SHIFT
+        neg += sum(c < 0 for c in p.col_shift)
+        for j, c in enumerate(p.col_shift):   # a left-shifted column has a gain at the top product shift
+            if c < 0:
+                assert max(p.coef[i][j][3] for i in range(2)) == quantise.MAX_PROD_SHIFT, (key, j)
+    if name in ("blwr233d", "ec45flat_24v"):
+        assert neg > 0
+    for ts in (None, 250e-6):
+        for key, p in _quantised(name, ts).items():
+            assert min(p.col_shift) >= 0, (name, ts, key)
+
+
+def test_biased_shift_fields_roundtrip_and_model():
+    """Image fields hold shift + SIG_SHIFT_BIAS; decode, the bank model and the core model agree on a
+    design with left-shifted columns, and a left-shifted column computes with a = 2 S."""
+    cfg = config.load(config.DEFAULT_CONFIG, {"control.Ts": 50e-6, "inverter.f_pwm": 20000.0})
+    p = quantise.build(cfg, 1, "speed")[0]
+    assert -1 in p.col_shift
+    fmt = 0x1234
+    w = image.encode(p, fmt)
+    for j, c in enumerate(p.col_shift):
+        assert (w[image.A_COLS + j] >> 8) & 0xF == c + F.SIG_SHIFT_BIAS
+    assert w[image.A_WS] == p.ws + F.SIG_SHIFT_BIAS
+    assert image.decode(w) == p
+    assert core.Banks(w, p.N, fmt).active() == p
+    with pytest.raises(ValueError):
+        image.encode(core.Params(**{**p.__dict__, "ws": image.SHIFT_MIN - 1}))
+    # c_j = -1: a = sat18(2 S) -- the same term as c_j = 0 with the product shift one higher
+    one = (1 << (F.OPW - 1)) - 1
+    col = lambda c, s: core.Params(**{**p.__dict__, "col_sig": [core.SIG_DX], "col_shift": [c],
+                                      "coef": [[(one, 0, 0, s)], [(0, 0, 0, 0)]]})
+    dx = lambda v: core.Inputs(y=(0, 0, 0), omega=0, dx=(v, 0, 0, 0, 0), wref=((0, 0, 0),) * (p.N + 1), u_prev=(0, 0))
+    for v in (1000, -3000, 32769, -(1 << 16)):
+        o = core.update(col(-1, 0), dx(v))
+        assert o.du == core.update(col(0, 1), dx(v)).du
+        assert o.du[0] == F.rshift_round(one * 2 * v, F.ACC_FRAC - F.U_FRAC) and o.du[0] != 0
+        assert not o.counts.get("operand")
+    o = core.update(col(-1, 0), dx(1 << 16))                    # 2 S = 2^17 saturates the operand
+    assert o.counts.get("operand") and o.du[0] == F.rshift_round(one * one, F.ACC_FRAC - F.U_FRAC)

@@ -21,7 +21,7 @@ One update, in this order:
    (angles relative to the measured theta_k: the law is invariant to a common shift).
 4. Per row i (d, q) and column j in order 0..min(ncols, MAX_COLS)-1
    (flag signal: a column reads a signal that saturated):
-   a    = sat18(rshift_round(S[sig_j], c_j))                       operand
+   a    = sat18(rshift_round(S[sig_j], c_j))                       operand (c_j >= -1: -1 = 2 S)
    h    = sat18(p1 + rshift_round(p2 * wn, 17))
    k    = sat18(p0 + rshift_round(h * wn, 17))                     gain, eq. 29
    term = sat48((k * a) << s_ij);   acc = sat48(acc + term)
@@ -84,6 +84,13 @@ LATENCY_BASE = 38       # latency = LATENCY_BASE + min(ncols, MAX_COLS)
 BOOT_CYCLES = 771       # rst released -> ready (768 image words streamed through the write port)
 
 
+def boot_cycles(naxes: int = 1) -> int:
+    """rst released -> ready of a core with ``naxes`` axes: the boot image is streamed into every
+    axis, one pass of image.DEPTH clocks each (the words above USED are not written)."""
+    from .. import image
+    return (naxes - 1) * image.DEPTH + BOOT_CYCLES
+
+
 def latency(ncols: int) -> int:
     """Clock cycles from ``start`` to ``done`` of rtl/mpc_core.v for a bank of ``ncols`` columns
     (tb/test_mpc_core.py checks the RTL's ``latency`` output and its done cycle against it)."""
@@ -109,13 +116,13 @@ class Params:
     algorithm: int
     task: str                      # "speed" | "position"
     N: int
-    ws: int                        # scheduling speed right shift
+    ws: int                        # scheduling speed right shift (image field: ws + SIG_SHIFT_BIAS)
     wn_min: int
     wn_max: int
     u_max: int                     # voltage limit, Q14.4 PWM ticks (V_FRAC)
     ebar_lim: tuple                # 3 raw clamps of the eq. 25 increments
     col_sig: list                  # per column: signal index into S
-    col_shift: list                # per column: operand right shift c_j
+    col_shift: list                # per column: operand right shift c_j (-1 = left shift; image: c_j + bias)
     coef: list                     # [row][col] -> (p0, p1, p2, s)
 
     @property
@@ -309,43 +316,56 @@ def limit_circle(u_raw, u_max: int) -> tuple[list[int], bool]:
     return out, True
 
 
-class Banks:
-    """The coefficient banks of rtl/mpc_core.v with the image checker of rtl/mpc_boot.v.
+class MxBanks:
+    """The coefficient banks of rtl/mpc_core.v (NAXES axes, a bank pair each) with the image
+    checker of rtl/mpc_boot.v.
 
     Transaction level, events in the order the RTL sees them:
-      ``write(addr, word)``   one CPU word into the inactive bank (cfg_we)
-      ``request()``           cfg_swap (ignored before ready, i.e. never here: the model is ready)
-      ``boundary(in_flight)`` swap_at with no update running: a pending swap is decided;
-                              in_flight = a CPU word requested or in the registered write port
-                              in that clock (it would land in the bank being activated)
-    Checker (per written word): word 0 restarts (acc = word, bad = word != MAGIC); any other
-    word is in sequence iff addr = previous addr + 1, header words CFG / USED / FMT must be
-    those of the build (image.check); acc += word (the checksum word: -= word);
-    upl_ok = the word is USED-1, in sequence, nothing bad since word 0, acc == 0.  Any later
-    write clears upl_ok, and so does an accepted swap.
-    State compared with the RTL: bank, pending, upl_ok, img_ok, boot_ok, swap_refused,
-    refused (count), and ``params`` of the active bank (what updates use).
+      ``write(addr, word, axis)``   one CPU word into the axis's inactive bank (cfg_we, cfg_addr =
+                                    {axis, addr})
+      ``request(axis)``             cfg_swap[axis] (ignored before ready, i.e. never here: the model is ready)
+      ``boundary(in_flight, axis)`` swap_at[axis] with no update of that axis running: its pending swap
+                                    is decided; in_flight = a CPU word for that axis requested or in the
+                                    registered write port in that clock (it would land in the bank being
+                                    activated)
+    Boot: the boot image is written into bank 0 of every axis (axis 0 first), through the checker.
+    Checker (one for all axes: one upload at a time; per written word): word 0 restarts (acc = word,
+    bad = word != MAGIC); any other word is in sequence iff addr = previous addr + 1 and axis =
+    previous axis, header words CFG / USED / FMT must be those of the build (image.check);
+    acc += word (the checksum word: -= word); upl_ok[axis] = the word is USED-1, in sequence,
+    nothing bad since word 0, acc == 0; the other axes' upl_ok hold.  Any later write to the axis
+    clears its upl_ok, and so does an accepted swap of it; the end of the boot clears them all.
+    State compared with the RTL, per axis a: bank_v[a], pending_v[a], upl_ok_v[a], img_ok_v[a],
+    swap_refused_v[a], refused_v[a] (count); boot_ok; ``active(a)``, the Params updates of axis a use.
     """
 
-    def __init__(self, boot_words: list[int], N: int, fmt_id: int):
+    def __init__(self, boot_words: list[int], N: int, fmt_id: int, naxes: int = 1):
         from .. import image
         self._img = image
-        self.N, self.fmt = N, fmt_id
-        self.raw = [list(boot_words[:image.USED]) + [0] * (image.DEPTH - image.USED), [0] * image.DEPTH]
-        self.acc, self.bad, self.nexp, self.upl_ok = 0, True, 0, False
-        for a in range(image.USED):
-            self._check(a, self.raw[0][a])
-        self.boot_ok = self.upl_ok
-        self.upl_ok = False
-        self.bank, self.pending, self.swapped, self.swap_refused, self.refused = 0, False, False, False, 0
-        self.params = [self._params(self.raw[0]), None]
+        self.N, self.fmt, self.naxes = N, fmt_id, naxes
+        boot = list(boot_words[:image.USED]) + [0] * (image.DEPTH - image.USED)
+        self.raw = [[list(boot), [0] * image.DEPTH] for _ in range(naxes)]
+        self.acc, self.bad, self.nexp, self.nax = 0, True, 0, 0
+        self.upl_ok_v = [False] * naxes
+        for a in range(naxes):
+            for w in range(image.USED):
+                self._check(a, w, boot[w])
+        self.boot_ok = self.upl_ok_v[naxes - 1]
+        self.upl_ok_v = [False] * naxes
+        self.bank_v = [0] * naxes
+        self.pending_v = [False] * naxes
+        self.swapped_v = [False] * naxes
+        self.swap_refused_v = [False] * naxes
+        self.refused_v = [0] * naxes
+        p0 = self._params(self.raw[0][0])
+        self.params_v = [[p0, None] for _ in range(naxes)]
 
     @property
-    def img_ok(self) -> bool:
-        return self.boot_ok or self.swapped
+    def img_ok_v(self) -> list[bool]:
+        return [self.boot_ok or s for s in self.swapped_v]
 
-    def active(self) -> Params:
-        return self.params[self.bank]
+    def active(self, axis: int = 0) -> Params:
+        return self.params_v[axis][self.bank_v[axis]]
 
     def _params(self, w: list[int]) -> Params:
         """What an update reads from a bank holding words w (the RTL decodes every word as written;
@@ -357,13 +377,12 @@ class Banks:
         for i in range(2):
             for j in range(ncols):
                 b = im.A_GAINS + 4 * (MAX_COLS * i + j)
-                coef[i].append((wrap(w[b], 32), wrap(w[b + 1], 32), wrap(w[b + 2], 32), w[b + 3] & 0xF))
-        from ..formats import SIG_SHIFT_BITS
+                coef[i].append((wrap(w[b], 32), wrap(w[b + 1], 32), wrap(w[b + 2], 32), w[b + 3] & im.PROD_SHIFT_MASK))
         return Params(algorithm=(cfgw >> 13) & 3, task="position" if (cfgw >> 12) & 1 else "speed",
-                      N=(cfgw >> 8) & 0xF, ws=w[im.A_WS] & ((1 << SIG_SHIFT_BITS) - 1), wn_min=wrap(w[im.A_WNMIN], 32),
+                      N=(cfgw >> 8) & 0xF, ws=im.field_shift(w[im.A_WS]), wn_min=wrap(w[im.A_WNMIN], 32),
                       wn_max=wrap(w[im.A_WNMAX], 32), u_max=w[im.A_UMAX], ebar_lim=tuple(w[im.A_EBAR + o] for o in range(3)),
                       col_sig=[w[im.A_COLS + j] & 0x3F for j in range(ncols)],
-                      col_shift=[(w[im.A_COLS + j] >> 8) & ((1 << SIG_SHIFT_BITS) - 1) for j in range(ncols)], coef=coef)
+                      col_shift=[im.field_shift(w[im.A_COLS + j] >> 8) for j in range(ncols)], coef=coef)
 
     def _hdr_bad(self, addr: int, v: int) -> bool:
         im = self._img
@@ -378,38 +397,86 @@ class Banks:
                     or (v >> 8) & 0xF != self.N or (v >> 7) & 1 or v & 0x7F > MAX_COLS)
         return False
 
-    def _check(self, addr: int, v: int) -> None:
+    def _check(self, axis: int, addr: int, v: int) -> None:
         im = self._img
         hb = self._hdr_bad(addr, v)
         if addr == 0:
-            self.acc, self.bad, self.upl_ok = v, hb, False
+            self.acc, self.bad = v, hb
+            self.upl_ok_v[axis] = False
         else:
-            in_seq = addr == self.nexp
+            in_seq = addr == self.nexp and axis == self.nax
             acc_n = (self.acc - v if addr == im.A_CSUM else self.acc + v) & 0xFFFFFFFF
-            self.upl_ok = in_seq and not self.bad and addr == im.USED - 1 and acc_n == 0
+            self.upl_ok_v[axis] = in_seq and not self.bad and addr == im.USED - 1 and acc_n == 0
             self.bad = self.bad or hb or not in_seq
             self.acc = acc_n
         self.nexp = (addr + 1) & 0x3FF
+        self.nax = axis
 
-    def write(self, addr: int, v: int) -> None:
+    def write(self, addr: int, v: int, axis: int = 0) -> None:
         addr &= 0x3FF
         v &= 0xFFFFFFFF
-        self.raw[1 - self.bank][addr] = v
-        self._check(addr, v)
+        self.raw[axis][1 - self.bank_v[axis]][addr] = v
+        self._check(axis, addr, v)
 
-    def request(self) -> None:
-        self.pending = True
+    def request(self, axis: int = 0) -> None:
+        self.pending_v[axis] = True
 
-    def boundary(self, in_flight: bool = False) -> bool | None:
-        """Decide a pending swap: True accepted, False refused, None nothing pending."""
-        if not self.pending:
+    def boundary(self, in_flight: bool = False, axis: int = 0) -> bool | None:
+        """Decide axis's pending swap: True accepted, False refused, None nothing pending."""
+        if not self.pending_v[axis]:
             return None
-        self.pending = False
-        if self.upl_ok and not in_flight:
-            self.bank ^= 1
-            self.params[self.bank] = self._params(self.raw[self.bank])
-            self.upl_ok, self.swapped, self.swap_refused = False, True, False
+        self.pending_v[axis] = False
+        if self.upl_ok_v[axis] and not in_flight:
+            b = self.bank_v[axis] = self.bank_v[axis] ^ 1
+            self.params_v[axis][b] = self._params(self.raw[axis][b])
+            self.upl_ok_v[axis], self.swapped_v[axis], self.swap_refused_v[axis] = False, True, False
             return True
-        self.refused += 1
-        self.swap_refused = True
+        self.refused_v[axis] += 1
+        self.swap_refused_v[axis] = True
         return False
+
+
+class Banks(MxBanks):
+    """The banks of a one-axis core (NAXES = 1): MxBanks with scalar state (bank, pending, upl_ok,
+    img_ok, swap_refused, refused) for axis 0."""
+
+    def __init__(self, boot_words: list[int], N: int, fmt_id: int):
+        super().__init__(boot_words, N, fmt_id, 1)
+
+    bank = property(lambda self: self.bank_v[0])
+    pending = property(lambda self: self.pending_v[0])
+    upl_ok = property(lambda self: self.upl_ok_v[0])
+    img_ok = property(lambda self: self.img_ok_v[0])
+    swap_refused = property(lambda self: self.swap_refused_v[0])
+    refused = property(lambda self: self.refused_v[0])
+    swapped = property(lambda self: self.swapped_v[0])
+    params = property(lambda self: self.params_v[0])
+
+
+def inputs_from_words(words: dict[int, int], N: int) -> Inputs:
+    """The Inputs an update reads from input-buffer words (the inverse of :func:`input_words`;
+    missing words read 0)."""
+    g = lambda a: words.get(a, 0)
+    return Inputs(y=tuple(g(IN_Y + o) for o in range(3)), omega=g(IN_OMEGA), dx=tuple(g(IN_DX + n) for n in range(5)),
+                  wref=tuple(tuple(g(IN_WREF + 3 * m + o) for o in range(3)) for m in range(min(N, N_MAX) + 1)),
+                  u_prev=tuple(g(IN_UPREV + i) for i in range(2)), ebar_prev=tuple(g(IN_EBAR + o) for o in range(3)))
+
+
+class MxCore:
+    """rtl/mpc_core.v with NAXES axes, at transaction level: per axis an input buffer (64 words,
+    in_addr = {axis, word}) and a bank pair (:class:`MxBanks`); ``start(axis)`` runs :func:`update`
+    on that axis's words with its active bank.  Axes share nothing else: an upload, a swap or
+    input words of one axis never change another axis's outputs."""
+
+    def __init__(self, boot_words: list[int], N: int, fmt_id: int, naxes: int):
+        self.N, self.naxes = N, naxes
+        self.banks = MxBanks(boot_words, N, fmt_id, naxes)
+        self.words = [dict() for _ in range(naxes)]
+
+    def write_input(self, axis: int, word: int, value: int) -> None:
+        self.words[axis][word] = wrap(value, SIG_W)
+
+    def start(self, axis: int, fw_thr: tuple = (0xFFFF, 0)) -> Outputs:
+        x = inputs_from_words(self.words[axis], self.N)
+        x = Inputs(x.y, x.omega, x.dx, x.wref, x.u_prev, x.ebar_prev, fw_thr=fw_thr)
+        return update(self.banks.active(axis), x)
