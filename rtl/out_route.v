@@ -91,20 +91,30 @@ module out_route #(
             assign tp[j] = trip[j / 3];
         end
     endgenerate
-    wire [NC-1:0] hv, lv;                           // by code: 0 = off, codes beyond the pairs off
+    wire [NC-1:0] hv, lv, tv;                       // by code: 0 = off, codes beyond the pairs off
     generate
         if (NC > NP + 1) begin : g_pad
-            assign hv = {{(NC - NP - 1){1'b0}}, hi & ~tp, 1'b0};
-            assign lv = {{(NC - NP - 1){1'b0}}, lo & ~tp, 1'b0};
+            assign hv = {{(NC - NP - 1){1'b0}}, hi, 1'b0};
+            assign lv = {{(NC - NP - 1){1'b0}}, lo, 1'b0};
+            assign tv = {{(NC - NP - 1){1'b0}}, tp, 1'b0};
         end else begin : g_nopad
-            assign hv = {hi & ~tp, 1'b0};
-            assign lv = {lo & ~tp, 1'b0};
+            assign hv = {hi, 1'b0};
+            assign lv = {lo, 1'b0};
+            assign tv = {tp, 1'b0};
         end
         for (k = 0; k < NOUT; k = k + 1) begin : g_pin
-            // hi and lo of one output through the same select and the same register
+            // hi and lo of one output through the same select and the same register; the owner's
+            // trip (one signal per output) is the register's synchronous reset
+            wire [SW-1:0] c = osel[SW*k +: SW];
+            wire clr = rst || tv[c];
             always @(posedge clk) begin
-                pin_hi[k] <= !rst && hv[osel[SW*k +: SW]];
-                pin_lo[k] <= !rst && lv[osel[SW*k +: SW]];
+                if (clr) begin
+                    pin_hi[k] <= 1'b0;
+                    pin_lo[k] <= 1'b0;
+                end else begin
+                    pin_hi[k] <= hv[c];
+                    pin_lo[k] <= lv[c];
+                end
             end
         end
     endgenerate
