@@ -29,6 +29,7 @@ import sys
 from pathlib import Path
 
 import cocotb
+import pytest
 from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge, Timer
 
@@ -319,14 +320,17 @@ def _run(naxes: int, lines: tuple = (regmap.ROUTE_ENC, regmap.ROUTE_HALL, regmap
         extra_env={"TB_NAXES": str(naxes), "TB_LINES": ",".join(map(str, lines))})
 
 
+@pytest.mark.cost(14)          # Icarus, 20,000 random clocks + corners, checked every clock
 def test_out_route_naxes4():
     _run(4)
 
 
+@pytest.mark.cost(14)          # Icarus, 20,000 random clocks + corners, checked every clock
 def test_out_route_naxes1():
     _run(1)
 
 
+@pytest.mark.cost(14)          # Icarus, 20,000 random clocks + corners, checked every clock
 def test_out_route_fewer_lines():
     """NAXES = 2 with 5 IRC inputs, 3 HALL sets, 6 ADC channels: selects beyond them read the fail-safe
     values and set bad_sel."""
