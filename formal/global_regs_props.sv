@@ -9,7 +9,8 @@
 //  G3  IRQ_STATUS write-1-to-clear loses no event: a set in the clock of any write (also the
 //      write that clears that bit) is kept; a bit clears only by a write of 1 with no set
 //  G4  the routing registers OUT_SEL0/1, ADC_SEL0/1, IN_SEL (out_route's R4, issue 16): reset to
-//      today's pinout; change only in the clock after a write of them with no axis live and (OUT_SEL)
+//      today's pinout; change only in the clock after a write of them with route_locked low (no axis
+//      live, a build that routes: lx_rocon_top ties it high without out_route) and (OUT_SEL)
 //      every code 0..3 EMPC_ROUTE_AXES, then to exactly the written fields (whole word or nothing);
 //      any other write of them is refused (wr_refused); out_sel*_wr pulse exactly on accepted writes
 `default_nettype none
@@ -25,6 +26,8 @@ module global_regs_props (
     input wire        irq_status_period_set,
     input wire        irq_status_fault_set,
     input wire        bridges_live,
+    input wire        route_locked,
+    input wire        caps_route,
     input wire        wdog_unlock_tick,
     input wire [2:0]  route_status_mapped0,
     input wire [2:0]  route_status_mapped1,
@@ -77,7 +80,7 @@ module global_regs_props (
     global_regs dut (
         .clk(clk), .rst(rst), .reg_wr(reg_wr), .reg_rd(reg_rd), .reg_addr(reg_addr), .reg_wdata(reg_wdata),
         .reg_rdata(reg_rdata), .caps_naxes(4'd1), .caps_horizon(4'd4), .caps_img_layout(8'd2),
-        .caps_pwm_per_control(8'd5), .caps_complementary(1'b0), .pwm_half(32'd2500), .scratch(scratch),
+        .caps_pwm_per_control(8'd5), .caps_complementary(1'b0), .caps_route(caps_route), .route_locked(route_locked), .pwm_half(32'd2500), .scratch(scratch),
         .wdog_timeout(wdog_timeout), .wdog_kick(wdog_kick), .time_cnt(time_cnt),
         .irq_status_period(irq_status_period), .irq_status_period_set(irq_status_period_set),
         .irq_status_fault(irq_status_fault), .irq_status_fault_set(irq_status_fault_set),
@@ -113,12 +116,12 @@ module global_regs_props (
                                    ? F_ARM : {AW{1'b0}};
         else if (wdog_unlock_tick && f_arm != 0) f_arm <= f_arm - 1'b1;
     end
-    reg p_rst, p_wr, p_live, p_arm, p_ps, p_fs, p_ip, p_if;
+    reg p_rst, p_wr, p_live, p_lock, p_arm, p_ps, p_fs, p_ip, p_if;
     reg [7:0] p_addr;
     reg [31:0] p_wdata;
     reg [`EMPC_G_WDOG_TIMEOUT_W-1:0] p_to;
     always @(posedge clk) begin
-        p_rst <= rst; p_wr <= reg_wr; p_live <= bridges_live; p_arm <= (f_arm != 0);
+        p_rst <= rst; p_wr <= reg_wr; p_live <= bridges_live; p_lock <= route_locked; p_arm <= (f_arm != 0);
         p_addr <= reg_addr; p_wdata <= reg_wdata; p_to <= wdog_timeout;
         p_ps <= irq_status_period_set; p_fs <= irq_status_fault_set;
         p_ip <= irq_status_period; p_if <= irq_status_fault;
@@ -137,6 +140,7 @@ module global_regs_props (
 
     // G4 (out_route's R4): the routing words, rebuilt from the field ports in the layout of
     // docs/registers.md (every field starts on a nibble), change only through an accepted write
+    // (caps_route is only read back: free)
     localparam [31:0] M_OUT = 32'hffffffff, M_ADC = 32'h00ffffff, M_IN = 32'h33337777;   // field bits
     localparam integer NPAIR = `EMPC_ROUTE_AXES * `EMPC_ROUTE_PHASES;
     wire [31:0] w_o0 = {out_sel0_out7, out_sel0_out6, out_sel0_out5, out_sel0_out4, out_sel0_out3, out_sel0_out2,
@@ -161,11 +165,11 @@ module global_regs_props (
             for (i = 0; i < 32 / `EMPC_ROUTE_NIB; i = i + 1) if (w[`EMPC_ROUTE_NIB*i +: `EMPC_ROUTE_NIB] > NPAIR) legal_out = 1'b0;
         end
     endfunction
-    wire ok_o0 = p_wr && p_addr == `EMPC_G_OUT_SEL0 && !p_live && legal_out(p_wdata);
-    wire ok_o1 = p_wr && p_addr == `EMPC_G_OUT_SEL1 && !p_live && legal_out(p_wdata);
-    wire ok_a0 = p_wr && p_addr == `EMPC_G_ADC_SEL0 && !p_live;
-    wire ok_a1 = p_wr && p_addr == `EMPC_G_ADC_SEL1 && !p_live;
-    wire ok_in = p_wr && p_addr == `EMPC_G_IN_SEL && !p_live;
+    wire ok_o0 = p_wr && p_addr == `EMPC_G_OUT_SEL0 && !p_lock && legal_out(p_wdata);
+    wire ok_o1 = p_wr && p_addr == `EMPC_G_OUT_SEL1 && !p_lock && legal_out(p_wdata);
+    wire ok_a0 = p_wr && p_addr == `EMPC_G_ADC_SEL0 && !p_lock;
+    wire ok_a1 = p_wr && p_addr == `EMPC_G_ADC_SEL1 && !p_lock;
+    wire ok_in = p_wr && p_addr == `EMPC_G_IN_SEL && !p_lock;
     always @(*) if (f_pv && p_rst) begin                                                  // G4: reset map
         assert(w_o0 == `EMPC_G_OUT_SEL0_RESET && w_o1 == `EMPC_G_OUT_SEL1_RESET);
         assert(w_a0 == `EMPC_G_ADC_SEL0_RESET && w_a1 == `EMPC_G_ADC_SEL1_RESET && w_in == `EMPC_G_IN_SEL_RESET);

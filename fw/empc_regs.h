@@ -85,7 +85,7 @@
 #define EMPC_G_CAPS_ACCESS                EMPC_ACC_RO
 #define EMPC_G_CAPS_RESET                 0x00000000u
 #define EMPC_G_CAPS_RESET_MASK            0x00000000u
-#define EMPC_G_CAPS_BITS                  0x01FFFFFFu
+#define EMPC_G_CAPS_BITS                  0x03FFFFFFu
 #define EMPC_G_CAPS_SIGNED                0
 #define EMPC_G_CAPS_NAXES_SHIFT           0u
 #define EMPC_G_CAPS_NAXES_MASK            0x0000000Fu
@@ -102,6 +102,9 @@
 #define EMPC_G_CAPS_COMPLEMENTARY_SHIFT   24u
 #define EMPC_G_CAPS_COMPLEMENTARY_MASK    0x01000000u
 #define EMPC_G_CAPS_COMPLEMENTARY_WIDTH   1u
+#define EMPC_G_CAPS_ROUTE_SHIFT           25u
+#define EMPC_G_CAPS_ROUTE_MASK            0x02000000u
+#define EMPC_G_CAPS_ROUTE_WIDTH           1u
 /* PWM_HALF (RO): PWM half period in fabric clocks (centre-aligned: period = 2 x this). */
 #define EMPC_G_PWM_HALF            0x00Cu
 #define EMPC_G_PWM_HALF_ACCESS     EMPC_ACC_RO
@@ -169,13 +172,13 @@
 #define EMPC_G_WDOG_UNLOCK_RESET_MASK 0xFFFFFFFFu
 #define EMPC_G_WDOG_UNLOCK_BITS       0x0000FFFFu
 #define EMPC_G_WDOG_UNLOCK_SIGNED     0
-/* OUT_SEL0 (RW, refused while bridges_live, write strobe, out0 legal 0..12, out1 legal 0..12, out2
+/* OUT_SEL0 (RW, refused while route_locked, write strobe, out0 legal 0..12, out1 legal 0..12, out2
    legal 0..12, out3 legal 0..12, out4 legal 0..12, out5 legal 0..12, out6 legal 0..12, out7 legal
    0..12): Output select of half-bridge outputs 0..7: 0 = off (PWM and enable held low), 1 + 3 a + p =
    axis a, phase p (0..2 = A..C); an output has one source or none, a phase may drive several outputs;
    13..15 are refused; a code naming an axis the build lacks is held off like 0 (CAPS.naxes). Written
-   only with every axis off (CTRL.enable clear, no output switching); the pins follow one clock after
-   pwm_center. */
+   only with every axis off (CTRL.enable clear, no output switching) in a build that routes
+   (CAPS.route); the pins follow one clock after pwm_center. */
 #define EMPC_G_OUT_SEL0                0x040u
 #define EMPC_G_OUT_SEL0_ACCESS         EMPC_ACC_RW
 #define EMPC_G_OUT_SEL0_RESET          0x87654321u
@@ -222,13 +225,13 @@
 #define EMPC_G_OUT_SEL0_OUT6_LEGAL_MAX 12u
 #define EMPC_G_OUT_SEL0_OUT7_LEGAL_MIN 0u
 #define EMPC_G_OUT_SEL0_OUT7_LEGAL_MAX 12u
-/* OUT_SEL1 (RW, refused while bridges_live, write strobe, out8 legal 0..12, out9 legal 0..12, out10
+/* OUT_SEL1 (RW, refused while route_locked, write strobe, out8 legal 0..12, out9 legal 0..12, out10
    legal 0..12, out11 legal 0..12, out12 legal 0..12, out13 legal 0..12, out14 legal 0..12, out15 legal
    0..12): Output select of half-bridge outputs 8..15: 0 = off (PWM and enable held low), 1 + 3 a + p =
    axis a, phase p (0..2 = A..C); an output has one source or none, a phase may drive several outputs;
    13..15 are refused; a code naming an axis the build lacks is held off like 0 (CAPS.naxes). Written
-   only with every axis off (CTRL.enable clear, no output switching); the pins follow one clock after
-   pwm_center. */
+   only with every axis off (CTRL.enable clear, no output switching) in a build that routes
+   (CAPS.route); the pins follow one clock after pwm_center. */
 #define EMPC_G_OUT_SEL1                 0x044u
 #define EMPC_G_OUT_SEL1_ACCESS          EMPC_ACC_RW
 #define EMPC_G_OUT_SEL1_RESET           0x0000CBA9u
@@ -275,7 +278,7 @@
 #define EMPC_G_OUT_SEL1_OUT14_LEGAL_MAX 12u
 #define EMPC_G_OUT_SEL1_OUT15_LEGAL_MIN 0u
 #define EMPC_G_OUT_SEL1_OUT15_LEGAL_MAX 12u
-/* ADC_SEL0 (RW, refused while bridges_live): Current ADC channel (MISO input 0..15) that measures each
+/* ADC_SEL0 (RW, refused while route_locked): Current ADC channel (MISO input 0..15) that measures each
    phase; written only with every axis off. */
 #define EMPC_G_ADC_SEL0             0x048u
 #define EMPC_G_ADC_SEL0_ACCESS      EMPC_ACC_RW
@@ -301,7 +304,7 @@
 #define EMPC_G_ADC_SEL0_AX1_C_SHIFT 20u
 #define EMPC_G_ADC_SEL0_AX1_C_MASK  0x00F00000u
 #define EMPC_G_ADC_SEL0_AX1_C_WIDTH 4u
-/* ADC_SEL1 (RW, refused while bridges_live): Current ADC channel (MISO input 0..15) that measures each
+/* ADC_SEL1 (RW, refused while route_locked): Current ADC channel (MISO input 0..15) that measures each
    phase; written only with every axis off. */
 #define EMPC_G_ADC_SEL1             0x04Cu
 #define EMPC_G_ADC_SEL1_ACCESS      EMPC_ACC_RW
@@ -327,7 +330,7 @@
 #define EMPC_G_ADC_SEL1_AX3_C_SHIFT 20u
 #define EMPC_G_ADC_SEL1_AX3_C_MASK  0x00F00000u
 #define EMPC_G_ADC_SEL1_AX3_C_WIDTH 4u
-/* IN_SEL (RW, refused while bridges_live): Position inputs of each axis; written only with every axis
+/* IN_SEL (RW, refused while route_locked): Position inputs of each axis; written only with every axis
    off. */
 #define EMPC_G_IN_SEL             0x050u
 #define EMPC_G_IN_SEL_ACCESS      EMPC_ACC_RW

@@ -26,6 +26,7 @@ module global_regs (
     input  wire [7:0]  caps_img_layout,       // CAPS.img_layout value
     input  wire [7:0]  caps_pwm_per_control,  // CAPS.pwm_per_control value
     input  wire        caps_complementary,    // CAPS.complementary value
+    input  wire        caps_route,            // CAPS.route value
     input  wire [31:0] pwm_half,              // PWM_HALF value
     output reg  [31:0] scratch,               // SCRATCH (RW)
     output reg  [10:0] wdog_timeout,          // WDOG_TIMEOUT (RW)
@@ -80,6 +81,7 @@ module global_regs (
     input  wire [2:0]  route_status_mapped3,  // ROUTE_STATUS.mapped3 value
     input  wire        route_status_bad_sel,  // ROUTE_STATUS.bad_sel value
     input  wire        bridges_live,          // guard: writes to its registers are refused while high
+    input  wire        route_locked,          // guard: writes to its registers are refused while high
     input  wire        wdog_unlock_tick,      // timebase of the WDOG_UNLOCK unlock (pulses)
     output wire [1:0]  wdog_unlock_armed,     // WDOG_UNLOCK unlock: ticks left, 0 = not armed (status, proofs)
     output reg         wr_refused             // pulse: a write was refused (guard, unlock or illegal value)
@@ -203,7 +205,7 @@ module global_regs (
                         else wr_refused <= 1'b1;
                     end
                     5'h10: begin   // OUT_SEL0
-                        if (!bridges_live && LEGAL_OUT_SEL0_OUT0[reg_wdata[3:0]] && LEGAL_OUT_SEL0_OUT1[reg_wdata[7:4]] && LEGAL_OUT_SEL0_OUT2[reg_wdata[11:8]] && LEGAL_OUT_SEL0_OUT3[reg_wdata[15:12]] && LEGAL_OUT_SEL0_OUT4[reg_wdata[19:16]] && LEGAL_OUT_SEL0_OUT5[reg_wdata[23:20]] && LEGAL_OUT_SEL0_OUT6[reg_wdata[27:24]] && LEGAL_OUT_SEL0_OUT7[reg_wdata[31:28]]) begin
+                        if (!route_locked && LEGAL_OUT_SEL0_OUT0[reg_wdata[3:0]] && LEGAL_OUT_SEL0_OUT1[reg_wdata[7:4]] && LEGAL_OUT_SEL0_OUT2[reg_wdata[11:8]] && LEGAL_OUT_SEL0_OUT3[reg_wdata[15:12]] && LEGAL_OUT_SEL0_OUT4[reg_wdata[19:16]] && LEGAL_OUT_SEL0_OUT5[reg_wdata[23:20]] && LEGAL_OUT_SEL0_OUT6[reg_wdata[27:24]] && LEGAL_OUT_SEL0_OUT7[reg_wdata[31:28]]) begin
                             out_sel0_out0 <= reg_wdata[3:0];
                             out_sel0_out1 <= reg_wdata[7:4];
                             out_sel0_out2 <= reg_wdata[11:8];
@@ -218,7 +220,7 @@ module global_regs (
                         end
                     end
                     5'h11: begin   // OUT_SEL1
-                        if (!bridges_live && LEGAL_OUT_SEL1_OUT8[reg_wdata[3:0]] && LEGAL_OUT_SEL1_OUT9[reg_wdata[7:4]] && LEGAL_OUT_SEL1_OUT10[reg_wdata[11:8]] && LEGAL_OUT_SEL1_OUT11[reg_wdata[15:12]] && LEGAL_OUT_SEL1_OUT12[reg_wdata[19:16]] && LEGAL_OUT_SEL1_OUT13[reg_wdata[23:20]] && LEGAL_OUT_SEL1_OUT14[reg_wdata[27:24]] && LEGAL_OUT_SEL1_OUT15[reg_wdata[31:28]]) begin
+                        if (!route_locked && LEGAL_OUT_SEL1_OUT8[reg_wdata[3:0]] && LEGAL_OUT_SEL1_OUT9[reg_wdata[7:4]] && LEGAL_OUT_SEL1_OUT10[reg_wdata[11:8]] && LEGAL_OUT_SEL1_OUT11[reg_wdata[15:12]] && LEGAL_OUT_SEL1_OUT12[reg_wdata[19:16]] && LEGAL_OUT_SEL1_OUT13[reg_wdata[23:20]] && LEGAL_OUT_SEL1_OUT14[reg_wdata[27:24]] && LEGAL_OUT_SEL1_OUT15[reg_wdata[31:28]]) begin
                             out_sel1_out8 <= reg_wdata[3:0];
                             out_sel1_out9 <= reg_wdata[7:4];
                             out_sel1_out10 <= reg_wdata[11:8];
@@ -233,7 +235,7 @@ module global_regs (
                         end
                     end
                     5'h12: begin   // ADC_SEL0
-                        if (!bridges_live) begin
+                        if (!route_locked) begin
                             adc_sel0_ax0_a <= reg_wdata[3:0];
                             adc_sel0_ax0_b <= reg_wdata[7:4];
                             adc_sel0_ax0_c <= reg_wdata[11:8];
@@ -245,7 +247,7 @@ module global_regs (
                         end
                     end
                     5'h13: begin   // ADC_SEL1
-                        if (!bridges_live) begin
+                        if (!route_locked) begin
                             adc_sel1_ax2_a <= reg_wdata[3:0];
                             adc_sel1_ax2_b <= reg_wdata[7:4];
                             adc_sel1_ax2_c <= reg_wdata[11:8];
@@ -257,7 +259,7 @@ module global_regs (
                         end
                     end
                     5'h14: begin   // IN_SEL
-                        if (!bridges_live) begin
+                        if (!route_locked) begin
                             in_sel_enc0 <= reg_wdata[2:0];
                             in_sel_enc1 <= reg_wdata[6:4];
                             in_sel_enc2 <= reg_wdata[10:8];
@@ -288,7 +290,7 @@ module global_regs (
             case (reg_addr[4:0])
                 5'h0: q_mux <= 32'h454d5043;   // ID
                 5'h1: q_mux <= 32'h00010000;   // VERSION
-                5'h2: q_mux <= {7'd0, caps_complementary, caps_pwm_per_control, caps_img_layout, caps_horizon, caps_naxes};   // CAPS
+                5'h2: q_mux <= {6'd0, caps_route, caps_complementary, caps_pwm_per_control, caps_img_layout, caps_horizon, caps_naxes};   // CAPS
                 5'h3: q_mux <= pwm_half;   // PWM_HALF
                 5'h8: q_mux <= {21'd0, wdog_timeout};   // WDOG_TIMEOUT
                 5'ha: q_mux <= time_cnt;   // TIME

@@ -119,8 +119,9 @@ module lx_rocon_top #(
     wire [`EMPC_G_IRQ_ENABLE_W-1:0] irq_enable;
     wire [NAXES-1:0] period_tick, control_done, fault_any, live;
     wire        g_wr_refused;                               // counted by every axis (CNT_WR_REFUSED)
-    // routing registers (issue 16 item 4): stored and guarded here, consumed by rtl/out_route.v once the
-    // four-axis top lands; until then today's fixed pinout applies and ROUTE_STATUS reads 0
+    // routing registers (issue 16 item 4, rtl/out_route.v): this top has the fixed pinout (no out_route yet,
+    // CAPS.route = 0), so they are locked for good: they read today's pinout, refuse every write (counted
+    // like any refused write) and synthesise to constants; ROUTE_STATUS reads 0
     wire [`EMPC_ROUTE_OUTPUTS*`EMPC_ROUTE_OUT_W-1:0] r_osel;
     wire [`EMPC_ROUTE_AXES*`EMPC_ROUTE_PHASES*`EMPC_ROUTE_ADC_W-1:0] r_asel;
     wire [`EMPC_ROUTE_AXES*`EMPC_ROUTE_ENC_W-1:0] r_esel;
@@ -156,12 +157,14 @@ module lx_rocon_top #(
     localparam [31:0] CAP_LAYOUT_W = `EMPC_IMG_LAYOUT;
     localparam [31:0] CAP_PPC_W = `EMPC_PWM_PER_CONTROL;
     localparam [0:0]  CAP_COMPL = (COMPLEMENTARY != 0);
+    localparam [0:0]  CAP_ROUTE = 1'b0;                    // out_route not instantiated (fixed pinout)
     global_regs u_gregs (
         .clk(clk), .rst(rst), .reg_wr(reg_wr && in_global), .reg_rd(reg_rd && in_global),
         .reg_addr(reg_addr[7:0]), .reg_wdata(reg_wdata), .reg_rdata(g_rdata),
         .caps_naxes(NAXES_W[`EMPC_G_CAPS_NAXES_W-1:0]), .caps_horizon(CAP_N_W[`EMPC_G_CAPS_HORIZON_W-1:0]),
         .caps_img_layout(CAP_LAYOUT_W[`EMPC_G_CAPS_IMG_LAYOUT_W-1:0]),
         .caps_pwm_per_control(CAP_PPC_W[`EMPC_G_CAPS_PWM_PER_CONTROL_W-1:0]), .caps_complementary(CAP_COMPL),
+        .caps_route(CAP_ROUTE), .route_locked((|live) || !CAP_ROUTE),
         .pwm_half(PWM_HALF_W), .scratch(scratch), .wdog_timeout(wdog_timeout), .wdog_kick(wdog_kick),
         .time_cnt(time_cnt), .irq_status_period(irq_period), .irq_status_period_set(control_done[0]),
         .irq_status_fault(irq_fault), .irq_status_fault_set((|fault_any) && !fault_any_d),

@@ -112,6 +112,8 @@ class Env:
                 self.hw[k] = v
             else:
                 self.ins[k] = v
+        self.ins["route_locked"] = self.ins["bridges_live"]     # the harness: a build that routes
+        self.ins["caps_route"] = 1
         self.status_ins()
         for k in ("rst", "reg_wr", "reg_rd", "reg_addr", "reg_wdata", "bridges_live"):
             getattr(d, k).value = self.ins[k]

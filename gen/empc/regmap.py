@@ -65,7 +65,9 @@ ADC_SUM_FRAMES = 4        # consecutive frames with |sum of the phase currents| 
 ADC_FROZEN_PERIODS = 4    # consecutive PWM periods (bridges on) with a channel bit-identical -> FAULT.adc_frozen
 # Build-time hard limits of the board (issue 14): the register blocks refuse (``legal``) every write
 # outside them, whatever the CPU does; the safety settings change only with the bridges off
-# (``guard="bridges_live"``: CTRL.enable set or the outputs switching; globally: on any axis).
+# (``guard="bridges_live"``: CTRL.enable set or the outputs switching; globally: on any axis).  The
+# routing registers' guard ``route_locked`` is bridges_live, or high for good in a build without
+# out_route (CAPS.route = 0: they keep today's pinout, refuse every write and cost no flip-flops).
 ADC_CODE_BITS = 12        # current ADC code width (ADC_OFFx, OC_THRESH)
 DEAD_TIME_MIN = 20        # complementary-mode dead time floor, fabric clocks (200 ns at 100 MHz)
 OC_THRESH_MAX = 1900      # ADC LSB (19 A at 10 mA/LSB): below the ADC rails for every legal offset, so that
@@ -285,11 +287,12 @@ def _out_sel(word: int) -> Reg:
                f"enable held low), 1 + 3 a + p = axis a, phase p (0..2 = A..C); an output has one source or none, "
                f"a phase may drive several outputs; {n + 1}..15 are refused; a code naming an axis the build lacks "
                "is held off like 0 (CAPS.naxes). Written only with every axis off (CTRL.enable clear, "
-               "no output switching); the pins follow one clock after pwm_center.", tuple(
+               "no output switching) in a build that routes (CAPS.route); the pins follow one clock after "
+               "pwm_center.", tuple(
                    Field(f"out{k}", ROUTE_NIB * (k - first), ROUTE_OUT_W, f"output {k}",
                          reset=k + 1 if k < n else 0, legal=range(0, n + 1))
                    for k in range(first, first + ROUTE_PER_WORD)),
-               guard="bridges_live", wstrobe=True)
+               guard="route_locked", wstrobe=True)
 
 
 def _adc_sel(word: int) -> Reg:
@@ -300,7 +303,7 @@ def _adc_sel(word: int) -> Reg:
                    for a in range(word * per, min(ROUTE_AXES, (word + 1) * per)) for p in range(ROUTE_PHASES))
     return Reg(f"ADC_SEL{word}", 0x012 + word, "RW", 0,
                f"Current ADC channel (MISO input 0..{ROUTE_ADC - 1}) that measures each phase; written only with "
-               "every axis off.", fields, guard="bridges_live")
+               "every axis off.", fields, guard="route_locked")
 
 
 ROUTE_REGS = (
@@ -309,7 +312,7 @@ ROUTE_REGS = (
         tuple(Field(f"enc{a}", ROUTE_NIB * a, ROUTE_ENC_W, f"IRC input (0..{ROUTE_ENC - 1}) of axis {a}", reset=a)
               for a in range(ROUTE_AXES)) +
         tuple(Field(f"hall{a}", 16 + ROUTE_NIB * a, ROUTE_HALL_W, f"HALL set (0..{ROUTE_HALL - 1}) of axis {a}",
-                    reset=a) for a in range(ROUTE_AXES)), guard="bridges_live"),
+                    reset=a) for a in range(ROUTE_AXES)), guard="route_locked"),
     Reg("ROUTE_STATUS", 0x015, "RO", 0, "Routing state (rtl/out_route.v).",
         tuple(Field(f"mapped{a}", ROUTE_NIB * a, ROUTE_PHASES, f"axis {a}: bit p = phase p drives at least one "
                     "output (a 16-clock scan of OUT_SEL; 0 from an OUT_SEL write until the next complete scan)")
@@ -331,7 +334,9 @@ GLOBAL = (
         Field("img_layout", 8, 8, "coefficient image layout version"),
         Field("pwm_per_control", 16, 8, "PWM periods per control period Ts (reset value)"),
         Field("complementary", 24, 1, "bridge mode of the build (board): 0 = PWM + enable (LX_PWR), "
-              "1 = complementary high/low with dead time"))),
+              "1 = complementary high/low with dead time"),
+        Field("route", 25, 1, "1 = outputs and inputs routed by OUT_SEL / ADC_SEL / IN_SEL (rtl/out_route.v); "
+              "0 = fixed pinout: those registers read today's pinout and refuse every write"))),
     Reg("PWM_HALF", 0x003, "RO", 0, "PWM half period in fabric clocks (centre-aligned: period = 2 x this)."),
     Reg("SCRATCH", 0x004, "RW", 0, "Free for bus tests.", read="copy"),
     Reg("WDOG_TIMEOUT", 0x008, "RW", 400, "Watchdog timeout in PWM periods. Expiry latches the watchdog fault "

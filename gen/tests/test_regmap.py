@@ -180,12 +180,13 @@ def test_bad_field_safety_attributes():
 
 
 def test_routing_registers():
-    """Issue 16 item 4: the routing registers are guarded like the safety settings, OUT_SEL refuses codes
+    """Issue 16 item 4: the routing registers are guarded (route_locked: an axis live, or no out_route in the
+    build, CAPS.route), OUT_SEL refuses codes
     beyond the routable pairs, the reset map is today's pinout, the fields hold the board's resources."""
     g = {r.name: r for r in regmap.GLOBAL}
     route = ("OUT_SEL0", "OUT_SEL1", "ADC_SEL0", "ADC_SEL1", "IN_SEL")
     for n in route:
-        assert g[n].guard == "bridges_live" and g[n].access == "RW", n
+        assert g[n].guard == "route_locked" and g[n].access == "RW", n
         assert all(f.lsb % regmap.ROUTE_NIB == 0 for f in g[n].fields), n
     npair = regmap.ROUTE_AXES * regmap.ROUTE_PHASES
     outs = [f for n in ("OUT_SEL0", "OUT_SEL1") for f in g[n].fields]

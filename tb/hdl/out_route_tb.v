@@ -2,7 +2,7 @@
 // block (rtl/global_regs.v, which stores and guards the routing registers) wired to out_route as the
 // four-axis top will wire them: OUT_SEL / ADC_SEL / IN_SEL fields into the selects, the OUT_SEL
 // write strobes into osel_wr, mapped / bad_sel back into ROUTE_STATUS.  The CPU port, the guard
-// (bridges_live), the pwm_center pairs, the trips and the board's input lines are the harness ports.
+// (bridges_live, also as the routing registers' route_locked: a build that routes), the pwm_center pairs, the trips and the board's input lines are the harness ports.
 `default_nettype none
 `timescale 1ns / 1ps
 `include "empc_regs.vh"
@@ -63,7 +63,8 @@ module out_route_tb #(
     global_regs u_regs (
         .clk(clk), .rst(rst), .reg_wr(reg_wr), .reg_rd(reg_rd), .reg_addr(reg_addr), .reg_wdata(reg_wdata),
         .reg_rdata(reg_rdata), .caps_naxes(4'd0), .caps_horizon(4'd0), .caps_img_layout(8'd0),
-        .caps_pwm_per_control(8'd0), .caps_complementary(1'b0), .pwm_half(32'd0), .scratch(scratch),
+        .caps_pwm_per_control(8'd0), .caps_complementary(1'b0), .caps_route(1'b1),
+        .route_locked(bridges_live), .pwm_half(32'd0), .scratch(scratch),
         .wdog_timeout(wdog_timeout), .wdog_kick(wdog_kick), .time_cnt(32'd0), .irq_status_period(irq_p),
         .irq_status_period_set(1'b0), .irq_status_fault(irq_f), .irq_status_fault_set(1'b0),
         .irq_enable(irq_enable),
