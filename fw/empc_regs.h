@@ -39,6 +39,9 @@
 #define EMPC_UNLOCK_KEY         0xC0DEu      /* write to UNLOCK: the next write of that block may change FAULT_MASK / WDOG_TIMEOUT */
 #define EMPC_UNLOCK_ARM_PERIODS 2u           /* the unlock ends at this PWM period start after the key (or at the next write of the block) */
 #define EMPC_UDC_FRESH_PERIODS  200u         /* PWM periods a UDC value stays valid (rewrite it more often, else FAULT.dclink) */
+#define EMPC_ROUTE_AXES         4u           /* axes the routing registers can name */
+#define EMPC_ROUTE_PHASES       3u           /* OUT_SEL code of axis a, phase p: 1 + EMPC_ROUTE_PHASES * a + p (0 = output off) */
+#define EMPC_ROUTE_OUTPUTS      16u          /* half-bridge outputs (OUT_SEL0/1 fields) */
 #define EMPC_ACC_RO             0u           /* access: read-only */
 #define EMPC_ACC_RW             1u           /* access: read/write */
 #define EMPC_ACC_WO             2u           /* access: write pulses (reads 0) */
@@ -82,7 +85,7 @@
 #define EMPC_G_CAPS_ACCESS                EMPC_ACC_RO
 #define EMPC_G_CAPS_RESET                 0x00000000u
 #define EMPC_G_CAPS_RESET_MASK            0x00000000u
-#define EMPC_G_CAPS_BITS                  0x01FFFFFFu
+#define EMPC_G_CAPS_BITS                  0x03FFFFFFu
 #define EMPC_G_CAPS_SIGNED                0
 #define EMPC_G_CAPS_NAXES_SHIFT           0u
 #define EMPC_G_CAPS_NAXES_MASK            0x0000000Fu
@@ -99,6 +102,9 @@
 #define EMPC_G_CAPS_COMPLEMENTARY_SHIFT   24u
 #define EMPC_G_CAPS_COMPLEMENTARY_MASK    0x01000000u
 #define EMPC_G_CAPS_COMPLEMENTARY_WIDTH   1u
+#define EMPC_G_CAPS_ROUTE_SHIFT           25u
+#define EMPC_G_CAPS_ROUTE_MASK            0x02000000u
+#define EMPC_G_CAPS_ROUTE_WIDTH           1u
 /* PWM_HALF (RO): PWM half period in fabric clocks (centre-aligned: period = 2 x this). */
 #define EMPC_G_PWM_HALF            0x00Cu
 #define EMPC_G_PWM_HALF_ACCESS     EMPC_ACC_RO
@@ -166,11 +172,224 @@
 #define EMPC_G_WDOG_UNLOCK_RESET_MASK 0xFFFFFFFFu
 #define EMPC_G_WDOG_UNLOCK_BITS       0x0000FFFFu
 #define EMPC_G_WDOG_UNLOCK_SIGNED     0
+/* OUT_SEL0 (RW, refused while route_locked, write strobe, out0 legal 0..12, out1 legal 0..12, out2
+   legal 0..12, out3 legal 0..12, out4 legal 0..12, out5 legal 0..12, out6 legal 0..12, out7 legal
+   0..12): Output select of half-bridge outputs 0..7: 0 = off (PWM and enable held low), 1 + 3 a + p =
+   axis a, phase p (0..2 = A..C); an output has one source or none, a phase may drive several outputs;
+   13..15 are refused; a code naming an axis the build lacks is held off like 0 (CAPS.naxes). Written
+   only with every axis off (CTRL.enable clear, no output switching) in a build that routes
+   (CAPS.route); the pins follow one clock after pwm_center. */
+#define EMPC_G_OUT_SEL0                0x040u
+#define EMPC_G_OUT_SEL0_ACCESS         EMPC_ACC_RW
+#define EMPC_G_OUT_SEL0_RESET          0x87654321u
+#define EMPC_G_OUT_SEL0_RESET_MASK     0xFFFFFFFFu
+#define EMPC_G_OUT_SEL0_BITS           0xFFFFFFFFu
+#define EMPC_G_OUT_SEL0_SIGNED         0
+#define EMPC_G_OUT_SEL0_OUT0_SHIFT     0u
+#define EMPC_G_OUT_SEL0_OUT0_MASK      0x0000000Fu
+#define EMPC_G_OUT_SEL0_OUT0_WIDTH     4u
+#define EMPC_G_OUT_SEL0_OUT1_SHIFT     4u
+#define EMPC_G_OUT_SEL0_OUT1_MASK      0x000000F0u
+#define EMPC_G_OUT_SEL0_OUT1_WIDTH     4u
+#define EMPC_G_OUT_SEL0_OUT2_SHIFT     8u
+#define EMPC_G_OUT_SEL0_OUT2_MASK      0x00000F00u
+#define EMPC_G_OUT_SEL0_OUT2_WIDTH     4u
+#define EMPC_G_OUT_SEL0_OUT3_SHIFT     12u
+#define EMPC_G_OUT_SEL0_OUT3_MASK      0x0000F000u
+#define EMPC_G_OUT_SEL0_OUT3_WIDTH     4u
+#define EMPC_G_OUT_SEL0_OUT4_SHIFT     16u
+#define EMPC_G_OUT_SEL0_OUT4_MASK      0x000F0000u
+#define EMPC_G_OUT_SEL0_OUT4_WIDTH     4u
+#define EMPC_G_OUT_SEL0_OUT5_SHIFT     20u
+#define EMPC_G_OUT_SEL0_OUT5_MASK      0x00F00000u
+#define EMPC_G_OUT_SEL0_OUT5_WIDTH     4u
+#define EMPC_G_OUT_SEL0_OUT6_SHIFT     24u
+#define EMPC_G_OUT_SEL0_OUT6_MASK      0x0F000000u
+#define EMPC_G_OUT_SEL0_OUT6_WIDTH     4u
+#define EMPC_G_OUT_SEL0_OUT7_SHIFT     28u
+#define EMPC_G_OUT_SEL0_OUT7_MASK      0xF0000000u
+#define EMPC_G_OUT_SEL0_OUT7_WIDTH     4u
+#define EMPC_G_OUT_SEL0_OUT0_LEGAL_MIN 0u
+#define EMPC_G_OUT_SEL0_OUT0_LEGAL_MAX 12u
+#define EMPC_G_OUT_SEL0_OUT1_LEGAL_MIN 0u
+#define EMPC_G_OUT_SEL0_OUT1_LEGAL_MAX 12u
+#define EMPC_G_OUT_SEL0_OUT2_LEGAL_MIN 0u
+#define EMPC_G_OUT_SEL0_OUT2_LEGAL_MAX 12u
+#define EMPC_G_OUT_SEL0_OUT3_LEGAL_MIN 0u
+#define EMPC_G_OUT_SEL0_OUT3_LEGAL_MAX 12u
+#define EMPC_G_OUT_SEL0_OUT4_LEGAL_MIN 0u
+#define EMPC_G_OUT_SEL0_OUT4_LEGAL_MAX 12u
+#define EMPC_G_OUT_SEL0_OUT5_LEGAL_MIN 0u
+#define EMPC_G_OUT_SEL0_OUT5_LEGAL_MAX 12u
+#define EMPC_G_OUT_SEL0_OUT6_LEGAL_MIN 0u
+#define EMPC_G_OUT_SEL0_OUT6_LEGAL_MAX 12u
+#define EMPC_G_OUT_SEL0_OUT7_LEGAL_MIN 0u
+#define EMPC_G_OUT_SEL0_OUT7_LEGAL_MAX 12u
+/* OUT_SEL1 (RW, refused while route_locked, write strobe, out8 legal 0..12, out9 legal 0..12, out10
+   legal 0..12, out11 legal 0..12, out12 legal 0..12, out13 legal 0..12, out14 legal 0..12, out15 legal
+   0..12): Output select of half-bridge outputs 8..15: 0 = off (PWM and enable held low), 1 + 3 a + p =
+   axis a, phase p (0..2 = A..C); an output has one source or none, a phase may drive several outputs;
+   13..15 are refused; a code naming an axis the build lacks is held off like 0 (CAPS.naxes). Written
+   only with every axis off (CTRL.enable clear, no output switching) in a build that routes
+   (CAPS.route); the pins follow one clock after pwm_center. */
+#define EMPC_G_OUT_SEL1                 0x044u
+#define EMPC_G_OUT_SEL1_ACCESS          EMPC_ACC_RW
+#define EMPC_G_OUT_SEL1_RESET           0x0000CBA9u
+#define EMPC_G_OUT_SEL1_RESET_MASK      0xFFFFFFFFu
+#define EMPC_G_OUT_SEL1_BITS            0xFFFFFFFFu
+#define EMPC_G_OUT_SEL1_SIGNED          0
+#define EMPC_G_OUT_SEL1_OUT8_SHIFT      0u
+#define EMPC_G_OUT_SEL1_OUT8_MASK       0x0000000Fu
+#define EMPC_G_OUT_SEL1_OUT8_WIDTH      4u
+#define EMPC_G_OUT_SEL1_OUT9_SHIFT      4u
+#define EMPC_G_OUT_SEL1_OUT9_MASK       0x000000F0u
+#define EMPC_G_OUT_SEL1_OUT9_WIDTH      4u
+#define EMPC_G_OUT_SEL1_OUT10_SHIFT     8u
+#define EMPC_G_OUT_SEL1_OUT10_MASK      0x00000F00u
+#define EMPC_G_OUT_SEL1_OUT10_WIDTH     4u
+#define EMPC_G_OUT_SEL1_OUT11_SHIFT     12u
+#define EMPC_G_OUT_SEL1_OUT11_MASK      0x0000F000u
+#define EMPC_G_OUT_SEL1_OUT11_WIDTH     4u
+#define EMPC_G_OUT_SEL1_OUT12_SHIFT     16u
+#define EMPC_G_OUT_SEL1_OUT12_MASK      0x000F0000u
+#define EMPC_G_OUT_SEL1_OUT12_WIDTH     4u
+#define EMPC_G_OUT_SEL1_OUT13_SHIFT     20u
+#define EMPC_G_OUT_SEL1_OUT13_MASK      0x00F00000u
+#define EMPC_G_OUT_SEL1_OUT13_WIDTH     4u
+#define EMPC_G_OUT_SEL1_OUT14_SHIFT     24u
+#define EMPC_G_OUT_SEL1_OUT14_MASK      0x0F000000u
+#define EMPC_G_OUT_SEL1_OUT14_WIDTH     4u
+#define EMPC_G_OUT_SEL1_OUT15_SHIFT     28u
+#define EMPC_G_OUT_SEL1_OUT15_MASK      0xF0000000u
+#define EMPC_G_OUT_SEL1_OUT15_WIDTH     4u
+#define EMPC_G_OUT_SEL1_OUT8_LEGAL_MIN  0u
+#define EMPC_G_OUT_SEL1_OUT8_LEGAL_MAX  12u
+#define EMPC_G_OUT_SEL1_OUT9_LEGAL_MIN  0u
+#define EMPC_G_OUT_SEL1_OUT9_LEGAL_MAX  12u
+#define EMPC_G_OUT_SEL1_OUT10_LEGAL_MIN 0u
+#define EMPC_G_OUT_SEL1_OUT10_LEGAL_MAX 12u
+#define EMPC_G_OUT_SEL1_OUT11_LEGAL_MIN 0u
+#define EMPC_G_OUT_SEL1_OUT11_LEGAL_MAX 12u
+#define EMPC_G_OUT_SEL1_OUT12_LEGAL_MIN 0u
+#define EMPC_G_OUT_SEL1_OUT12_LEGAL_MAX 12u
+#define EMPC_G_OUT_SEL1_OUT13_LEGAL_MIN 0u
+#define EMPC_G_OUT_SEL1_OUT13_LEGAL_MAX 12u
+#define EMPC_G_OUT_SEL1_OUT14_LEGAL_MIN 0u
+#define EMPC_G_OUT_SEL1_OUT14_LEGAL_MAX 12u
+#define EMPC_G_OUT_SEL1_OUT15_LEGAL_MIN 0u
+#define EMPC_G_OUT_SEL1_OUT15_LEGAL_MAX 12u
+/* ADC_SEL0 (RW, refused while route_locked): Current ADC channel (MISO input 0..15) that measures each
+   phase; written only with every axis off. */
+#define EMPC_G_ADC_SEL0             0x048u
+#define EMPC_G_ADC_SEL0_ACCESS      EMPC_ACC_RW
+#define EMPC_G_ADC_SEL0_RESET       0x00543210u
+#define EMPC_G_ADC_SEL0_RESET_MASK  0xFFFFFFFFu
+#define EMPC_G_ADC_SEL0_BITS        0x00FFFFFFu
+#define EMPC_G_ADC_SEL0_SIGNED      0
+#define EMPC_G_ADC_SEL0_AX0_A_SHIFT 0u
+#define EMPC_G_ADC_SEL0_AX0_A_MASK  0x0000000Fu
+#define EMPC_G_ADC_SEL0_AX0_A_WIDTH 4u
+#define EMPC_G_ADC_SEL0_AX0_B_SHIFT 4u
+#define EMPC_G_ADC_SEL0_AX0_B_MASK  0x000000F0u
+#define EMPC_G_ADC_SEL0_AX0_B_WIDTH 4u
+#define EMPC_G_ADC_SEL0_AX0_C_SHIFT 8u
+#define EMPC_G_ADC_SEL0_AX0_C_MASK  0x00000F00u
+#define EMPC_G_ADC_SEL0_AX0_C_WIDTH 4u
+#define EMPC_G_ADC_SEL0_AX1_A_SHIFT 12u
+#define EMPC_G_ADC_SEL0_AX1_A_MASK  0x0000F000u
+#define EMPC_G_ADC_SEL0_AX1_A_WIDTH 4u
+#define EMPC_G_ADC_SEL0_AX1_B_SHIFT 16u
+#define EMPC_G_ADC_SEL0_AX1_B_MASK  0x000F0000u
+#define EMPC_G_ADC_SEL0_AX1_B_WIDTH 4u
+#define EMPC_G_ADC_SEL0_AX1_C_SHIFT 20u
+#define EMPC_G_ADC_SEL0_AX1_C_MASK  0x00F00000u
+#define EMPC_G_ADC_SEL0_AX1_C_WIDTH 4u
+/* ADC_SEL1 (RW, refused while route_locked): Current ADC channel (MISO input 0..15) that measures each
+   phase; written only with every axis off. */
+#define EMPC_G_ADC_SEL1             0x04Cu
+#define EMPC_G_ADC_SEL1_ACCESS      EMPC_ACC_RW
+#define EMPC_G_ADC_SEL1_RESET       0x00BA9876u
+#define EMPC_G_ADC_SEL1_RESET_MASK  0xFFFFFFFFu
+#define EMPC_G_ADC_SEL1_BITS        0x00FFFFFFu
+#define EMPC_G_ADC_SEL1_SIGNED      0
+#define EMPC_G_ADC_SEL1_AX2_A_SHIFT 0u
+#define EMPC_G_ADC_SEL1_AX2_A_MASK  0x0000000Fu
+#define EMPC_G_ADC_SEL1_AX2_A_WIDTH 4u
+#define EMPC_G_ADC_SEL1_AX2_B_SHIFT 4u
+#define EMPC_G_ADC_SEL1_AX2_B_MASK  0x000000F0u
+#define EMPC_G_ADC_SEL1_AX2_B_WIDTH 4u
+#define EMPC_G_ADC_SEL1_AX2_C_SHIFT 8u
+#define EMPC_G_ADC_SEL1_AX2_C_MASK  0x00000F00u
+#define EMPC_G_ADC_SEL1_AX2_C_WIDTH 4u
+#define EMPC_G_ADC_SEL1_AX3_A_SHIFT 12u
+#define EMPC_G_ADC_SEL1_AX3_A_MASK  0x0000F000u
+#define EMPC_G_ADC_SEL1_AX3_A_WIDTH 4u
+#define EMPC_G_ADC_SEL1_AX3_B_SHIFT 16u
+#define EMPC_G_ADC_SEL1_AX3_B_MASK  0x000F0000u
+#define EMPC_G_ADC_SEL1_AX3_B_WIDTH 4u
+#define EMPC_G_ADC_SEL1_AX3_C_SHIFT 20u
+#define EMPC_G_ADC_SEL1_AX3_C_MASK  0x00F00000u
+#define EMPC_G_ADC_SEL1_AX3_C_WIDTH 4u
+/* IN_SEL (RW, refused while route_locked): Position inputs of each axis; written only with every axis
+   off. */
+#define EMPC_G_IN_SEL             0x050u
+#define EMPC_G_IN_SEL_ACCESS      EMPC_ACC_RW
+#define EMPC_G_IN_SEL_RESET       0x32103210u
+#define EMPC_G_IN_SEL_RESET_MASK  0xFFFFFFFFu
+#define EMPC_G_IN_SEL_BITS        0x33337777u
+#define EMPC_G_IN_SEL_SIGNED      0
+#define EMPC_G_IN_SEL_ENC0_SHIFT  0u
+#define EMPC_G_IN_SEL_ENC0_MASK   0x00000007u
+#define EMPC_G_IN_SEL_ENC0_WIDTH  3u
+#define EMPC_G_IN_SEL_ENC1_SHIFT  4u
+#define EMPC_G_IN_SEL_ENC1_MASK   0x00000070u
+#define EMPC_G_IN_SEL_ENC1_WIDTH  3u
+#define EMPC_G_IN_SEL_ENC2_SHIFT  8u
+#define EMPC_G_IN_SEL_ENC2_MASK   0x00000700u
+#define EMPC_G_IN_SEL_ENC2_WIDTH  3u
+#define EMPC_G_IN_SEL_ENC3_SHIFT  12u
+#define EMPC_G_IN_SEL_ENC3_MASK   0x00007000u
+#define EMPC_G_IN_SEL_ENC3_WIDTH  3u
+#define EMPC_G_IN_SEL_HALL0_SHIFT 16u
+#define EMPC_G_IN_SEL_HALL0_MASK  0x00030000u
+#define EMPC_G_IN_SEL_HALL0_WIDTH 2u
+#define EMPC_G_IN_SEL_HALL1_SHIFT 20u
+#define EMPC_G_IN_SEL_HALL1_MASK  0x00300000u
+#define EMPC_G_IN_SEL_HALL1_WIDTH 2u
+#define EMPC_G_IN_SEL_HALL2_SHIFT 24u
+#define EMPC_G_IN_SEL_HALL2_MASK  0x03000000u
+#define EMPC_G_IN_SEL_HALL2_WIDTH 2u
+#define EMPC_G_IN_SEL_HALL3_SHIFT 28u
+#define EMPC_G_IN_SEL_HALL3_MASK  0x30000000u
+#define EMPC_G_IN_SEL_HALL3_WIDTH 2u
+/* ROUTE_STATUS (RO): Routing state (rtl/out_route.v). */
+#define EMPC_G_ROUTE_STATUS               0x054u
+#define EMPC_G_ROUTE_STATUS_ACCESS        EMPC_ACC_RO
+#define EMPC_G_ROUTE_STATUS_RESET         0x00000000u
+#define EMPC_G_ROUTE_STATUS_RESET_MASK    0x00000000u
+#define EMPC_G_ROUTE_STATUS_BITS          0x00017777u
+#define EMPC_G_ROUTE_STATUS_SIGNED        0
+#define EMPC_G_ROUTE_STATUS_MAPPED0_SHIFT 0u
+#define EMPC_G_ROUTE_STATUS_MAPPED0_MASK  0x00000007u
+#define EMPC_G_ROUTE_STATUS_MAPPED0_WIDTH 3u
+#define EMPC_G_ROUTE_STATUS_MAPPED1_SHIFT 4u
+#define EMPC_G_ROUTE_STATUS_MAPPED1_MASK  0x00000070u
+#define EMPC_G_ROUTE_STATUS_MAPPED1_WIDTH 3u
+#define EMPC_G_ROUTE_STATUS_MAPPED2_SHIFT 8u
+#define EMPC_G_ROUTE_STATUS_MAPPED2_MASK  0x00000700u
+#define EMPC_G_ROUTE_STATUS_MAPPED2_WIDTH 3u
+#define EMPC_G_ROUTE_STATUS_MAPPED3_SHIFT 12u
+#define EMPC_G_ROUTE_STATUS_MAPPED3_MASK  0x00007000u
+#define EMPC_G_ROUTE_STATUS_MAPPED3_WIDTH 3u
+#define EMPC_G_ROUTE_STATUS_BAD_SEL_SHIFT 16u
+#define EMPC_G_ROUTE_STATUS_BAD_SEL_MASK  0x00010000u
+#define EMPC_G_ROUTE_STATUS_BAD_SEL_WIDTH 1u
 
 /* X(NAME) for every global register: EMPC_G_##NAME, EMPC_G_##NAME##_ACCESS, ... */
 #define EMPC_GLOBAL_REGS(X) \
     X(ID) X(VERSION) X(CAPS) X(PWM_HALF) X(SCRATCH) X(WDOG_TIMEOUT) X(WDOG_KICK) X(TIME) \
-    X(IRQ_STATUS) X(IRQ_ENABLE) X(WDOG_UNLOCK)
+    X(IRQ_STATUS) X(IRQ_ENABLE) X(WDOG_UNLOCK) X(OUT_SEL0) X(OUT_SEL1) X(ADC_SEL0) X(ADC_SEL1) \
+    X(IN_SEL) X(ROUTE_STATUS)
 
 /* ---------------- axis registers: byte offsets from the axis base (EMPC_AXIS_ADDR) ---------------- */
 /* CTRL (RW, enable 0 always accepted, run 0 always accepted, pwm_per_control legal 1..255,

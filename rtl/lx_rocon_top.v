@@ -119,6 +119,14 @@ module lx_rocon_top #(
     wire [`EMPC_G_IRQ_ENABLE_W-1:0] irq_enable;
     wire [NAXES-1:0] period_tick, control_done, fault_any, live;
     wire        g_wr_refused;                               // counted by every axis (CNT_WR_REFUSED)
+    // routing registers (issue 16 item 4, rtl/out_route.v): this top has the fixed pinout (no out_route yet,
+    // CAPS.route = 0), so they are locked for good: they read today's pinout, refuse every write (counted
+    // like any refused write) and synthesise to constants; ROUTE_STATUS reads 0
+    wire [`EMPC_ROUTE_OUTPUTS*`EMPC_ROUTE_OUT_W-1:0] r_osel;
+    wire [`EMPC_ROUTE_AXES*`EMPC_ROUTE_PHASES*`EMPC_ROUTE_ADC_W-1:0] r_asel;
+    wire [`EMPC_ROUTE_AXES*`EMPC_ROUTE_ENC_W-1:0] r_esel;
+    wire [`EMPC_ROUTE_AXES*`EMPC_ROUTE_HALL_W-1:0] r_hsel;
+    wire [1:0]  r_osel_wr;
     wire [`EMPC_UNLOCK_ARM_W-1:0] wdog_armed;                              // WDOG_UNLOCK: ticks left (unused)
     reg  [`EMPC_G_TIME_W-1:0] time_cnt;                    // TIME: PWM periods of axis 0
     reg         fault_any_d;
@@ -149,16 +157,58 @@ module lx_rocon_top #(
     localparam [31:0] CAP_LAYOUT_W = `EMPC_IMG_LAYOUT;
     localparam [31:0] CAP_PPC_W = `EMPC_PWM_PER_CONTROL;
     localparam [0:0]  CAP_COMPL = (COMPLEMENTARY != 0);
+    localparam [0:0]  CAP_ROUTE = 1'b0;                    // out_route not instantiated (fixed pinout)
     global_regs u_gregs (
         .clk(clk), .rst(rst), .reg_wr(reg_wr && in_global), .reg_rd(reg_rd && in_global),
         .reg_addr(reg_addr[7:0]), .reg_wdata(reg_wdata), .reg_rdata(g_rdata),
         .caps_naxes(NAXES_W[`EMPC_G_CAPS_NAXES_W-1:0]), .caps_horizon(CAP_N_W[`EMPC_G_CAPS_HORIZON_W-1:0]),
         .caps_img_layout(CAP_LAYOUT_W[`EMPC_G_CAPS_IMG_LAYOUT_W-1:0]),
         .caps_pwm_per_control(CAP_PPC_W[`EMPC_G_CAPS_PWM_PER_CONTROL_W-1:0]), .caps_complementary(CAP_COMPL),
+        .caps_route(CAP_ROUTE), .route_locked((|live) || !CAP_ROUTE),
         .pwm_half(PWM_HALF_W), .scratch(scratch), .wdog_timeout(wdog_timeout), .wdog_kick(wdog_kick),
         .time_cnt(time_cnt), .irq_status_period(irq_period), .irq_status_period_set(control_done[0]),
         .irq_status_fault(irq_fault), .irq_status_fault_set((|fault_any) && !fault_any_d),
-        .irq_enable(irq_enable), .bridges_live(|live), .wdog_unlock_tick(period_tick[0]), .wdog_unlock_armed(wdog_armed),
+        .irq_enable(irq_enable),
+        .out_sel0_out0(r_osel[0*`EMPC_ROUTE_OUT_W +: `EMPC_ROUTE_OUT_W]),
+        .out_sel0_out1(r_osel[1*`EMPC_ROUTE_OUT_W +: `EMPC_ROUTE_OUT_W]),
+        .out_sel0_out2(r_osel[2*`EMPC_ROUTE_OUT_W +: `EMPC_ROUTE_OUT_W]),
+        .out_sel0_out3(r_osel[3*`EMPC_ROUTE_OUT_W +: `EMPC_ROUTE_OUT_W]),
+        .out_sel0_out4(r_osel[4*`EMPC_ROUTE_OUT_W +: `EMPC_ROUTE_OUT_W]),
+        .out_sel0_out5(r_osel[5*`EMPC_ROUTE_OUT_W +: `EMPC_ROUTE_OUT_W]),
+        .out_sel0_out6(r_osel[6*`EMPC_ROUTE_OUT_W +: `EMPC_ROUTE_OUT_W]),
+        .out_sel0_out7(r_osel[7*`EMPC_ROUTE_OUT_W +: `EMPC_ROUTE_OUT_W]),
+        .out_sel1_out8(r_osel[8*`EMPC_ROUTE_OUT_W +: `EMPC_ROUTE_OUT_W]),
+        .out_sel1_out9(r_osel[9*`EMPC_ROUTE_OUT_W +: `EMPC_ROUTE_OUT_W]),
+        .out_sel1_out10(r_osel[10*`EMPC_ROUTE_OUT_W +: `EMPC_ROUTE_OUT_W]),
+        .out_sel1_out11(r_osel[11*`EMPC_ROUTE_OUT_W +: `EMPC_ROUTE_OUT_W]),
+        .out_sel1_out12(r_osel[12*`EMPC_ROUTE_OUT_W +: `EMPC_ROUTE_OUT_W]),
+        .out_sel1_out13(r_osel[13*`EMPC_ROUTE_OUT_W +: `EMPC_ROUTE_OUT_W]),
+        .out_sel1_out14(r_osel[14*`EMPC_ROUTE_OUT_W +: `EMPC_ROUTE_OUT_W]),
+        .out_sel1_out15(r_osel[15*`EMPC_ROUTE_OUT_W +: `EMPC_ROUTE_OUT_W]), .out_sel0_wr(r_osel_wr[0]),
+        .out_sel1_wr(r_osel_wr[1]), .adc_sel0_ax0_a(r_asel[0*`EMPC_ROUTE_ADC_W +: `EMPC_ROUTE_ADC_W]),
+        .adc_sel0_ax0_b(r_asel[1*`EMPC_ROUTE_ADC_W +: `EMPC_ROUTE_ADC_W]),
+        .adc_sel0_ax0_c(r_asel[2*`EMPC_ROUTE_ADC_W +: `EMPC_ROUTE_ADC_W]),
+        .adc_sel0_ax1_a(r_asel[3*`EMPC_ROUTE_ADC_W +: `EMPC_ROUTE_ADC_W]),
+        .adc_sel0_ax1_b(r_asel[4*`EMPC_ROUTE_ADC_W +: `EMPC_ROUTE_ADC_W]),
+        .adc_sel0_ax1_c(r_asel[5*`EMPC_ROUTE_ADC_W +: `EMPC_ROUTE_ADC_W]),
+        .adc_sel1_ax2_a(r_asel[6*`EMPC_ROUTE_ADC_W +: `EMPC_ROUTE_ADC_W]),
+        .adc_sel1_ax2_b(r_asel[7*`EMPC_ROUTE_ADC_W +: `EMPC_ROUTE_ADC_W]),
+        .adc_sel1_ax2_c(r_asel[8*`EMPC_ROUTE_ADC_W +: `EMPC_ROUTE_ADC_W]),
+        .adc_sel1_ax3_a(r_asel[9*`EMPC_ROUTE_ADC_W +: `EMPC_ROUTE_ADC_W]),
+        .adc_sel1_ax3_b(r_asel[10*`EMPC_ROUTE_ADC_W +: `EMPC_ROUTE_ADC_W]),
+        .adc_sel1_ax3_c(r_asel[11*`EMPC_ROUTE_ADC_W +: `EMPC_ROUTE_ADC_W]),
+        .in_sel_enc0(r_esel[0*`EMPC_ROUTE_ENC_W +: `EMPC_ROUTE_ENC_W]),
+        .in_sel_enc1(r_esel[1*`EMPC_ROUTE_ENC_W +: `EMPC_ROUTE_ENC_W]),
+        .in_sel_enc2(r_esel[2*`EMPC_ROUTE_ENC_W +: `EMPC_ROUTE_ENC_W]),
+        .in_sel_enc3(r_esel[3*`EMPC_ROUTE_ENC_W +: `EMPC_ROUTE_ENC_W]),
+        .in_sel_hall0(r_hsel[0*`EMPC_ROUTE_HALL_W +: `EMPC_ROUTE_HALL_W]),
+        .in_sel_hall1(r_hsel[1*`EMPC_ROUTE_HALL_W +: `EMPC_ROUTE_HALL_W]),
+        .in_sel_hall2(r_hsel[2*`EMPC_ROUTE_HALL_W +: `EMPC_ROUTE_HALL_W]),
+        .in_sel_hall3(r_hsel[3*`EMPC_ROUTE_HALL_W +: `EMPC_ROUTE_HALL_W]),
+        .route_status_mapped0({`EMPC_ROUTE_PHASES{1'b0}}), .route_status_mapped1({`EMPC_ROUTE_PHASES{1'b0}}),
+        .route_status_mapped2({`EMPC_ROUTE_PHASES{1'b0}}), .route_status_mapped3({`EMPC_ROUTE_PHASES{1'b0}}),
+        .route_status_bad_sel(1'b0),
+        .bridges_live(|live), .wdog_unlock_tick(period_tick[0]), .wdog_unlock_armed(wdog_armed),
         .wr_refused(g_wr_refused));
 
     // ---------------- axes ----------------
@@ -199,6 +249,7 @@ module lx_rocon_top #(
     // clock after reg_rd as emc_bus expects (RD_LAT = 1)
     always @(*) reg_rdata = g_rdata | a_or;
 
-    wire unused = &{1'b0, err_wr_short, err_rd_short, sclk_ax, cs_ax, sync_out, scratch, wdog_armed};
+    wire unused = &{1'b0, err_wr_short, err_rd_short, sclk_ax, cs_ax, sync_out, scratch, wdog_armed,
+                         r_osel, r_asel, r_esel, r_hsel, r_osel_wr};
 endmodule
 `default_nettype wire

@@ -21,6 +21,7 @@ rtl/clk_gen.v
 rtl/axis_regs.v
 rtl/clk_mon.v
 rtl/out_kill.v
+rtl/out_route.v
 rtl/mpc_axis.v
 rtl/fault_ctrl.v
 rtl/watchdog.v

@@ -12,7 +12,8 @@ from __future__ import annotations
 
 from . import image
 from .regmap import (AXIS_BASE, AXIS_STRIDE, BLOCKS, COEF_BASE, COEF_STRIDE, EMC_CS0_BASE, ID_MAGIC, VERSION,
-                     MapError, UDC_FRESH_PERIODS, UNLOCK_ARM, UNLOCK_KEY, WDOG_KEY, WORD_BYTES, Reg)
+                     ROUTE_AXES, ROUTE_OUTPUTS, ROUTE_PHASES, MapError, UDC_FRESH_PERIODS, UNLOCK_ARM, UNLOCK_KEY,
+                     WDOG_KEY, WORD_BYTES, Reg)
 
 ACC_CODE = {"RO": 0, "RW": 1, "WO": 2, "W1C": 3}
 _HDR = "/* Generated from gen/empc/regmap.py by gen/empc/fwheader.py (python -m empc.regmap --all). Do not edit. */"
@@ -75,6 +76,10 @@ def constants() -> list[tuple[str, str, int, str]]:
          "the unlock ends at this PWM period start after the key (or at the next write of the block)"),
         ("EMPC_UDC_FRESH_PERIODS", f"{UDC_FRESH_PERIODS}u", UDC_FRESH_PERIODS,
          "PWM periods a UDC value stays valid (rewrite it more often, else FAULT.dclink)"),
+        ("EMPC_ROUTE_AXES", f"{ROUTE_AXES}u", ROUTE_AXES, "axes the routing registers can name"),
+        ("EMPC_ROUTE_PHASES", f"{ROUTE_PHASES}u", ROUTE_PHASES,
+         "OUT_SEL code of axis a, phase p: 1 + EMPC_ROUTE_PHASES * a + p (0 = output off)"),
+        ("EMPC_ROUTE_OUTPUTS", f"{ROUTE_OUTPUTS}u", ROUTE_OUTPUTS, "half-bridge outputs (OUT_SEL0/1 fields)"),
         ("EMPC_ACC_RO", "0u", 0, "access: read-only"),
         ("EMPC_ACC_RW", "1u", 1, "access: read/write"),
         ("EMPC_ACC_WO", "2u", 2, "access: write pulses (reads 0)"),

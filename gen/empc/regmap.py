@@ -65,7 +65,9 @@ ADC_SUM_FRAMES = 4        # consecutive frames with |sum of the phase currents| 
 ADC_FROZEN_PERIODS = 4    # consecutive PWM periods (bridges on) with a channel bit-identical -> FAULT.adc_frozen
 # Build-time hard limits of the board (issue 14): the register blocks refuse (``legal``) every write
 # outside them, whatever the CPU does; the safety settings change only with the bridges off
-# (``guard="bridges_live"``: CTRL.enable set or the outputs switching; globally: on any axis).
+# (``guard="bridges_live"``: CTRL.enable set or the outputs switching; globally: on any axis).  The
+# routing registers' guard ``route_locked`` is bridges_live, or high for good in a build without
+# out_route (CAPS.route = 0: they keep today's pinout, refuse every write and cost no flip-flops).
 ADC_CODE_BITS = 12        # current ADC code width (ADC_OFFx, OC_THRESH)
 DEAD_TIME_MIN = 20        # complementary-mode dead time floor, fabric clocks (200 ns at 100 MHz)
 OC_THRESH_MAX = 1900      # ADC LSB (19 A at 10 mA/LSB): below the ADC rails for every legal offset, so that
@@ -80,6 +82,20 @@ SEQ_STALL_PERIODS = 2     # PWM periods without new compare values -> FAULT.over
 UNLOCK_KEY = 0xC0DE       # UNLOCK: arms one write of FAULT_MASK (axis) / WDOG_TIMEOUT (global)
 UNLOCK_ARM = 2            # the unlock ends at the 2nd PWM period start after the key (50..100 us) or at the
                           # next write of the block, whichever is first
+# Output and input routing (issue 16 item 4, docs/four_axes.md section 5; rtl/out_route.v): the
+# board's resources that the global routing registers assign to axes.  Field widths follow from them.
+ROUTE_AXES = 4            # axes the routing table can name (LX_RoCoN: up to four PMSMs)
+ROUTE_PHASES = 3          # half-bridges per axis (phases A, B, C = 0, 1, 2)
+ROUTE_OUTPUTS = 16        # LX_PWR half-bridge outputs (PWM + enable each)
+ROUTE_ENC = 8             # IRC inputs (A, B, index, mark each)
+ROUTE_HALL = 4            # HALL sensor sets (3 lines each)
+ROUTE_ADC = 16            # current ADC channels (one per half-bridge output)
+ROUTE_OUT_W = (ROUTE_AXES * ROUTE_PHASES).bit_length()   # OUT_SEL code: 0 = off, 1 + 3 a + p = axis a, phase p
+ROUTE_ENC_W = (ROUTE_ENC - 1).bit_length()
+ROUTE_HALL_W = (ROUTE_HALL - 1).bit_length()
+ROUTE_ADC_W = (ROUTE_ADC - 1).bit_length()
+ROUTE_NIB = 4             # every select field starts at a multiple of 4 bits (readable in hex)
+ROUTE_PER_WORD = 32 // ROUTE_NIB                          # OUT_SEL fields per register
 
 
 @dataclass(frozen=True)
@@ -257,6 +273,57 @@ def _legal_text(legal) -> str:
     return "{" + ", ".join(str(v) for v in legal) + "}"
 
 
+
+def route_out_code(axis: int, phase: int) -> int:
+    """OUT_SEL code of (axis, phase): 0 is off."""
+    return 1 + ROUTE_PHASES * axis + phase
+
+
+def _out_sel(word: int) -> Reg:
+    """OUT_SEL<word>: outputs 8 word .. 8 word + 7; reset: today's single-axis pinout (output
+    3 a + p = axis a, phase p, the outputs beyond the routable pairs off)."""
+    first = word * ROUTE_PER_WORD
+    n = ROUTE_AXES * ROUTE_PHASES
+    return Reg(f"OUT_SEL{word}", 0x010 + word, "RW", 0,
+               f"Output select of half-bridge outputs {first}..{first + ROUTE_PER_WORD - 1}: 0 = off (PWM and "
+               f"enable held low), 1 + 3 a + p = axis a, phase p (0..2 = A..C); an output has one source or none, "
+               f"a phase may drive several outputs; {n + 1}..15 are refused; a code naming an axis the build lacks "
+               "is held off like 0 (CAPS.naxes). Written only with every axis off (CTRL.enable clear, "
+               "no output switching) in a build that routes (CAPS.route); the pins follow one clock after "
+               "pwm_center.", tuple(
+                   Field(f"out{k}", ROUTE_NIB * (k - first), ROUTE_OUT_W, f"output {k}",
+                         reset=k + 1 if k < n else 0, legal=range(0, n + 1))
+                   for k in range(first, first + ROUTE_PER_WORD)),
+               guard="route_locked", wstrobe=True)
+
+
+def _adc_sel(word: int) -> Reg:
+    """ADC_SEL<word>: the ADC channel of (axis, phase) for two axes; reset: channel 3 a + p."""
+    per = 32 // (ROUTE_NIB * ROUTE_PHASES)        # axes per word
+    fields = tuple(Field(f"ax{a}_{'abc'[p]}", ROUTE_NIB * (ROUTE_PHASES * (a - word * per) + p), ROUTE_ADC_W,
+                         f"ADC channel of axis {a}, phase {'ABC'[p]}", reset=ROUTE_PHASES * a + p)
+                   for a in range(word * per, min(ROUTE_AXES, (word + 1) * per)) for p in range(ROUTE_PHASES))
+    return Reg(f"ADC_SEL{word}", 0x012 + word, "RW", 0,
+               f"Current ADC channel (MISO input 0..{ROUTE_ADC - 1}) that measures each phase; written only with "
+               "every axis off.", fields, guard="route_locked")
+
+
+ROUTE_REGS = (
+    _out_sel(0), _out_sel(1), _adc_sel(0), _adc_sel(1),
+    Reg("IN_SEL", 0x014, "RW", 0, "Position inputs of each axis; written only with every axis off.",
+        tuple(Field(f"enc{a}", ROUTE_NIB * a, ROUTE_ENC_W, f"IRC input (0..{ROUTE_ENC - 1}) of axis {a}", reset=a)
+              for a in range(ROUTE_AXES)) +
+        tuple(Field(f"hall{a}", 16 + ROUTE_NIB * a, ROUTE_HALL_W, f"HALL set (0..{ROUTE_HALL - 1}) of axis {a}",
+                    reset=a) for a in range(ROUTE_AXES)), guard="route_locked"),
+    Reg("ROUTE_STATUS", 0x015, "RO", 0, "Routing state (rtl/out_route.v).",
+        tuple(Field(f"mapped{a}", ROUTE_NIB * a, ROUTE_PHASES, f"axis {a}: bit p = phase p drives at least one "
+                    "output (a 16-clock scan of OUT_SEL; 0 from an OUT_SEL write until the next complete scan)")
+              for a in range(ROUTE_AXES)) +
+        (Field("bad_sel", 16, 1, "an ADC_SEL / IN_SEL select of an axis of this build names an ADC channel, "
+               "IRC input or HALL set the build does not have (read as MISO 1, IRC 0, HALL 000: a fault)"),)),
+)
+
+
 GLOBAL = (
     Reg("ID", 0x000, "RO", ID_MAGIC, "Magic 'EMPC' (0x454D5043): the bus works and the FPGA is configured.",
         const=True),
@@ -269,7 +336,9 @@ GLOBAL = (
         Field("img_layout", 8, 8, "coefficient image layout version"),
         Field("pwm_per_control", 16, 8, "PWM periods per control period Ts (reset value)"),
         Field("complementary", 24, 1, "bridge mode of the build (board): 0 = PWM + enable (LX_PWR), "
-              "1 = complementary high/low with dead time"))),
+              "1 = complementary high/low with dead time"),
+        Field("route", 25, 1, "1 = outputs and inputs routed by OUT_SEL / ADC_SEL / IN_SEL (rtl/out_route.v); "
+              "0 = fixed pinout: those registers read today's pinout and refuse every write"))),
     Reg("PWM_HALF", 0x003, "RO", 0, "PWM half period in fabric clocks (centre-aligned: period = 2 x this)."),
     Reg("SCRATCH", 0x004, "RW", 0, "Free for bus tests.", read="copy"),
     Reg("WDOG_TIMEOUT", 0x008, "RW", 400, "Watchdog timeout in PWM periods. Expiry latches the watchdog fault "
@@ -287,8 +356,7 @@ GLOBAL = (
     Reg("WDOG_UNLOCK", 0x00d, "WO", 0, f"Write {UNLOCK_KEY:#06x} to let the next write of a global register change "
         "WDOG_TIMEOUT (within the arm time; any other value is refused).", width=16, key=UNLOCK_KEY,
         arm=UNLOCK_ARM),
-
-)
+) + ROUTE_REGS
 
 # FAULT: one bit per cause, contiguous from bit 0 (FAULT_MASK has the same bits; mpc_axis: NCAUSE =
 # EMPC_A_FAULT_W).  Adding a cause = one line here plus its signal in mpc_axis.v.
@@ -688,7 +756,13 @@ def render_vh() -> str:
              f"`define EMPC_SEQ_STALL_PERIODS {SEQ_STALL_PERIODS}",
              f"`define EMPC_UNLOCK_KEY {UNLOCK_KEY}", f"`define EMPC_UNLOCK_ARM {UNLOCK_ARM}",
              f"`define EMPC_UNLOCK_ARM_W {UNLOCK_ARM.bit_length()}",
-             f"`define EMPC_DEAD_TIME_MIN {DEAD_TIME_MIN}", f"`define EMPC_OC_THRESH_MAX {OC_THRESH_MAX}"]
+             f"`define EMPC_DEAD_TIME_MIN {DEAD_TIME_MIN}", f"`define EMPC_OC_THRESH_MAX {OC_THRESH_MAX}",
+             f"`define EMPC_ROUTE_AXES {ROUTE_AXES}", f"`define EMPC_ROUTE_PHASES {ROUTE_PHASES}",
+             f"`define EMPC_ROUTE_OUTPUTS {ROUTE_OUTPUTS}", f"`define EMPC_ROUTE_ENC {ROUTE_ENC}",
+             f"`define EMPC_ROUTE_HALL {ROUTE_HALL}", f"`define EMPC_ROUTE_ADC {ROUTE_ADC}",
+             f"`define EMPC_ROUTE_OUT_W {ROUTE_OUT_W}", f"`define EMPC_ROUTE_ENC_W {ROUTE_ENC_W}",
+             f"`define EMPC_ROUTE_HALL_W {ROUTE_HALL_W}", f"`define EMPC_ROUTE_ADC_W {ROUTE_ADC_W}",
+             f"`define EMPC_ROUTE_NIB {ROUTE_NIB}"]
     names = set()
     for b in BLOCKS:
         for name, v in _macros(b.scope, b.regs, b.ext):

@@ -177,3 +177,36 @@ def test_bad_field_safety_attributes():
         regmap.check((R("A", 0, "RW", 0, "a", (F("x", 0, 1, "x", safe=2),)),), 256, ())
     with pytest.raises(regmap.MapError, match="field guard of x"):
         regmap.check((R("A", 0, "RO", 0, "a", (F("x", 0, 1, "x", guard="g"),)),), 256, ())
+
+
+def test_routing_registers():
+    """Issue 16 item 4: the routing registers are guarded (route_locked: an axis live, or no out_route in the
+    build, CAPS.route), OUT_SEL refuses codes
+    beyond the routable pairs, the reset map is today's pinout, the fields hold the board's resources."""
+    g = {r.name: r for r in regmap.GLOBAL}
+    route = ("OUT_SEL0", "OUT_SEL1", "ADC_SEL0", "ADC_SEL1", "IN_SEL")
+    for n in route:
+        assert g[n].guard == "route_locked" and g[n].access == "RW", n
+        assert all(f.lsb % regmap.ROUTE_NIB == 0 for f in g[n].fields), n
+    npair = regmap.ROUTE_AXES * regmap.ROUTE_PHASES
+    outs = [f for n in ("OUT_SEL0", "OUT_SEL1") for f in g[n].fields]
+    assert [f.name for f in outs] == [f"out{k}" for k in range(regmap.ROUTE_OUTPUTS)]
+    assert all(f.legal == range(0, npair + 1) and (1 << f.width) > npair for f in outs)
+    assert g["OUT_SEL0"].wstrobe and g["OUT_SEL1"].wstrobe          # restart out_route's mapped scan
+    reset = [f.reset for f in outs]
+    assert reset == [k + 1 if k < npair else 0 for k in range(regmap.ROUTE_OUTPUTS)]   # output 3a+p = (a, p)
+    for a in range(regmap.ROUTE_AXES):
+        assert regmap.route_out_code(a, 0) == 1 + regmap.ROUTE_PHASES * a
+    adc = [f for n in ("ADC_SEL0", "ADC_SEL1") for f in g[n].fields]
+    assert [f.reset for f in adc] == list(range(npair)) and all((1 << f.width) >= regmap.ROUTE_ADC for f in adc)
+    ins = {f.name: f for f in g["IN_SEL"].fields}
+    for a in range(regmap.ROUTE_AXES):
+        assert ins[f"enc{a}"].reset == a and (1 << ins[f"enc{a}"].width) >= regmap.ROUTE_ENC
+        assert ins[f"hall{a}"].reset == a and (1 << ins[f"hall{a}"].width) >= regmap.ROUTE_HALL
+    st = g["ROUTE_STATUS"]
+    assert st.access == "RO" and [f.name for f in st.fields][:regmap.ROUTE_AXES] == [
+        f"mapped{a}" for a in range(regmap.ROUTE_AXES)]
+    # a write naming a code beyond the pairs, or while live, is refused as a whole
+    w = sum(1 << (regmap.ROUTE_NIB * k) for k in range(regmap.ROUTE_PER_WORD))
+    assert g["OUT_SEL0"].accepts(w) and not g["OUT_SEL0"].accepts(w, live=True)
+    assert not g["OUT_SEL0"].accepts(w | ((npair + 1) << (regmap.ROUTE_NIB * 7)))

@@ -7,3 +7,4 @@ tb/hdl/quad_gen.v
 tb/hdl/cosim_top.v
 tb/hdl/ctrl_seq_tb.v
 tb/hdl/adc_ripple.v
+tb/hdl/out_route_tb.v
