@@ -491,3 +491,28 @@ def _step(lp, r, steps, k0, s, N, P, U, ps):
         U[k] = lp.Cu @ s + du
         s = lp.T @ s + lp.Gu @ du + lp.Ge @ (lp.Ew @ wk)
     return {"i_d": P[:, 0], "i_q": P[:, 1], "w_e": P[:, 2], "theta_e": P[:, 3], "u": U}
+
+
+def load_input(motor, omega_e: float, Ts: float) -> np.ndarray:
+    """(4,) change of the plant states [i_d, i_q, w_e, theta_e] over one period per N m of a constant
+    load torque (zero-order hold of dw/dt = -p tau_L / J through eq. 5 at ``omega_e``)."""
+    A, _ = plant_jacobian(motor, omega_e)
+    bl = np.zeros(NP); bl[2] = -motor.p / motor.J
+    M = np.zeros((NP + 1, NP + 1))
+    M[:NP, :NP] = A
+    M[:NP, NP] = bl
+    return expm(M * Ts)[:NP, NP]
+
+
+def load_step(lp: Loop, bl: np.ndarray, tau: float, steps: int) -> dict:
+    """Response of the loop (references 0) to a load-torque step ``tau`` (N m) at sample 0: the plant
+    states at the samples (``bl`` from :func:`load_input` for the loop's plant)."""
+    s = np.zeros(lp.T.shape[0])
+    b = np.zeros_like(s)
+    b[lp.idx["p"]] = bl * tau
+    P = np.zeros((steps, NP))
+    with np.errstate(over="ignore", invalid="ignore"):
+        for k in range(steps):
+            P[k] = s[lp.idx["p"]]
+            s = lp.T @ s + b
+    return {"i_d": P[:, 0], "i_q": P[:, 1], "w_e": P[:, 2], "theta_e": P[:, 3]}

@@ -113,3 +113,20 @@ def test_alg2_load_speed_offsets(name, form):
     assert abs(i_d_mean) < (0.1 if name == "blwr233d" else 0.02) * I     # was +5.25 A (1.05 I) / run-away
     assert abs(dw) < 0.005 * w_b
     assert np.max(tr.i_phase_peak) <= 1.05 * c.control.i_max
+
+
+def test_old_blwr_d_loop_was_slow_new_one_recovers():
+    """(a) in the linear loop as built: a rated load step at 300 rad/s (coupling w L di_q on the d axis);
+    the old weights (Q_yw = 40, 5, 6233 pu) leave i_d at 0.47 I_rated after 100 ms (d mode tau 95 ms),
+    the new ones (400, 0, 6233) at 0 (d mode 3.9 ms)."""
+    cfg = load("blwr233d")
+    old = with_alg2_speed(cfg, dataclasses.replace(cfg.weights_pu(2, "speed"), Q_yw=(40.0, 5.0, 6233.0)))
+    I, Ts, w = cfg.ratings.current, cfg.control.Ts, 300.0
+    steps = int(round(0.1 / Ts))
+    out = {}
+    for name, c in (("old", old), ("new", cfg)):
+        lp = loop.loop(c, c.motor, w, 2, "speed", mpc.gains(c.motor, c.control, w, 2, "speed"))
+        r = loop.load_step(lp, loop.load_input(c.motor, w, Ts), scenarios.rated_torque(c), steps)
+        out[name] = abs(r["i_d"][-1]) / I
+        assert abs(r["i_q"][-1] - I) < 0.02 * I                   # the load current is on in both
+    assert out["old"] > 0.4 and out["new"] < 0.01, out
