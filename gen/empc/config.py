@@ -177,7 +177,7 @@ SCHEMA: list[Key] = [
         doc="the check also linearises at the loaded operating points i_q0 = +-load x ratings.current "
             "(the law's own steady state: i_d0, the plant's w L i terms, the scheduled gains on the loaded "
             "errors); 0 checks i = 0 only"),
-    Key("robustness", "load_id_max", "float", 1.0, lo=0, lo_open=True, hi=1e6,
+    Key("robustness", "load_id_max", "float", 2.0, lo=0, lo_open=True, hi=1e6,
         doc="largest |i_d0| / |i_q0| of the law's steady state under load (the d current it spends "
             "per ampere of load current), at every speed of Omega_e"),
     Key("robustness", "fit_max", "float", 0.5, lo=0, lo_open=True, hi=10,
