@@ -53,6 +53,9 @@ KNOWN = {
     ("blwr233d", 50e-6): "the current gains need product shift 16 > 15 (4-bit field of the coefficient format)",
     ("premo_320v", 50e-6, (2, "speed")): "algorithm-2 speed weights tuned at 250 us are unstable at 50 us",
     ("ec45flat_24v", 50e-6, (1, "position")): "tuned at 250 us: K_dx[0,3] needs product shift 16 > 15 at 50 us",
+    ("ipmsm_001", 250e-6, (2, "speed")): "algorithm-2 weights searched at Ts = 100 us: radius 1.05 at 250 us",
+    ("ec45flat_24v", 50e-6, (2, "speed")): "algorithm-2 weights searched at 250 us: radius 1.26 at 50 us",
+    ("ec45flat_24v", 50e-6, (2, "position")): "algorithm-2 weights searched at 250 us: radius 1.22 at 50 us",
 }
 
 
