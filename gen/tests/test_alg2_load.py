@@ -152,3 +152,17 @@ def test_ec45_alg2_position_holds_under_load(form):
         print(form, "tau_c", tau_c, "max |error| over the last 30 ms:", err, "counts")
         assert err <= bound, (tau_c, err)
         assert np.max(tr.i_phase_peak) <= 1.05 * c.control.i_max
+
+
+def test_plant_jacobian_matches_the_simulated_plant():
+    """loop.plant_jacobian at a loaded point against the finite-difference Jacobian of the simulator's
+    dq dynamics (pmsm.Plant._deriv, theta = 0), IPMSM (L_d != L_q) and SPMSM."""
+    from empc import pmsm
+    for Ld in (0.8e-3, 1.125e-3):
+        m = dataclasses.replace(load("premo_320v").motor, Ld=Ld, tau_c=0.0, B=1e-3)
+        pl = pmsm.Plant(m, 320.0, 20000.0)
+        x0 = np.array([-3.0, 12.0, 900.0])
+        f = lambda x: np.array(pl._deriv(x[0], x[1], x[2], 0.0, 5.0, 40.0)[:3])        # noqa: E731
+        Jn = np.column_stack([(f(x0 + h * e) - f(x0 - h * e)) / (2 * h) for e, h in zip(np.eye(3), (1e-3, 1e-3, 1e-2))])
+        A, _ = loop.plant_jacobian(m, x0[2], (x0[0], x0[1]))
+        np.testing.assert_allclose(A[:3, :3], Jn, rtol=1e-6, atol=1e-6 * np.max(np.abs(Jn)))
