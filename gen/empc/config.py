@@ -173,6 +173,13 @@ SCHEMA: list[Key] = [
             "(default 0.01 / T_m: no mode slower than 100 mechanical time constants)"),
     Key("robustness", "damping_min", "float", 0.05, lo=0, hi=1, doc="damping ratio of every oscillatory mode"),
     Key("robustness", "speed_points", "int", 25, lo=3, hi=1001, doc="speeds checked over Omega_e (plus 0)"),
+    Key("robustness", "load", "float", 1.0, lo=0, hi=2,
+        doc="the check also linearises at the loaded operating points i_q0 = +-load x ratings.current "
+            "(the law's own steady state: i_d0, the plant's w L i terms, the scheduled gains on the loaded "
+            "errors); 0 checks i = 0 only"),
+    Key("robustness", "load_id_max", "float", 2.0, lo=0, lo_open=True, hi=1e6,
+        doc="largest |i_d0| / |i_q0| of the law's steady state under load (the d current it spends "
+            "per ampere of load current), at every speed of Omega_e"),
     Key("robustness", "fit_max", "float", 0.5, lo=0, lo_open=True, hi=10,
         doc="polynomial fit error (relative to the gain's peak) of a gain element that matters above "
             "which empc roms warns (the refusal is the loop check with the fitted gains)"),
@@ -183,7 +190,9 @@ SCHEMA: list[Key] = [
 ]
 for _t in _WEIGHT_TABLES:
     SCHEMA += [
-        Key(_t, "Q_yw", "float[3]", lo=0, lo_open=True, doc="output error weight (i_d, i_q, speed/angle)"),
+        Key(_t, "Q_yw", "float[3]", lo=0,
+            doc="output error weight (i_d, i_q, speed/angle); 0 leaves the output out of the tracking cost "
+                "(algorithm 2: i_q, whose reference 0 a load cannot follow, docs/design.md)"),
         Key(_t, "Q_dy", "float[3]", lo=0, lo_open=True, doc="output increment weight"),
         Key(_t, "Q_du", "float[2]", lo=0, lo_open=True, doc="input increment weight (u_d, u_q)"),
     ]
@@ -379,6 +388,8 @@ class Robustness:
     damping_min: float
     speed_points: int
     fit_max: float
+    load: float                 # loaded operating points i_q0 = +-load x ratings.current (0: i = 0 only)
+    load_id_max: float          # bound on |i_d0| / |i_q0| of the law's loaded steady state
 
 
 @dataclass(frozen=True)
@@ -534,7 +545,7 @@ class Config:
 DEFAULT_WEIGHTS_PU = {
     (1, "speed"): Weights(Q_yw=(38.0, 23.0, 2.0e4), Q_dy=(230.0, 2500.0, 190.0), Q_du=(1200.0, 1200.0)),
     (1, "position"): Weights(Q_yw=(4.3, 8.0, 59.0), Q_dy=(2.6, 8.5, 29.0), Q_du=(26.0, 55.0)),
-    (2, "speed"): Weights(Q_yw=(40.0, 5.0, 6233.0), Q_dy=(2.474, 14.85, 4024.0), Q_du=(8400.0, 4200.0),
+    (2, "speed"): Weights(Q_yw=(400.0, 0.0, 6233.0), Q_dy=(2.474, 14.85, 4024.0), Q_du=(8400.0, 4200.0),
                           ebar_step_max=(0.0, 0.0, 0.05776), integrate=(False, False, True)),
     (2, "position"): Weights(Q_yw=(72.0, 0.325, 47.37), Q_dy=(7.918, 17.32, 70.63), Q_du=(34.02, 13.02),
                              ebar_step_max=(0.0, 0.0, 0.04813), integrate=(False, False, True)),

@@ -108,6 +108,9 @@ def check_stability(cfg, algorithm: int, task: str, gf=None, params=None, points
         "box": {k: getattr(rob, k) for k in robust.FACTORS}, "box_points": res["box_points"],
         "speeds": res["speeds"], "estimator": loop_mod.estimator_for(cfg).name,
         "quantisation_noise_rms": noise, "blame": blame,
+        # loaded operating points (robust.survey): the law's steady state i_d0 per A of load current
+        "load": {"i_q0": res["load_current"], "worst_id_per_iq": res["worst_load_id"].value,
+                 "where": res["worst_load_id"].as_dict(), "load_id_max": rob.load_id_max},
         # older manifest keys
         "exact": res["per_gain_set"]["exact"].value,
         "fitted": res["per_gain_set"].get("fitted", res["per_gain_set"]["exact"]).value,

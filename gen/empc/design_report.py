@@ -39,6 +39,7 @@ def design_summary(cfg, alg: int, task: str) -> dict:
         "nominal_radius": st["nominal_radius"], "nominal_damping": st["nominal_damping"],
         "radius_bound": st["radius_bound"], "margin": st["margin"], "radius_margin_left": st["radius_margin_left"],
         "damping_min": st["damping_min"], "per_gain_set": st["per_gain_set"],
+        "load": st["load"],
         "quantisation_noise_rms": st["quantisation_noise_rms"],
         "fit_gate": st["fit_gate"], "fit_worst": _worst_fit(rep),
         "fit_worst_rel": rep["fit_worst_rel"], "fit_worst_du_ticks": rep["fit_worst_du_ticks"],
@@ -53,7 +54,7 @@ def design_summary(cfg, alg: int, task: str) -> dict:
 def scenario_figures(cfg, fixed: bool = True) -> dict:
     from . import report, scenarios
     out = {}
-    for name in ("speed_steps", "speed_alg2", "position_alg1", "position_alg2", "load_step"):
+    for name in ("speed_steps", "speed_alg2", "position_alg1", "position_alg2", "load_step", "load_speed"):
         sc, alg = scenarios.get(name, cfg)
         if (alg, sc.task) not in cfg.control.weights:
             out[name] = {"skipped": f"no weights.alg{alg}.{sc.task} design in the configuration"}
@@ -64,6 +65,10 @@ def scenario_figures(cfg, fixed: bool = True) -> dict:
                                                 "unsettled_steps", "ramp_error_mean_abs", "peak_phase_current",
                                                 "saturations")}
                      for k, v in r["runs"].items()}
+        if name == "load_speed":        # under the rated load (0.10-0.25 s): d-current and speed offsets
+            for k, v in r["runs"].items():
+                held = v["segments"][1]
+                out[name][k].update(loaded_i_d_mean=held.get("i_d_mean"), loaded_speed_error=held.get("final_error_mean"))
         out[name]["description"] = r["description"]
     return out
 

@@ -130,12 +130,30 @@ def estimator_for(cfg) -> Estimator:
                          f"{', '.join(ESTIMATORS)})") from None
 
 
-def plant_delayed(motor, omega_e: float, Ts: float, delay: float):
+def plant_jacobian(motor, omega_e: float, i0=(0.0, 0.0)) -> tuple[np.ndarray, np.ndarray]:
+    """Continuous plant (states [i_d, i_q, w_e, theta_e]) linearised at the speed ``omega_e`` and the
+    currents ``i0`` = (i_d0, i_q0): eq. 5 plus the terms a loaded operating point adds, which the
+    design model (speed as a parameter) leaves out: d(w L_q i_q)/dw = L_q i_q0 in the d row,
+    -L_d i_d0 in the q row, and the reluctance torque 1.5 p^2 (L_d - L_q) i_d i_q / J (pmsm.py).
+    With i0 = 0 it is eq. 5."""
+    A, Bc = model.continuous(motor, omega_e)
+    A, Bc = A[:NP, :NP].copy(), Bc[:NP]
+    i_d0, i_q0 = float(i0[0]), float(i0[1])
+    if i_d0 or i_q0:
+        A[0, 2] += motor.Lq / motor.Ld * i_q0
+        A[1, 2] -= motor.Ld / motor.Lq * i_d0
+        kr = 1.5 * motor.p * motor.p * (motor.Ld - motor.Lq) / motor.J
+        A[2, 0] += kr * i_q0
+        A[2, 1] += kr * i_d0
+    return A, Bc
+
+
+def plant_delayed(motor, omega_e: float, Ts: float, delay: float, i0=(0.0, 0.0)):
     """Sampled plant with the input delayed by ``delay`` (< Ts): x+ = Ad x + B0 u_k + B1 u_{k-1}.
 
-    States [i_d, i_q, w_e, theta_e] (the load torque is not a state here)."""
-    A, Bc = model.continuous(motor, omega_e)
-    A, Bc = A[:NP, :NP], Bc[:NP]
+    States [i_d, i_q, w_e, theta_e] (the load torque is not a state here); linearised at the
+    currents ``i0`` (:func:`plant_jacobian`)."""
+    A, Bc = plant_jacobian(motor, omega_e, i0)
     n, m = NP, Bc.shape[1]
 
     def zoh(t):
@@ -178,9 +196,14 @@ def _ones(N: int) -> np.ndarray:
     return _ONES[N]
 
 
-def law(cfg, algorithm: int, task: str, g: dict, estimator: Estimator | None = None) -> Loop:
+def law(cfg, algorithm: int, task: str, g: dict, estimator: Estimator | None = None,
+        kw: np.ndarray | None = None) -> Loop:
     """The loop without the plant rows (the estimator, the law and their memories): what does not
-    depend on the plant, shared by every plant of the robustness box (:func:`with_plant`)."""
+    depend on the plant, shared by every plant of the robustness box (:func:`with_plant`).
+
+    ``kw`` (2,): at a loaded operating point (:func:`operating_point`) the gains, scheduled on the
+    speed estimate, act on a non-zero error vector; kw = d(du)/d(omega_hat) is that feedback from
+    the speed estimate to the voltage increment (None or 0 at i = 0)."""
     c = cfg.control
     est = estimator or estimator_for(cfg)
     C = model.output_matrix(task)[:, :NP]           # outputs of the measured state x = [i_d, i_q, w, th]
@@ -240,6 +263,10 @@ def law(cfg, algorithm: int, task: str, g: dict, estimator: Estimator | None = N
     Mu[:, idx["xp"]] += K_dx
     Mu = Mu + Kx @ Mx + Ke @ Me
     Nu = Kx @ Nx + Ke @ Ne
+    if kw is not None:
+        kw = np.asarray(kw, dtype=float).reshape(nu, 1)
+        Mu = Mu + kw @ Mw
+        Nu = Nu + kw @ Nw
     Re = E_int                                   # ebar_k += E_int r
     Ru = Kr + Ke @ Re                            # u_k += Ru r
     T = np.zeros((n, n)); Bn = np.zeros((n, 3))
@@ -293,21 +320,77 @@ def with_plant(lw: Loop, Ad: np.ndarray, B0: np.ndarray, B1: np.ndarray) -> Loop
 
 
 def loop(cfg, plant_motor, omega_e: float, algorithm: int, task: str, g: dict,
-         estimator: Estimator | None = None, delay: float | None = None) -> Loop:
-    """The loop as built (module docstring).  ``g``: gains in SI units with the paper's signs."""
+         estimator: Estimator | None = None, delay: float | None = None, op: "OperatingPoint | None" = None) -> Loop:
+    """The loop as built (module docstring).  ``g``: gains in SI units with the paper's signs;
+    ``op``: a loaded operating point (:func:`operating_point`), default i = 0."""
     delay = 0.5 / cfg.inverter.f_pwm if delay is None else delay
-    Ad, B0, B1 = plant_delayed(plant_motor, omega_e, cfg.control.Ts, delay)
-    return with_plant(law(cfg, algorithm, task, g, estimator), Ad, B0, B1)
+    i0 = (op.i_d0, op.i_q0) if op is not None else (0.0, 0.0)
+    Ad, B0, B1 = plant_delayed(plant_motor, omega_e, cfg.control.Ts, delay, i0)
+    return with_plant(law(cfg, algorithm, task, g, estimator, kw=op.kw if op is not None else None), Ad, B0, B1)
 
 
-def plants_delayed(motors: list, omega_e: float, Ts: float, delay: float):
+@dataclass
+class OperatingPoint:
+    """A loaded operating point of the loop at one speed: the currents and the law's state there."""
+    omega_e: float
+    i_q0: float              # A: the load's current (the plant's torque balance sets it)
+    i_d0: float              # A: where the law puts i_d (its equilibrium with i_q0 and the task output on target)
+    s0: float                # algorithm 2: the task output's aggregated error ebar0; algorithm 1: its offset r - y
+    kw: np.ndarray           # (2,) d(du)/d(omega_hat): the speed-scheduled gains acting on the loaded errors
+    cond: float = 0.0        # how well the equilibrium is determined (|i_d0| per A of i_q0)
+
+
+def _static(g: dict, algorithm: int, task: str, N: int, i_d0: float, i_q0: float, s: float,
+            w_ref: float = 0.0) -> np.ndarray:
+    """The law's voltage increment (2,) in steady state (dx = 0) at currents (i_d0, i_q0) with constant
+    references (0, 0, r) and the task output at r (the error enters through s).  Algorithm 2 in the
+    speed task also gets (sum of K_WL's speed columns - K_y's) w_ref: zero for exact gains, not for
+    fitted ones (K_y is its own polynomial); the position task works with relative angles."""
+    ones = _ones(N)
+    e = np.array([-i_d0, -i_q0, 0.0])                    # r - y with zero current references
+    if algorithm == 1:
+        e[2] = s                                         # task output offset r - y
+        return g["K_e"] @ ones @ e
+    K_y = np.asarray(g["K_y"], dtype=float)
+    v = g["K_ebar"] @ np.array([0.0, 0.0, s]) + K_y @ e
+    if task == "speed" and w_ref:
+        v = v + ((g["K_WL"] @ ones)[:, 2] - K_y[:, 2]) * w_ref
+    return v
+
+
+def operating_point(g_of, algorithm: int, task: str, N: int, omega_e: float, i_q0: float,
+                    h: float | None = None) -> OperatingPoint:
+    """The law's steady state at the speed ``omega_e`` with the load current ``i_q0`` (du = 0, the task
+    output at its reference for algorithm 2, offset s0 for algorithm 1), and the sensitivity kw of its
+    voltage increment to the speed estimate through the scheduled gains ``g_of(omega)`` (central
+    difference over +-h, default 1 % of max(|omega_e|, 10 rad/s)).  Linear in i_q0."""
+    g = g_of(omega_e)
+    a = _static(g, algorithm, task, N, 1.0, 0.0, 0.0)
+    b = _static(g, algorithm, task, N, 0.0, 0.0, 1.0)
+    c = _static(g, algorithm, task, N, 0.0, 1.0, 0.0)
+    M = np.column_stack([a, b])
+    try:
+        i_d1, s1 = np.linalg.solve(M, -c)
+    except np.linalg.LinAlgError:
+        i_d1, s1 = np.inf, np.inf
+    i_d0, s0 = i_d1 * i_q0, s1 * i_q0
+    h = h or 0.01 * max(abs(omega_e), 10.0)
+    if np.isfinite(i_d0):
+        kw = (_static(g_of(omega_e + h), algorithm, task, N, i_d0, i_q0, s0, omega_e)
+              - _static(g_of(omega_e - h), algorithm, task, N, i_d0, i_q0, s0, omega_e)) / (2 * h)
+    else:
+        kw = np.full(2, np.inf)
+    return OperatingPoint(float(omega_e), float(i_q0), float(i_d0), float(s0), kw, float(abs(i_d1)))
+
+
+def plants_delayed(motors: list, omega_e: float, Ts: float, delay: float, i0=(0.0, 0.0)):
     """:func:`plant_delayed` for many plants at once: stacks (P, 4, 4), (P, 4, 2), (P, 4, 2)."""
     n, m = NP, 2
     M1 = np.zeros((len(motors), n + m, n + m))
     for k, mo in enumerate(motors):
-        A, Bc = model.continuous(mo, omega_e)
-        M1[k, :n, :n] = A[:NP, :NP]
-        M1[k, :n, n:] = Bc[:NP]
+        A, Bc = plant_jacobian(mo, omega_e, i0)
+        M1[k, :n, :n] = A
+        M1[k, :n, n:] = Bc
     E1 = expm(M1 * (Ts - delay))
     E0 = expm(M1 * delay)
     A1, G1 = E1[:, :n, :n], E1[:, :n, n:]
@@ -408,3 +491,28 @@ def _step(lp, r, steps, k0, s, N, P, U, ps):
         U[k] = lp.Cu @ s + du
         s = lp.T @ s + lp.Gu @ du + lp.Ge @ (lp.Ew @ wk)
     return {"i_d": P[:, 0], "i_q": P[:, 1], "w_e": P[:, 2], "theta_e": P[:, 3], "u": U}
+
+
+def load_input(motor, omega_e: float, Ts: float) -> np.ndarray:
+    """(4,) change of the plant states [i_d, i_q, w_e, theta_e] over one period per N m of a constant
+    load torque (zero-order hold of dw/dt = -p tau_L / J through eq. 5 at ``omega_e``)."""
+    A, _ = plant_jacobian(motor, omega_e)
+    bl = np.zeros(NP); bl[2] = -motor.p / motor.J
+    M = np.zeros((NP + 1, NP + 1))
+    M[:NP, :NP] = A
+    M[:NP, NP] = bl
+    return expm(M * Ts)[:NP, NP]
+
+
+def load_step(lp: Loop, bl: np.ndarray, tau: float, steps: int) -> dict:
+    """Response of the loop (references 0) to a load-torque step ``tau`` (N m) at sample 0: the plant
+    states at the samples (``bl`` from :func:`load_input` for the loop's plant)."""
+    s = np.zeros(lp.T.shape[0])
+    b = np.zeros_like(s)
+    b[lp.idx["p"]] = bl * tau
+    P = np.zeros((steps, NP))
+    with np.errstate(over="ignore", invalid="ignore"):
+        for k in range(steps):
+            P[k] = s[lp.idx["p"]]
+            s = lp.T @ s + b
+    return {"i_d": P[:, 0], "i_q": P[:, 1], "w_e": P[:, 2], "theta_e": P[:, 3]}

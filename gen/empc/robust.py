@@ -83,14 +83,18 @@ class Worst:
     point: dict = field(default_factory=dict)
     gains: str = ""
     freq_hz: float = 0.0
+    i_q0: float = 0.0          # the operating point's load current (0: the i = 0 linearisation)
+    i_d0: float = 0.0
 
     def where(self) -> str:
-        return (f"omega_e = {self.omega:.0f} rad/s, plant {label(self.point)}, {self.gains} gains"
+        load = f", loaded i_q0 = {self.i_q0:.3g} A (i_d0 = {self.i_d0:.3g} A)" if self.i_q0 else ""
+        return (f"omega_e = {self.omega:.0f} rad/s{load}, plant {label(self.point)}, {self.gains} gains"
                 + (f", mode {self.freq_hz:.0f} Hz" if self.freq_hz > 0.5 else ""))
 
     def as_dict(self) -> dict:
         return {"value": self.value, "omega_e": self.omega, "plant": label(self.point),
-                "factors": self.point, "gains": self.gains, "freq_hz": self.freq_hz}
+                "factors": self.point, "gains": self.gains, "freq_hz": self.freq_hz,
+                "i_q0": self.i_q0, "i_d0": self.i_d0}
 
 
 def decay_min(cfg) -> float:
@@ -105,8 +109,12 @@ def radius_bound(cfg) -> float:
 
 
 def survey(cfg, algorithm: int, task: str, gain_sets: dict, points: list[dict] | None = None,
-           grid: np.ndarray | None = None, estimator=None) -> dict:
-    """Worst radius and damping over the box and the speed grid for each gain set.
+           grid: np.ndarray | None = None, estimator=None, loads: float | None = None) -> dict:
+    """Worst radius and damping over the box and the speed grid for each gain set, at i = 0 and at the
+    loaded operating points i_q0 = +-``loads`` A (default robustness.load x ratings.current; 0: none):
+    there the plant is linearised at the law's own steady state (loop.operating_point: i_d0, the
+    w L i terms) and the scheduled gains act on the loaded errors (kw).  ``worst_load_id`` is the
+    largest |i_d0| / |i_q0| of that steady state over the grid (robustness.load_id_max).
 
     ``gain_sets``: {name: f(omega) -> gains in SI}.  Returns a dict with ``worst_radius``,
     ``worst_damping`` (:class:`Worst`), ``nominal_radius``, ``nominal_damping`` and per
@@ -122,29 +130,49 @@ def survey(cfg, algorithm: int, task: str, gain_sets: dict, points: list[dict] |
     nom_r, nom_z = 0.0, 1.0
     delay = 0.5 / cfg.inverter.f_pwm
     nominal = [all(abs(v - 1) < 1e-12 for v in p.values()) for p in points]
+    i_load = rob.load * cfg.ratings.current if loads is None else loads
+    iqs = [0.0] + ([i_load, -i_load] if i_load else [])
+    wl = Worst(-1.0)                      # largest |i_d0| / |i_q0| of the law's loaded steady state (-1: no load)
     for w in grid:
-        Ad, B0, B1 = loop_mod.plants_delayed(plants, float(w), Ts, delay)
+        plant_cache = {}
         for name, f in gain_sets.items():
-            lw = loop_mod.law(cfg, algorithm, task, f(float(w)), estimator=est)
-            evs = loop_mod.eigenvalues_batch(lw, Ad, B0, B1)
-            R, Z, FR = modes(evs, Ts)
-            I = np.argmax(R, axis=1)
-            Zo = np.where(FR > 0.0, Z, 2.0)
-            Jo = np.argmin(Zo, axis=1)
-            for k, p in enumerate(points):
-                r, fr = R[k], FR[k]
-                i, j = int(I[k]), int(Jo[k])
-                zmin = min(1.0, float(Zo[k, j]))
-                if r[i] > wr.value:
-                    wr = Worst(float(r[i]), float(w), p, name, float(fr[i]))
-                if r[i] > per_set[name].value:
-                    per_set[name] = Worst(float(r[i]), float(w), p, name, float(fr[i]))
-                if zmin < wz.value:
-                    wz = Worst(zmin, float(w), p, name, float(fr[j]) if Zo[k, j] <= 1.0 else 0.0)
-                if nominal[k]:
-                    nom_r, nom_z = max(nom_r, float(r[i])), min(nom_z, zmin)
+            for iq0 in iqs:
+                if iq0:
+                    op = loop_mod.operating_point(f, algorithm, task, cfg.control.N, float(w), iq0)
+                    ratio = abs(op.i_d0 / iq0)
+                    if not np.isfinite(ratio) or ratio > wl.value:
+                        wl = Worst(float(ratio), float(w), {}, name, 0.0, iq0, op.i_d0)
+                    if not np.all(np.isfinite(op.kw)):
+                        continue
+                    i0 = (op.i_d0, iq0)
+                else:
+                    op, i0 = None, (0.0, 0.0)
+                key = tuple(round(x, 9) for x in i0)
+                if key not in plant_cache:
+                    plant_cache[key] = loop_mod.plants_delayed(plants, float(w), Ts, delay, i0)
+                Ad, B0, B1 = plant_cache[key]
+                lw = loop_mod.law(cfg, algorithm, task, f(float(w)), estimator=est,
+                                  kw=op.kw if op is not None else None)
+                evs = loop_mod.eigenvalues_batch(lw, Ad, B0, B1)
+                R, Z, FR = modes(evs, Ts)
+                I = np.argmax(R, axis=1)
+                Zo = np.where(FR > 0.0, Z, 2.0)
+                Jo = np.argmin(Zo, axis=1)
+                for k, p in enumerate(points):
+                    r, fr = R[k], FR[k]
+                    i, j = int(I[k]), int(Jo[k])
+                    zmin = min(1.0, float(Zo[k, j]))
+                    if r[i] > wr.value:
+                        wr = Worst(float(r[i]), float(w), p, name, float(fr[i]), iq0, i0[0])
+                    if r[i] > per_set[name].value:
+                        per_set[name] = Worst(float(r[i]), float(w), p, name, float(fr[i]), iq0, i0[0])
+                    if zmin < wz.value:
+                        wz = Worst(zmin, float(w), p, name, float(fr[j]) if Zo[k, j] <= 1.0 else 0.0, iq0, i0[0])
+                    if nominal[k]:
+                        nom_r, nom_z = max(nom_r, float(r[i])), min(nom_z, zmin)
     return {"worst_radius": wr, "worst_damping": wz, "nominal_radius": nom_r, "nominal_damping": nom_z,
-            "per_gain_set": per_set, "box_points": len(points), "speeds": len(grid)}
+            "per_gain_set": per_set, "box_points": len(points), "speeds": len(grid),
+            "load_current": i_load, "worst_load_id": wl}
 
 
 def exact_gains(cfg, algorithm: int, task: str, weights=None):
@@ -156,6 +184,12 @@ def verdict(cfg, res: dict) -> tuple[bool, str]:
     rob = cfg.robustness
     bound = radius_bound(cfg)
     wr, wz = res["worst_radius"], res["worst_damping"]
+    wl = res.get("worst_load_id")
+    if wl is not None and wl.i_q0 and not wl.value <= rob.load_id_max:
+        return False, (f"under load the law settles at i_d0 = {wl.i_d0:.3g} A for i_q0 = {wl.i_q0:.3g} A "
+                       f"(|i_d0/i_q0| = {wl.value:.3g} > robustness.load_id_max = {rob.load_id_max:g}) at "
+                       f"omega_e = {wl.omega:.0f} rad/s, {wl.gains} gains: the cost trades the load current "
+                       f"against the d current (a Q_yw weight on i_q with its reference 0; see docs/design.md)")
     if wr.value > bound:
         return False, (f"spectral radius {wr.value:.5f} > {bound:.5f} (decay rate {decay_min(cfg):.3g}/s, "
                        f"robustness.decay_min) at {wr.where()}")

@@ -54,8 +54,11 @@ def test_default_per_unit_weights_pass_the_box(name):
 KNOWN = {
     ("blwr233d", 50e-6, (1, "position")): "damping 0.044 < 0.05 (111 Hz, exact gains, -1200 rad/s, L/R/J +30 %, psi -20 %)",
     ("blwr233d", 50e-6, (2, "position")): "radius 1.065 (4444 Hz current mode, exact gains, L/R/J -30 %)",
-    ("blwr233d", 50e-6, (2, "speed")): "radius 1.155 (3729 Hz current mode, exact gains, L/R/J -30 %, psi +20 %)",
-    ("premo_320v", 50e-6, (2, "speed")): "radius 1.135 (4263 Hz current mode, exact gains, L/R/J -30 %, psi +20 %)",
+    ("blwr233d", 50e-6, (2, "speed")): "radius 1.155 (3729 Hz current mode, L/R/J -30 %, psi +20 %, loaded; weights tuned at 250 us)",
+    ("premo_320v", 50e-6, (2, "speed")): "radius 1.277 (4055 Hz current mode, L/R/J -30 %, psi +20 %; weights from 250 us)",
+    ("ipmsm_001", 250e-6, (2, "speed")): "radius 1.051 (weights searched at its Ts = 100 us; L +30 %, R/J -30 %, loaded)",
+    ("ec45flat_24v", 50e-6, (2, "speed")): "radius 1.259 (4102 Hz current mode, L/R/J -30 %; weights searched at 250 us)",
+    ("ec45flat_24v", 50e-6, (2, "position")): "radius 1.217 (L/R/J -30 %, loaded; weights searched at 250 us)",
 }
 
 
@@ -131,16 +134,7 @@ def test_new_motor_short_runs_float_and_fixed(name, plant):
 @pytest.mark.parametrize("name", MOTORS)
 @pytest.mark.parametrize("scen", list(scenarios.SCENARIOS))
 @pytest.mark.parametrize("plant", ["nominal", "corner_a", "corner_b"])
-def test_five_scenarios_float_and_fixed(name, scen, plant, request):
-    if (name, scen) == ("premo_320v", "load_speed") and plant != "corner_b":
-        # Known defect (strict: a fix makes this fail and asks to drop the mark): the algorithm-2 speed loop
-        # holds 124 rad/s unloaded, but with the rated load (6.6 N m, 17 A) on, an oscillation grows from a small
-        # amplitude (no voltage saturation in the first 40 periods) to i_q 143 A, speed 405 rad/s, with any
-        # speed estimate, with exact or fitted gains, with or without the governor; 50 % load still does it,
-        # 20 % not. The design check linearises at i = 0; at a loaded operating point the bilinear w L i terms
-        # and the speed-scheduled gains acting on the loaded state add terms it does not see.
-        request.applymarker(pytest.mark.xfail(strict=True, reason="premo alg2 speed unstable under rated load: "
-                                              "the design check linearises at i = 0"))
+def test_five_scenarios_float_and_fixed(name, scen, plant):
     cfg = load(name)
     sc0, alg = scenarios.get(scen, cfg)
     if (alg, sc0.task) not in cfg.control.weights:
