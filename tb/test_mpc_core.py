@@ -106,6 +106,26 @@ def _mismatch(got: dict, exp: dict) -> str | None:
     return None
 
 
+async def reset_core(dut, RisingEdge, ReadOnly, limit: int, swap_at: int = 0) -> int:
+    """Three clocks of reset with every input idle, then the clocks until ready (boot streamed); returns
+    that count, in the ReadOnly phase of the clock where ready rose."""
+    dut.rst.value = 1
+    for name in ("start", "cfg_we", "cfg_swap", "in_we", "fw_thr", "cfg_addr", "cfg_wdata", "in_addr", "in_wdata"):
+        getattr(dut, name).value = 0
+    dut.swap_at.value = swap_at
+    for _ in range(3):
+        await RisingEdge(dut.clk)
+    dut.rst.value = 0
+    n = 0
+    while True:
+        await RisingEdge(dut.clk)
+        n += 1
+        await ReadOnly()
+        if int(dut.ready.value):
+            return n
+        assert n < limit, "ready never rose"
+
+
 class Bench:
     def __init__(self, dut):
         from cocotb.triggers import RisingEdge, ReadOnly
@@ -124,26 +144,8 @@ class Bench:
         return (int(getattr(self.dut, name).value) >> self.ax) & 1
 
     async def reset(self) -> int:
-        dut = self.dut
-        dut.rst.value = 1
-        for s in ("start", "cfg_we", "cfg_swap", "in_we", "fw_thr"):
-            getattr(dut, s).value = 0
-        dut.swap_at.value = self.sel if self.boundary_always else 0
-        dut.cfg_addr.value = 0
-        dut.cfg_wdata.value = 0
-        dut.in_addr.value = 0
-        dut.in_wdata.value = 0
-        for _ in range(3):
-            await self.RisingEdge(dut.clk)
-        dut.rst.value = 0
-        n = 0
-        while True:
-            await self.RisingEdge(dut.clk)
-            n += 1
-            await self.ReadOnly()
-            if int(dut.ready.value):
-                return n
-            assert n < 5000, "ready never rose"
+        return await reset_core(self.dut, self.RisingEdge, self.ReadOnly, 5000,
+                                swap_at=self.sel if self.boundary_always else 0)
 
     async def write_image(self, words: list[int], during=None) -> None:
         dut = self.dut
@@ -365,21 +367,7 @@ class AxBench:
 
     async def reset(self) -> int:
         dut = self.dut
-        dut.rst.value = 1
-        for sname in ("start", "cfg_we", "cfg_swap", "in_we", "fw_thr", "swap_at", "cfg_addr", "cfg_wdata",
-                      "in_addr", "in_wdata"):
-            getattr(dut, sname).value = 0
-        for _ in range(3):
-            await self.RisingEdge(dut.clk)
-        dut.rst.value = 0
-        n = 0
-        while True:
-            await self.RisingEdge(dut.clk)
-            n += 1
-            await self.ReadOnly()
-            if int(dut.ready.value):
-                break
-            assert n < 10000, "ready never rose"
+        n = await reset_core(dut, self.RisingEdge, self.ReadOnly, 10000)
         await self.RisingEdge(dut.clk)
         boot = image.read_hex(roms() / "coef_boot.hex")
         self.m = core.MxCore(boot, self.N, self.fmt, self.NA)
