@@ -764,8 +764,11 @@ async def run_cosim(dut, name: str) -> dict:
         plan.append([swap])
 
     async def ref_setup():
-        await drv.command(ref_sync=1)         # head = measured position (0) / speed (0)
-        cs.ref.sync(0)
+        # head = the measured output the RTL latches with the command: the encoder count (at rest: this
+        # period's) or the last control period's speed estimate (not 0: ADC noise through KACC, 74 LSB
+        # in speed_alg2 with the default seed; mirroring 0 made the alg-2 integrator diverge, period 41)
+        await drv.command(ref_sync=1)
+        cs.axis.ref_sync(cs.sampled[1])
     plan.append([ref_setup])
 
     async def gov_setup():
