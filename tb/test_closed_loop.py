@@ -337,9 +337,11 @@ class CoSim:
         reference difference shows here at once and by name, not only once it reaches a compare value
         (the reference sync's 74 LSB: words wref[0..4][2] at period 11, a compare value at period 41)."""
         exp_w = core_model.input_words(out["x"], self.cfg.control.N)
+        sw, flat = core_model.SIG_W, int(self.dut.dbg_in_words.value)
         diff = {}
         for a, e in exp_w.items():
-            g = int(self.dut.dbg_in_words[a].value.to_signed())
+            g = (flat >> (sw * a)) & ((1 << sw) - 1)
+            g -= (g >> (sw - 1)) << sw
             if g != e:
                 diff[_word_name(a)] = (g, e)
         self.words_checked += 1
