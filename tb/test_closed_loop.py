@@ -43,6 +43,7 @@ from empc import bitloop, config, driver, header, image, pmsm, regmap, scenarios
 from empc import formats as F
 from empc.bitloop import AxisModel
 from empc.rtlmodel.adc_spi import AdcSpiParams, window_cur
+from empc.rtlmodel import mpc_core as core_model
 from empc.rtlmodel.hall_decoder import DEFAULT_SEQUENCE
 from empc.rtlmodel.ref_gen import GOV_FIELD, RefGen, gov_words, segments_from_points
 
@@ -71,6 +72,10 @@ COSIM = {
     "position_alg1": ("position_alg1", 0.70, None),
     "position_alg2": ("position_alg2", 0.70, None),
     "speed_steps": ("speed_steps", 0.40, None),
+    # algorithm 2 on the speed task in make sim: the first 30 ms of speed_alg2 (the step to 300 rad/s at
+    # 10 ms; the reference sync to the measured speed, 74 LSB of omega with the default seed, and the
+    # alg-2 integrator that turned its mirror error into a compare-value mismatch at period 41)
+    "speed_alg2_short": ("speed_alg2", 0.030, None),
     "load_step": ("load_step", 0.30, None),
     # make sim-full (SOAK): issue 15's current limit (reference governor) and field weakening (1.35 x base
     # speed; make sim checks both in float, fixed and bit-accurate form, gen/tests/test_scenarios.py), algorithm 2 on the
@@ -80,6 +85,17 @@ COSIM = {
     "speed_alg2": ("speed_alg2", 0.40, None),
     "soak": ("position_alg2", 2.0, None),
 }
+
+
+def _word_name(a: int) -> str:
+    """Name of MPC core input word ``a`` (word map IN_*)."""
+    c = core_model
+    for base, n, name in ((c.IN_Y, 3, "y"), (c.IN_OMEGA, 1, "omega"), (c.IN_DX, 5, "dx"), (c.IN_UPREV, 2, "u_prev"),
+                          (c.IN_EBAR, 3, "ebar_prev")):
+        if base <= a < base + n:
+            return name if n == 1 else f"{name}[{a - base}]"
+    m, o = divmod(a - c.IN_WREF, 3)
+    return f"wref[{m}][{o}]"
 
 
 class AdcRipple:
@@ -155,6 +171,9 @@ class CoSim:
         self.cmp_rtl = (0, 0, 0)
         self.mismatches = []
         self.checked = 0
+        self.word_mismatches = []  # (period, {word: (RTL, model)}) of control periods (see _check_words)
+        self.words_checked = 0
+        self.sync_value = None     # Q.32 value of CMD.ref_sync (AxisModel.ref_sync)
         self.lat_max = {"control": 0, "modulation": 0}   # adc_trig -> cmp_load, clock cycles
         self.rec = {k: [] for k in ("t", "i_d", "i_q", "w_e", "theta_e", "u_d", "u_q", "ref", "ipk")}
         self.period = 0
@@ -284,6 +303,8 @@ class CoSim:
             return
         kind = "control" if control else "modulation"
         self.lat_max[kind] = max(self.lat_max[kind], lat)
+        if control and "x" in out:
+            self._check_words(out)
         v = int(dut.dbg_cmp_q.value)
         self.cmp_rtl = tuple((v >> (12 * i)) & 0xFFF for i in range(3))
         self.checked += 1
@@ -293,7 +314,7 @@ class CoSim:
                 dut._log.error("first mismatch, period %d (%s): RTL cmp %s, model %s; trigger samples: count %d, "
                                "ADC window means %s, run %s; model %s", self.period, kind, self.cmp_rtl, tuple(out["cmp"]),
                                count, list(cur), self.regs.run,
-                               {k: v for k, v in out.items() if k not in ("cmp", "core", "ref_w")})
+                               {k: v for k, v in out.items() if k not in ("cmp", "core", "ref_w", "x")})
                 if "core" in out:
                     dut._log.error("model core %s; references %s", out["core"], out["ref_w"])
         self._plant_half(self.duties)
@@ -309,6 +330,27 @@ class CoSim:
             self.rec["ref"].append((w0 - (1 << 64) if w0 >> 63 else w0) / 2.0 ** 32 / self.ref_unit)
         self.period += 1
         self.py_cpu += time.process_time() - c0
+
+    def _check_words(self, out):
+        """The MPC core's input words of this control period as the RTL's sequencer wrote them (the
+        harness's capture dbg_in_words) against the model's (mpc_core.input_words): a front-end or
+        reference difference shows here at once and by name, not only once it reaches a compare value
+        (the reference sync's 74 LSB: words wref[0..4][2] at period 11, a compare value at period 41)."""
+        exp_w = core_model.input_words(out["x"], self.cfg.control.N)
+        sw, flat = core_model.SIG_W, int(self.dut.dbg_in_words.value)
+        diff = {}
+        for a, e in exp_w.items():
+            g = (flat >> (sw * a)) & ((1 << sw) - 1)
+            g -= (g >> (sw - 1)) << sw
+            if g != e:
+                diff[_word_name(a)] = (g, e)
+        self.words_checked += 1
+        if diff:
+            self.word_mismatches.append((self.period, diff))
+            if len(self.word_mismatches) == 1:
+                self.dut._log.error("first core input word mismatch, period %d (word: RTL, model): %s; model %s",
+                                    self.period, diff, {k: v for k, v in out.items()
+                                                        if k in ("i_d", "i_q", "omega", "dpos", "u", "hold")})
 
     def _plant_half(self, duties):
         if duties is None:           # bridges off: currents decay through the diodes, motor coasts
@@ -764,8 +806,11 @@ async def run_cosim(dut, name: str) -> dict:
         plan.append([swap])
 
     async def ref_setup():
-        await drv.command(ref_sync=1)         # head = measured position (0) / speed (0)
-        cs.ref.sync(0)
+        # head = the measured output the RTL latches with the command: the encoder count (at rest: this
+        # period's) or the last control period's speed estimate (not 0: ADC noise through KACC, 74 LSB
+        # in speed_alg2 with the default seed; mirroring 0 made the alg-2 integrator diverge, period 41)
+        await drv.command(ref_sync=1)
+        cs.sync_value = cs.axis.ref_sync(cs.sampled[1])
     plan.append([ref_setup])
 
     async def gov_setup():
@@ -881,7 +926,7 @@ async def run_cosim(dut, name: str) -> dict:
                     k_restart = kp
                 if k_restart is not None and k_restart < kp <= k_restart + RESTART_PERIODS:
                     fr.post_peak = max(fr.post_peak, cs.ipk_now)
-            if cs.mismatches and cs.fault is None:
+            if (cs.mismatches or cs.word_mismatches) and cs.fault is None:
                 break
         if k == len(plan) + n_periods:
             break
@@ -902,6 +947,8 @@ async def run_cosim(dut, name: str) -> dict:
     cpu = time.process_time() - cpu0
     if cs.mismatches:
         dut._log.error("first mismatches (period, RTL cmp, model cmp): %s", cs.mismatches[:5])
+    if cs.word_mismatches:
+        dut._log.error("first core input word mismatches (period, {word: (RTL, model)}): %s", cs.word_mismatches[:3])
     # read back status over the bus
     status = {n: await drv.read(n) for n in ("STATUS", "FAULT", "LATENCY", "PERIODS", "SAT_LIMIT", "SAT_EBAR_INC",
                                               "SAT_WN", "SAT_OPERAND", "SAT_TERM", "SAT_ACC", "SAT_DU", "SAT_U",
@@ -996,8 +1043,10 @@ async def closed_loop(dut, name: str):
     sim_ms = cs.period * cs.Tpwm * 1e3
     clocks = cs.period * 2 * cs.P            # fabric clocks of the checked periods
     dut._log.info("%s: %d PWM periods (%.1f ms simulated) in %.1f s wall, %.1f s CPU (%.2f sim ms per CPU s); "
-                  "%d compare sets checked, %d mismatches; %d register read-backs checked", name, cs.period, sim_ms,
-                  res["wall"], res["cpu"], sim_ms / res["cpu"], cs.checked, len(cs.mismatches), cs.reg_checks)
+                  "%d compare sets checked, %d mismatches; %d core input word sets checked, %d differ; "
+                  "%d register read-backs checked; ref sync value %s", name, cs.period, sim_ms,
+                  res["wall"], res["cpu"], sim_ms / res["cpu"], cs.checked, len(cs.mismatches), cs.words_checked,
+                  len(cs.word_mismatches), cs.reg_checks, cs.sync_value)
     report = {"scenario": name, "paper_scenario": cs.sc.name, "fault_injection": cs.fault,
               "pwm_periods": cs.period, "simulated_ms": sim_ms, "wall_s": res["wall"],
               "sim_ms_per_wall_s": sim_ms / res["wall"], "clocks_per_wall_s": clocks / res["wall"],
@@ -1008,6 +1057,11 @@ async def closed_loop(dut, name: str):
               "mismatches_vs_bit_accurate_model": len(cs.mismatches),
               "register_readbacks_checked": cs.reg_checks,
               "first_mismatches": [list(map(list, [[m[0]], m[1], m[2]])) for m in cs.mismatches[:5]],
+              "core_input_word_sets_checked": cs.words_checked,
+              "core_input_word_mismatches": len(cs.word_mismatches),
+              "first_core_input_word_mismatches": [[p, {k: list(v) for k, v in d.items()}]
+                                                   for p, d in cs.word_mismatches[:3]],
+              "ref_sync_value_q32": cs.sync_value,
               "status_registers": res["status"],
               "latency_adc_trigger_to_pwm_update_cycles": res["status"]["LATENCY"],
               "latency_max_cycles": dict(cs.lat_max),
@@ -1022,6 +1076,7 @@ async def closed_loop(dut, name: str):
         dut._log.info("lockstep: %s", report["lockstep"])
         assert report["lockstep"]["clocks_differing"] == 0, report["lockstep"]
     if cs.fault is None:
+        assert not cs.word_mismatches, f"MPC core input words differ from the model: {cs.word_mismatches[:3]}"
         assert not cs.mismatches, f"RTL compare values differ from the bit-accurate model: {cs.mismatches[:3]}"
         tr, sc_cut, m = metrics_report(cs, res)
         report["metrics"] = m
@@ -1056,6 +1111,7 @@ async def closed_loop(dut, name: str):
         if cs.fault == "overcurrent":       # the bad frame's last SCLK rising edge -> pins off: oc_to_pins()
             assert fr.extra["pins_off_after_last_sclk_rise_clk"] == cs.adcp.oc_to_pins(), fr.extra
         if spec.get("exact", True):
+            assert not cs.word_mismatches, f"{name}: core input words differ from the model: {cs.word_mismatches[:3]}"
             assert not cs.mismatches, f"{name}: compare values differ from the model: {cs.mismatches[:3]}"
         report["fault"] = {"cause": cs.fault, "fault_bits_latched": got_bits,
                            "fault_register_before_clear": fr.extra["fault_before_clear"],

@@ -75,6 +75,21 @@ class AxisModel:
         """u_dq (Q.8 PWM ticks) the modulation applies (held between control periods)."""
         return self.seq.u
 
+    def ref_sync(self, count: int) -> int:
+        """CMD.ref_sync (rtl/mpc_axis.v): the reference generator to the measured output, the bumpless
+        start.  The RTL latches {count, 32'd0} (position task; ``count`` = the encoder count at the
+        command) or {sext(omega), 16'd0} (speed task; omega = the sequencer's speed estimate of the
+        last control period, which runs with the law off too: ADC noise gives a few LSB of i_q, the
+        KACC term makes them a nonzero omega).  The task is the active image's (the RTL's task_pos
+        while the sync runs: a swap requested before the command but not yet decided at a control
+        sample has not changed it).  Returns the Q.32 value the generator was set to."""
+        if self.seq.params.task == "position":
+            v = (count & M32) << 32
+        else:
+            v = (self.seq.omega_prev << (32 - F.W_FRAC)) & M64
+        self.ref.sync(v)
+        return v
+
     def _reference(self, t: float) -> list:
         task_pos = self.seq.params.task == "position"
         if self.ref is not None:

@@ -174,6 +174,15 @@ module cosim_top #(
         end
     end
 
+    // the MPC core's input words as the sequencer last wrote them (core word map EMPC_IN_*, word a at
+    // [a*SIG_W +: SIG_W]; one vector: one VPI read per control period): Python checks them against the
+    // model's every control period and names the words that differ
+    reg [64*`EMPC_SIG_W-1:0] dbg_in_words;
+    always @(posedge clk)
+        if (u_top.g_axis[0].u_axis.u_core.in_we)
+            dbg_in_words[u_top.g_axis[0].u_axis.u_core.in_addr[5:0]*`EMPC_SIG_W +: `EMPC_SIG_W] <=
+                u_top.g_axis[0].u_axis.u_core.in_wdata;
+
 `ifdef COSIM_LOCKSTEP
 `ifndef EMPC_SIM_GATE
     COSIM_LOCKSTEP_needs_EMPC_SIM_GATE error_no_gating_to_prove();

@@ -186,7 +186,8 @@ class CtrlSeq:
         x = core.Inputs(y=(i_d, i_q, 0 if task_pos else omega), omega=omega, dx=dx, wref=tuple(wref),
                         u_prev=self.u, ebar_prev=self.ebar, fw_thr=regs.fw_thr)
         self.id_prev, self.iq_prev, self.omega_prev, self.pos_prev = i_d, i_q, omega, pos
-        out.update(i_d=i_d, i_q=i_q, omega=omega, dpos=dpos, i_fw=fw_offset(self.fw_n, regs), id_eff=id_eff)
+        out.update(i_d=i_d, i_q=i_q, omega=omega, dpos=dpos, i_fw=fw_offset(self.fw_n, regs), id_eff=id_eff,
+                   x=x)
         if regs.run:
             r = core.update(self.params, x)
             self.u, self.ebar = r.u, r.ebar
