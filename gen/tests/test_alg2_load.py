@@ -133,15 +133,13 @@ def test_old_blwr_d_loop_was_slow_new_one_recovers():
     assert out["old"] > 0.4 and out["new"] < 0.01, out
 
 
-@pytest.mark.parametrize("form", ["float", "bit"])
-def test_ec45_alg2_position_holds_under_load(form):
-    """EC 45 flat, algorithm 2 position (load_step: the scaled load torque at 0.1 s): without Coulomb
-    friction the hold ends within one encoder count; with the motor's 8.6 mN m of friction the double
-    integrator hunts (stick-slip) within a few counts, measured 4.4."""
-    cfg = load("ec45flat_24v")
+def _hold_under_load(motor: str, form: str, bound_free: float, bound_friction: float) -> None:
+    """load_step (the scaled rated load torque at 0.1 s), algorithm 2 position: the largest angle error over
+    the last 30 ms in encoder counts, without Coulomb friction and with the motor's own, and the peak current."""
+    cfg = load(motor)
     sc, alg = scenarios.get("load_step", cfg)
     c = cfg.with_control(algorithm=alg, task=sc.task)
-    for tau_c, bound in ((0.0, 1.0), (c.motor.tau_c, 6.0)):
+    for tau_c, bound in ((0.0, bound_free), (c.motor.tau_c, bound_friction)):
         plant = dataclasses.replace(c.motor, tau_c=tau_c)
         if form == "bit":
             tr = bitloop.simulate(c, sc, plant_motor=plant).trace
@@ -149,9 +147,17 @@ def test_ec45_alg2_position_holds_under_load(form):
             tr = cl.simulate(c, ExplicitMPC(c, gains="poly"), sc, plant_motor=plant)
         m = tr.t > 0.27
         err = np.max(np.abs(tr.ref[m, 2] - tr.theta_e[m])) / c.rad_per_count
-        print(form, "tau_c", tau_c, "max |error| over the last 30 ms:", err, "counts")
+        print(motor, form, "tau_c", tau_c, "max |error| over the last 30 ms:", err, "counts")
         assert err <= bound, (tau_c, err)
         assert np.max(tr.i_phase_peak) <= 1.05 * c.control.i_max
+
+
+@pytest.mark.parametrize("form", ["float", "bit"])
+def test_ec45_alg2_position_holds_under_load(form):
+    """EC 45 flat, algorithm 2 position (load_step: the scaled load torque at 0.1 s): without Coulomb
+    friction the hold ends within one encoder count; with the motor's 8.6 mN m of friction the double
+    integrator hunts (stick-slip) within a few counts, measured 4.4."""
+    _hold_under_load("ec45flat_24v", form, 1.0, 6.0)
 
 
 def test_plant_jacobian_matches_the_simulated_plant():
@@ -199,17 +205,4 @@ def test_premo_alg2_position_holds_under_load(form):
     """premo, algorithm 2 position, load_step (rated load torque at 0.1 s): measured 1.11-1.16 counts over the
     last 30 ms without Coulomb friction (the same at 0.5 s: a noise-driven limit cycle, not a slow tail), so
     NOT within one count; 6.6 counts with the motor's 0.05 N m of friction (stick-slip of the double integrator)."""
-    cfg = load("premo_320v")
-    sc, alg = scenarios.get("load_step", cfg)
-    c = cfg.with_control(algorithm=alg, task=sc.task)
-    for tau_c, bound in ((0.0, 1.25), (c.motor.tau_c, 8.0)):
-        plant = dataclasses.replace(c.motor, tau_c=tau_c)
-        if form == "bit":
-            tr = bitloop.simulate(c, sc, plant_motor=plant).trace
-        else:
-            tr = cl.simulate(c, ExplicitMPC(c, gains="poly"), sc, plant_motor=plant)
-        m = tr.t > 0.27
-        err = np.max(np.abs(tr.ref[m, 2] - tr.theta_e[m])) / c.rad_per_count
-        print(form, "tau_c", tau_c, "max |error| over the last 30 ms:", err, "counts")
-        assert err <= bound, (tau_c, err)
-        assert np.max(tr.i_phase_peak) <= 1.05 * c.control.i_max
+    _hold_under_load("premo_320v", form, 1.25, 8.0)
