@@ -20,12 +20,12 @@ import numpy as np
 
 from . import fit as fit_mod
 from . import formats as F
+from . import image
 from .mpc import ebar_step_limits
 from .rtlmodel import mpc_core as core
 
 MAX_PROD_SHIFT = (1 << F.PROD_SHIFT_BITS) - 1
-MIN_SIG_SHIFT = -F.SIG_SHIFT_BIAS                                # stored field = shift + SIG_SHIFT_BIAS
-MAX_SIG_SHIFT = (1 << F.SIG_SHIFT_BITS) - 1 - F.SIG_SHIFT_BIAS
+MIN_SIG_SHIFT, MAX_SIG_SHIFT = image.SHIFT_MIN, image.SHIFT_MAX  # what the image's biased field holds
 
 
 class QuantisationError(ValueError):
