@@ -41,7 +41,8 @@ class AxisModel:
     included) or a function ``refs(k, t)`` giving the N+1 Q.32 *target* references of
     control period k sampled at time t, which pass through the generator's governor
     (``gov``, default: the header's words for the task of ``params``; the head w_{k+N} is
-    governed, a delay line keeps the earlier ones, bumpless start with the first window).
+    governed, a delay line keeps the earlier ones; the start is a sync to the first target w_k, as in
+    the RTL, so a change inside the first window is governed too).
     Either way the governor sees the sequencer's hold flag of the previous control period.
     :meth:`period` takes what the ADC trigger samples (encoder count, ADC codes) and
     returns the sequencer's outputs for the period (``cmp``: the compare values the RTL
@@ -97,9 +98,11 @@ class AxisModel:
             self.gov_clamps += int(self.ref.clamped)
             return w
         target = [x & M64 for x in self.refs(self.k, t)]
-        if self._gdl is None:                      # bumpless start: the target window
-            self._gdl = list(target)
+        if self._gdl is None and not self.gov["enable"]:
+            self._gdl = list(target)               # bumpless start: the target window
         else:
+            if self._gdl is None:                  # as the RTL after a sync to w_k (governor.ReferencePath)
+                self._gdl, self._r_prev = [target[0]] * len(target), target[0]
             g_new, self._v_gov, clamped = gov_step(self.gov, self._v_gov, self._r_prev, target[-1], self._gdl[-1],
                                                    self.seq.hold, task_pos)
             self._gdl = self._gdl[1:] + [g_new]

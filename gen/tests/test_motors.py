@@ -145,6 +145,23 @@ def test_five_scenarios_float_and_fixed(name, scen, plant):
     _bounds(cfg, f"{name}/{scen}/{plant}", sc, tr_f, m_f, tr_x, m_x)
 
 
+@pytest.mark.parametrize("name", MOTORS)
+def test_every_scenario_within_current_limit(name):
+    """Issue 15 acceptance: each scenario the motor has a design for, full length, nominal plant, fixed
+    point: |i| <= 1.05 i_max.  fault_step (a step 0.5 ms after the start, inside the first window) drew
+    4.7 i_max on the premo while the float governor took its first window as given."""
+    cfg = load(name)
+    ran = 0
+    for scen in scenarios.SCENARIOS:
+        sc0, alg = scenarios.get(scen, cfg)
+        if (alg, sc0.task) not in cfg.control.weights:
+            continue
+        _, tr, _ = _run(cfg, scen, "nominal", fixed=True)
+        assert np.max(tr.i_phase_peak) <= 1.05 * cfg.control.i_max, (name, scen, np.max(tr.i_phase_peak))
+        ran += 1
+    assert ran >= 4, (name, ran)
+
+
 @pytest.mark.parametrize("name", NEW)
 def test_current_within_limit(name):
     cfg = load(name)
