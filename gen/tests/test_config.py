@@ -369,30 +369,45 @@ def _ts(d, ts):
     return config.from_dict(_with(d, "control.Ts", ts))
 
 
+def _without_ts_tables(d):
+    d = copy.deepcopy(d)
+    for alg in d["weights"].values():
+        if isinstance(alg, dict):
+            for design_table in alg.values():
+                for name in [k for k in design_table if k.startswith("Ts_")]:
+                    design_table.pop(name)
+    return d
+
+
 def test_control_period_tables_select_by_ts():
     """[weights.<design>.Ts_<us>us] replaces the keys it gives when control.Ts is its period, and only then;
     the other keys come from the design's table; a design of weights.designs takes the defaults under it."""
-    d = _with(DEFAULT, "weights.alg1.position.Ts_50us", {"Q_du": [7.875, 7.875]})
+    plain = _without_ts_tables(DEFAULT)
+    d = _with(plain, "weights.alg1.position.Ts_50us", {"Q_du": [7.875, 7.875]})
     d = _with(d, "weights.alg2.speed.Ts_50us", {"Q_du": [1.0, 2.0], "Q_yp": [0.0, 0.0, 5.0]})
     base = config.from_dict(DEFAULT)
     at250, at50 = _ts(d, 250e-6), _ts(d, 50e-6)
     assert at250.control.weights == base.control.weights and at250.control.weight_tables == {}
     assert at50.control.weight_tables == {(1, "position"): "weights.alg1.position.Ts_50us",
                                           (2, "speed"): "weights.alg2.speed.Ts_50us"}
-    w, w0 = at50.weights_pu(1, "position"), _ts(DEFAULT, 50e-6).weights_pu(1, "position")
+    w, w0 = at50.weights_pu(1, "position"), _ts(plain, 50e-6).weights_pu(1, "position")
     assert w.Q_du == pytest.approx((7.875, 7.875)) and w.Q_yw == pytest.approx(w0.Q_yw) and w.Q_dy == pytest.approx(w0.Q_dy)
     w2 = at50.weights_pu(2, "speed")
     assert w2.Q_du == pytest.approx((1.0, 2.0)) and w2.Q_yp == pytest.approx((0.0, 0.0, 5.0))
     assert w2.integrate == (False, False, True) and w2.ebar_step_max[2] == pytest.approx(0.05776)
     assert _ts(d, 100e-6).control.weight_tables == {}
     # over the defaults of weights.designs
-    e = _with(_with(DEFAULT, "weights.designs", ["alg1.speed"]), "weights.alg1.speed", {"Ts_50us": {"Q_du": [9.0, 9.0]}})
+    e = _with(_with(plain, "weights.designs", ["alg1.speed"]), "weights.alg1.speed", {"Ts_50us": {"Q_du": [9.0, 9.0]}})
     assert _ts(e, 50e-6).weights_pu(1, "speed").Q_du == pytest.approx((9.0, 9.0))
     assert _ts(e, 250e-6).weights_pu(1, "speed").Q_du == pytest.approx(config.DEFAULT_WEIGHTS_PU[(1, "speed")].Q_du)
+    # the bundled default: tables for 50 us, none used at its own 250 us
+    assert config.default().control.weight_tables == {}
+    assert set(_ts(DEFAULT, 50e-6).control.weight_tables) == {(1, "position"), (2, "speed"), (2, "position")}
 
 
 def test_per_ts_table_in_the_manifest(tmp_path):
-    d = _with(_with(DEFAULT, "weights.alg1.position.Ts_50us", {"Q_du": [7.875, 7.875]}), "control.Ts", 50e-6)
+    d = _with(_with(_without_ts_tables(DEFAULT), "weights.alg1.position.Ts_50us", {"Q_du": [7.875, 7.875]}),
+              "control.Ts", 50e-6)
     p = tmp_path / "c.toml"
     p.write_text(_dump(d))
     cfg = config.load(p)

@@ -51,10 +51,10 @@ def test_default_per_unit_weights_pass_the_box(name):
 # designs that do not pass at a Ts variant: none.  The weights tuned at 250 us failed at 50 us (the PWM
 # update delay is 0.5 Ts there, and algorithm 2's proportional action shrinks with the horizon N Ts:
 # docs/design.md); the bundled configurations hold control-period tables [weights.<design>.Ts_50us]
-# (ipmsm_001: Ts_250us, its own Ts is 100 us) found with `empc tune --refine`.  Was: blwr233d 50 us
-# alg1 position damping 0.044, alg2 position radius 1.065, alg2 speed 1.155; premo_320v 50 us alg2 speed
-# 1.277, position 1.277; ipmsm_001 250 us alg2 speed 1.051; ec45flat_24v 50 us alg2 speed 1.259,
-# position 1.217.
+# (ipmsm_001: Ts_250us, its own Ts is 100 us) found with the coordinate search of `empc tune --refine`.
+# Was: blwr233d 50 us alg1 position damping 0.044, alg2 position radius 1.065, alg2 speed 1.155;
+# premo_320v 50 us alg2 speed 1.277, position 1.277; ipmsm_001 250 us alg2 speed 1.051; ec45flat_24v
+# 50 us alg2 speed 1.259, position 1.217.
 KNOWN: dict = {}
 
 
