@@ -58,13 +58,20 @@ def cmd_tune(args) -> int:
     designs = [(args.algorithm, args.task)] if args.algorithm and args.task else \
         [k for k in sorted(cfg.control.weights) if (not args.algorithm or k[0] == args.algorithm)
          and (not args.task or k[1] == args.task)]
-    results = [tune.tune(cfg, alg, task, specs) for alg, task in designs]
+    results = []
+    for alg, task in designs:
+        r = tune.tune(cfg, alg, task, specs)
+        if args.refine:            # the refined weights when the grid finds none or settle faster
+            r2 = tune.refine(cfg, alg, task, specs)
+            if r2.passed and (not r.passed or r2.chosen.m["settling"] < r.chosen.m["settling"]):
+                r = r2
+        results.append(r)
     if args.json:
         print(json.dumps([r.as_dict() for r in results], indent=1))
     else:
         for r in results:
             print(r.explain())
-        print(tune.toml_tables(results))
+        print(tune.toml_tables(results, ts=cfg.control.Ts if args.ts_table else None))
     return 0 if all(r.passed for r in results) else 2
 
 
@@ -186,6 +193,14 @@ def main(argv: list[str] | None = None) -> int:
                         "within control.i_max (default 0.1)")
     t.add_argument("--chatter", type=float, default=0.2,
                    help="RMS i_q from sensor quantisation, per unit of rated current (default 0.2)")
+    t.add_argument("--u-chatter", type=float, default=0.5,
+                   help="RMS |u| from sensor quantisation, per unit of the voltage limit (default 0.5)")
+    t.add_argument("--refine", action="store_true",
+                   help="when the two-factor grid finds nothing: search one factor per weight element (and "
+                        "algorithm 2's proportional weight Q_yp) until the full design check passes")
+    t.add_argument("--ts-table", action="store_true",
+                   help="print the weights as control-period tables [weights.<design>.Ts_<us>us] for the "
+                        "configured control.Ts (e.g. with --set control.Ts=5e-5)")
     t.add_argument("--json", action="store_true")
     t.set_defaults(func=cmd_tune)
     c = sub.add_parser("compare", help="explicit MPC vs the reference controllers of papers 001/002: compare.{json,md}, plots")

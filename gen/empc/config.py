@@ -22,6 +22,7 @@ from __future__ import annotations
 import copy
 import difflib
 import math
+import re
 import tomllib
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -201,6 +202,10 @@ for _t in _WEIGHT_TABLES:
             Key(_t, "ebar_step_max", "float[3]", (0.0, 0.0, 0.0), lo=0,
                 doc="clamp of the eq. 25 error increments (weight units; 0 = default)"),
             Key(_t, "integrate", "bool[3]", (True, True, True), doc="outputs with the second integrator"),
+            Key(_t, "Q_yp", "float[3]", (0.0, 0.0, 0.0), lo=0,
+                doc="weight of the output errors themselves (not integrated) over the horizon: proportional "
+                    "action that does not shrink with the horizon N Ts (the integrated errors of eq. 25 give "
+                    "the law a proportional part only through N Ts; docs/design.md); 0 = the paper's cost"),
         ]
 
 
@@ -283,6 +288,19 @@ def _check_value(k: Key, v):
     return scalar(v, k.kind, k.path)
 
 
+# Control-period weight tables: [weights.alg<a>.<task>.Ts_<microseconds>us] holds some of the design's
+# keys; when control.Ts is that period (within TS_MATCH relative) they replace the design's own.
+PER_TS = "weights.per_ts"          # validate(): {design table: {name: (Ts in s, {key: value})}}
+TS_MATCH = 1e-6
+_PER_TS_RE = re.compile(r"^Ts_([0-9]+(?:\.[0-9]*)?)us$")
+
+
+def per_ts_period(name: str) -> float | None:
+    """The control period (s) a table name ``Ts_<microseconds>us`` is for; None if the name is not one."""
+    m = _PER_TS_RE.match(name)
+    return float(m.group(1)) * 1e-6 if m else None
+
+
 def validate(d: dict) -> dict:
     """Check the raw TOML dict against :data:`SCHEMA`; returns {table: {key: value}} with defaults."""
     if not isinstance(d, dict):
@@ -302,11 +320,15 @@ def validate(d: dict) -> dict:
                 if isinstance(v, dict):
                     raise ConfigError(f"{path} must be a value, not a table; allowed: {ks[name].range_text()}")
                 out.setdefault(table, {})[name] = _check_value(ks[name], v)
+            elif table in _WEIGHT_TABLES and isinstance(v, dict):
+                per_ts(v, table, name)
             else:
                 options = [s.split(".")[-1] for s in subs] + list(ks)
                 kind = "table" if isinstance(v, dict) else "key"
                 where = f"[{path}]" if kind == "table" else path
                 raise ConfigError(f"unknown {kind} {where}{_mean(name, options) if options else ''}")
+        if table in _WEIGHT_TABLES and node and all(isinstance(x, dict) for x in node.values()):
+            return          # only control-period tables: they change the weights of weights.designs
         if table:
             out.setdefault(table, {})
             for name, k in ks.items():
@@ -314,6 +336,34 @@ def validate(d: dict) -> dict:
                     if k.default is REQUIRED:
                         raise ConfigError(f"{k.path} is missing; allowed: {k.range_text()}")
                     out[table][name] = k.default
+
+    def per_ts(node: dict, table: str, name: str):
+        """[<design>.Ts_<us>us]: some of the design's keys, used when control.Ts is that period."""
+        path = f"{table}.{name}"
+        ts = per_ts_period(name)
+        if ts is None:
+            raise ConfigError(f"unknown table [{path}]; a control-period table is named Ts_<microseconds>us "
+                              f"(e.g. [{table}.Ts_50us]); the design's keys: {', '.join(keys_of(table))}")
+        if ts <= 0.0:
+            raise ConfigError(f"[{path}]: a control period of {ts * 1e6:g} us; allowed: > 0 us")
+        ks = keys_of(table)
+        got = {}
+        for kname, v in node.items():
+            if kname not in ks:
+                kind = "table" if isinstance(v, dict) else "key"
+                where = f"[{path}.{kname}]" if kind == "table" else f"{path}.{kname}"
+                raise ConfigError(f"unknown {kind} {where}{_mean(kname, ks)}")
+            if isinstance(v, dict):
+                raise ConfigError(f"{path}.{kname} must be a value, not a table; allowed: {ks[kname].range_text()}")
+            got[kname] = _check_value(replace(ks[kname], table=path), v)
+        if not got:
+            raise ConfigError(f"[{path}] is empty; allowed: one or more of {', '.join(ks)}")
+        tabs = out.setdefault(PER_TS, {}).setdefault(table, {})
+        for other, (t2, _) in tabs.items():
+            if abs(t2 - ts) <= TS_MATCH * ts:
+                raise ConfigError(f"[{table}.{other}] and [{path}] are both for Ts = {ts * 1e6:g} us; allowed: one table "
+                                  f"per control period")
+        tabs[name] = (ts, got)
 
     walk(d, None)
     for t, (req, _) in TABLES.items():
@@ -361,6 +411,7 @@ class Weights:
     Q_du: tuple[float, float]
     ebar_step_max: tuple[float, float, float] = (0.0, 0.0, 0.0)   # algorithm 2, eq. 25 clamps (0 = default)
     integrate: tuple[bool, bool, bool] = (True, True, True)        # algorithm 2: outputs with the 2nd integrator
+    Q_yp: tuple[float, float, float] = (0.0, 0.0, 0.0)             # algorithm 2: weight of the errors (not integrated)
 
 
 @dataclass(frozen=True)
@@ -443,6 +494,8 @@ class Control:
     speed_load_shift: int = 6                     # "accel_load": load estimate gain 2^-shift per period
     governor: Governor = field(default_factory=Governor)
     field_weakening: FieldWeakening = field(default_factory=FieldWeakening)
+    weight_tables: dict = field(default_factory=dict)   # {(alg, task): "weights.alg2.speed.Ts_50us"} where a
+                                                        # control-period table gave (some of) the weights
 
     def weights_for(self, algorithm: int | None = None, task: str | None = None) -> Weights:
         key = (algorithm or self.algorithm, task or self.task)
@@ -590,7 +643,8 @@ def weights_si(w: Weights, b: Bases) -> Weights:
     return replace(w, Q_yw=tuple(q / x for q, x in zip(w.Q_yw, b.y)),
                    Q_dy=tuple(q / x for q, x in zip(w.Q_dy, b.dy)),
                    Q_du=tuple(q / b.du for q in w.Q_du),
-                   ebar_step_max=tuple(x * y for x, y in zip(w.ebar_step_max, b.y)))
+                   ebar_step_max=tuple(x * y for x, y in zip(w.ebar_step_max, b.y)),
+                   Q_yp=tuple(q / x for q, x in zip(w.Q_yp, b.y)))
 
 
 def weights_pu(w: Weights, b: Bases) -> Weights:
@@ -598,7 +652,8 @@ def weights_pu(w: Weights, b: Bases) -> Weights:
     return replace(w, Q_yw=tuple(q * x for q, x in zip(w.Q_yw, b.y)),
                    Q_dy=tuple(q * x for q, x in zip(w.Q_dy, b.dy)),
                    Q_du=tuple(q * b.du for q in w.Q_du),
-                   ebar_step_max=tuple(x / y for x, y in zip(w.ebar_step_max, b.y)))
+                   ebar_step_max=tuple(x / y for x, y in zip(w.ebar_step_max, b.y)),
+                   Q_yp=tuple(q * x for q, x in zip(w.Q_yp, b.y)))
 
 
 def derive_ratings(r: dict, motor: Motor, inverter: Inverter, i_max: float, horizon: float) -> Ratings:
@@ -755,27 +810,44 @@ def from_dict(d: dict, source: str = "<dict>") -> Config:
         raise ConfigError(f"field_weakening.u_lo = {_fmt(fw.u_lo)}, field_weakening.u_hi = {_fmt(fw.u_hi)}: "
                           f"the band is empty; allowed: u_lo < u_hi")
     wv = v.get("weights")
-    weights, units = {}, "pu"
+    weights, units, weight_tables = {}, "pu", {}
     if wv is None:
         weights = {k: weights_si(w, pu_bases(ratings, motor, c["Ts"], k[1])) for k, w in DEFAULT_WEIGHTS_PU.items()}
     else:
         units = wv["units"]
-        for name in wv["designs"]:
-            a, task = int(name.split(".")[0][3:]), name.split(".")[1]
-            if f"weights.{name}" not in v:
-                weights[(a, task)] = weights_si(DEFAULT_WEIGHTS_PU[(a, task)], pu_bases(ratings, motor, c["Ts"], task))
+        per_ts = v.get(PER_TS, {})
         for t in _WEIGHT_TABLES:
-            if t not in v:
-                continue
             a, task = int(t.split(".")[1][3:]), t.split(".")[2]
-            sec = v[t]
+            listed = t[len("weights."):] in wv["designs"]
+            tabs = per_ts.get(t, {})
+            if t in v:
+                sec, pu = dict(v[t]), units == "pu"
+            elif listed:
+                dw = DEFAULT_WEIGHTS_PU[(a, task)]
+                sec, pu = {k: getattr(dw, k) for k in ("Q_yw", "Q_dy", "Q_du", "ebar_step_max", "integrate",
+                                                        "Q_yp")}, True
+                if tabs and units != "pu":
+                    raise ConfigError(f"[{t}.{next(iter(tabs))}] changes the default per-unit weights of "
+                                      f"weights.designs; allowed: weights.units = \"pu\"")
+            elif tabs:
+                raise ConfigError(f"[{t}.{next(iter(tabs))}] has no weights to change: give [{t}] or list "
+                                  f"\"{t[len('weights.'):]}\" in weights.designs")
+            else:
+                continue
+            src = t
+            for name, (ts, got) in tabs.items():
+                if abs(ts - c["Ts"]) <= TS_MATCH * ts:
+                    sec.update(got)
+                    src = f"{t}.{name}"
             if not any(sec.get("integrate", (True,))):
-                raise ConfigError(f"{t}.integrate = {_fmt(sec['integrate'])}: must integrate at least one "
+                raise ConfigError(f"{src}.integrate = {_fmt(sec['integrate'])}: must integrate at least one "
                                   f"output; allowed: a list of 3 booleans, one or more true")
             w = Weights(Q_yw=sec["Q_yw"], Q_dy=sec["Q_dy"], Q_du=sec["Q_du"],
                         ebar_step_max=sec.get("ebar_step_max", (0.0, 0.0, 0.0)),
-                        integrate=sec.get("integrate", (True, True, True)))
-            weights[(a, task)] = weights_si(w, pu_bases(ratings, motor, c["Ts"], task)) if units == "pu" else w
+                        integrate=sec.get("integrate", (True, True, True)), Q_yp=sec.get("Q_yp", (0.0, 0.0, 0.0)))
+            weights[(a, task)] = weights_si(w, pu_bases(ratings, motor, c["Ts"], task)) if pu else w
+            if src != t:
+                weight_tables[(a, task)] = src
     alg, task = c["algorithm"], c["task"]
     if (alg, task) not in weights:
         raise ConfigError(f"[weights.alg{alg}.{task}] is missing (needed by control.algorithm = {alg}, "
@@ -784,7 +856,7 @@ def from_dict(d: dict, source: str = "<dict>") -> Config:
         algorithm=alg, task=task, N=c["N"], Ts=c["Ts"], omega_min=c["omega_min"], omega_max=c["omega_max"],
         omega_points=c["omega_points"], design_quantised=c["design_quantised"], voltage_limit=c["voltage_limit"],
         i_max=c["i_max"], speed_estimate=c["speed_estimate"], weights=weights, weight_units=units,
-        speed_load_shift=c["speed_load_shift"], governor=governor, field_weakening=fw)
+        speed_load_shift=c["speed_load_shift"], governor=governor, field_weakening=fw, weight_tables=weight_tables)
     cfg = Config(motor=motor, inverter=inverter, sensors=sensors, f_clk=f_clk, control=control, source=source,
                  ratings=ratings, robustness=robustness)
     ratio = c["Ts"] * inverter.f_pwm

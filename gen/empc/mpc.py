@@ -83,14 +83,25 @@ def gains(motor, ctrl, omega_e: float, algorithm: int | None = None, task: str |
         M = np.eye(model.NY * N) + L
         MSG, MSF = M @ P.S @ P.G, M @ P.S @ P.F
         H = MSG.T @ Qyw @ MSG + P.G.T @ Qdy @ P.G + Qdu
+        Kdx_rhs = MSG.T @ Qyw @ MSF + P.G.T @ Qdy @ P.F
+        Qyp = None
+        if any(getattr(w, "Q_yp", (0.0,))):
+            # + sum_j |Q_yp (w - y_{k+j})|^2: errors not integrated (proportional action, docs/design.md);
+            # the law keeps the form of eq. 26, the term adds to K_WL, K_y and K_dx
+            Qyp = weight_blocks(w.Q_yp, N)
+            SG, SF = P.S @ P.G, P.S @ P.F
+            H = H + SG.T @ Qyp @ SG
+            Kdx_rhs = Kdx_rhs + SG.T @ Qyp @ SF
         Hinv_first = first @ np.linalg.inv(H)
         K_W = Hinv_first @ MSG.T @ Qyw
         K_WL = K_W @ M
+        if Qyp is not None:
+            K_WL = K_WL + Hinv_first @ SG.T @ Qyp
         return {
             "K_ebar": K_W @ ones @ D,
             "K_WL": K_WL,
             "K_y": K_WL @ ones,
-            "K_dx": Hinv_first @ (MSG.T @ Qyw @ MSF + P.G.T @ Qdy @ P.F),
+            "K_dx": Hinv_first @ Kdx_rhs,
         }
     raise ValueError(f"algorithm must be 1 or 2, got {algorithm!r}")
 

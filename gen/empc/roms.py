@@ -102,10 +102,15 @@ def _write(cfg, out: Path, results: dict, all_designs: bool) -> dict:
             "weights_pu": _weights_dict(cfg.weights_pu(alg, task)),
             "coefficients": {"p0_p1_p2_shift": p.coef, "col_sig": p.col_sig, "col_shift": p.col_shift},
         }
+        if (alg, task) in cfg.control.weight_tables:      # a control-period table gave (some of) the weights
+            manifest["designs"][f"alg{alg}_{task}"]["weights_table"] = cfg.control.weight_tables[(alg, task)]
     (out / "manifest.json").write_text(json.dumps(manifest, indent=1) + "\n")
     return manifest
 
 
 def _weights_dict(w) -> dict:
-    return {"Q_yw": list(w.Q_yw), "Q_dy": list(w.Q_dy), "Q_du": list(w.Q_du),
-            "ebar_step_max": list(w.ebar_step_max), "integrate": list(w.integrate)}
+    d = {"Q_yw": list(w.Q_yw), "Q_dy": list(w.Q_dy), "Q_du": list(w.Q_du),
+         "ebar_step_max": list(w.ebar_step_max), "integrate": list(w.integrate)}
+    if any(w.Q_yp):
+        d["Q_yp"] = list(w.Q_yp)
+    return d

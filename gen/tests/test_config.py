@@ -153,6 +153,26 @@ ISSUE_CASES = [
     ("weights for the boot design missing", _with(_with(DEFAULT, "control.algorithm", 2), "weights.alg2",
                                                   None, delete=True), "weights.alg2"),
     ("unknown top-level key", {**copy.deepcopy(DEFAULT), "motr": {"R": 1.0}}, "motr"),
+    # control-period weight tables [weights.alg<a>.<task>.Ts_<us>us] (docs/design.md)
+    ("control-period table misnamed", _with(DEFAULT, "weights.alg1.position.Ts50", {"Q_du": [1.0, 1.0]}),
+     "Ts_<microseconds>us"),
+    ("control-period table for 0 us", _with(DEFAULT, "weights.alg1.position.Ts_0us", {"Q_du": [1.0, 1.0]}), "Ts_0us"),
+    ("control-period table: unknown key", _with(DEFAULT, "weights.alg1.position.Ts_50us", {"Q_dv": [1.0, 1.0]}),
+     "Ts_50us.Q_dv"),
+    ("control-period table: negative weight", _with(DEFAULT, "weights.alg1.position.Ts_50us", {"Q_du": [1.0, -1.0]}),
+     "Ts_50us.Q_du"),
+    ("control-period table: Q_du of 3", _with(DEFAULT, "weights.alg2.speed.Ts_50us", {"Q_du": [1.0, 1.0, 1.0]}),
+     "Ts_50us.Q_du"),
+    ("control-period table: empty", _with(DEFAULT, "weights.alg1.position.Ts_50us", {}), "Ts_50us"),
+    ("control-period table: a table inside", _with(DEFAULT, "weights.alg1.position.Ts_50us", {"Q_du": {"x": 1.0}}),
+     "Ts_50us.Q_du"),
+    ("two tables for one control period", _with(_with(DEFAULT, "weights.alg1.position.Ts_50us", {"Q_du": [1.0, 1.0]}),
+                                                "weights.alg1.position.Ts_050us", {"Q_du": [2.0, 2.0]}), "Ts_050us"),
+    ("control-period table without weights to change",
+     _with(DEFAULT, "weights.alg1.position", {"Ts_50us": {"Q_du": [1.0, 1.0]}}), "has no weights"),
+    ("control-period table: integrate all false at its Ts",
+     _with(_with(DEFAULT, "weights.alg2.speed.Ts_50us", {"integrate": [False, False, False]}), "control.Ts", 50e-6),
+     "Ts_50us.integrate"),
 ]
 
 
@@ -343,3 +363,54 @@ def test_per_unit_weights_roundtrip_and_bases():
     d.pop("weights")
     c2 = config.from_dict(d)
     assert c2.control.weight_units == "pu" and set(c2.control.weights) == set(config.DEFAULT_WEIGHTS_PU)
+
+
+def _ts(d, ts):
+    return config.from_dict(_with(d, "control.Ts", ts))
+
+
+def _without_ts_tables(d):
+    d = copy.deepcopy(d)
+    for alg in d["weights"].values():
+        if isinstance(alg, dict):
+            for design_table in alg.values():
+                for name in [k for k in design_table if k.startswith("Ts_")]:
+                    design_table.pop(name)
+    return d
+
+
+def test_control_period_tables_select_by_ts():
+    """[weights.<design>.Ts_<us>us] replaces the keys it gives when control.Ts is its period, and only then;
+    the other keys come from the design's table; a design of weights.designs takes the defaults under it."""
+    plain = _without_ts_tables(DEFAULT)
+    d = _with(plain, "weights.alg1.position.Ts_50us", {"Q_du": [7.875, 7.875]})
+    d = _with(d, "weights.alg2.speed.Ts_50us", {"Q_du": [1.0, 2.0], "Q_yp": [0.0, 0.0, 5.0]})
+    base = config.from_dict(DEFAULT)
+    at250, at50 = _ts(d, 250e-6), _ts(d, 50e-6)
+    assert at250.control.weights == base.control.weights and at250.control.weight_tables == {}
+    assert at50.control.weight_tables == {(1, "position"): "weights.alg1.position.Ts_50us",
+                                          (2, "speed"): "weights.alg2.speed.Ts_50us"}
+    w, w0 = at50.weights_pu(1, "position"), _ts(plain, 50e-6).weights_pu(1, "position")
+    assert w.Q_du == pytest.approx((7.875, 7.875)) and w.Q_yw == pytest.approx(w0.Q_yw) and w.Q_dy == pytest.approx(w0.Q_dy)
+    w2 = at50.weights_pu(2, "speed")
+    assert w2.Q_du == pytest.approx((1.0, 2.0)) and w2.Q_yp == pytest.approx((0.0, 0.0, 5.0))
+    assert w2.integrate == (False, False, True) and w2.ebar_step_max[2] == pytest.approx(0.05776)
+    assert _ts(d, 100e-6).control.weight_tables == {}
+    # over the defaults of weights.designs
+    e = _with(_with(plain, "weights.designs", ["alg1.speed"]), "weights.alg1.speed", {"Ts_50us": {"Q_du": [9.0, 9.0]}})
+    assert _ts(e, 50e-6).weights_pu(1, "speed").Q_du == pytest.approx((9.0, 9.0))
+    assert _ts(e, 250e-6).weights_pu(1, "speed").Q_du == pytest.approx(config.DEFAULT_WEIGHTS_PU[(1, "speed")].Q_du)
+    # the bundled default: tables for 50 us, none used at its own 250 us
+    assert config.default().control.weight_tables == {}
+    assert set(_ts(DEFAULT, 50e-6).control.weight_tables) == {(1, "position"), (2, "speed"), (2, "position")}
+
+
+def test_per_ts_table_in_the_manifest(tmp_path):
+    d = _with(_with(_without_ts_tables(DEFAULT), "weights.alg1.position.Ts_50us", {"Q_du": [7.875, 7.875]}),
+              "control.Ts", 50e-6)
+    p = tmp_path / "c.toml"
+    p.write_text(_dump(d))
+    cfg = config.load(p)
+    man = roms.generate(cfg, tmp_path / "out", all_designs=True, force=True)
+    assert man["designs"]["alg1_position"]["weights_table"] == "weights.alg1.position.Ts_50us"
+    assert "weights_table" not in man["designs"]["alg1_speed"]

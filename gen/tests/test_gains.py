@@ -28,7 +28,7 @@ def cost_function(cfg, alg, task, omega, x_k, dx_k, y_k, W, ebar_k):
     w = c.weights_for(alg, task)
     C = model.output_matrix(task)
     Ad, Bd = model.discrete(cfg.motor, omega, c.Ts)
-    qyw, qdy, qdu = (np.asarray(v, float) ** 2 for v in (w.Q_yw, w.Q_dy, w.Q_du))
+    qyw, qdy, qdu, qyp = (np.asarray(v, float) ** 2 for v in (w.Q_yw, w.Q_dy, w.Q_du, w.Q_yp))
     D = np.asarray(w.integrate, dtype=float)       # outputs carrying the second integrator
 
     def J(dU):
@@ -46,6 +46,7 @@ def cost_function(cfg, alg, task, omega, x_k, dx_k, y_k, W, ebar_k):
             else:
                 r = y - W[j] - eb           # (22): y_{k+j} - w_{k+j} - ebar_{k+j-1}
                 eb = eb + D * (W[j] - y)    # ebar_{k+j} = ebar_{k+j-1} + w_{k+j} - y_{k+j} (integrated outputs)
+                total += (y - W[j]) @ (qyp * (y - W[j]))   # Q_yp: the errors themselves (0: the paper's cost)
             total += r @ (qyw * r) + dy @ (qdy * dy) + dU[j] @ (qdu * dU[j])
         return total
     return J
@@ -65,9 +66,23 @@ def qp_first_move(J, n):
     return sol[:2], H
 
 
-@pytest.mark.parametrize("alg", [1, 2])
+def _with_q_yp(cfg, ts=None):
+    """Algorithm 2 designs with a proportional weight Q_yp (and at 50 us: the control period it is for)."""
+    from dataclasses import replace
+    if ts:
+        cfg = config.load(None, {"control.Ts": ts})
+    ws = dict(cfg.control.weights)
+    for task in ("speed", "position"):
+        w = ws[(2, task)]
+        ws[(2, task)] = replace(w, Q_yp=(0.5 * w.Q_yw[0], 0.0, 3.0 * w.Q_yw[2]))
+    return cfg.with_control(weights=ws)
+
+
+@pytest.mark.parametrize("alg", [1, 2, "2p"])
 @pytest.mark.parametrize("task", ["speed", "position"])
 def test_gains_match_brute_force_qp(alg, task):
+    CFG = config.default() if alg != "2p" else _with_q_yp(None, 50e-6)
+    alg = 2 if alg == "2p" else alg
     rng = np.random.default_rng(SEED + 10 * alg + (task == "position"))
     c = CFG.control
     n_points = 12
@@ -115,12 +130,31 @@ def test_paper_integrators_all_outputs(task):
     np.testing.assert_allclose(du, du_qp, rtol=1e-6, atol=1e-9)
 
 
-def test_alg2_translation_invariance():
-    """Sum of the K_WL blocks equals K_y (exact), which the RTL relies on for relative angles."""
-    for omega in np.linspace(CFG.control.omega_min, CFG.control.omega_max, 7):
-        g = mpc.gains(CFG.motor, CFG.control, omega, 2, "position")
-        blocks = g["K_WL"].reshape(2, CFG.control.N, 3).sum(axis=1)
+@pytest.mark.parametrize("q_yp", [False, True])
+def test_alg2_translation_invariance(q_yp):
+    """Sum of the K_WL blocks equals K_y (exact), which the RTL relies on for relative angles (also with
+    the proportional weight Q_yp, which keeps the law's form)."""
+    cfg = _with_q_yp(CFG, 50e-6) if q_yp else CFG
+    for omega in np.linspace(cfg.control.omega_min, cfg.control.omega_max, 7):
+        g = mpc.gains(cfg.motor, cfg.control, omega, 2, "position")
+        blocks = g["K_WL"].reshape(2, cfg.control.N, 3).sum(axis=1)
         np.testing.assert_allclose(blocks, g["K_y"], rtol=1e-9, atol=1e-12)
+
+
+def test_q_yp_zero_is_the_paper_cost_and_positive_adds_proportional_action():
+    """Q_yp = 0 gives the gains of eq. 26-28 bit for bit; Q_yp > 0 raises the law's proportional gain on
+    the task output (K_y - K_WL's first-block share) without changing K_ebar's sign."""
+    from dataclasses import replace
+    c = CFG.control
+    for task in ("speed", "position"):
+        w = c.weights_for(2, task)
+        g0 = mpc.gains(CFG.motor, c, 100.0, 2, task)
+        gz = mpc.gains(CFG.motor, c, 100.0, 2, task, weights=replace(w, Q_yp=(0.0, 0.0, 0.0)))
+        for k in g0:
+            assert np.array_equal(g0[k], gz[k])
+        gp = mpc.gains(CFG.motor, c, 100.0, 2, task, weights=replace(w, Q_yp=(0.0, 0.0, 3.0 * w.Q_yw[2])))
+        # the q-voltage's response to the task output now (y_k) grows relative to its integral gain
+        assert abs(gp["K_y"][1, 2] / gp["K_ebar"][1, 2]) > 1.5 * abs(g0["K_y"][1, 2] / g0["K_ebar"][1, 2])
 
 
 def test_cli_gains_json_contract():
