@@ -260,10 +260,13 @@ def _field_weakening(sc: Scale, plan: FwPlan | None = None) -> Scenario:
         t3, dur = t2 + T, t2 + T + 0.04
         pts = [(0.02, 0.0, "step"), (t1, top, "ramp"), (t2, top, "step"), (t3, 0.0, "ramp")]
     segs = [("ramp", 0.02, t1, 0.0, top), ("step", t1, t2, top, top), ("ramp", t2, t3, top, 0.0)]
-    base = FW_TOP / 1.35 * sc.base if plan is None else plan.base
-    what = (f"{top / base:.3g} x the no-load base speed" if plan is None or not plan.negligible else
-            f"{top / base:.3g} x the no-load base speed: field weakening negligible for this motor (it adds "
-            f"{100 * (plan.w_fw / plan.w_nofw - 1):.2g} % within its current limit), a ramp to the voltage limit")
+    if plan is None:
+        what = "1.35 x the no-load base speed"
+    else:
+        what = f"{plan.top / plan.base:.3g} x the no-load base speed"
+        if plan.negligible:
+            what += (f": field weakening negligible for this motor (it adds {100 * (plan.w_fw / plan.w_nofw - 1):.2g} % "
+                     f"within its current limit), a ramp to the voltage limit")
     return Scenario("field_weakening", "speed", dur, steps_and_ramps(pts), segments=segs,
                     load=lambda t: tq,
                     description=f"speed ramp 0 -> {top:.4g} rad/s ({what}) in {T:.3g} s and back under "
