@@ -24,6 +24,21 @@ against the BLWR233D of the default configuration (factor 1 there); the timing i
 Two exceptions: field_weakening's top speed scales with the no-load base speed u_max / psi
 (it is about the voltage limit), load_speed's load is the motor's own rated-current torque
 1.5 p psi I_rated (``[ratings] current``).
+
+field_weakening for another motor (:func:`fw_plan`): the BLWR233D's 1.35 x base speed is out of
+reach for a motor whose flux is large against Ld i_max (ipmsm_001: psi / Ld = 400 A against
+i_max = 10 A, FW adds 1.5 %), and its 0.2 s ramps are out of reach for a large inertia (spmsm_002:
+the ramp needs 8400 rad/s^2, the governor allows 246).  So
+  * top speed = base x min(1.35, FW_REACH x w_fw / base), where w_fw (:func:`fw_speed_limit`) is
+    the steady-state speed at which the nominal motor's voltage reaches u_max with the load torque
+    (plus Coulomb and viscous friction) and the best i_d in [-fw_max, 0] (fw_max: the FW counter's
+    limit, about field_weakening.i_max_frac x i_max) within |i| <= i_max;
+  * ramp duration = max(0.2 s, top / (FW_ACCEL x governor.accel_limit)): the acceleration at most
+    FW_ACCEL of the governor's limit (which already allows for the box corner), the rest of the
+    current for the load; the hold (0.1 s) and the gaps (20 ms before, 40 ms after) are kept.
+The BLWR233D (w_fw = 2.06 base, its ramp 0.06 of the governor's limit) keeps its scenario bit for
+bit.  A motor whose w_fw is less than FW_NEGLIGIBLE above its speed without field weakening says so
+in the description: its scenario is a ramp to the voltage limit (no i_d < 0 to check).
 """
 from __future__ import annotations
 
@@ -47,6 +62,11 @@ POINTS = {
     "field_weakening": [(0.02, 0.0, "step"), (0.22, 1400.0, "ramp"), (0.32, 1400.0, "step"), (0.52, 0.0, "ramp")],
 }
 FW_LOAD = 0.227         # N m: the BLWR233D's 95 W at 4000 rpm (field_weakening; scaled as load torques)
+FW_TOP = 1400.0         # rad/s: the BLWR233D's top speed, 1.35 x its base speed (scaled with Scale.base)
+FW_REACH = 0.9          # the top speed at most this fraction of the FW speed limit w_fw (voltage margin)
+FW_ACCEL = 0.5          # the ramps' acceleration at most this fraction of governor.accel_limit
+FW_RAMP = 0.2           # s: the BLWR233D's ramp duration (the shortest)
+FW_NEGLIGIBLE = 0.05    # w_fw / (speed limit without FW) - 1 below this: field weakening negligible
 POINTS["position_alg2"] = POINTS["position_alg1"]
 POINTS["fault_step"] = [(0.0005, 20.0, "step")]
 
@@ -66,6 +86,70 @@ def _peak_accel(cfg) -> float:
 
 def _top(cfg) -> float:
     return max(abs(cfg.control.omega_min), abs(cfg.control.omega_max))
+
+
+def fw_load_torque(cfg) -> float:
+    """Load torque of field_weakening, N m: FW_LOAD scaled by the peak-torque ratio."""
+    return FW_LOAD * scale_for(cfg).torque
+
+
+def fw_speed_limit(motor, u_max: float, i_d_min: float, i_max: float, torque: float) -> float:
+    """Steady-state speed (rad/s, electrical) at which |u_dq| reaches u_max, with the torque ``torque``
+    (N m, plus the motor's Coulomb and viscous friction) and the best i_d in [i_d_min, 0] within
+    |i| <= i_max (0 if no i_d carries the torque).  Voltage equations in steady state:
+    u_d = R i_d - w Lq i_q, u_q = R i_q + w (Ld i_d + psi); torque 1.5 p (psi + (Ld - Lq) i_d) i_q."""
+    m = motor
+    best = 0.0
+    for k in range(401):
+        i_d = i_d_min * (1.0 - k / 400.0)
+        w = 0.0
+        for _ in range(4):                 # viscous friction depends on the speed: a few fixed-point steps
+            kt = 1.5 * m.p * (m.psi + (m.Ld - m.Lq) * i_d)
+            if kt <= 0.0:
+                break
+            i_q = (torque + m.tau_c + m.B * w / m.p) / kt
+            if i_d * i_d + i_q * i_q > i_max * i_max:
+                w = 0.0
+                break
+            lam_d = m.Ld * i_d + m.psi
+            a = (m.Lq * i_q) ** 2 + lam_d ** 2
+            b = 2.0 * m.R * (i_q * lam_d - i_d * m.Lq * i_q)
+            c = m.R * m.R * (i_d * i_d + i_q * i_q) - u_max * u_max
+            disc = b * b - 4.0 * a * c
+            w = (-b + disc ** 0.5) / (2.0 * a) if disc >= 0.0 and c < 0.0 else 0.0
+        best = max(best, w)
+    return best
+
+
+@dataclass(frozen=True)
+class FwPlan:
+    top: float           # rad/s: the top speed of the ramp
+    ramp: float          # s: the duration of each ramp
+    torque: float        # N m: load torque
+    w_fw: float          # rad/s: fw_speed_limit of the nominal motor with i_d >= -fw_max
+    w_nofw: float        # rad/s: the same with i_d = 0
+    base: float          # rad/s: no-load base speed u_max / psi
+    negligible: bool     # field weakening adds less than FW_NEGLIGIBLE
+
+
+def fw_plan(cfg, motor=None) -> FwPlan:
+    """Top speed and ramp duration of field_weakening for ``cfg`` (see the module docstring);
+    ``motor``: the plant for w_fw / w_nofw (default: the configured motor; the scenario itself always
+    uses the configured motor)."""
+    from . import config as config_mod, governor, header
+    cfg = cfg or config_mod.default()
+    m = motor or cfg.motor
+    tq = fw_load_torque(cfg)
+    fw_max = header.field_weakening_si(cfg)[1] if cfg.control.field_weakening.enable else 0.0
+    w_fw = fw_speed_limit(m, cfg.u_max, -fw_max, cfg.control.i_max, tq)
+    w_nofw = fw_speed_limit(m, cfg.u_max, 0.0, cfg.control.i_max, tq)
+    sc = scale_for(cfg)
+    top = FW_TOP * sc.base
+    if motor is None and FW_REACH * w_fw < top:
+        top = FW_REACH * w_fw
+    ramp = max(FW_RAMP, top / (FW_ACCEL * governor.accel_limit(cfg)))
+    return FwPlan(top=top, ramp=ramp, torque=tq, w_fw=w_fw, w_nofw=w_nofw, base=cfg.u_max / m.psi,
+                  negligible=w_fw < (1.0 + FW_NEGLIGIBLE) * w_nofw)
 
 
 def rated_torque(cfg) -> float:
@@ -161,13 +245,31 @@ def _load_speed(sc: Scale) -> Scenario:
                                 f"0.25 s, algorithm 2")
 
 
-def _field_weakening(sc: Scale) -> Scenario:
-    b, tq = sc.base, FW_LOAD * sc.torque
-    top = 1400.0 * b
-    segs = [("ramp", 0.02, 0.22, 0.0, top), ("step", 0.22, 0.32, top, top), ("ramp", 0.32, 0.52, top, 0.0)]
-    return Scenario("field_weakening", "speed", 0.56, steps_and_ramps(_pts("field_weakening", b)), segments=segs,
+def _field_weakening(sc: Scale, plan: FwPlan | None = None) -> Scenario:
+    if plan is None:                       # the default configuration's motor: paper values
+        b, tq = sc.base, FW_LOAD * sc.torque
+        top, T = FW_TOP * b, FW_RAMP
+    else:
+        tq, top, T = plan.torque, plan.top, plan.ramp
+    if T == FW_RAMP:                       # the paper's timing (the BLWR233D's breakpoints bit for bit)
+        t1, t2, t3, dur = 0.22, 0.32, 0.52, 0.56
+        pts = (_pts("field_weakening", sc.base) if top == FW_TOP * sc.base else
+               [(t, v / FW_TOP * top, kind) for t, v, kind in POINTS["field_weakening"]])
+    else:                                  # longer ramps (large inertia), the same hold and gaps
+        t1, t2 = 0.02 + T, 0.02 + T + 0.1
+        t3, dur = t2 + T, t2 + T + 0.04
+        pts = [(0.02, 0.0, "step"), (t1, top, "ramp"), (t2, top, "step"), (t3, 0.0, "ramp")]
+    segs = [("ramp", 0.02, t1, 0.0, top), ("step", t1, t2, top, top), ("ramp", t2, t3, top, 0.0)]
+    if plan is None:
+        what = "1.35 x the no-load base speed"
+    else:
+        what = f"{plan.top / plan.base:.3g} x the no-load base speed"
+        if plan.negligible:
+            what += (f": field weakening negligible for this motor (it adds {100 * (plan.w_fw / plan.w_nofw - 1):.2g} % "
+                     f"within its current limit), a ramp to the voltage limit")
+    return Scenario("field_weakening", "speed", dur, steps_and_ramps(pts), segments=segs,
                     load=lambda t: tq,
-                    description=f"speed ramp 0 -> {top:.4g} rad/s (1.35 x the no-load base speed) and back under "
+                    description=f"speed ramp 0 -> {top:.4g} rad/s ({what}) in {T:.3g} s and back under "
                                 f"{tq:.3g} N m, algorithm 1 (field weakening)")
 
 
@@ -191,4 +293,6 @@ def get(name: str, cfg=None) -> tuple[Scenario, int]:
         make, alg = SCENARIOS[name]
     except KeyError:
         raise KeyError(f"unknown scenario {name!r}; choose from {', '.join(SCENARIOS)}") from None
+    if name == "field_weakening" and cfg is not None:
+        return _field_weakening(scale_for(cfg), fw_plan(cfg)), alg
     return make(scale_for(cfg)), alg
