@@ -16,7 +16,7 @@ import dataclasses
 import numpy as np
 import pytest
 
-from empc import closedloop as cl, config, design, report, robust, scenarios
+from empc import closedloop as cl, config, design, governor, report, robust, scenarios
 from empc.controllers.explicit import ExplicitMPC
 from empc.controllers.fixed import FixedMPC
 
@@ -113,7 +113,20 @@ def _bounds(cfg, name, sc, tr_f, m_f, tr_x, m_x):
     last = m_x["segments"][-1]
     if last["kind"] == "step":
         step = max(abs(last["to"] - last["from"]), abs(last["to"]), 1e-9)
-        assert last["final_error"] <= 0.5 * step + 4 * res, last      # moved at least half way
+        reach = min(step, _governed_reach(cfg, sc.task, last["t1"] - last["t0"] - cfg.control.N * cfg.control.Ts))
+        assert last["final_error"] <= step - 0.5 * reach + 4 * res, last      # moved at least half way
+
+
+def _governed_reach(cfg, task, T):
+    """How far the reference governor lets the task reference move in T seconds from rest (the
+    triangular or trapezoidal profile of its acceleration and speed limits): fault_step's 20 ms are
+    shorter than the governed 20 rad move on the BLWR233D (25 ms)."""
+    p, Ts = governor.params(cfg, task), cfg.control.Ts
+    if task == "speed":
+        return p.vmax / Ts * max(T, 0.0)
+    a, vmax = p.a / Ts ** 2, p.vmax / Ts
+    T = max(T, 0.0)
+    return a * (T / 2) ** 2 if a * T / 2 <= vmax else vmax * T - vmax ** 2 / a
 
 
 @pytest.mark.parametrize("name", NEW)
