@@ -40,6 +40,7 @@ from empc.rtlmodel.ref_gen import GOV_FIELD, RefGen, gov_words, segments_from_po
 ROOT = Path(__file__).resolve().parents[1]
 REPORTS = ROOT / "build" / "reports"
 CLK_PERIOD_NS = 10                    # fabric clock (100 MHz); the PLL model passes it through
+LATENCY_MAX = 300                     # clocks from the last ADC bit to the compare values (issue 16 item 3)
 
 # Co-simulation scenarios: (paper scenario, simulated seconds, fault injection or None)
 COSIM = {
@@ -92,6 +93,10 @@ class CoSim:
         self.mismatches = []
         self.checked = 0
         self.lat_max = {"control": 0, "modulation": 0}   # adc_trig -> cmp_load, clock cycles
+        self.lat_bit = {"control": 0, "modulation": 0}   # last ADC bit (SCLK rising edge) -> cmp_load
+        self.lat_valid = {"control": 0, "modulation": 0}  # ADC valid -> cmp_load
+        self.lat_bit_valid = None                          # last ADC bit -> valid
+        self.t_sclk = self.t_valid = None
         self.clk_ps = CLK_PERIOD_NS * 1000
         self.rec = {k: [] for k in ("t", "i_d", "i_q", "w_e", "theta_e", "u_d", "u_q", "ref", "ipk")}
         self.period = 0
@@ -124,6 +129,15 @@ class CoSim:
             await RisingEdge(dut.dbg_period_start)
         bridges_on = int(dut.pwm_en.value) == 0b111
         duties = np.array(self.cmp_rtl, dtype=float) / self.P if bridges_on else None
+        # the boundary before the sample: the sequencer decides the sample's kind and the references
+        # advance here (docs/four_axes.md D5), before the CPU commands of this half period
+        control = self.seq.boundary(self.regs)
+        if control:
+            self.ref.advance(hold=self.seq.hold, task_pos=self.sc.task == "position")
+            if self.started and self.t_profile0 is None:
+                # this advance loads the profile's first value into the head w_{k+N}: the
+                # sample instant is profile time -N Ts
+                self.t_profile0 = self.t + 0.5 * self.Tpwm + self.cfg.control.N * self.cfg.control.Ts
         for act in actions:            # CPU accesses in the first half period (mirrored in the model)
             await act()
         self._plant_half(duties)
@@ -132,12 +146,7 @@ class CoSim:
         await ReadOnly()
         t_trig = get_sim_time("ps")
         self.regs.run = bool(int(dut.dbg_running.value))
-        control = self.seq.per_cnt + 1 >= self.regs.pwm_per_control
-        ref_w = self.ref.advance(hold=self.seq.hold, task_pos=self.sc.task == "position") if control else None
-        if control and self.started and self.t_profile0 is None:
-            # this advance loads the profile's first value into the head w_{k+N}: the
-            # sample instant is profile time -N Ts
-            self.t_profile0 = self.t + self.cfg.control.N * self.cfg.control.Ts
+        ref_w = list(self.ref.w) if control else None
         theta16 = pos_sense.angle(count, self.cfg.sensors.encoder_cpr, self.cfg.motor.p, base=0)
         off = self.cfg.sensors.adc_offset
         out = self.seq.period(theta16, count & 0xFFFFFFFF, tuple(c - off for c in codes), self.regs, ref_w)
@@ -146,9 +155,17 @@ class CoSim:
         self.u_applied = self.seq.u
         await RisingEdge(dut.dbg_cmp_load)
         await ReadOnly()
-        lat = round((get_sim_time("ps") - t_trig) / self.clk_ps)
+        t_load = get_sim_time("ps")
+        lat = round((t_load - t_trig) / self.clk_ps)
         kind = "control" if control else "modulation"
         self.lat_max[kind] = max(self.lat_max[kind], lat)
+        # from the last ADC bit (the last SCLK rising edge of the frame) and from the ADC's valid
+        if self.t_sclk is not None and self.t_valid is not None and self.t_sclk > t_trig:
+            lb = round((t_load - self.t_sclk) / self.clk_ps)
+            lv = round((t_load - self.t_valid) / self.clk_ps)
+            self.lat_bit[kind] = max(self.lat_bit[kind], lb)
+            self.lat_valid[kind] = max(self.lat_valid[kind], lv)
+            self.lat_bit_valid = round((self.t_valid - self.t_sclk) / self.clk_ps)
         v = int(dut.dbg_cmp.value)
         self.cmp_rtl = tuple((v >> (12 * i)) & 0xFFF for i in range(3))
         self.checked += 1
@@ -156,7 +173,7 @@ class CoSim:
             self.mismatches.append((self.period, self.cmp_rtl, tuple(out["cmp"])))
             if len(self.mismatches) == 1 and os.environ.get("EMPC_COSIM_DEBUG"):
                 seq = dut.u_top.g_axis[0].u_axis.u_seq
-                names = ("u_st0", "u_st1", "i_d", "i_q", "omega", "pos_trig", "pos_prev", "theta_trig")
+                names = ("u_st0", "u_st1", "i_d", "i_q", "omega", "pos_trig", "theta_trig")
                 for n in names:
                     h = getattr(seq, n)
                     self.dut._log.error("RTL %s = %s", n, hex(int(h.value)))
@@ -224,6 +241,18 @@ async def run_cosim(dut, name: str) -> dict:
                                 d_oe="cpu_d_oe", bus="emc_d_seen"))
     drv = driver.Drive(bus)
     cocotb.start_soon(Clock(dut.clk, CLK_PERIOD_NS, unit="ns").start())
+
+    async def adc_edges():              # the last ADC bit and the ADC's valid, for the latency
+        while True:
+            await RisingEdge(dut.dbg_adc_sclk)
+            cs.t_sclk = get_sim_time("ps")
+
+    async def adc_valid():
+        while True:
+            await RisingEdge(dut.dbg_adc_valid)
+            cs.t_valid = get_sim_time("ps")
+    cocotb.start_soon(adc_edges())
+    cocotb.start_soon(adc_valid())
     dut.rst_n.value = 0
     dut.enc_target.value = 0
     dut.idx_enable.value = 0
@@ -444,7 +473,11 @@ async def closed_loop(dut, name: str):
               "status_registers": res["status"],
               "latency_adc_trigger_to_pwm_update_cycles": res["status"]["LATENCY"],
               "latency_max_cycles": dict(cs.lat_max),
+              "latency_last_adc_bit_to_cmp_load_max_cycles": dict(cs.lat_bit),
+              "latency_adc_valid_to_cmp_load_max_cycles": dict(cs.lat_valid),
+              "last_adc_bit_to_adc_valid_cycles": cs.lat_bit_valid,
               "fault_seen_period": res["fault_seen"]}
+    assert 0 < cs.lat_bit["control"] <= LATENCY_MAX, f"last ADC bit -> compare values: {cs.lat_bit}"
     if cs.fault is None:
         assert not cs.mismatches, f"RTL compare values differ from the bit-accurate model: {cs.mismatches[:3]}"
         tr, sc_cut, m = metrics_report(cs, res)

@@ -139,9 +139,10 @@ def rom_runs(array: str, width: int, words: list[int], var: str, base: str = "",
 
 def generated() -> dict[str, Callable[[], str]]:
     """Every file this compiler writes (path relative to the checkout) and its generator."""
-    from .rtlmodel import ctrl_seq, xform
+    from .rtlmodel import ctrl_seq, mx_seq, xform
     return {"rtl/xform_ucode.vh": xform.ucode_vh, "rtl/xform_rom.vh": xform.rom_vh,
-            "rtl/ctrl_seq_ucode.vh": ctrl_seq.ucode_vh, "rtl/ctrl_seq_rom.vh": ctrl_seq.rom_vh}
+            "rtl/ctrl_seq_ucode.vh": ctrl_seq.ucode_vh, "rtl/ctrl_seq_rom.vh": ctrl_seq.rom_vh,
+            "rtl/mx_seq_ucode.vh": mx_seq.ucode_vh, "rtl/mx_seq_rom.vh": mx_seq.rom_vh}
 
 
 def stale(root: Path = ROOT) -> list[str]:

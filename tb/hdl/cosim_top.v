@@ -43,7 +43,9 @@ module cosim_top #(
     output wire [35:0] dbg_cmp,
     output wire [7:0]  dbg_per_cnt,
     output wire        dbg_running,
-    output wire        dbg_trip
+    output wire        dbg_trip,
+    output wire        dbg_adc_sclk,   // the ADC's SCLK (its last rising edge: the last bit of the frame)
+    output wire        dbg_adc_valid
 );
     wire [31:0] emc_d;
     assign emc_d = cpu_d_oe ? cpu_d : 32'bz;
@@ -74,5 +76,7 @@ module cosim_top #(
     assign dbg_per_cnt = u_top.g_axis[0].u_axis.u_seq.per_cnt;
     assign dbg_running = u_top.g_axis[0].u_axis.running;
     assign dbg_trip = u_top.g_axis[0].u_axis.trip;
+    assign dbg_adc_sclk = adc_sclk;
+    assign dbg_adc_valid = u_top.g_axis[0].u_axis.adc_valid;
 endmodule
 `default_nettype wire

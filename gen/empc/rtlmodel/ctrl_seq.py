@@ -121,6 +121,16 @@ class CtrlSeq:
     fw_n: int = 0
     fw_flags: tuple = (False, False)
     hold: bool = False
+    ctl_next: bool | None = None   # decided at the PWM boundary before the sample (boundary())
+
+    def boundary(self, regs: Regs) -> bool:
+        """The PWM boundary before a sample (docs/four_axes.md D5): decides whether the coming
+        sample is a control sample (CTRL.pwm_per_control as at the boundary); the references
+        advance here, so the caller advances ref_gen's model when this returns True, before any
+        CPU command of the half period (a SEG_START / CMD.ref_sync after the boundary is taken
+        by the next control period's advance)."""
+        self.ctl_next = self.per_cnt + 1 >= regs.pwm_per_control
+        return self.ctl_next
 
     def period(self, theta: int, pos: int, cur: tuple, regs: Regs, ref_w=None) -> dict:
         """One PWM period.  theta: 16-bit angle at the trigger; pos: encoder count (32-bit);
@@ -131,7 +141,9 @@ class CtrlSeq:
         self.first = False
         self.theta_trig = theta
         pos &= POS_MASK
-        if self.per_cnt + 1 >= regs.pwm_per_control:
+        control = self.per_cnt + 1 >= regs.pwm_per_control if self.ctl_next is None else self.ctl_next
+        self.ctl_next = None
+        if control:
             self.per_cnt = 0
             out["control"] = True
             self._control(theta, pos, cur, regs, ref_w, out)
@@ -181,12 +193,14 @@ class CtrlSeq:
         # impossible jumps: 2^15 counts/Ts of speed change, 2^23 counts per Ts)
         dom = F.sat(omega - self.omega_prev, sw)
         dth = F.sat(dpos << F.TH_FRAC, sw)
-        out["front_sat"] |= bool(dom != omega - self.omega_prev or dth != dpos << F.TH_FRAC)
+        eng_sat = bool(esat or dom != omega - self.omega_prev or dth != dpos << F.TH_FRAC)
+        out["front_sat"] |= eng_sat
         dx = (i_d - self.id_prev, i_q - self.iq_prev, dom, dth, 0)
         x = core.Inputs(y=(i_d, i_q, 0 if task_pos else omega), omega=omega, dx=dx, wref=tuple(wref),
                         u_prev=self.u, ebar_prev=self.ebar, fw_thr=regs.fw_thr)
         self.id_prev, self.iq_prev, self.omega_prev, self.pos_prev = i_d, i_q, omega, pos
-        out.update(i_d=i_d, i_q=i_q, omega=omega, dpos=dpos, i_fw=fw_offset(self.fw_n, regs), id_eff=id_eff)
+        out.update(i_d=i_d, i_q=i_q, omega=omega, dpos=dpos, i_fw=fw_offset(self.fw_n, regs), id_eff=id_eff,
+                   x=x, eng_sat=eng_sat)
         if regs.run:
             r = core.update(self.params, x)
             self.u, self.ebar = r.u, r.ebar
