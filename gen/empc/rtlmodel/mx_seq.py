@@ -329,16 +329,45 @@ class Ctx:
     first: bool = False
 
 
-def run_job(kind: str, n: int, ram: dict, ctx: Ctx) -> dict:
+THETA_LAT = 4      # rtl/mx_seq.v default: pos_sense's clocks from a count to its angle
+
+
+def job_timing(t_valid: int, core_lat: int | None, theta_lat: int = THETA_LAT) -> dict:
+    """The wait conditions of a job in :func:`run_job`'s clocks (clock 1 = the clock after the
+    trigger cycle: the first issue).  ``t_valid``: the ADC's valid pulse, in clocks after the trigger
+    cycle; ``core_lat``: mpc_core.latency(ncols), or None with the law off (run low).
+    rtl/mx_seq.v: adc_seen the clock after valid, the front request the next (its start cycle),
+    done ``xform.latency("front")`` later, front_done the clock after; theta_trig after theta_lat."""
+    from . import xform
+    return {"th": 1 + theta_lat, "front": t_valid + 2 + xform.latency("front") + 1, "core_lat": core_lat}
+
+
+def latency(kind: str, n: int, kacc_shift: int, load_shift: int, timing: dict) -> int:
+    """The RTL's ``latency`` (trigger -> cmp_load, in clocks, its counter's convention) of a job whose
+    references are ready (read before the control program's WREF step): the program executed clock by
+    clock with the waits of ``timing`` (:func:`job_timing`), then the modulation: the WCORE op's W
+    stage requests it (issue + 2), xform starts the clock after and is done ``xform.latency("mod")``
+    later, cmp_load the clock after.  The latency register counts cmp_load's cycle - trigger's - 1."""
+    from . import xform
+    ctx = Ctx(pos=0, theta=0, kacc_shift=kacc_shift, load_shift=load_shift)
+    r = run_job(kind, n, {}, ctx, timing)
+    return r["wcore"] + 3 + xform.latency("mod")
+
+
+def run_job(kind: str, n: int, ram: dict, ctx: Ctx, timing: dict | None = None) -> dict:
     """Execute program ``kind`` clock by clock with the RTL's pipeline (issue, E, W; RAM read data and
     staged sources at issue + 1, writes at the end of issue + 2); ``ram`` (word -> signed 36-bit value)
-    is updated.  Returns the core input words, status words, theta_mod, the front-saturation flag and
-    the shifter's busy clocks.  Waits are taken as satisfied (data is there), the shifter's are real."""
+    is updated.  Returns the core input words, status words, theta_mod, the front-saturation flag,
+    the shifter's busy clocks and ``wcore``, the issue clock of the WCORE step.  Without ``timing``
+    the waits are taken as satisfied (data is there); with it (:func:`job_timing`) WTH, WFRONT and
+    WCORE wait as in the RTL (the references are taken as read).  The shifter's waits are real."""
+    tm = timing or {"th": 0, "front": 0, "core_lat": None}
+    t_core = 0 if (kind == "MOD" or timing is None) else None     # core_fin from this clock on
     prog = program(kind, n)
     src = {"NONE": 0, "POS": ctx.pos & 0xFFFFFFFF, "TH": ctx.theta, "ID": ctx.i_d, "IQ": ctx.i_q,
            "IDR": ctx.id_ref, "IQR": ctx.iq_ref, "U0": ctx.u[0], "U1": ctx.u[1], "E0": ctx.ebar[0], "E1": ctx.ebar[1],
            "E2": ctx.ebar[2], "PR": ctx.kacc * ctx.i_q}
-    out = {"core": {}, "stat": {}, "thm": None, "fs": False, "omr": None}
+    out = {"core": {}, "stat": {}, "thm": None, "fs": False, "omr": None, "wcore": None}
     regs = {"P": 0, "OMR": 0, "SH": 0, "r": 0, "sh_left": 0, "THM": 0}
     pending = []               # (clock at whose end it lands, what)
     pc, clock = 0, 0
@@ -349,8 +378,10 @@ def run_job(kind: str, n: int, ram: dict, ctx: Ctx) -> dict:
         for when, fn in [p for p in pending if p[0] < clock]:
             fn()
         pending = [p for p in pending if p[0] >= clock]
-        # shifter steps
-        if regs["sh_left"] > 0:
+        # shifter steps (the RTL's first step is the clock after its load: not in the clock the load lands)
+        if regs.pop("sh_load", False):
+            pass
+        elif regs["sh_left"] > 0:
             regs["r"] = regs["SH"] & 1
             regs["SH"] >>= 1
             regs["sh_left"] -= 1
@@ -359,9 +390,15 @@ def run_job(kind: str, n: int, ram: dict, ctx: Ctx) -> dict:
                 break
         else:
             op = prog[pc]
+            wait = {"WTH": clock < tm["th"], "WFRONT": clock < tm["front"],
+                    "WCORE": t_core is None or clock < t_core}.get(op.ctl, False)
             if op.ctl == "WSH" and (regs["sh_left"] > 0 or any(p[1].dk in ("SHKA", "SHT2") for p in pipe)):
                 pass            # stall
+            elif wait:
+                pass
             else:
+                if op.ctl == "WCORE":
+                    out["wcore"] = clock
                 q = ram.get(op.rbn, 0)
                 if op.reads_ram() is not None:
                     assert not any(p[1].writes() == ("RAM", op.rbn) for p in pipe), f"RAM hazard at {pc}"
@@ -390,6 +427,8 @@ def run_job(kind: str, n: int, ram: dict, ctx: Ctx) -> dict:
                 pipe[i] = (t, op, r, q)
         # W stage: op issued at clock - 2
         for (t, op, r, q) in [p for p in pipe if p[0] == clock - 2]:
+            if op.ctl == "START" and t_core is None:      # core_start (or, law off, core_fin) next clock
+                t_core = clock + 1 if tm["core_lat"] is None else clock + 2 + tm["core_lat"]
             wv = {"SAT32": F.sat(r, 32), "WRAP32": F.wrap(r, 32), "WRAP36": F.wrap(r, 36), "FULL": r}[op.wm]
             if op.fs and wv != r:
                 out["fs"] = True
@@ -413,6 +452,7 @@ def run_job(kind: str, n: int, ram: dict, ctx: Ctx) -> dict:
                         regs["SH"] = F.wrap(wv, 48)
                         regs["r"] = 0
                         regs["sh_left"] = ctx.kacc_shift if op.dk == "SHKA" else ctx.load_shift + 1
+                        regs["sh_load"] = True
                 pending.append((clock, land))
         pipe = [p for p in pipe if p[0] > clock - 2]
         assert clock < 10000
