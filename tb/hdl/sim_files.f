@@ -5,5 +5,4 @@ tb/hdl/mpc_core_stream.v
 tb/hdl/emc_regs_tb.v
 tb/hdl/quad_gen.v
 tb/hdl/cosim_top.v
-tb/hdl/ctrl_seq_tb.v
 tb/hdl/mx_seq_tb.v
