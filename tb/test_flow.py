@@ -392,9 +392,10 @@ def test_committed_budget_one_axis_under_half():
     b = synth.load_budget("lx_rocon_top")
     assert b is not None, "constraints/resource_budget.json needs an lx_rocon_top entry"
     cap = synth.CAPACITY
-    # Issue 6: one axis well under half the LUTs (goal 45 %; measured 41.8 %), so that a second
-    # axis fits with room for placement.
-    assert b["lut"] < 0.45 * cap["lut"], "one axis must stay under 45 % of the LUTs"
+    # Issue 6: one axis under half the LUTs (41.8 % then), so that a second axis fits with room for
+    # placement. Issue 15's current limit, load estimate and field weakening take it to 46.5 %
+    # (2660 LUT); four axes no longer come from replicas but from the shared engine (docs/four_axes.md).
+    assert b["lut"] < 0.50 * cap["lut"], "one axis must stay under 50 % of the LUTs"
     assert b["dsp48a1"] <= cap["dsp48a1"] // 2 and b["ramb16"] <= cap["ramb16"] // 2
     assert set(b) <= set(synth.resource_counts({"cells": {}, "ports": {}})) | {"iob", "fmax_mhz"}
     # the timing proxy must meet the 100 MHz fabric clock

@@ -427,18 +427,21 @@ def _run(task: str, n: int = 4, periods: int | None = None):
     env = {"MX_TASK": task, "MX_N": str(n)}
     if periods:
         env["EMPC_MX_PERIODS"] = str(periods)
-    run(toplevel="mx_seq_tb", test_module="test_mx_seq", sim="verilator", name=f"mx_seq_{task}_n{n}",
-        parameters={"N": n}, extra_env=env, testcase="random_periods")
+    run(toplevel="mx_seq_tb", test_module="test_mx_seq", sim="verilator", name=f"mx_seq_n{n}", run_name=task,
+        parameters={"N": n}, extra_env=env, testcase="random_periods")     # one Verilator build per N
 
 
+@pytest.mark.cost(25)          # Verilator build (shared by the two tasks) + 400 periods
 def test_mx_seq_speed():
     _run("speed")
 
 
+@pytest.mark.cost(25)
 def test_mx_seq_position():
     _run("position")
 
 
+@pytest.mark.cost(25)          # a Verilator build each + 150 periods
 @pytest.mark.parametrize("n", [1, 8])
 def test_mx_seq_horizons(n):
     """N = 1 and 8 (the law off: the boot image is N = 4's; every input word and compare value checked)."""

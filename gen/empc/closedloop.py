@@ -154,6 +154,9 @@ def metrics(tr: Trace, sc: Scenario, settle_floor: float = 0.0, preview: float =
     ramps: mean and max |error| over the second half of the ramp (the constant lag
     of algorithm 1 vs ~0 for algorithm 2), peak phase current, peak |i_dq|, peak output,
     saturations; steps also the mean i_d over their second half (field weakening).
+    ``settling_time_max`` is the largest settling time, or the string "unsettled (n of m
+    steps)" when a step never settles (``unsettled_steps`` counts them,
+    ``settling_time_max_settled`` is the maximum over the settled ones).
     """
     y = tr.output(sc.task)
     r = tr.ref[:, 2]
@@ -162,7 +165,7 @@ def metrics(tr: Trace, sc: Scenario, settle_floor: float = 0.0, preview: float =
            "peak_phase_current": float(np.max(tr.i_phase_peak)), "saturations": int(np.sum(tr.sat)),
            "peak_current": float(np.max(np.hypot(tr.i_d, tr.i_q))), "peak_output": float(np.max(y)),
            "rms_error": float(np.sqrt(np.mean(e * e)))}
-    ramp_means, overshoots, settles = [], [], []
+    ramp_means, overshoots, settles, unsettled = [], [], [], 0
     for kind, t0, t1, v0, v1 in sc.segments:
         sel = (tr.t >= t0) & (tr.t < t1)
         if not np.any(sel):
@@ -188,6 +191,8 @@ def metrics(tr: Trace, sc: Scenario, settle_floor: float = 0.0, preview: float =
                 seg["settling_time"] = float(ts[outside[-1] + 1] - t0)
             if seg["settling_time"] is not None:
                 settles.append(seg["settling_time"])
+            else:
+                unsettled += 1
             tail = e[sel][-max(1, len(ys) // 2):]
             seg["final_error"] = float(np.mean(np.abs(tail[-max(1, len(ys) // 10):])))
             seg["final_error_mean"] = float(np.mean(tail))       # signed: zero-symmetric error -> ~0
@@ -203,5 +208,12 @@ def metrics(tr: Trace, sc: Scenario, settle_floor: float = 0.0, preview: float =
         out["segments"].append(seg)
     out["ramp_error_mean_abs"] = float(np.mean(ramp_means)) if ramp_means else None
     out["overshoot_pct_max"] = float(np.max(overshoots)) if overshoots else None
-    out["settling_time_max"] = float(np.max(settles)) if settles else None
+    # a step that never settles is reported as such, not dropped from the maximum
+    n_steps = len(settles) + unsettled
+    out["unsettled_steps"] = unsettled
+    out["settling_time_max_settled"] = float(np.max(settles)) if settles else None
+    if unsettled:
+        out["settling_time_max"] = f"unsettled ({unsettled} of {n_steps} steps)"
+    else:
+        out["settling_time_max"] = float(np.max(settles)) if settles else None
     return out

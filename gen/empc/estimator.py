@@ -22,8 +22,8 @@
   ``control.speed_load_shift`` (6: 16 ms at Ts = 250 us).
 
 The RTL computes the same in raw units (rtlmodel/ctrl_seq.py ``speed_estimate``); this float
-form serves the float controller and the design check.  :func:`state_space` gives the
-estimator as a linear block for the robustness check (design.py).
+form serves the float controller; :func:`state_space` gives the estimator as a linear block,
+the one the robust design check puts in the loop (loop.py ``ESTIMATORS``).
 """
 from __future__ import annotations
 
@@ -64,10 +64,11 @@ def state_space(cfg) -> dict:
 
         z_{k+1} = A z_k + B v_k,      w_k = C z_k + D v_k
 
-    ("eq37": kc = 0 and no load state; "accel": no load state).  The angle enters only as its
+    ("eq37": kc = 0 and no states; "accel": no states: w_k = D v_k).  The angle enters only as its
     difference, so a loop with this block has no structural eigenvalue 1 from theta; the
-    encoder quantisation (eq. 38) acts on dtheta before the block.  ``mpc.closed_loop_matrix``
-    takes the dict as ``estimator=`` (the law then sees w_k instead of the plant's speed).
+    encoder quantisation (eq. 38) acts on dtheta before the block.  The design check's loop
+    model (loop.py, :func:`empc.loop.from_state_space`) puts this block in the loop as built
+    (the law then sees w_k instead of the plant's speed).
     Returns {"A", "B", "C", "D", "states", "inputs"}.
     """
     Ts = cfg.control.Ts
@@ -81,6 +82,6 @@ def state_space(cfg) -> dict:
                   [-g * 0.5 / Ts, g * kc]])
     C = np.array([[0.0, -1.0]])
     D = np.array([[1.0 / Ts, kc]])
-    if not g:       # no load state (it would be a constant: a structural eigenvalue 1)
-        return {"A": A[:1, :1], "B": B[:1], "C": C[:, :1], "D": D, "states": ("w37_prev",), "inputs": ("dtheta", "i_q")}
+    if not g:       # no states: w37_prev is read only by the load update, D would be a constant
+        return {"A": A[:0, :0], "B": B[:0], "C": C[:, :0], "D": D, "states": (), "inputs": ("dtheta", "i_q")}
     return {"A": A, "B": B, "C": C, "D": D, "states": ("w37_prev", "D_load"), "inputs": ("dtheta", "i_q")}

@@ -55,10 +55,11 @@ def field_weakening_raw(cfg) -> dict[str, int]:
     fw = c.field_weakening
     q = (1 << formats.I_FRAC) / cfg.amps_per_lsb
     um = u_max_v(cfg)
-    hi = min(int(math.floor((fw.u_hi * um) ** 2)) >> FW_R_SHIFT, 0xFFFF)
-    lo = min(int(math.floor((fw.u_lo * um) ** 2)) >> FW_R_SHIFT, 0xFFFF)
-    shift = max(0, min(15, int(round(math.log2(max(fw.step * c.i_max * q, 1.0))))))
-    nmax = max(1, min(255, int(round(fw.i_max_frac * c.i_max * q / (1 << shift))))) if fw.enable else 0
+    # (the field widths of FW_R2, FW.nmax and the shift are checked by config.check_rtl_limits)
+    hi = int(math.floor((fw.u_hi * um) ** 2)) >> FW_R_SHIFT
+    lo = int(math.floor((fw.u_lo * um) ** 2)) >> FW_R_SHIFT
+    shift = max(0, int(round(math.log2(max(fw.step * c.i_max * q, 1.0)))))
+    nmax = int(round(fw.i_max_frac * c.i_max * q / (1 << shift))) if fw.enable else 0
     return {"FW_SHIFT": shift, "FW_NMAX": nmax, "FW_R2_HI": hi, "FW_R2_LO": lo}
 
 
@@ -75,7 +76,7 @@ def governor_raw(cfg, task: str | None = None) -> dict[str, int]:
     g = governor.raw_params(cfg, task or cfg.control.task)
     return {"GOV_EN": int(g["enable"]), "GOV_KSH": g["ksh"], "GOV_VMAX_LO": g["vmax"] & 0xFFFFFFFF,
             "GOV_VMAX_HI": g["vmax"] >> 32, "GOV_A_LO": g["a"] & 0xFFFFFFFF, "GOV_A_HI": g["a"] >> 32,
-            "IQ_HOLD": min(governor.hold_current_raw(cfg), 0xFFF) if g["enable"] else 0}
+            "IQ_HOLD": governor.hold_current_raw(cfg) if g["enable"] else 0}
 
 
 def config_constants(cfg) -> dict[str, int]:

@@ -96,23 +96,14 @@ def gains(motor, ctrl, omega_e: float, algorithm: int | None = None, task: str |
 
 
 def closed_loop_matrix(motor, ctrl, omega_e: float, algorithm: int | None = None, task: str | None = None,
-                       g: dict | None = None, estimator: dict | None = None) -> np.ndarray:
+                       g: dict | None = None) -> np.ndarray:
     """Transition matrix of the linear loop (model + law) frozen at one speed, zero references.
 
     The load torque (an unmeasured constant) and, in the speed task, the angle (not fed
     back) are left out: they give structural unit eigenvalues, not instability.
     Loop state z = [x_k, x_{k-1}, u_{k-1}] over the kept states, plus for algorithm 2 the
     aggregated errors the law can see (see below).
-
-    ``estimator``: a linear speed estimator (``estimator.state_space(cfg)``: inputs the angle
-    difference over the period and i_q, output the speed the law sees).  The law then gets
-    x^ = x with the speed replaced by the estimate (also in dx), the encoder's angle
-    difference comes from the plant model (theta_k - theta_{k-1} = A_d[theta] x_{k-1} +
-    B_d[theta] u_{k-1} - theta_{k-1}), and the loop state grows by [w^_{k-1}, z_est].
-    The plant may differ from the design (``motor`` is the plant, ``g`` the design's gains).
     """
-    if estimator is not None:
-        return _closed_loop_matrix_est(motor, ctrl, omega_e, algorithm, task, g, estimator)
     algorithm = algorithm or ctrl.algorithm
     task = task or ctrl.task
     g = g if g is not None else gains(motor, ctrl, omega_e, algorithm, task)
@@ -160,57 +151,9 @@ def closed_loop_matrix(motor, ctrl, omega_e: float, algorithm: int | None = None
     return T
 
 
-def _law_parts(g: dict, algorithm: int, task: str, keep: list, N: int):
-    """(Kx, Kxm, Ke, E_out) of u_k = u_{k-1} + Kx x_k + Kxm x_{k-1} + Ke e_{k-1}, e_k = e_{k-1} - E_out C x_k."""
-    C = model.output_matrix(task)[:, keep]
-    ny, nu = model.NY, model.NU
-    K_dx = g["K_dx"][:, keep]
-    if algorithm == 1:
-        ones = np.kron(np.ones((N, 1)), np.eye(ny))
-        return -g["K_e"] @ ones @ C - K_dx, K_dx, np.zeros((nu, 0)), np.zeros((0, ny))
-    Kx = -g["K_ebar"] @ C - g["K_y"] @ C - K_dx
-    integ = [o for o in range(ny) if np.any(g["K_ebar"][:, o] != 0)]
-    if len(integ) <= nu:
-        return Kx, K_dx, g["K_ebar"][:, integ], np.eye(ny)[integ]
-    return Kx, K_dx, np.eye(nu), g["K_ebar"]
-
-
-def _closed_loop_matrix_est(motor, ctrl, omega_e, algorithm, task, g, est) -> np.ndarray:
-    algorithm = algorithm or ctrl.algorithm
-    task = task or ctrl.task
-    g = g if g is not None else gains(motor, ctrl, omega_e, algorithm, task)
-    keep = [0, 1, 2] if task == "speed" else [0, 1, 2, 3]
-    C = model.output_matrix(task)[:, keep]
-    Ad_f, Bd_f = model.discrete(motor, omega_e, ctrl.Ts)
-    Ad, Bd = Ad_f[np.ix_(keep, keep)], Bd_f[keep]
-    Kx, Kxm, Ke, E_out = _law_parts(g, algorithm, task, keep, ctrl.N)
-    Az, Bz, Cz, Dz = (np.atleast_2d(np.asarray(est[k], dtype=float)) for k in "ABCD")
-    nx, nu, nz, ne = len(keep), model.NU, Az.shape[0], E_out.shape[0]
-    # state s = [x_k, x_{k-1}, u_{k-1}, w^_{k-1}, z_k, e_{k-1}]
-    o = np.cumsum([0, nx, nx, nu, 1, nz, ne])
-    n = int(o[-1])
-    I = np.eye(n)
-    X, XM, U, WM, Z, E = (I[o[i]:o[i + 1]] for i in range(6))      # selectors (rows of I)
-    TH, W = 3, 2                                                   # model state indices
-    dth = Ad_f[TH, keep] @ XM + Bd_f[TH] @ U                        # theta_k - theta_{k-1}
-    if TH in keep:
-        dth = dth - XM[keep.index(TH)]
-    v = np.vstack([dth, X[1]])                                     # estimator inputs [dtheta, i_q]
-    w_hat = Cz @ Z + Dz @ v                                        # (1, n)
-    M = np.eye(nx)
-    M[W, W] = 0.0
-    ew = np.zeros((nx, 1))
-    ew[W, 0] = 1.0
-    xh, xhm = M @ X + ew @ w_hat, M @ XM + ew @ WM                 # what the law sees
-    u = U + Kx @ xh + Kxm @ xhm + (Ke @ E if ne else 0.0)
-    e_new = E - E_out @ C @ xh if ne else np.zeros((0, n))
-    T = np.vstack([Ad @ X + Bd @ u, X, u, w_hat, Az @ Z + Bz @ v, e_new])
-    return T
-
-
 def spectral_radius(motor, ctrl, omega_e: float, algorithm: int | None = None, task: str | None = None,
-                    g: dict | None = None, estimator: dict | None = None) -> float:
-    T = closed_loop_matrix(motor, ctrl, omega_e, algorithm, task, g, estimator)
+                    g: dict | None = None) -> float:
+    T = closed_loop_matrix(motor, ctrl, omega_e, algorithm, task, g)
     return float(np.max(np.abs(np.linalg.eigvals(T))))
 
 

@@ -112,6 +112,7 @@ def build(cfg, algorithm: int | None = None, task: str | None = None, gain_fit=N
     u_max_v = cfg.u_max
     speed_top = max(abs(c.omega_min), abs(c.omega_max))
     cols = columns(algorithm, c.N)
+    fitted = [gf.evaluate(w) for w in gf.omega_grid]          # the fit on the design grid, once
     col_shift, coef = [], [[], []]
     quant = []
     for col in cols:
@@ -156,13 +157,14 @@ def build(cfg, algorithm: int | None = None, task: str | None = None, gain_fit=N
             to_si = 1.0 / (scale * acc_per_volt)
             peak = float(np.max(np.abs(k_exact[:, i])))
             q_err = float(np.max(np.abs(kq - k))) * to_si
-            f_err = float(np.max(np.abs(np.array([gf.evaluate(w)[col.gain][i, col.gain_col] * col.sign
-                                                  for w in gf.omega_grid]) - k_exact[:, i])))
+            f_dev = np.abs(np.array([fw[col.gain][i, col.gain_col] * col.sign for fw in fitted]) - k_exact[:, i])
+            f_err = float(np.max(f_dev))
+            f_at = float(gf.omega_grid[int(np.argmax(f_dev))])
             range_si = min(rng, (one - 1) * 2.0 ** cj) * scale
             quant.append({"gain": col.gain, "row": i, "col": col.gain_col, "peak_si": peak,
                           "unused": col.kind == "DX" and col.output == 4,
                           "quant_abs_si": q_err, "quant_rel": q_err / peak if peak else 0.0,
-                          "fit_abs_si": f_err, "fit_rel": f_err / peak if peak else 0.0,
+                          "fit_abs_si": f_err, "fit_rel": f_err / peak if peak else 0.0, "fit_worst_omega": f_at,
                           "operand_range_si": range_si,
                           "quant_du_ticks": q_err * range_si / cfg.volts_per_tick,
                           "fit_du_ticks": f_err * range_si / cfg.volts_per_tick,
@@ -196,3 +198,36 @@ def _eval_int(q, wn: int) -> int:
     p0, p1, p2 = q
     h = p1 + F.rshift_round(p2 * wn, F.OPW - 1)
     return p0 + F.rshift_round(h * wn, F.OPW - 1)
+
+
+def gains_si(cfg, params, omega: float) -> dict:
+    """The gains the core applies at the electrical speed ``omega`` (rad/s), back in SI units
+    with the paper's signs (the design check runs the loop with them).
+
+    Evaluated exactly as rtlmodel/mpc_core.py does (scheduling speed rounded to Q1.17 and
+    clamped to [wn_min, wn_max], 18-bit saturation of h and k); the operand shift c_j is
+    folded back into the gain (its rounding is a quantisation noise, not a gain).
+    """
+    task = params.task
+    one = 1 << (F.OPW - 1)
+    wnorm = w_norm_rtl(cfg, params.ws)
+    wn = int(round(omega / wnorm * one))
+    wn = min(max(wn, params.wn_min), params.wn_max)
+    acc_per_volt = (1 << F.ACC_FRAC) / cfg.volts_per_tick
+    N = params.N
+    shapes = {"K_e": (2, 3 * N), "K_dx": (2, 5), "K_ebar": (2, 3), "K_WL": (2, 3 * N), "K_y": (2, 3)}
+    return _gains_si(cfg, params, wn, acc_per_volt, shapes)
+
+
+def _gains_si(cfg, params, wn: int, acc_per_volt: float, shapes: dict) -> dict:
+    out = {}
+    for j, (col, cj) in enumerate(zip(columns(params.algorithm, params.N), params.col_shift)):
+        K = out.setdefault(col.gain, np.zeros(shapes[col.gain]))
+        scale = signal_scale(cfg, params.task, col.output, col.kind)
+        for i in range(2):
+            p0, p1, p2, s = params.coef[i][j]
+            p0, p1, p2 = F.sat(p0, F.OPW), F.sat(p1, F.OPW), F.sat(p2, F.OPW)
+            h = F.sat(p1 + F.rshift_round(p2 * wn, F.OPW - 1), F.OPW)
+            k = F.sat(p0 + F.rshift_round(h * wn, F.OPW - 1), F.OPW)
+            K[i, col.gain_col] = k * 2.0 ** (s - cj) / (scale * acc_per_volt) * col.sign
+    return out

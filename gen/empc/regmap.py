@@ -295,9 +295,10 @@ AXIS = (
         Field("last", 1, 1, "hold at the end of this segment instead of moving to the next slot")), ext="seg"),
     Reg("SEG_START", 0x1b, "WO", 0, "Write a slot number to start the profile there at the next control period.",
         width=4),
-    Reg("SEG_GOV", 0x1c, "RW", 0, "Reference-governor word of slot SEG_ADDR (slot memory field 7; "
-        "docs/blocks/ref_gen.md): slots 0/1 vmax low/high, 2/3 a low/high (Q.32, 63 bit), 4 bit 0 enable and "
-        "bits 12:8 ksh; the header's values (boot task) after configuration.", ext="gov"),
+    Reg("SEG_GOV", 0x1c, "RW", "EMPC_GOV_VMAX_LO", "Reference-governor word of slot SEG_ADDR (slot memory field "
+        "7; docs/blocks/ref_gen.md): slots 0/1 vmax low/high, 2/3 a low/high (Q.32, 63 bit), 4 bit 0 enable and "
+        "bits 12:8 ksh; the header's values (boot task) after configuration (after reset SEG_ADDR = 0: vmax low).",
+        ext="gov"),
     Reg("FW", 0x1d, "RW", 0, "Field weakening: the d-current references get -n * 2^EMPC_FW_SHIFT (Q.4 ADC LSB); "
         "n steps up by one per control period (to nmax) while FW_R2.hi < |u_raw|^2 >> 20, down (to 0) while "
         "|u_raw|^2 >> 20 < FW_R2.lo; 0 while the law is off.", (

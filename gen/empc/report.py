@@ -17,7 +17,7 @@ REPORTS = Path("build/reports")
 
 
 def run_scenario(cfg, name: str, fixed: bool = False, out: Path = REPORTS) -> dict:
-    sc, alg = scen.get(name)
+    sc, alg = scen.get(name, cfg)
     cfg = cfg.with_control(algorithm=alg, task=sc.task)
     runs = {"float": ExplicitMPC(cfg, gains="poly"), "exact": ExplicitMPC(cfg, gains="exact")}
     if fixed:

@@ -7,11 +7,17 @@ Writes into the output directory:
   empc_formats.vh               formats, layout and configuration constants for the RTL
   empc_regs.vh                  register map (gen/empc/regmap.py)
   manifest.json                 formats, scalings, column layout, fit and quantisation errors
-Nothing is written if the configuration or any requested design is invalid.
+Nothing is written if the configuration or any requested design is invalid (a design that fails
+the robust design check is written only with ``force``), and the directory is replaced as a
+whole (written into a temporary directory next to it, then renamed): files of an earlier
+configuration never survive, and a failure leaves the previous directory untouched.
 """
 from __future__ import annotations
 
 import json
+import os
+import shutil
+import tempfile
 from pathlib import Path
 
 from . import __version__, config as config_mod, header, image, mpc, regmap
@@ -19,10 +25,37 @@ from .design import design, designs_of
 from .rtlmodel import mpc_core as core
 
 
-def generate(cfg, out: Path, all_designs: bool = True) -> dict:
-    out = Path(out)
-    results = {k: design(cfg, *k) for k in designs_of(cfg, all_designs)}   # raises before writing anything
-    out.mkdir(parents=True, exist_ok=True)
+def generate(cfg, out: Path, all_designs: bool = True, force: bool = False) -> dict:
+    final = Path(out)
+    results = {k: design(cfg, *k, force=force) for k in designs_of(cfg, all_designs)}   # raises before writing
+    final.parent.mkdir(parents=True, exist_ok=True)
+    out = Path(tempfile.mkdtemp(prefix=f".{final.name}.tmp-", dir=final.parent))
+    try:
+        manifest = _write(cfg, out, results, all_designs)
+        _replace_dir(out, final)
+    except BaseException:
+        shutil.rmtree(out, ignore_errors=True)
+        raise
+    return manifest
+
+
+def _replace_dir(new: Path, final: Path) -> None:
+    """Put the directory ``new`` in place of ``final`` (two renames; ``final`` is never half written)."""
+    os.chmod(new, 0o755)
+    old = None
+    if final.exists() or final.is_symlink():
+        old = Path(tempfile.mkdtemp(prefix=f".{final.name}.old-", dir=final.parent))
+        os.rmdir(old)
+        os.rename(final, old)
+    os.rename(new, final)
+    if old is not None:
+        if old.is_dir() and not old.is_symlink():
+            shutil.rmtree(old, ignore_errors=True)
+        else:
+            old.unlink()
+
+
+def _write(cfg, out: Path, results: dict, all_designs: bool) -> dict:
     boot = (cfg.control.algorithm, cfg.control.task)
     files = {}
     for (alg, task), r in results.items():
@@ -47,6 +80,10 @@ def generate(cfg, out: Path, all_designs: bool = True) -> dict:
             "rad_per_count_electrical": cfg.rad_per_count, "rad_s_per_count_per_ts": cfg.rad_s_per_count_ts,
         },
         "image_layout": consts["image"],
+        "ratings": {"current_A": cfg.ratings.current, "voltage_V": cfg.ratings.voltage,
+                    "speed_rad_s_electrical": cfg.ratings.speed, "position_rad_electrical": cfg.ratings.position,
+                    "derived": list(cfg.ratings.derived)},
+        "weight_units": cfg.control.weight_units,
         "designs": {},
     }
     for (alg, task), r in results.items():
@@ -64,7 +101,14 @@ def generate(cfg, out: Path, all_designs: bool = True) -> dict:
                                    "worst_rel_of_peak": rep["quant_worst_rel_of_peak"],
                                    "per_gain": rep["quantisation"]},
             "stability": r["stability"],
+            "weights_si": _weights_dict(cfg.control.weights[(alg, task)]),
+            "weights_pu": _weights_dict(cfg.weights_pu(alg, task)),
             "coefficients": {"p0_p1_p2_shift": p.coef, "col_sig": p.col_sig, "col_shift": p.col_shift},
         }
     (out / "manifest.json").write_text(json.dumps(manifest, indent=1) + "\n")
     return manifest
+
+
+def _weights_dict(w) -> dict:
+    return {"Q_yw": list(w.Q_yw), "Q_dy": list(w.Q_dy), "Q_du": list(w.Q_du),
+            "ebar_step_max": list(w.ebar_step_max), "integrate": list(w.integrate)}

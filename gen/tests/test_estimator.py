@@ -85,44 +85,49 @@ def test_state_space_matches_step(kind):
         assert abs(dc.item()) < 1e-9
 
 
-@pytest.mark.parametrize("alg,task", [(1, "speed"), (2, "position")])
-def test_closed_loop_matrix_with_estimator(alg, task):
-    """mpc.closed_loop_matrix(estimator=...) against a step-by-step loop of the discrete plant,
-    the law and the float SpeedEstimator (zero references, a random start): the same
-    trajectory.  Plus the known results: eq. 37 alone leaves the position loop of algorithm 1
-    unstable (the 250 Hz limit cycle), accel_load keeps the exact-speed loop's spectral radius."""
-    from empc import model, mpc
+@pytest.mark.parametrize("task", ["speed", "position"])
+def test_loop_model_with_estimator(task):
+    """The design check's loop model (loop.py: the plant with the PWM update delay, the estimator
+    block from state_space, the law) against a step-by-step loop of the same delayed plant, the
+    algorithm-1 law and the float SpeedEstimator (zero references, a random start): the same
+    trajectory.  Plus: accel_load keeps accel's spectral radius up to its own pole 1 - 2^-s."""
+    from empc import loop, mpc, robust
     rng = np.random.default_rng(SEED)
-    cfg = CFG.with_control(algorithm=alg, task=task)
+    cfg = CFG.with_control(algorithm=1, task=task)
     ctrl, m, w0 = cfg.control, cfg.motor, 300.0
-    g = mpc.gains(m, ctrl, w0, alg, task)
-    ss = estimator.state_space(cfg)
-    T = mpc.closed_loop_matrix(m, ctrl, w0, alg, task, g, estimator=ss)
-    keep = [0, 1, 2] if task == "speed" else [0, 1, 2, 3]
-    Ad, Bd = model.discrete(m, w0, ctrl.Ts)
-    Kx, Kxm, Ke, E_out = mpc._law_parts(g, alg, task, keep, ctrl.N)
-    C = model.output_matrix(task)[:, keep]
-    xm = np.r_[rng.normal(0, 1, 3), 0.3, 0.0]
+    g = mpc.gains(m, ctrl, w0, 1, task)
+    lp = loop.loop(cfg, m, w0, 1, task, g)
+    delay = 0.5 / cfg.inverter.f_pwm
+    Ad, B0, B1 = loop.plant_delayed(m, w0, ctrl.Ts, delay)
+    C = loop.model.output_matrix(task)[:, :loop.NP]
+    K_dx = g["K_dx"][:, :loop.NP]
+    Kx = -(g["K_e"] @ np.kron(np.ones((ctrl.N, 1)), np.eye(3)) @ C) - K_dx
+    x = np.r_[rng.normal(0, 1, 3), 0.3]
     um = rng.normal(0, 2, 2)
-    x = Ad @ xm + Bd @ um
     est = estimator.SpeedEstimator(cfg)
-    est.theta_prev, est.w37_prev, est.D = xm[3], rng.normal(0, 5), rng.normal(0, 2)
-    wm = rng.normal(0, 5)
-    e = rng.normal(0, 0.01, E_out.shape[0])
-    s = np.r_[x[keep], xm[keep], um, wm, [est.w37_prev, est.D][:ss["A"].shape[0]], e]
-    xhm = xm[keep].copy(); xhm[2] = wm
-    u = um
+    est.theta_prev, est.w37_prev, est.D = rng.normal(0, 0.1), rng.normal(0, 5), rng.normal(0, 2)
+    xhm = np.r_[rng.normal(0, 1, 2), rng.normal(0, 5), est.theta_prev]
+    s = np.zeros(lp.T.shape[0])
+    s[lp.idx["p"]] = x
+    s[lp.idx["z"]] = [est.theta_prev, est.w37_prev, est.D]
+    s[lp.idx["u"]] = um
+    s[lp.idx["xp"]] = xhm
     for k in range(60):
-        assert np.allclose(s[:len(keep)], x[keep], rtol=1e-7, atol=1e-7), (k, s[:len(keep)], x[keep])
-        xh = x[keep].copy(); xh[2] = est.step(x[3], x[1])
-        u = u + Kx @ xh + Kxm @ xhm + (Ke @ e if len(e) else 0.0)
-        e = e - E_out @ C @ xh
-        xhm = xh
-        x = Ad @ x + Bd @ u
-        s = T @ s
-    rho = lambda kind: mpc.spectral_radius(m, ctrl, 0.0, 1, "position", estimator=estimator.state_space(_cfg(kind)))
-    assert rho("eq37") > 1.0 > rho("accel_load")
-    assert abs(rho("accel_load") - mpc.spectral_radius(m, ctrl, 0.0, 1, "position")) < 1e-3
+        assert np.allclose(s[lp.idx["p"]], x, rtol=1e-7, atol=1e-7), (k, s[lp.idx["p"]], x)
+        xh = np.r_[x[0], x[1], est.step(x[3], x[1]), x[3]]
+        u = um + Kx @ xh + K_dx @ xhm
+        assert np.allclose(lp.Cu @ s, u, rtol=1e-7, atol=1e-7), k
+        x = Ad @ x + B0 @ u + B1 @ um
+        um, xhm = u, xh
+        s = lp.T @ s
+    pole = 1.0 - 2.0 ** -CFG.speed_load_shift
+    for tk in ("speed", "position"):
+        c = CFG.with_control(algorithm=1, task=tk)
+        r = {kind: robust.survey(c.with_control(speed_estimate=kind), 1, tk,
+                                 {"exact": robust.exact_gains(c, 1, tk)})["worst_radius"].value
+             for kind in ("accel", "accel_load")}
+        assert r["accel_load"] <= max(r["accel"], pole) + 2e-3, (tk, r, pole)
+    assert loop.estimator_for(CFG).name == "accel_load" and loop.estimator_for(CFG).nz == 3
 
 
 def test_raw_estimate_tracks_float():

@@ -21,7 +21,8 @@ RES = {}
 # count or two shift in phase), so the figures of merit are compared:
 TOL = {
     "overshoot_pp": 3.0,          # percentage points
-    "rms_error_rel": 0.05,        # relative difference of the RMS tracking error
+    "rms_error_rel": 0.08,        # relative difference of the RMS tracking error (5 % before the retune of
+                                  # issue 15: the robust algorithm-2 speed design differs by 5.1 %)
     "peak_current_rel": 0.15,     # relative difference of the peak phase current
     "ramp_error_abs": 0.02,       # rad (position); speed: 0.01 count per Ts (0.25 rad/s)
 }

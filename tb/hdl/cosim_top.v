@@ -6,12 +6,21 @@
 // currents' codes written by Python).  The CPU bus pins are driven by the EMC
 // bus-functional model (tb/emc_bfm.py) through cpu_* and the resolved bus emc_d.
 // HALL pins are driven directly from Python (slow signals).
+//
+// The clock runs here (Verilog delay, Verilator --timing), so Python never wakes up per clock
+// edge.  Python wakes once per PWM period, at dbg_period_start: the per-period observation
+// registers below hold what it used to wait for inside the period (the compare values loaded,
+// the trigger-to-load latency and the latency from the ADC's last bit and from its valid, the run flag at the trigger, how many triggers and loads the
+// period had) and a sticky monitor checks the bridges off on every clock after a trip.
 `default_nettype none
+`timescale 1ns / 1ps
+`include "empc_formats.vh"
 module cosim_top #(
     parameter integer CPR = 4000,
-    parameter integer STEP_CLKS = 16
+    parameter integer STEP_CLKS = 16,
+    parameter integer CLK_HALF_PS = 5000
 ) (
-    input  wire        clk,            // fabric clock (clk_gen passes clk_in through in simulation)
+    output reg         clk,            // fabric clock, generated here (clk_gen passes clk_in through)
     input  wire        rst_n,
     // CPU bus (BFM)
     input  wire        cpu_cs_n,
@@ -44,9 +53,29 @@ module cosim_top #(
     output wire [7:0]  dbg_per_cnt,
     output wire        dbg_running,
     output wire        dbg_trip,
-    output wire        dbg_adc_sclk,   // the ADC's SCLK (its last rising edge: the last bit of the frame)
-    output wire        dbg_adc_valid
+    // per-period observation (registered; read by Python at the next dbg_period_start)
+    output reg  [35:0] dbg_cmp_q,      // compare values at the last cmp_load
+    output reg  [15:0] dbg_lat_q,      // clocks from the last adc_trig to that cmp_load
+    output reg  [15:0] dbg_lat_bit_q,  // clocks from the last ADC SCLK rising edge (the frame's last bit) to that cmp_load
+    output reg  [15:0] dbg_lat_valid_q, // clocks from the last ADC valid to that cmp_load
+    output reg         dbg_run_trig,   // `running` at the last adc_trig
+    output reg  [3:0]  dbg_n_trig,     // adc_trig pulses since the last period start
+    output reg  [3:0]  dbg_n_load,     // cmp_load pulses since the last period start
+    output reg         dbg_unsafe      // sticky: a bridge enable or PWM output high in a clock after one with trip
+`ifdef COSIM_LOCKSTEP
+    ,
+    // proof of the MPC core's simulation-only clock gating (EMPC_SIM_GATE): an ungated copy on the
+    // same inputs, every output compared every clock
+    output reg  [31:0] dbg_ls_clocks,  // clocks compared
+    output reg  [31:0] dbg_ls_gated,   // of them with the gated core's clock stopped
+    output reg  [31:0] dbg_ls_errors,  // clocks with any output different
+    output reg  [31:0] dbg_ls_first    // first such clock (dbg_ls_clocks at that time)
+`endif
 );
+    // the clock runs in the simulator (Verilator --timing), not as a Python/GPI callback per edge
+    initial clk = 1'b0;
+    always #(CLK_HALF_PS / 1000.0) clk = ~clk;
+
     wire [31:0] emc_d;
     assign emc_d = cpu_d_oe ? cpu_d : 32'bz;
     assign emc_d_seen = emc_d;
@@ -76,7 +105,94 @@ module cosim_top #(
     assign dbg_per_cnt = u_top.g_axis[0].u_axis.u_seq.per_cnt;
     assign dbg_running = u_top.g_axis[0].u_axis.running;
     assign dbg_trip = u_top.g_axis[0].u_axis.trip;
-    assign dbg_adc_sclk = adc_sclk;
-    assign dbg_adc_valid = u_top.g_axis[0].u_axis.adc_valid;
+
+    reg [15:0] lat_cnt, bit_cnt, valid_cnt;
+    reg        tripped, sclk_q;
+    wire       sclk_rise = adc_sclk && !sclk_q;
+    wire       adc_valid = u_top.g_axis[0].u_axis.adc_valid;
+    always @(posedge clk) begin
+        if (!rst_n) begin
+            dbg_cmp_q <= 36'd0;
+            dbg_lat_q <= 16'd0;
+            dbg_run_trig <= 1'b0;
+            dbg_n_trig <= 4'd0;
+            dbg_n_load <= 4'd0;
+            dbg_unsafe <= 1'b0;
+            lat_cnt <= 16'd0;
+            tripped <= 1'b0;
+            dbg_lat_bit_q <= 16'd0;
+            dbg_lat_valid_q <= 16'd0;
+            bit_cnt <= 16'd0;
+            valid_cnt <= 16'd0;
+            sclk_q <= 1'b0;
+        end else begin
+            lat_cnt <= dbg_adc_trig ? 16'd1 : (&lat_cnt ? lat_cnt : lat_cnt + 16'd1);
+            if (dbg_adc_trig) dbg_run_trig <= dbg_running;
+            sclk_q <= adc_sclk;
+            bit_cnt <= sclk_rise ? 16'd1 : (&bit_cnt ? bit_cnt : bit_cnt + 16'd1);
+            valid_cnt <= adc_valid ? 16'd1 : (&valid_cnt ? valid_cnt : valid_cnt + 16'd1);
+            if (dbg_cmp_load) begin
+                dbg_cmp_q <= dbg_cmp;
+                dbg_lat_q <= lat_cnt;
+                dbg_lat_bit_q <= bit_cnt;
+                dbg_lat_valid_q <= valid_cnt;
+            end
+            dbg_n_trig <= (dbg_period_start ? 4'd0 : dbg_n_trig) + {3'd0, dbg_adc_trig};
+            dbg_n_load <= (dbg_period_start ? 4'd0 : dbg_n_load) + {3'd0, dbg_cmp_load};
+            tripped <= dbg_trip;
+            if (tripped && (|pwm_en || |pwm_out)) dbg_unsafe <= 1'b1;
+        end
+    end
+
+`ifdef COSIM_LOCKSTEP
+`ifndef EMPC_SIM_GATE
+    COSIM_LOCKSTEP_needs_EMPC_SIM_GATE error_no_gating_to_prove();
+`endif
+    // the axis's core (gated) and an ungated reference fed from the same nets
+    localparam integer LS_SW = `EMPC_SIG_W, LS_UW = `EMPC_U_W;
+    localparam integer LS_W = 9 + 6 * LS_UW + 3 * LS_SW + `EMPC_OPW + 11 + 8;   // all outputs
+    wire                  ls_busy, ls_done, ls_ready, ls_bank, ls_swap_pending, ls_boot_ok, ls_task_pos;
+    wire                  ls_fw_hi, ls_fw_lo;
+    wire [2*LS_UW-1:0]    ls_u, ls_du, ls_u_raw;
+    wire [3*LS_SW-1:0]    ls_ebar;
+    wire signed [`EMPC_OPW-1:0] ls_wn;
+    wire [10:0]           ls_flags;
+    wire [7:0]            ls_latency;
+    mpc_core #(.SIM_GATE(0)) u_ls_ref (
+        .clk(clk), .rst(u_top.g_axis[0].u_axis.u_core.rst), .start(u_top.g_axis[0].u_axis.u_core.start),
+        .in_we(u_top.g_axis[0].u_axis.u_core.in_we), .in_addr(u_top.g_axis[0].u_axis.u_core.in_addr),
+        .in_wdata(u_top.g_axis[0].u_axis.u_core.in_wdata), .busy(ls_busy), .done(ls_done), .u(ls_u),
+        .du(ls_du), .u_raw(ls_u_raw), .ebar(ls_ebar), .wn(ls_wn), .flags(ls_flags), .latency(ls_latency),
+        .fw_thr(u_top.g_axis[0].u_axis.u_core.fw_thr), .fw_hi(ls_fw_hi), .fw_lo(ls_fw_lo),
+        .cfg_we(u_top.g_axis[0].u_axis.u_core.cfg_we), .cfg_addr(u_top.g_axis[0].u_axis.u_core.cfg_addr),
+        .cfg_wdata(u_top.g_axis[0].u_axis.u_core.cfg_wdata), .cfg_swap(u_top.g_axis[0].u_axis.u_core.cfg_swap),
+        .ready(ls_ready), .bank(ls_bank), .swap_pending(ls_swap_pending), .boot_ok(ls_boot_ok),
+        .task_pos(ls_task_pos));
+    wire [LS_W-1:0] ls_out_ref = {ls_busy, ls_done, ls_ready, ls_bank, ls_swap_pending, ls_boot_ok, ls_task_pos,
+                               ls_u, ls_du, ls_u_raw, ls_ebar, ls_wn, ls_flags, ls_latency, ls_fw_hi, ls_fw_lo};
+    wire [LS_W-1:0] ls_out_dut = {u_top.g_axis[0].u_axis.u_core.busy, u_top.g_axis[0].u_axis.u_core.done,
+                               u_top.g_axis[0].u_axis.u_core.ready, u_top.g_axis[0].u_axis.u_core.bank,
+                               u_top.g_axis[0].u_axis.u_core.swap_pending, u_top.g_axis[0].u_axis.u_core.boot_ok,
+                               u_top.g_axis[0].u_axis.u_core.task_pos, u_top.g_axis[0].u_axis.u_core.u,
+                               u_top.g_axis[0].u_axis.u_core.du, u_top.g_axis[0].u_axis.u_core.u_raw,
+                               u_top.g_axis[0].u_axis.u_core.ebar, u_top.g_axis[0].u_axis.u_core.wn,
+                               u_top.g_axis[0].u_axis.u_core.flags, u_top.g_axis[0].u_axis.u_core.latency,
+                               u_top.g_axis[0].u_axis.u_core.fw_hi, u_top.g_axis[0].u_axis.u_core.fw_lo};
+    initial begin
+        dbg_ls_clocks = 32'd0;
+        dbg_ls_gated = 32'd0;
+        dbg_ls_errors = 32'd0;
+        dbg_ls_first = 32'd0;
+    end
+    // sampled on the falling edge: both cores' outputs settled after the rising edge
+    always @(negedge clk) begin
+        dbg_ls_clocks <= dbg_ls_clocks + 32'd1;
+        if (!u_top.g_axis[0].u_axis.u_core.sim_en) dbg_ls_gated <= dbg_ls_gated + 32'd1;
+        if (ls_out_ref != ls_out_dut) begin
+            if (dbg_ls_errors == 32'd0) dbg_ls_first <= dbg_ls_clocks;
+            dbg_ls_errors <= dbg_ls_errors + 32'd1;
+        end
+    end
+`endif
 endmodule
 `default_nettype wire

@@ -12,16 +12,20 @@
 //   'e'                               end: `finished` rises
 // For every update one line goes to OUT_FILE: u du u_raw ebar wn flags latency (hex, vectors as
 // one number, element 0 in the low bits; latency = start -> done cycles).
+// The clock runs here (Verilog delay, Verilator --timing): Python only pulses `go` and waits for
+// `finished`, so no Python or GPI callback runs per clock.
 `default_nettype none
+`timescale 1ns / 1ps
 `include "empc_formats.vh"
 module mpc_core_stream #(
     parameter integer N = `EMPC_N,
     parameter BOOT_FILE = "coef_boot.hex",
     parameter RSQRT_FILE = "rsqrt.hex",
     parameter IN_FILE = "mpc_stream_in.bin",
-    parameter OUT_FILE = "mpc_stream_out.txt"
+    parameter OUT_FILE = "mpc_stream_out.txt",
+    parameter integer CLK_HALF_PS = 5000
 ) (
-    input  wire        clk,
+    output reg         clk,
     input  wire        go,
     output reg         finished,
     output reg  [63:0] cycles,
@@ -66,6 +70,9 @@ module mpc_core_stream #(
     reg [7:0] nbyte;
     reg [MAXW*48-1:0] vrec;
     reg [7:0] lat;
+
+    initial clk = 1'b0;
+    always #(CLK_HALF_PS / 1000.0) clk = ~clk;
 
     initial begin
         finished = 1'b0;

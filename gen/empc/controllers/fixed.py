@@ -28,7 +28,7 @@ class FixedMPC(Controller):
         self.algorithm = algorithm or c.algorithm
         self.task = task or c.task
         self.N = c.N
-        self.params = params or design_mod.design(cfg, self.algorithm, self.task)["params"]
+        self.params = params or design_mod.design(cfg, self.algorithm, self.task, force=True)["params"]   # simulate any design
         self.name = f"fixed-mpc-alg{self.algorithm}-{self.task}"
         self.kacc, self.kacc_shift = header.speed_correction_raw(cfg)
         fw = header.field_weakening_raw(cfg)

@@ -21,7 +21,7 @@ scenarios); the figures are then indicative, the properties the tests assert hol
 
 Current-control role of our explicit MPC: where the load machine holds the speed,
 our algorithm 1 (speed task) runs with the speed reference equal to the imposed
-speed and the weights of configs/ipmsm_001.toml, which weight the currents and give
+speed and the weights W_001 below, which weight the currents and give
 the speed a negligible weight (a design variant for current tracking).
 In fw_002 our speed-task MPC (no current constraint in the explicit law) gets the speed
 step through a ramp limiter at 90 % of the acceleration at I_max (the role of paper
@@ -36,8 +36,10 @@ reference derivative as speed feed-forward in the position task.
 from __future__ import annotations
 
 import dataclasses
+import io
 import json
 import math
+import os
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -160,12 +162,25 @@ class Case:
     u_limit: float | None = None               # controller voltage limit if not Udc/sqrt3 (001 Fig. 6)
 
 
+# Our explicit MPC (paper 000, algorithm 1) in the comparisons' roles, SI weights (these were the
+# [weights] tables of the two configurations; the configurations now carry per-unit weights for
+# `empc roms`, which must pass the robust design check with a free-running rotor).
+# 001: a current-tracking role (the load machine holds the speed): the speed output gets a
+#  negligible weight (its reference is set to the imposed speed) and the currents the tracking
+#  weight; fast, non-oscillating current step at Ts = 100 us under the half-PWM output delay.
+W_001 = config_mod.Weights(Q_yw=(8.0, 8.0, 0.001), Q_dy=(12.0, 12.0, 0.001), Q_du=(16.0, 16.0))
+# 002: a proportional speed law whose gain is set by the ratio of the speed and i_q weights: ~20 A
+#  (I_max) at the acceleration of the ramp-limited reference (90 % of the acceleration at I_max);
+#  Q_du keeps the speed-quantisation noise (eq. 37, 16-bit position at 200 us) out of the voltage.
+W_002 = config_mod.Weights(Q_yw=(8.0, 0.5, 8.0), Q_dy=(1.0, 1.0, 1.0), Q_du=(8.0, 8.0))
+
+
 def ipmsm_cfg():
-    return config_mod.load(CONFIGS / "ipmsm_001.toml")
+    return config_mod.load(CONFIGS / "ipmsm_001.toml").with_control(weights={(1, "speed"): W_001})
 
 
 def spmsm_cfg():
-    return config_mod.load(CONFIGS / "spmsm_002.toml")
+    return config_mod.load(CONFIGS / "spmsm_002.toml").with_control(weights={(1, "speed"): W_002})
 
 
 def current_controllers(cfg) -> list:
@@ -524,9 +539,18 @@ def run(quick: bool = False, out: str | Path = "build/reports", only: list | Non
             plot_case(case, traces, out / res["plot"])
         report["cases"][case.key] = res
     report["wall_s"] = time.perf_counter() - t0
-    (out / "compare.json").write_text(json.dumps(report, indent=1, default=_json_default) + "\n")
-    (out / "compare.md").write_text(markdown(report))
+    _write_atomic(out / "compare.json", (json.dumps(report, indent=1, default=_json_default) + "\n").encode())
+    _write_atomic(out / "compare.md", markdown(report).encode())
     return report
+
+
+def _write_atomic(path: Path, data: bytes) -> None:
+    """Write through a private temporary file and rename: two test workers may write the same
+    report at once (pytest-xdist spreads a module's tests), and a reader must never see a
+    truncated file."""
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    tmp.write_bytes(data)
+    os.replace(tmp, path)
 
 
 def _json_default(o):
@@ -581,8 +605,10 @@ def plot_case(case: Case, traces: dict, path: Path) -> None:
         a.set_xlabel("t [s]")
     fig.suptitle(case.title, fontsize=10)
     fig.tight_layout()
-    fig.savefig(path, dpi=90)
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=90)
     plt.close(fig)
+    _write_atomic(Path(path), buf.getvalue())
 
 
 def _f(v, fmt="{:.3g}", unit=""):
@@ -664,7 +690,7 @@ symmetric optimum, position P + feed-forward, field weakening 002 eqs. 3-6), our
   reference controllers therefore use a delay compensation (controllers/common.py: the state moved to
   the instant the voltage acts; the 002 MPC moves its Kalman estimate with the model).  The papers do
   not say how they handled the computation delay.  Our explicit MPC runs as the RTL does (no
-  compensation); its IPMSM weights (configs/ipmsm_001.toml: Q_yw = (8, 8, 0.001), Q_dy = (12, 12,
+  compensation); its IPMSM weights (W_001 in compare.py: Q_yw = (8, 8, 0.001), Q_dy = (12, 12,
   0.001), Q_du = (16, 16)) were chosen for a damped current step under this delay.
 - **Our MPC as a current controller** (001 scenarios): algorithm 1, speed task, speed reference = the
   imposed speed, currents weighted, speed weight negligible (design variant, documented above).  In

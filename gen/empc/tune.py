@@ -1,0 +1,234 @@
+"""`empc tune`: per-unit weights that meet stated specifications, and which specification binds.
+
+The search scales the configuration's weights of one design (per unit of the ratings) by
+two factors on a logarithmic grid: ``a`` on the task output (Q_yw[2] x a, Q_dy[2] x sqrt(a): the
+speed or position loop's bandwidth at about the same damping) and ``b`` on the voltage
+increments (Q_du: how hard the current loop pushes).  Each candidate is measured on the loop as built (loop.py, nominal plant at
+omega_e = 0, references seen N periods ahead as in the scenarios):
+
+  settling       task-output step, time to stay within 2 % of the step (linear loop)
+  overshoot      of that step, % (algorithm 1; the linear loop has no eq. 25 clamp, so for
+                 algorithm 2 it is reported, and checked only if --overshoot is given)
+  current        peak |i_dq| for a task step of ``step`` per unit, against control.i_max
+  current_rise   i_d step (the current loop's settling), time to reach 90 % of its final value
+                 (algorithm 1 trades i_d against the task output in steady state: a slow tail
+                 that a settling band would measure instead of the current loop)
+  chatter        RMS i_q that the sensor quantisation drives (encoder count, ADC LSB), per unit
+                 of the rated current
+  robustness     the design check's box and margins (robust.py), on a 7-point speed grid (the
+                 chosen weights then go through the full check of `empc roms`)
+
+Among the candidates that meet every specification the one with the shortest settling is
+chosen; the specification that stops the faster candidates is reported as binding.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from . import config as config_mod, loop as loop_mod, mpc, robust
+
+A_GRID = [2.0 ** k for k in range(-3, 11)]           # task-output weight factor 1/8 .. 1024
+B_GRID = [2.0 ** k for k in range(-3, 4)]            # Q_du factor 1/8 .. 8
+
+
+@dataclass
+class Specs:
+    settling: float | None = None          # s
+    current_rise: float | None = None      # s (default 20 Ts)
+    overshoot: float | None = None         # % (default 20 for algorithm 1, none for algorithm 2)
+    step: float = 0.1                      # per unit of rated speed / position scale
+    chatter: float = 0.2                   # per unit of rated current (RMS)
+
+    @classmethod
+    def from_args(cls, a) -> "Specs":
+        return cls(settling=a.settling, current_rise=a.current_rise, overshoot=a.overshoot,
+                   step=a.step, chatter=a.chatter)
+
+
+@dataclass
+class Candidate:
+    a: float
+    b: float
+    weights_pu: config_mod.Weights
+    m: dict = field(default_factory=dict)
+    fails: list = field(default_factory=list)
+
+    @property
+    def ok(self) -> bool:
+        return not self.fails
+
+
+@dataclass
+class TuneResult:
+    algorithm: int
+    task: str
+    passed: bool
+    chosen: Candidate | None
+    binding: str
+    tried: int
+    base_pu: config_mod.Weights
+    note: str = ""
+
+    def as_dict(self) -> dict:
+        c = self.chosen
+        return {"algorithm": self.algorithm, "task": self.task, "passed": self.passed, "binding": self.binding,
+                "tried": self.tried, "note": self.note,
+                "factors": {"a": c.a, "b": c.b} if c else None,
+                "weights_pu": _wd(c.weights_pu) if c else None, "metrics": c.m if c else None}
+
+    def explain(self) -> str:
+        c = self.chosen
+        head = f"algorithm {self.algorithm} / {self.task}: "
+        if c is None:
+            return head + f"no candidate meets the specifications ({self.binding}); {self.note}"
+        m = c.m
+        return (head + f"task weight x{c.a:g}, Q_du x{c.b:g}: settling {1e3 * m['settling']:.1f} ms, overshoot "
+                f"{m['overshoot']:.1f} %, peak current {m['current']:.2f} A for a {m['step_si']:.3g} step, "
+                f"i_d rise {1e3 * m['current_rise']:.2f} ms, chatter {m['chatter_pu']:.3f} pu, worst radius "
+                f"{m['radius']:.4f}, worst damping {m['damping']:.3f}.  Binding: {self.binding}")
+
+
+def _wd(w) -> dict:
+    return {"Q_yw": [round(v, 6) for v in w.Q_yw], "Q_dy": [round(v, 6) for v in w.Q_dy],
+            "Q_du": [round(v, 6) for v in w.Q_du], "ebar_step_max": list(w.ebar_step_max),
+            "integrate": list(w.integrate)}
+
+
+def _settling(y: np.ndarray, final: float, k0: int, Ts: float, band: float) -> float:
+    out = np.nonzero(np.abs(y - final) > band)[0]
+    if len(out) == 0:
+        return 0.0
+    if out[-1] == len(y) - 1:
+        return math.inf
+    return (out[-1] + 1 - k0) * Ts
+
+
+def measure(cfg, algorithm: int, task: str, w_si, specs: Specs, robust_grid: int = 7) -> dict:
+    c = cfg.control
+    rt = cfg.ratings
+    g = mpc.gains(cfg.motor, c, 0.0, algorithm, task, weights=w_si)
+    lp = loop_mod.loop(cfg, cfg.motor, 0.0, algorithm, task, g)
+    k0 = c.N
+    steps = 2000
+    size = specs.step * (rt.speed if task == "speed" else rt.position)
+    sr = loop_mod.step_response(lp, [0.0, 0.0, size], steps, k0)
+    y = sr["w_e"] if task == "speed" else sr["theta_e"]
+    m = {"step_si": size}
+    m["settling"] = _settling(y, size, k0, c.Ts, 0.02 * abs(size))
+    m["overshoot"] = max(0.0, float(np.max(y) - size) / abs(size) * 100.0)
+    m["current"] = float(np.max(np.hypot(sr["i_d"], sr["i_q"])))
+    si = loop_mod.step_response(lp, [0.1 * rt.current, 0.0, 0.0], 400, k0)
+    fin = si["i_d"][-1]
+    up = np.nonzero(si["i_d"][k0:] * np.sign(fin) >= 0.9 * abs(fin))[0]
+    m["current_rise"] = float(up[0] + 1) * c.Ts if len(up) else math.inf
+    noise = robust.noise_rms(cfg, algorithm, task, g, 0.0)
+    m["chatter_pu"] = noise["i_q_rms"] / rt.current
+    res = robust.survey(cfg, algorithm, task, {"exact": robust.exact_gains(cfg, algorithm, task, w_si)},
+                        grid=robust.speeds(cfg, robust_grid))
+    ok, why = robust.verdict(cfg, res)
+    m["radius"], m["damping"] = res["worst_radius"].value, res["worst_damping"].value
+    m["robust"] = why
+    m["robust_ok"] = ok
+    return m
+
+
+def _fails(cfg, algorithm: int, m: dict, specs: Specs) -> list[str]:
+    c = cfg.control
+    f = []
+    if not m["robust_ok"]:
+        f.append(f"robustness ({m['robust']})")
+    ov = specs.overshoot if specs.overshoot is not None else (20.0 if algorithm == 1 else None)
+    if ov is not None and m["overshoot"] > ov:
+        f.append(f"overshoot {m['overshoot']:.1f} % > {ov:g} %")
+    if m["current"] > c.i_max:
+        f.append(f"current {m['current']:.2f} A > control.i_max = {c.i_max:g} A for a {specs.step:g} pu step")
+    ics = specs.current_rise if specs.current_rise is not None else 20 * c.Ts
+    if m["current_rise"] > ics:
+        f.append(f"current-loop rise {1e3 * m['current_rise']:.2f} ms > {1e3 * ics:.2f} ms")
+    if m["chatter_pu"] > specs.chatter:
+        f.append(f"quantisation chatter {m['chatter_pu']:.3f} pu > {specs.chatter:g} pu")
+    if specs.settling is not None and m["settling"] > specs.settling:
+        f.append(f"settling {1e3 * m['settling']:.1f} ms > {1e3 * specs.settling:.1f} ms")
+    return f
+
+
+def scaled(base: config_mod.Weights, a: float, b: float) -> config_mod.Weights:
+    """Task-output error weight x a, its increment weight x sqrt(a) (the proportional and the
+    derivative part of the task loop scale together: faster at about the same damping), Q_du x b."""
+    r = math.sqrt(a)
+    return replace(base, Q_yw=(base.Q_yw[0], base.Q_yw[1], base.Q_yw[2] * a),
+                   Q_dy=(base.Q_dy[0], base.Q_dy[1], base.Q_dy[2] * r), Q_du=tuple(q * b for q in base.Q_du))
+
+
+def tune(cfg, algorithm: int, task: str, specs: Specs | None = None, a_grid=None, b_grid=None) -> TuneResult:
+    specs = specs or Specs()
+    base = cfg.weights_pu(algorithm, task)
+    cands = []
+    for b in (b_grid or B_GRID):
+        for a in (a_grid or A_GRID):
+            wpu = scaled(base, a, b)
+            cand = Candidate(a, b, wpu)
+            try:
+                cand.m = measure(cfg, algorithm, task, config_mod.weights_si(wpu, cfg.bases(task)), specs)
+                cand.fails = _fails(cfg, algorithm, cand.m, specs)
+            except (np.linalg.LinAlgError, ValueError) as e:
+                cand.fails = [f"design failed: {e}"]
+            cands.append(cand)
+    good = [c for c in cands if c.ok]
+    if not good:
+        counts: dict = {}
+        for c in cands:
+            for f in c.fails:
+                k = f.split(" ")[0]
+                counts[k] = counts.get(k, 0) + 1
+        binding = "every candidate fails: " + ", ".join(f"{k} ({n})" for k, n in sorted(counts.items(), key=lambda x: -x[1]))
+        return TuneResult(algorithm, task, False, None, binding, len(cands), base,
+                          note="relax the specifications or the robustness box, or change N / Ts")
+    from . import design as design_mod
+    for best in sorted(good, key=lambda c: (c.m["settling"], -c.m["damping"]))[:8]:
+        # the full design check (every box point, the full speed grid, fitted and quantised gains)
+        c2 = cfg.with_control(weights={**cfg.control.weights,
+                                       (algorithm, task): config_mod.weights_si(best.weights_pu, cfg.bases(task))})
+        try:
+            st = design_mod.design(c2, algorithm, task, force=True)["stability"]
+            ok, why = st["passed"], st["reason"]
+        except config_mod.ConfigError as e:
+            ok, why = False, str(e)
+        if ok:
+            break
+        best.fails.append(f"robustness (full check: {why})")
+    else:
+        return TuneResult(algorithm, task, False, None, "the candidates that meet the specifications on the coarse "
+                          "grid fail the full design check", len(cands), base)
+    faster = [c for c in cands if not c.ok and c.m and c.m.get("settling", math.inf) < best.m["settling"]]
+    if faster:
+        counts = {}
+        for c in faster:
+            for f in c.fails:
+                k = f.split(" (")[0].split(" ")[0]
+                counts.setdefault(k, []).append(f)
+        top = max(counts.items(), key=lambda kv: len(kv[1]))
+        binding = (f"{top[0]} stops {len(top[1])} of the {len(faster)} faster candidates, e.g. {top[1][0]}")
+    else:
+        binding = "none: the fastest candidate on the grid meets every specification (widen the grid)"
+    return TuneResult(algorithm, task, True, best, binding, len(cands), base)
+
+
+def toml_tables(results: list[TuneResult]) -> str:
+    """The chosen weights as [weights.*] tables (per unit) to paste into the configuration."""
+    out = ["[weights]", 'units = "pu"']
+    for r in results:
+        if not r.chosen:
+            continue
+        w = r.chosen.weights_pu
+        out += ["", f"[weights.alg{r.algorithm}.{r.task}]",
+                f"Q_yw = [{', '.join(f'{v:.6g}' for v in w.Q_yw)}]",
+                f"Q_dy = [{', '.join(f'{v:.6g}' for v in w.Q_dy)}]",
+                f"Q_du = [{', '.join(f'{v:.6g}' for v in w.Q_du)}]"]
+        if r.algorithm == 2:
+            out += [f"integrate = [{', '.join('true' if v else 'false' for v in w.integrate)}]",
+                    f"ebar_step_max = [{', '.join(f'{v:.6g}' for v in w.ebar_step_max)}]"]
+    return "\n".join(out)
