@@ -31,25 +31,6 @@ from .rtlmodel.ref_gen import M64, RefGen, gov_step
 M32 = (1 << 32) - 1
 
 
-def regs_for(cfg, task: str, **kw) -> Regs:
-    """Sequencer registers as the generator's header sets them after reset (``kw`` overrides)."""
-    kacc, kacc_shift = header.speed_correction_raw(cfg)
-    fw = header.field_weakening_raw(cfg)
-    gov = header.governor_raw(cfg, task)
-    base = dict(pwm_per_control=cfg.pwm_per_control, kacc=kacc, kacc_shift=kacc_shift,
-                half_period=cfg.pwm_half_period, load_shift=cfg.speed_load_shift, fw_shift=fw["FW_SHIFT"],
-                fw_nmax=fw["FW_NMAX"], fw_thr=(fw["FW_R2_HI"], fw["FW_R2_LO"]), iq_hold=gov["IQ_HOLD"])
-    base.update(kw)
-    return Regs(**base)
-
-
-def gov_params(cfg, task: str) -> dict:
-    """The reference generator's governor words of ``task`` as the engine reads them."""
-    g = header.governor_raw(cfg, task)
-    return {"enable": bool(g["GOV_EN"]), "ksh": g["GOV_KSH"], "vmax": g["GOV_VMAX_LO"] | g["GOV_VMAX_HI"] << 32,
-            "a": g["GOV_A_LO"] | g["GOV_A_HI"] << 32}
-
-
 class AxisModel:
     """One RTL axis, one PWM period at a time (bit-accurate).
 

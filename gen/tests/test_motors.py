@@ -131,10 +131,11 @@ def test_new_motor_short_runs_float_and_fixed(name, plant):
 def test_five_scenarios_float_and_fixed(name, scen, plant, request):
     if (name, scen) == ("premo_320v", "load_speed") and plant != "corner_b":
         # Known defect (strict: a fix makes this fail and asks to drop the mark): the algorithm-2 speed loop
-        # holds 124 rad/s unloaded but oscillates with a growing amplitude (i_q to 143 A, speed to 405 rad/s)
-        # once the rated load (6.6 N m, 17 A) is on, whatever the speed estimate or the governor. The design
-        # check linearises the loop at i = 0; the bilinear terms w L i of the dq model add i_q0 * dw under
-        # load, which it does not see. Issue 15's robust check should also sample loaded operating points.
+        # holds 124 rad/s unloaded, but with the rated load (6.6 N m, 17 A) on, an oscillation grows from a small
+        # amplitude (no voltage saturation in the first 40 periods) to i_q 143 A, speed 405 rad/s, with any
+        # speed estimate, with exact or fitted gains, with or without the governor; 50 % load still does it,
+        # 20 % not. The design check linearises at i = 0; at a loaded operating point the bilinear w L i terms
+        # and the speed-scheduled gains acting on the loaded state add terms it does not see.
         request.applymarker(pytest.mark.xfail(strict=True, reason="premo alg2 speed unstable under rated load: "
                                               "the design check linearises at i = 0"))
     cfg = load(name)
