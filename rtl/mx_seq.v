@@ -22,7 +22,7 @@
 // E (A = OR of the stages or the last result P, shifted by 0/1/8/16, B = the RAM word or its bits
 // 31:16 / 31:24 with their rounding bit, R = +-A +-B + cin), W (sat32 / wrap32 / wrap36 of R to the
 // core input buffer, the axis state RAM port A, a status word, the omega / theta_mod registers or
-// the serial shifter).  kacc * i_q is one DSP48A1 product; the rounding shifts (kacc_shift,
+// the serial shifter).  kacc * i_q is a product of xform's DSP48A1 (mul_b, prod: the front's end, held); the rounding shifts (kacc_shift,
 // load_shift + 1) are a 48-bit serial right shifter, one bit per clock.  Program and hazards: the
 // tables of gen/empc/rtlmodel/mx_seq.py (rtl/mx_seq_ucode.vh, rtl/mx_seq_rom.vh).
 //
@@ -138,12 +138,13 @@ module mx_seq #(
     reg  xf_front, xf_mod, xf_run_mod;
     wire xf_busy, xf_done, xf_sat;
     wire [CW-1:0] cmp_a, cmp_b, cmp_c;
+    wire signed [35:0] pr;          // kacc * i_q on xform's multiplier, after the front
     reg  [AB-1:0] th_mod;
     wire [AB-1:0] ang = xf_front ? theta_trig : th_mod;
     xform u_xform (.clk(clk), .rst(rst), .start_front(xf_front), .start_mod(xf_mod), .angle(ang),
-                   .i_a(cur0), .i_b(cur1), .i_c(cur2), .u_d(u_st0), .u_q(u_st1), .kdc(kdc),
+                   .i_a(cur0), .i_b(cur1), .i_c(cur2), .u_d(u_st0), .u_q(u_st1), .kdc(kdc), .mul_b(kacc),
                    .busy(xf_busy), .done(xf_done), .sat(xf_sat), .i_d(i_d), .i_q(i_q),
-                   .cmp_a(cmp_a), .cmp_b(cmp_b), .cmp_c(cmp_c));
+                   .cmp_a(cmp_a), .cmp_b(cmp_b), .cmp_c(cmp_c), .prod(pr));
     assign cmp = {cmp_c, cmp_b, cmp_a};
 
     // engine actions (W stage of the ALU, below)
@@ -337,8 +338,6 @@ module mx_seq #(
     reg           g_p;
     wire          zeroed_nx = rst || (!core_done && (!run || zeroed));
     reg  signed [XW-1:0] sh;                // serial shifter
-    reg  signed [35:0]   pr;                // kacc * i_q
-    reg  signed [17:0]   pr_a, pr_b;
     always @(posedge clk) begin
         g_pos <= (issue && i_as == AS_POS) ? pos_trig : {PW{1'b0}};
         g_th  <= (issue && i_as == AS_TH)  ? theta_trig : {AB{1'b0}};
@@ -355,10 +354,6 @@ module mx_seq #(
         g_pr  <= (issue && i_as == AS_PR)  ? pr : 36'd0;
         g_sh  <= (issue && i_as == AS_SH)  ? sh : {XW{1'b0}};
         g_p   <= issue && i_as == AS_P;
-        // kacc * i_q (DSP48A1: input and product registers)
-        pr_a <= kacc;
-        pr_b <= i_q;
-        pr   <= pr_a * pr_b;
     end
     // the rest of the microword, one stage per clock
     reg          e_v, e_aw, e_na, e_nb, e_rc, e_cr, e_pe, e_fs;
