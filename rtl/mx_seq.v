@@ -19,7 +19,8 @@
 //
 // ALU (one 32/48-bit word per clock): issue (microword from the program block RAM; RAM port B read
 // of the job's axis {axis, word}; the A source staged into a register cleared unless selected),
-// E (A = OR of the stages or the last result P, shifted by 0/1/8/16, B = the RAM word or its bits
+// E (A = OR of the stages or the last result P shifted by 0/1/8/16 (theta by 1 in its stage; no other
+// source is shifted: the model's Op.word() asserts it), B = the RAM word or its bits
 // 31:16 / 31:24 with their rounding bit, R = +-A +-B + cin), W (sat32 / wrap32 / wrap36 of R to the
 // core input buffer, the axis state RAM port A, a status word, the omega / theta_mod registers or
 // the serial shifter).  kacc * i_q is a product of xform's DSP48A1 (mul_b, prod: the front's end, held); the rounding shifts (kacc_shift,
@@ -329,7 +330,7 @@ module mx_seq #(
     always @(posedge clk) q <= sram[{ax, iw[UW_RB +: 5]}];
     // stages: the selected source in the clock after its issue, 0 otherwise
     reg  [PW-1:0] g_pos;
-    reg  [AB-1:0] g_th;
+    reg  [AB:0]   g_th;             // theta or 2 theta
     reg  [IW-1:0] g_id, g_iq, g_idr, g_iqr;
     reg  [UW-1:0] g_u0, g_u1;
     reg  [SW-1:0] g_e0, g_e1, g_e2, g_om;
@@ -340,7 +341,9 @@ module mx_seq #(
     reg  signed [XW-1:0] sh;                // serial shifter
     always @(posedge clk) begin
         g_pos <= (issue && i_as == AS_POS) ? pos_trig : {PW{1'b0}};
-        g_th  <= (issue && i_as == AS_TH)  ? theta_trig : {AB{1'b0}};
+        // theta is the only source shifted besides P (2 theta: ash 1), shifted here
+        g_th  <= (issue && i_as == AS_TH)  ? ((iw[UW_ASH +: 2] == 2'd1) ? {theta_trig, 1'b0} : {1'b0, theta_trig})
+                                           : {(AB+1){1'b0}};
         g_id  <= (issue && i_as == AS_ID)  ? i_d : {IW{1'b0}};
         g_iq  <= (issue && i_as == AS_IQ)  ? i_q : {IW{1'b0}};
         g_idr <= (issue && i_as == AS_IDR) ? id_ref : {IW{1'b0}};
@@ -382,21 +385,26 @@ module mx_seq #(
     reg  signed [XW-1:0] p_r;       // P: the last result with pe
     reg  signed [XW-1:0] r;         // R: this op's result (W stage)
     reg                  sh_r;      // the shifter's last bit out (rounding)
-    wire [XW-1:0] p_fwd = !g_p ? {XW{1'b0}} : e_aw ? {{(XW-32){p_r[31]}}, p_r[31:0]} : p_r;
-    wire [XW-1:0] a_or  = {{(XW-PW){g_pos[PW-1]}}, g_pos} | {{(XW-AB){1'b0}}, g_th} |
+    // the shift of A (ash) applies to P only (and theta, shifted in its stage): the other
+    // sources do not pass through the shift multiplexer
+    wire [XW-1:0] p_w   = e_aw ? {{(XW-32){p_r[31]}}, p_r[31:0]} : p_r;
+    reg  [XW-1:0] p_fwd;
+    always @(*) begin
+        if (!g_p)
+            p_fwd = {XW{1'b0}};
+        else case (e_ash)
+            2'd0: p_fwd = p_w;
+            2'd1: p_fwd = {p_w[XW-2:0], 1'b0};
+            2'd2: p_fwd = {p_w[XW-9:0], 8'd0};
+            default: p_fwd = {p_w[XW-17:0], 16'd0};
+        endcase
+    end
+    wire [XW-1:0] a_or  = {{(XW-PW){g_pos[PW-1]}}, g_pos} | {{(XW-AB-1){1'b0}}, g_th} |
                           {{(XW-IW){g_id[IW-1] | g_iq[IW-1] | g_idr[IW-1] | g_iqr[IW-1]}}, g_id | g_iq | g_idr | g_iqr} |
                           {{(XW-UW){g_u0[UW-1] | g_u1[UW-1]}}, g_u0 | g_u1} |
                           {{(XW-SW){g_e0[SW-1] | g_e1[SW-1] | g_e2[SW-1] | g_om[SW-1]}}, g_e0 | g_e1 | g_e2 | g_om} |
                           {{(XW-36){g_pr[35]}}, g_pr} | g_sh | p_fwd;
-    reg  [XW-1:0] a_sh;
-    always @(*) begin
-        case (e_ash)
-            2'd0: a_sh = a_or;
-            2'd1: a_sh = {a_or[XW-2:0], 1'b0};
-            2'd2: a_sh = {a_or[XW-9:0], 8'd0};
-            default: a_sh = {a_or[XW-17:0], 16'd0};
-        endcase
-    end
+    wire [XW-1:0] a_sh  = a_or;
     reg  [XW-1:0] b_op;
     always @(*) begin
         case (e_bm)

@@ -10,7 +10,8 @@ the RTL against CtrlSeq (cocotb).
 Datapath (one op per clock, 48-bit, no multiplexer in front of the adder but the shift of A):
     issue (D)   the microword at pc; a waiting op holds pc.  RAM port B reads word ``rb`` of the job's
                 axis ({axis, word}); the A source is staged (a register cleared unless selected)
-    E           A = (OR of the staged sources | P) << ash, negated if ``na``; B = mode ``bm`` of the
+    E           A = OR of the staged sources | P, the shift ``ash`` applied to P only (theta's
+                ash 1 in its stage; no other source may be shifted), negated if ``na``; B = mode ``bm`` of the
                 RAM word (signed, or bits 31:16 / 31:24 unsigned with their rounding bit 15 / 23),
                 negated if ``nb``; R = A + B + cin; P = R if ``pe`` (the forward path: the next op
                 may take it as A, wrapped to 32 bits if ``aw``)
@@ -114,6 +115,8 @@ class Op:
     def word(self) -> int:
         assert int(self.na) + int(self.nb) + int(self.rc) + int(self.cr) <= 1, f"two carry-ins: {self}"
         assert not self.rc or self.bm in ("HI16", "HI24"), self
+        # the RTL shifts P (the forward path) and theta (in its stage, by 1 only), no other source
+        assert self.ash == 0 or self.a == "P" or (self.a == "TH" and self.ash == 1), f"shift of {self.a}: {self}"
         return UW.pack(ctl=CTL[self.ctl], asel=ASEL[self.a], aw=int(self.aw), ash=ASH[self.ash], na=int(self.na),
                        nb=int(self.nb), bm=BM[self.bm], rc=int(self.rc), cr=int(self.cr), rb=self.rbn,
                        pe=int(self.pe), wm=WM[self.wm], fs=int(self.fs), dk=DK[self.dk], da=self.dan,
