@@ -29,7 +29,7 @@ export EMPC_PACKAGE := $(PACKAGE)
 export EMPC_PART    := xc6slx9-$(SPEED)-$(PACKAGE)
 SYNTH_ARGS ?=
 
-.PHONY: all venv check-tools roms regs sim sim-full lint formal synth bitstream bench readme core clean distclean
+.PHONY: all venv check-tools roms regs sim sim-full lint formal safety synth bitstream bench readme core clean distclean
 
 all: roms lint synth ## main job: coefficient ROMs, lint, netlist + resource report
 	@echo "ROMs in $(ROMS), netlist and reports in build/synth and build/reports."
@@ -61,8 +61,11 @@ sim-full: $(STAMP) check-tools roms ## long tests: the soak co-simulations, angl
 lint: $(STAMP) roms ## verilator --lint-only -Wall on every RTL module as its own top, zero warnings
 	$(PY) flow/lint.py
 
-formal: $(STAMP) ## SymbiYosys proofs (PWM safety)
+formal: $(STAMP) roms ## SymbiYosys proofs (PWM, kill path, axis-level safety, global registers) -> build/reports/formal.json
 	$(PY) flow/formal.py
+
+safety: $(STAMP) ## build/reports/safety.json from the reports of sim/formal (fault latencies, proofs, refused writes)
+	$(PY) flow/safety_report.py
 
 synth: $(STAMP) roms ## Yosys synth_xilinx -family xc6s on lx_rocon_top: EDIF + build/reports/synth.json
 	$(PY) flow/synth.py $(SYNTH_ARGS)

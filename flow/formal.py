@@ -14,11 +14,14 @@ re-runs <task> with <file> (path relative to formal/) textually mutated
 properties catch the bug.
 
 Usage: python flow/formal.py [--no-mutants] [name-or-name/task ...]
-Exit status 0 only if every proof passed and every mutant was caught.
+Exit status 0 only if every proof passed and every mutant was caught.  Results go to
+build/reports/formal.json (one entry per task and mutant; a partial run updates its entries).
 Solvers: the yowasp-* tools (Yosys, smtbmc) and z3 from the venv (or PATH).
 """
 from __future__ import annotations
 
+import fcntl
+import json
 import os
 import re
 import shutil
@@ -27,10 +30,12 @@ import sys
 import time
 from pathlib import Path
 
+from empc.fileio import write_atomic  # gen/ is on PYTHONPATH (Makefile, conftests)
 from files import ROOT  # flow/ is on sys.path
 
 FORMAL = ROOT / "formal"
 OUT = ROOT / "build" / "formal"
+REPORT = ROOT / "build" / "reports" / "formal.json"
 VENV_BIN = Path(sys.executable).parent
 BAD_LOG = ("is used but has no driver", "is implicitly declared")
 
@@ -124,6 +129,32 @@ def mutant_sby(sby: Path, text: str, mut: dict, mdir: Path) -> Path:
     return out
 
 
+def write_report(entries: dict) -> None:
+    """Merge this run's entries into build/reports/formal.json under a lock: the test suite runs one
+    task or mutant per pytest worker, and concurrent read-modify-writes would drop entries."""
+    REPORT.parent.mkdir(parents=True, exist_ok=True)
+    with open(REPORT.with_suffix(".lock"), "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        old = {}
+        if REPORT.exists():
+            try:
+                old = json.loads(REPORT.read_text()).get("entries", {})
+            except ValueError:
+                old = {}
+        old.update(entries)
+        write_atomic(REPORT, json.dumps({"tool": "flow/formal.py (SymbiYosys, smtbmc z3)", "entries": old}, indent=1) + "\n")
+
+
+def labels() -> list[str]:
+    """Every proof task and mutant as flow/formal.py selects it (``name/task``, ``name/mutantK:task``)."""
+    out = []
+    for sby in sorted(FORMAL.glob("*.sby")):
+        text = sby.read_text()
+        out += [f"{sby.stem}/{t}" if t else sby.stem for t in tasks_of(text)]
+        out += [f"{sby.stem}/mutant{k}:{m['task']}" for k, m in enumerate(mutants_of(text))]
+    return out
+
+
 def main(argv: list[str]) -> int:
     mutants = "--no-mutants" not in argv
     sel = [a for a in argv if not a.startswith("--")]
@@ -136,6 +167,7 @@ def main(argv: list[str]) -> int:
         print("no formal/*.sby")
         return 2
     results = []
+    entries = {}
     t_all = time.monotonic()
     for sby in files:
         text = sby.read_text()
@@ -147,6 +179,8 @@ def main(argv: list[str]) -> int:
             status, dt, tail = run_sby(cmd, sby, task, OUT / name / (task or "default"))
             ok = status == "PASS"
             results.append((label, ok))
+            entries[label] = {"proof": name, "task": task, "kind": "proof", "sby": status, "ok": ok,
+                              "seconds": round(dt, 1)}
             print(f"{'PASS' if ok else 'FAIL'}  {label:32s} {dt:6.1f} s  (sby: {status})", flush=True)
             if not ok:
                 print(tail)
@@ -162,16 +196,21 @@ def main(argv: list[str]) -> int:
             except ValueError as e:
                 print(f"FAIL  {label:32s}  stale mutant: {e}")
                 results.append((label, False))
+                entries[label] = {"proof": name, "task": mut["task"], "kind": "mutant", "what": mut["what"],
+                                  "sby": "STALE", "ok": False}
                 continue
             status, dt, tail = run_sby(cmd, msby, mut["task"], mdir / "run")
             ok = status == "FAIL"
             results.append((label, ok))
+            entries[label] = {"proof": name, "task": mut["task"], "kind": "mutant", "what": mut["what"],
+                              "sby": status, "ok": ok, "caught": ok, "seconds": round(dt, 1)}
             print(f"{'PASS' if ok else 'FAIL'}  {label:32s} {dt:6.1f} s  (mutant '{mut['what']}': "
                   f"{'caught' if ok else 'NOT caught, sby ' + status})", flush=True)
             if not ok:
                 print(tail)
     n_bad = sum(1 for _, ok in results if not ok)
     print(f"formal: {len(results) - n_bad}/{len(results)} passed in {time.monotonic() - t_all:.0f} s")
+    write_report(entries)
     if not results:
         print("nothing selected")
         return 2

@@ -1,5 +1,5 @@
 // pwm_center_props: formal property wrapper for rtl/pwm_center.v (SymbiYosys,
-// formal/pwm_center.sby, run by sim/formal.py).  Every DUT input is a free
+// formal/pwm_center.sby, run by flow/formal.py).  Every DUT input is a free
 // input of this wrapper (any value on any clock, including rst, sync_in, mode,
 // dead, cmp_in/cmp_load, fault, fault_clear); only the first clock is a reset.
 // The properties look at the DUT ports only and keep their own reference
@@ -15,6 +15,8 @@
 //  P4  PWM+enable mode (mode_eff = 1): pwm (hi) and en (lo) are 0 while the
 //      fault is latched
 //  P5  the clock after enable = 0 every output is 0
+//  P6  `on` tells the output state: on = 0 -> every hi/lo output is 0; PWM+enable mode:
+//      the enables (lo) equal on (STATUS.bridges_on reads the pins)
 //  C*  cover: the properties are not vacuous (turn-on after the longest dead
 //      time, restart after a fault clear, both modes driving)
 `default_nettype none
@@ -38,7 +40,7 @@ module pwm_center_props #(
     input wire              fault_clear
 );
     wire [NCH-1:0] hi, lo;
-    wire period_start, adc_trig, sync_out, fault_latched, mode_eff, cmp_clip;
+    wire period_start, adc_trig, sync_out, fault_latched, mode_eff, cmp_clip, on;
 
     pwm_center #(
         .NCH(NCH), .PWM_HALF_PERIOD(P), .CW(CW), .DEAD_W(DEAD_W),
@@ -49,7 +51,7 @@ module pwm_center_props #(
         .fault(fault), .fault_clear(fault_clear),
         .hi(hi), .lo(lo), .period_start(period_start), .adc_trig(adc_trig),
         .sync_out(sync_out), .fault_latched(fault_latched), .mode_eff(mode_eff),
-        .cmp_clip(cmp_clip)
+        .cmp_clip(cmp_clip), .on(on)
     );
 
     localparam [DEAD_W-1:0] DMAX = {DEAD_W{1'b1}};
@@ -86,6 +88,8 @@ module pwm_center_props #(
             if (!p_enable) assert(hi == {NCH{1'b0}} && lo == {NCH{1'b0}});
         end
         if (f_valid && p_rst) assert(hi == {NCH{1'b0}} && lo == {NCH{1'b0}} && !fault_latched);
+        if (f_valid && !on) assert(hi == {NCH{1'b0}} && lo == {NCH{1'b0}});        // P6
+        if (f_valid && mode_eff) assert(lo == {NCH{on}});                          // P6
     end
 
     genvar i;

@@ -17,12 +17,13 @@ static int write_check(uint32_t addr, uint32_t value, uint32_t bits)
     return ((empc_bus_read(addr) & bits) == (value & bits)) ? EMPC_OK : EMPC_ERR_VERIFY;
 }
 
-static uint32_t ctrl_word(uint32_t ppc, uint32_t complementary, uint32_t enable, uint32_t run)
+static uint32_t ctrl_word(uint32_t ppc, uint32_t enable, uint32_t run)
 {
     return EMPC_FIELD(EMPC_A_CTRL_ENABLE, enable) | EMPC_FIELD(EMPC_A_CTRL_RUN, run)
-           | EMPC_FIELD(EMPC_A_CTRL_COMPLEMENTARY, complementary)
            | EMPC_FIELD(EMPC_A_CTRL_PWM_PER_CONTROL, ppc);
 }
+
+#define IN_LEGAL(name, v)  ((v) >= name##_LEGAL_MIN && (v) <= name##_LEGAL_MAX)
 
 int empc_init(empc_caps *caps)
 {
@@ -40,11 +41,12 @@ int empc_init(empc_caps *caps)
     caps->horizon = EMPC_GET(EMPC_G_CAPS_HORIZON, caps_word);
     caps->img_layout = EMPC_GET(EMPC_G_CAPS_IMG_LAYOUT, caps_word);
     caps->pwm_per_control = EMPC_GET(EMPC_G_CAPS_PWM_PER_CONTROL, caps_word);
+    caps->complementary = EMPC_GET(EMPC_G_CAPS_COMPLEMENTARY, caps_word);
     caps->pwm_half = RD_G(PWM_HALF);
     if (caps->img_layout != EMPC_IMG_LAYOUT)
         return EMPC_ERR_VERSION;
     for (n = 0; n < caps->naxes; n++)
-        WR_A(n, CTRL, ctrl_word(caps->pwm_per_control, 0u, 0u, 0u));
+        WR_A(n, CTRL, ctrl_word(caps->pwm_per_control, 0u, 0u));
     WR_G(IRQ_ENABLE, 0u);
     WR_G(IRQ_STATUS, EMPC_G_IRQ_STATUS_BITS);
     return EMPC_OK;
@@ -57,15 +59,18 @@ int empc_axis_config(const empc_caps *caps, uint32_t axis, const empc_axis_cfg *
 
     if (caps == 0 || cfg == 0 || axis >= caps->naxes)
         return EMPC_ERR_ARG;
-    if (EMPC_GET(EMPC_A_STATUS_BRIDGES_ON, RD_A(axis, STATUS)))
+    if (EMPC_GET(EMPC_A_STATUS_BRIDGES_ON, RD_A(axis, STATUS)) || EMPC_GET(EMPC_A_CTRL_ENABLE, RD_A(axis, CTRL)))
         return EMPC_ERR_BUSY;
     ppc = cfg->pwm_per_control ? cfg->pwm_per_control : caps->pwm_per_control;
-    if (ppc > (EMPC_A_CTRL_PWM_PER_CONTROL_MASK >> EMPC_A_CTRL_PWM_PER_CONTROL_SHIFT))
+    if (!IN_LEGAL(EMPC_A_CTRL_PWM_PER_CONTROL, ppc) || !IN_LEGAL(EMPC_A_DEAD_TIME, cfg->dead_time)
+        || !IN_LEGAL(EMPC_A_OC_THRESH, cfg->oc_thresh) || !IN_LEGAL(EMPC_A_UDC_MIN, cfg->udc_min_mv)
+        || !IN_LEGAL(EMPC_A_UDC_MAX, cfg->udc_max_mv) || (cfg->fault_mask & ~EMPC_A_FAULT_MASK_BITS) != 0u)
         return EMPC_ERR_ARG;
 #define CHECK(reg, v) \
     do { if (err == EMPC_OK) \
              err = write_check(EMPC_AXIS_ADDR(axis, EMPC_A_##reg), (v), EMPC_A_##reg##_BITS); } while (0)
-    CHECK(CTRL, ctrl_word(ppc, cfg->complementary, 0u, 0u));
+    CHECK(CTRL, ctrl_word(ppc, 0u, 0u));
+    WR_A(axis, UNLOCK, EMPC_UNLOCK_KEY);          /* arms exactly the next write of this axis */
     CHECK(FAULT_MASK, cfg->fault_mask);
     CHECK(DEAD_TIME, cfg->dead_time);
     CHECK(KDC, cfg->kdc);
@@ -94,8 +99,11 @@ int empc_coef_load(uint32_t axis, const uint32_t *image, uint32_t nwords, uint32
     WR_A(axis, CMD, EMPC_FIELD(EMPC_A_CMD_COEF_SWAP, 1u));
     while (max_polls--) {
         st = RD_A(axis, STATUS);
-        if (!EMPC_GET(EMPC_A_STATUS_SWAP_PENDING, st) && EMPC_GET(EMPC_A_STATUS_COEF_BANK, st) != bank)
-            return EMPC_OK;
+        if (EMPC_GET(EMPC_A_STATUS_SWAP_PENDING, st))
+            continue;
+        if (EMPC_GET(EMPC_A_STATUS_SWAP_REFUSED, st))
+            return EMPC_ERR_REFUSED;
+        return EMPC_GET(EMPC_A_STATUS_COEF_BANK, st) != bank ? EMPC_OK : EMPC_ERR_VERIFY;
     }
     return EMPC_ERR_TIMEOUT;
 }
@@ -141,11 +149,18 @@ int empc_status_read(uint32_t axis, empc_status *st)
     return EMPC_OK;
 }
 
+void empc_udc_write(uint32_t axis, uint32_t udc_mv)
+{
+    WR_A(axis, UDC, udc_mv);
+}
+
 int empc_wdog_set(uint32_t timeout_periods)
 {
-    if (timeout_periods > EMPC_G_WDOG_TIMEOUT_BITS)
+    if (!IN_LEGAL(EMPC_G_WDOG_TIMEOUT, timeout_periods))
         return EMPC_ERR_ARG;
-    return write_check(EMPC_GLOBAL_ADDR(EMPC_G_WDOG_TIMEOUT), timeout_periods, EMPC_G_WDOG_TIMEOUT_BITS);
+    WR_G(WDOG_UNLOCK, EMPC_UNLOCK_KEY);
+    WR_G(WDOG_TIMEOUT, timeout_periods);
+    return ((RD_G(WDOG_TIMEOUT) & EMPC_G_WDOG_TIMEOUT_BITS) == timeout_periods) ? EMPC_OK : EMPC_ERR_REFUSED;
 }
 
 void empc_wdog_kick(void)

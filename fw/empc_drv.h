@@ -44,7 +44,9 @@ typedef enum {
     EMPC_ERR_BUSY = -4,      /* bridges on (configuration refused) or a swap still pending */
     EMPC_ERR_VERIFY = -5,    /* a register did not read back what was written */
     EMPC_ERR_TIMEOUT = -6,   /* the poll count ran out */
-    EMPC_ERR_FAULT = -7      /* a fault is still latched (its cause has not gone) */
+    EMPC_ERR_FAULT = -7,     /* a fault is still latched (its cause has not gone) */
+    EMPC_ERR_REFUSED = -8    /* the FPGA refused it (coefficient swap: no complete valid image; a register
+                                write outside the build limits or while the bridges are live) */
 } empc_err;
 
 /* Build parameters of the bitstream (CAPS, PWM_HALF). */
@@ -55,13 +57,14 @@ typedef struct {
     uint32_t img_layout;       /* coefficient image layout (must be EMPC_IMG_LAYOUT) */
     uint32_t pwm_per_control;  /* PWM periods per control period after reset */
     uint32_t pwm_half;         /* PWM half period, fabric clocks */
+    uint32_t complementary;    /* bridge mode of the build: 0 PWM + enable (LX_PWR), 1 complementary */
 } empc_caps;
 
-/* Axis configuration written by empc_axis_config() (bridges must be off). */
+/* Axis configuration written by empc_axis_config() (bridges must be off).  The FPGA refuses values
+ * outside the build limits (EMPC_A_<REG>_LEGAL_MIN/_MAX in empc_regs.h): the driver checks them first. */
 typedef struct {
     uint32_t pwm_per_control;  /* >= 1; 0 = keep the build's default (CAPS) */
-    uint32_t complementary;    /* 0: PWM + enable (LX_PWR), 1: complementary with dead time */
-    uint32_t dead_time;        /* fabric clocks */
+    uint32_t dead_time;        /* fabric clocks (complementary builds; >= EMPC_A_DEAD_TIME_LEGAL_MIN) */
     uint32_t fault_mask;       /* FAULT bits that switch the bridges off */
     uint32_t kdc;              /* Udc_nominal / Udc, unsigned Q2.16 */
     uint32_t udc_mv, udc_min_mv, udc_max_mv;
@@ -86,13 +89,17 @@ typedef struct {
  * run = 0, build default PWM periods per control period), disable and clear the interrupts. */
 int empc_init(empc_caps *caps);
 
-/* Write an axis' configuration and read every register back.  Refused (EMPC_ERR_BUSY) while the
- * axis' bridges are on: safety settings change only with the outputs off. */
+/* Write an axis' configuration and read every register back (FAULT_MASK through the unlock
+ * sequence: UNLOCK = EMPC_UNLOCK_KEY, then the write).  EMPC_ERR_BUSY while the axis is enabled or
+ * its bridges are on (the FPGA would refuse the safety settings), EMPC_ERR_ARG for a value outside
+ * the build limits.  UDC must then be refreshed (empc_udc_write) at least every
+ * EMPC_UDC_FRESH_PERIODS PWM periods, else FAULT.dclink trips. */
 int empc_axis_config(const empc_caps *caps, uint32_t axis, const empc_axis_cfg *cfg);
 
 /* Upload a coefficient image into the inactive bank of an axis (nwords <= EMPC_COEF_WORDS), then
- * request the bank swap (taken at the next control period) and poll STATUS up to max_polls times
- * until it is done.  EMPC_ERR_BUSY if a swap was already pending. */
+ * request the bank swap (decided at the next control-period sample) and poll STATUS up to max_polls
+ * times until it is decided.  EMPC_ERR_BUSY if a swap was already pending, EMPC_ERR_REFUSED if the
+ * FPGA refused the image (STATUS.swap_refused: incomplete, bad checksum or another build's format). */
 int empc_coef_load(uint32_t axis, const uint32_t *image, uint32_t nwords, uint32_t max_polls);
 
 /* Switch the bridges on (run = 0: zero voltage, run = 1: control law) or off (enable = 0). */
@@ -105,7 +112,12 @@ int empc_fault_clear(uint32_t axis, uint32_t *remaining);
 /* Read STATUS, FAULT and the measurements of the last control period. */
 int empc_status_read(uint32_t axis, empc_status *st);
 
-/* Watchdog: timeout in PWM periods (0 disables), and the kick (write EMPC_WDOG_KEY). */
+/* DC-link voltage as measured by the CPU, mV: call at least every EMPC_UDC_FRESH_PERIODS PWM periods. */
+void empc_udc_write(uint32_t axis, uint32_t udc_mv);
+
+/* Watchdog: timeout in PWM periods (1..EMPC_G_WDOG_TIMEOUT_LEGAL_MAX: the watchdog cannot be disabled),
+ * written through the unlock sequence with every axis off (else EMPC_ERR_REFUSED); the kick (write
+ * EMPC_WDOG_KEY). */
 int empc_wdog_set(uint32_t timeout_periods);
 void empc_wdog_kick(void);
 

@@ -24,22 +24,25 @@
 
 #include <stdint.h>
 
-#define EMPC_EMC_BASE    0x80000000u  /* CPU byte address of FPGA word 0 (EMC CS0) */
-#define EMPC_WORD_BYTES  4u           /* bytes per FPGA word (32-bit accesses only) */
-#define EMPC_AXIS_BASE   0x00000400u  /* byte offset of axis 0's registers */
-#define EMPC_AXIS_STRIDE 0x00000400u  /* bytes per axis */
-#define EMPC_COEF_BASE   0x00004000u  /* byte offset of axis 0's coefficient window (write-only, inactive bank) */
-#define EMPC_COEF_STRIDE 0x00001000u  /* bytes per coefficient window */
-#define EMPC_COEF_WORDS  1024u        /* words in one coefficient window */
-#define EMPC_IMG_USED    768u         /* words of a coefficient image (gen/empc/image.py) */
-#define EMPC_IMG_LAYOUT  1u           /* image layout version (CAPS.img_layout) */
-#define EMPC_ID_MAGIC    0x454D5043u  /* value of ID ('EMPC') */
-#define EMPC_IP_VERSION  0x00010000u  /* value of VERSION (major 31:16, minor 15:8, patch 7:0) */
-#define EMPC_WDOG_KEY    0x5A5Au      /* write to WDOG_KICK to restart the watchdog */
-#define EMPC_ACC_RO      0u           /* access: read-only */
-#define EMPC_ACC_RW      1u           /* access: read/write */
-#define EMPC_ACC_WO      2u           /* access: write pulses (reads 0) */
-#define EMPC_ACC_W1C     3u           /* access: sticky bits, write 1 to clear */
+#define EMPC_EMC_BASE           0x80000000u  /* CPU byte address of FPGA word 0 (EMC CS0) */
+#define EMPC_WORD_BYTES         4u           /* bytes per FPGA word (32-bit accesses only) */
+#define EMPC_AXIS_BASE          0x00000400u  /* byte offset of axis 0's registers */
+#define EMPC_AXIS_STRIDE        0x00000400u  /* bytes per axis */
+#define EMPC_COEF_BASE          0x00004000u  /* byte offset of axis 0's coefficient window (write-only, inactive bank) */
+#define EMPC_COEF_STRIDE        0x00001000u  /* bytes per coefficient window */
+#define EMPC_COEF_WORDS         1024u        /* words in one coefficient window */
+#define EMPC_IMG_USED           768u         /* words of a coefficient image (gen/empc/image.py) */
+#define EMPC_IMG_LAYOUT         2u           /* image layout version (CAPS.img_layout) */
+#define EMPC_ID_MAGIC           0x454D5043u  /* value of ID ('EMPC') */
+#define EMPC_IP_VERSION         0x00010000u  /* value of VERSION (major 31:16, minor 15:8, patch 7:0) */
+#define EMPC_WDOG_KEY           0x5A5Au      /* write to WDOG_KICK to restart the watchdog */
+#define EMPC_UNLOCK_KEY         0xC0DEu      /* write to UNLOCK: the next write of that block may change FAULT_MASK / WDOG_TIMEOUT */
+#define EMPC_UNLOCK_ARM_PERIODS 2u           /* the unlock ends at this PWM period start after the key (or at the next write of the block) */
+#define EMPC_UDC_FRESH_PERIODS  200u         /* PWM periods a UDC value stays valid (rewrite it more often, else FAULT.dclink) */
+#define EMPC_ACC_RO             0u           /* access: read-only */
+#define EMPC_ACC_RW             1u           /* access: read/write */
+#define EMPC_ACC_WO             2u           /* access: write pulses (reads 0) */
+#define EMPC_ACC_W1C            3u           /* access: sticky bits, write 1 to clear */
 
 #define EMPC_GLOBAL_ADDR(ofs)   (EMPC_EMC_BASE + (uint32_t)(ofs))
 #define EMPC_AXIS_ADDR(n, ofs)  (EMPC_EMC_BASE + EMPC_AXIS_BASE + (uint32_t)(n) * EMPC_AXIS_STRIDE \
@@ -79,7 +82,7 @@
 #define EMPC_G_CAPS_ACCESS                EMPC_ACC_RO
 #define EMPC_G_CAPS_RESET                 0x00000000u
 #define EMPC_G_CAPS_RESET_MASK            0x00000000u
-#define EMPC_G_CAPS_BITS                  0x00FFFFFFu
+#define EMPC_G_CAPS_BITS                  0x01FFFFFFu
 #define EMPC_G_CAPS_SIGNED                0
 #define EMPC_G_CAPS_NAXES_SHIFT           0u
 #define EMPC_G_CAPS_NAXES_MASK            0x0000000Fu
@@ -93,6 +96,9 @@
 #define EMPC_G_CAPS_PWM_PER_CONTROL_SHIFT 16u
 #define EMPC_G_CAPS_PWM_PER_CONTROL_MASK  0x00FF0000u
 #define EMPC_G_CAPS_PWM_PER_CONTROL_WIDTH 8u
+#define EMPC_G_CAPS_COMPLEMENTARY_SHIFT   24u
+#define EMPC_G_CAPS_COMPLEMENTARY_MASK    0x01000000u
+#define EMPC_G_CAPS_COMPLEMENTARY_WIDTH   1u
 /* PWM_HALF (RO): PWM half period in fabric clocks (centre-aligned: period = 2 x this). */
 #define EMPC_G_PWM_HALF            0x00Cu
 #define EMPC_G_PWM_HALF_ACCESS     EMPC_ACC_RO
@@ -107,14 +113,17 @@
 #define EMPC_G_SCRATCH_RESET_MASK 0xFFFFFFFFu
 #define EMPC_G_SCRATCH_BITS       0xFFFFFFFFu
 #define EMPC_G_SCRATCH_SIGNED     0
-/* WDOG_TIMEOUT (RW): Watchdog timeout in PWM periods (0 disables). Expiry latches the watchdog fault on
-   every axis (all bridges off). */
+/* WDOG_TIMEOUT (RW, needs WDOG_UNLOCK, refused while bridges_live, legal 1..2047): Watchdog timeout in
+   PWM periods. Expiry latches the watchdog fault on every axis (all bridges off, not maskable). Written
+   only with every axis off and right after UNLOCK; 0 (off) is refused. */
 #define EMPC_G_WDOG_TIMEOUT            0x020u
 #define EMPC_G_WDOG_TIMEOUT_ACCESS     EMPC_ACC_RW
 #define EMPC_G_WDOG_TIMEOUT_RESET      0x00000190u
 #define EMPC_G_WDOG_TIMEOUT_RESET_MASK 0xFFFFFFFFu
-#define EMPC_G_WDOG_TIMEOUT_BITS       0x0000FFFFu
+#define EMPC_G_WDOG_TIMEOUT_BITS       0x000007FFu
 #define EMPC_G_WDOG_TIMEOUT_SIGNED     0
+#define EMPC_G_WDOG_TIMEOUT_LEGAL_MIN  1u
+#define EMPC_G_WDOG_TIMEOUT_LEGAL_MAX  2047u
 /* WDOG_KICK (WO, key 0x5a5a): Write 0x5a5a to restart the watchdog; other values are ignored. */
 #define EMPC_G_WDOG_KICK            0x024u
 #define EMPC_G_WDOG_KICK_ACCESS     EMPC_ACC_WO
@@ -149,33 +158,41 @@
 #define EMPC_G_IRQ_ENABLE_RESET_MASK 0xFFFFFFFFu
 #define EMPC_G_IRQ_ENABLE_BITS       0x00000003u
 #define EMPC_G_IRQ_ENABLE_SIGNED     0
+/* WDOG_UNLOCK (WO, key 0xc0de, key arms one write for 2 clocks): Write 0xc0de to let the next write of
+   a global register change WDOG_TIMEOUT (within the arm time; any other value is refused). */
+#define EMPC_G_WDOG_UNLOCK            0x034u
+#define EMPC_G_WDOG_UNLOCK_ACCESS     EMPC_ACC_WO
+#define EMPC_G_WDOG_UNLOCK_RESET      0x00000000u
+#define EMPC_G_WDOG_UNLOCK_RESET_MASK 0xFFFFFFFFu
+#define EMPC_G_WDOG_UNLOCK_BITS       0x0000FFFFu
+#define EMPC_G_WDOG_UNLOCK_SIGNED     0
 
 /* X(NAME) for every global register: EMPC_G_##NAME, EMPC_G_##NAME##_ACCESS, ... */
 #define EMPC_GLOBAL_REGS(X) \
     X(ID) X(VERSION) X(CAPS) X(PWM_HALF) X(SCRATCH) X(WDOG_TIMEOUT) X(WDOG_KICK) X(TIME) \
-    X(IRQ_STATUS) X(IRQ_ENABLE)
+    X(IRQ_STATUS) X(IRQ_ENABLE) X(WDOG_UNLOCK)
 
 /* ---------------- axis registers: byte offsets from the axis base (EMPC_AXIS_ADDR) ---------------- */
-/* CTRL (RW, pwm_per_control below 1 stored as 1): Axis control. */
-#define EMPC_A_CTRL                       0x000u
-#define EMPC_A_CTRL_ACCESS                EMPC_ACC_RW
-#define EMPC_A_CTRL_RESET                 0x00000000u
-#define EMPC_A_CTRL_RESET_MASK            0xFFFF00FFu
-#define EMPC_A_CTRL_BITS                  0x0000FF07u
-#define EMPC_A_CTRL_SIGNED                0
-#define EMPC_A_CTRL_ENABLE_SHIFT          0u
-#define EMPC_A_CTRL_ENABLE_MASK           0x00000001u
-#define EMPC_A_CTRL_ENABLE_WIDTH          1u
-#define EMPC_A_CTRL_RUN_SHIFT             1u
-#define EMPC_A_CTRL_RUN_MASK              0x00000002u
-#define EMPC_A_CTRL_RUN_WIDTH             1u
-#define EMPC_A_CTRL_COMPLEMENTARY_SHIFT   2u
-#define EMPC_A_CTRL_COMPLEMENTARY_MASK    0x00000004u
-#define EMPC_A_CTRL_COMPLEMENTARY_WIDTH   1u
-#define EMPC_A_CTRL_PWM_PER_CONTROL_SHIFT 8u
-#define EMPC_A_CTRL_PWM_PER_CONTROL_MASK  0x0000FF00u
-#define EMPC_A_CTRL_PWM_PER_CONTROL_WIDTH 8u
-/* CMD (WO): Command pulses (write 1). */
+/* CTRL (RW, enable 0 always accepted, run 0 always accepted, pwm_per_control legal 1..255,
+   pwm_per_control changes refused while bridges_live): Axis control. */
+#define EMPC_A_CTRL                           0x000u
+#define EMPC_A_CTRL_ACCESS                    EMPC_ACC_RW
+#define EMPC_A_CTRL_RESET                     0x00000000u
+#define EMPC_A_CTRL_RESET_MASK                0xFFFF00FFu
+#define EMPC_A_CTRL_BITS                      0x0000FF03u
+#define EMPC_A_CTRL_SIGNED                    0
+#define EMPC_A_CTRL_ENABLE_SHIFT              0u
+#define EMPC_A_CTRL_ENABLE_MASK               0x00000001u
+#define EMPC_A_CTRL_ENABLE_WIDTH              1u
+#define EMPC_A_CTRL_RUN_SHIFT                 1u
+#define EMPC_A_CTRL_RUN_MASK                  0x00000002u
+#define EMPC_A_CTRL_RUN_WIDTH                 1u
+#define EMPC_A_CTRL_PWM_PER_CONTROL_SHIFT     8u
+#define EMPC_A_CTRL_PWM_PER_CONTROL_MASK      0x0000FF00u
+#define EMPC_A_CTRL_PWM_PER_CONTROL_WIDTH     8u
+#define EMPC_A_CTRL_PWM_PER_CONTROL_LEGAL_MIN 1u
+#define EMPC_A_CTRL_PWM_PER_CONTROL_LEGAL_MAX 255u
+/* CMD (WO, adc_cal changes refused while bridges_live): Command pulses (write 1). */
 #define EMPC_A_CMD                      0x004u
 #define EMPC_A_CMD_ACCESS               EMPC_ACC_WO
 #define EMPC_A_CMD_RESET                0x00000000u
@@ -205,7 +222,7 @@
 #define EMPC_A_STATUS_ACCESS             EMPC_ACC_RO
 #define EMPC_A_STATUS_RESET              0x00000000u
 #define EMPC_A_STATUS_RESET_MASK         0x00000000u
-#define EMPC_A_STATUS_BITS               0x000001FFu
+#define EMPC_A_STATUS_BITS               0x00001FFFu
 #define EMPC_A_STATUS_SIGNED             0
 #define EMPC_A_STATUS_RUNNING_SHIFT      0u
 #define EMPC_A_STATUS_RUNNING_MASK       0x00000001u
@@ -234,12 +251,24 @@
 #define EMPC_A_STATUS_FAULT_SHIFT        8u
 #define EMPC_A_STATUS_FAULT_MASK         0x00000100u
 #define EMPC_A_STATUS_FAULT_WIDTH        1u
+#define EMPC_A_STATUS_COEF_VALID_SHIFT   9u
+#define EMPC_A_STATUS_COEF_VALID_MASK    0x00000200u
+#define EMPC_A_STATUS_COEF_VALID_WIDTH   1u
+#define EMPC_A_STATUS_SWAP_REFUSED_SHIFT 10u
+#define EMPC_A_STATUS_SWAP_REFUSED_MASK  0x00000400u
+#define EMPC_A_STATUS_SWAP_REFUSED_WIDTH 1u
+#define EMPC_A_STATUS_ADC_REFUSED_SHIFT  11u
+#define EMPC_A_STATUS_ADC_REFUSED_MASK   0x00000800u
+#define EMPC_A_STATUS_ADC_REFUSED_WIDTH  1u
+#define EMPC_A_STATUS_WR_REFUSED_SHIFT   12u
+#define EMPC_A_STATUS_WR_REFUSED_MASK    0x00001000u
+#define EMPC_A_STATUS_WR_REFUSED_WIDTH   1u
 /* FAULT (RO): Latched (sticky) fault causes; cleared by CMD.fault_clear once the cause has gone. */
 #define EMPC_A_FAULT                   0x00Cu
 #define EMPC_A_FAULT_ACCESS            EMPC_ACC_RO
 #define EMPC_A_FAULT_RESET             0x00000000u
 #define EMPC_A_FAULT_RESET_MASK        0x00000000u
-#define EMPC_A_FAULT_BITS              0x0000007Fu
+#define EMPC_A_FAULT_BITS              0x00007FFFu
 #define EMPC_A_FAULT_SIGNED            0
 #define EMPC_A_FAULT_OVERCURRENT_SHIFT 0u
 #define EMPC_A_FAULT_OVERCURRENT_MASK  0x00000001u
@@ -262,21 +291,49 @@
 #define EMPC_A_FAULT_ADC_SHIFT         6u
 #define EMPC_A_FAULT_ADC_MASK          0x00000040u
 #define EMPC_A_FAULT_ADC_WIDTH         1u
-/* FAULT_MASK (RW): Fault causes that switch the bridges off (same bits as FAULT). Masked causes are
-   still recorded in FAULT. */
+#define EMPC_A_FAULT_PSTAGE_SHIFT      7u
+#define EMPC_A_FAULT_PSTAGE_MASK       0x00000080u
+#define EMPC_A_FAULT_PSTAGE_WIDTH      1u
+#define EMPC_A_FAULT_CLOCK_SHIFT       8u
+#define EMPC_A_FAULT_CLOCK_MASK        0x00000100u
+#define EMPC_A_FAULT_CLOCK_WIDTH       1u
+#define EMPC_A_FAULT_COEF_SHIFT        9u
+#define EMPC_A_FAULT_COEF_MASK         0x00000200u
+#define EMPC_A_FAULT_COEF_WIDTH        1u
+#define EMPC_A_FAULT_HALL_ENC_SHIFT    10u
+#define EMPC_A_FAULT_HALL_ENC_MASK     0x00000400u
+#define EMPC_A_FAULT_HALL_ENC_WIDTH    1u
+#define EMPC_A_FAULT_ENC_BREAK_SHIFT   11u
+#define EMPC_A_FAULT_ENC_BREAK_MASK    0x00000800u
+#define EMPC_A_FAULT_ENC_BREAK_WIDTH   1u
+#define EMPC_A_FAULT_ADC_STUCK_SHIFT   12u
+#define EMPC_A_FAULT_ADC_STUCK_MASK    0x00001000u
+#define EMPC_A_FAULT_ADC_STUCK_WIDTH   1u
+#define EMPC_A_FAULT_ADC_SUM_SHIFT     13u
+#define EMPC_A_FAULT_ADC_SUM_MASK      0x00002000u
+#define EMPC_A_FAULT_ADC_SUM_WIDTH     1u
+#define EMPC_A_FAULT_ADC_FROZEN_SHIFT  14u
+#define EMPC_A_FAULT_ADC_FROZEN_MASK   0x00004000u
+#define EMPC_A_FAULT_ADC_FROZEN_WIDTH  1u
+/* FAULT_MASK (RW, needs UNLOCK, refused while bridges_live): Fault causes that switch the bridges off
+   (same bits as FAULT). Masked causes are still recorded in FAULT; watchdog, overrun, pstage, clock and
+   coef always trip. Written only with the bridges off and right after UNLOCK. */
 #define EMPC_A_FAULT_MASK            0x010u
 #define EMPC_A_FAULT_MASK_ACCESS     EMPC_ACC_RW
-#define EMPC_A_FAULT_MASK_RESET      0x0000007Fu
+#define EMPC_A_FAULT_MASK_RESET      0x00007FFFu
 #define EMPC_A_FAULT_MASK_RESET_MASK 0xFFFFFFFFu
-#define EMPC_A_FAULT_MASK_BITS       0x0000007Fu
+#define EMPC_A_FAULT_MASK_BITS       0x00007FFFu
 #define EMPC_A_FAULT_MASK_SIGNED     0
-/* DEAD_TIME (RW): Dead time in fabric clocks (complementary mode). */
+/* DEAD_TIME (RW, refused while bridges_live, legal 20..255): Dead time in fabric clocks (complementary
+   mode; at least the board's 20). */
 #define EMPC_A_DEAD_TIME            0x014u
 #define EMPC_A_DEAD_TIME_ACCESS     EMPC_ACC_RW
 #define EMPC_A_DEAD_TIME_RESET      0x00000032u
 #define EMPC_A_DEAD_TIME_RESET_MASK 0xFFFFFFFFu
 #define EMPC_A_DEAD_TIME_BITS       0x000000FFu
 #define EMPC_A_DEAD_TIME_SIGNED     0
+#define EMPC_A_DEAD_TIME_LEGAL_MIN  20u
+#define EMPC_A_DEAD_TIME_LEGAL_MAX  255u
 /* KDC (RW): DC-link compensation Udc_nominal / Udc, unsigned Q2.16 (1.0 = 0x10000). */
 #define EMPC_A_KDC            0x018u
 #define EMPC_A_KDC_ACCESS     EMPC_ACC_RW
@@ -284,63 +341,83 @@
 #define EMPC_A_KDC_RESET_MASK 0xFFFFFFFFu
 #define EMPC_A_KDC_BITS       0x0003FFFFu
 #define EMPC_A_KDC_SIGNED     0
-/* UDC (RW): DC-link voltage in mV as measured by the CPU (checked against UDC_MIN..MAX). */
+/* UDC (RW, write strobe): DC-link voltage in mV as measured by the CPU, checked against UDC_MIN..MAX;
+   it resets to 0 (missing: below UDC_MIN) and must be rewritten at least every 200 PWM periods (else
+   stale: FAULT.dclink). */
 #define EMPC_A_UDC            0x01Cu
 #define EMPC_A_UDC_ACCESS     EMPC_ACC_RW
-#define EMPC_A_UDC_RESET      0x00008CA0u
+#define EMPC_A_UDC_RESET      0x00000000u
 #define EMPC_A_UDC_RESET_MASK 0xFFFFFFFFu
 #define EMPC_A_UDC_BITS       0x0000FFFFu
 #define EMPC_A_UDC_SIGNED     0
-/* UDC_MIN (RW): Lowest allowed DC link, mV (0 disables the lower check). */
+/* UDC_MIN (RW, refused while bridges_live, legal 1..65534): Lowest allowed DC link, mV (1..65534). */
 #define EMPC_A_UDC_MIN            0x020u
 #define EMPC_A_UDC_MIN_ACCESS     EMPC_ACC_RW
-#define EMPC_A_UDC_MIN_RESET      0x00000000u
+#define EMPC_A_UDC_MIN_RESET      0x00002710u
 #define EMPC_A_UDC_MIN_RESET_MASK 0xFFFFFFFFu
 #define EMPC_A_UDC_MIN_BITS       0x0000FFFFu
 #define EMPC_A_UDC_MIN_SIGNED     0
-/* UDC_MAX (RW): Highest allowed DC link, mV. */
+#define EMPC_A_UDC_MIN_LEGAL_MIN  1u
+#define EMPC_A_UDC_MIN_LEGAL_MAX  65534u
+/* UDC_MAX (RW, refused while bridges_live, legal 1..65534): Highest allowed DC link, mV (1..65534). */
 #define EMPC_A_UDC_MAX            0x024u
 #define EMPC_A_UDC_MAX_ACCESS     EMPC_ACC_RW
-#define EMPC_A_UDC_MAX_RESET      0x0000FFFFu
+#define EMPC_A_UDC_MAX_RESET      0x0000EA60u
 #define EMPC_A_UDC_MAX_RESET_MASK 0xFFFFFFFFu
 #define EMPC_A_UDC_MAX_BITS       0x0000FFFFu
 #define EMPC_A_UDC_MAX_SIGNED     0
-/* OC_THRESH (RW): Overcurrent threshold, ADC LSB of |code - offset| (per phase). */
+#define EMPC_A_UDC_MAX_LEGAL_MIN  1u
+#define EMPC_A_UDC_MAX_LEGAL_MAX  65534u
+/* OC_THRESH (RW, refused while bridges_live, legal 1..1900): Overcurrent threshold, ADC LSB of |code -
+   offset| (per phase, every frame; 1..1900, the board's limit). */
 #define EMPC_A_OC_THRESH            0x028u
 #define EMPC_A_OC_THRESH_ACCESS     EMPC_ACC_RW
 #define EMPC_A_OC_THRESH_RESET      0x00000708u
 #define EMPC_A_OC_THRESH_RESET_MASK 0xFFFFFFFFu
 #define EMPC_A_OC_THRESH_BITS       0x00000FFFu
 #define EMPC_A_OC_THRESH_SIGNED     0
-/* ADC_OFF0 (RW, in adc_off): ADC offset phase A (calibration writes it; reads the active value). */
+#define EMPC_A_OC_THRESH_LEGAL_MIN  1u
+#define EMPC_A_OC_THRESH_LEGAL_MAX  1900u
+/* ADC_OFF0 (RW, in adc_off, refused while bridges_live, legal 1901..2194): ADC offset phase A
+   (calibration writes it; reads the active value; 1901..2194: any legal offset and threshold leave both
+   rails beyond the threshold; writes refused with the bridges live, and by adc_spi while calibrating:
+   STATUS.adc_refused). */
 #define EMPC_A_ADC_OFF0            0x02Cu
 #define EMPC_A_ADC_OFF0_ACCESS     EMPC_ACC_RW
 #define EMPC_A_ADC_OFF0_RESET      0x00000000u
 #define EMPC_A_ADC_OFF0_RESET_MASK 0xFFFFF000u
 #define EMPC_A_ADC_OFF0_BITS       0x00000FFFu
 #define EMPC_A_ADC_OFF0_SIGNED     0
-/* ADC_OFF1 (RW, in adc_off): ADC offset phase B. */
+#define EMPC_A_ADC_OFF0_LEGAL_MIN  1901u
+#define EMPC_A_ADC_OFF0_LEGAL_MAX  2194u
+/* ADC_OFF1 (RW, in adc_off, refused while bridges_live, legal 1901..2194): ADC offset phase B. */
 #define EMPC_A_ADC_OFF1            0x030u
 #define EMPC_A_ADC_OFF1_ACCESS     EMPC_ACC_RW
 #define EMPC_A_ADC_OFF1_RESET      0x00000000u
 #define EMPC_A_ADC_OFF1_RESET_MASK 0xFFFFF000u
 #define EMPC_A_ADC_OFF1_BITS       0x00000FFFu
 #define EMPC_A_ADC_OFF1_SIGNED     0
-/* ADC_OFF2 (RW, in adc_off): ADC offset phase C. */
+#define EMPC_A_ADC_OFF1_LEGAL_MIN  1901u
+#define EMPC_A_ADC_OFF1_LEGAL_MAX  2194u
+/* ADC_OFF2 (RW, in adc_off, refused while bridges_live, legal 1901..2194): ADC offset phase C. */
 #define EMPC_A_ADC_OFF2            0x034u
 #define EMPC_A_ADC_OFF2_ACCESS     EMPC_ACC_RW
 #define EMPC_A_ADC_OFF2_RESET      0x00000000u
 #define EMPC_A_ADC_OFF2_RESET_MASK 0xFFFFF000u
 #define EMPC_A_ADC_OFF2_BITS       0x00000FFFu
 #define EMPC_A_ADC_OFF2_SIGNED     0
-/* ANGLE_CAL (RW): Electrical angle at the encoder index (2^16 = one electrical turn). */
+#define EMPC_A_ADC_OFF2_LEGAL_MIN  1901u
+#define EMPC_A_ADC_OFF2_LEGAL_MAX  2194u
+/* ANGLE_CAL (RW, refused while bridges_live): Electrical angle at the encoder index (2^16 = one
+   electrical turn). */
 #define EMPC_A_ANGLE_CAL            0x038u
 #define EMPC_A_ANGLE_CAL_ACCESS     EMPC_ACC_RW
 #define EMPC_A_ANGLE_CAL_RESET      0x00000000u
 #define EMPC_A_ANGLE_CAL_RESET_MASK 0xFFFFFFFFu
 #define EMPC_A_ANGLE_CAL_BITS       0x0000FFFFu
 #define EMPC_A_ANGLE_CAL_SIGNED     0
-/* HALL_OFFSET (RW): Electrical angle of the HALL sector-1 start (2^16 = one turn). */
+/* HALL_OFFSET (RW, refused while bridges_live): Electrical angle of the HALL sector-1 start (2^16 = one
+   turn). */
 #define EMPC_A_HALL_OFFSET            0x03Cu
 #define EMPC_A_HALL_OFFSET_ACCESS     EMPC_ACC_RW
 #define EMPC_A_HALL_OFFSET_RESET      0x00000000u
@@ -585,6 +662,54 @@
 #define EMPC_A_PERIODS_RESET_MASK 0x00000000u
 #define EMPC_A_PERIODS_BITS       0xFFFFFFFFu
 #define EMPC_A_PERIODS_SIGNED     0
+/* ADC_PSUM0 (RO): Phase A: sum of code - offset over the ADC frames of the last complete PWM period,
+   and their number (period mean = sum / count; both from the same period). */
+#define EMPC_A_ADC_PSUM0             0x0B0u
+#define EMPC_A_ADC_PSUM0_ACCESS      EMPC_ACC_RO
+#define EMPC_A_ADC_PSUM0_RESET       0x00000000u
+#define EMPC_A_ADC_PSUM0_RESET_MASK  0x00000000u
+#define EMPC_A_ADC_PSUM0_BITS        0x7F0FFFFFu
+#define EMPC_A_ADC_PSUM0_SIGNED      0
+#define EMPC_A_ADC_PSUM0_SUM_SHIFT   0u
+#define EMPC_A_ADC_PSUM0_SUM_MASK    0x000FFFFFu
+#define EMPC_A_ADC_PSUM0_SUM_WIDTH   20u
+#define EMPC_A_ADC_PSUM0_COUNT_SHIFT 24u
+#define EMPC_A_ADC_PSUM0_COUNT_MASK  0x7F000000u
+#define EMPC_A_ADC_PSUM0_COUNT_WIDTH 7u
+/* ADC_PSUM1 (RO): Phase B: as ADC_PSUM0. */
+#define EMPC_A_ADC_PSUM1             0x0B4u
+#define EMPC_A_ADC_PSUM1_ACCESS      EMPC_ACC_RO
+#define EMPC_A_ADC_PSUM1_RESET       0x00000000u
+#define EMPC_A_ADC_PSUM1_RESET_MASK  0x00000000u
+#define EMPC_A_ADC_PSUM1_BITS        0x7F0FFFFFu
+#define EMPC_A_ADC_PSUM1_SIGNED      0
+#define EMPC_A_ADC_PSUM1_SUM_SHIFT   0u
+#define EMPC_A_ADC_PSUM1_SUM_MASK    0x000FFFFFu
+#define EMPC_A_ADC_PSUM1_SUM_WIDTH   20u
+#define EMPC_A_ADC_PSUM1_COUNT_SHIFT 24u
+#define EMPC_A_ADC_PSUM1_COUNT_MASK  0x7F000000u
+#define EMPC_A_ADC_PSUM1_COUNT_WIDTH 7u
+/* ADC_PSUM2 (RO): Phase C: as ADC_PSUM0. */
+#define EMPC_A_ADC_PSUM2             0x0B8u
+#define EMPC_A_ADC_PSUM2_ACCESS      EMPC_ACC_RO
+#define EMPC_A_ADC_PSUM2_RESET       0x00000000u
+#define EMPC_A_ADC_PSUM2_RESET_MASK  0x00000000u
+#define EMPC_A_ADC_PSUM2_BITS        0x7F0FFFFFu
+#define EMPC_A_ADC_PSUM2_SIGNED      0
+#define EMPC_A_ADC_PSUM2_SUM_SHIFT   0u
+#define EMPC_A_ADC_PSUM2_SUM_MASK    0x000FFFFFu
+#define EMPC_A_ADC_PSUM2_SUM_WIDTH   20u
+#define EMPC_A_ADC_PSUM2_COUNT_SHIFT 24u
+#define EMPC_A_ADC_PSUM2_COUNT_MASK  0x7F000000u
+#define EMPC_A_ADC_PSUM2_COUNT_WIDTH 7u
+/* CNT_WR_REFUSED (RO): Refused writes of this axis' registers and of the global registers (guard,
+   unlock or illegal value; 8-bit, saturating; CMD.clear_counters zeroes it). */
+#define EMPC_A_CNT_WR_REFUSED            0x0BCu
+#define EMPC_A_CNT_WR_REFUSED_ACCESS     EMPC_ACC_RO
+#define EMPC_A_CNT_WR_REFUSED_RESET      0x00000000u
+#define EMPC_A_CNT_WR_REFUSED_RESET_MASK 0x00000000u
+#define EMPC_A_CNT_WR_REFUSED_BITS       0x000000FFu
+#define EMPC_A_CNT_WR_REFUSED_SIGNED     0
 /* SAT_OPERAND (RO, in cnt): Saturation counter: core operand. SAT_* and CNT_OVERRUN count control
    periods in which the event happened (32-bit, saturating; updated after the control period's
    modulation). */
@@ -678,7 +803,8 @@
 #define EMPC_A_CNT_OVERRUN_RESET_MASK 0x00000000u
 #define EMPC_A_CNT_OVERRUN_BITS       0xFFFFFFFFu
 #define EMPC_A_CNT_OVERRUN_SIGNED     0
-/* CNT_ADC_MISS (RO): ADC triggers ignored while busy (8-bit, saturating; not cleared by
+/* CNT_ADC_MISS (RO): PWM centres that missed the ADC sampling window (trigger off the frame grid, or a
+   sync restart cut the window: no current sample that period; 8-bit, saturating; not cleared by
    CMD.clear_counters). */
 #define EMPC_A_CNT_ADC_MISS            0x0F4u
 #define EMPC_A_CNT_ADC_MISS_ACCESS     EMPC_ACC_RO
@@ -701,6 +827,31 @@
 #define EMPC_A_SAT_GOV_RESET_MASK 0x00000000u
 #define EMPC_A_SAT_GOV_BITS       0xFFFFFFFFu
 #define EMPC_A_SAT_GOV_SIGNED     0
+/* ADC_SUM_THRESH (RW, refused while bridges_live, legal 1..1900): Sum-of-currents threshold, ADC LSB of
+   |d_a + d_b + d_c| (d = code - offset), checked on every frame (FAULT.adc_sum; 1..1900). */
+#define EMPC_A_ADC_SUM_THRESH            0x100u
+#define EMPC_A_ADC_SUM_THRESH_ACCESS     EMPC_ACC_RW
+#define EMPC_A_ADC_SUM_THRESH_RESET      0x0000012Cu
+#define EMPC_A_ADC_SUM_THRESH_RESET_MASK 0xFFFFFFFFu
+#define EMPC_A_ADC_SUM_THRESH_BITS       0x00000FFFu
+#define EMPC_A_ADC_SUM_THRESH_SIGNED     0
+#define EMPC_A_ADC_SUM_THRESH_LEGAL_MIN  1u
+#define EMPC_A_ADC_SUM_THRESH_LEGAL_MAX  1900u
+/* UNLOCK (WO, key 0xc0de, key arms one write for 2 clocks): Write 0xc0de to let the next write of this
+   axis change FAULT_MASK (within the arm time; any other value is refused). */
+#define EMPC_A_UNLOCK            0x104u
+#define EMPC_A_UNLOCK_ACCESS     EMPC_ACC_WO
+#define EMPC_A_UNLOCK_RESET      0x00000000u
+#define EMPC_A_UNLOCK_RESET_MASK 0xFFFFFFFFu
+#define EMPC_A_UNLOCK_BITS       0x0000FFFFu
+#define EMPC_A_UNLOCK_SIGNED     0
+/* CNT_SWAP_REF (RO): Refused coefficient swaps (8-bit, saturating; CMD.clear_counters zeroes it). */
+#define EMPC_A_CNT_SWAP_REF            0x108u
+#define EMPC_A_CNT_SWAP_REF_ACCESS     EMPC_ACC_RO
+#define EMPC_A_CNT_SWAP_REF_RESET      0x00000000u
+#define EMPC_A_CNT_SWAP_REF_RESET_MASK 0x00000000u
+#define EMPC_A_CNT_SWAP_REF_BITS       0x000000FFu
+#define EMPC_A_CNT_SWAP_REF_SIGNED     0
 
 /* X(NAME) for every axis register: EMPC_A_##NAME, EMPC_A_##NAME##_ACCESS, ... */
 #define EMPC_AXIS_REGS(X) \
@@ -708,8 +859,10 @@
     X(OC_THRESH) X(ADC_OFF0) X(ADC_OFF1) X(ADC_OFF2) X(ANGLE_CAL) X(HALL_OFFSET) X(KACC) X(ID_REF) \
     X(IQ_REF) X(SEG_ADDR) X(SEG_LEN) X(SEG_R0_LO) X(SEG_R0_HI) X(SEG_D1_LO) X(SEG_D1_HI) X(SEG_D2) \
     X(SEG_FLAGS) X(SEG_START) X(SEG_GOV) X(FW) X(FW_R2) X(IQ_HOLD) X(POS) X(SPEED) X(THETA) X(I_D) \
-    X(I_Q) X(U_D) X(U_Q) X(REF) X(IABC0) X(IABC1) X(LATENCY) X(PERIODS) X(SAT_OPERAND) X(SAT_GAIN) \
-    X(SAT_TERM) X(SAT_ACC) X(SAT_DU) X(SAT_U) X(SAT_EBAR) X(SAT_EBAR_INC) X(SAT_LIMIT) X(SAT_WN) \
-    X(SAT_SIGNAL) X(SAT_FRONT) X(CNT_OVERRUN) X(CNT_ADC_MISS) X(CNT_ENC_ERR) X(SAT_GOV)
+    X(I_Q) X(U_D) X(U_Q) X(REF) X(IABC0) X(IABC1) X(LATENCY) X(PERIODS) X(ADC_PSUM0) X(ADC_PSUM1) \
+    X(ADC_PSUM2) X(CNT_WR_REFUSED) X(SAT_OPERAND) X(SAT_GAIN) X(SAT_TERM) X(SAT_ACC) X(SAT_DU) \
+    X(SAT_U) X(SAT_EBAR) X(SAT_EBAR_INC) X(SAT_LIMIT) X(SAT_WN) X(SAT_SIGNAL) X(SAT_FRONT) \
+    X(CNT_OVERRUN) X(CNT_ADC_MISS) X(CNT_ENC_ERR) X(SAT_GOV) X(ADC_SUM_THRESH) X(UNLOCK) \
+    X(CNT_SWAP_REF)
 
 #endif /* EMPC_REGS_H */

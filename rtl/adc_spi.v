@@ -1,113 +1,157 @@
-// adc_spi: SPI master for the 3-channel, 12-bit phase-current ADC.
+// adc_spi: SPI master for the 3-channel, 12-bit phase-current ADC, converting back to back,
+// with per-frame overcurrent and plausibility checks.
 //
-// Three simultaneous-sampling serial ADCs (AD7476 / ADS7886 style) share one
-// SCLK and one active-low CS; each returns its frame on its own MISO line.
-// A conversion is started by `trig` (one clk pulse from the PWM at the
-// period centre).  Full description: docs/blocks/adc_spi.md.
+// Three simultaneous-sampling serial ADCs (AD7476 / ADS7886 style) share one SCLK and one
+// active-low CS; each returns its frame on its own MISO line.  Full description, timing
+// diagram and resources: docs/blocks/adc_spi.md.  Bit-accurate model (cycle exact):
+// gen/empc/rtlmodel/adc_spi.py (AdcSpiCycle).
 //
-// SPI protocol (CPOL = 1: SCLK idles high; data launched by the slave on
-// CS falling (bit 0) and on SCLK falling edges 1..FRAME_BITS-1 (bits 1..);
-// FRAME_BITS SCLK cycles per frame).  Frame, MSB first:
-//   LEAD_ZEROS zeros | ADC_BITS code bits MSB first | trailing bits (ignored)
-// Timing in clk edges after the edge E0 that accepts `trig`:
-//   CS falls at E0, SCLK falling edge k (k = 1..FRAME_BITS) at E0 + 2*k*SCLK_DIV,
-//   rising edge k at E0 + (2*k+1)*SCLK_DIV  (SCLK = clk / (2*SCLK_DIV)).
-//   Bit k (launched at E0 + 2*k*SCLK_DIV) is latched from the synchronised
-//   MISO at E0 + 2*k*SCLK_DIV + SAMPLE_DELAY: the MISO pins go through
-//   sync_2ff (2 stages), so the pin itself is sampled at launch +
-//   SAMPLE_DELAY - 2 clk; this must lie after the round trip
-//   (clk->SCLK pin + slave t_DO + board/isolator) and before the next launch
-//   plus the slave's minimum hold time.  SAMPLE_DELAY may exceed
-//   2*SCLK_DIV (long isolated links): strobes are delayed in a pipeline.
-//   CS rises at E0 + max((2*FRAME_BITS+2)*SCLK_DIV,
-//                        2*(FRAME_BITS-1)*SCLK_DIV + SAMPLE_DELAY + 1).
-//   `valid` is high in the single cycle after edge
-//   E0 + VALID_LAT, VALID_LAT = 2*(FRAME_BITS-1)*SCLK_DIV + SAMPLE_DELAY + 2
-//   (defaults: 67 clk = 670 ns).  CS stays high >= CS_QUIET clk.
-//   `busy` (frame, CS quiet time, result pipeline) is low again after
-//   max(t_CSrise + CS_QUIET - 1, E0 + VALID_LAT): a trig is accepted iff
-//   busy is low in its cycle (next CS fall >= CS_QUIET clk after CS rise);
-//   minimum trigger period = max(t_CSrise - E0 + CS_QUIET, VALID_LAT + 1)
-//   (defaults: 73 clk).  A trig while busy is
-//   ignored, pulses `trig_miss` and increments the saturating `miss_cnt`.
+// Frame schedule.  Frames run continuously on a grid of TF clocks (FRAME_PERIOD; 0 = the
+// shortest period a frame allows, rounded up to even when AVG_LOG2 > 0) that is re-phased
+// at every PWM period boundary (`period_start`, cycle 0 of the period, reloads the grid at
+// its edge): grid points at cycles t = G0 + m*TF (m = 0, 1, .., 1 <= G0 <= TF), placed so
+// that the 2^AVG_LOG2 "window" frames
+// m = M0 .. M0 + 2^AVG_LOG2 - 1 start (CS falls) symmetrically about the PWM centre
+// (cycle HALF_PERIOD, where pwm_center's adc_trig is): at HALF_PERIOD + (j - (2^K-1)/2)*TF.
+// A frame starts at a grid point unless the previous one is still busy (only possible at
+// the first grid point after a boundary, never in the window).  One gap per PWM period
+// (at the boundary) re-phases the grid; frames run (and are checked) with the bridges
+// off too, and before the first boundary (no window then).
 //
-// Outputs per channel i (0..2), all updated together with `valid`:
-//   code_i  raw ADC code (unsigned ADC_BITS; updated one cycle before valid)
-//   cur_i   sat(code_i - offset_i, CUR_W) signed (default 13 bit: never saturates)
-//   oc_ch[i] |code_i - offset_i| > oc_thr (unsaturated difference), held
-// Pulses with `valid`: sat (any cur saturated), oc (any oc_ch), frame_err
-// (a leading-zero bit was 1: broken/floating MISO or frame misalignment).
+// SPI protocol (CPOL = 1: SCLK idles high; data launched by the slave on CS falling
+// (bit 0) and on SCLK falling edges 1..FRAME_BITS-1; FRAME_BITS SCLK cycles per frame).
+// Frame, MSB first: LEAD_ZEROS zeros | ADC_BITS code bits MSB first | trailing bits.
+// Timing in clk edges after the edge E0 that starts a frame (frame accepted in cycle a,
+// E0 = end of cycle a): CS falls at E0, SCLK falling edge k (k = 1..FRAME_BITS) at
+// E0 + 2*k*SCLK_DIV, rising edge k at E0 + (2*k+1)*SCLK_DIV.  Bit k is latched from the
+// synchronised MISO (sync_2ff) at E0 + 2*k*SCLK_DIV + SAMPLE_DELAY (pin sampled
+// SAMPLE_DELAY - 2 clk after the launch).  CS rises at E0 + T_CS,
+// T_CS = max((2*FRAME_BITS+2)*SCLK_DIV, 2*(FRAME_BITS-1)*SCLK_DIV + SAMPLE_DELAY + 1),
+// and stays high >= CS_QUIET clk.  VL = 2*(FRAME_BITS-1)*SCLK_DIV + SAMPLE_DELAY + 2
+// (defaults: 67).  "At edge E0 + k" = registered there, visible in the cycle after it.
 //
-// Offsets: offset_i resets to OFFSET_RESET; off_we[i] loads off_wdata
-// (CPU) unless a calibration runs (CPU writes are ignored while cal_busy).
-// cal_start (pulse) starts a calibration: the channels are averaged one after
-// the other (channel 0, 1, 2), each over the next 2**CAL_LOG2 conversions
-// *accepted after* cal_start (resp. after the previous channel finished), so
-// 3 * 2**CAL_LOG2 conversions in all.  A channel's offset is loaded with the
-// round-half-up mean (sum + 2**(CAL_LOG2-1)) >> CAL_LOG2 in the valid cycle of
-// its last sample; after channel 2 cal_done is set (sticky until the next
-// cal_start).  cal_busy is high meanwhile; cal_start during calibration
-// restarts it.  One accumulator (preset to 2**(CAL_LOG2-1), so the mean is
-// its top bits) adds the code of the channel being calibrated, which a fourth
-// shift register collects from that channel's MISO.  The sequencer must keep
-// the bridges off (PWM outputs safe) during calibration: conversions keep
-// running on `trig` and `valid` keeps pulsing (corrected with the offsets of
-// the moment).
+// Every frame (at edge E0 + VL; `fvalid` high for that one cycle):
+//   code0..2   raw codes (one edge earlier, E0 + VL - 1)
+//   oc         pulse: some |code_i - offset_i| > oc_thr (unsaturated difference); oc_ch held
+//   frame_err  pulse: a leading-zero bit read 1 (broken/floating MISO, misaligned frame)
+//   stuck      level: in each of the last STUCK_PERSIST frames some channel's code was
+//              0 or 2^ADC_BITS-1 (a rail); cleared by the first frame without a rail
+//   sum_err    level: |d0 + d1 + d2| > sum_thr (d_i = code_i - offset_i) in each of the last
+//              SUM_PERSIST frames; at edge E0 + VL + SW (SW = ADC_BITS + 3), 15 clocks after
+//              fvalid (the check runs bit-serially)
+//   Latency overcurrent: the frame's last SCLK rising edge is edge E0 + (2*FRAME_BITS+1)*
+//   SCLK_DIV, oc comes at edge E0 + VL: SAMPLE_DELAY + 2 - 3*SCLK_DIV clocks later
+//   (defaults: 1).  mpc_axis: trip is combinational, pwm_center registers the outputs:
+//   bridge pins off one more clock later (defaults: 2 clocks after the last SCLK rising edge).
+// Controller sample (once per PWM period): `valid` pulses, cur0..2 = sat(round-half-up
+//   mean of the window frames' code_i - offset_i, CUR_W), sat with valid.
+//   AVG_LOG2 = 0: the centre frame alone, valid at edge E0 + VL of the frame started at
+//   `trig`: bit-exact and cycle-exact the former single conversion (trig + 68 clocks).
+//   AVG_LOG2 = K > 0: accumulated bit-serially, valid at edge E0_last + VL + AW + 1 of the
+//   last window frame (AW = ADC_BITS + 1 + K): (2^K-1)*TF/2 + VL + AW + 2 clocks after the
+//   trig cycle (defaults K = 2, TF = 74: 195).
+// Period sums (for the CPU, PiKRON style): psum_i = sum of code_i - offset_i over the
+//   frames whose `fvalid` cycle - 1 lies in the PWM period, pcount = their number; both
+//   loaded together once the period has ended (at the boundary, or after the running
+//   serial pass); pcount saturates at 2^PCNT_W-1 (then the sums stop adding: sum/count stays
+//   the exact mean of the counted frames).
+// Frozen ADC: a period counts as frozen if the bridges were on in every cycle of it,
+//   >= 2 frames ended in it and some channel's frame (all FRAME_BITS bits) equalled the
+//   previous frame in every one of them; `frozen` (level) is set at the boundary ending
+//   the FROZEN_PERIODS-th consecutive frozen period, cleared at the next boundary that
+//   ends a non-frozen period (bridges off for a clock counts as non-frozen).
+// Centre check: `trig` (pwm_center adc_trig) must come at cycle HALF_PERIOD of the period;
+//   otherwise, and when a boundary cuts a window (a sync restart), trig_miss pulses (next
+//   cycle) and the saturating miss_cnt counts.  A cut window gives no `valid`.
 //
-// Parameters: ADC_BITS, FRAME_BITS, LEAD_ZEROS (>= 1), SCLK_DIV (>= 1),
-//   SAMPLE_DELAY (>= 3), CS_QUIET (>= 1), CAL_LOG2 (>= 1), CUR_W (>= 2),
-//   MISS_W, OFFSET_RESET.
-// Resources (Yosys synth_xilinx xc6s, defaults): ~155 LUT, ~290 FF, no DSP, no BRAM.
-// Reset (synchronous, rst): cs_n = 1, sclk = 1, idle, all outputs 0,
-//   offsets = OFFSET_RESET, calibration idle, cal_done = 0, miss_cnt = 0.
+// Offsets: offset_i resets to OFFSET_RESET; off_we[i] loads off_wdata unless a calibration
+// runs or bridges_on (refused: `refused` set).  cal_start (pulse) starts a calibration,
+// refused while bridges_on; a running calibration is aborted (cal_busy falls, cal_done stays
+// 0, `refused` set) in the cycle after bridges_on rises.  The channels are averaged one
+// after the other (0, 1, 2), each over the next 2^CAL_LOG2 frames *accepted after*
+// cal_start (resp. after the previous channel finished); a channel's offset is loaded with
+// the round-half-up mean in the fvalid cycle of its last frame; after channel 2 cal_done
+// is set (sticky until the next cal_start).  `refused` is sticky until refused_clear.
+//
+// Parameters: ADC_BITS, FRAME_BITS, LEAD_ZEROS (>= 1), SCLK_DIV (>= 1), SAMPLE_DELAY (>= 3),
+//   CS_QUIET (>= 1), HALF_PERIOD (pwm_center's P), AVG_LOG2 (K), FRAME_PERIOD (TF, 0 = auto),
+//   CAL_LOG2 (>= 1), CUR_W (>= 2), MISS_W, OFFSET_RESET, PCNT_W (period frame counter),
+//   SUM_PERSIST, STUCK_PERSIST (>= 1, frames), FROZEN_PERIODS (>= 1, PWM periods).
+//   Illegal combinations stop the elaboration (module adc_spi_bad_parameters).
+// Resources (Yosys synth_xilinx xc6s, defaults): see docs/blocks/adc_spi.md.
+// Reset (synchronous, rst): cs_n = 1, sclk = 1, idle, grid restarts (no window until the
+//   first period_start), all outputs, sums, counters and flags 0, offsets = OFFSET_RESET,
+//   calibration idle.
 `default_nettype none
 `include "empc_formats.vh"
+`include "empc_regs.vh"
 module adc_spi #(
-    parameter integer ADC_BITS     = `EMPC_ADC_BITS,
-    parameter integer FRAME_BITS   = 16,
-    parameter integer LEAD_ZEROS   = 4,
-    parameter integer SCLK_DIV     = 2,
-    parameter integer SAMPLE_DELAY = 5,
-    parameter integer CS_QUIET     = 5,
-    parameter integer CAL_LOG2     = 6,
-    parameter integer CUR_W        = ADC_BITS + 1,
-    parameter integer MISS_W       = 8,
-    parameter integer OFFSET_RESET = `EMPC_ADC_OFFSET
+    parameter integer ADC_BITS       = `EMPC_ADC_BITS,
+    parameter integer FRAME_BITS     = 16,
+    parameter integer LEAD_ZEROS     = 4,
+    parameter integer SCLK_DIV       = 2,
+    parameter integer SAMPLE_DELAY   = 5,
+    parameter integer CS_QUIET       = 5,
+    parameter integer HALF_PERIOD    = `EMPC_PWM_HALF_PERIOD,
+    parameter integer AVG_LOG2       = 2,
+    parameter integer FRAME_PERIOD   = 0,
+    parameter integer CAL_LOG2       = 10,
+    parameter integer CUR_W          = ADC_BITS + 1,
+    parameter integer MISS_W         = 8,
+    parameter integer OFFSET_RESET   = `EMPC_ADC_OFFSET,
+    parameter integer PCNT_W         = 7,
+    parameter integer SUM_PERSIST    = `EMPC_ADC_SUM_FRAMES,
+    parameter integer STUCK_PERSIST  = `EMPC_ADC_STUCK_FRAMES,
+    parameter integer FROZEN_PERIODS = `EMPC_ADC_FROZEN_PERIODS
 ) (
-    input  wire                     clk,
-    input  wire                     rst,
-    // conversion control
-    input  wire                     trig,
-    output wire                     busy,
-    output reg                      trig_miss,
-    output reg  [MISS_W-1:0]        miss_cnt,
+    input  wire                           clk,
+    input  wire                           rst,
+    // PWM timing and state
+    input  wire                           period_start,  // PWM period boundary (1 clk)
+    input  wire                           trig,          // PWM centre (1 clk): checked
+    input  wire                           bridges_on,    // outputs may switch
+    output wire                           busy,          // a frame is in progress
+    output reg                            trig_miss,
+    output reg  [MISS_W-1:0]              miss_cnt,
     // SPI pins
-    output reg                      cs_n,
-    output reg                      sclk,
-    input  wire [2:0]               miso,       // asynchronous
-    // results
-    output reg                      valid,
-    output reg  [ADC_BITS-1:0]      code0,
-    output reg  [ADC_BITS-1:0]      code1,
-    output reg  [ADC_BITS-1:0]      code2,
-    output reg  signed [CUR_W-1:0]  cur0,
-    output reg  signed [CUR_W-1:0]  cur1,
-    output reg  signed [CUR_W-1:0]  cur2,
-    output reg                      sat,
-    output reg                      frame_err,
-    // overcurrent
-    input  wire [ADC_BITS-1:0]      oc_thr,
-    output reg                      oc,
-    output reg  [2:0]               oc_ch,
+    output reg                            cs_n,
+    output reg                            sclk,
+    input  wire [2:0]                     miso,          // asynchronous
+    // every frame
+    output reg                            fvalid,
+    output reg  [ADC_BITS-1:0]            code0,
+    output reg  [ADC_BITS-1:0]            code1,
+    output reg  [ADC_BITS-1:0]            code2,
+    output reg                            frame_err,
+    input  wire [ADC_BITS-1:0]            oc_thr,
+    output reg                            oc,
+    output reg  [2:0]                     oc_ch,
+    input  wire [ADC_BITS-1:0]            sum_thr,
+    output reg                            sum_err,
+    output reg                            stuck,
+    output reg                            frozen,
+    // controller sample, once per PWM period
+    output reg                            valid,
+    output reg  signed [CUR_W-1:0]        cur0,
+    output reg  signed [CUR_W-1:0]        cur1,
+    output reg  signed [CUR_W-1:0]        cur2,
+    output reg                            sat,
+    // sums of the last complete PWM period (offset-corrected)
+    output reg  signed [ADC_BITS+PCNT_W:0] psum0,
+    output reg  signed [ADC_BITS+PCNT_W:0] psum1,
+    output reg  signed [ADC_BITS+PCNT_W:0] psum2,
+    output reg  [PCNT_W-1:0]              pcount,
     // offsets
-    input  wire [2:0]               off_we,
-    input  wire [ADC_BITS-1:0]      off_wdata,
-    output reg  [ADC_BITS-1:0]      offset0,
-    output reg  [ADC_BITS-1:0]      offset1,
-    output reg  [ADC_BITS-1:0]      offset2,
-    input  wire                     cal_start,
-    output reg                      cal_busy,
-    output reg                      cal_done
+    input  wire [2:0]                     off_we,
+    input  wire [ADC_BITS-1:0]            off_wdata,
+    output reg  [ADC_BITS-1:0]            offset0,
+    output reg  [ADC_BITS-1:0]            offset1,
+    output reg  [ADC_BITS-1:0]            offset2,
+    input  wire                           cal_start,
+    output reg                            cal_busy,
+    output reg                            cal_done,
+    output reg                            refused,       // sticky: cal_start / offset write refused, calibration aborted
+    input  wire                           refused_clear
 );
     // ---------------------------------------------------------------- sizes
     localparam integer HB_END = 2 * FRAME_BITS + 2;          // half-bit periods per frame
@@ -125,17 +169,104 @@ module adc_spi #(
     localparam integer Q_LAST_I     = (CS_QUIET > 1) ? CS_QUIET - 2 : 0;
     localparam [HB_W-1:0]   HB_LAST    = HB_LAST_I[HB_W-1:0];
     localparam [HB_W-1:0]   HB_LLAUNCH = HB_LLAUNCH_I[HB_W-1:0];
+    localparam integer HB_CB0_I = 2 * (LEAD_ZEROS + 1), HB_CB1_I = 2 * (LEAD_ZEROS + ADC_BITS - 1);
+    localparam [HB_W-1:0]   HB_CB0 = HB_CB0_I[HB_W-1:0];     // launch half-bits of the code bits after the MSB
+    localparam [HB_W-1:0]   HB_CB1 = HB_CB1_I[HB_W-1:0];
     localparam [DIV_W-1:0]  DIV_LAST   = DIV_LAST_I[DIV_W-1:0];
     localparam [Q_W-1:0]    Q_LAST     = Q_LAST_I[Q_W-1:0];
     localparam [CAL_LOG2-1:0] CAL_LAST = {CAL_LOG2{1'b1}};
 
     localparam [1:0] S_IDLE = 2'd0, S_XFER = 2'd1, S_WAIT = 2'd2, S_QUIET = 2'd3;
 
+    // ------------------------------------------------------------ schedule
+    localparam integer T_CS_A = (2 * FRAME_BITS + 2) * SCLK_DIV;
+    localparam integer T_CS_B = 2 * (FRAME_BITS - 1) * SCLK_DIV + SAMPLE_DELAY + 1;
+    localparam integer T_CS   = (T_CS_A > T_CS_B) ? T_CS_A : T_CS_B;
+    localparam integer VL     = 2 * (FRAME_BITS - 1) * SCLK_DIV + SAMPLE_DELAY + 2;
+    localparam integer MINP   = (T_CS + CS_QUIET > VL + 1) ? T_CS + CS_QUIET : VL + 1;
+    localparam integer TF     = (FRAME_PERIOD > 0) ? FRAME_PERIOD
+                              : (AVG_LOG2 > 0) ? MINP + (MINP % 2) : MINP;
+    localparam integer NW     = 1 << AVG_LOG2;                 // window frames
+    localparam integer WLEAD  = ((NW - 1) * TF) / 2;           // first window frame before the centre
+    localparam integer T0     = HALF_PERIOD - WLEAD;           // its cycle in the period
+    localparam integer G0     = (T0 % TF == 0) ? TF : T0 % TF; // first grid point (>= 1)
+    localparam integer M0     = (T0 - G0) / TF;                // grid index of the window
+    localparam integer GC_C   = ((G0 - HALF_PERIOD) % TF + TF) % TF;            // grid state at
+    localparam integer GP_C   = (HALF_PERIOD > G0) ? (HALF_PERIOD - 1 - G0) / TF + 1 : 0;  // the centre
+    localparam integer GP_MAXI = (2 * HALF_PERIOD) / TF + 2;
+    localparam integer GP_W   = $clog2(GP_MAXI + 1);
+    localparam integer GC_W   = $clog2(TF);
+    localparam [GP_W-1:0] GP_MAX = GP_MAXI[GP_W-1:0];
+    localparam [GP_W-1:0] W_FIRST = M0[GP_W-1:0];
+    localparam integer W_LASTI = M0 + NW - 1;
+    localparam [GP_W-1:0] W_LASTG = W_LASTI[GP_W-1:0];
+    localparam [GP_W-1:0] GP_CEN  = GP_C[GP_W-1:0];
+    localparam [GC_W-1:0] GC_CEN  = GC_C[GC_W-1:0];
+    localparam integer GC_G0I = G0 - 1;
+    localparam [GC_W-1:0] GC_G0   = GC_G0I[GC_W-1:0];          // gc after period_start
+    localparam integer GC_TOPI = TF - 1;
+    localparam [GC_W-1:0] GC_TOP  = GC_TOPI[GC_W-1:0];
+    // serial pass after every frame: window (AW), sum check (SW), period sums (PSW) bits
+    localparam integer AW   = D_W + AVG_LOG2;
+    localparam integer SW   = D_W + 2;                         // |s| <= 3*(2^B-1), s -/+ thr fit
+    localparam integer PSW  = D_W + PCNT_W;
+    localparam integer PL_A = (AVG_LOG2 > 0) ? AW + 1 : 0;
+    localparam integer PL_B = (SW > PSW) ? SW : PSW;
+    localparam integer PL   = (PL_A > PL_B) ? PL_A : PL_B;     // pass length, clocks
+    localparam integer PJ_W = $clog2(PL + 1);
+    localparam integer PJ_LASTI = PL - 1, PJ_SIGNI = SW - 1, PJ_KM1I = (AVG_LOG2 > 0) ? AVG_LOG2 - 1 : 0;
+    localparam [PJ_W-1:0] PJ_LAST = PJ_LASTI[PJ_W-1:0];
+    localparam [PJ_W-1:0] PJ_SIGN = PJ_SIGNI[PJ_W-1:0];
+    localparam [PJ_W-1:0] PJ_WEND = AW[PJ_W-1:0];        // = window width: the window's bits are in
+    localparam [PJ_W-1:0] PJ_KM1  = PJ_KM1I[PJ_W-1:0];   // bit K-1: the rounding half
+    localparam [PJ_W-1:0] PJ_DW   = D_W[PJ_W-1:0];
+    localparam [PJ_W-1:0] PJ_PSW  = PSW[PJ_W-1:0];
+    localparam [PJ_W-1:0] PJ_AB   = ADC_BITS[PJ_W-1:0];
+    localparam integer JD_W = $clog2(D_W), JT_W = $clog2(ADC_BITS);
+    localparam integer D_TOPI = D_W - 1;
+    localparam [JD_W-1:0] JD_TOP = D_TOPI[JD_W-1:0];
+    localparam [PCNT_W-1:0] PCNT_MAX = {PCNT_W{1'b1}};
+    localparam integer SP_W = $clog2(SUM_PERSIST + 1);
+    localparam integer KP_W = $clog2(STUCK_PERSIST + 1);
+    localparam integer FZ_W = $clog2(FROZEN_PERIODS + 1);
+    localparam integer SP_TRIPI = SUM_PERSIST - 1, KP_TRIPI = STUCK_PERSIST - 1, FZ_TRIPI = FROZEN_PERIODS - 1;
+    localparam [SP_W-1:0] SP_TRIP = SP_TRIPI[SP_W-1:0];
+    localparam [KP_W-1:0] KP_TRIP = KP_TRIPI[KP_W-1:0];
+    localparam [FZ_W-1:0] FZ_TRIP = FZ_TRIPI[FZ_W-1:0];
+    localparam integer PCNT_MAXI = (1 << PCNT_W) - 1;
+
+    generate if (LEAD_ZEROS < 1 || LEAD_ZEROS + ADC_BITS > FRAME_BITS || SCLK_DIV < 1 || SAMPLE_DELAY < 3 ||
+                 CS_QUIET < 1 || CAL_LOG2 < 1 || CUR_W < 2 || TF < MINP || (AVG_LOG2 > 0 && TF % 2 != 0) ||
+                 M0 < 1 || PL + 2 > TF || T0 + NW * TF + VL + PL + 2 > 2 * HALF_PERIOD ||
+                 PCNT_MAXI < (2 * HALF_PERIOD - 1) / TF + 1 || SUM_PERSIST < 1 || STUCK_PERSIST < 1 ||
+                 FROZEN_PERIODS < 1 || AVG_LOG2 < 0)
+    begin : g_bad_params
+        adc_spi_bad_parameters u_error ();     // no such module: elaboration stops here
+    end endgenerate
+
     // ------------------------------------------------------------ MISO sync
     wire [2:0] miso_s;
     sync_2ff #(.WIDTH(3), .STAGES(2)) u_sync_miso (
         .clk(clk), .rst(rst), .d(miso), .q(miso_s)
     );
+
+    // ------------------------------------------------------------ frame grid
+    // gc counts down to the next grid point (0 = grid point now), gp counts the grid
+    // points of this period so far; period_start reloads both at its edge, so the new grid
+    // has its first point G0 >= 1 cycles after the boundary cycle (in the boundary cycle
+    // itself the old grid still applies: no multiplexer in front of the counters).
+    reg  [GC_W-1:0] gc;
+    reg  [GP_W-1:0] gp;
+    wire [GC_W-1:0] gc_e = gc;
+    wire [GP_W-1:0] gp_e = gp;
+    wire            go   = (gc_e == {GC_W{1'b0}});
+    wire            w_in    = (gp_e >= W_FIRST) && (gp_e <= W_LASTG);
+    wire            w_first = (gp_e == W_FIRST);
+    wire            w_last  = (gp_e == W_LASTG);
+    reg             win_open;              // window started, its last frame not yet started
+    wire            trig_ok = (gc_e == GC_CEN) && (gp_e == GP_CEN);
+    wire            miss_now = (trig & ~trig_ok) | (period_start & win_open);
+    wire [MISS_W:0] miss_p1 = {1'b0, miss_cnt} + {{MISS_W{1'b0}}, 1'b1};
 
     // -------------------------------------------------------- frame control
     reg [1:0]        st;
@@ -146,22 +277,52 @@ module adc_spi #(
     reg              llast;                // ... and it was the last bit of the frame
     reg [PIPE_N-1:0] spipe;                // lstb delayed; spipe[PIPE_N-1] = capture now
     reg [PIPE_N-1:0] lpipe;                // llast delayed: the last capture
+    reg              lcb;                  // bit launched at the previous edge is a code bit after the MSB
+    reg [PIPE_N-1:0] cpipe;                // lcb delayed
+    reg [2:0]        ctr;                  // a code bit differed from the code bit before it (per channel)
     reg              all_cap;              // every bit of the frame captured
     reg [CODE_MSB:0] shc;                  // code (+ trailing) bits of channel cal_ch (calibration)
     reg [1:0]        cal_ch;               // channel being calibrated
     reg [FRAME_BITS-1:0] sh0, sh1, sh2;
+    reg [2:0]        fchg;                 // frame differs from the previous one (per channel)
     reg              capdone;              // last bit captured at the previous edge
     reg              st_a;                 // stage A registered (codes, differences)
     reg              frame_cal;            // this frame counts for calibration
+    reg              f_win, f_first, f_last;   // this frame's place in the window
 
-    wire cap     = spipe[PIPE_N-1];
+    wire cap      = spipe[PIPE_N-1];
     wire cap_last = lpipe[PIPE_N-1];
-    wire accept  = trig & ~busy;
+    wire accept   = go & ~busy;
     wire [HB_W-1:0] hb_n = hb + 1'b1;
-    // saturating miss counter: the incrementer's carry out is miss_cnt == MISS_MAX
-    wire [MISS_W:0] miss_p1 = {1'b0, miss_cnt} + {{MISS_W{1'b0}}, 1'b1};
 
     assign busy = (st != S_IDLE) | capdone | st_a;
+
+    always @(posedge clk) begin
+        if (rst) begin
+            gc        <= GC_TOP;
+            gp        <= GP_MAX;           // no window before the first period_start
+            win_open  <= 1'b0;
+            f_win     <= 1'b0;
+            f_first   <= 1'b0;
+            f_last    <= 1'b0;
+            trig_miss <= 1'b0;
+            miss_cnt  <= {MISS_W{1'b0}};
+        end else begin
+            gc <= period_start ? GC_G0 : go ? GC_TOP : gc_e - 1'b1;
+            gp <= period_start ? {GP_W{1'b0}} : (go && gp_e != GP_MAX) ? gp_e + 1'b1 : gp_e;
+            trig_miss <= miss_now;
+            if (miss_now && !miss_p1[MISS_W])
+                miss_cnt <= miss_p1[MISS_W-1:0];
+            if (period_start) win_open <= 1'b0;
+            if (accept) begin
+                f_win   <= w_in;
+                f_first <= w_first;
+                f_last  <= w_last;
+                if (w_first) win_open <= 1'b1;
+                if (w_last)  win_open <= 1'b0;
+            end
+        end
+    end
 
     always @(posedge clk) begin
         if (rst) begin
@@ -173,14 +334,11 @@ module adc_spi #(
             qcnt      <= {Q_W{1'b0}};
             lstb      <= 1'b0;
             llast     <= 1'b0;
-            trig_miss <= 1'b0;
-            miss_cnt  <= {MISS_W{1'b0}};
+            lcb       <= 1'b0;
         end else begin
             lstb      <= 1'b0;
             llast     <= 1'b0;
-            trig_miss <= trig & busy;
-            if (trig & busy && !miss_p1[MISS_W])
-                miss_cnt <= miss_p1[MISS_W-1:0];
+            lcb       <= 1'b0;
             case (st)
                 S_IDLE: if (accept) begin
                     cs_n <= 1'b0;                   // conversion start, bit 0 launched
@@ -206,6 +364,7 @@ module adc_spi #(
                         end else begin
                             sclk <= hb_n[0];        // half-bits 0,1 high (CS setup), then low/high
                             lstb <= ~hb_n[0] && (hb_n <= HB_LLAUNCH);
+                            lcb  <= ~hb_n[0] && (hb_n >= HB_CB0) && (hb_n <= HB_CB1);
                             llast <= (hb_n == HB_LLAUNCH);
                         end
                     end else begin
@@ -232,9 +391,11 @@ module adc_spi #(
                 if (rst) begin
                     spipe <= {PIPE_N{1'b0}};
                     lpipe <= {PIPE_N{1'b0}};
+                    cpipe <= {PIPE_N{1'b0}};
                 end else begin
                     spipe <= {spipe[PIPE_N-2:0], lstb};
                     lpipe <= {lpipe[PIPE_N-2:0], llast};
+                    cpipe <= {cpipe[PIPE_N-2:0], lcb};
                 end
             end
         end else begin : g_pipe1
@@ -242,14 +403,18 @@ module adc_spi #(
                 if (rst) begin
                     spipe <= 1'b0;
                     lpipe <= 1'b0;
+                    cpipe <= 1'b0;
                 end else begin
                     spipe <= lstb;
                     lpipe <= llast;
+                    cpipe <= lcb;
                 end
             end
         end
     endgenerate
 
+    // The bit leaving sh_i at a capture is the previous frame's bit at the same place:
+    // comparing them finds a frame that differs from the previous one without storing it.
     always @(posedge clk) begin
         if (rst) begin
             all_cap <= 1'b0;
@@ -257,6 +422,8 @@ module adc_spi #(
             sh1     <= {FRAME_BITS{1'b0}};
             sh2     <= {FRAME_BITS{1'b0}};
             shc     <= {(CODE_MSB+1){1'b0}};
+            fchg    <= 3'b000;
+            ctr     <= 3'b000;
             capdone <= 1'b0;
         end else begin
             capdone <= cap_last;
@@ -264,6 +431,16 @@ module adc_spi #(
                 all_cap <= 1'b0;
             else if (cap_last)
                 all_cap <= 1'b1;
+            if (accept)
+                fchg <= 3'b000;
+            else if (cap)
+                fchg <= fchg | ({sh2[FRAME_BITS-1], sh1[FRAME_BITS-1], sh0[FRAME_BITS-1]} ^ miso_s);
+            // a code at a rail (0 or full scale) has all its bits equal: no code bit after the
+            // MSB differs from the one captured before it (sh_i[0])
+            if (accept)
+                ctr <= 3'b000;
+            else if (cap && cpipe[PIPE_N-1])
+                ctr <= ctr | ({sh2[0], sh1[0], sh0[0]} ^ miso_s);
             if (cap) begin
                 sh0  <= {sh0[FRAME_BITS-2:0], miso_s[0]};
                 sh1  <= {sh1[FRAME_BITS-2:0], miso_s[1]};
@@ -273,15 +450,16 @@ module adc_spi #(
         end
     end
 
-    // ----------------------------------------- stage A: codes, differences
+    // ----------------------------------------- stage A: codes, differences, rails
     wire [ADC_BITS-1:0] fcode0 = sh0[CODE_MSB -: ADC_BITS];
     wire [ADC_BITS-1:0] fcode1 = sh1[CODE_MSB -: ADC_BITS];
     wire [ADC_BITS-1:0] fcode2 = sh2[CODE_MSB -: ADC_BITS];
     wire lead_bad = (|sh0[FRAME_BITS-1 -: LEAD_ZEROS]) | (|sh1[FRAME_BITS-1 -: LEAD_ZEROS])
                   | (|sh2[FRAME_BITS-1 -: LEAD_ZEROS]);
+    wire rail = ~&ctr;                     // some channel's code at a rail
 
     reg [D_W-1:0]        diff0, diff1, diff2;   // code - offset, exact (-4095..4095), two's complement
-    reg                  lead_bad_a;
+    reg                  lead_bad_a, rail_a;
 
     always @(posedge clk) begin
         if (rst) begin
@@ -293,6 +471,7 @@ module adc_spi #(
             diff1      <= {D_W{1'b0}};
             diff2      <= {D_W{1'b0}};
             lead_bad_a <= 1'b0;
+            rail_a     <= 1'b0;
         end else begin
             st_a <= capdone;
             if (capdone) begin
@@ -303,12 +482,13 @@ module adc_spi #(
                 diff1      <= {1'b0, fcode1} - {1'b0, offset1};
                 diff2      <= {1'b0, fcode2} - {1'b0, offset2};
                 lead_bad_a <= lead_bad;
+                rail_a     <= rail;
             end
         end
     end
 
     // -------------------------------------------------------- calibration
-    // One channel after the other (cal_ch = 0, 1, 2), 2**CAL_LOG2 counted conversions each,
+    // One channel after the other (cal_ch = 0, 1, 2), 2**CAL_LOG2 counted frames each,
     // on one accumulator preset to 2**(CAL_LOG2-1): its top ADC_BITS bits are then the
     // round-half-up mean (sum + 2**(CAL_LOG2-1)) >> CAL_LOG2 (cannot overflow:
     // acc <= (2**ADC_BITS-1) * 2**CAL_LOG2 + 2**(CAL_LOG2-1) < 2**ACC_W).
@@ -317,11 +497,15 @@ module adc_spi #(
     reg [CAL_LOG2-1:0]   cal_cnt;
     reg                  cal_last;              // stage A added the channel's last sample
     wire [ADC_BITS-1:0]  cal_code = shc[CODE_MSB -: ADC_BITS];
-    // offset write port: the calibration result, or the CPU value (CPU writes are ignored
-    // while cal_busy, so the end result is the same as averaging all channels at once)
+    // offset write port: the calibration result, or the CPU value (refused while a
+    // calibration runs or the bridges are on)
+    wire                 cpu_ok = ~cal_busy & ~bridges_on;
     wire [ADC_BITS-1:0]  off_d = cal_last ? acc[ACC_W-1 -: ADC_BITS] : off_wdata;
     wire [2:0]           cal_ld = {3{cal_last}} & {cal_ch == 2'd2, cal_ch == 2'd1, cal_ch == 2'd0};
-    wire [2:0]           off_ld = cal_ld | (off_we & {3{~cal_busy}});
+    wire [2:0]           off_ld = cal_ld | (off_we & {3{cpu_ok}});
+    wire                 cal_go = cal_start & ~bridges_on;
+    wire                 cal_abort = cal_busy & bridges_on;
+    wire                 refuse = (cal_start & bridges_on) | ((|off_we) & ~cpu_ok) | cal_abort;
 
     always @(posedge clk) begin
         if (rst) begin
@@ -335,8 +519,10 @@ module adc_spi #(
             offset0   <= OFFSET_RESET[ADC_BITS-1:0];
             offset1   <= OFFSET_RESET[ADC_BITS-1:0];
             offset2   <= OFFSET_RESET[ADC_BITS-1:0];
+            refused   <= 1'b0;
         end else begin
             cal_last <= 1'b0;
+            refused  <= refuse | (refused & ~refused_clear);
             if (accept) frame_cal <= cal_busy;
             if (off_ld[0]) offset0 <= off_d;
             if (off_ld[1]) offset1 <= off_d;
@@ -357,8 +543,13 @@ module adc_spi #(
                     cal_done <= 1'b1;
                 end
             end
+            // bridges on: stop (the channels already loaded were measured with them off)
+            if (cal_abort) begin
+                cal_busy  <= 1'b0;
+                frame_cal <= 1'b0;
+            end
             // (re)start: clears everything, the frame in flight does not count
-            if (cal_start) begin
+            if (cal_go) begin
                 cal_busy  <= 1'b1;
                 cal_done  <= 1'b0;
                 cal_ch    <= 2'd0;
@@ -370,7 +561,7 @@ module adc_spi #(
         end
     end
 
-    // ---------------------- stage B: saturation, overcurrent, valid pulse
+    // ---------------------- stage B: overcurrent, frame error, rails (every frame)
     // |d| > thr on the registered difference: e = d ^ sign (= |d| - sign), so
     // |d| > thr <=> (d >= 0) ? e > thr : e >= thr <=> thr - e - 1 + ~sign < 0, i.e. no
     // carry out of thr + ~e + ~sign.  Written as one two-operand adder
@@ -388,50 +579,246 @@ module adc_spi #(
         end
     endfunction
     wire [2:0] oc_now = {oc_f(diff2, oc_thr), oc_f(diff1, oc_thr), oc_f(diff0, oc_thr)};
-
-    // cur = sat(d, CUR_W)
-    wire [2:0]       sat_now;
-    wire [CUR_W-1:0] satd0, satd1, satd2;
-    generate
-        if (CUR_W >= D_W) begin : g_nosat
-            assign sat_now = 3'b000;
-            assign satd0 = {{(CUR_W-D_W){diff0[D_W-1]}}, diff0};
-            assign satd1 = {{(CUR_W-D_W){diff1[D_W-1]}}, diff1};
-            assign satd2 = {{(CUR_W-D_W){diff2[D_W-1]}}, diff2};
-        end else begin : g_sat
-            localparam [CUR_W-1:0] CMAX = {1'b0, {(CUR_W-1){1'b1}}};
-            localparam [CUR_W-1:0] CMIN = {1'b1, {(CUR_W-1){1'b0}}};
-            // fits iff the bits above CUR_W-1 all equal the sign
-            wire [2:0] fit = {(&diff2[D_W-1:CUR_W-1]) | ~(|diff2[D_W-1:CUR_W-1]),
-                              (&diff1[D_W-1:CUR_W-1]) | ~(|diff1[D_W-1:CUR_W-1]),
-                              (&diff0[D_W-1:CUR_W-1]) | ~(|diff0[D_W-1:CUR_W-1])};
-            assign sat_now = ~fit;
-            assign satd0 = fit[0] ? diff0[CUR_W-1:0] : (diff0[D_W-1] ? CMIN : CMAX);
-            assign satd1 = fit[1] ? diff1[CUR_W-1:0] : (diff1[D_W-1] ? CMIN : CMAX);
-            assign satd2 = fit[2] ? diff2[CUR_W-1:0] : (diff2[D_W-1] ? CMIN : CMAX);
-        end
-    endgenerate
+    reg  [KP_W-1:0] kcnt;                  // consecutive frames with a rail (saturating)
 
     always @(posedge clk) begin
         if (rst) begin
-            valid     <= 1'b0;
-            cur0      <= {CUR_W{1'b0}};
-            cur1      <= {CUR_W{1'b0}};
-            cur2      <= {CUR_W{1'b0}};
-            sat       <= 1'b0;
+            fvalid    <= 1'b0;
             frame_err <= 1'b0;
             oc        <= 1'b0;
             oc_ch     <= 3'b000;
+            kcnt      <= {KP_W{1'b0}};
+            stuck     <= 1'b0;
         end else begin
-            valid     <= st_a;
-            sat       <= st_a & (|sat_now);
+            fvalid    <= st_a;
             frame_err <= st_a & lead_bad_a;
             oc        <= st_a & (|oc_now);
             if (st_a) begin
-                cur0  <= satd0;
-                cur1  <= satd1;
-                cur2  <= satd2;
                 oc_ch <= oc_now;
+                stuck <= rail_a && (kcnt >= KP_TRIP);
+                if (!rail_a)
+                    kcnt <= {KP_W{1'b0}};
+                else if (kcnt != KP_TRIP)
+                    kcnt <= kcnt + 1'b1;
+            end
+        end
+    end
+
+    // ------------------------------------------------ cur = sat(d, CUR_W)
+    function [CUR_W:0] satf;               // {saturated, value}
+        input [D_W-1:0] d;
+        /* verilator lint_off UNUSEDSIGNAL */ // only the low CUR_W bits: the sign-extended value
+        reg [CUR_W+D_W-1:0] x;
+        /* verilator lint_on UNUSEDSIGNAL */
+        reg fit;
+        integer i;
+        begin
+            x = {{CUR_W{d[D_W-1]}}, d};                // sign-extended
+            fit = 1'b1;                                // fits iff the bits from CUR_W-1 up equal the sign
+            for (i = CUR_W - 1; i < D_W; i = i + 1)
+                if (d[i] != d[D_W-1]) fit = 1'b0;
+            satf = fit ? {1'b0, x[CUR_W-1:0]}
+                 : {1'b1, d[D_W-1] ? {1'b1, {(CUR_W-1){1'b0}}} : {1'b0, {(CUR_W-1){1'b1}}}};
+        end
+    endfunction
+
+    // ---------------------- serial pass after every frame: window mean, sum check, period sums
+    // From the cycle after stage B, bit j = 0..PL-1 of the three differences (LSB first,
+    // sign-extended) passes one per clock through 1-bit adders: the window accumulators
+    // (preset 2^(K-1) at the first window frame: their top bits are the round-half-up
+    // mean), the period accumulators and s = d0 + d1 + d2 with the two compares
+    // s - thr - 1 >= 0 and s + thr < 0 (|s| > thr), whose signs are known at j = SW-1.
+    // The accumulators are shift registers that rotate once per pass (flip-flops, no LUTs).
+    reg              pbusy;
+    reg [PJ_W-1:0]   pj;
+    reg              p_win, p_first, p_last, p_pfirst, p_padd;
+    reg [ADC_BITS-1:0] p_thr;
+    reg [1:0]        s_c;                  // carry of d0 + d1 + d2 (0..2)
+    reg              a_c, b_c;
+    reg [2:0]        q_c;                  // period adder carries
+    reg [SP_W-1:0]   scnt;
+    reg [PCNT_W-1:0] pcnt;
+    reg              pfresh, snap_req;
+    reg signed [PSW-1:0] pacc0, pacc1, pacc2;
+
+    wire [JD_W-1:0]  jd = (pj < PJ_DW) ? pj[JD_W-1:0] : JD_TOP;   // sign extension
+    wire [2:0]       db = {diff2[jd], diff1[jd], diff0[jd]};
+    wire             tb = (pj < PJ_AB) ? p_thr[pj[JT_W-1:0]] : 1'b0;
+    wire [2:0]       s3 = {2'b00, db[0]} + {2'b00, db[1]} + {2'b00, db[2]} + {1'b0, s_c};
+    wire             sb = s3[0];
+    wire             a_b = sb ^ ~tb ^ a_c;          // s + ~thr  = s - thr - 1
+    wire             b_b = sb ^ tb ^ b_c;           // s + thr
+    wire             sbad = ~a_b | b_b;             // at j = SW-1: |s| > thr
+    wire [2:0]       pa = p_pfirst ? 3'b000 : {pacc2[0], pacc1[0], pacc0[0]};
+    wire [2:0]       pd = db & {3{p_padd}};
+    wire [2:0]       pq = pa ^ pd ^ q_c;
+    wire             snap_now = (period_start | snap_req) & ~pbusy;
+
+    always @(posedge clk) begin
+        if (rst) begin
+            pbusy    <= 1'b0;
+            pj       <= {PJ_W{1'b0}};
+            p_win    <= 1'b0;
+            p_first  <= 1'b0;
+            p_last   <= 1'b0;
+            p_pfirst <= 1'b0;
+            p_padd   <= 1'b0;
+            p_thr    <= {ADC_BITS{1'b0}};
+            s_c      <= 2'd0;
+            a_c      <= 1'b0;
+            b_c      <= 1'b0;
+            q_c      <= 3'b000;
+            scnt     <= {SP_W{1'b0}};
+            sum_err  <= 1'b0;
+            pcnt     <= {PCNT_W{1'b0}};
+            pfresh   <= 1'b1;
+            snap_req <= 1'b0;
+            pacc0    <= {PSW{1'b0}};
+            pacc1    <= {PSW{1'b0}};
+            pacc2    <= {PSW{1'b0}};
+            psum0    <= {PSW{1'b0}};
+            psum1    <= {PSW{1'b0}};
+            psum2    <= {PSW{1'b0}};
+            pcount   <= {PCNT_W{1'b0}};
+        end else begin
+            // period boundary: take the sums once no pass is running
+            snap_req <= (period_start | snap_req) & pbusy;
+            if (snap_now) begin
+                psum0  <= pacc0;
+                psum1  <= pacc1;
+                psum2  <= pacc2;
+                pcount <= pcnt;
+            end
+            if (st_a) begin                                 // pass start (stage B)
+                pbusy    <= 1'b1;
+                pj       <= {PJ_W{1'b0}};
+                p_win    <= f_win;
+                p_first  <= f_first;
+                p_last   <= f_last;
+                p_thr    <= sum_thr;
+                p_pfirst <= pfresh | snap_now;
+                p_padd   <= pfresh | snap_now | (pcnt != PCNT_MAX);
+                pcnt     <= (pfresh | snap_now) ? {{(PCNT_W-1){1'b0}}, 1'b1}
+                          : (pcnt != PCNT_MAX) ? pcnt + 1'b1 : pcnt;
+                pfresh   <= 1'b0;
+                s_c      <= 2'd0;
+                a_c      <= 1'b0;
+                b_c      <= 1'b0;
+                    q_c      <= 3'b000;
+            end else begin
+                if (snap_now) begin
+                    pcnt   <= {PCNT_W{1'b0}};
+                    pfresh <= 1'b1;
+                end
+                if (pbusy) begin
+                    pj  <= pj + 1'b1;
+                    if (pj == PJ_LAST) pbusy <= 1'b0;
+                    s_c <= s3[2:1];
+                    a_c <= (sb & ~tb) | (sb & a_c) | (~tb & a_c);
+                    b_c <= (sb & tb) | (sb & b_c) | (tb & b_c);
+                    if (pj == PJ_SIGN) begin
+                        sum_err <= sbad && (scnt >= SP_TRIP);
+                        if (!sbad)
+                            scnt <= {SP_W{1'b0}};
+                        else if (scnt != SP_TRIP)
+                            scnt <= scnt + 1'b1;
+                    end
+                    if (pj < PJ_PSW) begin
+                        pacc0 <= {pq[0], pacc0[PSW-1:1]};
+                        pacc1 <= {pq[1], pacc1[PSW-1:1]};
+                        pacc2 <= {pq[2], pacc2[PSW-1:1]};
+                        q_c   <= (pa & pd) | (pa & q_c) | (pd & q_c);
+                    end
+                end
+            end
+        end
+    end
+
+    // window mean: AVG_LOG2 = 0 takes the centre frame's difference at stage B (as the single
+    // conversion did); AVG_LOG2 > 0 accumulates the window bit-serially
+    generate
+        if (AVG_LOG2 == 0) begin : g_k0
+            wire [CUR_W:0] s0 = satf(diff0), s1 = satf(diff1), s2 = satf(diff2);
+            always @(posedge clk) begin
+                if (rst) begin
+                    valid <= 1'b0;
+                    sat   <= 1'b0;
+                    cur0  <= {CUR_W{1'b0}};
+                    cur1  <= {CUR_W{1'b0}};
+                    cur2  <= {CUR_W{1'b0}};
+                end else begin
+                    valid <= st_a & f_last;
+                    sat   <= st_a & f_last & (s0[CUR_W] | s1[CUR_W] | s2[CUR_W]);
+                    if (st_a && f_last) begin
+                        cur0 <= s0[CUR_W-1:0];
+                        cur1 <= s1[CUR_W-1:0];
+                        cur2 <= s2[CUR_W-1:0];
+                    end
+                end
+            end
+            wire unused_k0 = &{1'b0, f_first, p_win, p_first, p_last};
+        end else begin : g_kn
+            reg [AW-1:0] accw0, accw1, accw2;
+            reg [2:0]    w_c;                  // window adder carries
+            wire [2:0] wa = p_first ? {3{pj == PJ_KM1}} : {accw2[0], accw1[0], accw0[0]};
+            wire [2:0] wq = wa ^ db ^ w_c;
+            wire [CUR_W:0] s0 = satf(accw0[AW-1:AVG_LOG2]), s1 = satf(accw1[AW-1:AVG_LOG2]),
+                           s2 = satf(accw2[AW-1:AVG_LOG2]);
+            wire w_end = pbusy && p_win && p_last && (pj == PJ_WEND);
+            always @(posedge clk) begin
+                if (rst) begin
+                    accw0 <= {AW{1'b0}};
+                    accw1 <= {AW{1'b0}};
+                    accw2 <= {AW{1'b0}};
+                    w_c   <= 3'b000;
+                    valid <= 1'b0;
+                    sat   <= 1'b0;
+                    cur0  <= {CUR_W{1'b0}};
+                    cur1  <= {CUR_W{1'b0}};
+                    cur2  <= {CUR_W{1'b0}};
+                end else begin
+                    valid <= w_end;
+                    sat   <= w_end & (s0[CUR_W] | s1[CUR_W] | s2[CUR_W]);
+                    if (w_end) begin
+                        cur0 <= s0[CUR_W-1:0];
+                        cur1 <= s1[CUR_W-1:0];
+                        cur2 <= s2[CUR_W-1:0];
+                    end
+                    if (st_a)
+                        w_c <= 3'b000;
+                    else if (pbusy && p_win && pj < PJ_WEND) begin
+                        accw0 <= {wq[0], accw0[AW-1:1]};
+                        accw1 <= {wq[1], accw1[AW-1:1]};
+                        accw2 <= {wq[2], accw2[AW-1:1]};
+                        w_c   <= (wa & db) | (wa & w_c) | (db & w_c);
+                    end
+                end
+            end
+        end
+    endgenerate
+
+    // ---------------------------------------------------- frozen ADC (per PWM period)
+    reg [2:0]        chg;                  // channel changed in some frame of this period
+    reg              on_all;               // bridges on in every cycle of this period
+    reg [FZ_W-1:0]   fzc;                  // consecutive frozen periods (saturating)
+    wire             frz_p = on_all & bridges_on & (pcnt > 1) & ~(&chg);
+    always @(posedge clk) begin
+        if (rst) begin
+            chg    <= 3'b000;
+            on_all <= 1'b0;
+            fzc    <= {FZ_W{1'b0}};
+            frozen <= 1'b0;
+        end else begin
+            on_all <= period_start ? bridges_on : (on_all & bridges_on);
+            if (period_start) begin
+                chg    <= st_a ? fchg : 3'b000;        // a frame ending now is the new period's
+                frozen <= frz_p && (fzc >= FZ_TRIP);
+                if (!frz_p)
+                    fzc <= {FZ_W{1'b0}};
+                else if (fzc != FZ_TRIP)
+                    fzc <= fzc + 1'b1;
+            end else if (st_a) begin
+                chg <= chg | fchg;
             end
         end
     end

@@ -24,7 +24,6 @@ module axis_regs (
     output wire [31:0] reg_rdata,            // read data, the clock after reg_rd (0 otherwise)
     output reg         ctrl_enable,          // CTRL.enable (RW)
     output reg         ctrl_run,             // CTRL.run (RW)
-    output reg         ctrl_complementary,   // CTRL.complementary (RW)
     output reg  [7:0]  ctrl_pwm_per_control, // CTRL.pwm_per_control (RW)
     output reg         cmd_fault_clear,      // CMD.fault_clear: pulse
     output reg         cmd_adc_cal,          // CMD.adc_cal: pulse
@@ -41,6 +40,10 @@ module axis_regs (
     input  wire        status_coef_bank,     // STATUS.coef_bank value
     input  wire        status_swap_pending,  // STATUS.swap_pending value
     input  wire        status_fault,         // STATUS.fault value
+    input  wire        status_coef_valid,    // STATUS.coef_valid value
+    input  wire        status_swap_refused,  // STATUS.swap_refused value
+    input  wire        status_adc_refused,   // STATUS.adc_refused value
+    input  wire        status_wr_refused,    // STATUS.wr_refused value
     input  wire        fault_overcurrent,    // FAULT.overcurrent value
     input  wire        fault_hall,           // FAULT.hall value
     input  wire        fault_encoder,        // FAULT.encoder value
@@ -48,10 +51,19 @@ module axis_regs (
     input  wire        fault_dclink,         // FAULT.dclink value
     input  wire        fault_overrun,        // FAULT.overrun value
     input  wire        fault_adc,            // FAULT.adc value
-    output reg  [6:0]  fault_mask,           // FAULT_MASK (RW)
+    input  wire        fault_pstage,         // FAULT.pstage value
+    input  wire        fault_clock,          // FAULT.clock value
+    input  wire        fault_coef,           // FAULT.coef value
+    input  wire        fault_hall_enc,       // FAULT.hall_enc value
+    input  wire        fault_enc_break,      // FAULT.enc_break value
+    input  wire        fault_adc_stuck,      // FAULT.adc_stuck value
+    input  wire        fault_adc_sum,        // FAULT.adc_sum value
+    input  wire        fault_adc_frozen,     // FAULT.adc_frozen value
+    output reg  [14:0] fault_mask,           // FAULT_MASK (RW)
     output reg  [7:0]  dead_time,            // DEAD_TIME (RW)
     output reg  [17:0] kdc,                  // KDC (RW)
     output reg  [15:0] udc,                  // UDC (RW)
+    output reg         udc_wr,               // UDC: pulse when a write is accepted
     output reg  [15:0] udc_min,              // UDC_MIN (RW)
     output reg  [15:0] udc_max,              // UDC_MAX (RW)
     output reg  [11:0] oc_thresh,            // OC_THRESH (RW)
@@ -87,11 +99,28 @@ module axis_regs (
     input  wire [11:0] iabc1,                // IABC1 value
     input  wire [15:0] latency,              // LATENCY value
     output wire        cnt_re,               // read of a word of window cnt (combinational)
+    input  wire [19:0] adc_psum0_sum,        // ADC_PSUM0.sum value
+    input  wire [6:0]  adc_psum0_count,      // ADC_PSUM0.count value
+    input  wire [19:0] adc_psum1_sum,        // ADC_PSUM1.sum value
+    input  wire [6:0]  adc_psum1_count,      // ADC_PSUM1.count value
+    input  wire [19:0] adc_psum2_sum,        // ADC_PSUM2.sum value
+    input  wire [6:0]  adc_psum2_count,      // ADC_PSUM2.count value
+    input  wire [7:0]  cnt_wr_refused,       // CNT_WR_REFUSED value
     input  wire [7:0]  cnt_adc_miss,         // CNT_ADC_MISS value
     input  wire [15:0] cnt_enc_err,          // CNT_ENC_ERR value
+    output reg  [11:0] adc_sum_thresh,       // ADC_SUM_THRESH (RW)
+    input  wire [7:0]  cnt_swap_ref,         // CNT_SWAP_REF value
     input  wire [31:0] seg_rdata,            // window read data (0 unless read)
-    input  wire [31:0] smem_rdata            // window read data (0 unless read)
+    input  wire [31:0] smem_rdata,           // window read data (0 unless read)
+    input  wire        bridges_live,         // guard: writes to its registers are refused while high
+    input  wire        unlock_tick,          // timebase of the UNLOCK unlock (pulses)
+    output wire [1:0]  unlock_armed,         // UNLOCK unlock: ticks left, 0 = not armed (status, proofs)
+    output reg         wr_refused            // pulse: a write was refused (guard, unlock or illegal value)
 );
+    // legal values of CTRL.pwm_per_control as a table (one LUT, no compares)
+    localparam [255:0] LEGAL_CTRL_PWM_PER_CONTROL = 256'hfffffffffffffffffffffffffffffffffffffffffffffffffffffffffffffffe;
+    // legal values of DEAD_TIME as a table (one LUT, no compares)
+    localparam [255:0] LEGAL_DEAD_TIME = 256'hfffffffffffffffffffffffffffffffffffffffffffffffffffffffffff00000;
 
     // ---------------- windows: address tables (one LUT level, no magnitude compares)
     localparam [255:0] SEG_WORDS = 256'h0000000000000000000000000000000000000000000000000000000007f00000;
@@ -111,7 +140,11 @@ module axis_regs (
     assign cnt_re = reg_rd && cnt_sel;
 
     // ---------------- write decode: one predecode per page, a case on the low bits
-    wire wr_p0 = reg_wr && (reg_addr[7:5] == 3'd0);
+    wire wr_p0 = reg_wr && (reg_addr[7:7] == 1'd0);
+    // unlock: UNLOCK armed with its key until the 2th unlock_tick; the next write of the block consumes it
+    reg  [1:0] unl_cnt;
+    wire unl = |unl_cnt;
+    assign unlock_armed = unl_cnt;
     always @(posedge clk) begin
         cmd_fault_clear <= 1'd0;
         cmd_adc_cal <= 1'd0;
@@ -120,18 +153,19 @@ module axis_regs (
         cmd_clear_counters <= 1'd0;
         cmd_align_clear <= 1'd0;
         seg_start <= 1'b0;
+        udc_wr <= 1'b0;
         adc_off_we <= 3'd0;
+        wr_refused <= 1'b0;
         if (rst) begin
             ctrl_enable <= 1'd0;
             ctrl_run <= 1'd0;
-            ctrl_complementary <= 1'd0;
             ctrl_pwm_per_control <= `EMPC_PWM_PER_CONTROL;
-            fault_mask <= 7'h7f;
+            fault_mask <= 15'h7fff;
             dead_time <= 8'd50;
             kdc <= 18'h10000;
-            udc <= 16'd36000;
-            udc_min <= 16'd0;
-            udc_max <= 16'hffff;
+            udc <= 16'd0;
+            udc_min <= 16'd10000;
+            udc_max <= 16'd60000;
             oc_thresh <= 12'd1800;
             angle_cal <= 16'd0;
             hall_offset <= 16'd0;
@@ -146,90 +180,155 @@ module axis_regs (
             fw_r2_hi <= `EMPC_FW_R2_HI;
             fw_r2_lo <= `EMPC_FW_R2_LO;
             iq_hold <= `EMPC_IQ_HOLD;
+            adc_sum_thresh <= 12'd300;
             adc_off_wdata <= 12'd0;
+            unl_cnt <= 2'd0;
         end else begin
+            if (reg_wr) unl_cnt <= 2'd0;   // consumed by any write
+            else if (unl && unlock_tick) unl_cnt <= unl_cnt - 1'b1;
             if (wr_p0) begin
-                case (reg_addr[4:0])
-                    5'h0: begin   // CTRL
-                        ctrl_enable <= reg_wdata[0];
-                        ctrl_run <= reg_wdata[1];
-                        ctrl_complementary <= reg_wdata[2];
-                        ctrl_pwm_per_control <= (reg_wdata[15:8] == 8'd0) ? 8'd1 : reg_wdata[15:8];
+                case (reg_addr[6:0])
+                    7'h0: begin   // CTRL
+                        if (LEGAL_CTRL_PWM_PER_CONTROL[reg_wdata[15:8]] && (!bridges_live || reg_wdata[15:8] == ctrl_pwm_per_control)) begin
+                            ctrl_enable <= reg_wdata[0];
+                            ctrl_run <= reg_wdata[1];
+                            ctrl_pwm_per_control <= reg_wdata[15:8];
+                        end else begin
+                            wr_refused <= 1'b1;
+                            if (reg_wdata[0] == 1'd0) ctrl_enable <= 1'd0;
+                            if (reg_wdata[1] == 1'd0) ctrl_run <= 1'd0;
+                        end
                     end
-                    5'h1: begin   // CMD
-                        cmd_fault_clear <= reg_wdata[0];
-                        cmd_adc_cal <= reg_wdata[1];
-                        cmd_ref_sync <= reg_wdata[2];
-                        cmd_coef_swap <= reg_wdata[3];
-                        cmd_clear_counters <= reg_wdata[4];
-                        cmd_align_clear <= reg_wdata[5];
+                    7'h1: begin   // CMD
+                        if ((!bridges_live || reg_wdata[1] == 1'd0)) begin
+                            cmd_fault_clear <= reg_wdata[0];
+                            cmd_adc_cal <= reg_wdata[1];
+                            cmd_ref_sync <= reg_wdata[2];
+                            cmd_coef_swap <= reg_wdata[3];
+                            cmd_clear_counters <= reg_wdata[4];
+                            cmd_align_clear <= reg_wdata[5];
+                        end else begin
+                            wr_refused <= 1'b1;
+                        end
                     end
-                    5'h4: begin   // FAULT_MASK
-                        fault_mask <= reg_wdata[6:0];
+                    7'h4: begin   // FAULT_MASK
+                        if (!bridges_live && unl) begin
+                            fault_mask <= reg_wdata[14:0];
+                        end else begin
+                            wr_refused <= 1'b1;
+                        end
                     end
-                    5'h5: begin   // DEAD_TIME
-                        dead_time <= reg_wdata[7:0];
+                    7'h5: begin   // DEAD_TIME
+                        if (!bridges_live && LEGAL_DEAD_TIME[reg_wdata[7:0]]) begin
+                            dead_time <= reg_wdata[7:0];
+                        end else begin
+                            wr_refused <= 1'b1;
+                        end
                     end
-                    5'h6: begin   // KDC
+                    7'h6: begin   // KDC
                         kdc <= reg_wdata[17:0];
                     end
-                    5'h7: begin   // UDC
+                    7'h7: begin   // UDC
                         udc <= reg_wdata[15:0];
+                        udc_wr <= 1'b1;
                     end
-                    5'h8: begin   // UDC_MIN
-                        udc_min <= reg_wdata[15:0];
+                    7'h8: begin   // UDC_MIN
+                        if (!bridges_live && (reg_wdata[15:0] >= 16'd1) && (reg_wdata[15:0] <= 16'd65534)) begin
+                            udc_min <= reg_wdata[15:0];
+                        end else begin
+                            wr_refused <= 1'b1;
+                        end
                     end
-                    5'h9: begin   // UDC_MAX
-                        udc_max <= reg_wdata[15:0];
+                    7'h9: begin   // UDC_MAX
+                        if (!bridges_live && (reg_wdata[15:0] >= 16'd1) && (reg_wdata[15:0] <= 16'd65534)) begin
+                            udc_max <= reg_wdata[15:0];
+                        end else begin
+                            wr_refused <= 1'b1;
+                        end
                     end
-                    5'ha: begin   // OC_THRESH
-                        oc_thresh <= reg_wdata[11:0];
+                    7'ha: begin   // OC_THRESH
+                        if (!bridges_live && (reg_wdata[11:0] >= 12'd1) && (reg_wdata[11:0] <= 12'd1900)) begin
+                            oc_thresh <= reg_wdata[11:0];
+                        end else begin
+                            wr_refused <= 1'b1;
+                        end
                     end
-                    5'hb: begin   // ADC_OFF0
-                        adc_off_we <= 3'b001;
-                        adc_off_wdata <= reg_wdata[11:0];
+                    7'hb: begin   // ADC_OFF0
+                        if (!bridges_live && (reg_wdata[11:0] >= 12'd1901) && (reg_wdata[11:0] <= 12'd2194)) begin
+                            adc_off_we <= 3'b001;
+                            adc_off_wdata <= reg_wdata[11:0];
+                        end else begin
+                            wr_refused <= 1'b1;
+                        end
                     end
-                    5'hc: begin   // ADC_OFF1
-                        adc_off_we <= 3'b010;
-                        adc_off_wdata <= reg_wdata[11:0];
+                    7'hc: begin   // ADC_OFF1
+                        if (!bridges_live && (reg_wdata[11:0] >= 12'd1901) && (reg_wdata[11:0] <= 12'd2194)) begin
+                            adc_off_we <= 3'b010;
+                            adc_off_wdata <= reg_wdata[11:0];
+                        end else begin
+                            wr_refused <= 1'b1;
+                        end
                     end
-                    5'hd: begin   // ADC_OFF2
-                        adc_off_we <= 3'b100;
-                        adc_off_wdata <= reg_wdata[11:0];
+                    7'hd: begin   // ADC_OFF2
+                        if (!bridges_live && (reg_wdata[11:0] >= 12'd1901) && (reg_wdata[11:0] <= 12'd2194)) begin
+                            adc_off_we <= 3'b100;
+                            adc_off_wdata <= reg_wdata[11:0];
+                        end else begin
+                            wr_refused <= 1'b1;
+                        end
                     end
-                    5'he: begin   // ANGLE_CAL
-                        angle_cal <= reg_wdata[15:0];
+                    7'he: begin   // ANGLE_CAL
+                        if (!bridges_live) begin
+                            angle_cal <= reg_wdata[15:0];
+                        end else begin
+                            wr_refused <= 1'b1;
+                        end
                     end
-                    5'hf: begin   // HALL_OFFSET
-                        hall_offset <= reg_wdata[15:0];
+                    7'hf: begin   // HALL_OFFSET
+                        if (!bridges_live) begin
+                            hall_offset <= reg_wdata[15:0];
+                        end else begin
+                            wr_refused <= 1'b1;
+                        end
                     end
-                    5'h10: begin   // KACC
+                    7'h10: begin   // KACC
                         kacc <= reg_wdata[17:0];
                         kacc_load_shift <= reg_wdata[21:18];
                         kacc_shift <= reg_wdata[28:24];
                     end
-                    5'h11: begin   // ID_REF
+                    7'h11: begin   // ID_REF
                         id_ref <= reg_wdata[17:0];
                     end
-                    5'h12: begin   // IQ_REF
+                    7'h12: begin   // IQ_REF
                         iq_ref <= reg_wdata[17:0];
                     end
-                    5'h13: begin   // SEG_ADDR
+                    7'h13: begin   // SEG_ADDR
                         seg_addr <= reg_wdata[3:0];
                     end
-                    5'h1b: begin   // SEG_START
+                    7'h1b: begin   // SEG_START
                         seg_start <= 1'b1;
                         seg_start_data <= reg_wdata[3:0];
                     end
-                    5'h1d: begin   // FW
+                    7'h1d: begin   // FW
                         fw_nmax <= reg_wdata[7:0];
                     end
-                    5'h1e: begin   // FW_R2
+                    7'h1e: begin   // FW_R2
                         fw_r2_hi <= reg_wdata[15:0];
                         fw_r2_lo <= reg_wdata[31:16];
                     end
-                    5'h1f: begin   // IQ_HOLD
+                    7'h1f: begin   // IQ_HOLD
                         iq_hold <= reg_wdata[11:0];
+                    end
+                    7'h40: begin   // ADC_SUM_THRESH
+                        if (!bridges_live && (reg_wdata[11:0] >= 12'd1) && (reg_wdata[11:0] <= 12'd1900)) begin
+                            adc_sum_thresh <= reg_wdata[11:0];
+                        end else begin
+                            wr_refused <= 1'b1;
+                        end
+                    end
+                    7'h41: begin   // UNLOCK
+                        if (reg_wdata[15:0] == 16'd49374) unl_cnt <= 2'd2;
+                        else wr_refused <= 1'b1;
                     end
                     default: ;
                 endcase
@@ -238,12 +337,11 @@ module axis_regs (
     end
 
     // ---------------- read path: gated copies / shared read register, ORed
-    wire rd_p0 = reg_rd && (reg_addr[7:5] == 3'd0);
-    wire rd_p1 = reg_rd && (reg_addr[7:5] == 3'd1);
-    reg  [10:0]  q_ctrl;
-    reg  [8:0]   q_status;
-    reg  [6:0]   q_fault;
-    reg  [6:0]   q_fault_mask;
+    wire rd_p0 = reg_rd && (reg_addr[7:7] == 1'd0);
+    reg  [9:0]   q_ctrl;
+    reg  [12:0]  q_status;
+    reg  [14:0]  q_fault;
+    reg  [14:0]  q_fault_mask;
     reg  [7:0]   q_dead_time;
     reg  [17:0]  q_kdc;
     reg  [15:0]  q_udc;
@@ -267,47 +365,60 @@ module axis_regs (
     reg  [23:0]  q_iabc0;
     reg  [11:0]  q_iabc1;
     reg  [15:0]  q_latency;
+    reg  [26:0]  q_adc_psum0;
+    reg  [26:0]  q_adc_psum1;
+    reg  [26:0]  q_adc_psum2;
+    reg  [7:0]   q_cnt_wr_refused;
     reg  [7:0]   q_cnt_adc_miss;
     reg  [15:0]  q_cnt_enc_err;
+    reg  [11:0]  q_adc_sum_thresh;
+    reg  [7:0]   q_cnt_swap_ref;
     always @(posedge clk) begin
-        q_ctrl <= (rd_p0 && reg_addr[4:0] == 5'h0) ? {ctrl_pwm_per_control, ctrl_complementary, ctrl_run,
-            ctrl_enable} : 11'd0;
-        q_status <= (rd_p0 && reg_addr[4:0] == 5'h2) ? {status_fault, status_swap_pending, status_coef_bank,
+        q_ctrl <= (rd_p0 && reg_addr[6:0] == 7'h0) ? {ctrl_pwm_per_control, ctrl_run, ctrl_enable} : 10'd0;
+        q_status <= (rd_p0 && reg_addr[6:0] == 7'h2) ? {status_wr_refused, status_adc_refused,
+            status_swap_refused, status_coef_valid, status_fault, status_swap_pending, status_coef_bank,
             status_core_ready, status_adc_cal_done, status_adc_cal_busy, status_aligned, status_bridges_on,
-            status_running} : 9'd0;
-        q_fault <= (rd_p0 && reg_addr[4:0] == 5'h3) ? {fault_adc, fault_overrun, fault_dclink, fault_watchdog,
-            fault_encoder, fault_hall, fault_overcurrent} : 7'd0;
-        q_fault_mask <= (rd_p0 && reg_addr[4:0] == 5'h4) ? fault_mask : 7'd0;
-        q_dead_time <= (rd_p0 && reg_addr[4:0] == 5'h5) ? dead_time : 8'd0;
-        q_kdc <= (rd_p0 && reg_addr[4:0] == 5'h6) ? kdc : 18'd0;
-        q_udc <= (rd_p0 && reg_addr[4:0] == 5'h7) ? udc : 16'd0;
-        q_udc_min <= (rd_p0 && reg_addr[4:0] == 5'h8) ? udc_min : 16'd0;
-        q_udc_max <= (rd_p0 && reg_addr[4:0] == 5'h9) ? udc_max : 16'd0;
-        q_oc_thresh <= (rd_p0 && reg_addr[4:0] == 5'ha) ? oc_thresh : 12'd0;
-        q_adc_off0 <= (rd_p0 && reg_addr[4:0] == 5'hb) ? adc_off0 : 12'd0;
-        q_adc_off1 <= (rd_p0 && reg_addr[4:0] == 5'hc) ? adc_off1 : 12'd0;
-        q_adc_off2 <= (rd_p0 && reg_addr[4:0] == 5'hd) ? adc_off2 : 12'd0;
-        q_angle_cal <= (rd_p0 && reg_addr[4:0] == 5'he) ? angle_cal : 16'd0;
-        q_hall_offset <= (rd_p0 && reg_addr[4:0] == 5'hf) ? hall_offset : 16'd0;
-        q_kacc <= (rd_p0 && reg_addr[4:0] == 5'h10) ? {kacc_shift, kacc_load_shift, kacc} : 27'd0;
-        q_id_ref <= (rd_p0 && reg_addr[4:0] == 5'h11) ? id_ref : 18'd0;
-        q_iq_ref <= (rd_p0 && reg_addr[4:0] == 5'h12) ? iq_ref : 18'd0;
-        q_seg_addr <= (rd_p0 && reg_addr[4:0] == 5'h13) ? seg_addr : 4'd0;
-        q_fw <= (rd_p0 && reg_addr[4:0] == 5'h1d) ? fw_nmax : 8'd0;
-        q_fw_r2 <= (rd_p0 && reg_addr[4:0] == 5'h1e) ? {fw_r2_lo, fw_r2_hi} : 32'd0;
-        q_iq_hold <= (rd_p0 && reg_addr[4:0] == 5'h1f) ? iq_hold : 12'd0;
-        q_pos <= (rd_p1 && reg_addr[4:0] == 5'h0) ? pos : 32'd0;
-        q_theta <= (rd_p1 && reg_addr[4:0] == 5'h2) ? theta : 16'd0;
-        q_iabc0 <= (rd_p1 && reg_addr[4:0] == 5'h8) ? {iabc0_b, iabc0_a} : 24'd0;
-        q_iabc1 <= (rd_p1 && reg_addr[4:0] == 5'h9) ? iabc1 : 12'd0;
-        q_latency <= (rd_p1 && reg_addr[4:0] == 5'ha) ? latency : 16'd0;
-        q_cnt_adc_miss <= (rd_p1 && reg_addr[4:0] == 5'h1d) ? cnt_adc_miss : 8'd0;
-        q_cnt_enc_err <= (rd_p1 && reg_addr[4:0] == 5'h1e) ? cnt_enc_err : 16'd0;
+            status_running} : 13'd0;
+        q_fault <= (rd_p0 && reg_addr[6:0] == 7'h3) ? {fault_adc_frozen, fault_adc_sum, fault_adc_stuck,
+            fault_enc_break, fault_hall_enc, fault_coef, fault_clock, fault_pstage, fault_adc, fault_overrun,
+            fault_dclink, fault_watchdog, fault_encoder, fault_hall, fault_overcurrent} : 15'd0;
+        q_fault_mask <= (rd_p0 && reg_addr[6:0] == 7'h4) ? fault_mask : 15'd0;
+        q_dead_time <= (rd_p0 && reg_addr[6:0] == 7'h5) ? dead_time : 8'd0;
+        q_kdc <= (rd_p0 && reg_addr[6:0] == 7'h6) ? kdc : 18'd0;
+        q_udc <= (rd_p0 && reg_addr[6:0] == 7'h7) ? udc : 16'd0;
+        q_udc_min <= (rd_p0 && reg_addr[6:0] == 7'h8) ? udc_min : 16'd0;
+        q_udc_max <= (rd_p0 && reg_addr[6:0] == 7'h9) ? udc_max : 16'd0;
+        q_oc_thresh <= (rd_p0 && reg_addr[6:0] == 7'ha) ? oc_thresh : 12'd0;
+        q_adc_off0 <= (rd_p0 && reg_addr[6:0] == 7'hb) ? adc_off0 : 12'd0;
+        q_adc_off1 <= (rd_p0 && reg_addr[6:0] == 7'hc) ? adc_off1 : 12'd0;
+        q_adc_off2 <= (rd_p0 && reg_addr[6:0] == 7'hd) ? adc_off2 : 12'd0;
+        q_angle_cal <= (rd_p0 && reg_addr[6:0] == 7'he) ? angle_cal : 16'd0;
+        q_hall_offset <= (rd_p0 && reg_addr[6:0] == 7'hf) ? hall_offset : 16'd0;
+        q_kacc <= (rd_p0 && reg_addr[6:0] == 7'h10) ? {kacc_shift, kacc_load_shift, kacc} : 27'd0;
+        q_id_ref <= (rd_p0 && reg_addr[6:0] == 7'h11) ? id_ref : 18'd0;
+        q_iq_ref <= (rd_p0 && reg_addr[6:0] == 7'h12) ? iq_ref : 18'd0;
+        q_seg_addr <= (rd_p0 && reg_addr[6:0] == 7'h13) ? seg_addr : 4'd0;
+        q_fw <= (rd_p0 && reg_addr[6:0] == 7'h1d) ? fw_nmax : 8'd0;
+        q_fw_r2 <= (rd_p0 && reg_addr[6:0] == 7'h1e) ? {fw_r2_lo, fw_r2_hi} : 32'd0;
+        q_iq_hold <= (rd_p0 && reg_addr[6:0] == 7'h1f) ? iq_hold : 12'd0;
+        q_pos <= (rd_p0 && reg_addr[6:0] == 7'h20) ? pos : 32'd0;
+        q_theta <= (rd_p0 && reg_addr[6:0] == 7'h22) ? theta : 16'd0;
+        q_iabc0 <= (rd_p0 && reg_addr[6:0] == 7'h28) ? {iabc0_b, iabc0_a} : 24'd0;
+        q_iabc1 <= (rd_p0 && reg_addr[6:0] == 7'h29) ? iabc1 : 12'd0;
+        q_latency <= (rd_p0 && reg_addr[6:0] == 7'h2a) ? latency : 16'd0;
+        q_adc_psum0 <= (rd_p0 && reg_addr[6:0] == 7'h2c) ? {adc_psum0_count, adc_psum0_sum} : 27'd0;
+        q_adc_psum1 <= (rd_p0 && reg_addr[6:0] == 7'h2d) ? {adc_psum1_count, adc_psum1_sum} : 27'd0;
+        q_adc_psum2 <= (rd_p0 && reg_addr[6:0] == 7'h2e) ? {adc_psum2_count, adc_psum2_sum} : 27'd0;
+        q_cnt_wr_refused <= (rd_p0 && reg_addr[6:0] == 7'h2f) ? cnt_wr_refused : 8'd0;
+        q_cnt_adc_miss <= (rd_p0 && reg_addr[6:0] == 7'h3d) ? cnt_adc_miss : 8'd0;
+        q_cnt_enc_err <= (rd_p0 && reg_addr[6:0] == 7'h3e) ? cnt_enc_err : 16'd0;
+        q_adc_sum_thresh <= (rd_p0 && reg_addr[6:0] == 7'h40) ? adc_sum_thresh : 12'd0;
+        q_cnt_swap_ref <= (rd_p0 && reg_addr[6:0] == 7'h42) ? cnt_swap_ref : 8'd0;
         if (rst) begin
-            q_ctrl <= 11'd0;
-            q_status <= 9'd0;
-            q_fault <= 7'd0;
-            q_fault_mask <= 7'd0;
+            q_ctrl <= 10'd0;
+            q_status <= 13'd0;
+            q_fault <= 15'd0;
+            q_fault_mask <= 15'd0;
             q_dead_time <= 8'd0;
             q_kdc <= 18'd0;
             q_udc <= 16'd0;
@@ -331,16 +442,22 @@ module axis_regs (
             q_iabc0 <= 24'd0;
             q_iabc1 <= 12'd0;
             q_latency <= 16'd0;
+            q_adc_psum0 <= 27'd0;
+            q_adc_psum1 <= 27'd0;
+            q_adc_psum2 <= 27'd0;
+            q_cnt_wr_refused <= 8'd0;
             q_cnt_adc_miss <= 8'd0;
             q_cnt_enc_err <= 16'd0;
+            q_adc_sum_thresh <= 12'd0;
+            q_cnt_swap_ref <= 8'd0;
         end
     end
     assign reg_rdata = seg_rdata
                      | smem_rdata
-                     | {16'd0, q_ctrl[10:3], 5'd0, q_ctrl[2:0]}
-                     | {23'd0, q_status}
-                     | {25'd0, q_fault}
-                     | {25'd0, q_fault_mask}
+                     | {16'd0, q_ctrl[9:2], 6'd0, q_ctrl[1:0]}
+                     | {19'd0, q_status}
+                     | {17'd0, q_fault}
+                     | {17'd0, q_fault_mask}
                      | {24'd0, q_dead_time}
                      | {14'd0, q_kdc}
                      | {16'd0, q_udc}
@@ -364,7 +481,13 @@ module axis_regs (
                      | {4'd0, q_iabc0[23:12], 4'd0, q_iabc0[11:0]}
                      | {20'd0, q_iabc1}
                      | {16'd0, q_latency}
+                     | {1'd0, q_adc_psum0[26:20], 4'd0, q_adc_psum0[19:0]}
+                     | {1'd0, q_adc_psum1[26:20], 4'd0, q_adc_psum1[19:0]}
+                     | {1'd0, q_adc_psum2[26:20], 4'd0, q_adc_psum2[19:0]}
+                     | {24'd0, q_cnt_wr_refused}
                      | {24'd0, q_cnt_adc_miss}
-                     | {16'd0, q_cnt_enc_err};
+                     | {16'd0, q_cnt_enc_err}
+                     | {20'd0, q_adc_sum_thresh}
+                     | {24'd0, q_cnt_swap_ref};
 endmodule
 `default_nettype wire

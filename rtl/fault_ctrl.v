@@ -21,8 +21,9 @@
 //   fault_latched   sticky cause bits (registered)
 //   trip            combinational: safe-state request
 // Parameters:
-//   NCAUSE          number of causes (7 for the register map's AXIS FAULT bits:
-//                   overcurrent, hall, encoder, watchdog, dclink, overrun, adc)
+//   NCAUSE          number of causes (mpc_axis: 10, the register map's AXIS FAULT bits:
+//                   overcurrent, hall, encoder, watchdog, dclink, overrun, adc,
+//                   adc_stuck, adc_sum, adc_frozen)
 // Latency: trip 0 clocks (combinational from cause_in and mask); fault_latched
 //   1 clock after the cause.
 // Reset: fault_latched = 0 (trip then only follows cause_in & mask).

@@ -10,9 +10,17 @@
 // Safety: after reset every axis is disabled (bridges off); the watchdog
 // (WDOG_TIMEOUT PWM periods, on by default) latches a fault on every axis when the
 // CPU stops writing WDOG_KICK; any latched, unmasked fault switches the bridges of
-// its axis off in the clock the cause is registered.
+// its axis off in the clock the cause is registered.  Clock-independent kill path
+// (out_kill, docs/safety.md): pwr_fault_n low, PLL unlock, a stopped fabric clock (clk_mon,
+// from the configuration oscillator) or rst_n_in low force every bridge output to 0
+// through one gate after the output registers, without a clock edge; the event is
+// latched as FAULT.pstage / FAULT.clock on every axis through the synchronised path.
 // Global registers: global_regs (generated from gen/empc/regmap.py); TIME, the interrupt
-// output and the LEDs are kept here.
+// output and the LEDs are kept here; refused global writes are counted by every axis.  WDOG_TIMEOUT changes only
+// with every axis off (no CTRL.enable, no output switching) and right after UNLOCK, within
+// 1..WDOG_TIMEOUT_MAX (the watchdog cannot be disabled).
+// Parameters: COMPLEMENTARY is the board's bridge mode (0 = PWM + enable for LX_PWR, 1 =
+// complementary high/low with dead time), a build parameter, reported in CAPS.
 // Reset: rst_n_in (asynchronous, synchronised in clk_gen) and PLL lock.
 `default_nettype none
 `include "empc_formats.vh"
@@ -24,7 +32,8 @@ module lx_rocon_top #(
     parameter integer PLL_MULT = 12,
     parameter integer PLL_DIV = 6,
     parameter BOOT_FILE = "coef_boot.hex",
-    parameter RSQRT_FILE = "rsqrt.hex"
+    parameter RSQRT_FILE = "rsqrt.hex",
+    parameter integer COMPLEMENTARY = 0    // bridge mode of the board (see above)
 ) (
     input  wire                 clk_in,    // board oscillator (PLL: clk_in * PLL_MULT / PLL_DIV = 100 MHz)
     input  wire                 rst_n_in,  // external reset, active low, asynchronous
@@ -41,8 +50,9 @@ module lx_rocon_top #(
     input  wire [NAXES-1:0]     irc_idx,
     input  wire [NAXES-1:0]     irc_mark,
     input  wire [3*NAXES-1:0]   hall,
+    input  wire                 pwr_fault_n,  // LX_PWR fault, active low: all bridges off without a clock
     // LX_PWR half-bridges: PWM (high-side command) + enable per half-bridge
-    // (complementary mode, CTRL.complementary = 1: high and low switch)
+    // (COMPLEMENTARY = 1 builds: high and low switch)
     output wire [3*NAXES-1:0]   pwm_out,
     output wire [3*NAXES-1:0]   pwm_en,
     // current ADCs (3 simultaneous-sampling channels per axis, shared SCLK/CS)
@@ -54,6 +64,14 @@ module lx_rocon_top #(
     wire clk, rst, locked;
     clk_gen #(.CLKIN_PERIOD_NS(CLKIN_PERIOD_NS), .MULT(PLL_MULT), .DIV(PLL_DIV)) u_clk (
         .clk_in(clk_in), .rst_n_in(rst_n_in), .clk(clk), .rst(rst), .locked(locked));
+
+    // ---------------- clock-independent kill path ----------------
+    wire clk_dead, kill_pstage, kill_clock;
+    wire [3*NAXES-1:0] hi_r, lo_r;              // the axes' output registers
+    clk_mon u_clkmon (.clk(clk), .rst(rst), .dead(clk_dead));
+    out_kill #(.W(6*NAXES)) u_kill (
+        .clk(clk), .rst(rst), .d({lo_r, hi_r}), .pwr_fault_n(pwr_fault_n), .rst_n_in(rst_n_in),
+        .locked(locked), .clk_dead(clk_dead), .q({pwm_en, pwm_out}), .pstage(kill_pstage), .clock(kill_clock));
 
     // ---------------- CPU bus ----------------
     wire [31:0] emc_d_out;
@@ -99,11 +117,14 @@ module lx_rocon_top #(
     wire [`EMPC_G_WDOG_TIMEOUT_W-1:0] wdog_timeout;
     wire        wdog_kick, irq_period, irq_fault;
     wire [`EMPC_G_IRQ_ENABLE_W-1:0] irq_enable;
-    wire [NAXES-1:0] period_tick, control_done, fault_any;
+    wire [NAXES-1:0] period_tick, control_done, fault_any, live;
+    wire        g_wr_refused;                               // counted by every axis (CNT_WR_REFUSED)
+    wire [`EMPC_UNLOCK_ARM_W-1:0] wdog_armed;                              // WDOG_UNLOCK: ticks left (unused)
     reg  [`EMPC_G_TIME_W-1:0] time_cnt;                    // TIME: PWM periods of axis 0
     reg         fault_any_d;
     wire        wdog_expired;
-    watchdog u_wdog (.clk(clk), .rst(rst), .tick(period_tick[0]), .kick(wdog_kick), .timeout(wdog_timeout),
+    watchdog #(.TW(`EMPC_G_WDOG_TIMEOUT_W)) u_wdog (.clk(clk), .rst(rst), .tick(period_tick[0]), .kick(wdog_kick),
+                     .timeout(wdog_timeout),
                      .expired(wdog_expired));
 
     always @(posedge clk) begin
@@ -127,16 +148,18 @@ module lx_rocon_top #(
     localparam [31:0] CAP_N_W = `EMPC_N;
     localparam [31:0] CAP_LAYOUT_W = `EMPC_IMG_LAYOUT;
     localparam [31:0] CAP_PPC_W = `EMPC_PWM_PER_CONTROL;
+    localparam [0:0]  CAP_COMPL = (COMPLEMENTARY != 0);
     global_regs u_gregs (
         .clk(clk), .rst(rst), .reg_wr(reg_wr && in_global), .reg_rd(reg_rd && in_global),
         .reg_addr(reg_addr[7:0]), .reg_wdata(reg_wdata), .reg_rdata(g_rdata),
         .caps_naxes(NAXES_W[`EMPC_G_CAPS_NAXES_W-1:0]), .caps_horizon(CAP_N_W[`EMPC_G_CAPS_HORIZON_W-1:0]),
         .caps_img_layout(CAP_LAYOUT_W[`EMPC_G_CAPS_IMG_LAYOUT_W-1:0]),
-        .caps_pwm_per_control(CAP_PPC_W[`EMPC_G_CAPS_PWM_PER_CONTROL_W-1:0]),
+        .caps_pwm_per_control(CAP_PPC_W[`EMPC_G_CAPS_PWM_PER_CONTROL_W-1:0]), .caps_complementary(CAP_COMPL),
         .pwm_half(PWM_HALF_W), .scratch(scratch), .wdog_timeout(wdog_timeout), .wdog_kick(wdog_kick),
         .time_cnt(time_cnt), .irq_status_period(irq_period), .irq_status_period_set(control_done[0]),
         .irq_status_fault(irq_fault), .irq_status_fault_set((|fault_any) && !fault_any_d),
-        .irq_enable(irq_enable));
+        .irq_enable(irq_enable), .bridges_live(|live), .wdog_unlock_tick(period_tick[0]), .wdog_unlock_armed(wdog_armed),
+        .wr_refused(g_wr_refused));
 
     // ---------------- axes ----------------
     wire [32*NAXES-1:0] a_rdata;
@@ -149,16 +172,17 @@ module lx_rocon_top #(
             localparam [31:0] CP = COEF_PAGE + n;
             wire sel = (apage == AP[EMC_AW-9:0]);
             wire csel = (cpage == CP[EMC_AW-11:0]);
-            mpc_axis #(.BOOT_FILE(BOOT_FILE), .RSQRT_FILE(RSQRT_FILE)) u_axis (
+            mpc_axis #(.BOOT_FILE(BOOT_FILE), .RSQRT_FILE(RSQRT_FILE), .COMPLEMENTARY(COMPLEMENTARY)) u_axis (
                 .clk(clk), .rst(rst),
                 .reg_wr(reg_wr && sel), .reg_rd(reg_rd && sel), .reg_addr(reg_addr[7:0]), .reg_wdata(reg_wdata),
                 .reg_rdata(a_rdata[32*n +: 32]), .coef_we(reg_wr && csel), .coef_addr(reg_addr[9:0]),
-                .watchdog_expired(wdog_expired), .pwm_sync_in(n == 0 ? 1'b0 : sync_out[0]),
+                .watchdog_expired(wdog_expired), .g_wr_refused(g_wr_refused), .ext_fault({kill_clock, kill_pstage}), .pwm_sync_in(n == 0 ? 1'b0 : sync_out[0]),
                 .pwm_sync_out(sync_out[n]),
                 .irc_a(irc_a[n]), .irc_b(irc_b[n]), .irc_idx(irc_idx[n]), .irc_mark(irc_mark[n]),
-                .hall(hall[3*n +: 3]), .pwm_hi(pwm_out[3*n +: 3]), .pwm_lo(pwm_en[3*n +: 3]),
+                .hall(hall[3*n +: 3]), .pwm_hi(hi_r[3*n +: 3]), .pwm_lo(lo_r[3*n +: 3]),
                 .adc_sclk(sclk_ax[n]), .adc_cs_n(cs_ax[n]), .adc_miso(adc_miso[3*n +: 3]),
-                .period_tick(period_tick[n]), .control_done(control_done[n]), .fault_any(fault_any[n]));
+                .period_tick(period_tick[n]), .control_done(control_done[n]), .fault_any(fault_any[n]),
+                .bridges_live(live[n]));
         end
     endgenerate
     assign adc_sclk = sclk_ax[0];
@@ -175,6 +199,6 @@ module lx_rocon_top #(
     // clock after reg_rd as emc_bus expects (RD_LAT = 1)
     always @(*) reg_rdata = g_rdata | a_or;
 
-    wire unused = &{1'b0, locked, err_wr_short, err_rd_short, sclk_ax, cs_ax, sync_out, scratch};
+    wire unused = &{1'b0, err_wr_short, err_rd_short, sclk_ax, cs_ax, sync_out, scratch, wdog_armed};
 endmodule
 `default_nettype wire

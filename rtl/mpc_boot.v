@@ -1,45 +1,76 @@
-// mpc_boot: the MPC core's registered coefficient write port: boot image after reset, then the CPU.
+// mpc_boot: the MPC core's registered coefficient write port: boot image after reset, then the
+// CPU; and the image checker that validates every upload (boot stream or CPU) as it is written.
 //
 // After reset the boot image (BOOT_FILE, 32-bit words in the layout of gen/empc/image.py,
 // $readmemh) is streamed from a ROM, words 0..USED-1 one per clock, through the write port
 // (we / addr / data); then `ready` rises and stays high and the port carries the CPU's
 // requests (cfg_we / cfg_addr / cfg_wdata), registered: a request appears one clock later.
-// While streaming, the sum of all words except the checksum word is formed; `ok` is 1
-// when the magic word and the checksum (image.checksum) match (valid one clock before ready).
 // Structure (no fabric multiplexer on the 32 data bits): the ROM's block RAM port runs in
 // WRITE_FIRST mode; once ready it writes the CPU word to a scratch word above USED every
 // clock, so its output register (`data`) shows the CPU word.  The write address register
 // is the boot counter while streaming ({ready ? cfg_addr : addr} + !ready on one carry chain).
 // The ROM words 0..USED-1 are never written: every reset streams the original image.
-// Ports: cfg_we, cfg_addr, cfg_wdata (CPU, used when ready); we, addr, data (write port);
-//   ready, ok.
+//
+// Image checker (image.check of the model, gen/empc/rtlmodel/mpc_core.py Banks): an upload
+// is the words 0..USED-1 written in ascending order, each once, starting at word 0; a
+// write of word 0 (re)starts it.  For every word in the port:
+//   word 0     restart: acc = the word (its sync reset one clock ahead), bad = (word != MAGIC)
+//   other      in sequence iff addr == previous addr + 1; bad |= out of sequence or a wrong
+//              header word: CFG (layout == LAYOUT, reserved bits 0, algorithm 1 or 2,
+//              N == the build's N, ncols <= 64), USED (== USED), FMT (== the build's format
+//              fingerprint EMPC_IMG_FMT_ID); acc += word (csum word: acc -= word)
+//   ok <= (this word is USED-1, in sequence, !bad, acc after it == 0): the words since the
+//   last word 0 are exactly one complete image with a valid checksum for this build.
+//   The header compares run one clock behind the port, on a copy of the header word (hq,
+//   loaded only at header words): the block RAM output `data` then feeds only the write
+//   port and the accumulator, so the mapper cannot share the coefficient clamp's wide tests
+//   with the compares (it did: 9 LUT levels, 93 MHz).  A compare result arriving with a
+//   word 0 belongs to the abandoned image and is dropped; the header words are words 0..11,
+//   so every result is in `bad` long before the last word.
+//   Any later write (another word, a rewrite) clears ok; so does ok_clr (the core swapped
+//   the upload in: the inactive bank is the old one again) and the end of the boot stream.
+// Ports: cfg_we, cfg_addr, cfg_wdata (CPU, used when ready); ok_clr (pulse); we, addr, data
+//   (write port); ready; ok (boot image valid: latched at the end of the boot stream);
+//   upl_ok (a complete valid image was written since the last ok_clr, nothing after it).
 // Parameters: BOOT_FILE, DEPTH (ROM words, EMPC_IMG_DEPTH = 1024), USED (words streamed,
-//   EMPC_IMG_USED, <= 3/4 DEPTH: the CPU words go to the top quarter).
+//   EMPC_IMG_USED, <= 3/4 DEPTH: the CPU words go to the top quarter), N (the core's horizon).
 // Latency: the stream writes word k in clock k + 2 after rst is released; ready rises
-//   USED + 3 clock cycles after rst is released (771 for USED = 768), ok one clock earlier.
-// Reset: restarts the stream; we, ready and ok clear (addr, data: don't care while we = 0).
+//   USED + 3 clock cycles after rst is released (771 for USED = 768), ok one clock earlier;
+//   upl_ok: 1 clock after the last word is in the port (2 after its request).
+// Reset: restarts the stream; we, ready, ok and upl_ok clear (addr, data: don't care while we = 0).
 `default_nettype none
 `include "empc_formats.vh"
 module mpc_boot #(
     parameter BOOT_FILE = "coef_boot.hex",
     parameter integer DEPTH = `EMPC_IMG_DEPTH,
-    parameter integer USED = `EMPC_IMG_USED
+    parameter integer USED = `EMPC_IMG_USED,
+    parameter integer N = `EMPC_N
 ) (
     input  wire        clk,
     input  wire        rst,
     input  wire        cfg_we,
     input  wire [9:0]  cfg_addr,
     input  wire [31:0] cfg_wdata,
+    input  wire        ok_clr,
     output reg         we,
     output reg  [9:0]  addr,
     output reg  [31:0] data,
     output reg         ready,
-    output reg         ok
+    output reg         ok,
+    output reg         upl_ok
 );
     localparam [9:0] A_CSUM  = `EMPC_IMG_A_CSUM;
     localparam [9:0] LAST    = USED[9:0] - 10'd1;
     localparam [9:0] A_RST   = 10'd0 - 10'd2;          // addr after reset: word 0 is written in clock 2
     localparam [31:0] MAGIC  = `EMPC_IMG_MAGIC;
+    localparam [9:0]  A_CFG  = `EMPC_IMG_A_CFG;
+    localparam [9:0]  A_USED = `EMPC_IMG_A_USED;
+    localparam [9:0]  A_FMT  = `EMPC_IMG_A_FMT;
+    localparam [31:0] USED_W = USED;
+    localparam [31:0] FMT_ID = `EMPC_IMG_FMT_ID;
+    localparam [7:0]  LAYOUT = `EMPC_IMG_LAYOUT;
+    localparam [31:0] N_W    = N;
+    localparam [6:0]  MAXC   = `EMPC_MAX_COLS;
     generate if (DEPTH != 1024 || USED > DEPTH / 4 * 3 || USED < 12) begin : g_bad_params
         mpc_boot_unsupported_parameters u_error ();      // no such module: elaboration stops here
     end endgenerate
@@ -60,14 +91,35 @@ module mpc_boot #(
         else     data <= ready ? cfg_wdata : rom[ra];  // WRITE_FIRST: the CPU word once ready
     end
 
-    // checksum: acc = sum of the words except the checksum word, minus the checksum word
+    // checker: acc = sum of the words except the checksum word, minus the checksum word
     reg  [31:0] acc;
-    reg         magic_ok, first, last;
-    reg         csw;                                  // addr == A_CSUM (registered: one shared net)
+    reg         bad;                                  // since the last word 0: out of sequence / wrong header
+    reg         last;                                 // the clock after the last boot word
+    reg  [9:0]  nexp;                                 // previous word's address + 1
+    reg         csw, w0, wcfg, wused, wfmt;           // decodes of the port address (registered: a_next)
+    reg  [31:0] hq;                                   // the last header word (compared one clock later)
+    reg         h0, hcfg, hused, hfmt;                // which header word hq holds (pulses, one clock)
     // acc + (data ^ csw) + csw, the carry-in as an extra LSB (keeps acc on the carry chain's DI inputs)
     wire [32:0] acc_nx = {acc, 1'b1} + {data ^ {32{csw}}, csw};
     wire [31:0] acc_n = acc_nx[32:1];
-    wire        bw   = we && boot;                    // boot word in the write port
+    wire        we_n = ready ? cfg_we : (a_next < USED[9:0]);
+    // header words: one comparator against the constant of the word (MAGIC, USED or the format id)
+    wire [31:0] hexp = h0 ? MAGIC : hused ? USED_W : FMT_ID;
+    wire        cfg_bad = (hq[31:24] != LAYOUT) || (hq[23:15] != 9'd0) || (hq[14:13] == 2'd0) ||
+                          (hq[14:13] == 2'd3) || (hq[11:8] != N_W[3:0]) || hq[7] || (hq[6:0] > MAXC);
+    wire        hdr_bad = ((h0 || hused || hfmt) && (hq != hexp)) || (hcfg && cfg_bad);
+    always @(posedge clk) begin
+        if (we && (w0 || wcfg || wused || wfmt)) hq <= data;
+        h0    <= we && w0 && !rst;
+        hcfg  <= we && wcfg && !rst;
+        hused <= we && wused && !rst;
+        hfmt  <= we && wfmt && !rst;
+    end
+    wire        in_seq = (addr == nexp);
+    always @(posedge clk) begin
+        if (rst || (we_n && a_next == 10'd0)) acc <= 32'd0;    // restart: cleared before word 0
+        else if (we)                          acc <= acc_n;
+    end
     always @(posedge clk) begin
         if (rst) begin
             addr  <= A_RST;
@@ -75,25 +127,36 @@ module mpc_boot #(
             ready <= 1'b0;
             boot  <= 1'b1;
             ok    <= 1'b0;
-            acc   <= 32'd0;
-            magic_ok <= 1'b0;
-            first <= 1'b1;
+            upl_ok <= 1'b0;
+            bad   <= 1'b1;
+            nexp  <= 10'd0;
             last  <= 1'b0;
             csw   <= 1'b0;
+            w0    <= 1'b0;
+            wcfg  <= 1'b0;
+            wused <= 1'b0;
+            wfmt  <= 1'b0;
         end else begin
             addr  <= a_next;
             csw   <= (a_next == A_CSUM);
-            we    <= ready ? cfg_we : (a_next < USED[9:0]);
-            last  <= bw && (addr == LAST);
+            w0    <= (a_next == 10'd0);
+            wcfg  <= (a_next == A_CFG);
+            wused <= (a_next == A_USED);
+            wfmt  <= (a_next == A_FMT);
+            we    <= we_n;
+            last  <= we && boot && (addr == LAST);
             if (last) begin                           // the clock after the last boot word
                 ready <= 1'b1;
                 boot  <= 1'b0;
+                ok    <= upl_ok;
             end
-            if (bw) begin
-                acc   <= acc_n;
-                first <= 1'b0;
-                if (first) magic_ok <= (data == MAGIC);          // the magic is word 0
-                if (addr == LAST) ok <= magic_ok && (acc_n == 32'd0);
+            if (we) begin
+                nexp   <= addr + 10'd1;
+                bad    <= w0 ? 1'b0 : (bad || hdr_bad || !in_seq);
+                upl_ok <= !w0 && in_seq && !bad && (addr == LAST) && (acc_n == 32'd0);
+            end else begin
+                if (hdr_bad) bad <= 1'b1;             // the compare of the word before (no word now)
+                if (last || ok_clr) upl_ok <= 1'b0;
             end
         end
     end

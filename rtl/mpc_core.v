@@ -27,15 +27,26 @@
 //
 // Coefficient banks: two banks (mpc_coef_mem).  Bank `bank` is active (read by updates),
 // the other one is written by the CPU port (cfg_we, cfg_addr = image word address,
-// cfg_wdata) one word per clock, decoded as written.  cfg_swap requests a bank swap: it
-// is applied at the first clock edge at which no update is running (an update in
-// progress always finishes with the bank it started with; a swap requested in the same
-// cycle as an accepted start applies to that update); swap_pending is high meanwhile.
-// Writes always go to the bank that is inactive in that cycle: after cfg_swap wait for
-// swap_pending = 0 before writing the next tuning.
+// cfg_wdata) one word per clock, decoded as written; mpc_boot checks every upload as it is
+// written (upl_ok: the inactive bank holds exactly one complete image, words 0..767 in
+// order, with magic, layout, N, format fingerprint and checksum of this build, and nothing
+// was written after it).  cfg_swap requests a bank swap (swap_pending); it is decided at
+// the next control-period boundary, `swap_at` (a pulse from the sequencer: the sample
+// instant of the next control update), at an edge with no update running:
+//   - accepted if upl_ok and no CPU word is in flight (cfg_we or the registered port):
+//     bank flips at that edge, upl_ok clears (the new inactive bank is the old tuning,
+//     not an upload), img_ok = 1, swap_refused clears;
+//   - otherwise refused: bank unchanged, swap_refused = 1 (until an accepted swap) and a
+//     one-clock `refused` pulse (the axis counts it).
+// A request in the clock of swap_at is decided at that edge.  An update in progress always
+// finishes with the bank it started with.  Writes always go to the bank that is inactive in
+// the cycle of the request (a word written while a swap is pending makes it refused).
+// img_ok: the active bank holds a valid image (the boot image passed the check, or an
+// accepted swap); a bad boot image leaves img_ok = 0 until a valid upload is swapped in
+// (the axis keeps the bridges off meanwhile).
 // Reset: bank 0 active, the boot image (BOOT_FILE) is streamed into bank 0 through the
 // same write path (mpc_boot, USED = 768 words); `ready` rises 771 cycles after rst is
-// released, boot_ok = magic and checksum of the boot image correct.  start, cfg_we and
+// released, boot_ok = img_ok = the boot image passed the check.  start, cfg_we and
 // cfg_swap are ignored while ready = 0 (the input buffer can be written at any time).
 // All outputs clear to 0 at reset.
 //
@@ -44,8 +55,9 @@
 //   outputs u, du, u_raw [2 x 24], ebar [3 x 40], wn (Q1.17), flags
 //   (bit = FLAG_BITS of the model: 0 operand, 1 gain, 2 term, 3 acc, 4 du, 5 u, 6 ebar,
 //   7 ebar_inc, 8 limit, 9 wn_clamp, 10 signal: that saturation happened in this update).
-//   Status: ready, bank (active), swap_pending, boot_ok, task_pos (task of the active bank,
-//   1 = position: the front end selects y2 / references accordingly), latency.
+//   Status: ready, bank (active), swap_pending, boot_ok, img_ok, upl_ok, swap_refused,
+//   refused (pulse), task_pos (task of the active bank, 1 = position: the front end
+//   selects y2 / references accordingly), latency.
 //   Field weakening (model step 7): fw_thr = {lo, hi} (register FW_R2) in; fw_hi, fw_lo out,
 //   loaded with the other outputs (|u_raw|^2 of the update above hi / below lo).
 // Parameters: N (horizon inputs, default EMPC_N), BOOT_FILE, RSQRT_FILE ($readmemh paths).
@@ -87,10 +99,15 @@ module mpc_core #(
     input  wire [9:0]                      cfg_addr,
     input  wire [31:0]                     cfg_wdata,
     input  wire                            cfg_swap,
+    input  wire                            swap_at,      // control-period boundary (pulse)
     output wire                            ready,
     output reg                             bank,
     output reg                             swap_pending,
     output wire                            boot_ok,
+    output wire                            img_ok,       // the active bank holds a valid image
+    output wire                            upl_ok,       // the inactive bank holds a complete valid upload
+    output reg                             swap_refused, // the last decided swap was refused
+    output reg                             refused,      // pulse: a swap was refused
     output wire                            task_pos      // active bank: 1 = position task
 );
     localparam integer OPW  = `EMPC_OPW;
@@ -134,14 +151,21 @@ module mpc_core #(
     wire        ready_r;
     reg         w_bank;
     assign ready = ready_r;
-    mpc_boot #(.BOOT_FILE(BOOT_FILE)) u_boot (
-        .clk(cclk), .rst(rst), .cfg_we(cfg_we), .cfg_addr(cfg_addr), .cfg_wdata(cfg_wdata),
-        .we(w_we), .addr(w_addr), .data(w_data), .ready(ready_r), .ok(boot_ok)
+    reg         swap_go;                             // the swap is applied at this edge
+    mpc_boot #(.BOOT_FILE(BOOT_FILE), .N(N)) u_boot (
+        .clk(cclk), .rst(rst), .cfg_we(cfg_we), .cfg_addr(cfg_addr), .cfg_wdata(cfg_wdata), .ok_clr(swap_go),
+        .we(w_we), .addr(w_addr), .data(w_data), .ready(ready_r), .ok(boot_ok), .upl_ok(upl_ok)
     );
     always @(posedge cclk) begin
         if (rst) w_bank <= 1'b0;
         else     w_bank <= ready_r & ~bank;
     end
+
+    // ---- bank swap decision ----
+    wire swap_dec = ready_r && (swap_pending || cfg_swap) && swap_at && !busy;
+    always @(*) swap_go = swap_dec && upl_ok && !cfg_we && !w_we;
+    reg  swapped;                                        // a swap was accepted since reset
+    assign img_ok = boot_ok || swapped;                  // (every accepted swap brings a valid image)
 
     // ---- sequencing: one-hot pre-phase and tail, column counter ----
     wire start_ok = start && ready_r && !busy;
@@ -171,6 +195,9 @@ module mpc_core #(
             j1 <= 6'd0; j2 <= 6'd0; j3 <= 6'd0; j4 <= 6'd0; j5 <= 6'd0; j6 <= 6'd0;
             bank <= 1'b0;
             swap_pending <= 1'b0;
+            swapped <= 1'b0;
+            swap_refused <= 1'b0;
+            refused <= 1'b0;
         end else begin
             pre <= pre_n;
             tl <= tl_n;
@@ -180,12 +207,17 @@ module mpc_core #(
             {j6, j5, j4, j3, j2, j1} <= {j5, j4, j3, j2, j1, jc};
             if (start_ok) busy <= 1'b1;
             else if (tl[U_FIRE]) busy <= 1'b0;
-            // bank swap: applied at an edge with no update running
-            if (!busy && ready_r && (swap_pending || cfg_swap)) begin
-                bank <= ~bank;
+            // bank swap: decided at the control-period boundary, with no update running
+            refused <= swap_dec && !swap_go;
+            if (swap_dec) begin
                 swap_pending <= 1'b0;
+                swap_refused <= !swap_go;
             end else if (cfg_swap && ready_r) begin
                 swap_pending <= 1'b1;
+            end
+            if (swap_go) begin
+                bank <= ~bank;
+                swapped <= 1'b1;
             end
         end
     end

@@ -40,6 +40,9 @@
 //   adc_trig           1 clock at each period centre (aligned with hi/lo)
 //   sync_out           1 clock, SYNC_LEAD clocks before period_start
 //   fault_latched      fault latch (1 from the clock after fault until cleared)
+//   on                 the outputs are switching (registered with hi/lo: 1 while the
+//                      channels run, 0 in every clock in which hi/lo are forced off) -
+//                      the real output state for status and for holding the controller
 //   mode_eff           output mode currently applied to hi/lo
 //   cmp_clip           1 clock after a cmp_load that clipped a value to P
 // Parameters
@@ -82,6 +85,7 @@ module pwm_center #(
     output reg               adc_trig,
     output reg               sync_out,
     output reg               fault_latched,
+    output reg               on,
     output reg               mode_eff,
     output reg               cmp_clip
 );
@@ -177,11 +181,13 @@ module pwm_center #(
             adc_trig     <= 1'b0;
             sync_out     <= 1'b0;
             mode_eff     <= MODE_COMPL;
+            on           <= 1'b0;
         end else begin
             period_start <= at_bnd;                        // dir & (cnt == 0)
             adc_trig     <= ~dir & dir_prev;                // ~dir & (cnt == P)
             sync_out     <= (dir == LEAD_DIR) & (cnt == LEAD);
             mode_eff     <= mode_act;
+            on           <= alive;
         end
     end
 

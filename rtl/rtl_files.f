@@ -5,6 +5,7 @@ rtl/pwm_center.v
 rtl/irc_decoder.v
 rtl/hall_decoder.v
 rtl/pos_sense.v
+rtl/sens_check.v
 rtl/mpc_mul18.v
 rtl/mpc_lane.v
 rtl/mpc_limiter.v
@@ -18,6 +19,8 @@ rtl/mx_seq.v
 rtl/axis_status.v
 rtl/clk_gen.v
 rtl/axis_regs.v
+rtl/clk_mon.v
+rtl/out_kill.v
 rtl/mpc_axis.v
 rtl/fault_ctrl.v
 rtl/watchdog.v

@@ -4,7 +4,8 @@
 // A/B/index, HALL, SPI MISO, PWM sync, CPU bus strobes) passes through this
 // module, so CDC points are easy to find and constrain (TIG on `d`).
 // Ports: d (async, WIDTH bits, each bit independent), q (synchronous).
-// Latency: STAGES clock cycles. Reset: q and the chain load RESET_VALUE.
+// Latency: STAGES clock cycles. Reset: q and the chain load RESET_VALUE (also their
+// power-up value: an instance with rst tied to 0 starts from it).
 `default_nettype none
 module sync_2ff #(
     parameter integer WIDTH = 1,
@@ -18,6 +19,7 @@ module sync_2ff #(
 );
     (* ASYNC_REG = "TRUE" *) reg [WIDTH-1:0] stage [0:STAGES-1];
     integer i;
+    initial for (i = 0; i < STAGES; i = i + 1) stage[i] = RESET_VALUE;   // FPGA INIT (rst may be tied 0)
     always @(posedge clk) begin
         if (rst) begin
             for (i = 0; i < STAGES; i = i + 1) stage[i] <= RESET_VALUE;

@@ -97,13 +97,13 @@ def update_batch(p: core.Params, x: dict) -> dict:
     lo = max(min(p.wn_min, OP_MAX), -OP_MAX)
     hi = max(min(p.wn_max, OP_MAX), -OP_MAX)
     wn = np.minimum(np.maximum(wn0, lo), hi)
-    flag("wn_clamp", wn != wr)
+    flag("wn_clamp", (wn != wr) | (lo > hi))
     # 2. ebar
     ebar = x["ebar_prev"].copy()
     if p.algorithm == 2:
         for o in range(3):
             inc = wref[:, 0, o] - y[:, o]
-            lim = p.ebar_lim[o]
+            lim = min(p.ebar_lim[o], core.EBAR_LIM_MAX)     # stored clamped, as in the scalar model
             inc_c = np.clip(inc, -lim, lim)
             flag("ebar_inc", inc_c != inc)
             v = x["ebar_prev"][:, o] + inc_c
@@ -330,16 +330,23 @@ def _pythagorean(r: int, limit: int = 8) -> list[tuple[int, int]]:
 
 
 # ----------------------------------------------------------------------------- random images
-def random_image(rng, N: int) -> tuple[list[int], core.Params]:
-    """A syntactically valid image with random (also out-of-range) fields, and its decoded Params."""
+def random_image(rng, N: int, fmt_id: int = 0, valid: bool = True) -> tuple[list[int], core.Params]:
+    """An image with random (also out-of-range) field values, and its decoded Params.
+
+    valid: a header the RTL accepts for a build with horizon N and fingerprint fmt_id
+    (image.check: algorithm 1 or 2, N, ncols <= 64, reserved bits 0); else also other
+    algorithms, horizons, ncols up to 127 and bit 7 set (for the model alone: the RTL refuses
+    such an image, and the clamps it would apply are then only reachable from a bad boot image).
+    """
     w = [0] * image.DEPTH
-    alg = int(rng.integers(0, 4))
+    alg = int(rng.integers(1, 3)) if valid else int(rng.integers(0, 4))
     task = int(rng.integers(0, 2))
-    Nimg = int(rng.integers(0, 16))
-    ncols = int(rng.integers(0, 128)) if rng.random() < 0.2 else int(rng.integers(0, 65))
+    Nimg = N if valid else int(rng.integers(0, 16))
+    ncols = int(rng.integers(0, 65)) if valid or rng.random() >= 0.2 else int(rng.integers(0, 128))
     w[image.A_MAGIC] = image.MAGIC
     w[image.A_CFG] = (image.LAYOUT << 24) | (alg << 13) | (task << 12) | (Nimg << 8) | ncols \
-        | (int(rng.integers(0, 2)) << 7)
+        | ((0 if valid else int(rng.integers(0, 2))) << 7)
+    w[image.A_FMT] = fmt_id
     w[image.A_WS] = int(rng.integers(0, 1 << 32))
     r32 = lambda: int(rng.integers(0, 1 << 32))
 

@@ -24,6 +24,7 @@ bus, SCS.EMCSC = 0: emc_a = byte address bits [15:2]); any other address fails t
 from __future__ import annotations
 
 import ctypes
+import json
 import os
 from pathlib import Path
 
@@ -48,11 +49,11 @@ class HostReg(ctypes.Structure):
 
 class Caps(ctypes.Structure):
     _fields_ = [(n, ctypes.c_uint32) for n in ("version", "naxes", "horizon", "img_layout", "pwm_per_control",
-                                               "pwm_half")]
+                                               "pwm_half", "complementary")]
 
 
 class AxisCfg(ctypes.Structure):
-    _fields_ = [(n, ctypes.c_uint32) for n in ("pwm_per_control", "complementary", "dead_time", "fault_mask", "kdc",
+    _fields_ = [(n, ctypes.c_uint32) for n in ("pwm_per_control", "dead_time", "fault_mask", "kdc",
                                                "udc_mv", "udc_min_mv", "udc_max_mv", "oc_thresh", "angle_cal",
                                                "hall_offset")]
 
@@ -66,7 +67,7 @@ class Status(ctypes.Structure):
 
 RD_FN = ctypes.CFUNCTYPE(ctypes.c_uint32, ctypes.c_uint32)
 WR_FN = ctypes.CFUNCTYPE(None, ctypes.c_uint32, ctypes.c_uint32)
-EMPC_OK, EMPC_ERR_BUSY, EMPC_ERR_FAULT = 0, -4, -7
+EMPC_OK, EMPC_ERR_ARG, EMPC_ERR_BUSY, EMPC_ERR_FAULT, EMPC_ERR_REFUSED = 0, -3, -4, -7, -8
 
 
 def _roms() -> Path:
@@ -121,6 +122,9 @@ class Env:
     async def read(self, name: str) -> int:
         return await self.bfm.read((self.addr(self.reg(name)) - EMC_BASE) >> 2)
 
+    async def write(self, name: str, value: int) -> None:
+        await self.bfm.write((self.addr(self.reg(name)) - EMC_BASE) >> 2, value)
+
     async def call(self, fname: str, *args) -> int:
         fn = getattr(self.lib, fname)
 
@@ -140,12 +144,29 @@ class Env:
         d.mark.value = 0
         d.enc_glitch.value = 0
         d.hall.value = 0b001
+        d.pwr_fault_n.value = 1
         for i in range(3):
             getattr(d, f"adc_code{i}").value = self.macros["ADC_OFFSET"]
+            getattr(d, f"adc_amp{i}").value = 0          # tb/hdl/adc_ripple.v: no ripple, no noise
+        d.adc_seed.value = 0
+        d.adc_noise.value = 0
+        d.adc_inj_en.value = 0
+        d.adc_hold.value = 0
+        d.adc_lead.value = 0
         self.bfm.idle()
         await ClockCycles(d.clk, 20)
         d.rst_n.value = 1
         await ClockCycles(d.clk, 200)
+
+
+def reg_legal_word(reg) -> int:
+    """A word whose every field is a legal value (the middle of each legal range; random bits elsewhere)."""
+    v = 0x5A5A5A5A
+    for f in reg.parts():
+        v &= ~f.mask
+        x = sorted(f.legal)[len(f.legal) // 2] if f.legal is not None else 0x5A5A5A5A >> f.lsb
+        v |= (x & ((1 << f.width) - 1)) << f.lsb
+    return v & 0xFFFFFFFF
 
 
 @cocotb.test()
@@ -156,29 +177,48 @@ async def registers_vs_header(dut):
     assert names == {(0, r.name) for r in regmap.GLOBAL} | {(1, r.name) for r in regmap.AXIS}, \
         "the header's register table is not the map's"
     by_name = {r.name: r for r in regmap.GLOBAL + regmap.AXIS}
-    n_reset = n_rw = 0
+    n_reset = n_rw = n_refused = 0
     for r in env.regs:
         name = r.name.decode()
         w = (env.addr(r) - EMC_BASE) >> 2
         v = await env.bfm.read(w)
+        if name == "IRQ_STATUS":        # the DC-link fault latched at reset (UDC resets to 0: missing) raises it
+            v &= ~(1 << next(f.lsb for f in by_name[name].fields if f.name == "fault"))
         assert v & r.reset_mask == r.reset, f"{name} @word {w:#x}: {v:#x} after reset, header {r.reset:#x}"
         if r.access != 0 and r.reset_mask != 0xFFFFFFFF:           # build-dependent fields: the build's
             want = by_name[name].reset_word(env.macros)
             assert v == want, f"{name}: {v:#x} after reset, build value {want:#x}"
         n_reset += 1
         if r.access == 1 and name != "CTRL":                      # RW (CTRL would switch the bridges on)
-            for pat in (0xFFFFFFFF, 0xA5A5A5A5 ^ (w * 0x9E3779B1 & 0xFFFFFFFF)):
-                await env.bfm.write(w, pat)
-                got = await env.bfm.read(w)
-                exp = pat & r.bits
-                if r.sign and exp & (r.bits + 1) >> 1:
-                    exp |= ~r.bits & 0xFFFFFFFF
-                assert got == exp, f"{name}: wrote {pat:#x}, read {got:#x}, header says {exp:#x}"
+            reg = by_name[name]
+            for pat in (0xFFFFFFFF, 0xA5A5A5A5 ^ (w * 0x9E3779B1 & 0xFFFFFFFF), reg_legal_word(reg)):
+                for unlocked in ((False, True) if reg.unlock else (False,)):
+                    if unlocked:                                   # the key arms the next write
+                        await env.bfm.write(w & ~0xFF | by_name[reg.unlock].offset, by_name[reg.unlock].key)
+                    before = await env.bfm.read(w)
+                    await env.bfm.write(w, pat)
+                    got = await env.bfm.read(w)
+                    exp = pat & r.bits
+                    if r.sign and exp & (r.bits + 1) >> 1:
+                        exp |= ~r.bits & 0xFFFFFFFF
+                    if not reg.accepts(pat, unlocked=unlocked):     # refused: unchanged (legal, unlock)
+                        exp = before
+                        n_refused += 1
+                    assert got == exp, f"{name}: wrote {pat:#x}, read {got:#x}, header/map say {exp:#x}"
+            if reg.unlock:
+                await env.bfm.write(w & ~0xFF | by_name[reg.unlock].offset, by_name[reg.unlock].key)
             await env.bfm.write(w, v)
             assert await env.bfm.read(w) == v, f"{name}: not restored"
             n_rw += 1
     dut._log.info("%d registers of fw/empc_regs.h read their reset value over the bus, %d RW registers "
-                  "read back two patterns in their _BITS", n_reset, n_rw)
+                  "read back three patterns in their _BITS (%d writes refused as the map says: legal values, "
+                  "unlock)", n_reset, n_rw, n_refused)
+    assert n_refused > 10
+    rep = ROOT / "build" / "reports"
+    rep.mkdir(parents=True, exist_ok=True)
+    (rep / "empc_drv.json").write_text(json.dumps(
+        {"registers_reset_checked": n_reset, "rw_registers_patterns": n_rw, "writes_refused_as_the_map_says": n_refused},
+        indent=1) + "\n")
     assert n_reset == len(regmap.GLOBAL) + len(regmap.AXIS) and n_rw > 20
 
 
@@ -189,9 +229,20 @@ async def driver_flow(dut):
     m = env.macros
     caps = Caps()
     assert await env.call("empc_init", ctypes.byref(caps)) == EMPC_OK
-    assert (caps.version, caps.naxes, caps.horizon, caps.img_layout, caps.pwm_per_control, caps.pwm_half) == \
-        (regmap.VERSION, 1, m["N"], image.LAYOUT, m["PWM_PER_CONTROL"], m["PWM_HALF_PERIOD"])
-    cfg = AxisCfg(pwm_per_control=0, complementary=0, dead_time=40, fault_mask=0x7F, kdc=0x10000, udc_mv=24000,
+    assert (caps.version, caps.naxes, caps.horizon, caps.img_layout, caps.pwm_per_control, caps.pwm_half,
+            caps.complementary) == (regmap.VERSION, 1, m["N"], image.LAYOUT, m["PWM_PER_CONTROL"],
+                                    m["PWM_HALF_PERIOD"], 0)
+    # out of the build limits: the driver refuses before writing anything
+    n0 = len(env.writes)
+    for bad in (dict(dead_time=regmap.DEAD_TIME_MIN - 1), dict(oc_thresh=regmap.OC_THRESH_MAX + 1),
+                dict(udc_min_mv=0), dict(fault_mask=1 << len(regmap.FAULT_CAUSES))):
+        kw = dict(pwm_per_control=0, dead_time=40, fault_mask=0x7F, kdc=0x10000, udc_mv=24000, udc_min_mv=12000,
+                  udc_max_mv=40000, oc_thresh=1500, angle_cal=0x1234, hall_offset=0x4321)
+        kw.update(bad)
+        assert await env.call("empc_axis_config", ctypes.byref(caps), 0, ctypes.byref(AxisCfg(**kw))) == \
+            EMPC_ERR_ARG, bad
+    assert len(env.writes) == n0
+    cfg = AxisCfg(pwm_per_control=0, dead_time=40, fault_mask=0x7F, kdc=0x10000, udc_mv=24000,
                   udc_min_mv=12000, udc_max_mv=40000, oc_thresh=1500, angle_cal=0x1234, hall_offset=0x4321)
     assert await env.call("empc_axis_config", ctypes.byref(caps), 0, ctypes.byref(cfg)) == EMPC_OK
     want = {"DEAD_TIME": 40, "FAULT_MASK": 0x7F, "KDC": 0x10000, "UDC": 24000, "UDC_MIN": 12000,
@@ -199,12 +250,21 @@ async def driver_flow(dut):
             "CTRL": m["PWM_PER_CONTROL"] << 8}
     got = {n: await env.read(n) for n in want}
     assert got == want, got
-    assert await env.call("empc_fault_clear", 0, None) == EMPC_OK      # UDC_MIN..MAX were inconsistent on the way
+    # FAULT_MASK went through the unlock: a plain write is refused and counted
+    ref0 = await env.read("CNT_WR_REFUSED")
+    await env.write("FAULT_MASK", 0)
+    assert await env.read("FAULT_MASK") == 0x7F and await env.read("CNT_WR_REFUSED") == ref0 + 1
+    assert (await env.read("STATUS")) >> regmap.axis_reg("STATUS").fields[12].lsb & 1
+    assert await env.call("empc_fault_clear", 0, None) == EMPC_OK      # UDC was 0 (missing) until the config
     # bridges on: the driver refuses to change the configuration
     assert await env.call("empc_axis_enable", ctypes.byref(caps), 0, 1, 0) == EMPC_OK
-    await ClockCycles(dut.clk, 100)
+    await ClockCycles(dut.clk, 2 * m["PWM_HALF_PERIOD"] + 10)        # the outputs start at a period boundary
     assert (await env.read("STATUS")) >> 1 & 1, "bridges did not come on"
     assert await env.call("empc_axis_config", ctypes.byref(caps), 0, ctypes.byref(cfg)) == EMPC_ERR_BUSY
+    # the FPGA refuses too, whatever the driver does: a safety register written with the bridges live
+    await env.write("DEAD_TIME", 99)
+    assert await env.read("DEAD_TIME") == 40
+    assert await env.call("empc_wdog_set", 100) == EMPC_ERR_REFUSED          # an axis is live
     assert await env.call("empc_axis_enable", ctypes.byref(caps), 0, 0, 0) == EMPC_OK
     assert not (await env.read("STATUS")) >> 1 & 1
     # coefficient image: another design into the inactive bank, then the swap
@@ -213,7 +273,9 @@ async def driver_flow(dut):
     st0 = await env.read("STATUS")
     n0 = len(env.writes)
     arr = (ctypes.c_uint32 * len(words))(*words)
-    assert await env.call("empc_coef_load", 0, arr, len(words), 20) == EMPC_OK
+    # the swap is decided at the next control-period sample (up to pwm_per_control PWM periods)
+    polls = 4 * m["PWM_PER_CONTROL"] * m["PWM_HALF_PERIOD"]
+    assert await env.call("empc_coef_load", 0, arr, len(words), polls) == EMPC_OK
     coef_w = [(a, v) for a, v in env.writes[n0:] if a >= regmap.COEF_BASE]
     assert coef_w == [(regmap.COEF_BASE + i, v) for i, v in enumerate(words)], "window writes are not the image"
     st1 = await env.read("STATUS")
@@ -226,8 +288,15 @@ async def driver_flow(dut):
     assert await env.call("empc_status_read", 0, ctypes.byref(st)) == EMPC_OK
     plain = {n: await env.read(n) for n in ("STATUS", "FAULT", "THETA", "LATENCY")}
     assert (st.status, st.fault, st.theta, st.latency) == tuple(plain.values())
+    # watchdog: 0 (off) is out of the build limits; through the unlock with every axis off it takes a value
+    assert await env.call("empc_wdog_set", 0) == EMPC_ERR_ARG
+    await env.write("WDOG_TIMEOUT", 1)                                       # without the unlock: refused
+    ref0 = await env.read("CNT_WR_REFUSED")
+    await env.write("WDOG_TIMEOUT", 2)                                       # counted by the axes too
+    assert await env.read("WDOG_TIMEOUT") == 400 and await env.read("CNT_WR_REFUSED") == ref0 + 1
     # watchdog fault: expires after one PWM period, the clear reports the cause until the kick
     assert await env.call("empc_wdog_set", 1) == EMPC_OK
+    await env.call("empc_udc_write", 0, 24000)
     await ClockCycles(dut.clk, 4 * 2 * m["PWM_HALF_PERIOD"])
     fault_bit = 1 << regmap.AXIS[3].fields[3].lsb
     assert regmap.AXIS[3].fields[3].name == "watchdog"

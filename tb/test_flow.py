@@ -388,14 +388,17 @@ def test_flow_tools_take_the_layout_from_files_py():
         assert not named, f"{p.name} keeps a list of RTL modules: {named[0][:80]}"
 
 
-def test_committed_budget_one_axis_under_half():
+def test_committed_budget_one_axis():
     b = synth.load_budget("lx_rocon_top")
     assert b is not None, "constraints/resource_budget.json needs an lx_rocon_top entry"
     cap = synth.CAPACITY
     # Issue 6: one axis under half the LUTs (41.8 % then), so that a second axis fits with room for
-    # placement. Issue 15's current limit, load estimate and field weakening take it to 46.5 %
-    # (2660 LUT); four axes no longer come from replicas but from the shared engine (docs/four_axes.md).
-    assert b["lut"] < 0.50 * cap["lut"], "one axis must stay under 50 % of the LUTs"
+    # placement.  Issue 15's current limit, load estimate and field weakening took it to 46.5 % (2660
+    # LUT), issue 14's safety functions (kill path and clock monitor, image checks, sensor and ADC
+    # plausibility, back-to-back ADC, protected safety settings) to 53.8 % (3075 LUT, budget 3120):
+    # cap 55 %.  Both are required; four axes come from the shared engine, not from replicas
+    # (docs/four_axes.md), where the area is to be recovered.
+    assert b["lut"] < 0.55 * cap["lut"], "one axis must stay under 55 % of the LUTs"
     assert b["dsp48a1"] <= cap["dsp48a1"] // 2 and b["ramb16"] <= cap["ramb16"] // 2
     assert set(b) <= set(synth.resource_counts({"cells": {}, "ports": {}})) | {"iob", "fmax_mhz"}
     # the timing proxy must meet the 100 MHz fabric clock
@@ -471,3 +474,36 @@ def test_hier_breakdown(tmp_path):
     assert rows[0]["total"] == {"lut": 6, "ff": 2, "dsp48a1": 2, "ramb16": 0.5, "carry4": 0}
     assert rows[0]["local"]["lut"] == 1 and rows[1]["total"]["lut"] == 5 and rows[2]["total"]["lut"] == 2
     assert "u1" in synth.format_hier(rows)
+
+
+# ---------------------------------------------------------------- safety report (issue 14)
+def test_safety_report_from_the_test_reports(tmp_path, monkeypatch):
+    """flow/safety_report.py takes each cause's latency from its co-simulation report, the proofs from
+    formal.json, the refused writes from the register-block reports, and names what is missing."""
+    import safety_report
+    from empc import regmap
+    monkeypatch.setattr(safety_report, "REPORTS", tmp_path)
+    runs = {run for run, _, _ in safety_report.CAUSES.values() if run}
+    assert set(safety_report.CAUSES) == {f.name for f in regmap.FAULT_CAUSES}, "a FAULT cause without an entry"
+    for k, run in enumerate(sorted(runs)):
+        (tmp_path / f"closed_loop_{run}.json").write_text(json.dumps({
+            "mismatches_vs_bit_accurate_model": 0, "kill_path": {},
+            "fault": {"pin_event_to_outputs_off_clk": 10 + k, "stated_bound_clk": 99, "clear_to_outputs_on_clk": 4965,
+                      "peak_a_before": 10.0, "peak_a_after_restart": 1.5, "fault_bits_latched": [run]}}))
+    entries = {lab: {"kind": "proof", "sby": "PASS", "ok": True} for lab in safety_report.PROOFS_ALL
+               + ("out_kill/prove", "out_kill/bmc")}
+    entries["mpc_axis/mutant0:prove_pe"] = {"kind": "mutant", "what": "x", "ok": True}
+    (tmp_path / "formal.json").write_text(json.dumps({"entries": entries}))
+    (tmp_path / "regblock_axis_regs.json").write_text(json.dumps({"block": "axis_regs", "writes": 100,
+                                                                    "refused_writes": 7}))
+    rep = safety_report.build()
+    assert rep["problems"] == []
+    assert rep["causes"]["overcurrent"]["pin_event_to_outputs_off_clk"] == 10 + sorted(runs).index("overcurrent")
+    assert rep["causes"]["pstage"]["proofs"]["out_kill/prove"] == "PASS"
+    assert rep["bad_register_writes"]["refused_total"] == 7 and rep["formal"]["mutants_caught"] == 1
+    assert "not present" in rep["bad_configurations"]
+    (tmp_path / "closed_loop_hall.json").unlink()
+    entries["mpc_axis/mutant0:prove_pe"]["ok"] = False
+    (tmp_path / "formal.json").write_text(json.dumps({"entries": entries}))
+    probs = safety_report.build()["problems"]
+    assert any(p.startswith("hall:") for p in probs) and any("mutant" in p for p in probs)

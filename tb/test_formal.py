@@ -1,4 +1,4 @@
-"""Runs every SymbiYosys proof (formal/*.sby) and its mutation checks through flow/formal.py.
+"""Runs every SymbiYosys proof task (formal/*.sby) and every mutation check through flow/formal.py, one per test.
 
 Skipped only when yowasp-sby is not installed (it is part of requirements.txt).
 Same checks as `make formal`; see flow/formal.py for what PASS means.
@@ -16,12 +16,25 @@ sys.path.insert(0, str(ROOT / "flow"))
 import formal  # noqa: E402  (flow/formal.py)
 
 
+# seconds on one idle core (make sim starts the costliest first; the rest are a few seconds)
+COST = {"mpc_axis/bmc_pe": 165, "mpc_axis/prove_cp": 105, "mpc_axis/mutant4:bmc_pe": 40, "mpc_axis/cover": 30,
+        "mpc_axis/prove_pe": 25}
+
+
 @pytest.mark.skipif(formal.sby_cmd() is None, reason="yowasp-sby not installed")
-def test_formal():
-    r = subprocess.run([sys.executable, str(ROOT / "flow" / "formal.py")], cwd=ROOT,
+@pytest.mark.parametrize("label", [pytest.param(l, marks=pytest.mark.cost(COST.get(l, 5))) for l in formal.labels()])
+def test_formal(label):
+    """One proof task or one mutant per test, so pytest-xdist spreads them over the workers."""
+    r = subprocess.run([sys.executable, str(ROOT / "flow" / "formal.py"), label], cwd=ROOT,
                        capture_output=True, text=True, timeout=1200)
     print(r.stdout[-20000:])
     print(r.stderr[-5000:], file=sys.stderr)
     lines = [l for l in r.stdout.splitlines() if l.startswith(("PASS", "FAIL"))]
-    assert lines, "flow/formal.py ran no proof"
-    assert r.returncode == 0, "formal proofs failed:\n" + "\n".join(l for l in lines if l.startswith("FAIL"))
+    assert lines, f"flow/formal.py ran nothing for {label}"
+    assert r.returncode == 0, f"{label}:\n" + "\n".join(l for l in lines if l.startswith("FAIL"))
+
+
+def test_every_proof_has_mutants():
+    """A proof without a mutant it must catch could be vacuous (rules: mutants for every safety proof)."""
+    for sby in sorted(formal.FORMAL.glob("*.sby")):
+        assert formal.mutants_of(sby.read_text()), f"{sby.name} has no '# mutant:' line"

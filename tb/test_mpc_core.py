@@ -44,9 +44,13 @@ def load_image(name: str) -> list[int]:
     return image.read_hex(roms() / f"coef_{name}.hex")
 
 
-def header_n() -> int:
+def header_consts() -> dict:
     from empc import header
-    return header.read(roms() / "empc_formats.vh")["N"]
+    return header.read(roms() / "empc_formats.vh")
+
+
+def header_n() -> int:
+    return header_consts()["N"]
 
 
 # ============================================================================ cocotb (Icarus, ports)
@@ -107,6 +111,7 @@ class Bench:
         self.dut, self.RisingEdge, self.ReadOnly = dut, RisingEdge, ReadOnly
         self.N = header_n()
         self.rng = np.random.default_rng(SEED + 7)
+        self.boundary_always = True      # swap_at = 1 every clock: a swap is decided at the first idle edge
         self.fw_seen = set()
 
     async def reset(self) -> int:
@@ -114,6 +119,7 @@ class Bench:
         dut.rst.value = 1
         for s in ("start", "cfg_we", "cfg_swap", "in_we", "fw_thr"):
             getattr(dut, s).value = 0
+        dut.swap_at.value = 1 if self.boundary_always else 0
         dut.cfg_addr.value = 0
         dut.cfg_wdata.value = 0
         dut.in_addr.value = 0
@@ -171,6 +177,142 @@ class Bench:
             assert n < 500, "done never came"
         assert int(dut.busy.value) == 0
         return read_out(dut), n
+
+
+class ImgBench(Bench):
+    """Bank protocol driver for the image-check tests: every action is mirrored in core.Banks."""
+
+    def __init__(self, dut):
+        super().__init__(dut)
+        self.boundary_always = False
+        h = header_consts()
+        self.fmt = h["IMG_FMT_ID"]
+        self.m = None
+        self.refused_seen = 0
+        self.n_vec = 0
+        self.rng = np.random.default_rng(SEED + 11)
+
+    async def reset(self) -> int:
+        from cocotb.triggers import RisingEdge, ReadOnly
+        n = await super().reset()
+        await RisingEdge(self.dut.clk)               # leave the ReadOnly phase
+        self.m = core.Banks(image.read_hex(Path(os.environ.get("EMPC_BOOT_HEX", roms() / "coef_boot.hex"))),
+                            self.N, self.fmt)
+        self.dut._log.info(f"seed {SEED} (EMPC_SEED); boot_ok model {self.m.boot_ok} RTL {int(self.dut.boot_ok.value)}")
+
+        async def watch():
+            while True:
+                await RisingEdge(self.dut.clk)
+                await ReadOnly()
+                self.refused_seen += int(self.dut.refused.value)
+        import cocotb
+        cocotb.start_soon(watch())
+        return n
+
+    async def idle(self, n: int) -> None:
+        for _ in range(n):
+            await self.RisingEdge(self.dut.clk)
+
+    async def upload(self, words) -> None:
+        """Write (addr, word) pairs back to back, one per clock."""
+        dut = self.dut
+        await self.RisingEdge(dut.clk)
+        for a, v in words:
+            dut.cfg_we.value = 1
+            dut.cfg_addr.value = a
+            dut.cfg_wdata.value = v
+            await self.RisingEdge(dut.clk)
+            self.m.write(a, v)
+        dut.cfg_we.value = 0
+        await self.idle(2)                       # the last word leaves the registered port
+
+    async def request(self) -> None:
+        dut = self.dut
+        dut.cfg_swap.value = 1
+        await self.RisingEdge(dut.clk)
+        dut.cfg_swap.value = 0
+        self.m.request()
+
+    async def boundary(self, write=None) -> None:
+        """One swap_at pulse with the core idle (optionally a CPU word requested in that clock)."""
+        dut = self.dut
+        dut.swap_at.value = 1
+        if write is not None:
+            dut.cfg_we.value, dut.cfg_addr.value, dut.cfg_wdata.value = 1, write[0], write[1]
+        await self.RisingEdge(dut.clk)
+        dut.swap_at.value = 0
+        dut.cfg_we.value = 0
+        self.m.boundary(in_flight=write is not None)
+        if write is not None:
+            self.m.write(*write)
+        await self.idle(2)
+
+    async def request_at_boundary(self) -> None:
+        dut = self.dut
+        dut.swap_at.value = 1
+        dut.cfg_swap.value = 1
+        b0 = int(dut.bank.value)
+        await self.RisingEdge(dut.clk)
+        dut.swap_at.value = 0
+        dut.cfg_swap.value = 0
+        self.m.request()
+        self.m.boundary()
+        await self.ReadOnly()
+        assert int(dut.bank.value) == self.m.bank and (self.m.bank != b0) == (not self.m.swap_refused), \
+            "request in the clock of a boundary: not decided at that edge"
+        await self.idle(2)
+
+    async def boundary_during_update(self) -> None:
+        dut = self.dut
+        x = V.random_inputs(self.rng, 1, self.m.active(), self.N)
+        await self.load(x, 0)
+        dut.start.value = 1
+        await self.RisingEdge(dut.clk)
+        dut.start.value = 0
+        await self.idle(5)
+        dut.swap_at.value = 1                    # busy: not a decision point
+        await self.RisingEdge(dut.clk)
+        dut.swap_at.value = 0
+        while not int(dut.done.value):
+            await self.RisingEdge(dut.clk)
+            await self.ReadOnly()
+        assert _mismatch(read_out(dut), _model_outputs(self.m.active(), x, 0)) is None, "update used the new bank"
+        self.n_vec += 1
+        await self.idle(2)
+
+    async def compare(self, label: str) -> None:
+        await self.ReadOnly()
+        d = self.dut
+        got = {"bank": int(d.bank.value), "pending": int(d.swap_pending.value), "upl_ok": int(d.upl_ok.value),
+               "img_ok": int(d.img_ok.value), "boot_ok": int(d.boot_ok.value), "refused": int(d.swap_refused.value),
+               "refused_count": self.refused_seen}
+        m = self.m
+        exp = {"bank": m.bank, "pending": int(m.pending), "upl_ok": int(m.upl_ok), "img_ok": int(m.img_ok),
+               "boot_ok": int(m.boot_ok), "refused": int(m.swap_refused), "refused_count": m.refused}
+        assert got == exp, f"{label}: RTL {got} model {exp}"
+        self.dut._log.info(f"{label}: {got}")
+        await self.RisingEdge(d.clk)
+
+    async def vectors(self, n: int) -> None:
+        p = self.m.active()
+        x = V.random_inputs(self.rng, n, p, self.N)
+        self.n_vec += await _check_vectors(self, p, x)
+        await self.RisingEdge(self.dut.clk)          # leave the ReadOnly phase
+
+
+def foreign_builds(log) -> list[tuple[str, list[int]]]:
+    """Boot images of the other motor configurations (their own fingerprint), generated once."""
+    from empc import config, roms as roms_mod
+    out = []
+    for cfgfile in ("ipmsm_001.toml", "spmsm_002.toml"):
+        d = ROOT / "build" / "sim" / f"foreign_{cfgfile.split('.')[0]}"
+        f = d / "coef_boot.hex"
+        if not f.exists():
+            roms_mod.generate(config.load(ROOT / "gen" / "empc" / "configs" / cfgfile), d, all_designs=False)
+        w = image.read_hex(f)
+        log.info(f"{cfgfile}: fingerprint {w[image.A_FMT]:#x}, N {(w[image.A_CFG] >> 8) & 15}")
+        out.append((cfgfile, w))
+    return out
 
 
 def _model_outputs(p: core.Params, x: dict, i: int, fw_thr=(0, 0)) -> dict:
@@ -305,12 +447,150 @@ try:
 
     @cocotb.test()
     async def bad_boot(dut):
-        """A boot image with a wrong checksum: ready still rises, boot_ok = 0."""
+        """A corrupted boot image: ready still rises, boot_ok = img_ok = 0 (the axis keeps the bridges
+        off); a valid upload swapped in makes img_ok = 1, bit-exact against the bank model."""
         from cocotb.clock import Clock
         cocotb.start_soon(Clock(dut.clk, 10, unit="ns").start())
-        n_ready = await Bench(dut).reset()
+        tb = ImgBench(dut)
+        n_ready = await tb.reset()
         assert n_ready == core.BOOT_CYCLES and int(dut.boot_ok.value) == 0, (n_ready, int(dut.boot_ok.value))
-        dut._log.info("corrupted boot image: ready after 771 cycles, boot_ok = 0")
+        await tb.compare("bad boot")
+        assert int(dut.img_ok.value) == 0
+        w = load_image(IMAGES[3])
+        await tb.upload(list(enumerate(w[:image.USED])))
+        await tb.request()
+        await tb.boundary()
+        await tb.compare("valid upload after a bad boot")
+        assert int(dut.img_ok.value) == 1 and tb.m.img_ok
+        await tb.vectors(4)
+        dut._log.info("corrupted boot image: ready after 771 cycles, boot_ok = img_ok = 0; a valid upload and "
+                      "swap: img_ok = 1, %d vectors bit-exact", tb.n_vec)
+
+    @cocotb.test()
+    async def image_checks(dut):
+        """Swap refusal and boundary alignment: corrupted, truncated, reordered, foreign and missing
+        uploads, two swaps in a row, requests at / between / during boundaries, writes in flight;
+        every step compared with the model (empc.rtlmodel.mpc_core.Banks) and the active bank
+        checked bit-exact with update vectors."""
+        from cocotb.clock import Clock
+        cocotb.start_soon(Clock(dut.clk, 10, unit="ns").start())
+        tb = ImgBench(dut)
+        await tb.reset()
+        await tb.compare("boot")
+        rng = tb.rng
+        good = [load_image(n) for n in IMAGES]
+        boot_w = image.read_hex(roms() / "coef_boot.hex")
+        other = [w for w in good if w != boot_w][0]
+        full = lambda w: list(enumerate(w[:image.USED]))
+        acc, ref = 0, 0
+
+        async def swap(label, expect, words=None, at_once=False):
+            nonlocal acc, ref
+            if words is not None:
+                await tb.upload(words)
+            if at_once:                      # request in the clock of the boundary
+                await tb.request_at_boundary()
+            else:
+                await tb.request()
+                await tb.idle(int(rng.integers(0, 30)))
+                await tb.compare(label + " (pending)")
+                assert int(dut.swap_pending.value) == 1
+                await tb.boundary()
+            await tb.compare(label)
+            got = not int(dut.swap_refused.value)
+            assert got == expect, f"{label}: swap {'accepted' if got else 'refused'}, expected the opposite"
+            acc, ref = acc + got, ref + (not got)
+            await tb.vectors(2)
+
+        await swap("swap with no upload", False)
+        await swap("valid upload", True, full(other))
+        await swap("second swap in a row (no upload since)", False)
+        # one bit flipped in every region of the image (header fields, unused header words,
+        # column descriptors, gains, the last word), checksum not repaired
+        regions = {"magic": 0, "cfg": 1, "ws": 2, "wn_min": 3, "wn_max": 4, "u_max": 5, "ebar_lim": 7,
+                   "used": 9, "checksum": 10, "fmt": 11, "unused header": 0x20, "column": 0x41,
+                   "gain p0": 0x100 + 4 * 3, "gain shift": 0x100 + 4 * 64 + 3, "last word": image.USED - 1}
+        for name, a in regions.items():
+            w = list(good[int(rng.integers(0, 4))])
+            w[a] ^= 1 << int(rng.integers(0, 32))
+            await swap(f"bit flip in {name} (word {a})", False, full(w))
+        # truncated upload, then completed later in order (complete = every word, in order)
+        w = list(good[0])
+        await swap("truncated upload (767 of 768 words)", False, full(w)[:-1])
+        await tb.upload(full(w)[:500])
+        await tb.idle(7)
+        await swap("upload in two parts, in order", True, full(w)[500:])
+        # another build's format: header changed and the checksum repaired
+        def rebuilt(w, a, v):
+            w = list(w)
+            w[a] = v
+            w[image.A_CSUM] = image.checksum(w)
+            return w
+        cfg = good[1][image.A_CFG]
+        fmt = tb.fmt
+        foreign = {"format fingerprint of another build": rebuilt(good[1], image.A_FMT, fmt ^ 0x1234),
+                   "layout 1": rebuilt(good[1], image.A_CFG, (cfg & 0xFFFFFF) | (1 << 24)),
+                   "horizon N - 1": rebuilt(good[1], image.A_CFG, (cfg & ~0xF00) | ((tb.N - 1) << 8)),
+                   "algorithm 3": rebuilt(good[1], image.A_CFG, cfg | (3 << 13)),
+                   "ncols 65": rebuilt(good[1], image.A_CFG, (cfg & ~0x7F) | 65),
+                   "reserved CFG bit 7": rebuilt(good[1], image.A_CFG, cfg | 0x80),
+                   "used words 767": rebuilt(good[1], image.A_USED, image.USED - 1),
+                   "magic 'EMPD'": rebuilt(good[1], image.A_MAGIC, image.MAGIC + 1)}
+        for name, w in foreign.items():
+            assert image.check(w, tb.N, fmt), name
+            await swap(f"{name} (checksum repaired)", False, full(w))
+        # images of the other configurations' builds (their own fingerprint and scaling)
+        for wname, w in foreign_builds(dut._log):
+            await swap(f"image of build {wname}", False, full(w))
+        # order: two words exchanged, a word written twice, a rewrite after completion, a restart
+        seq = full(good[2])
+        seq[5], seq[6] = seq[6], seq[5]
+        await swap("two words written out of order", False, seq)
+        seq = full(good[2])
+        seq.insert(300, seq[299])
+        await swap("a word written twice", False, seq)
+        await swap("a word rewritten after the upload", False, full(good[2]) + [(123, good[2][123])])
+        await swap("a restart at word 0 in the middle, then a whole image", True,
+                   full(foreign["layout 1"])[:400] + full(good[3]))
+        # timing: request in the clock of a boundary; request then many clocks without a boundary
+        await swap("request in the clock of a boundary", True, full(good[0]), at_once=True)
+        await tb.upload(full(good[1]))
+        await tb.request()
+        b0 = int(dut.bank.value)
+        for _ in range(200):
+            await tb.idle(1)
+            assert int(dut.bank.value) == b0 and int(dut.swap_pending.value) == 1, "swap applied without a boundary"
+        await tb.boundary()
+        await tb.compare("swap applied exactly at the boundary")
+        assert int(dut.bank.value) != b0
+        acc += 1
+        # a CPU word in flight at the boundary, and a word written while the swap is pending
+        await tb.upload(full(good[2]))
+        await tb.request()
+        await tb.boundary(write=(0, good[2][0]))
+        await tb.compare("word written in the clock of the boundary")
+        assert int(dut.swap_refused.value) == 1
+        await tb.upload(full(good[3]))
+        await tb.request()
+        await tb.upload([(17, good[3][17])])
+        await tb.boundary()
+        await tb.compare("word written while the swap was pending")
+        assert int(dut.swap_refused.value) == 1
+        ref += 2
+        # a boundary while an update runs is no decision point: the update finishes with its bank
+        await tb.upload(full(good[0]))
+        await tb.request()
+        await tb.boundary_during_update()
+        await tb.compare("boundary during an update: still pending")
+        assert int(dut.swap_pending.value) == 1
+        await tb.boundary()
+        await tb.compare("next boundary, idle: applied")
+        acc += 1
+        await tb.vectors(4)
+        assert tb.m.refused == tb.refused_seen
+        dut._log.info("image checks: %d swaps accepted, %d refused (RTL refused pulses %d = model), %d vectors "
+                      "bit-exact on the active bank; every step compared with the bank model", acc, ref,
+                      tb.refused_seen, tb.n_vec)
 
     @cocotb.test()
     async def stream(dut):
@@ -361,8 +641,9 @@ def stream_jobs(rng, N: int) -> list[dict]:
         x = V.concat(xc, V.random_inputs(rng, N_STREAM, p, N))
         jobs.append({"name": name, "words": w, "p": p, "x": x, "corners": len(names)})
     n_rand = int(os.environ.get("EMPC_MPC_RANDOM_IMAGES", "12"))
+    fmt = header_consts()["IMG_FMT_ID"]
     for k in range(n_rand):
-        w, p = V.random_image(rng, N)
+        w, p = V.random_image(rng, N, fmt)
         x = V.random_inputs(rng, 2000, p, N)
         jobs.append({"name": f"random{k}", "words": w, "p": p, "x": x, "corners": 0})
     return jobs
@@ -494,7 +775,13 @@ def test_mpc_core_bad_boot():
     image.write_hex(w, bad)
     from runner import run
     run(toplevel="mpc_core", test_module="test_mpc_core", testcase="bad_boot",
-        parameters={**_file_params(), "BOOT_FILE": f'"{bad}"'})
+        parameters={**_file_params(), "BOOT_FILE": f'"{bad}"'}, extra_env={"EMPC_BOOT_HEX": str(bad)})
+
+
+def test_mpc_core_image_checks():
+    """Image checker and swap protocol against core.Banks (Icarus)."""
+    from runner import run
+    run(toplevel="mpc_core", test_module="test_mpc_core", parameters=_file_params(), testcase="image_checks")
 
 
 @pytest.mark.cost(45)          # Verilator build ~20 s, 38 M clocks ~21 s
@@ -510,7 +797,7 @@ def test_batch_model():
     N = header_n()
     n_checked = 0
     cases = [(name, image.decode(load_image(name))) for name in IMAGES]
-    cases += [(f"random{k}", V.random_image(rng, N)[1]) for k in range(8)]
+    cases += [(f"random{k}", V.random_image(rng, N, valid=k % 2 == 0)[1]) for k in range(8)]
     for name, p in cases:
         xc, names = V.corner_inputs(p, N, rng)
         x = V.concat(xc, V.random_inputs(rng, 1000, p, N)) if name in IMAGES else V.random_inputs(rng, 600, p, N)

@@ -1,7 +1,7 @@
 """Tests of the four-axis planning tools behind docs/four_axes.md (fast: no Yosys).
 
 flow/mx_schedule.py   schedule of the shared engine: latency budget, stagger, every Ts combination
-(flow/seq_timeline.py, the bit-serial ctrl_seq's timeline that docs/four_axes.md 4.1 starts from,
+(seq_timeline, the bit-serial ctrl_seq's timeline that docs/four_axes.md 4.1 starts from,
 was retired with ctrl_seq: its figures were measured at d212ea6 and, after issue 15, on ctrl_int:
 trigger -> cmp_load 981 clk, 574 engine clocks without the ADC sample, 256 with it, sweep 511.)
 

@@ -31,7 +31,7 @@ DEAD_W = int(os.environ.get("PWM_DEAD_W", "4"))
 SYNC_STAGES = int(os.environ.get("PWM_SYNC_STAGES", "0"))
 SYNC_LEAD = int(os.environ.get("PWM_SYNC_LEAD", "2"))
 CW = P.bit_length()          # clog2(P + 1)
-OUT_FIELDS = ("period_start", "adc_trig", "sync_out", "fault_latched", "mode_eff", "cmp_clip")
+OUT_FIELDS = ("period_start", "adc_trig", "sync_out", "fault_latched", "mode_eff", "cmp_clip", "on")
 
 
 # ----------------------------------------------------------------------------- helpers

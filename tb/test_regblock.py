@@ -6,9 +6,11 @@ generator emits), on random stimulus plus directed corner cases:
 * the real blocks rtl/axis_regs.v and rtl/global_regs.v (committed, generated from
   gen/empc/regmap.py);
 * a small test map (TEST_REGS below) that uses every attribute the real map uses and the
-  ones it does not use yet (``guard``, ``legal`` as a range, a set and a table, ``floor``
-  above 1, a signed input, a mux read on two pages, a guarded window, a strobe group with
-  mixed widths), generated twice: "copy" and "mux" read paths.
+  ones it does not use yet (``guard`` on registers and fields (stored and pulse), ``safe``,
+  ``legal`` as a range, a set and a table, ``floor`` above 1, a key register with ``arm``
+  and a register that needs its ``unlock``, ``wstrobe``, a signed input, a mux read on two
+  pages, a guarded window, a strobe group with mixed widths), generated twice: "copy" and
+  "mux" read paths.
 
 Per clock: random reg_wr / reg_rd (sometimes both), an address near a register or anywhere,
 random data (sometimes the key, a legal value or all ones), every input port random, rare
@@ -17,6 +19,7 @@ state, reg_rdata and the window strobes combinationally).
 """
 from __future__ import annotations
 
+import json
 import os
 import random
 from pathlib import Path
@@ -41,7 +44,8 @@ TEST_REGS = (
         Field("en", 0, 1, "enable"),
         Field("mode", 1, 2, "mode", legal=(0, 1, 3)),
         Field("div", 8, 8, "divider", reset="EMPC_PWM_PER_CONTROL", floor=3))),
-    Reg("CMD", 0x01, "WO", 0, "pulses", (Field("go", 0, 1, "go"), Field("clr", 3, 2, "two-bit pulse"))),
+    Reg("CMD", 0x01, "WO", 0, "pulses", (Field("go", 0, 1, "go"),
+                                         Field("clr", 3, 2, "two-bit pulse, refused while armed", guard="armed"))),
     Reg("STAT", 0x02, "RO", 0, "input fields", (Field("a", 0, 1, "a"), Field("b", 4, 12, "b"))),
     Reg("LIM", 0x03, "RW", 1000, "legal range (compares)", width=16, legal=range(10, 60001)),
     Reg("SREF", 0x04, "RW", 0, "signed, guarded", width=18, signed=True, guard="armed"),
@@ -54,6 +58,12 @@ TEST_REGS = (
     Reg("MUXED", 0x0b, "RW", 0xABC, "read through the mux", width=12, read="mux"),
     Reg("BIG", 0x0c, "RW", 0, "legal set on 32 bits", legal=(0, 5, 0x10000, 0xFFFFFFFF)),
     Reg("NIB", 0x0d, "RW", 2, "legal range on 4 bits (table)", width=4, legal=range(2, 12), guard="locked"),
+    Reg("CFG", 0x0e, "RW", 0x0501, "field guard and safe", (
+        Field("on", 0, 1, "switch: 0 always accepted", safe=0),
+        Field("per", 8, 8, "period: changes refused while armed, 0 illegal", legal=range(1, 256), guard="armed"))),
+    Reg("UNL", 0x0f, "WO", 0, "key register: arms one write until the 5th unl_tick", width=16, key=0xC0DE, arm=5),
+    Reg("LOCKD", 0x13, "RW", 0x33, "needs the unlock, guarded", width=8, unlock="UNL", guard="locked"),
+    Reg("FRESH", 0x14, "RW", 0, "write strobe", width=16, wstrobe=True),
     Reg("W0", 0x10, "RW", 0, "window word 0", ext="win", guard="armed"),
     Reg("W1", 0x11, "RW", 0, "window word 1", ext="win", guard="armed"),
     Reg("W2", 0x12, "RO", 0, "window word 2 (read-only)", ext="win"),
@@ -81,8 +91,11 @@ async def run_block(dut, b: Block, n: int) -> None:
     g = m.g
     ins_ports = [(p[1], p[2]) for p in m.ports if p[0] == "input" and p[1] != "clk"]
     outs = [p[1] for p in m.ports if p[0] == "output"]
-    comb_outs = {"reg_rdata"} | {f"{e.name}_{s}" for e in g.windows for s in ("we", "re", "idx")}
+    comb_outs = {"reg_rdata"} | {f"{e.name}_{s}" for e in g.windows for s in ("we", "re", "idx")} \
+        | {f"{a.base}_armed" for a in g.arms}
     offsets = [r.offset for r in b.regs]
+    locked_offs = [r.offset for r in b.regs if r.unlock]
+    key_offs = [r.offset for r in b.regs if r.arm is not None]
     specials = [0, 0xFFFFFFFF, 0x5A5A] + [r.key for r in b.regs if r.key is not None]
     for r in b.regs:
         for f in r.parts():
@@ -92,10 +105,12 @@ async def run_block(dut, b: Block, n: int) -> None:
             if f.floor is not None:
                 specials += [v << f.lsb for v in (0, f.floor - 1, f.floor, f.floor + 1)]
     cocotb.start_soon(Clock(dut.clk, 10, unit="ns").start())
-    stats = dict(wr=0, rd=0, refused=0, rdata_nz=0, rst=0, pulses=0)
+    stats = dict(wr=0, rd=0, refused=0, rdata_nz=0, rst=0, pulses=0, unlocked=0)
     pulse_ports = [r.part_port(f) for r in b.regs for f in r.parts()
-                   if g.k[r.name].pulses or g.k[r.name].key or g.k[r.name].wodata]
+                   if g.k[r.name].pulses or (g.k[r.name].key and r.arm is None) or g.k[r.name].wodata]
     pulse_ports += [f"{e.name}_we" for e in g.strobes]
+
+    last_wr_addr = [None]
 
     def stimulus(k: int) -> dict:
         ins = {}
@@ -106,8 +121,14 @@ async def run_block(dut, b: Block, n: int) -> None:
         ins["reg_wr"] = int(x < 0.35 or 0.97 < x)
         ins["reg_rd"] = int(0.35 <= x < 0.7 or 0.97 < x)
         a = rng.choice(offsets) if rng.random() < 0.85 else rng.getrandbits(g.aw)
+        if locked_offs and last_wr_addr[0] in key_offs and rng.random() < 0.7:
+            a = rng.choice(locked_offs)            # after a key write: the register it unlocks
+        if ins["reg_wr"]:
+            last_wr_addr[0] = a
         ins["reg_addr"] = a
         ins["reg_wdata"] = rng.choice(specials) if rng.random() < 0.3 else rng.getrandbits(32)
+        if a in key_offs and rng.random() < 0.6:
+            ins["reg_wdata"] = next(r.key for r in b.regs if r.offset == a)
         for gname in g.guards:
             ins[gname] = int(rng.random() < 0.3)
         for p in [p for p in ins if p.endswith("_set")]:
@@ -137,12 +158,23 @@ async def run_block(dut, b: Block, n: int) -> None:
         stats["rd"] += ins["reg_rd"]
         stats["rst"] += ins["rst"]
         stats["refused"] += m.state.get("wr_refused", 0)
+        stats["unlocked"] += int(bool(ins["reg_wr"] and not ins["rst"] and ins["reg_addr"] in locked_offs
+                                      and not m.state["wr_refused"]))
         stats["pulses"] += any(m.state[p] for p in pulse_ports)
         await FallingEdge(dut.clk)
     dut._log.info("%s: %d clocks vs model (seed %d, EMPC_SEED): %s", b.module, n, seed, stats)
+    rep = ROOT / "build" / "reports"
+    rep.mkdir(parents=True, exist_ok=True)
+    (rep / f"regblock_{b.module}.json").write_text(json.dumps(
+        {"block": b.module, "clocks": n, "seed": seed, "writes": stats["wr"], "refused_writes": stats["refused"],
+         "unlocked_writes": stats["unlocked"], "compared_with": "regblock.Model, every output every clock"},
+        indent=1) + "\n")
     assert stats["rdata_nz"] > n // 20 and stats["pulses"] > 0 and stats["rst"] > 2
     if g.refuse:
         assert stats["refused"] > 0
+    if locked_offs:
+        assert stats["unlocked"] > 0, "no write passed an unlock"
+
 
 
 @cocotb.test()
@@ -232,11 +264,18 @@ def test_model_guard_and_legal():
     assert out["win_we"] == 1 and s["wr_refused"] == 0
     out = _step(m, reg_rd=1, reg_addr=a["W2"], armed=1)
     assert out["win_re"] == 1 and s["wr_refused"] == 0                   # reads are never refused
-    # W1C: a set and a write of the register in the same clock: the write computes from the old value
+    # W1C: a set in the clock of a write of the register survives, even a write that clears that bit
+    # (issue 14 item 6: an event arriving with the acknowledge is not lost)
     _step(m, irq_p_set=1)
     assert s["irq_p"] == 1
     _step(m, reg_wr=1, reg_addr=a["IRQ"], reg_wdata=0, irq_q_set=1)
-    assert s["irq_p"] == 1 and s["irq_q"] == 0
+    assert s["irq_p"] == 1 and s["irq_q"] == 1
+    _step(m, reg_wr=1, reg_addr=a["IRQ"], reg_wdata=0x1, irq_q_set=1)     # clears p, q set again
+    assert s["irq_p"] == 0 and s["irq_q"] == 1
+    _step(m, reg_wr=1, reg_addr=a["IRQ"], reg_wdata=0x4, irq_q_set=1)     # clear and set together: kept
+    assert s["irq_q"] == 1
+    _step(m, reg_wr=1, reg_addr=a["IRQ"], reg_wdata=0x4)                   # cleared without a set
+    assert s["irq_q"] == 0
     # read path: signed, constant, fields with gaps; 0 in the clock without a read
     _step(m, reg_rd=1, reg_addr=a["SREF"])
     assert _step(m)["reg_rdata"] == 0xFFFFFFFF and _step(m)["reg_rdata"] == 0
@@ -246,10 +285,58 @@ def test_model_guard_and_legal():
     assert _step(m)["reg_rdata"] == 0xABC1
 
 
+def test_model_unlock_field_guard_safe():
+    """Field guards (a change refused while the guard is high, a rewrite accepted, a pulse field's 1
+    refused), safe values (written even by a refused write), the unlock (armed by the key for `arm`
+    ticks, consumed by the next write of the block, a wrong key refused and disarming), wstrobe."""
+    m = regblock.Model(TEST_BLOCKS[0], {"PWM_PER_CONTROL": 5})
+    s = m.state
+    a = {r.name: r.offset for r in TEST_REGS}
+    assert (s["cfg_on"], s["cfg_per"], s["lockd"]) == (1, 5, 0x33)
+
+    def wr(name, data, **kw):
+        _step(m, reg_wr=1, reg_addr=a[name], reg_wdata=data, **kw)
+        return s["wr_refused"]
+
+    assert wr("CFG", (5 << 8) | 1, armed=1) == 0                       # same period: accepted
+    assert wr("CFG", (6 << 8) | 1, armed=1) == 1 and s["cfg_per"] == 5  # change while armed: refused
+    assert wr("CFG", (6 << 8) | 0, armed=1) == 1 and (s["cfg_on"], s["cfg_per"]) == (0, 5)  # off passes
+    assert wr("CFG", (6 << 8) | 1) == 0 and (s["cfg_on"], s["cfg_per"]) == (1, 6)
+    assert wr("CFG", (0 << 8) | 0) == 1 and (s["cfg_on"], s["cfg_per"]) == (0, 6)           # illegal 0, off passes
+    assert wr("CFG", (0 << 8) | 1) == 1 and s["cfg_on"] == 0                                # on is not safe
+    assert wr("CMD", 1 << 3, armed=1) == 1 and s["cmd_clr"] == 0          # guarded pulse field
+    assert wr("CMD", 1, armed=1) == 0 and s["cmd_go"] == 1                 # the other field is free
+    assert wr("LOCKD", 0x44) == 1 and s["lockd"] == 0x33                   # not unlocked
+    assert wr("UNL", 0xC0DE) == 0
+    assert wr("LOCKD", 0x44) == 0 and s["lockd"] == 0x44                   # the next write: accepted
+    assert wr("LOCKD", 0x55) == 1 and s["lockd"] == 0x44                   # consumed
+    assert wr("UNL", 0xC0DE) == 0
+    assert wr("LOCKD", 0x55, locked=1) == 1 and s["lockd"] == 0x44         # guard still applies, consumed
+    assert wr("LOCKD", 0x55) == 1
+    assert wr("UNL", 0xC0DE) == 0
+    assert wr("LIM", 100) == 0                                              # another write consumes it
+    assert wr("LOCKD", 0x55) == 1
+    assert wr("UNL", 0xC0DF) == 1                                           # wrong key: refused
+    assert wr("LOCKD", 0x55) == 1
+    for ticks in (4, 5):                                                    # armed until the 5th tick
+        assert wr("UNL", 0xC0DE) == 0
+        for _ in range(ticks):
+            _step(m, unl_tick=1)
+            _step(m)                                                        # clocks without a tick do not count
+        assert wr("LOCKD", 0x60 + ticks) == int(ticks == 5), ticks
+    assert s["lockd"] == 0x64
+    assert wr("FRESH", 7) == 0 and s["fresh_wr"] == 1 and s["fresh"] == 7
+    _step(m)
+    assert s["fresh_wr"] == 0
+
+
 def test_unused_mechanisms_emit_nothing():
-    """The real map uses no guard and no legal values: its blocks carry no refuse logic."""
-    for b in regmap.BLOCKS:
-        text = regblock.render(b)
-        assert "wr_refused" not in text and "LEGAL_" not in text, b.module
+    """A map without guard / legal / unlock carries no refuse logic."""
+    plain = tuple(r for r in TEST_REGS if r.name in ("CMD", "STAT", "OFF0", "KICK", "MAGIC", "IRQ"))
+    plain = tuple(Reg(r.name, r.offset, r.access, r.reset, r.doc, tuple(
+        Field(f.name, f.lsb, f.width, f.doc) for f in r.fields), width=r.width, ext=r.ext, key=r.key)
+        for r in plain)
+    text = regblock.render(Block("plain_regs", "T", plain, "copy", "no safety hooks", ext=TEST_EXT))
+    assert "wr_refused" not in text and "LEGAL_" not in text and "unl_cnt" not in text
     text = regblock.render(TEST_BLOCKS[0])
-    assert "wr_refused" in text and "LEGAL_NIB" in text
+    assert "wr_refused" in text and "LEGAL_NIB" in text and "unl_cnt" in text

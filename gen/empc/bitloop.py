@@ -106,10 +106,14 @@ class AxisModel:
         self._r_prev = target[-1]
         return list(self._gdl)
 
-    def period(self, count: int, codes, t: float = 0.0) -> dict:
+    def period(self, count: int, codes=None, t: float = 0.0, cur=None) -> dict:
         """One PWM period from the ADC trigger's samples: ``count`` (encoder, any int), ``codes``
-        (three raw ADC codes), ``t`` (trigger time, for ``refs``).  Returns the sequencer's
-        outputs (:meth:`CtrlSeq.period`) plus ``ref_w`` (the N+1 references of a control period)."""
+        (three raw ADC codes) or ``cur`` (the ADC's offset-corrected window means, as adc_spi hands
+        them to the sequencer: the co-simulation with back-to-back frames), ``t`` (trigger time, for
+        ``refs``).  Returns the sequencer's outputs (:meth:`CtrlSeq.period`) plus ``ref_w`` (the N+1
+        references of a control period)."""
+        if (codes is None) == (cur is None):
+            raise ValueError("AxisModel.period needs exactly one of codes and cur")
         cfg = self.cfg
         if self._boundary_ref is not None:
             control, ref_w = self._boundary_ref
@@ -119,7 +123,9 @@ class AxisModel:
             ref_w = self._reference(t) if control else None
         theta16 = pos_sense.angle(count, cfg.sensors.encoder_cpr, cfg.motor.p, base=self.cal_offset)
         off = cfg.sensors.adc_offset
-        out = self.seq.period(theta16, count & M32, tuple(c - off for c in codes), self.regs, ref_w)
+        if cur is None:
+            cur = tuple(c - off for c in codes)
+        out = self.seq.period(theta16, count & M32, tuple(cur), self.regs, ref_w)
         out["ref_w"] = ref_w
         if control:
             self.last_control = dict(out, ref_w0=ref_w[0])

@@ -371,14 +371,14 @@ class Ratings:
 
 @dataclass(frozen=True)
 class Robustness:
-    L: float = 0.3
-    R: float = 0.3
-    J: float = 0.3
-    psi: float = 0.2
-    decay_min: float | None = None     # None: 0.01 / T_m (robust.decay_min)
-    damping_min: float = 0.05
-    speed_points: int = 25
-    fit_max: float = 0.5
+    L: float
+    R: float
+    J: float
+    psi: float
+    decay_min: float | None     # None: 0.01 / T_m (robust.decay_min)
+    damping_min: float
+    speed_points: int
+    fit_max: float
 
 
 @dataclass(frozen=True)
@@ -391,15 +391,15 @@ class Governor:
     ``speed_frac`` of the no-load base speed u_max / psi (and of Omega_e); the reference
     holds its acceleration (speed) or speed (position) while |i_q| > ``hold_current`` x i_max
     or the voltage limiter was active.  See gen/empc/governor.py."""
-    enable: bool = True
-    accel_current: float = 0.5
-    box_J: float = 1.3
-    box_psi: float = 0.8
-    speed_frac: float = 0.7
-    hold_current: float = 0.7
-    shift_speed: int = 3
-    shift_position: int = 4
-    jerk_periods: int = 4
+    enable: bool
+    accel_current: float
+    box_J: float
+    box_psi: float
+    speed_frac: float
+    hold_current: float
+    shift_speed: int
+    shift_position: int
+    jerk_periods: int
 
 
 @dataclass(frozen=True)
@@ -407,11 +407,11 @@ class FieldWeakening:
     """Field weakening from the voltage margin (issue 15 item 6): the d-current reference
     moves by ``step`` x i_max per control period toward -``i_max_frac`` x i_max while
     |u_raw| > ``u_hi`` x u_max, back toward 0 while |u_raw| < ``u_lo`` x u_max."""
-    enable: bool = True
-    u_hi: float = 0.90
-    u_lo: float = 0.82
-    step: float = 0.02
-    i_max_frac: float = 0.6
+    enable: bool
+    u_hi: float
+    u_lo: float
+    step: float
+    i_max_frac: float
 
 
 @dataclass(frozen=True)
@@ -653,8 +653,8 @@ def _rtl_limits():
          lambda cfg: cfg.control.Ts * cfg.inverter.f_pwm, 1, (1 << ctrl_ppc.width) - 1, ("control.Ts", "inverter.f_pwm")),
         ("PWM half period in clocks x 2^V_FRAC (phase voltages after eq. 36 span up to it, Q14.4 in %d bit)" % F.V_W,
          lambda cfg: cfg.pwm_half_period * (1 << F.V_FRAC), 0, vmax, ("inverter.f_pwm", "fpga.f_clk")),
-        ("PWM half period in clocks (the control computation, ~1000 clocks for N = 4 (rtl/ctrl_seq.v), "
-         "must end before the next PWM boundary)",
+        ("PWM half period in clocks (the work of a control period, from the boundary's reference advance "
+         "to the compare values (rtl/mx_seq.v), must end before the next PWM boundary)",
          lambda cfg: cfg.pwm_half_period, SEQ_LATENCY_MAX, None, ("inverter.f_pwm", "fpga.f_clk")),
         ("encoder counts per control period at max |Omega_e| (speed word Q16.16 in %d bit)" % F.W_W,
          counts_per_ts, 0, (1 << (F.W_W - F.W_FRAC - 1)) - 1,
@@ -684,8 +684,10 @@ def _rtl_limits():
     ]
 
 
-# clocks: control-period latency bound of rtl/ctrl_seq.v (N = 4: 994 measured with the governor and the
-# load estimate, + 40 per saturated word; docs/blocks/ctrl_seq.md)
+# clocks: bound on a control period's work per half period.  It was the latency of the bit-serial
+# ctrl_seq (N = 4: 994 with the governor and the load estimate); rtl/mx_seq.v splits it: the boundary's
+# reference advance and prefetch before the sample, trigger -> cmp_load after it (about 270 at N = 4,
+# docs/blocks/mx_seq.md).  Kept at the old bound: no configuration that passed before is refused.
 SEQ_LATENCY_MAX = 1200
 
 
@@ -732,8 +734,7 @@ def from_dict(d: dict, source: str = "<dict>") -> Config:
         raise ConfigError(f"control.omega_min = {_fmt(c['omega_min'])}, control.omega_max = {_fmt(c['omega_max'])}: "
                           f"Omega_e is empty; allowed: omega_min < omega_max")
     ratings = derive_ratings(v.get("ratings", {}), motor, inverter, c["i_max"], c["N"] * c["Ts"])
-    rb = v.get("robustness")
-    robustness = Robustness(**rb) if rb else Robustness()
+    robustness = Robustness(**_table(v, "robustness"))   # defaults: the schema (one source)
     gv = _table(v, "governor")
     governor = Governor(**dict(gv, box_J=1.0 + robustness.J if gv["box_J"] is None else gv["box_J"],
                                box_psi=1.0 - robustness.psi if gv["box_psi"] is None else gv["box_psi"]))

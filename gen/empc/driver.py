@@ -58,9 +58,20 @@ class Drive:
     async def command(self, **bits) -> None:
         await self.write("CMD", field_value("CMD", **{k: int(v) for k, v in bits.items()}))
 
-    async def control(self, enable: bool, run: bool, complementary: bool = False, pwm_per_control: int = 5) -> None:
-        await self.write("CTRL", field_value("CTRL", enable=int(enable), run=int(run),
-                                             complementary=int(complementary), pwm_per_control=pwm_per_control))
+    async def control(self, enable: bool, run: bool, pwm_per_control: int = 5) -> None:
+        await self.write("CTRL", field_value("CTRL", enable=int(enable), run=int(run), pwm_per_control=pwm_per_control))
+
+    async def write_unlocked(self, name: str, value: int) -> None:
+        """A register that needs the unlock (FAULT_MASK, WDOG_TIMEOUT): its block's key register, then the
+        write (the FPGA still refuses it while the bridges are live or out of the build limits)."""
+        r = _AXIS.get(name) or _GLOBAL[name]
+        key = _AXIS.get(r.unlock) if name in _AXIS else _GLOBAL[r.unlock]
+        await self.write(key.name, key.key)
+        await self.write(name, value)
+
+    async def udc(self, mv: int) -> None:
+        """DC-link voltage in mV: at least every regmap.UDC_FRESH_PERIODS PWM periods (else FAULT.dclink)."""
+        await self.write("UDC", mv)
 
     async def upload_image(self, words: list[int], swap: bool = True) -> None:
         """Write a coefficient image into the inactive bank, then (optionally) request the swap."""

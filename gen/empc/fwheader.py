@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from . import image
 from .regmap import (AXIS_BASE, AXIS_STRIDE, BLOCKS, COEF_BASE, COEF_STRIDE, EMC_CS0_BASE, ID_MAGIC, VERSION,
-                     MapError, WDOG_KEY, WORD_BYTES, Reg)
+                     MapError, UDC_FRESH_PERIODS, UNLOCK_ARM, UNLOCK_KEY, WDOG_KEY, WORD_BYTES, Reg)
 
 ACC_CODE = {"RO": 0, "RW": 1, "WO": 2, "W1C": 3}
 _HDR = "/* Generated from gen/empc/regmap.py by gen/empc/fwheader.py (python -m empc.regmap --all). Do not edit. */"
@@ -45,6 +45,11 @@ def reg_macros(scope: str, r: Reg) -> list[tuple[str, str, int]]:
         q = f"{p}_{f.name.upper()}"
         out += [(f"{q}_SHIFT", f"{f.lsb}u", f.lsb), (f"{q}_MASK", _u(f.mask), f.mask),
                 (f"{q}_WIDTH", f"{f.width}u", f.width)]
+    for f in r.parts():                    # legal ranges: the firmware can check before writing
+        if isinstance(f.legal, range):
+            q = f"{p}_{f.name.upper()}" if r.fields else p
+            out += [(f"{q}_LEGAL_MIN", f"{f.legal.start}u", f.legal.start),
+                    (f"{q}_LEGAL_MAX", f"{f.legal.stop - 1}u", f.legal.stop - 1)]
     return out
 
 
@@ -64,6 +69,12 @@ def constants() -> list[tuple[str, str, int, str]]:
         ("EMPC_ID_MAGIC", _u(ID_MAGIC), ID_MAGIC, "value of ID ('EMPC')"),
         ("EMPC_IP_VERSION", _u(VERSION), VERSION, "value of VERSION (major 31:16, minor 15:8, patch 7:0)"),
         ("EMPC_WDOG_KEY", _u(WDOG_KEY, 4), WDOG_KEY, "write to WDOG_KICK to restart the watchdog"),
+        ("EMPC_UNLOCK_KEY", _u(UNLOCK_KEY, 4), UNLOCK_KEY,
+         "write to UNLOCK: the next write of that block may change FAULT_MASK / WDOG_TIMEOUT"),
+        ("EMPC_UNLOCK_ARM_PERIODS", f"{UNLOCK_ARM}u", UNLOCK_ARM,
+         "the unlock ends at this PWM period start after the key (or at the next write of the block)"),
+        ("EMPC_UDC_FRESH_PERIODS", f"{UDC_FRESH_PERIODS}u", UDC_FRESH_PERIODS,
+         "PWM periods a UDC value stays valid (rewrite it more often, else FAULT.dclink)"),
         ("EMPC_ACC_RO", "0u", 0, "access: read-only"),
         ("EMPC_ACC_RW", "1u", 1, "access: read/write"),
         ("EMPC_ACC_WO", "2u", 2, "access: write pulses (reads 0)"),

@@ -27,7 +27,8 @@ FORMATS = {name: value for name, value in vars(formats).items() if name.isupper(
 IMAGE = {
     "IMG_MAGIC": image.MAGIC, "IMG_LAYOUT": image.LAYOUT, "IMG_DEPTH": image.DEPTH, "IMG_A_CFG": image.A_CFG,
     "IMG_A_WS": image.A_WS, "IMG_A_WNMIN": image.A_WNMIN, "IMG_A_WNMAX": image.A_WNMAX, "IMG_A_UMAX": image.A_UMAX,
-    "IMG_A_EBAR": image.A_EBAR, "IMG_A_USED": image.A_USED, "IMG_A_CSUM": image.A_CSUM, "IMG_A_COLS": image.A_COLS,
+    "IMG_A_EBAR": image.A_EBAR, "IMG_A_USED": image.A_USED, "IMG_A_CSUM": image.A_CSUM, "IMG_A_FMT": image.A_FMT,
+    "IMG_A_COLS": image.A_COLS,
     "IMG_A_GAINS": image.A_GAINS, "IMG_USED": image.USED,
 }
 
@@ -113,10 +114,20 @@ def core_constants(cfg) -> dict[str, int]:
             **{f"FLAG_{name.upper()}": bit for name, bit in core.FLAG_BITS.items()}}       # core flags bits
 
 
+def units(cfg) -> dict[str, float]:
+    """Raw-unit scalings of the configuration (manifest ``units``; part of the format fingerprint)."""
+    return {"volts_per_tick": cfg.volts_per_tick, "amps_per_lsb": cfg.amps_per_lsb,
+            "rad_per_count_electrical": cfg.rad_per_count, "rad_s_per_count_per_ts": cfg.rad_s_per_count_ts}
+
+
 def constants(cfg) -> dict[str, dict[str, int]]:
-    """The table: {section: {NAME: value}} with the sections ``formats``, ``config``, ``image``, ``core``."""
+    """The table: {section: {NAME: value}} with the sections ``formats``, ``config``, ``image``, ``core``.
+    ``image`` ends with IMG_FMT_ID, the build's format fingerprint (image.format_id of every other
+    constant and the units): an image must carry it to be accepted (rtl/mpc_boot.v)."""
     table = {"formats": dict(FORMATS), "config": config_constants(cfg), "image": dict(IMAGE),
              "core": core_constants(cfg)}
+    table["image"]["IMG_FMT_ID"] = image.format_id(
+        {k: v for consts in table.values() for k, v in consts.items()}, units(cfg))
     seen: dict[str, str] = {}
     for section, consts in table.items():
         for name in consts:

@@ -8,20 +8,28 @@ Addresses (words):
   0x002 ws (scheduling speed shift, < 2^SIG_SHIFT_BITS)   0x003 wn_min    0x004 wn_max
   0x005 u_max (Q14.4 PWM ticks)          0x006..0x008 ebar_lim[0..2]
   0x009 number of used words             0x00a checksum (sum of words 0..0x2ff except 0x00a, mod 2^32)
+  0x00b format fingerprint of the build (format_id: the constants that fix what a word means)
+  (all other words below 0x300 are 0 in a generated image and count in the checksum)
   0x040 + j            column j: {shift[11:8], sig[5:0]}  (shift < 2^SIG_SHIFT_BITS; higher bits ignored)
   0x100 + 4(64 i + j)  gain (row i, column j): p0, p1, p2 (sign-extended 18 bit), product shift
+
+The RTL accepts an upload (or the boot image) only as a whole: words 0..USED-1 written in
+ascending order starting at word 0, with the magic, this LAYOUT, the build's N, algorithm 1
+or 2, ncols <= 64, reserved CFG bits 0, USED, the build's format fingerprint and a matching
+checksum (:func:`check` is the same rule in Python; rtl/mpc_boot.v the checker).
 """
 from __future__ import annotations
 
+import zlib
 from pathlib import Path
 
 from . import formats as F
 from .rtlmodel import mpc_core as core
 
 MAGIC = 0x454D5043
-LAYOUT = 1
+LAYOUT = 2              # 2: format fingerprint word A_FMT (layout 1 had none)
 DEPTH = 1024
-A_MAGIC, A_CFG, A_WS, A_WNMIN, A_WNMAX, A_UMAX, A_EBAR, A_USED, A_CSUM = 0, 1, 2, 3, 4, 5, 6, 9, 10
+A_MAGIC, A_CFG, A_WS, A_WNMIN, A_WNMAX, A_UMAX, A_EBAR, A_USED, A_CSUM, A_FMT = 0, 1, 2, 3, 4, 5, 6, 9, 10, 11
 A_COLS = 0x040
 A_GAINS = 0x100
 USED = A_GAINS + 4 * 2 * core.MAX_COLS    # 0x300
@@ -31,7 +39,24 @@ def _u32(v: int) -> int:
     return v & 0xFFFFFFFF
 
 
-def encode(p: core.Params) -> list[int]:
+# header constants that do not change what an image word means (the boot-image choice, the
+# register reset values of the speed correction and the ADC offset), and the fingerprint itself
+FMT_EXCLUDE = ("BOOT_ALGORITHM", "BOOT_TASK_POSITION", "KACC", "KACC_SHIFT", "ADC_OFFSET", "IMG_FMT_ID")
+
+
+def format_id(constants: dict, units: dict) -> int:
+    """Format fingerprint of a build (image word A_FMT, header EMPC_IMG_FMT_ID): CRC-32 (31 bits)
+    of the header constants (formats, scalings, layout, N; without FMT_EXCLUDE) and the raw-unit
+    scalings (volts per PWM tick, amperes per ADC LSB, radians per count, rad/s per count/Ts).
+    Another weight tuning of the same build keeps it; another motor, encoder, inverter, PWM or
+    format gives another one."""
+    text = ";".join(f"{k}={int(v)}" for k, v in sorted(constants.items()) if k not in FMT_EXCLUDE)
+    text += "|" + ";".join(f"{k}={float(v)!r}" for k, v in sorted(units.items()))
+    return zlib.crc32(text.encode()) & 0x7FFFFFFF
+
+
+def encode(p: core.Params, fmt_id: int = 0) -> list[int]:
+    """Image words of ``p`` for a build with format fingerprint ``fmt_id``."""
     if p.ncols > core.MAX_COLS:
         raise ValueError(f"{p.ncols} columns exceed the core's {core.MAX_COLS}")
     w = [0] * DEPTH
@@ -48,6 +73,7 @@ def encode(p: core.Params) -> list[int]:
             raise ValueError(f"ebar_lim[{o}]={p.ebar_lim[o]} does not fit 31 bits")
         w[A_EBAR + o] = p.ebar_lim[o]
     w[A_USED] = USED
+    w[A_FMT] = fmt_id & 0xFFFFFFFF
     for j in range(p.ncols):
         if not 0 <= p.col_shift[j] < (1 << F.SIG_SHIFT_BITS):
             raise ValueError(f"column {j}: operand shift {p.col_shift[j]} does not fit {F.SIG_SHIFT_BITS} bits")
@@ -62,6 +88,35 @@ def encode(p: core.Params) -> list[int]:
 
 def checksum(w: list[int]) -> int:
     return sum(v for a, v in enumerate(w[:USED]) if a != A_CSUM) & 0xFFFFFFFF
+
+
+def check(w: list[int], N: int, fmt_id: int) -> list[str]:
+    """Why the RTL would refuse image ``w`` uploaded in order (empty list: accepted).  The same
+    rule as rtl/mpc_boot.v (header words and checksum of words 0..USED-1)."""
+    out = []
+    if len(w) < USED:
+        out.append(f"{len(w)} words, an image has {USED}")
+        return out
+    cfgw = w[A_CFG]
+    if w[A_MAGIC] != MAGIC:
+        out.append(f"magic {w[A_MAGIC]:#x} != {MAGIC:#x}")
+    if cfgw >> 24 != LAYOUT:
+        out.append(f"layout {cfgw >> 24} != {LAYOUT}")
+    if (cfgw >> 15) & 0x1FF or (cfgw >> 7) & 1:
+        out.append(f"reserved CFG bits set ({cfgw:#x})")
+    if (cfgw >> 13) & 3 not in (1, 2):
+        out.append(f"algorithm {(cfgw >> 13) & 3} not 1 or 2")
+    if (cfgw >> 8) & 0xF != N:
+        out.append(f"N {(cfgw >> 8) & 0xF} != the build's {N}")
+    if cfgw & 0x7F > core.MAX_COLS:
+        out.append(f"ncols {cfgw & 0x7F} > {core.MAX_COLS}")
+    if w[A_USED] != USED:
+        out.append(f"used words {w[A_USED]} != {USED}")
+    if w[A_FMT] != fmt_id:
+        out.append(f"format fingerprint {w[A_FMT]:#x} != the build's {fmt_id:#x}")
+    if checksum(w) != w[A_CSUM]:
+        out.append(f"checksum {w[A_CSUM]:#x} != {checksum(w):#x}")
+    return out
 
 
 def decode(w: list[int]) -> core.Params:

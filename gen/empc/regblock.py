@@ -12,8 +12,8 @@ What the generated module owns (one register = one line of gen/empc/regmap.py):
   register the block decodes itself), stored registers with their reset values, command
   pulses (fields of a WO register; a ``key`` register pulses only on its key; a field-less
   WO register pulses and keeps the written data), W1C bits with set inputs (a write of the
-  register computes old AND NOT data, so a set in the clock of any write to the register is
-  lost: the behaviour of the hand code this replaced), ``floor``;
+  register computes (old AND NOT data) OR set: an event in the clock of any write, even the
+  write that acknowledges that bit, is kept), ``floor``;
 * the read path: a "copy" register has a gated copy, loaded with its value in the clock of
   reg_rd of its word and 0 in every other clock (cleared through the flip-flop reset, no
   multiplexer); "mux" registers share one read register (a case, cleared when no mux
@@ -24,9 +24,17 @@ What the generated module owns (one register = one line of gen/empc/regmap.py):
   ``<w>_we``/``<w>_re`` from a 256-entry address table, no magnitude compares, and
   ``<w>_idx``);
 * safety hooks (emitted only when the map uses them, so they cost nothing otherwise):
-  ``guard``: a write while the named input is high is refused; ``legal``: a write with a
-  field outside its allowed values is refused (the whole word).  A refused write changes
-  nothing and raises the ``wr_refused`` pulse (one clock, registered) for a counter.
+  ``guard``: a write while the named input is high is refused; a field ``guard`` refuses a
+  write that would change that field (or set that pulse) while its input is high;
+  ``legal``: a write with a field outside its allowed values is refused (the whole word);
+  ``unlock``: a write is refused unless the block's key register (``arm``) was written with
+  its key before fewer than ``arm`` pulses of the input ``<key>_tick`` and no other write of
+  the block came in between (the next write of the block consumes the unlock; a wrong key
+  disarms and is refused; a tick as timebase costs a few flip-flops, not a clock counter).  A
+  refused write changes nothing (except fields with ``safe``: writing exactly that value
+  stores it even in a refused write, so switching off is never refused) and raises the
+  ``wr_refused`` pulse (one clock, registered) for a counter;
+* ``wstrobe``: a one-clock ``<port>_wr`` output when a write of that register is accepted.
 
 Ports: a stored register or field is an output named after it (``Reg.part_port``: the
 lower-case register name, ``<reg>_<field>`` for fields); a read-only value an input of the
@@ -107,8 +115,13 @@ class _Gen:
         self.pb = max(1, top.bit_length())             # page bits: low address bits decoded per page
         self.windows = [e for e in b.ext if e.kind == "window" and any(r.ext == e.name for r in self.regs)]
         self.strobes = [e for e in b.ext if e.kind == "strobe" and any(r.ext == e.name for r in self.regs)]
-        self.guards = sorted({r.guard for r in self.regs if r.guard})
-        self.refuse = bool(self.guards) or any(f.legal is not None for r in self.regs for f in r.parts())
+        self.guards = sorted({r.guard for r in self.regs if r.guard} |
+                             {f.guard for r in self.regs for f in r.parts() if f.guard})
+        self.arms = [r for r in self.regs if r.arm is not None]
+        if len(self.arms) > 1:
+            raise ValueError(f"{b.module}: more than one key register with arm")
+        self.refuse = bool(self.guards) or bool(self.arms) or any(
+            f.legal is not None for r in self.regs for f in r.parts())
 
     # ------------------------------------------------------------------ helpers
     def members(self, ext_name: str) -> list[Reg]:
@@ -191,7 +204,13 @@ class _Gen:
         return out
 
     def ok_expr(self, r: Reg) -> str:
-        t = ([f"!{r.guard}"] if r.guard else []) + self.legal_terms(r)
+        t = ([f"!{r.guard}"] if r.guard else []) + (["unl"] if r.unlock else []) + self.legal_terms(r)
+        k = self.k[r.name]
+        for f in r.parts():
+            if f.guard and k.stored:         # rewriting the stored value is not a change
+                t.append(f"(!{f.guard} || {_wd(f)} == {r.part_port(f)})")
+            elif f.guard:                    # a pulse field: a 1 is refused
+                t.append(f"(!{f.guard} || {_wd(f)} == {_vlit(f.width, 0)})")
         return " && ".join(t)
 
     # ------------------------------------------------------------------ ports
@@ -233,21 +252,30 @@ class _Gen:
                         P.append(("input", f"{p}_set", 1, False, f"set {what}"))
                 elif k.pulses:
                     P.append(("output", p, f.width, False, f"{what}: pulse"))
-                elif k.key:
+                elif k.key and r.arm is None:
                     P.append(("output", p, 1, False, f"{what}: pulse when {r.key:#x} is written"))
                 elif k.wodata:
                     P.append(("output", p, 1, False, f"{what}: pulse"))
                     P.append(("output", f"{p}_data", f.width, False, f"{what}: written value"))
                 elif k.strobe or k.inp:
                     P.append(("input", p, f.width, sg, f"{what} value"))
+            if r.wstrobe:
+                P.append(("output", f"{r.base}_wr", 1, False, f"{r.name}: pulse when a write is accepted"))
         for e in self.windows:
             if e.rdata_port not in [x[1] for x in P]:
                 P.append(("input", e.rdata_port, 32, False, "window read data (0 unless read)"))
         for g in self.guards:
             P.append(("input", g, 1, False, "guard: writes to its registers are refused while high"))
+        for a in self.arms:
+            P.append(("input", f"{a.base}_tick", 1, False, f"timebase of the {a.name} unlock (pulses)"))
+            P.append(("output", f"{a.base}_armed", self.arm_w(), False,
+                      f"{a.name} unlock: ticks left, 0 = not armed (status, proofs)"))
         if self.refuse:
-            P.append(("output", "wr_refused", 1, False, "pulse: a write was refused (guard or illegal value)"))
+            P.append(("output", "wr_refused", 1, False, "pulse: a write was refused (guard, unlock or illegal value)"))
         return P
+
+    def arm_w(self) -> int:
+        return self.arms[0].arm.bit_length()
 
     def window_guard(self, ext_name: str) -> str:
         """The guard of a window's writable registers ("" if none)."""
@@ -300,7 +328,8 @@ class _Gen:
 
     def is_reg_out(self, name: str) -> bool:
         return name not in ("reg_rdata",) and not any(name == f"{e.name}_{s}" for e in self.windows
-                                                     for s in ("we", "re", "idx"))
+                                                     for s in ("we", "re", "idx")) \
+            and not any(name == f"{a.base}_armed" for a in self.arms)
 
     def render_legal_tables(self) -> list[str]:
         L = []
@@ -327,12 +356,22 @@ class _Gen:
         L.append("    // ---------------- write decode: one predecode per page, a case on the low bits")
         for p in pages:
             L.append(f"    wire wr_p{p} = reg_wr && (reg_addr[{self.aw - 1}:{self.pb}] == {_vlit(hb, p)});")
+        if self.arms:
+            a = self.arms[0]
+            L.append(f"    // unlock: {a.name} armed with its key until the {a.arm}th {a.base}_tick; the next write of "
+                     "the block consumes it")
+            L.append(f"    reg  {_rng(self.arm_w())} unl_cnt;")
+            L.append("    wire unl = |unl_cnt;")
+            L.append(f"    assign {a.base}_armed = unl_cnt;")
         L.append("    always @(posedge clk) begin")
         for r, k, f, p in self.each_part(wregs):         # pulses default to 0
             if k.pulses:
                 L.append(f"        {p} <= {_vlit(f.width, 0)};")
-            elif k.key or k.wodata:
+            elif (k.key and r.arm is None) or k.wodata:
                 L.append(f"        {p} <= 1'b0;")
+        for r in wregs:
+            if r.wstrobe:
+                L.append(f"        {r.base}_wr <= 1'b0;")
         for e in self.strobes:
             L.append(f"        {e.name}_we <= {_vlit(len(self.members(e.name)), 0)};")
         if self.refuse:
@@ -348,12 +387,17 @@ class _Gen:
                 L.append(f"            {p}_data <= {_vlit(f.width, 0)};")
         for e in self.strobes:
             L.append(f"            {e.name}_wdata <= {_vlit(max(m.width for m in self.members(e.name)), 0)};")
+        if self.arms:
+            L.append(f"            unl_cnt <= {_vlit(self.arm_w(), 0)};")
         L.append("        end else begin")
         for r in wregs:
             if self.k[r.name].w1c:
                 for f in r.parts():
                     p = r.part_port(f)
                     L.append(f"            if ({p}_set) {p} <= 1'b1;")
+        if self.arms:
+            L.append(f"            if (reg_wr) unl_cnt <= {_vlit(self.arm_w(), 0)};   // consumed by any write")
+            L.append(f"            else if (unl && {self.arms[0].base}_tick) unl_cnt <= unl_cnt - 1'b1;")
         for p in pages:
             L.append(f"            if (wr_p{p}) begin")
             L.append(f"                case (reg_addr[{self.pb - 1}:0])")
@@ -366,6 +410,10 @@ class _Gen:
                     L += [f"                            {s}" for s in body]
                     L.append("                        end else begin")
                     L.append("                            wr_refused <= 1'b1;")
+                    for f in r.parts():
+                        if f.safe is not None:       # switching off is never refused
+                            v = _vlit(f.width, f.safe)
+                            L.append(f"                            if ({_wd(f)} == {v}) {r.part_port(f)} <= {v};")
                     L.append("                        end")
                 else:
                     L += [f"                        {s}" for s in body]
@@ -398,7 +446,7 @@ class _Gen:
             p = r.part_port(f)
             d = _wd(f)
             if k.w1c:
-                out.append(f"{p} <= {p} & ~{d};")
+                out.append(f"{p} <= ({p} & ~{d}) | {p}_set;")
             elif k.stored:
                 if f.floor is not None:
                     cond = f"{d} == {_vlit(f.width, 0)}" if f.floor == 1 else f"{d} < {_vlit(f.width, f.floor)}"
@@ -407,11 +455,16 @@ class _Gen:
                     out.append(f"{p} <= {d};")
             elif k.pulses:
                 out.append(f"{p} <= {d};")
+            elif k.key and r.arm is not None:
+                out += [f"if ({d} == {_vlit(f.width, r.key)}) unl_cnt <= {_vlit(self.arm_w(), r.arm)};",
+                        "else wr_refused <= 1'b1;"]
             elif k.key:
                 out.append(f"{p} <= ({d} == {_vlit(f.width, r.key)});")
             elif k.wodata:
                 out.append(f"{p} <= 1'b1;")
                 out.append(f"{p}_data <= {d};")
+        if r.wstrobe:
+            out.append(f"{r.base}_wr <= 1'b1;")
         return out
 
     def render_windows(self) -> list[str]:
@@ -586,6 +639,7 @@ class Model:
             if k.stored:
                 self.state[p] = self._reset_of(r, f)
         self.q = 0
+        self.unl = 0                    # unlock counter (ticks the key register's unlock stays armed)
 
     def _value(self, r: Reg, ins: dict) -> int:
         """32-bit read word of a readable register."""
@@ -620,13 +674,21 @@ class Model:
         for p in {e.rdata_port for e in self.g.windows}:
             rd |= ins[p]
         out["reg_rdata"] = rd
+        for a in self.g.arms:
+            out[f"{a.base}_armed"] = self.unl
         return out
 
-    def _ok(self, r: Reg, ins: dict, wd: int) -> bool:
+    def _ok(self, r: Reg, ins: dict, wd: int, unl: int) -> bool:
         if r.guard and ins[r.guard]:
             return False
+        if r.unlock and not unl:
+            return False
+        k = self.g.k[r.name]
         for f in r.parts():
-            if f.legal is not None and ((wd >> f.lsb) & ((1 << f.width) - 1)) not in set(f.legal):
+            x = (wd >> f.lsb) & ((1 << f.width) - 1)
+            if f.legal is not None and x not in set(f.legal):
+                return False
+            if f.guard and ins[f.guard] and (x != self.state[r.part_port(f)] if k.stored else x != 0):
                 return False
         return True
 
@@ -640,8 +702,12 @@ class Model:
                 if g.k[r.name].readable and r.offset == addr:
                     q = self._value(r, ins)
         for r, k, f, p in g.each_part(g.regs):        # pulses drop
-            if k.pulses or k.key or k.wodata:
+            if k.pulses or (k.key and r.arm is None) or k.wodata:
                 s[p] = 0
+        for r in g.regs:
+            if r.wstrobe:
+                s[f"{r.base}_wr"] = 0
+        unl = self.unl                  # the unlock of this clock (before the edge)
         for e in g.strobes:
             s[f"{e.name}_we"] = 0
         if g.refuse:
@@ -650,6 +716,8 @@ class Model:
             self.reset()
             return
         self.q = q
+        if g.arms:
+            self.unl = 0 if ins["reg_wr"] else max(unl - ins[f"{g.arms[0].base}_tick"], 0)
         old = dict(s)                   # W1C: a write clears from the value before this clock's set
         for r, k, f, p in g.each_part(g.regs):
             if k.w1c and ins[f"{p}_set"]:
@@ -663,9 +731,14 @@ class Model:
                 k = g.k[r.name]
                 if r.offset != addr or r.access == "RO" or k.window:
                     continue
-                if not self._ok(r, ins, wd):
+                if not self._ok(r, ins, wd, unl):
                     s["wr_refused"] = 1
+                    for f in r.parts():                 # safe values pass a refused write
+                        if f.safe is not None and ((wd >> f.lsb) & ((1 << f.width) - 1)) == f.safe:
+                            s[r.part_port(f)] = f.safe
                     continue
+                if r.wstrobe:
+                    s[f"{r.base}_wr"] = 1
                 if k.strobe:
                     mem = g.members(r.ext)
                     s[f"{r.ext}_we"] = 1 << mem.index(r)
@@ -675,11 +748,16 @@ class Model:
                     p = r.part_port(f)
                     x = (wd >> f.lsb) & ((1 << f.width) - 1)
                     if k.w1c:
-                        s[p] = old[p] & ~x & 1
+                        s[p] = ((old[p] & ~x) | ins[f"{p}_set"]) & 1
                     elif k.stored:
                         s[p] = f.floor if (f.floor is not None and x < f.floor) else x
                     elif k.pulses:
                         s[p] = x
+                    elif k.key and r.arm is not None:
+                        if x == r.key:
+                            self.unl = r.arm
+                        else:
+                            s["wr_refused"] = 1
                     elif k.key:
                         s[p] = int(x == r.key)
                     elif k.wodata:

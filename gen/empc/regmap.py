@@ -23,12 +23,21 @@ A register is one ``Reg`` line; the attributes say what the generator builds:
   ext       the storage lives in another block (EXT): strobe/data or window ports
   const     RO register whose value is ``reset`` (no port)
   key       WO: one pulse, only when the written value equals key
+  arm       key register: writing the key arms the block's unlock until the ``arm``-th pulse of the
+            block input ``<port>_tick``; the next write to the block (any register) consumes it; a
+            wrong value disarms and is refused
+  unlock    names the key register (``arm``) whose unlock a write needs: refused unless armed
   floor     RW: a written value below floor is stored as floor
   guard     writes refused (unchanged, ``wr_refused`` pulse) while this input is high
   legal     allowed written values (range or tuple): others refuse the write
+  wstrobe   RW: also a one-clock output ``<port>_wr`` when a write is accepted (freshness timers)
   port      port name when the lower-case register name will not do
   read      "copy" or "mux": read path of this register if not the block's default
-Fields take reset, floor and legal too.  Adding a register: docs/conventions.md.
+Fields take reset, floor and legal too, and two attributes of their own: ``guard`` (a write that
+would change this field while the input is high is refused; rewriting its value is accepted, and
+a pulse field refuses a 1) and ``safe`` (the value a refused write still stores when it writes
+exactly that value: CTRL.enable = 0 switches off even inside a refused write).  A refused write
+changes nothing else.  Adding a register: docs/conventions.md.
 """
 from __future__ import annotations
 
@@ -50,6 +59,25 @@ WDOG_KEY = 0x5A5A
 EMC_CS0_BASE = 0x80000000
 WORD_BYTES = 4
 ACCESS = ("RO", "RW", "WO", "W1C")
+# ADC plausibility persistence (build-time, rtl/adc_spi.v parameter defaults via empc_regs.vh)
+ADC_STUCK_FRAMES = 4      # consecutive frames with a code at a rail -> FAULT.adc_stuck
+ADC_SUM_FRAMES = 4        # consecutive frames with |sum of the phase currents| > ADC_SUM_THRESH -> FAULT.adc_sum
+ADC_FROZEN_PERIODS = 4    # consecutive PWM periods (bridges on) with a channel bit-identical -> FAULT.adc_frozen
+# Build-time hard limits of the board (issue 14): the register blocks refuse (``legal``) every write
+# outside them, whatever the CPU does; the safety settings change only with the bridges off
+# (``guard="bridges_live"``: CTRL.enable set or the outputs switching; globally: on any axis).
+ADC_CODE_BITS = 12        # current ADC code width (ADC_OFFx, OC_THRESH)
+DEAD_TIME_MIN = 20        # complementary-mode dead time floor, fabric clocks (200 ns at 100 MHz)
+OC_THRESH_MAX = 1900      # ADC LSB (19 A at 10 mA/LSB): below the ADC rails for every legal offset, so that
+                          # |code - offset| > OC_THRESH stays reachable in both directions
+ADC_OFF_LEGAL = range(OC_THRESH_MAX + 1, (1 << ADC_CODE_BITS) - 1 - OC_THRESH_MAX)   # 1901..2194
+WDOG_TIMEOUT_BITS = 11    # WDOG_TIMEOUT: 1..2047 PWM periods (102 ms at 20 kHz); 0 (off) is refused: the watchdog
+WDOG_TIMEOUT_MAX = (1 << WDOG_TIMEOUT_BITS) - 1   # cannot be disabled
+UDC_FRESH_PERIODS = 200   # PWM periods (10 ms): UDC not rewritten for this long -> FAULT.dclink (stale value)
+SEQ_STALL_PERIODS = 2     # PWM periods without new compare values -> FAULT.overrun (stalled sequencer)
+UNLOCK_KEY = 0xC0DE       # UNLOCK: arms one write of FAULT_MASK (axis) / WDOG_TIMEOUT (global)
+UNLOCK_ARM = 2            # the unlock ends at the 2nd PWM period start after the key (50..100 us) or at the
+                          # next write of the block, whichever is first
 
 
 @dataclass(frozen=True)
@@ -61,6 +89,8 @@ class Field:
     reset: int | str | None = None      # None: the register's reset bits; str: empc_formats.vh macro
     floor: int | None = None
     legal: range | tuple | None = None
+    guard: str = ""                     # field guard: a change of this field is refused while high
+    safe: int | None = None             # stored even by a refused write that writes this value
 
     @property
     def mask(self) -> int:
@@ -108,6 +138,9 @@ class Reg:
     floor: int | None = None
     port: str = ""
     read: str = ""
+    arm: int | None = None      # key register: clocks an unlock stays armed
+    unlock: str = ""            # the key register (with arm) this register's writes need
+    wstrobe: bool = False       # output <port>_wr: pulse when a write is accepted
 
     @property
     def base(self) -> str:
@@ -167,6 +200,24 @@ class Reg:
             v -= 1 << self.width
         return v & 0xFFFFFFFF
 
+    def accepts(self, value: int, live: bool = False, unlocked: bool = False, stored: int | None = None) -> bool:
+        """Whether the register block accepts a write of ``value`` (the rules of the generated
+        blocks, gen/empc/regblock.py): ``live`` = the guard inputs are high, ``unlocked`` = the key
+        register armed it, ``stored`` = the register's word now (field guards accept a rewrite of the
+        stored field; None: the reset word with build fields 0)."""
+        if (self.guard and live) or (self.unlock and not unlocked):
+            return False
+        old = self.reset_int() if stored is None else stored
+        for f in self.parts():
+            x = (value >> f.lsb) & ((1 << f.width) - 1)
+            if f.legal is not None and x not in f.legal:
+                return False
+            if f.guard and live:
+                keep = (old >> f.lsb) & ((1 << f.width) - 1) if self.access == "RW" else 0
+                if x != keep:
+                    return False
+        return True
+
     @property
     def attrs(self) -> str:
         """Short text of the generator attributes (docs)."""
@@ -177,14 +228,24 @@ class Reg:
             out.append("constant")
         if self.key is not None:
             out.append(f"key {self.key:#x}")
+        if self.arm is not None:
+            out.append(f"key arms one write for {self.arm} clocks")
+        if self.unlock:
+            out.append(f"needs {self.unlock}")
         if self.guard:
             out.append(f"refused while {self.guard}")
+        if self.wstrobe:
+            out.append("write strobe")
         for f in self.parts():
             n = f"{f.name} " if self.fields else ""
             if f.floor is not None:
                 out.append(f"{n}below {f.floor} stored as {f.floor}")
             if f.legal is not None:
                 out.append(f"{n}legal {_legal_text(f.legal)}")
+            if f.guard:
+                out.append(f"{n}changes refused while {f.guard}")
+            if f.safe is not None:
+                out.append(f"{n}{f.safe} always accepted")
         return ", ".join(out)
 
 
@@ -204,11 +265,15 @@ GLOBAL = (
         Field("naxes", 0, 4, "axes in this bitstream"),
         Field("horizon", 4, 4, "prediction horizon N of the core"),
         Field("img_layout", 8, 8, "coefficient image layout version"),
-        Field("pwm_per_control", 16, 8, "PWM periods per control period Ts (reset value)"))),
+        Field("pwm_per_control", 16, 8, "PWM periods per control period Ts (reset value)"),
+        Field("complementary", 24, 1, "bridge mode of the build (board): 0 = PWM + enable (LX_PWR), "
+              "1 = complementary high/low with dead time"))),
     Reg("PWM_HALF", 0x003, "RO", 0, "PWM half period in fabric clocks (centre-aligned: period = 2 x this)."),
     Reg("SCRATCH", 0x004, "RW", 0, "Free for bus tests.", read="copy"),
-    Reg("WDOG_TIMEOUT", 0x008, "RW", 400, "Watchdog timeout in PWM periods (0 disables). Expiry latches the "
-        "watchdog fault on every axis (all bridges off).", width=16),
+    Reg("WDOG_TIMEOUT", 0x008, "RW", 400, "Watchdog timeout in PWM periods. Expiry latches the watchdog fault "
+        "on every axis (all bridges off, not maskable). Written only with every axis off and right after "
+        "UNLOCK; 0 (off) is refused.", width=WDOG_TIMEOUT_BITS,
+        legal=range(1, WDOG_TIMEOUT_MAX + 1), guard="bridges_live", unlock="WDOG_UNLOCK"),
     Reg("WDOG_KICK", 0x009, "WO", 0, f"Write {WDOG_KEY:#06x} to restart the watchdog; other values are ignored.",
         width=16, key=WDOG_KEY),
     Reg("TIME", 0x00a, "RO", 0, "Free-running PWM period counter.", port="time_cnt"),
@@ -217,57 +282,104 @@ GLOBAL = (
         Field("fault", 1, 1, "a fault latched on any axis"))),
     Reg("IRQ_ENABLE", 0x00c, "RW", 0, "Interrupt enables (same bits as IRQ_STATUS); cpu_irq = OR of "
         "(status AND enable).", width=2),
+    Reg("WDOG_UNLOCK", 0x00d, "WO", 0, f"Write {UNLOCK_KEY:#06x} to let the next write of a global register change "
+        "WDOG_TIMEOUT (within the arm time; any other value is refused).", width=16, key=UNLOCK_KEY,
+        arm=UNLOCK_ARM),
+
 )
+
+# FAULT: one bit per cause, contiguous from bit 0 (FAULT_MASK has the same bits; mpc_axis: NCAUSE =
+# EMPC_A_FAULT_W).  Adding a cause = one line here plus its signal in mpc_axis.v.
+FAULT_CAUSES = (
+    Field("overcurrent", 0, 1, "|phase current| above OC_THRESH in some ADC frame (every frame is "
+          "checked)"),
+    Field("hall", 1, 1, "illegal HALL code 000 or 111"),
+    Field("encoder", 2, 1, "illegal quadrature transition"),
+    Field("watchdog", 3, 1, "CPU did not kick the watchdog in time (not maskable)"),
+    Field("dclink", 4, 1, f"UDC outside UDC_MIN..UDC_MAX, or not rewritten for {UDC_FRESH_PERIODS} PWM periods "
+          "(stale; UDC resets to 0: missing)"),
+    Field("overrun", 5, 1, f"a control computation did not finish before its PWM update, or the sequencer "
+          f"loaded no compare values for {SEQ_STALL_PERIODS} PWM periods (stalled; not maskable)"),
+    Field("adc", 6, 1, "ADC frame error (leading zero bit read as 1)"),
+    Field("pstage", 7, 1, "power-stage fault input pwr_fault_n was low (clock-independent kill; not maskable)"),
+    Field("clock", 8, 1, "PLL lock lost or fabric clock stopped (clock-independent kill; not maskable)"),
+    Field("coef", 9, 1, "the active coefficient bank holds no valid image (bad boot image; not maskable)"),
+    Field("hall_enc", 10, 1, "HALL sector and encoder disagree (angle 2+ sectors apart, HALL against or "
+          "beyond the encoder)"),
+    Field("enc_break", 11, 1, "encoder line break: a whole HALL sector crossed with under half its counts"),
+    Field("adc_stuck", 12, 1, f"an ADC code at a rail (0 or full scale) in {ADC_STUCK_FRAMES} consecutive frames"),
+    Field("adc_sum", 13, 1, f"|i_a + i_b + i_c| above ADC_SUM_THRESH in {ADC_SUM_FRAMES} consecutive frames"),
+    Field("adc_frozen", 14, 1, f"an ADC channel bit-identical in every frame of {ADC_FROZEN_PERIODS} PWM "
+          "periods with the bridges on"),
+)
+ADC_PSUM_FIELDS = (Field("sum", 0, 20, "signed 20-bit sum, ADC LSB"), Field("count", 24, 7, "frames"))
 
 AXIS = (
     Reg("CTRL", 0x00, "RW", 0, "Axis control.", (
-        Field("enable", 0, 1, "bridges may switch (PWM running, outputs enabled) unless a fault is latched"),
-        Field("run", 1, 1, "control law active; 0 = bridges enabled with zero voltage (u and ebar held at 0)"),
-        Field("complementary", 2, 1, "bridge mode: 0 = PWM + enable (LX_PWR), 1 = complementary high/low "
-              "with dead time"),
-        Field("pwm_per_control", 8, 8, "PWM periods per control period Ts (>= 1); reset from the header",
-              reset="EMPC_PWM_PER_CONTROL", floor=1))),
+        Field("enable", 0, 1, "bridges may switch (PWM running, outputs enabled) unless a fault is latched; "
+              "0 is accepted even in a refused write (switching off is never refused)", safe=0),
+        Field("run", 1, 1, "control law active; 0 = bridges enabled with zero voltage (u and ebar held at 0); "
+              "0 always accepted", safe=0),
+        Field("pwm_per_control", 8, 8, "PWM periods per control period Ts (1..255; 0 is refused); reset from "
+              "the header; changes refused while the bridges are live (the bridge mode is a build parameter: "
+              "CAPS.complementary)", reset="EMPC_PWM_PER_CONTROL", legal=range(1, 256), guard="bridges_live"))),
     Reg("CMD", 0x01, "WO", 0, "Command pulses (write 1).", (
         Field("fault_clear", 0, 1, "clear latched faults (only those whose cause has gone)"),
-        Field("adc_cal", 1, 1, "start ADC offset calibration (keep enable = 0: bridges off)"),
+        Field("adc_cal", 1, 1, "start ADC offset calibration (the write is refused while the bridges are live; "
+              "bridges coming on abort it)", guard="bridges_live"),
         Field("ref_sync", 2, 1, "set the reference generator to the measured output (bumpless start)"),
-        Field("coef_swap", 3, 1, "make the uploaded coefficient bank active at the next control period"),
+        Field("coef_swap", 3, 1, "make the uploaded coefficient bank active at the next control-period sample "
+              "instant; refused (STATUS.swap_refused, CNT_SWAP_REF) unless it holds a complete valid image"),
         Field("clear_counters", 4, 1, "zero the saturation and event counters"),
         Field("align_clear", 5, 1, "forget the index alignment (back to HALL alignment)"))),
     Reg("STATUS", 0x02, "RO", 0, "Axis state.", (
-        Field("running", 0, 1, "control law running"),
-        Field("bridges_on", 1, 1, "outputs enabled (enable and no fault)"),
+        Field("running", 0, 1, "control law running (CTRL.run and the outputs switching)"),
+        Field("bridges_on", 1, 1, "the outputs are switching (pwm_center's output state: enable, no fault, "
+              "angle valid, valid coefficient image, started at a period boundary)"),
         Field("aligned", 2, 1, "angle aligned at the encoder index (else HALL rough alignment)"),
         Field("adc_cal_busy", 3, 1, "ADC offset calibration in progress"),
         Field("adc_cal_done", 4, 1, "ADC calibration has completed since reset"),
         Field("core_ready", 5, 1, "MPC core loaded its boot coefficients"),
         Field("coef_bank", 6, 1, "active coefficient bank"),
         Field("swap_pending", 7, 1, "a bank swap waits for the next control period"),
-        Field("fault", 8, 1, "a fault is latched (bridges forced off)"))),
-    Reg("FAULT", 0x03, "RO", 0, "Latched (sticky) fault causes; cleared by CMD.fault_clear once the cause has gone.", (
-        Field("overcurrent", 0, 1, "|phase current| above OC_THRESH"),
-        Field("hall", 1, 1, "illegal HALL code 000 or 111"),
-        Field("encoder", 2, 1, "illegal quadrature transition"),
-        Field("watchdog", 3, 1, "CPU did not kick the watchdog in time"),
-        Field("dclink", 4, 1, "UDC outside UDC_MIN..UDC_MAX"),
-        Field("overrun", 5, 1, "the control computation did not finish before the PWM update"),
-        Field("adc", 6, 1, "ADC frame error (leading zero bit read as 1)"))),
-    Reg("FAULT_MASK", 0x04, "RW", 0x7f, "Fault causes that switch the bridges off (same bits as FAULT). "
-        "Masked causes are still recorded in FAULT.", width=7),
-    Reg("DEAD_TIME", 0x05, "RW", 50, "Dead time in fabric clocks (complementary mode).", width=8),
+        Field("fault", 8, 1, "a fault is latched (bridges forced off)"),
+        Field("coef_valid", 9, 1, "the inactive bank holds a complete valid upload (a swap would be accepted)"),
+        Field("swap_refused", 10, 1, "the last decided coefficient swap was refused (until a swap is accepted)"),
+        Field("adc_refused", 11, 1, "an ADC calibration or offset write was refused or a calibration aborted "
+              "(bridges on / calibrating); CMD.clear_counters clears it"),
+        Field("wr_refused", 12, 1, "a register write was refused (CNT_WR_REFUSED); CMD.clear_counters clears it"))),
+    Reg("FAULT", 0x03, "RO", 0, "Latched (sticky) fault causes; cleared by CMD.fault_clear once the cause has gone.",
+        FAULT_CAUSES),
+    Reg("FAULT_MASK", 0x04, "RW", (1 << len(FAULT_CAUSES)) - 1, "Fault causes that switch the bridges off (same "
+        "bits as FAULT). Masked causes are still recorded in FAULT; watchdog, overrun, pstage, clock and coef "
+        "always trip. Written only with the bridges off and right after UNLOCK.", width=len(FAULT_CAUSES),
+        guard="bridges_live", unlock="UNLOCK"),
+    Reg("DEAD_TIME", 0x05, "RW", 50, f"Dead time in fabric clocks (complementary mode; at least the board's "
+        f"{DEAD_TIME_MIN}).", width=8, legal=range(DEAD_TIME_MIN, 256), guard="bridges_live"),
     Reg("KDC", 0x06, "RW", 1 << 16, "DC-link compensation Udc_nominal / Udc, unsigned Q2.16 (1.0 = 0x10000).",
         width=18),
-    Reg("UDC", 0x07, "RW", 36000, "DC-link voltage in mV as measured by the CPU (checked against UDC_MIN..MAX).",
-        width=16),
-    Reg("UDC_MIN", 0x08, "RW", 0, "Lowest allowed DC link, mV (0 disables the lower check).", width=16),
-    Reg("UDC_MAX", 0x09, "RW", 0xffff, "Highest allowed DC link, mV.", width=16),
-    Reg("OC_THRESH", 0x0a, "RW", 1800, "Overcurrent threshold, ADC LSB of |code - offset| (per phase).", width=12),
-    Reg("ADC_OFF0", 0x0b, "RW", "EMPC_ADC_OFFSET", "ADC offset phase A (calibration writes it; reads the active "
-        "value).", width=12, ext="adc_off"),
-    Reg("ADC_OFF1", 0x0c, "RW", "EMPC_ADC_OFFSET", "ADC offset phase B.", width=12, ext="adc_off"),
-    Reg("ADC_OFF2", 0x0d, "RW", "EMPC_ADC_OFFSET", "ADC offset phase C.", width=12, ext="adc_off"),
-    Reg("ANGLE_CAL", 0x0e, "RW", 0, "Electrical angle at the encoder index (2^16 = one electrical turn).", width=16),
-    Reg("HALL_OFFSET", 0x0f, "RW", 0, "Electrical angle of the HALL sector-1 start (2^16 = one turn).", width=16),
+    Reg("UDC", 0x07, "RW", 0, f"DC-link voltage in mV as measured by the CPU, checked against UDC_MIN..MAX; it "
+        f"resets to 0 (missing: below UDC_MIN) and must be rewritten at least every {UDC_FRESH_PERIODS} PWM "
+        "periods (else stale: FAULT.dclink).", width=16, wstrobe=True),
+    Reg("UDC_MIN", 0x08, "RW", 10000, "Lowest allowed DC link, mV (1..65534).", width=16,
+        legal=range(1, 0xffff), guard="bridges_live"),
+    Reg("UDC_MAX", 0x09, "RW", 60000, "Highest allowed DC link, mV (1..65534).", width=16,
+        legal=range(1, 0xffff), guard="bridges_live"),
+    Reg("OC_THRESH", 0x0a, "RW", 1800, f"Overcurrent threshold, ADC LSB of |code - offset| (per phase, every "
+        f"frame; 1..{OC_THRESH_MAX}, the board's limit).", width=ADC_CODE_BITS,
+        legal=range(1, OC_THRESH_MAX + 1), guard="bridges_live"),
+    Reg("ADC_OFF0", 0x0b, "RW", "EMPC_ADC_OFFSET", f"ADC offset phase A (calibration writes it; reads the active "
+        f"value; {ADC_OFF_LEGAL.start}..{ADC_OFF_LEGAL.stop - 1}: any legal offset and threshold leave both rails "
+        "beyond the threshold; writes refused with the bridges live, and by adc_spi while calibrating: "
+        "STATUS.adc_refused).", width=ADC_CODE_BITS, ext="adc_off", legal=ADC_OFF_LEGAL, guard="bridges_live"),
+    Reg("ADC_OFF1", 0x0c, "RW", "EMPC_ADC_OFFSET", "ADC offset phase B.", width=ADC_CODE_BITS, ext="adc_off",
+        legal=ADC_OFF_LEGAL, guard="bridges_live"),
+    Reg("ADC_OFF2", 0x0d, "RW", "EMPC_ADC_OFFSET", "ADC offset phase C.", width=ADC_CODE_BITS, ext="adc_off",
+        legal=ADC_OFF_LEGAL, guard="bridges_live"),
+    Reg("ANGLE_CAL", 0x0e, "RW", 0, "Electrical angle at the encoder index (2^16 = one electrical turn).", width=16,
+        guard="bridges_live"),
+    Reg("HALL_OFFSET", 0x0f, "RW", 0, "Electrical angle of the HALL sector-1 start (2^16 = one turn).", width=16,
+        guard="bridges_live"),
     Reg("KACC", 0x10, "RW", 0, "Speed estimate (docs/blocks/ctrl_seq.md): omega = eq. 37 + (KACC * i_q) >> "
         "KACC_SHIFT - D, D the load estimate (reset from the header; kacc = 0: plain eq. 37).", (
         Field("kacc", 0, 18, "signed gain", reset="EMPC_KACC"),
@@ -328,6 +440,12 @@ AXIS = (
         "period.",
         width=16),
     Reg("PERIODS", 0x2b, "RO", 0, "Control periods run since enable.", ext="cnt"),
+    Reg("ADC_PSUM0", 0x2c, "RO", 0, "Phase A: sum of code - offset over the ADC frames of the last complete PWM "
+        "period, and their number (period mean = sum / count; both from the same period).", ADC_PSUM_FIELDS),
+    Reg("ADC_PSUM1", 0x2d, "RO", 0, "Phase B: as ADC_PSUM0.", ADC_PSUM_FIELDS),
+    Reg("ADC_PSUM2", 0x2e, "RO", 0, "Phase C: as ADC_PSUM0.", ADC_PSUM_FIELDS),
+    Reg("CNT_WR_REFUSED", 0x2f, "RO", 0, "Refused writes of this axis' registers and of the global registers "
+        "(guard, unlock or illegal value; 8-bit, saturating; CMD.clear_counters zeroes it).", width=8),
     Reg("SAT_OPERAND", 0x30, "RO", 0, "Saturation counter: core operand. SAT_* and CNT_OVERRUN count control "
         "periods in which the event happened (32-bit, saturating; updated after the control period's "
         "modulation).", ext="cnt"),
@@ -343,11 +461,20 @@ AXIS = (
     Reg("SAT_SIGNAL", 0x3a, "RO", 0, "Saturation counter: core signal (SIG_W).", ext="cnt"),
     Reg("SAT_FRONT", 0x3b, "RO", 0, "Saturation counter: front end (transforms, speed, duty).", ext="cnt"),
     Reg("CNT_OVERRUN", 0x3c, "RO", 0, "Control computations that missed their PWM update.", ext="cnt"),
-    Reg("CNT_ADC_MISS", 0x3d, "RO", 0, "ADC triggers ignored while busy (8-bit, saturating; not cleared by "
+    Reg("CNT_ADC_MISS", 0x3d, "RO", 0, "PWM centres that missed the ADC sampling window (trigger off the frame "
+        "grid, or a sync restart cut the window: no current sample that period; 8-bit, saturating; not cleared by "
         "CMD.clear_counters).", width=8),
     Reg("CNT_ENC_ERR", 0x3e, "RO", 0, "Illegal quadrature transitions (16-bit, saturating).", width=16),
     Reg("SAT_GOV", 0x3f, "RO", 0, "Counter: the reference governor shaped the reference (current limit: a clamp "
         "or its hold was active).", ext="cnt"),
+    # issue 14 (safety), beyond the 64-word status memory of axis_status (offsets 0x40..):
+    Reg("ADC_SUM_THRESH", 0x40, "RW", 300, f"Sum-of-currents threshold, ADC LSB of |d_a + d_b + d_c| (d = code - "
+        f"offset), checked on every frame (FAULT.adc_sum; 1..{OC_THRESH_MAX}).", width=ADC_CODE_BITS,
+        legal=range(1, OC_THRESH_MAX + 1), guard="bridges_live"),
+    Reg("UNLOCK", 0x41, "WO", 0, f"Write {UNLOCK_KEY:#06x} to let the next write of this axis change FAULT_MASK "
+        "(within the arm time; any other value is refused).", width=16, key=UNLOCK_KEY, arm=UNLOCK_ARM),
+    Reg("CNT_SWAP_REF", 0x42, "RO", 0, "Refused coefficient swaps (8-bit, saturating; CMD.clear_counters zeroes "
+        "it).", width=8),
 )
 
 
@@ -425,6 +552,16 @@ def check(regs, span: int, ext=EXT, what: str = "map") -> None:
             bad(r, f"read {r.read!r} not copy or mux")
         if r.guard and (r.access == "RO" or not _IDENT.match(r.guard)):
             bad(r, "guard needs a writable register and a lower-case identifier")
+        if r.arm is not None and (r.key is None or not 1 <= r.arm < (1 << 16)):
+            bad(r, "arm needs a key register and 1..65535 ticks")
+        if r.unlock:
+            k = next((x for x in regs if x.name == r.unlock), None)
+            if k is None or k.arm is None:
+                bad(r, f"unlock {r.unlock!r} is not a key register with arm in this block")
+            if r.access not in ("RW", "WO") or r.ext:
+                bad(r, "unlock applies to RW/WO registers decoded by the block")
+        if r.wstrobe and (r.access != "RW" or r.ext):
+            bad(r, "wstrobe needs a stored RW register")
         if r.access == "W1C" and (r.ext or any(f.width != 1 for f in r.parts())):
             bad(r, "W1C registers are 1-bit fields stored in the block")
         e = exts.get(r.ext)
@@ -444,6 +581,12 @@ def check(regs, span: int, ext=EXT, what: str = "map") -> None:
                 bad(r, f"reset {f.reset!r} is not an EMPC_* macro of empc_formats.vh")
             if f.floor is not None and (r.access != "RW" or r.ext or not 0 < f.floor < (1 << f.width)):
                 bad(r, "floor applies to stored RW values and must fit the width")
+            if f.guard and (not r.fields or not _IDENT.match(f.guard) or r.ext
+                            or r.access not in ("RW", "WO") or r.key is not None):
+                bad(r, f"field guard of {f.name} needs a field of a stored RW or a pulse WO register")
+            if f.safe is not None and (not r.fields or r.access != "RW" or r.ext
+                                       or not 0 <= f.safe < (1 << f.width)):
+                bad(r, f"safe of {f.name} needs a field of a stored RW register and must fit it")
             if f.legal is not None:
                 vals = list(f.legal)
                 if r.access == "RO" or (e and e.kind == "window") or not vals:
@@ -537,7 +680,13 @@ def render_vh() -> str:
              f"`define EMPC_REG_AXIS_BASE {AXIS_BASE}", f"`define EMPC_REG_AXIS_STRIDE {AXIS_STRIDE}",
              f"`define EMPC_REG_COEF_BASE {COEF_BASE}", f"`define EMPC_REG_COEF_STRIDE {COEF_STRIDE}",
              f"`define EMPC_ID_MAGIC 32'h{ID_MAGIC:08x}", f"`define EMPC_VERSION 32'h{VERSION:08x}",
-             f"`define EMPC_WDOG_KEY {WDOG_KEY}"]
+             f"`define EMPC_WDOG_KEY {WDOG_KEY}", f"`define EMPC_ADC_STUCK_FRAMES {ADC_STUCK_FRAMES}",
+             f"`define EMPC_ADC_SUM_FRAMES {ADC_SUM_FRAMES}", f"`define EMPC_ADC_FROZEN_PERIODS {ADC_FROZEN_PERIODS}",
+             f"`define EMPC_UDC_FRESH_PERIODS {UDC_FRESH_PERIODS}",
+             f"`define EMPC_SEQ_STALL_PERIODS {SEQ_STALL_PERIODS}",
+             f"`define EMPC_UNLOCK_KEY {UNLOCK_KEY}", f"`define EMPC_UNLOCK_ARM {UNLOCK_ARM}",
+             f"`define EMPC_UNLOCK_ARM_W {UNLOCK_ARM.bit_length()}",
+             f"`define EMPC_DEAD_TIME_MIN {DEAD_TIME_MIN}", f"`define EMPC_OC_THRESH_MAX {OC_THRESH_MAX}"]
     names = set()
     for b in BLOCKS:
         for name, v in _macros(b.scope, b.regs, b.ext):

@@ -57,16 +57,16 @@ def _replace_dir(new: Path, final: Path) -> None:
 
 def _write(cfg, out: Path, results: dict, all_designs: bool) -> dict:
     boot = (cfg.control.algorithm, cfg.control.task)
+    consts = header.constants(cfg)
     files = {}
     for (alg, task), r in results.items():
-        words = image.encode(r["params"])
+        words = image.encode(r["params"], consts["image"]["IMG_FMT_ID"])
         name = f"coef_alg{alg}_{task}.hex"
         image.write_hex(words, out / name)
         files[f"alg{alg}_{task}"] = name
         if (alg, task) == boot:
             image.write_hex(words, out / "coef_boot.hex")
     image.write_hex(core.RSQRT, out / "rsqrt.hex", digits=5)
-    consts = header.constants(cfg)
     header.write(cfg, out)
     (out / "empc_regs.vh").write_text(regmap.render_vh())
     manifest = {
@@ -75,10 +75,7 @@ def _write(cfg, out: Path, results: dict, all_designs: bool) -> dict:
         "boot": {"algorithm": boot[0], "task": boot[1], "file": "coef_boot.hex"},
         "formats": consts["formats"],
         "header_constants": {**consts["config"], **consts["image"], **consts["core"]},
-        "units": {
-            "volts_per_tick": cfg.volts_per_tick, "amps_per_lsb": cfg.amps_per_lsb,
-            "rad_per_count_electrical": cfg.rad_per_count, "rad_s_per_count_per_ts": cfg.rad_s_per_count_ts,
-        },
+        "units": header.units(cfg),
         "image_layout": consts["image"],
         "ratings": {"current_A": cfg.ratings.current, "voltage_V": cfg.ratings.voltage,
                     "speed_rad_s_electrical": cfg.ratings.speed, "position_rad_electrical": cfg.ratings.position,

@@ -5,6 +5,8 @@
   algorithm 1 keeps a constant lag on ramps, algorithm 2's ramp error goes to ~0.
 - load_step: position hold with algorithm 2 under a load-torque step (offset-free).
 - speed_alg2: speed steps and a ramp with algorithm 2.
+- fault_step: a 20 rad position step at 0.5 ms (algorithm 2), the base of the short fault
+  co-simulations of issue 14 (not a paper experiment).
 Issue 15 (off the paper's path; BLWR233D: i_max = 10 A, no-load base speed u_max / psi = 1039 rad/s):
 - speed_limit: 150 -> 900 -> 150 rad/s steps, algorithm 1: the current limit (reference governor).
 - position_large: 200 rad position step and back, algorithm 2: the current and speed limit.
@@ -46,6 +48,7 @@ POINTS = {
 }
 FW_LOAD = 0.227         # N m: the BLWR233D's 95 W at 4000 rpm (field_weakening; scaled as load torques)
 POINTS["position_alg2"] = POINTS["position_alg1"]
+POINTS["fault_step"] = [(0.0005, 20.0, "step")]
 
 
 @dataclass(frozen=True)
@@ -124,6 +127,14 @@ def _speed_alg2(sc: Scale) -> Scenario:
                                 f"rad/s, algorithm 2")
 
 
+def _fault_step(sc: Scale) -> Scenario:
+    k = sc.motion
+    segs = [("step", 0.0005, 0.02, 0.0, 20.0 * k)]
+    return Scenario("fault_step", "position", 0.02, steps_and_ramps(_pts("fault_step", k)), segments=segs,
+                    description=f"position step {20 * k:.4g} rad at 0.5 ms (electrical), algorithm 2: the short fault "
+                                "co-simulations (tb/test_closed_loop.py)")
+
+
 def _speed_limit(sc: Scale) -> Scenario:
     k = sc.motion
     segs = [("step", 0.01, 0.11, 0.0, 150.0 * k), ("step", 0.11, 0.21, 150.0 * k, 900.0 * k),
@@ -166,6 +177,7 @@ SCENARIOS = {
     "position_alg2": (lambda sc: _position(2, sc), 2),
     "load_step": (_load_step, 2),
     "speed_alg2": (_speed_alg2, 2),
+    "fault_step": (_fault_step, 2),
     "speed_limit": (_speed_limit, 1),
     "position_large": (_position_large, 2),
     "load_speed": (_load_speed, 2),

@@ -44,7 +44,9 @@ def test_map_layout_lines_short():
 
 def test_vh_widths_and_build_resets():
     vh = regmap.render_vh()
-    assert "`define EMPC_A_KDC_W 18\n" in vh and "`define EMPC_A_FAULT_W 7\n" in vh
+    nfault = len(regmap.axis_reg("FAULT").fields)        # one bit per cause, contiguous from bit 0
+    assert "`define EMPC_A_KDC_W 18\n" in vh and f"`define EMPC_A_FAULT_W {nfault}\n" in vh
+    assert f"`define EMPC_A_FAULT_MASK_W {nfault}\n" in vh
     assert "`define EMPC_A_ADC_OFF0_RESET `EMPC_ADC_OFFSET\n" in vh
     assert "`define EMPC_A_CTRL_PWM_PER_CONTROL_W 8\n" in vh
 
@@ -55,7 +57,9 @@ def test_reset_words():
     assert ctrl.reset_word({"PWM_PER_CONTROL": 5}) == 0x500
     kacc = regmap.axis_reg("KACC")
     assert kacc.reset_word({"KACC": 0x3FFFF, "KACC_SHIFT": 31, "KACC_LOAD_SHIFT": 6}) == 0x1F1BFFFF
-    assert regmap.axis_reg("UDC").reset_word({}) == 36000
+    # DC link: UDC resets to 0, below the reset UDC_MIN: a missing value trips (issue 14 item 2)
+    udc, lo, hi = (regmap.axis_reg(n).reset_word({}) for n in ("UDC", "UDC_MIN", "UDC_MAX"))
+    assert udc == 0 and 0 < lo < hi
 
 
 def test_readback():
@@ -115,3 +119,61 @@ def test_macro_clash_refused(monkeypatch):
     monkeypatch.setattr(regmap, "BLOCKS", (regmap.BLOCKS[0], regmap.Block("axis_regs", "A", regs, "copy", "x")))
     with pytest.raises(MapError, match="STATUS_FAULT"):
         regmap.render_vh()
+
+
+# ---------------------------------------------------------------- issue 14: the safety settings
+SAFETY_REGS = ("FAULT_MASK", "DEAD_TIME", "OC_THRESH", "ADC_SUM_THRESH", "UDC_MIN", "UDC_MAX", "ANGLE_CAL",
+               "HALL_OFFSET", "ADC_OFF0", "ADC_OFF1", "ADC_OFF2")
+
+
+def test_safety_settings_protected():
+    """Every safety setting is refused while the bridges are live; FAULT_MASK and WDOG_TIMEOUT also
+    need the unlock; the build limits are legal ranges; the bridge mode is not a register."""
+    for n in SAFETY_REGS:
+        assert regmap.axis_reg(n).guard == "bridges_live", n
+    ctrl = {f.name: f for f in regmap.axis_reg("CTRL").fields}
+    assert "complementary" not in ctrl, "the bridge mode is a build parameter (CAPS.complementary)"
+    assert ctrl["pwm_per_control"].guard == "bridges_live" and 0 not in ctrl["pwm_per_control"].legal
+    assert ctrl["enable"].safe == 0 and ctrl["run"].safe == 0          # switching off is never refused
+    assert {f.name: f for f in regmap.axis_reg("CMD").fields}["adc_cal"].guard == "bridges_live"
+    assert regmap.axis_reg("FAULT_MASK").unlock == "UNLOCK"
+    wdog = next(r for r in regmap.GLOBAL if r.name == "WDOG_TIMEOUT")
+    assert wdog.unlock == "WDOG_UNLOCK" and wdog.guard == "bridges_live" and 0 not in wdog.legal
+    assert max(wdog.legal) == regmap.WDOG_TIMEOUT_MAX
+    assert min(regmap.axis_reg("DEAD_TIME").legal) == regmap.DEAD_TIME_MIN > 0
+    assert max(regmap.axis_reg("OC_THRESH").legal) == regmap.OC_THRESH_MAX
+    # any legal offset with any legal threshold: both rails of the ADC are beyond the threshold
+    full = (1 << regmap.ADC_CODE_BITS) - 1
+    offs = regmap.axis_reg("ADC_OFF0").legal
+    assert min(offs) - 0 > regmap.OC_THRESH_MAX and full - max(offs) > regmap.OC_THRESH_MAX
+    assert regmap.axis_reg("UDC").wstrobe
+
+
+def test_fault_causes_contiguous():
+    """FAULT: one bit per cause from bit 0 (mpc_axis wires cause k to FAULT bit k); FAULT_MASK the same bits."""
+    f = regmap.axis_reg("FAULT").fields
+    assert [x.lsb for x in f] == list(range(len(f))) and all(x.width == 1 for x in f)
+    m = regmap.axis_reg("FAULT_MASK")
+    assert m.width == len(f) and m.reset == (1 << len(f)) - 1
+
+
+@pytest.mark.parametrize("bad, msg", [
+    (dict(arm=5), "arm needs a key register"),
+    (dict(unlock="NOPE"), "is not a key register with arm"),
+    (dict(wstrobe=True, access="WO"), "wstrobe needs a stored RW register"),
+])
+def test_bad_safety_attributes(bad, msg):
+    kw = dict(width=8)
+    access = bad.pop("access", "RW")
+    kw.update(bad)
+    regs = (regmap.Reg("A", 0, access, 0, "a", **kw),)
+    with pytest.raises(regmap.MapError, match=msg):
+        regmap.check(regs, 256, ())
+
+
+def test_bad_field_safety_attributes():
+    F, R = regmap.Field, regmap.Reg
+    with pytest.raises(regmap.MapError, match="safe of x needs"):
+        regmap.check((R("A", 0, "RW", 0, "a", (F("x", 0, 1, "x", safe=2),)),), 256, ())
+    with pytest.raises(regmap.MapError, match="field guard of x"):
+        regmap.check((R("A", 0, "RO", 0, "a", (F("x", 0, 1, "x", guard="g"),)),), 256, ())

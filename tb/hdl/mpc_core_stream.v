@@ -3,7 +3,8 @@
 // On `go` it resets the core, waits for ready (boot image), then executes the binary command
 // file IN_FILE, back to back (one command byte, then a big-endian record):
 //   'w' addr[2 bytes] data[4 bytes]   cfg write (one per clock)
-//   's'                               cfg_swap, wait until the bank changed
+//   's'                               cfg_swap, then swap_at (a control-period boundary every clock)
+//                                     until the bank changed (a refused swap ends the run)
 //   'v' n[1 byte], n x {addr[1 byte], data[5 bytes]}
 //                                     one update: the n input-buffer words (addr = EMPC_IN_*
 //                                     word address, data = 40-bit two's complement) are written
@@ -43,25 +44,26 @@ module mpc_core_stream #(
     reg in_we = 1'b0;
     reg [5:0] in_addr = 6'd0;
     reg [SW-1:0] in_wdata = {SW{1'b0}};
-    wire busy, done, ready, bank, swap_pending, boot_ok, task_pos;
+    wire busy, done, ready, bank, swap_pending, boot_ok, task_pos, img_ok, upl_ok, swap_refused, refused;
     wire [2*UW-1:0] u, du, u_raw;
     wire [3*SW-1:0] ebar;
     wire signed [17:0] wn;
     wire [10:0] flags;
     wire [7:0] latency;
 
+    localparam [2:0] S_IDLE = 3'd0, S_RST = 3'd1, S_BOOT = 3'd2, S_CMD = 3'd3, S_RUN = 3'd4,
+                     S_SWAP = 3'd5, S_END = 3'd6, S_WR = 3'd7;
+    reg [2:0] state = S_IDLE;
     mpc_core #(.N(N), .BOOT_FILE(BOOT_FILE), .RSQRT_FILE(RSQRT_FILE)) dut (
         .clk(clk), .rst(rst), .start(start), .in_we(in_we), .in_addr(in_addr), .in_wdata(in_wdata),
         .busy(busy), .done(done), .u(u), .du(du),
         .u_raw(u_raw), .ebar(ebar), .wn(wn), .flags(flags), .latency(latency), .fw_thr(32'd0), .fw_hi(), .fw_lo(),
         .cfg_we(cfg_we),
-        .cfg_addr(cfg_addr), .cfg_wdata(cfg_wdata), .cfg_swap(cfg_swap), .ready(ready), .bank(bank),
-        .swap_pending(swap_pending), .boot_ok(boot_ok), .task_pos(task_pos)
+        .cfg_addr(cfg_addr), .cfg_wdata(cfg_wdata), .cfg_swap(cfg_swap), .swap_at(state == S_SWAP && !cfg_swap), .ready(ready),
+        .bank(bank), .swap_pending(swap_pending), .boot_ok(boot_ok), .img_ok(img_ok), .upl_ok(upl_ok),
+        .swap_refused(swap_refused), .refused(refused), .task_pos(task_pos)
     );
 
-    localparam [2:0] S_IDLE = 3'd0, S_RST = 3'd1, S_BOOT = 3'd2, S_CMD = 3'd3, S_RUN = 3'd4,
-                     S_SWAP = 3'd5, S_END = 3'd6, S_WR = 3'd7;
-    reg [2:0] state = S_IDLE;
     reg [3:0] rcnt = 4'd0;
     reg bank0 = 1'b0;
     reg [63:0] t_start = 64'd0;
@@ -155,6 +157,10 @@ module mpc_core_stream #(
                 next_cmd;
             end
             S_SWAP: if (bank != bank0) next_cmd;
+                    else if (refused) begin       // every image of the stream is valid for the build
+                        $display("mpc_core_stream: swap refused (image not valid for this build)");
+                        state <= S_END;
+                    end
             default: if (!finished) begin
                 $fclose(fout);
                 if (fin != 0) $fclose(fin);
@@ -163,6 +169,6 @@ module mpc_core_stream #(
         endcase
     end
 
-    wire unused_ok = &{1'b0, busy, swap_pending, boot_ok, task_pos, latency, r};
+    wire unused_ok = &{1'b0, busy, swap_pending, boot_ok, task_pos, latency, r, img_ok, upl_ok, swap_refused};
 endmodule
 `default_nettype wire

@@ -17,6 +17,8 @@ module mx_seq_tb #(
     input  wire seg_we, input wire [3:0] seg_slot, input wire [2:0] seg_field, input wire [31:0] seg_wdata,
     input  wire start, input wire [3:0] start_slot, input wire sync, input wire sync_bit, output wire [5:0] sync_idx,
     input  wire cfg_we, input wire [9:0] cfg_addr, input wire [31:0] cfg_wdata, input wire cfg_swap,
+    input  wire swap_at,        // extra control-period boundary for a swap before the first period
+    input  wire force_pos,      // position task without an image (N != 4: the build refuses N = 4's images)
     output wire cmp_load, output wire [35:0] cmp, output wire ref_busy, output wire [15:0] latency,
     output wire front_sat, output wire task_pos, output wire core_ready, output wire swap_pending,
     output wire st_we, output wire [5:0] st_addr, output wire [31:0] st_wdata, output wire control_done,
@@ -26,7 +28,7 @@ module mx_seq_tb #(
     wire ref_advance, ref_ok, ref_q; wire [AW-1:0] ref_age; wire [5:0] ref_bit;
     wire core_start, core_done, core_in_we; wire [5:0] core_in_addr; wire signed [`EMPC_SIG_W-1:0] core_in_wdata;
     wire [47:0] core_u, core_du, core_u_raw; wire [3*`EMPC_SIG_W-1:0] core_ebar; wire [17:0] core_wn;
-    wire [10:0] core_flags; wire [7:0] core_latency; wire core_busy, core_bank, core_boot_ok;
+    wire [10:0] core_flags; wire [7:0] core_latency; wire core_busy, core_bank, core_boot_ok, core_task_pos;
     wire pos_sample; wire [17:0] i_d, i_q; wire [31:0] omega; wire [15:0] theta_trig; wire [31:0] seg_rdata;
     ref_gen #(.N(N)) u_ref (.clk(clk), .rst(rst), .seg_we(seg_we), .seg_re(1'b0), .seg_slot(seg_slot),
         .seg_field(seg_field), .seg_wdata(seg_wdata), .seg_rdata(seg_rdata), .start(start), .start_slot(start_slot),
@@ -46,9 +48,11 @@ module mx_seq_tb #(
         .in_wdata(core_in_wdata), .busy(core_busy), .done(core_done), .u(core_u), .du(core_du), .u_raw(core_u_raw),
         .ebar(core_ebar), .wn(core_wn), .flags(core_flags), .latency(core_latency), .fw_thr(32'd0), .fw_hi(),
         .fw_lo(), .cfg_we(cfg_we),
-        .cfg_addr(cfg_addr), .cfg_wdata(cfg_wdata), .cfg_swap(cfg_swap), .ready(core_ready), .bank(core_bank),
-        .swap_pending(swap_pending), .boot_ok(core_boot_ok), .task_pos(task_pos));
-    wire unused = &{1'b0, pos_sample, i_d, i_q, omega, theta_trig, seg_rdata, core_du, core_u_raw, core_wn,
+        .cfg_addr(cfg_addr), .cfg_wdata(cfg_wdata), .cfg_swap(cfg_swap), .swap_at(pos_sample | swap_at),
+        .ready(core_ready), .bank(core_bank), .swap_pending(swap_pending), .boot_ok(core_boot_ok), .img_ok(),
+        .upl_ok(), .swap_refused(), .refused(), .task_pos(core_task_pos));
+    assign task_pos = core_task_pos | force_pos;
+    wire unused = &{1'b0, i_d, i_q, omega, theta_trig, seg_rdata, core_du, core_u_raw, core_wn,
                     core_flags, core_latency, core_busy, core_bank, core_boot_ok};
 endmodule
 `default_nettype wire

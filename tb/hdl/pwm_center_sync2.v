@@ -33,6 +33,7 @@ module pwm_center_sync2 #(
     output wire              m_fault_latched,
     output wire              m_mode_eff,
     output wire              m_cmp_clip,
+    output wire              m_on,
     output wire [NCH-1:0]    s_hi,
     output wire [NCH-1:0]    s_lo,
     output wire              s_period_start,
@@ -40,7 +41,8 @@ module pwm_center_sync2 #(
     output wire              s_sync_out,
     output wire              s_fault_latched,
     output wire              s_mode_eff,
-    output wire              s_cmp_clip
+    output wire              s_cmp_clip,
+    output wire              s_on
 );
     pwm_center #(
         .NCH(NCH), .PWM_HALF_PERIOD(PWM_HALF_PERIOD), .CW(CW), .DEAD_W(DEAD_W),
@@ -50,7 +52,7 @@ module pwm_center_sync2 #(
         .cmp_in(cmp_in), .cmp_load(cmp_load), .sync_in(sync_ext),
         .fault(fault), .fault_clear(fault_clear),
         .hi(m_hi), .lo(m_lo), .period_start(m_period_start), .adc_trig(m_adc_trig),
-        .sync_out(m_sync_out), .fault_latched(m_fault_latched), .mode_eff(m_mode_eff),
+        .sync_out(m_sync_out), .fault_latched(m_fault_latched), .mode_eff(m_mode_eff), .on(m_on),
         .cmp_clip(m_cmp_clip)
     );
     pwm_center #(
@@ -61,7 +63,7 @@ module pwm_center_sync2 #(
         .cmp_in(cmp_in), .cmp_load(cmp_load), .sync_in(m_sync_out & link),
         .fault(fault), .fault_clear(fault_clear),
         .hi(s_hi), .lo(s_lo), .period_start(s_period_start), .adc_trig(s_adc_trig),
-        .sync_out(s_sync_out), .fault_latched(s_fault_latched), .mode_eff(s_mode_eff),
+        .sync_out(s_sync_out), .fault_latched(s_fault_latched), .mode_eff(s_mode_eff), .on(s_on),
         .cmp_clip(s_cmp_clip)
     );
 endmodule

@@ -6,3 +6,4 @@ tb/hdl/emc_regs_tb.v
 tb/hdl/quad_gen.v
 tb/hdl/cosim_top.v
 tb/hdl/mx_seq_tb.v
+tb/hdl/adc_ripple.v

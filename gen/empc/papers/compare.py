@@ -39,7 +39,6 @@ import dataclasses
 import io
 import json
 import math
-import os
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -47,6 +46,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import closedloop as cl
+from ..fileio import write_atomic
 from .. import config as config_mod
 from .. import quantise
 from .. import scenarios as scen000
@@ -539,18 +539,9 @@ def run(quick: bool = False, out: str | Path = "build/reports", only: list | Non
             plot_case(case, traces, out / res["plot"])
         report["cases"][case.key] = res
     report["wall_s"] = time.perf_counter() - t0
-    _write_atomic(out / "compare.json", (json.dumps(report, indent=1, default=_json_default) + "\n").encode())
-    _write_atomic(out / "compare.md", markdown(report).encode())
+    write_atomic(out / "compare.json", (json.dumps(report, indent=1, default=_json_default) + "\n").encode())
+    write_atomic(out / "compare.md", markdown(report).encode())
     return report
-
-
-def _write_atomic(path: Path, data: bytes) -> None:
-    """Write through a private temporary file and rename: two test workers may write the same
-    report at once (pytest-xdist spreads a module's tests), and a reader must never see a
-    truncated file."""
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    tmp.write_bytes(data)
-    os.replace(tmp, path)
 
 
 def _json_default(o):
@@ -608,7 +599,7 @@ def plot_case(case: Case, traces: dict, path: Path) -> None:
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=90)
     plt.close(fig)
-    _write_atomic(Path(path), buf.getvalue())
+    write_atomic(Path(path), buf.getvalue())
 
 
 def _f(v, fmt="{:.3g}", unit=""):

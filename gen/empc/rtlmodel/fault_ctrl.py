@@ -7,8 +7,10 @@ recorded too.
 """
 from __future__ import annotations
 
+from empc import regmap
+
 # bit order of the AXIS FAULT register (gen/empc/regmap.py)
-CAUSES = ("overcurrent", "hall", "encoder", "watchdog", "dclink", "overrun", "adc")
+CAUSES = tuple(f.name for f in sorted(regmap.axis_reg("FAULT").fields, key=lambda f: f.lsb))
 
 
 class FaultCtrl:

@@ -9,7 +9,8 @@ One update, in this order:
 
 1. Scheduling speed: ``wn = clamp(sat18(rshift_round(omega, WS)), wn_min, wn_max)``
    (Q1.17, |wn| <= 1; the polynomials are never extrapolated beyond Omega_e).
-   flag wn_clamp: wn differs from the unsaturated rshift_round(omega, WS).
+   flag wn_clamp: wn differs from the unsaturated rshift_round(omega, WS), or the limits are
+   inverted (wn_min > wn_max: wn = wn_max, the RTL's second clamp step always acts).
 2. Algorithm 2 only: ``ebar[o] = satSIG(ebar_prev[o] + clamp(w_k[o] - y[o], +-ebar_lim[o]))`` (eq. 25).
 3. Signal vector S (fixed index layout, see ``SIG_*``), all SIG_W-bit saturated
    (horizon m = 1..min(N, N_MAX, len(wref) - 1); all other indices up to 63 read 0):
@@ -51,7 +52,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from ..formats import (ACC_FRAC, ACCW, OPW, U_FRAC, U_W, V_FRAC, rshift_round, sat)
+from ..formats import (ACC_FRAC, ACCW, OPW, U_FRAC, U_W, V_FRAC, rshift_round, sat, wrap)
 
 SIG_W = 32
 N_MAX = 8
@@ -211,8 +212,9 @@ def update(p: Params, x: Inputs) -> Outputs:
     wr = rshift_round(x.omega, p.ws)
     wn0 = sat(wr, OPW)
     wn0 = max(min(wn0, OP_MAX), -OP_MAX)
-    wn = min(max(wn0, _clamp(p.wn_min, OP_MAX)), _clamp(p.wn_max, OP_MAX))
-    _count(counts, "wn_clamp", wn != wr)
+    lo, hi = _clamp(p.wn_min, OP_MAX), _clamp(p.wn_max, OP_MAX)
+    wn = min(max(wn0, lo), hi)
+    _count(counts, "wn_clamp", wn != wr or lo > hi)     # inverted limits: the max step always clamps
     # 2. aggregated error (algorithm 2)
     ebar = tuple(x.ebar_prev)
     if p.algorithm == 2:
@@ -305,3 +307,109 @@ def limit_circle(u_raw, u_max: int) -> tuple[list[int], bool]:
         q = -((-prod) >> (OPW - 1)) if prod < 0 else prod >> (OPW - 1)   # truncate toward zero
         out.append(q << sh)
     return out, True
+
+
+class Banks:
+    """The coefficient banks of rtl/mpc_core.v with the image checker of rtl/mpc_boot.v.
+
+    Transaction level, events in the order the RTL sees them:
+      ``write(addr, word)``   one CPU word into the inactive bank (cfg_we)
+      ``request()``           cfg_swap (ignored before ready, i.e. never here: the model is ready)
+      ``boundary(in_flight)`` swap_at with no update running: a pending swap is decided;
+                              in_flight = a CPU word requested or in the registered write port
+                              in that clock (it would land in the bank being activated)
+    Checker (per written word): word 0 restarts (acc = word, bad = word != MAGIC); any other
+    word is in sequence iff addr = previous addr + 1, header words CFG / USED / FMT must be
+    those of the build (image.check); acc += word (the checksum word: -= word);
+    upl_ok = the word is USED-1, in sequence, nothing bad since word 0, acc == 0.  Any later
+    write clears upl_ok, and so does an accepted swap.
+    State compared with the RTL: bank, pending, upl_ok, img_ok, boot_ok, swap_refused,
+    refused (count), and ``params`` of the active bank (what updates use).
+    """
+
+    def __init__(self, boot_words: list[int], N: int, fmt_id: int):
+        from .. import image
+        self._img = image
+        self.N, self.fmt = N, fmt_id
+        self.raw = [list(boot_words[:image.USED]) + [0] * (image.DEPTH - image.USED), [0] * image.DEPTH]
+        self.acc, self.bad, self.nexp, self.upl_ok = 0, True, 0, False
+        for a in range(image.USED):
+            self._check(a, self.raw[0][a])
+        self.boot_ok = self.upl_ok
+        self.upl_ok = False
+        self.bank, self.pending, self.swapped, self.swap_refused, self.refused = 0, False, False, False, 0
+        self.params = [self._params(self.raw[0]), None]
+
+    @property
+    def img_ok(self) -> bool:
+        return self.boot_ok or self.swapped
+
+    def active(self) -> Params:
+        return self.params[self.bank]
+
+    def _params(self, w: list[int]) -> Params:
+        """What an update reads from a bank holding words w (the RTL decodes every word as written;
+        a bank's header fields are those of the last write: a valid image wrote them all)."""
+        im = self._img
+        cfgw = w[im.A_CFG]
+        ncols = min(cfgw & 0x7F, MAX_COLS)
+        coef = [[], []]
+        for i in range(2):
+            for j in range(ncols):
+                b = im.A_GAINS + 4 * (MAX_COLS * i + j)
+                coef[i].append((wrap(w[b], 32), wrap(w[b + 1], 32), wrap(w[b + 2], 32), w[b + 3] & 0xF))
+        from ..formats import SIG_SHIFT_BITS
+        return Params(algorithm=(cfgw >> 13) & 3, task="position" if (cfgw >> 12) & 1 else "speed",
+                      N=(cfgw >> 8) & 0xF, ws=w[im.A_WS] & ((1 << SIG_SHIFT_BITS) - 1), wn_min=wrap(w[im.A_WNMIN], 32),
+                      wn_max=wrap(w[im.A_WNMAX], 32), u_max=w[im.A_UMAX], ebar_lim=tuple(w[im.A_EBAR + o] for o in range(3)),
+                      col_sig=[w[im.A_COLS + j] & 0x3F for j in range(ncols)],
+                      col_shift=[(w[im.A_COLS + j] >> 8) & ((1 << SIG_SHIFT_BITS) - 1) for j in range(ncols)], coef=coef)
+
+    def _hdr_bad(self, addr: int, v: int) -> bool:
+        im = self._img
+        if addr == im.A_MAGIC:
+            return v != im.MAGIC
+        if addr == im.A_USED:
+            return v != im.USED
+        if addr == im.A_FMT:
+            return v != self.fmt
+        if addr == im.A_CFG:
+            return (v >> 24 != im.LAYOUT or (v >> 15) & 0x1FF != 0 or (v >> 13) & 3 not in (1, 2)
+                    or (v >> 8) & 0xF != self.N or (v >> 7) & 1 or v & 0x7F > MAX_COLS)
+        return False
+
+    def _check(self, addr: int, v: int) -> None:
+        im = self._img
+        hb = self._hdr_bad(addr, v)
+        if addr == 0:
+            self.acc, self.bad, self.upl_ok = v, hb, False
+        else:
+            in_seq = addr == self.nexp
+            acc_n = (self.acc - v if addr == im.A_CSUM else self.acc + v) & 0xFFFFFFFF
+            self.upl_ok = in_seq and not self.bad and addr == im.USED - 1 and acc_n == 0
+            self.bad = self.bad or hb or not in_seq
+            self.acc = acc_n
+        self.nexp = (addr + 1) & 0x3FF
+
+    def write(self, addr: int, v: int) -> None:
+        addr &= 0x3FF
+        v &= 0xFFFFFFFF
+        self.raw[1 - self.bank][addr] = v
+        self._check(addr, v)
+
+    def request(self) -> None:
+        self.pending = True
+
+    def boundary(self, in_flight: bool = False) -> bool | None:
+        """Decide a pending swap: True accepted, False refused, None nothing pending."""
+        if not self.pending:
+            return None
+        self.pending = False
+        if self.upl_ok and not in_flight:
+            self.bank ^= 1
+            self.params[self.bank] = self._params(self.raw[self.bank])
+            self.upl_ok, self.swapped, self.swap_refused = False, True, False
+            return True
+        self.refused += 1
+        self.swap_refused = True
+        return False

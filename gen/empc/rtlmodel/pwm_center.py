@@ -129,6 +129,7 @@ class PwmCenter:
         self.adc_trig = 0
         self.sync_out = 0
         self.mode_eff = MODE_COMPL
+        self.on = 0
         self.hi = [0] * n
         self.lo = [0] * n
         self.q = [0] * n
@@ -138,7 +139,7 @@ class PwmCenter:
             "hi": list(self.hi), "lo": list(self.lo),
             "period_start": self.period_start, "adc_trig": self.adc_trig,
             "sync_out": self.sync_out, "fault_latched": self.fault_latched,
-            "mode_eff": self.mode_eff, "cmp_clip": self.cmp_clip,
+            "mode_eff": self.mode_eff, "cmp_clip": self.cmp_clip, "on": self.on,
         }
 
     def ideal(self) -> list:
@@ -211,5 +212,6 @@ class PwmCenter:
         self.cmp_clip = int(inp.cmp_load and any_clip)
         self.period_start, self.adc_trig, self.sync_out = ps_n, adc_n, so_n
         self.mode_eff = mode_eff_n
+        self.on = alive
         self.hi, self.lo, self.q = hi_n, lo_n, q_n
         return self.outputs()
