@@ -7,7 +7,8 @@
 //
 // Port A: CPU read (priority), the sequencer's word write (st_we: one that meets a CPU read waits
 // one clock; the sequencer's program keeps its status writes >= 2 clocks apart and the bus reads at
-// most every other clock, so one deferred write is enough), else a sweep write.
+// most every other clock, so one deferred write is enough; the sequencer holds st_addr / st_wdata
+// in the clock after st_we, so the deferred write takes them from the ports), else a sweep write.
 // Port B: the sweep's counter read.
 // Events (held from their pulse to the next counting sweep, so SAT_* and CNT_OVERRUN count the
 // control periods in which the event happened): core_flags at core_done (SAT_OPERAND .. SAT_SIGNAL),
@@ -49,7 +50,7 @@ module axis_status (
     input  wire        gov,
     // status words from the sequencer
     input  wire        st_we,
-    input  wire [5:0]  st_addr,
+    input  wire [5:0]  st_addr,         // held (with st_wdata) in the clock after st_we
     input  wire [31:0] st_wdata,
     // counting sweep
     input  wire        sweep,
@@ -105,11 +106,11 @@ module axis_status (
     initial begin
         for (si = 0; si < 64; si = si + 1) smem[si] = 32'd0;
     end
-    // port A: CPU read, the (deferred) word write, a sweep write
+    // port A: CPU read, the (deferred) word write, a sweep write; a deferred write takes the held
+    // st_addr / st_wdata (no copy here)
     reg         w_def;
-    reg  [5:0]  w_def_a;
-    reg  [31:0] w_def_d;
     wire        w_now = st_we && !reg_rd;
+    wire        w_st = w_def || w_now;
     wire        a_free = !reg_rd && !w_def && !st_we;
     // port B: the counter of word k (q_ok: q is word k's)
     reg  [31:0] q;
@@ -125,9 +126,9 @@ module axis_status (
     wire [5:0]  b_addr = (b_k < K_NEV) ? (A_CNT0[5:0] + b_k) : (b_k == K_NEV) ? `EMPC_A_PERIODS : `EMPC_A_SAT_GOV;
     always @(posedge clk) q <= smem[b_addr];
     wire        s_rd = (cnt_re && !hide_cnt) || (stat_re && !hide_st);
-    wire [5:0]  pa = reg_rd ? reg_addr[5:0] : w_def ? w_def_a : w_now ? st_addr : sw_a;
-    wire        pa_we = !reg_rd && (w_def || w_now || (go && sw_wr));
-    wire [31:0] pa_d = w_def ? w_def_d : w_now ? st_wdata : sw_d;
+    wire [5:0]  pa = reg_rd ? reg_addr[5:0] : w_st ? st_addr : sw_a;
+    wire        pa_we = !reg_rd && (w_st || (go && sw_wr));
+    wire [31:0] pa_d = w_st ? st_wdata : sw_d;
     wire        unused_addr = &{1'b0, reg_addr[7:6]};   // cnt_re / stat_re already decode the page
     always @(posedge clk) begin
         if (pa_we) smem[pa] <= pa_d;
@@ -136,11 +137,7 @@ module axis_status (
         else
             rdata <= smem[pa];
     end
-    always @(posedge clk) begin
-        w_def <= st_we && reg_rd && !rst;
-        w_def_a <= st_addr;
-        w_def_d <= st_wdata;
-    end
+    always @(posedge clk) w_def <= st_we && reg_rd && !rst;
 
     // ---------------- sweeps ----------------
     assign busy = act || zact;

@@ -32,7 +32,8 @@
 // sample order) is not built: the ports are one axis's (docs/blocks/mx_seq.md, "four axes").
 //
 // Ports: as ctrl_seq's, except the status words: st_we / st_addr / st_wdata write one 32-bit word
-// (axis_status); stat_sweep pulses when a control period's job ends (cmp_load): axis_status counts
+// (axis_status; st_addr / st_wdata are held until the next status or core write, >= 2 clocks
+// later, so axis_status's deferred write takes them from the ports in the clock after st_we); stat_sweep pulses when a control period's job ends (cmp_load): axis_status counts
 // the period's events then.  core_in_*, st_* and the ref_* read addresses are registered.
 // Latency: trigger -> cmp_load on `latency`; from the ADC's valid: 1 (front request) + 23 (front)
 // + the dependent program (21 + kacc_shift clocks) + 1 + the core (38 + columns) + 1 + 85 (mod).
@@ -452,11 +453,16 @@ module mx_seq #(
     assign a_end   = w_v && w_ctl == CTL_END;
     always @(posedge clk) begin
         core_in_we <= wen && w_dk == DK_CORE;
-        core_in_addr <= w_da;
-        core_in_wdata <= w32;
         st_we <= wen && w_dk == DK_STAT && !rst;
-        st_addr <= w_da;
-        st_wdata <= w32;
+        // one register pair for both (yosys merges identical registers): loaded by a core or status
+        // write, so held after a status write until the next one (the schedule keeps it >= 2 issues
+        // away: axis_status's deferred write takes them in the clock after st_we)
+        if (wen && (w_dk == DK_CORE || w_dk == DK_STAT)) begin
+            core_in_addr <= w_da;
+            core_in_wdata <= w32;
+            st_addr <= w_da;
+            st_wdata <= w32;
+        end
         if (rst) omega <= {SW{1'b0}};
         else if (wen && w_dk == DK_OMR) omega <= w32;
         if (wen && w_dk == DK_THM) th_mod <= w32[AB-1:0];

@@ -43,6 +43,7 @@ async def random_clocks(dut):
     st = dict(reads=0, reads_nonzero=0, reads_hidden=0, sweeps=0, saturated=0, wrapped=0, deferred=0,
               sweep_ignored=0, clear_in_sweep=0, clear_in_zero=0, rst_in_sweep=0, ev_in_pulse=0)
     last_rd = last_we = -10
+    held = (0, 0)
     for c in range(CLOCKS):
         await FallingEdge(dut.clk)
         v = {n: 0 for n in INPUTS}
@@ -57,8 +58,12 @@ async def random_clocks(dut):
             a = rng.choice(WORDS)
             d = rng.choice([rng.getrandbits(32), M.MASK32, M.MASK32 - 1, 0])
             v.update(st_we=1, st_addr=a, st_wdata=d)
-            last_we = c
+            last_we, held = c, (a, d)
             st["deferred"] += v["reg_rd"]
+        elif c == last_we + 1:          # the contract: the sequencer holds them for a deferred write
+            v.update(st_addr=held[0], st_wdata=held[1])
+        else:                           # otherwise they are don't-care: garbage must not be written
+            v.update(st_addr=rng.choice(WORDS), st_wdata=rng.getrandbits(32))
         if rng.random() < 0.05:
             v.update(core_done=1, core_flags=rng.getrandbits(11))
         for e in M.EVENTS:

@@ -2,8 +2,9 @@
 
 :meth:`AxisStatus.clock` takes one clock's inputs (the RTL's port names) and returns the registered
 read data after the edge (``rdata``); :attr:`mem` is the block RAM.  The behaviour (docs/blocks/
-axis_status.md): port A serves a CPU read first, then a deferred word write (one that met a read),
-then the sequencer's word write, then a sweep write; port B reads the sweep's counter.  Events are
+axis_status.md): port A serves a CPU read first, then a deferred word write (one that met a read;
+it takes ``st_addr`` / ``st_wdata`` of the next clock, which the sequencer holds: the model checks
+that contract), then the sequencer's word write, then a sweep write; port B reads the sweep's counter.  Events are
 held until a counting sweep takes them (``sweep`` pulse, this clock's events included); the sweep
 adds each counter's event, one counter per clock in which port A is free, saturating at 2**32 - 1
 (PERIODS wraps).  Zero sweeps (after rst: all 64 words; after cnt_clear: the counters) write 0 and
@@ -41,8 +42,7 @@ class AxisStatus:
     q: int = 0
     q_ok: bool = False
     w_def: bool = False
-    w_def_a: int = 0
-    w_def_d: int = 0
+    w_held: tuple = (0, 0)      # (st_addr, st_wdata) of the last st_we: held in the next clock (contract)
     rdata: int = 0
 
     def _addr(self, k: int, zall: bool) -> int:
@@ -58,7 +58,11 @@ class AxisStatus:
         ev_now |= (front_sat << 11) | (overrun << 12) | (period << 13) | (gov << 14)
         take = bool(sweep and not self.act and not self.zact)
         # port A
+        if self.w_def and (st_addr, st_wdata) != self.w_held:
+            raise AssertionError(f"axis_status: st_addr / st_wdata {(st_addr, st_wdata)} not held in the clock "
+                                 f"after st_we {self.w_held} (a deferred write takes them)")
         w_now = st_we and not reg_rd
+        w_st = self.w_def or w_now
         a_free = not reg_rd and not self.w_def and not st_we
         cnt_ev = (self.sev >> self.k) & 1 if self.k < NCNT else 0
         go_c = self.act and self.q_ok and a_free
@@ -71,9 +75,9 @@ class AxisStatus:
         b_k = self.k + 1 if go else self.k
         b_addr = CNT_ADDR[b_k] if b_k < NCNT else CNT_ADDR[-1]
         s_rd = (cnt_re and not self.hide_cnt) or (stat_re and not self.hide_st)
-        pa = (reg_addr & 63) if reg_rd else self.w_def_a if self.w_def else st_addr if w_now else sw_a
-        pa_we = not reg_rd and (self.w_def or w_now or (go and sw_wr))
-        pa_d = self.w_def_d if self.w_def else st_wdata if w_now else sw_d
+        pa = (reg_addr & 63) if reg_rd else st_addr if w_st else sw_a
+        pa_we = not reg_rd and (w_st or (go and sw_wr))
+        pa_d = st_wdata if w_st else sw_d
         # edge
         new_rdata = self.mem[pa] if (reg_rd and s_rd) else 0
         new_q = self.mem[b_addr]
@@ -81,7 +85,9 @@ class AxisStatus:
             self.mem[pa] = pa_d & MASK32
         self.rdata = new_rdata
         self.q = new_q
-        self.w_def, self.w_def_a, self.w_def_d = bool(st_we and reg_rd and not rst), st_addr, st_wdata
+        self.w_def = bool(st_we and reg_rd and not rst)
+        if st_we:
+            self.w_held = (st_addr, st_wdata)
         self.ev = 0 if (rst or take) else ev_now
         if rst:
             self.act, self.zact, self.zall, self.k, self.q_ok, self.sev = False, True, True, 0, False, 0

@@ -125,7 +125,9 @@ class Op:
 
 NOP = Op(note="(pipeline gap)")
 HAZARD = 3        # a RAM word / special register is read >= 3 issues after its write
-STAT_GAP = 2      # status-word writes >= 2 issues apart (axis_status defers one that meets a CPU read)
+STAT_GAP = 2      # after a status-word write, the next STAT or CORE write >= 2 issues later: axis_status defers
+                  # one that meets a CPU read and takes st_addr / st_wdata in the next clock, which the RTL
+                  # holds (the same registers as core_in_addr / core_in_wdata, loaded by either write)
 
 
 def _theta_ops() -> list[Op]:
@@ -219,8 +221,9 @@ def schedule(ops: list[Op]) -> list[Op]:
     last_st = -10
     for op in ops:
         need = max([last_w[r] + HAZARD for r in op.reads() if r in last_w] + [len(out)])
-        if op.dk == "STAT":                  # axis_status defers one write that meets a CPU read
+        if op.dk in ("STAT", "CORE"):        # axis_status defers one write that meets a CPU read
             need = max(need, last_st + STAT_GAP)
+        if op.dk == "STAT":
             last_st = need
         while len(out) < need:
             out.append(NOP)
