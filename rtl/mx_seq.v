@@ -19,8 +19,8 @@
 //
 // ALU (one 32/48-bit word per clock): issue (microword from the program block RAM; RAM port B read
 // of the job's axis {axis, word}; the A source staged into a register cleared unless selected),
-// E (A = OR of the stages or the last result P shifted by 0/1/8/16 (theta by 1 in its stage; no other
-// source is shifted: the model's Op.word() asserts it), B = the RAM word or its bits
+// E (A = OR of the stages or the last result P shifted by 0/1/8/16 (no other source is shifted:
+// the model's Op.word() asserts it), B = the RAM word or its bits
 // 31:16 / 31:24 with their rounding bit, R = +-A +-B + cin), W (sat32 / wrap32 / wrap36 of R to the
 // core input buffer, the axis state RAM port A, a status word, the omega / theta_mod registers or
 // the serial shifter).  kacc * i_q is a product of xform's DSP48A1 (mul_b, prod: the front's end, held); the rounding shifts (kacc_shift,
@@ -331,7 +331,7 @@ module mx_seq #(
     always @(posedge clk) q <= sram[{ax, iw[UW_RB +: 5]}];
     // stages: the selected source in the clock after its issue, 0 otherwise
     reg  [PW-1:0] g_pos;
-    reg  [AB:0]   g_th;             // theta or 2 theta
+    reg  [AB-1:0] g_th;
     reg  [IW-1:0] g_id, g_iq, g_idr, g_iqr;
     reg  [UW-1:0] g_u0, g_u1;
     reg  [SW-1:0] g_e0, g_e1, g_e2, g_om;
@@ -342,9 +342,7 @@ module mx_seq #(
     reg  signed [XW-1:0] sh;                // serial shifter
     always @(posedge clk) begin
         g_pos <= (issue && i_as == AS_POS) ? pos_trig : {PW{1'b0}};
-        // theta is the only source shifted besides P (2 theta: ash 1), shifted here
-        g_th  <= (issue && i_as == AS_TH)  ? ((iw[UW_ASH +: 2] == 2'd1) ? {theta_trig, 1'b0} : {1'b0, theta_trig})
-                                           : {(AB+1){1'b0}};
+        g_th  <= (issue && i_as == AS_TH)  ? theta_trig : {AB{1'b0}};
         g_id  <= (issue && i_as == AS_ID)  ? i_d : {IW{1'b0}};
         g_iq  <= (issue && i_as == AS_IQ)  ? i_q : {IW{1'b0}};
         g_idr <= (issue && i_as == AS_IDR) ? id_ref : {IW{1'b0}};
@@ -386,7 +384,7 @@ module mx_seq #(
     reg  signed [XW-1:0] p_r;       // P: the last result with pe
     reg  signed [XW-1:0] r;         // R: this op's result (W stage)
     reg                  sh_r;      // the shifter's last bit out (rounding)
-    // the shift of A (ash) applies to P only (and theta, shifted in its stage): the other
+    // the shift of A (ash) applies to P only (2 theta: P = theta, then P << 1): the other
     // sources do not pass through the shift multiplexer
     wire [XW-1:0] p_w   = e_aw ? {{(XW-32){p_r[31]}}, p_r[31:0]} : p_r;
     reg  [XW-1:0] p_fwd;
@@ -400,7 +398,7 @@ module mx_seq #(
             default: p_fwd = {p_w[XW-17:0], 16'd0};
         endcase
     end
-    wire [XW-1:0] a_or  = {{(XW-PW){g_pos[PW-1]}}, g_pos} | {{(XW-AB-1){1'b0}}, g_th} |
+    wire [XW-1:0] a_or  = {{(XW-PW){g_pos[PW-1]}}, g_pos} | {{(XW-AB){1'b0}}, g_th} |
                           {{(XW-IW){g_id[IW-1] | g_iq[IW-1] | g_idr[IW-1] | g_iqr[IW-1]}}, g_id | g_iq | g_idr | g_iqr} |
                           {{(XW-UW){g_u0[UW-1] | g_u1[UW-1]}}, g_u0 | g_u1} |
                           {{(XW-SW){g_e0[SW-1] | g_e1[SW-1] | g_e2[SW-1] | g_om[SW-1]}}, g_e0 | g_e1 | g_e2 | g_om} |
@@ -435,8 +433,11 @@ module mx_seq #(
 
     // ---------------- W: saturate / wrap, write ----------------
     wire          ovf = !(&r[XW-1:31] || !(|r[XW-1:31]));     // R does not fit 32 bits
-    wire [SW-1:0] w32 = (w_wm == WM_SAT32 && ovf) ? {r[XW-1], {(SW-1){!r[XW-1]}}} : r[SW-1:0];
-    wire [RW-1:0] w36 = (w_wm == WM_WRAP36) ? r[RW-1:0] : {{(RW-SW){w32[SW-1]}}, w32};
+    wire          sat_on = (w_wm == WM_SAT32) && ovf;
+    wire [SW-1:0] w32 = sat_on ? {r[XW-1], {(SW-1){!r[XW-1]}}} : r[SW-1:0];
+    // a RAM word is R's low 36 bits, or the saturated word: the program writes no other mode's
+    // R wider than 32 bits there (the model does the same)
+    wire [RW-1:0] w36 = {sat_on ? {(RW-SW){r[XW-1]}} : r[RW-1:SW], w32};
     reg           w_ok_c;
     always @(*) begin
         case (w_cond)

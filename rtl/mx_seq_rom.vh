@@ -16,10 +16,10 @@ if (N == 1) begin
     rom[10] = 36'h000611000;   // 10 P = spd
     rom[11] = 36'h024831478;   // 11 ndsp = spd_prev - spd
     rom[12] = 36'h034800078;   // 12 spd_prev = spd
-    rom[13] = 36'h484400011;   // 13 WTH first period: theta_prev = theta
+    rom[13] = 36'h484600011;   // 13 WTH P = theta; first period: theta_prev = theta
     rom[14] = 36'h000400000;   // 14 (pipeline gap)
     rom[15] = 36'h000400000;   // 15 (pipeline gap)
-    rom[16] = 36'h00a481910;   // 16 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[16] = 36'h00a481978;   // 16 theta_mod = 2 theta - theta_prev (16 bit)
     rom[17] = 36'h084400010;   // 17 theta_prev = theta
     rom[18] = 36'h0006d1002;   // 18 WREF P = w_hi[0]
     rom[19] = 36'h1220c6378;   // 19 w3[0] = sat32(P << 16 + round(w_lo >> 16))
@@ -75,10 +75,10 @@ if (N == 1) begin
     rom[106] = 36'h000611000;   // 106 P = spd
     rom[107] = 36'h024831478;   // 107 ndsp = spd_prev - spd
     rom[108] = 36'h034800078;   // 108 spd_prev = spd
-    rom[109] = 36'h484400011;   // 109 WTH first period: theta_prev = theta
+    rom[109] = 36'h484600011;   // 109 WTH P = theta; first period: theta_prev = theta
     rom[110] = 36'h000400000;   // 110 (pipeline gap)
     rom[111] = 36'h000400000;   // 111 (pipeline gap)
-    rom[112] = 36'h00a481910;   // 112 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[112] = 36'h00a481978;   // 112 theta_mod = 2 theta - theta_prev (16 bit)
     rom[113] = 36'h084400010;   // 113 theta_prev = theta
     rom[114] = 36'h0006d140a;   // 114 WREF P = w_hi[0] - pos
     rom[115] = 36'h1220c72f8;   // 115 w3[0] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
@@ -122,10 +122,10 @@ if (N == 1) begin
     rom[153] = 36'h000400000;   // 153 (pipeline gap)
     rom[154] = 36'h266400040;   // 154 U_Q
     rom[155] = 36'h000400007;   // 155 END program end
-    rom[192] = 36'h484400011;   // 192 WTH first period: theta_prev = theta
+    rom[192] = 36'h484600011;   // 192 WTH P = theta; first period: theta_prev = theta
     rom[193] = 36'h000400000;   // 193 (pipeline gap)
     rom[194] = 36'h000400000;   // 194 (pipeline gap)
-    rom[195] = 36'h00a481910;   // 195 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[195] = 36'h00a481978;   // 195 theta_mod = 2 theta - theta_prev (16 bit)
     rom[196] = 36'h084400010;   // 196 theta_prev = theta
     rom[197] = 36'h000400006;   // 197 WCORE modulation start (held u, theta_mod), after the core
     rom[198] = 36'h256400038;   // 198 U_D = the u applied
@@ -148,10 +148,10 @@ if (N == 2) begin
     rom[10] = 36'h000611000;   // 10 P = spd
     rom[11] = 36'h024831478;   // 11 ndsp = spd_prev - spd
     rom[12] = 36'h034800078;   // 12 spd_prev = spd
-    rom[13] = 36'h484400011;   // 13 WTH first period: theta_prev = theta
+    rom[13] = 36'h484600011;   // 13 WTH P = theta; first period: theta_prev = theta
     rom[14] = 36'h000400000;   // 14 (pipeline gap)
     rom[15] = 36'h000400000;   // 15 (pipeline gap)
-    rom[16] = 36'h00a481910;   // 16 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[16] = 36'h00a481978;   // 16 theta_mod = 2 theta - theta_prev (16 bit)
     rom[17] = 36'h084400010;   // 17 theta_prev = theta
     rom[18] = 36'h0006d1002;   // 18 WREF P = w_hi[0]
     rom[19] = 36'h1220c6378;   // 19 w3[0] = sat32(P << 16 + round(w_lo >> 16))
@@ -211,10 +211,10 @@ if (N == 2) begin
     rom[106] = 36'h000611000;   // 106 P = spd
     rom[107] = 36'h024831478;   // 107 ndsp = spd_prev - spd
     rom[108] = 36'h034800078;   // 108 spd_prev = spd
-    rom[109] = 36'h484400011;   // 109 WTH first period: theta_prev = theta
+    rom[109] = 36'h484600011;   // 109 WTH P = theta; first period: theta_prev = theta
     rom[110] = 36'h000400000;   // 110 (pipeline gap)
     rom[111] = 36'h000400000;   // 111 (pipeline gap)
-    rom[112] = 36'h00a481910;   // 112 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[112] = 36'h00a481978;   // 112 theta_mod = 2 theta - theta_prev (16 bit)
     rom[113] = 36'h084400010;   // 113 theta_prev = theta
     rom[114] = 36'h0006d140a;   // 114 WREF P = w_hi[0] - pos
     rom[115] = 36'h1220c72f8;   // 115 w3[0] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
@@ -262,10 +262,10 @@ if (N == 2) begin
     rom[157] = 36'h000400000;   // 157 (pipeline gap)
     rom[158] = 36'h266400040;   // 158 U_Q
     rom[159] = 36'h000400007;   // 159 END program end
-    rom[192] = 36'h484400011;   // 192 WTH first period: theta_prev = theta
+    rom[192] = 36'h484600011;   // 192 WTH P = theta; first period: theta_prev = theta
     rom[193] = 36'h000400000;   // 193 (pipeline gap)
     rom[194] = 36'h000400000;   // 194 (pipeline gap)
-    rom[195] = 36'h00a481910;   // 195 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[195] = 36'h00a481978;   // 195 theta_mod = 2 theta - theta_prev (16 bit)
     rom[196] = 36'h084400010;   // 196 theta_prev = theta
     rom[197] = 36'h000400006;   // 197 WCORE modulation start (held u, theta_mod), after the core
     rom[198] = 36'h256400038;   // 198 U_D = the u applied
@@ -288,10 +288,10 @@ if (N == 3) begin
     rom[10] = 36'h000611000;   // 10 P = spd
     rom[11] = 36'h024831478;   // 11 ndsp = spd_prev - spd
     rom[12] = 36'h034800078;   // 12 spd_prev = spd
-    rom[13] = 36'h484400011;   // 13 WTH first period: theta_prev = theta
+    rom[13] = 36'h484600011;   // 13 WTH P = theta; first period: theta_prev = theta
     rom[14] = 36'h000400000;   // 14 (pipeline gap)
     rom[15] = 36'h000400000;   // 15 (pipeline gap)
-    rom[16] = 36'h00a481910;   // 16 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[16] = 36'h00a481978;   // 16 theta_mod = 2 theta - theta_prev (16 bit)
     rom[17] = 36'h084400010;   // 17 theta_prev = theta
     rom[18] = 36'h0006d1002;   // 18 WREF P = w_hi[0]
     rom[19] = 36'h1220c6378;   // 19 w3[0] = sat32(P << 16 + round(w_lo >> 16))
@@ -355,10 +355,10 @@ if (N == 3) begin
     rom[106] = 36'h000611000;   // 106 P = spd
     rom[107] = 36'h024831478;   // 107 ndsp = spd_prev - spd
     rom[108] = 36'h034800078;   // 108 spd_prev = spd
-    rom[109] = 36'h484400011;   // 109 WTH first period: theta_prev = theta
+    rom[109] = 36'h484600011;   // 109 WTH P = theta; first period: theta_prev = theta
     rom[110] = 36'h000400000;   // 110 (pipeline gap)
     rom[111] = 36'h000400000;   // 111 (pipeline gap)
-    rom[112] = 36'h00a481910;   // 112 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[112] = 36'h00a481978;   // 112 theta_mod = 2 theta - theta_prev (16 bit)
     rom[113] = 36'h084400010;   // 113 theta_prev = theta
     rom[114] = 36'h0006d140a;   // 114 WREF P = w_hi[0] - pos
     rom[115] = 36'h1220c72f8;   // 115 w3[0] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
@@ -410,10 +410,10 @@ if (N == 3) begin
     rom[161] = 36'h000400000;   // 161 (pipeline gap)
     rom[162] = 36'h266400040;   // 162 U_Q
     rom[163] = 36'h000400007;   // 163 END program end
-    rom[192] = 36'h484400011;   // 192 WTH first period: theta_prev = theta
+    rom[192] = 36'h484600011;   // 192 WTH P = theta; first period: theta_prev = theta
     rom[193] = 36'h000400000;   // 193 (pipeline gap)
     rom[194] = 36'h000400000;   // 194 (pipeline gap)
-    rom[195] = 36'h00a481910;   // 195 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[195] = 36'h00a481978;   // 195 theta_mod = 2 theta - theta_prev (16 bit)
     rom[196] = 36'h084400010;   // 196 theta_prev = theta
     rom[197] = 36'h000400006;   // 197 WCORE modulation start (held u, theta_mod), after the core
     rom[198] = 36'h256400038;   // 198 U_D = the u applied
@@ -436,10 +436,10 @@ if (N == 4) begin
     rom[10] = 36'h000611000;   // 10 P = spd
     rom[11] = 36'h024831478;   // 11 ndsp = spd_prev - spd
     rom[12] = 36'h034800078;   // 12 spd_prev = spd
-    rom[13] = 36'h484400011;   // 13 WTH first period: theta_prev = theta
+    rom[13] = 36'h484600011;   // 13 WTH P = theta; first period: theta_prev = theta
     rom[14] = 36'h000400000;   // 14 (pipeline gap)
     rom[15] = 36'h000400000;   // 15 (pipeline gap)
-    rom[16] = 36'h00a481910;   // 16 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[16] = 36'h00a481978;   // 16 theta_mod = 2 theta - theta_prev (16 bit)
     rom[17] = 36'h084400010;   // 17 theta_prev = theta
     rom[18] = 36'h0006d1002;   // 18 WREF P = w_hi[0]
     rom[19] = 36'h1220c6378;   // 19 w3[0] = sat32(P << 16 + round(w_lo >> 16))
@@ -507,10 +507,10 @@ if (N == 4) begin
     rom[106] = 36'h000611000;   // 106 P = spd
     rom[107] = 36'h024831478;   // 107 ndsp = spd_prev - spd
     rom[108] = 36'h034800078;   // 108 spd_prev = spd
-    rom[109] = 36'h484400011;   // 109 WTH first period: theta_prev = theta
+    rom[109] = 36'h484600011;   // 109 WTH P = theta; first period: theta_prev = theta
     rom[110] = 36'h000400000;   // 110 (pipeline gap)
     rom[111] = 36'h000400000;   // 111 (pipeline gap)
-    rom[112] = 36'h00a481910;   // 112 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[112] = 36'h00a481978;   // 112 theta_mod = 2 theta - theta_prev (16 bit)
     rom[113] = 36'h084400010;   // 113 theta_prev = theta
     rom[114] = 36'h0006d140a;   // 114 WREF P = w_hi[0] - pos
     rom[115] = 36'h1220c72f8;   // 115 w3[0] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
@@ -566,10 +566,10 @@ if (N == 4) begin
     rom[165] = 36'h000400000;   // 165 (pipeline gap)
     rom[166] = 36'h266400040;   // 166 U_Q
     rom[167] = 36'h000400007;   // 167 END program end
-    rom[192] = 36'h484400011;   // 192 WTH first period: theta_prev = theta
+    rom[192] = 36'h484600011;   // 192 WTH P = theta; first period: theta_prev = theta
     rom[193] = 36'h000400000;   // 193 (pipeline gap)
     rom[194] = 36'h000400000;   // 194 (pipeline gap)
-    rom[195] = 36'h00a481910;   // 195 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[195] = 36'h00a481978;   // 195 theta_mod = 2 theta - theta_prev (16 bit)
     rom[196] = 36'h084400010;   // 196 theta_prev = theta
     rom[197] = 36'h000400006;   // 197 WCORE modulation start (held u, theta_mod), after the core
     rom[198] = 36'h256400038;   // 198 U_D = the u applied
@@ -592,10 +592,10 @@ if (N == 5) begin
     rom[10] = 36'h000611000;   // 10 P = spd
     rom[11] = 36'h024831478;   // 11 ndsp = spd_prev - spd
     rom[12] = 36'h034800078;   // 12 spd_prev = spd
-    rom[13] = 36'h484400011;   // 13 WTH first period: theta_prev = theta
+    rom[13] = 36'h484600011;   // 13 WTH P = theta; first period: theta_prev = theta
     rom[14] = 36'h000400000;   // 14 (pipeline gap)
     rom[15] = 36'h000400000;   // 15 (pipeline gap)
-    rom[16] = 36'h00a481910;   // 16 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[16] = 36'h00a481978;   // 16 theta_mod = 2 theta - theta_prev (16 bit)
     rom[17] = 36'h084400010;   // 17 theta_prev = theta
     rom[18] = 36'h0006d1002;   // 18 WREF P = w_hi[0]
     rom[19] = 36'h1220c6378;   // 19 w3[0] = sat32(P << 16 + round(w_lo >> 16))
@@ -667,10 +667,10 @@ if (N == 5) begin
     rom[106] = 36'h000611000;   // 106 P = spd
     rom[107] = 36'h024831478;   // 107 ndsp = spd_prev - spd
     rom[108] = 36'h034800078;   // 108 spd_prev = spd
-    rom[109] = 36'h484400011;   // 109 WTH first period: theta_prev = theta
+    rom[109] = 36'h484600011;   // 109 WTH P = theta; first period: theta_prev = theta
     rom[110] = 36'h000400000;   // 110 (pipeline gap)
     rom[111] = 36'h000400000;   // 111 (pipeline gap)
-    rom[112] = 36'h00a481910;   // 112 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[112] = 36'h00a481978;   // 112 theta_mod = 2 theta - theta_prev (16 bit)
     rom[113] = 36'h084400010;   // 113 theta_prev = theta
     rom[114] = 36'h0006d140a;   // 114 WREF P = w_hi[0] - pos
     rom[115] = 36'h1220c72f8;   // 115 w3[0] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
@@ -730,10 +730,10 @@ if (N == 5) begin
     rom[169] = 36'h000400000;   // 169 (pipeline gap)
     rom[170] = 36'h266400040;   // 170 U_Q
     rom[171] = 36'h000400007;   // 171 END program end
-    rom[192] = 36'h484400011;   // 192 WTH first period: theta_prev = theta
+    rom[192] = 36'h484600011;   // 192 WTH P = theta; first period: theta_prev = theta
     rom[193] = 36'h000400000;   // 193 (pipeline gap)
     rom[194] = 36'h000400000;   // 194 (pipeline gap)
-    rom[195] = 36'h00a481910;   // 195 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[195] = 36'h00a481978;   // 195 theta_mod = 2 theta - theta_prev (16 bit)
     rom[196] = 36'h084400010;   // 196 theta_prev = theta
     rom[197] = 36'h000400006;   // 197 WCORE modulation start (held u, theta_mod), after the core
     rom[198] = 36'h256400038;   // 198 U_D = the u applied
@@ -756,10 +756,10 @@ if (N == 6) begin
     rom[10] = 36'h000611000;   // 10 P = spd
     rom[11] = 36'h024831478;   // 11 ndsp = spd_prev - spd
     rom[12] = 36'h034800078;   // 12 spd_prev = spd
-    rom[13] = 36'h484400011;   // 13 WTH first period: theta_prev = theta
+    rom[13] = 36'h484600011;   // 13 WTH P = theta; first period: theta_prev = theta
     rom[14] = 36'h000400000;   // 14 (pipeline gap)
     rom[15] = 36'h000400000;   // 15 (pipeline gap)
-    rom[16] = 36'h00a481910;   // 16 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[16] = 36'h00a481978;   // 16 theta_mod = 2 theta - theta_prev (16 bit)
     rom[17] = 36'h084400010;   // 17 theta_prev = theta
     rom[18] = 36'h0006d1002;   // 18 WREF P = w_hi[0]
     rom[19] = 36'h1220c6378;   // 19 w3[0] = sat32(P << 16 + round(w_lo >> 16))
@@ -835,10 +835,10 @@ if (N == 6) begin
     rom[106] = 36'h000611000;   // 106 P = spd
     rom[107] = 36'h024831478;   // 107 ndsp = spd_prev - spd
     rom[108] = 36'h034800078;   // 108 spd_prev = spd
-    rom[109] = 36'h484400011;   // 109 WTH first period: theta_prev = theta
+    rom[109] = 36'h484600011;   // 109 WTH P = theta; first period: theta_prev = theta
     rom[110] = 36'h000400000;   // 110 (pipeline gap)
     rom[111] = 36'h000400000;   // 111 (pipeline gap)
-    rom[112] = 36'h00a481910;   // 112 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[112] = 36'h00a481978;   // 112 theta_mod = 2 theta - theta_prev (16 bit)
     rom[113] = 36'h084400010;   // 113 theta_prev = theta
     rom[114] = 36'h0006d140a;   // 114 WREF P = w_hi[0] - pos
     rom[115] = 36'h1220c72f8;   // 115 w3[0] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
@@ -902,10 +902,10 @@ if (N == 6) begin
     rom[173] = 36'h000400000;   // 173 (pipeline gap)
     rom[174] = 36'h266400040;   // 174 U_Q
     rom[175] = 36'h000400007;   // 175 END program end
-    rom[192] = 36'h484400011;   // 192 WTH first period: theta_prev = theta
+    rom[192] = 36'h484600011;   // 192 WTH P = theta; first period: theta_prev = theta
     rom[193] = 36'h000400000;   // 193 (pipeline gap)
     rom[194] = 36'h000400000;   // 194 (pipeline gap)
-    rom[195] = 36'h00a481910;   // 195 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[195] = 36'h00a481978;   // 195 theta_mod = 2 theta - theta_prev (16 bit)
     rom[196] = 36'h084400010;   // 196 theta_prev = theta
     rom[197] = 36'h000400006;   // 197 WCORE modulation start (held u, theta_mod), after the core
     rom[198] = 36'h256400038;   // 198 U_D = the u applied
@@ -928,10 +928,10 @@ if (N == 7) begin
     rom[10] = 36'h000611000;   // 10 P = spd
     rom[11] = 36'h024831478;   // 11 ndsp = spd_prev - spd
     rom[12] = 36'h034800078;   // 12 spd_prev = spd
-    rom[13] = 36'h484400011;   // 13 WTH first period: theta_prev = theta
+    rom[13] = 36'h484600011;   // 13 WTH P = theta; first period: theta_prev = theta
     rom[14] = 36'h000400000;   // 14 (pipeline gap)
     rom[15] = 36'h000400000;   // 15 (pipeline gap)
-    rom[16] = 36'h00a481910;   // 16 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[16] = 36'h00a481978;   // 16 theta_mod = 2 theta - theta_prev (16 bit)
     rom[17] = 36'h084400010;   // 17 theta_prev = theta
     rom[18] = 36'h0006d1002;   // 18 WREF P = w_hi[0]
     rom[19] = 36'h1220c6378;   // 19 w3[0] = sat32(P << 16 + round(w_lo >> 16))
@@ -1011,10 +1011,10 @@ if (N == 7) begin
     rom[106] = 36'h000611000;   // 106 P = spd
     rom[107] = 36'h024831478;   // 107 ndsp = spd_prev - spd
     rom[108] = 36'h034800078;   // 108 spd_prev = spd
-    rom[109] = 36'h484400011;   // 109 WTH first period: theta_prev = theta
+    rom[109] = 36'h484600011;   // 109 WTH P = theta; first period: theta_prev = theta
     rom[110] = 36'h000400000;   // 110 (pipeline gap)
     rom[111] = 36'h000400000;   // 111 (pipeline gap)
-    rom[112] = 36'h00a481910;   // 112 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[112] = 36'h00a481978;   // 112 theta_mod = 2 theta - theta_prev (16 bit)
     rom[113] = 36'h084400010;   // 113 theta_prev = theta
     rom[114] = 36'h0006d140a;   // 114 WREF P = w_hi[0] - pos
     rom[115] = 36'h1220c72f8;   // 115 w3[0] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
@@ -1082,10 +1082,10 @@ if (N == 7) begin
     rom[177] = 36'h000400000;   // 177 (pipeline gap)
     rom[178] = 36'h266400040;   // 178 U_Q
     rom[179] = 36'h000400007;   // 179 END program end
-    rom[192] = 36'h484400011;   // 192 WTH first period: theta_prev = theta
+    rom[192] = 36'h484600011;   // 192 WTH P = theta; first period: theta_prev = theta
     rom[193] = 36'h000400000;   // 193 (pipeline gap)
     rom[194] = 36'h000400000;   // 194 (pipeline gap)
-    rom[195] = 36'h00a481910;   // 195 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[195] = 36'h00a481978;   // 195 theta_mod = 2 theta - theta_prev (16 bit)
     rom[196] = 36'h084400010;   // 196 theta_prev = theta
     rom[197] = 36'h000400006;   // 197 WCORE modulation start (held u, theta_mod), after the core
     rom[198] = 36'h256400038;   // 198 U_D = the u applied
@@ -1108,10 +1108,10 @@ if (N == 8) begin
     rom[10] = 36'h000611000;   // 10 P = spd
     rom[11] = 36'h024831478;   // 11 ndsp = spd_prev - spd
     rom[12] = 36'h034800078;   // 12 spd_prev = spd
-    rom[13] = 36'h484400011;   // 13 WTH first period: theta_prev = theta
+    rom[13] = 36'h484600011;   // 13 WTH P = theta; first period: theta_prev = theta
     rom[14] = 36'h000400000;   // 14 (pipeline gap)
     rom[15] = 36'h000400000;   // 15 (pipeline gap)
-    rom[16] = 36'h00a481910;   // 16 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[16] = 36'h00a481978;   // 16 theta_mod = 2 theta - theta_prev (16 bit)
     rom[17] = 36'h084400010;   // 17 theta_prev = theta
     rom[18] = 36'h0006d1002;   // 18 WREF P = w_hi[0]
     rom[19] = 36'h1220c6378;   // 19 w3[0] = sat32(P << 16 + round(w_lo >> 16))
@@ -1195,10 +1195,10 @@ if (N == 8) begin
     rom[106] = 36'h000611000;   // 106 P = spd
     rom[107] = 36'h024831478;   // 107 ndsp = spd_prev - spd
     rom[108] = 36'h034800078;   // 108 spd_prev = spd
-    rom[109] = 36'h484400011;   // 109 WTH first period: theta_prev = theta
+    rom[109] = 36'h484600011;   // 109 WTH P = theta; first period: theta_prev = theta
     rom[110] = 36'h000400000;   // 110 (pipeline gap)
     rom[111] = 36'h000400000;   // 111 (pipeline gap)
-    rom[112] = 36'h00a481910;   // 112 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[112] = 36'h00a481978;   // 112 theta_mod = 2 theta - theta_prev (16 bit)
     rom[113] = 36'h084400010;   // 113 theta_prev = theta
     rom[114] = 36'h0006d140a;   // 114 WREF P = w_hi[0] - pos
     rom[115] = 36'h1220c72f8;   // 115 w3[0] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
@@ -1270,10 +1270,10 @@ if (N == 8) begin
     rom[181] = 36'h000400000;   // 181 (pipeline gap)
     rom[182] = 36'h266400040;   // 182 U_Q
     rom[183] = 36'h000400007;   // 183 END program end
-    rom[192] = 36'h484400011;   // 192 WTH first period: theta_prev = theta
+    rom[192] = 36'h484600011;   // 192 WTH P = theta; first period: theta_prev = theta
     rom[193] = 36'h000400000;   // 193 (pipeline gap)
     rom[194] = 36'h000400000;   // 194 (pipeline gap)
-    rom[195] = 36'h00a481910;   // 195 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[195] = 36'h00a481978;   // 195 theta_mod = 2 theta - theta_prev (16 bit)
     rom[196] = 36'h084400010;   // 196 theta_prev = theta
     rom[197] = 36'h000400006;   // 197 WCORE modulation start (held u, theta_mod), after the core
     rom[198] = 36'h256400038;   // 198 U_D = the u applied

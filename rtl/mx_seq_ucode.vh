@@ -10,7 +10,7 @@ localparam [3:0] AS_POS = 4'd1, AS_TH = 4'd2, AS_ID = 4'd3, AS_IQ = 4'd4, AS_IDR
 localparam [3:0] AS_U0 = 4'd7, AS_U1 = 4'd8, AS_E0 = 4'd9, AS_E1 = 4'd10, AS_E2 = 4'd11, AS_PR = 4'd12;
 localparam [3:0] AS_SH = 4'd13, AS_OMR = 4'd14, AS_P = 4'd15;
 localparam [1:0] BM_ZERO = 2'd0, BM_Q = 2'd1, BM_HI16 = 2'd2;
-localparam [1:0] WM_SAT32 = 2'd0, WM_WRAP36 = 2'd2;
+localparam [1:0] WM_SAT32 = 2'd0;
 localparam [2:0] DK_CORE = 3'd1, DK_RAM = 3'd2, DK_STAT = 3'd3, DK_OMR = 3'd4, DK_THM = 3'd5, DK_SHKA = 3'd6;
 localparam [2:0] DK_SHT2 = 3'd7;
 localparam [1:0] CD_FIRST = 2'd1, CD_LS = 2'd2, CD_NOLS = 2'd3;

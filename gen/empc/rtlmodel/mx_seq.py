@@ -116,7 +116,7 @@ class Op:
         assert int(self.na) + int(self.nb) + int(self.rc) + int(self.cr) <= 1, f"two carry-ins: {self}"
         assert not self.rc or self.bm in ("HI16", "HI24"), self
         # the RTL shifts P (the forward path) and theta (in its stage, by 1 only), no other source
-        assert self.ash == 0 or self.a == "P" or (self.a == "TH" and self.ash == 1), f"shift of {self.a}: {self}"
+        assert self.ash == 0 or self.a == "P", f"shift of {self.a}: {self}"
         return UW.pack(ctl=CTL[self.ctl], asel=ASEL[self.a], aw=int(self.aw), ash=ASH[self.ash], na=int(self.na),
                        nb=int(self.nb), bm=BM[self.bm], rc=int(self.rc), cr=int(self.cr), rb=self.rbn,
                        pe=int(self.pe), wm=WM[self.wm], fs=int(self.fs), dk=DK[self.dk], da=self.dan,
@@ -131,8 +131,9 @@ STAT_GAP = 2      # after a status-word write, the next STAT or CORE write >= 2 
 
 
 def _theta_ops() -> list[Op]:
-    return [Op("WTH", "TH", dk="RAM", da="TH_PREV", cond="FIRST", note="first period: theta_prev = theta"),
-            Op(a="TH", ash=1, nb=True, bm="Q", rb="TH_PREV", dk="THM",
+    return [Op("WTH", "TH", pe=True, dk="RAM", da="TH_PREV", cond="FIRST",
+               note="P = theta; first period: theta_prev = theta"),
+            Op(a="P", ash=1, nb=True, bm="Q", rb="TH_PREV", dk="THM",
                note="theta_mod = 2 theta - theta_prev (16 bit)"),
             Op(a="TH", dk="RAM", da="TH_PREV", note="theta_prev = theta")]
 
@@ -268,7 +269,7 @@ def _hdr(what: str, cmd: str) -> list[str]:
 
 # the names rtl/mx_seq.v refers to (the others stay out of the header: no unused localparams)
 RTL_NAMES = {*(f"UW_{n.upper()}" for n, _ in UW.fields), *(f"CTL_{n}" for n in CTL if n != "OP"),
-             *(f"AS_{n}" for n in ASEL if n != "NONE"), "BM_ZERO", "BM_Q", "BM_HI16", "WM_SAT32", "WM_WRAP36",
+             *(f"AS_{n}" for n in ASEL if n != "NONE"), "BM_ZERO", "BM_Q", "BM_HI16", "WM_SAT32",
              *(f"DK_{n}" for n in DK if n != "NONE"), *(f"CD_{n}" for n in COND if n != "ALWAYS"),
              *(f"PC_{n}" for n in ENTRY), "SW_REF0"}
 
@@ -446,8 +447,8 @@ def run_job(kind: str, n: int, ram: dict, ctx: Ctx, timing: dict | None = None) 
                         out["core"][op.dan] = F.wrap(wv, 32)
                     elif op.dk == "STAT":
                         out["stat"][op.dan] = wv & 0xFFFFFFFF
-                    elif op.dk == "RAM":
-                        ram[op.dan] = F.wrap(wv, RAM_W)
+                    elif op.dk == "RAM":          # R's low 36 bits (SAT32: the saturated word)
+                        ram[op.dan] = F.wrap(wv if op.wm == "SAT32" else r, RAM_W)
                     elif op.dk == "OMR":
                         regs["OMR"] = F.wrap(wv, 32)
                         out["omr"] = regs["OMR"]
