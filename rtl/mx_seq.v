@@ -24,7 +24,7 @@
 // 31:16 / 31:24 with their rounding bit, R = +-A +-B + cin), W (sat32 / wrap32 / wrap36 of R to the
 // core input buffer, the axis state RAM port A, a status word, the omega / theta_mod registers or
 // the serial shifter).  kacc * i_q is a product of xform's DSP48A1 (mul_b, prod: the front's end, held); the rounding shifts (kacc_shift,
-// load_shift + 1) are a 48-bit serial right shifter, one bit per clock.  Program and hazards: the
+// load_shift + 1) are a 40-bit serial right shifter, one bit per clock.  Program and hazards: the
 // tables of gen/empc/rtlmodel/mx_seq.py (rtl/mx_seq_ucode.vh, rtl/mx_seq_rom.vh).
 //
 // Axes: the state RAM is addressed {axis, word} (AXB axis bits); with NAXES = 1 the job's axis is 0.
@@ -110,6 +110,7 @@ module mx_seq #(
     localparam integer AB = `EMPC_ANGLE_BITS; // 16
     localparam integer PW = `EMPC_POS_W;     // 32
     localparam integer XW = 48;              // ALU width
+    localparam integer SHW = 40;             // serial shifter: |kacc i_q| < 2^35, |t2| < 2^37 (D wraps at 36 bits)
     localparam integer RW = 36;              // axis state RAM word
     localparam integer NREF = 64 * (N + 1);  // reference bits read after an advance
     localparam integer PFB = $clog2(NREF);
@@ -336,10 +337,10 @@ module mx_seq #(
     reg  [UW-1:0] g_u0, g_u1;
     reg  [SW-1:0] g_e0, g_e1, g_e2, g_om;
     reg  [35:0]   g_pr;
-    reg  [XW-1:0] g_sh;
+    reg  [SHW-1:0] g_sh;
     reg           g_p;
     wire          zeroed_nx = rst || (!core_done && (!run || zeroed));
-    reg  signed [XW-1:0] sh;                // serial shifter
+    reg  signed [SHW-1:0] sh;               // serial shifter
     always @(posedge clk) begin
         g_pos <= (issue && i_as == AS_POS) ? pos_trig : {PW{1'b0}};
         g_th  <= (issue && i_as == AS_TH)  ? theta_trig : {AB{1'b0}};
@@ -354,7 +355,7 @@ module mx_seq #(
         g_e2  <= (issue && i_as == AS_E2 && !zeroed_nx) ? core_ebar[2*SW +: SW] : {SW{1'b0}};
         g_om  <= (issue && i_as == AS_OMR) ? omega : {SW{1'b0}};
         g_pr  <= (issue && i_as == AS_PR)  ? pr : 36'd0;
-        g_sh  <= (issue && i_as == AS_SH)  ? sh : {XW{1'b0}};
+        g_sh  <= (issue && i_as == AS_SH)  ? sh : {SHW{1'b0}};
         g_p   <= issue && i_as == AS_P;
     end
     // the rest of the microword, one stage per clock
@@ -402,7 +403,7 @@ module mx_seq #(
                           {{(XW-IW){g_id[IW-1] | g_iq[IW-1] | g_idr[IW-1] | g_iqr[IW-1]}}, g_id | g_iq | g_idr | g_iqr} |
                           {{(XW-UW){g_u0[UW-1] | g_u1[UW-1]}}, g_u0 | g_u1} |
                           {{(XW-SW){g_e0[SW-1] | g_e1[SW-1] | g_e2[SW-1] | g_om[SW-1]}}, g_e0 | g_e1 | g_e2 | g_om} |
-                          {{(XW-36){g_pr[35]}}, g_pr} | g_sh | p_fwd;
+                          {{(XW-36){g_pr[35]}}, g_pr} | {{(XW-SHW){g_sh[SHW-1]}}, g_sh} | p_fwd;
     wire [XW-1:0] a_sh  = a_or;
     reg  [XW-1:0] b_op;
     always @(*) begin
@@ -472,7 +473,7 @@ module mx_seq #(
     reg  [4:0]    sh_cnt;
     always @(posedge clk) begin
         if (wen && (w_dk == DK_SHKA || w_dk == DK_SHT2)) begin
-            sh <= r;
+            sh <= r[SHW-1:0];
             sh_r <= 1'b0;
             sh_cnt <= (w_dk == DK_SHKA) ? kacc_shift : ({1'b0, load_shift} + 5'd1);
             sh_busy <= (w_dk == DK_SHKA) ? (kacc_shift != 5'd0) : 1'b1;

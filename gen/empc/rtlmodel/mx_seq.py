@@ -124,6 +124,7 @@ class Op:
 
 
 NOP = Op(note="(pipeline gap)")
+SH_W = 40         # serial shifter: |kacc i_q| < 2^35; |t2| = |2 (ka - D) + ndsp| < 2^37 (D wraps at 36 bits)
 HAZARD = 3        # a RAM word / special register is read >= 3 issues after its write
 STAT_GAP = 2      # after a status-word write, the next STAT or CORE write >= 2 issues later: axis_status defers
                   # one that meets a CPU read and takes st_addr / st_wdata in the next clock, which the RTL
@@ -456,7 +457,7 @@ def run_job(kind: str, n: int, ram: dict, ctx: Ctx, timing: dict | None = None) 
                         regs["THM"] = wv & 0xFFFF
                         out["thm"] = regs["THM"]
                     elif op.dk in ("SHKA", "SHT2"):
-                        regs["SH"] = F.wrap(wv, 48)
+                        regs["SH"] = F.wrap(wv, SH_W)
                         regs["r"] = 0
                         regs["sh_left"] = ctx.kacc_shift if op.dk == "SHKA" else ctx.load_shift + 1
                         regs["sh_load"] = True
