@@ -11,7 +11,9 @@ the EMC bus-functional model (tb/emc_bfm.py) through the register-map driver (ge
 
 In lockstep, the bit-accurate axis model (gen/empc/bitloop.py AxisModel: sequencer
 with front end, MPC core and modulation, gen/empc/rtlmodel/ctrl_seq.py, and the
-reference generator's model) sees the same inputs at every ADC trigger; every
+reference generator's model) sees the same inputs at every ADC trigger and, like the
+RTL's sequencer (rtl/mx_seq.v), decides the period's kind and advances the references
+at the PWM boundary before the sample (AxisModel.boundary); every
 compare value the RTL loads must equal the model's (bit-exact).  The resulting
 trajectory is also compared with the float closed loop (closedloop.py, fitted
 gains) within the stated tolerance.  Reports: build/reports/closed_loop_<scenario>.{json,png}.
@@ -50,6 +52,7 @@ from empc.rtlmodel.ref_gen import GOV_FIELD, RefGen, gov_words, segments_from_po
 ROOT = Path(__file__).resolve().parents[1]
 REPORTS = ROOT / "build" / "reports"
 CLK_PERIOD_NS = 10                    # fabric clock (100 MHz); the PLL model passes it through
+LATENCY_MAX = 300                     # clocks from the last ADC bit to the compare values (issue 16 item 3)
 
 # Co-simulation scenarios: (paper scenario, simulated seconds, fault injection or None)
 COSIM = {
@@ -175,6 +178,13 @@ class CoSim:
         self.words_checked = 0
         self.sync_value = None     # Q.32 value of CMD.ref_sync (AxisModel.ref_sync)
         self.lat_max = {"control": 0, "modulation": 0}   # adc_trig -> cmp_load, clock cycles
+        # the last SCLK rising edge of the controller sample's last window frame -> cmp_load: ADC valid ->
+        # cmp_load (measured) + valid's fixed distance from that edge (adc_spi, AdcSpiParams); the frames
+        # run back to back, so the pin's last rising edge before cmp_load is another frame's
+        # (control periods only: a modulation-only period does not wait for the sample, its cmp_load
+        # comes before the valid)
+        self.lat_bit = 0
+        self.lat_valid = 0                                  # ADC valid -> cmp_load
         self.rec = {k: [] for k in ("t", "i_d", "i_q", "w_e", "theta_e", "u_d", "u_q", "ref", "ipk")}
         self.period = 0
         self.t = 0.0
@@ -208,6 +218,7 @@ class CoSim:
         self.enc_hold = None       # None or the frozen encoder count
         self.ipk_now = 0.0         # peak |phase current| of the plant since the last reset of it
         self.missed = 0            # periods without compare values (overrun run)
+        self.late = False          # the previous period lost its compare values
 
     @property
     def last_control(self):
@@ -261,6 +272,12 @@ class CoSim:
         (mirrored in the model), the plant to the period centre, the pins the trigger samples."""
         bridges_on = int(self.dut.pwm_en.value) == 0b111
         self.duties = np.array(self.cmp_rtl, dtype=float) / self.P if bridges_on else None
+        # the boundary before the sample: the period's kind, the references advance (before this
+        # half period's CPU commands, which the next advance takes)
+        if self.axis.boundary() and self.started and self.t_profile0 is None:
+            # this advance loads the profile's first value into the head w_{k+N}: the
+            # sample instant (half a period from now) is profile time -N Ts
+            self.t_profile0 = self.t + 0.5 * self.Tpwm + self.cfg.control.N * self.cfg.control.Ts
         c0 = time.process_time()
         # plant to the centre and the pins at once: the ADC window starts before the centre
         self._plant_half(self.duties)
@@ -286,23 +303,26 @@ class CoSim:
         assert lost or (n_trig == 1 and n_load == 1 and lat < self.P), \
             f"period {self.period}: {n_trig} ADC triggers, {n_load} compare loads, load {lat} clocks after the trigger"
         self.regs.run = bool(int(dut.dbg_run_trig.value))
-        control = self.axis.control_next
+        control = self.axis.control_next                 # decided at the period's start (boundary)
         if control and self.swap_params is not None:      # the RTL swaps at this control sample
             self.seq.params, self.swap_params = self.swap_params, None
-        if control and self.started and self.t_profile0 is None:
-            # this advance loads the profile's first value into the head w_{k+N}: the
-            # sample instant is profile time -N Ts
-            self.t_profile0 = self.t + self.cfg.control.N * self.cfg.control.Ts
         cur, count = self.sampled
         out = self.axis.period(count, cur=cur)
         if lost:
             self.missed += 1
+            self.late = True
             self._plant_half(self.duties)
             self.period += 1
             self.py_cpu += time.process_time() - c0
             return
         kind = "control" if control else "modulation"
-        self.lat_max[kind] = max(self.lat_max[kind], lat)
+        if not self.late:       # the period after a lost one ends the late job: its latencies span two periods
+            self.lat_max[kind] = max(self.lat_max[kind], lat)
+            if control:
+                lat_valid = int(dut.dbg_lat_valid_q.value)
+                self.lat_valid = max(self.lat_valid, lat_valid)
+                self.lat_bit = max(self.lat_bit, lat_valid + self.adcp.valid_after_last_bit())
+        self.late = False
         if control and "x" in out:
             self._check_words(out)
         v = int(dut.dbg_cmp_q.value)
@@ -631,17 +651,22 @@ async def _inj_dclink(fr):
 
 
 async def _inj_overrun(fr):
-    """The sequencer loses the controller's ADC sample of one period (its adc_seen flag is cleared
-    just after it was set; Verilator has no VPI force, a deposit on the flag holds until the next
-    sample): the period is still running at the PWM update, `overrun` pulses at that boundary,
-    the next period's trigger is ignored and its sample completes the late period."""
-    seq = fr.dut.u_top.g_axis[0].u_axis.u_seq          # adc_seen: public in tb/hdl/cosim_top.vlt
+    """The sequencer loses the controller's ADC sample of one control period (its adc_seen flag is
+    cleared just after it was set; Verilator has no VPI force, a deposit on the flag holds until the
+    next sample): the period is still running at the PWM update, `overrun` pulses at that boundary,
+    the next period's trigger is ignored and its sample completes the late period.  mx_seq's
+    modulation-only periods do not wait for the ADC: the first control period's sample is taken."""
+    seq = fr.dut.u_top.g_axis[0].u_axis.u_seq          # public in tb/hdl/cosim_top.vlt
 
     async def run():
         await RisingEdge(fr.dut.dbg_period_start)
-        await RisingEdge(fr.dut.dbg_adc_valid)
-        await RisingEdge(fr.dut.clk)                    # adc_seen set at this edge
-        await FallingEdge(fr.dut.clk)
+        while True:
+            await RisingEdge(fr.dut.dbg_adc_valid)
+            await RisingEdge(fr.dut.clk)                # adc_seen set at this edge
+            await FallingEdge(fr.dut.clk)
+            if int(seq.busy_period.value) and int(seq.is_control.value) and int(seq.adc_seen.value) \
+                    and not int(seq.front_go.value):
+                break
         seq.adc_seen.value = 0
         await RisingEdge(fr.dut.dbg_period_start)       # the PWM update the period missed
         fr.t_event = fr.now()
@@ -704,7 +729,8 @@ FAULTS = {
                      lat_max=HALL_DEBOUNCE + 2 + 2 + _TRIP + 4),
     "watchdog": dict(inject=_inj_watchdog, remove=_rm_wdog, hold=WDOG_FAST + 4, lat_max=_TRIP, setup=_wdog_fast),
     "dclink": dict(inject=_inj_dclink, remove=_rm_dclink, hold=3, lat_max=20),
-    "overrun": dict(inject=_inj_overrun, remove=None, hold=3, lat_max=_TRIP, exact=False),
+    # overrun: the injection waits for a control period (up to pwm_per_control = 5 PWM periods in fault_step)
+    "overrun": dict(inject=_inj_overrun, remove=None, hold=8, lat_max=_TRIP, exact=False),
     "adc": dict(inject=_persistent_adc(lambda cs: setattr(cs, "adc_lead", 0b1000)), remove=_clear_adc, hold=2,
                 lat_max=_VL + _TRIP),
     "adc_stuck": dict(inject=_persistent_adc(_hold(0, (1 << F.ADC_BITS) - 1)), remove=_clear_adc, hold=2,
@@ -1052,6 +1078,8 @@ async def closed_loop(dut, name: str):
               "sim_ms_per_wall_s": sim_ms / res["wall"], "clocks_per_wall_s": clocks / res["wall"],
               # CPU time of the simulator process (Verilator + Python): the speed on an idle core
               "cpu_s": res["cpu"], "sim_ms_per_cpu_s": sim_ms / res["cpu"], "clocks_per_cpu_s": clocks / res["cpu"],
+              "latency_last_adc_bit_to_cmp_load_max_cycles": {"control": cs.lat_bit},
+              "latency_adc_valid_to_cmp_load_max_cycles": {"control": cs.lat_valid},
               "python_per_period_cpu_s": cs.py_cpu, "load_avg_1min": os.getloadavg()[0],
               "compare_sets_checked": cs.checked,
               "mismatches_vs_bit_accurate_model": len(cs.mismatches),
@@ -1075,6 +1103,8 @@ async def closed_loop(dut, name: str):
                               "clocks_differing": int(dut.dbg_ls_errors.value)}
         dut._log.info("lockstep: %s", report["lockstep"])
         assert report["lockstep"]["clocks_differing"] == 0, report["lockstep"]
+    if cs.fault is None or FAULTS[cs.fault].get("exact", True):   # else the model's period kinds drift from the RTL's
+        assert 0 < cs.lat_bit <= LATENCY_MAX, f"last ADC bit -> compare values: {cs.lat_bit} clocks"
     if cs.fault is None:
         assert not cs.word_mismatches, f"MPC core input words differ from the model: {cs.word_mismatches[:3]}"
         assert not cs.mismatches, f"RTL compare values differ from the bit-accurate model: {cs.mismatches[:3]}"

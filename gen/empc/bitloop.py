@@ -64,11 +64,25 @@ class AxisModel:
         self.last_control = None    # outputs of the last control period (+ ref_w0: the w_k it applied)
         self.gov_clamps = 0         # control periods in which the governor shaped the reference (SAT_GOV)
         self._gdl, self._r_prev, self._v_gov = None, 0, 0     # governor of the refs path
+        self._boundary_ref = None   # (control, references) decided at boundary(), for the next period()
 
     @property
     def control_next(self) -> bool:
-        """True if the next :meth:`period` is a control period (the sequencer's period counter)."""
+        """True if the next :meth:`period` is a control period (decided at :meth:`boundary` if that
+        was called, else the sequencer's period counter now)."""
+        if self._boundary_ref is not None:
+            return self._boundary_ref[0]
         return self.seq.per_cnt + 1 >= self.regs.pwm_per_control
+
+    def boundary(self, t: float = 0.0) -> bool:
+        """The PWM boundary before the next sample (rtl/mx_seq.v, docs/four_axes.md D5): the kind of
+        the coming period is decided and, for a control period, the references advance here, so a
+        CPU command to the reference generator after this call is taken by the next advance.
+        ``t``: the coming trigger's time (for ``refs``).  The next :meth:`period` uses the decision;
+        without this call :meth:`period` decides and advances at the trigger (no commands between)."""
+        control = self.seq.boundary(self.regs)
+        self._boundary_ref = (control, self._reference(t) if control else None)
+        return control
 
     @property
     def u(self) -> tuple:
@@ -116,8 +130,12 @@ class AxisModel:
         if (codes is None) == (cur is None):
             raise ValueError("AxisModel.period needs exactly one of codes and cur")
         cfg = self.cfg
-        control = self.control_next
-        ref_w = self._reference(t) if control else None
+        if self._boundary_ref is not None:
+            control, ref_w = self._boundary_ref
+            self._boundary_ref = None
+        else:
+            control = self.control_next
+            ref_w = self._reference(t) if control else None
         theta16 = pos_sense.angle(count, cfg.sensors.encoder_cpr, cfg.motor.p, base=self.cal_offset)
         off = cfg.sensors.adc_offset
         if cur is None:
