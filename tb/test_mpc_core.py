@@ -53,6 +53,11 @@ def header_n() -> int:
     return header_consts()["N"]
 
 
+# the axis rides above the word address: in_addr = {axis, word}, cfg_addr = {axis, image word}
+IN_AW = (core.IN_WORDS - 1).bit_length()
+IMG_AW = (image.DEPTH - 1).bit_length()
+
+
 # ============================================================================ cocotb (Icarus, ports)
 def _u(v: int, w: int) -> int:
     return v & ((1 << w) - 1)
@@ -79,7 +84,7 @@ async def write_inputs(dut, words: dict[int, int], RisingEdge, axis: int = 0) ->
     last write edge)."""
     for a, v in words.items():
         dut.in_we.value = 1
-        dut.in_addr.value = (axis << 6) | a
+        dut.in_addr.value = (axis << IN_AW) | a
         dut.in_wdata.value = _u(int(v), SW)
         await RisingEdge(dut.clk)
     dut.in_we.value = 0
@@ -152,7 +157,7 @@ class Bench:
         await self.RisingEdge(dut.clk)
         for a in range(image.USED):
             dut.cfg_we.value = 1
-            dut.cfg_addr.value = (self.ax << 10) | a
+            dut.cfg_addr.value = (self.ax << IMG_AW) | a
             dut.cfg_wdata.value = words[a]
             await self.RisingEdge(dut.clk)
         dut.cfg_we.value = 0
@@ -260,7 +265,7 @@ class ImgBench(Bench):
         await self.RisingEdge(dut.clk)
         for a, v in words:
             dut.cfg_we.value = 1
-            dut.cfg_addr.value = (self.ax << 10) | a
+            dut.cfg_addr.value = (self.ax << IMG_AW) | a
             dut.cfg_wdata.value = v
             await self.RisingEdge(dut.clk)
             self.m.write(a, v)
@@ -279,7 +284,7 @@ class ImgBench(Bench):
         dut = self.dut
         dut.swap_at.value = self.sel
         if write is not None:
-            dut.cfg_we.value, dut.cfg_addr.value, dut.cfg_wdata.value = 1, (self.ax << 10) | write[0], write[1]
+            dut.cfg_we.value, dut.cfg_addr.value, dut.cfg_wdata.value = 1, (self.ax << IMG_AW) | write[0], write[1]
         await self.RisingEdge(dut.clk)
         dut.swap_at.value = 0
         dut.cfg_we.value = 0
@@ -405,14 +410,9 @@ class AxBench:
             await self.RisingEdge(self.dut.clk)
 
     async def write_inputs(self, axis: int, words: dict[int, int]) -> None:
-        dut = self.dut
+        await write_inputs(self.dut, words, self.RisingEdge, axis)
         for a, v in words.items():
-            dut.in_we.value = 1
-            dut.in_addr.value = (axis << 6) | a
-            dut.in_wdata.value = _u(int(v), SW)
-            await self.RisingEdge(dut.clk)
             self.m.write_input(axis, a, int(v))
-        dut.in_we.value = 0
 
     def vector_words(self, axis: int) -> dict[int, int]:
         p = self.m.banks.active(axis)
@@ -425,7 +425,7 @@ class AxBench:
         self.cpu_busy, self.up_axis = True, axis
         for a, v in words:
             dut.cfg_we.value = 1
-            dut.cfg_addr.value = (axis << 10) | a
+            dut.cfg_addr.value = (axis << IMG_AW) | a
             dut.cfg_wdata.value = v
             await self.RisingEdge(dut.clk)
             self.m.banks.write(a, v, axis)

@@ -20,12 +20,12 @@ import numpy as np
 
 from . import fit as fit_mod
 from . import formats as F
+from . import image
 from .mpc import ebar_step_limits
 from .rtlmodel import mpc_core as core
 
 MAX_PROD_SHIFT = (1 << F.PROD_SHIFT_BITS) - 1
-MIN_SIG_SHIFT = -F.SIG_SHIFT_BIAS                                # stored field = shift + SIG_SHIFT_BIAS
-MAX_SIG_SHIFT = (1 << F.SIG_SHIFT_BITS) - 1 - F.SIG_SHIFT_BIAS
+MIN_SIG_SHIFT, MAX_SIG_SHIFT = image.SHIFT_MIN, image.SHIFT_MAX  # what the image's biased field holds
 
 
 class QuantisationError(ValueError):
@@ -140,6 +140,12 @@ def build(cfg, algorithm: int | None = None, task: str | None = None, gain_fit=N
             rng = min(phys, useful)
         cj_range = _bits(rng) - (F.OPW - 1)          # smallest shift at which the useful range fits
         cj = min(MAX_SIG_SHIFT, max(0, cj_range))
+        if col.kind == "DX" and col.output == 3:
+            # the angle increment is the speed times Ts: in steady motion its term is cancelled by the
+            # reference terms, so "useful" (the term alone) understates its range; cover Omega_e where
+            # the product-shift field allows (premo algorithm 2 position: 0.39 rad per period clipped
+            # the speed at 1570 of 3000 rad/s, 2.5 i_max in position_large), else fall back to cj_range
+            cj = min(MAX_SIG_SHIFT, max(cj, _bits(speed_top * c.Ts / scale) - (F.OPW - 1)))
         ps = [K[:, i] * scale * acc_per_volt for i in range(2)]        # acc LSB per signal LSB
         cmaxs = []
         for p in ps:

@@ -56,6 +56,7 @@ KNOWN = {
     ("blwr233d", 50e-6, (2, "position")): "radius 1.065 (4444 Hz current mode, exact gains, L/R/J -30 %)",
     ("blwr233d", 50e-6, (2, "speed")): "radius 1.155 (3729 Hz current mode, L/R/J -30 %, psi +20 %, loaded; weights tuned at 250 us)",
     ("premo_320v", 50e-6, (2, "speed")): "radius 1.277 (4055 Hz current mode, L/R/J -30 %, psi +20 %; weights from 250 us)",
+    ("premo_320v", 50e-6, (2, "position")): "radius 1.277 (L/R -30 %, J/psi +30/+20 %, loaded, quantised gains; weights searched at 250 us)",
     ("ipmsm_001", 250e-6, (2, "speed")): "radius 1.051 (weights searched at its Ts = 100 us; L +30 %, R/J -30 %, loaded)",
     ("ec45flat_24v", 50e-6, (2, "speed")): "radius 1.259 (4102 Hz current mode, L/R/J -30 %; weights searched at 250 us)",
     ("ec45flat_24v", 50e-6, (2, "position")): "radius 1.217 (L/R/J -30 %, loaded; weights searched at 250 us)",

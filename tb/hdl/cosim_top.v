@@ -184,10 +184,11 @@ module cosim_top #(
     // the MPC core's input words as the sequencer last wrote them (core word map EMPC_IN_*, word a at
     // [a*SIG_W +: SIG_W]; one vector: one VPI read per control period): Python checks them against the
     // model's every control period and names the words that differ
-    reg [64*`EMPC_SIG_W-1:0] dbg_in_words;
+    localparam integer IN_AW = $clog2(`EMPC_IN_WORDS);
+    reg [`EMPC_IN_WORDS*`EMPC_SIG_W-1:0] dbg_in_words;
     always @(posedge clk)
         if (u_top.g_axis[0].u_axis.u_core.in_we)
-            dbg_in_words[u_top.g_axis[0].u_axis.u_core.in_addr[5:0]*`EMPC_SIG_W +: `EMPC_SIG_W] <=
+            dbg_in_words[u_top.g_axis[0].u_axis.u_core.in_addr[IN_AW-1:0]*`EMPC_SIG_W +: `EMPC_SIG_W] <=
                 u_top.g_axis[0].u_axis.u_core.in_wdata;
 
 `ifdef COSIM_LOCKSTEP
