@@ -273,6 +273,11 @@ module mpc_axis #(
     end
 
     wire        st_we, stat_sweep;
+    // the core's pending coefficient swap is decided at the boundary before a control sample
+    // (mx_seq's ctl_boundary, one clock before its ref_advance): ref_gen's advance takes the new
+    // task_pos and the trigger starts the program of the new task, with the new bank (a swap at the
+    // trigger would mix the old task's words with the new bank for one control period)
+    wire        ctl_boundary;
     wire [31:0] st_wdata;
     mx_seq #(.N(N)) u_seq (
         .clk(clk), .rst(rst), .adc_trig(adc_trig), .period_start(period_start),
@@ -280,7 +285,8 @@ module mpc_axis #(
         .run(running), .theta(theta), .pos(pos), .pos_sample(pos_sample), .adc_valid(adc_valid),
         .cur0(cur0), .cur1(cur1), .cur2(cur2), .kdc(kdc), .kacc(kacc), .kacc_shift(kacc_shift),
         .load_shift(kacc_load_shift),
-        .id_ref(id_eff), .iq_ref(iq_ref), .task_pos(task_pos), .ref_advance(ref_advance), .ref_ok(ref_ok),
+        .id_ref(id_eff), .iq_ref(iq_ref), .task_pos(task_pos), .ctl_boundary(ctl_boundary),
+        .ref_advance(ref_advance), .ref_ok(ref_ok),
         .ref_age(ref_age), .ref_bit(ref_bit), .ref_q(ref_q),
         .core_start(core_start), .core_in_we(core_in_we), .core_in_addr(core_in_addr),
         .core_in_wdata(core_in_wdata), .core_done(core_done), .core_u(core_u), .core_ebar(core_ebar),
@@ -294,7 +300,7 @@ module mpc_axis #(
         .done(core_done), .u(core_u), .du(core_du), .u_raw(core_u_raw), .ebar(core_ebar), .wn(core_wn),
         .flags(core_flags), .latency(core_latency), .fw_thr({fw_r2_lo, fw_r2_hi}), .fw_hi(core_fw_hi),
         .fw_lo(core_fw_lo), .cfg_we(coef_we), .cfg_addr(coef_addr),
-        .cfg_wdata(reg_wdata), .cfg_swap(cmd_coef_swap), .swap_at(pos_sample), .ready(core_ready), .bank(core_bank),
+        .cfg_wdata(reg_wdata), .cfg_swap(cmd_coef_swap), .swap_at(ctl_boundary), .ready(core_ready), .bank(core_bank),
         .swap_pending(core_swap_pending), .boot_ok(core_boot_ok), .img_ok(core_img_ok), .upl_ok(core_upl_ok),
         .swap_refused(core_swap_refused), .refused(core_refused), .task_pos(task_pos));
     wire img_bad = core_ready && !core_img_ok;

@@ -5,7 +5,10 @@
 //
 // Per PWM period (a "job" of the job's axis):
 //   boundary (period_start): decide whether the coming sample is a control sample
-//       (pwm_per_control) and, if so, advance the references (ref_advance: D5, the reference work
+//       (pwm_per_control) and, if so, pulse ctl_boundary (combinational, in the clock of
+//       period_start: mpc_axis decides a pending coefficient swap there, so task_pos and the bank
+//       are the new ones before the advance takes task_pos and before the trigger picks the
+//       program) and advance the references (ref_advance, one clock later: D5, the reference work
 //       leaves the latency path); after ref_gen's w_ok the N + 1 references are read (bit-serially,
 //       ref_age / ref_bit -> ref_q) into the axis state RAM: 2 words per reference
 //   trigger (adc_trig, the centre sample): latch the count, THETA_LAT clocks later the angle, start
@@ -34,7 +37,9 @@
 // Ports: as ctrl_seq's, except the status words: st_we / st_addr / st_wdata write one 32-bit word
 // (axis_status; st_addr / st_wdata are held until the next status or core write, >= 2 clocks
 // later, so axis_status's deferred write takes them from the ports in the clock after st_we); stat_sweep pulses when a control period's job ends (cmp_load): axis_status counts
-// the period's events then.  core_in_*, st_* and the ref_* read addresses are registered.
+// the period's events then.  ctl_boundary (new): the swap decision point of the core's bank
+// (swap_at), = period_start && the coming sample is a control sample, combinational from
+// period_start and registers.  core_in_*, st_* and the ref_* read addresses are registered.
 // Latency: trigger -> cmp_load on `latency`; from the ADC's valid: 1 (front request) + 23 (front)
 // + the dependent program (21 + kacc_shift clocks) + 1 + the core (38 + columns) + 1 + 85 (mod).
 // Reset: idle, first period flagged, the axis state RAM cleared by a 32 x NAXES-clock sweep, the
@@ -74,6 +79,7 @@ module mx_seq #(
     input  wire signed [`EMPC_I_W-1:0]    iq_ref,
     input  wire                           task_pos,
     // reference generator
+    output wire                           ctl_boundary,    // boundary before a control sample (pulse)
     output reg                            ref_advance,
     input  wire                           ref_ok,
     output wire [AW-1:0]                  ref_age,
@@ -135,6 +141,7 @@ module mx_seq #(
     reg  [AXB-1:0] ax;              // the job's axis (NAXES = 1: 0)
     wire        trig = adc_trig && !busy_period;
     wire        ctl_now = (per_nx >= pwm_per_control);
+    assign      ctl_boundary = period_start && ctl_now;
     wire [7:0]  per_cnt = per_nx - 8'd1;    // (read by tb/hdl/cosim_top.v only)
 
     // transform chain (xform): front with theta_trig, mod with theta_mod and the held u

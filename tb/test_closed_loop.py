@@ -195,7 +195,6 @@ class CoSim:
         self.sampled = None        # (ADC codes, encoder count) the running period's trigger samples
         self.py_cpu = 0.0          # CPU seconds in the per-period Python (plant, pins, axis model, check)
         self.lockstep = hasattr(dut, "dbg_ls_errors")   # COSIM_LOCKSTEP build: gated vs ungated MPC core
-        self.swap_params = None    # a coefficient swap requested: applied at the next control period
         self.kill = {}             # kill-path measurements (pstage / clock scenarios)
         # ADC: back-to-back frames, the controller takes the window mean (rtl defaults)
         self.adcp = AdcSpiParams(half_period=self.P)
@@ -303,9 +302,8 @@ class CoSim:
         assert lost or (n_trig == 1 and n_load == 1 and lat < self.P), \
             f"period {self.period}: {n_trig} ADC triggers, {n_load} compare loads, load {lat} clocks after the trigger"
         self.regs.run = bool(int(dut.dbg_run_trig.value))
-        control = self.axis.control_next                 # decided at the period's start (boundary)
-        if control and self.swap_params is not None:      # the RTL swaps at this control sample
-            self.seq.params, self.swap_params = self.swap_params, None
+        control = self.axis.control_next                 # decided at the period's start (boundary; a
+                                                          # requested coefficient swap is taken there too)
         cur, count = self.sampled
         out = self.axis.period(count, cur=cur)
         if lost:
@@ -830,13 +828,17 @@ async def run_cosim(dut, name: str) -> dict:
         async def swap():
             assert (await drv.read("STATUS") >> 9) & 1, "STATUS.coef_valid: the upload was not accepted as complete"
             await drv.command(coef_swap=1)
-            cs.swap_params = cs.params
+            cs.axis.swap(cs.params)
         plan.append([swap])
+        # the swap is decided at the next boundary before a control sample (rtl/mx_seq.v ctl_boundary),
+        # up to pwm_per_control PWM periods later: the reference sync below must see the new task
+        plan.extend([] for _ in range(cs.M - 1))
 
     async def ref_setup():
         # head = the measured output the RTL latches with the command: the encoder count (at rest: this
         # period's) or the last control period's speed estimate (not 0: ADC noise through KACC, 74 LSB
         # in speed_alg2 with the default seed; mirroring 0 made the alg-2 integrator diverge, period 41)
+        assert cs.axis.swap_params is None, "the coefficient swap is not decided before CMD.ref_sync"
         await drv.command(ref_sync=1)
         cs.sync_value = cs.axis.ref_sync(cs.sampled[1])
     plan.append([ref_setup])
@@ -901,14 +903,18 @@ async def run_cosim(dut, name: str) -> dict:
     plan.insert(0, [init_safety])
     spec = FAULTS[cs.fault] if cs.fault else None
     if spec and spec.get("setup"):
+        # in the period before the enable, after a kick: the configuration takes more PWM periods than
+        # WDOG_FAST (since the swap waits for its control boundary), a shortened watchdog set early
+        # would expire before the enable
         async def setup():
+            await kick()
             await spec["setup"](drv)
-        plan.insert(1, [setup])
+        plan.append([setup])
 
     async def enable():
         st = await drv.read("STATUS")
-        if cs.params != cs.boot:          # the swap was decided at a control sample since
-            assert (st >> 7) & 1 == 0 and (st >> 10) & 1 == 0 and (st >> 6) & 1 == 1 and cs.swap_params is None, \
+        if cs.params != cs.boot:          # the swap was decided at a control boundary since
+            assert (st >> 7) & 1 == 0 and (st >> 10) & 1 == 0 and (st >> 6) & 1 == 1 and cs.axis.swap_params is None, \
                 f"coefficient swap not applied (STATUS {st:#x})"
         await w("SEG_START", 0)
         cs.ref.start(0)

@@ -18,7 +18,10 @@ operation (seed EMPC_SEED, printed):
   (position: rel >> 24 at +-2^31 and the +2^39 wrap), kacc / kacc_shift 0..31 / load_shift 0..15,
   run toggling, 1..5 PWM periods per control period, ref_gen programs, syncs and starts before and
   after the boundary (taken by this / the next advance), triggers 3 .. 1500 clocks after the
-  boundary (the references are then still being advanced / read: the program waits), N = 1..8.
+  boundary (the references are then still being advanced / read: the program waits), N = 1..8;
+* N = 4: a coefficient swap to the other task's image in the middle of the run: task_pos (the
+  core's bank) changes exactly at the next boundary before a control sample (ctl_boundary), not at
+  a modulation-only boundary, and that control period is bit-exact in the new task.
 """
 from __future__ import annotations
 
@@ -277,20 +280,45 @@ async def random_periods(dut):
         dut.start.value = 0
         ref.start(slot)
 
+    async def upload(words):
+        for a in range(image.USED):
+            dut.cfg_we.value = 1
+            dut.cfg_addr.value = a
+            dut.cfg_wdata.value = words[a]
+            await FallingEdge(dut.clk)
+        dut.cfg_we.value = 0
+        await ClockCycles(dut.clk, 2, rising=False)
+
+    # a coefficient swap to the other task in the middle of the run (N = 4: the only N with images):
+    # decided at the next boundary before a control sample (ctl_boundary -> the core's swap_at), so
+    # that control period's advance, program, references and coefficients are all the new task's
+    other = {"speed": ("position", roms / "coef_alg2_position.hex"), "position": ("speed", roms / "coef_boot.hex")}
+    swap_k = PERIODS // 2 if law else None
+    swap_new = None                     # (task, params) requested, not yet decided
+    cur_task = task                     # the task of the active bank
     sw = core.SIG_W
     pos = rng.getrandbits(32)
     st = dict(periods=0, control=0, core_checked=0, words_checked=0, run0=0, spd_sat=0, dth_sat=0, dom_sat=0,
-              ref_sat=0, front_sat=0, late_trigger=0, lat_checked=0, cmd_after_boundary=0, ppc_change=0, lat_max=0, lat_valid_max=0)
+              ref_sat=0, front_sat=0, late_trigger=0, lat_checked=0, cmd_after_boundary=0, ppc_change=0, lat_max=0, lat_valid_max=0,
+              swap_wait=0, swapped=0)
     for k in range(PERIODS):
         await FallingEdge(dut.clk)
-        if rng.random() < 0.5 or task != "position":
+        if k == swap_k:
+            words = image.read_hex(other[task][1])
+            await upload(words)
+            dut.cfg_swap.value = 1
+            await FallingEdge(dut.clk)
+            dut.cfg_swap.value = 0
+            swap_new = (other[task][0], image.decode(words))
+            assert int(dut.swap_pending.value) == 1
+        if rng.random() < 0.5 or cur_task != "position":
             pos = (pos + rng.choice([0, 1, -1, 300, -300, rng.getrandbits(32), 1 << 15, -(1 << 15), 40000,
                                      1 << 23, -(1 << 23), (1 << 23) - 1])) & 0xFFFFFFFF
         r = rng.random()
         slot = None
         if r < 0.1:
             slot = rng.randrange(16)
-            if task == "position" and rng.random() < 0.7:
+            if cur_task == "position" and rng.random() < 0.7:
                 hi = rng.choice([0x7FFFFFFF, 0x7FFFFE, 0x7FFFFF, 0x800000, -0x800000, -0x800001])
                 frac = rng.choice([0xFF800000 | rng.getrandbits(23), rng.getrandbits(32)])
                 s = Slot(0, (((pos + hi) & 0xFFFFFFFF) << 32) | frac, 0, 0)
@@ -335,12 +363,23 @@ async def random_periods(dut):
         dut.theta.value = theta
         await ClockCycles(dut.clk, 3, rising=False)
         # ---- boundary: the sample's kind, the advance ----
+        assert int(dut.task_pos.value) == (cur_task == "position"), f"period {k}: task_pos before the boundary"
         dut.period_start.value = 1
         await FallingEdge(dut.clk)
         dut.period_start.value = 0
         control = model.boundary(regs)
+        if swap_new is not None:
+            if control:                 # the bank flips at this boundary, before the advance
+                cur_task, model.params = swap_new
+                swap_new = None
+                st["swapped"] += 1
+            else:
+                st["swap_wait"] += 1
+            assert int(dut.swap_pending.value) == (swap_new is not None), f"period {k}: swap_pending"
+        assert int(dut.task_pos.value) == (cur_task == "position"), \
+            f"period {k} (control {control}): task_pos after the boundary, want the {cur_task} task"
         if control:
-            ref.advance(hold=hold, task_pos=task == "position")
+            ref.advance(hold=hold, task_pos=cur_task == "position")
         gap = rng.choice([3, 20, 100, 400, 1500, 1500, 1500])
         st["late_trigger"] += int(control and gap <= 400)
         if cmd != "none" and after:
@@ -356,7 +395,7 @@ async def random_periods(dut):
             st["spd_sat"] += int(F.sat(dpos << F.W_FRAC, F.W_W) != dpos << F.W_FRAC)
             st["dth_sat"] += int(F.sat(dpos << F.TH_FRAC, sw) != dpos << F.TH_FRAC)
             for wv in ref_w:
-                x = F.rshift_round(F.wrap(wv - (pos << 32), 64), 32 - F.TH_FRAC) if task == "position" \
+                x = F.rshift_round(F.wrap(wv - (pos << 32), 64), 32 - F.TH_FRAC) if cur_task == "position" \
                     else F.rshift_round(F.wrap(wv, 64), 32 - F.W_FRAC)
                 st["ref_sat"] += int(F.sat(x, sw) != x)
         omega_prev = model.omega_prev
@@ -393,8 +432,8 @@ async def random_periods(dut):
         # the clock-exact latency of the program (rtlmodel/mx_seq.latency): exact when the references
         # were read before the program needed them (the trigger >= 1500 clocks after the boundary),
         # a lower bound otherwise
-        kind = ("POS" if task == "position" else "SPD") if control else "MOD"
-        core_lat = core.latency(params.ncols) if regs.run else None
+        kind = ("POS" if cur_task == "position" else "SPD") if control else "MOD"
+        core_lat = core.latency(model.params.ncols) if regs.run else None
         lat_exp = MX.latency(kind, n, regs.kacc_shift, regs.load_shift, MX.job_timing(T_VALID, core_lat))
         if gap >= 1500 or not control:
             assert lat == lat_exp, f"period {k} ({kind}, run {regs.run}, kacc_shift {regs.kacc_shift}, load_shift " \
@@ -413,7 +452,7 @@ async def random_periods(dut):
             assert mon["core"] == want, f"period {k} run {regs.run} u_prev {u_prev}: core input words " + str(
                 {a: (mon["core"].get(a), want[a]) for a in want if mon["core"].get(a) != want[a]})
             st["words_checked"] += len(want)
-            sh = 24 if task == "position" else 16
+            sh = 24 if cur_task == "position" else 16
             exp_stat.update({STAT["I_D"]: out["i_d"] & 0xFFFFFFFF, STAT["I_Q"]: out["i_q"] & 0xFFFFFFFF,
                              STAT["SPEED"]: out["omega"] & 0xFFFFFFFF, STAT["REF"]: (ref_w[0] >> sh) & 0xFFFFFFFF})
         else:
@@ -455,7 +494,7 @@ async def random_periods(dut):
     dut._log.info("mx_seq %s N=%d: seed %d, %s (compare values, core input words, core outputs, status words "
                   "and front_sat pulses bit-exact with the model)", task, n, seed, st)
     need = ["lat_checked", "dth_sat", "dom_sat", "spd_sat", "run0", "late_trigger", "cmd_after_boundary", "front_sat"]
-    need += ["core_checked"] if law else []
+    need += ["core_checked", "swapped"] if law else []
     need += ["ref_sat"] if task == "position" or law else []
     for key in need:
         assert st[key] > 0, f"no period exercised {key}: {st}"

@@ -29,7 +29,7 @@ module mx_seq_tb #(
     wire core_start, core_done, core_in_we; wire [5:0] core_in_addr; wire signed [`EMPC_SIG_W-1:0] core_in_wdata;
     wire [47:0] core_u, core_du, core_u_raw; wire [3*`EMPC_SIG_W-1:0] core_ebar; wire [17:0] core_wn;
     wire [10:0] core_flags; wire [7:0] core_latency; wire core_busy, core_bank, core_boot_ok, core_task_pos;
-    wire pos_sample; wire [17:0] i_d, i_q; wire [31:0] omega; wire [15:0] theta_trig; wire [31:0] seg_rdata;
+    wire pos_sample, ctl_boundary; wire [17:0] i_d, i_q; wire [31:0] omega; wire [15:0] theta_trig; wire [31:0] seg_rdata;
     ref_gen #(.N(N)) u_ref (.clk(clk), .rst(rst), .seg_we(seg_we), .seg_re(1'b0), .seg_slot(seg_slot),
         .seg_field(seg_field), .seg_wdata(seg_wdata), .seg_rdata(seg_rdata), .start(start), .start_slot(start_slot),
         .sync(sync), .sync_idx(sync_idx), .sync_bit(sync_bit), .advance(ref_advance), .rd_age(ref_age),
@@ -38,7 +38,7 @@ module mx_seq_tb #(
     mx_seq #(.N(N)) u_seq (.clk(clk), .rst(rst), .adc_trig(adc_trig), .period_start(period_start),
         .pwm_per_control(ppc), .run(run), .theta(theta), .pos(pos), .pos_sample(pos_sample), .adc_valid(adc_valid),
         .cur0(cur0), .cur1(cur1), .cur2(cur2), .kdc(kdc), .kacc(kacc), .kacc_shift(kacc_shift),
-        .load_shift(load_shift), .id_ref(id_ref), .iq_ref(iq_ref), .task_pos(task_pos), .ref_advance(ref_advance),
+        .load_shift(load_shift), .id_ref(id_ref), .iq_ref(iq_ref), .task_pos(task_pos), .ctl_boundary(ctl_boundary), .ref_advance(ref_advance),
         .ref_ok(ref_ok), .ref_age(ref_age), .ref_bit(ref_bit), .ref_q(ref_q), .core_start(core_start),
         .core_in_we(core_in_we), .core_in_addr(core_in_addr), .core_in_wdata(core_in_wdata), .core_done(core_done),
         .core_u(core_u), .core_ebar(core_ebar), .cmp(cmp), .cmp_load(cmp_load), .control_done(control_done),
@@ -48,11 +48,11 @@ module mx_seq_tb #(
         .in_wdata(core_in_wdata), .busy(core_busy), .done(core_done), .u(core_u), .du(core_du), .u_raw(core_u_raw),
         .ebar(core_ebar), .wn(core_wn), .flags(core_flags), .latency(core_latency), .fw_thr(32'd0), .fw_hi(),
         .fw_lo(), .cfg_we(cfg_we),
-        .cfg_addr(cfg_addr), .cfg_wdata(cfg_wdata), .cfg_swap(cfg_swap), .swap_at(pos_sample | swap_at),
+        .cfg_addr(cfg_addr), .cfg_wdata(cfg_wdata), .cfg_swap(cfg_swap), .swap_at(ctl_boundary | swap_at),
         .ready(core_ready), .bank(core_bank), .swap_pending(swap_pending), .boot_ok(core_boot_ok), .img_ok(),
         .upl_ok(), .swap_refused(), .refused(), .task_pos(core_task_pos));
     assign task_pos = core_task_pos | force_pos;
     wire unused = &{1'b0, i_d, i_q, omega, theta_trig, seg_rdata, core_du, core_u_raw, core_wn,
-                    core_flags, core_latency, core_busy, core_bank, core_boot_ok};
+                    core_flags, core_latency, core_busy, core_bank, core_boot_ok, pos_sample};
 endmodule
 `default_nettype wire
