@@ -140,7 +140,12 @@ module mx_seq #(
     reg  [2:0]  th_cnt;
     reg  [AXB-1:0] ax;              // the job's axis (NAXES = 1: 0)
     wire        trig = adc_trig && !busy_period;
-    wire        ctl_now = (per_nx >= pwm_per_control);
+    // the coming sample is a control sample: the compare registered, so that ctl_boundary is one gate
+    // from registers into the core's swap logic (18 LUT less in the drive).  One clock old: per_nx
+    // changes at a trigger; a pwm_per_control write (bridges off only) in the clock before a boundary
+    // takes effect at the next one, for ctl_next, the advance and the swap alike
+    reg         ctl_now;
+    always @(posedge clk) ctl_now <= !rst && (per_nx >= pwm_per_control);
     assign      ctl_boundary = period_start && ctl_now;
     wire [7:0]  per_cnt = per_nx - 8'd1;    // (read by tb/hdl/cosim_top.v only)
 

@@ -477,6 +477,7 @@ async def random_periods(dut):
     # an overrun (the FAULT.overrun cause, issue 14): a boundary while a period is still running (its
     # ADC sample never came) pulses overrun for one clock
     dut.ppc.value = 1                                              # a control period: it waits for the ADC
+    await ClockCycles(dut.clk, 2, rising=False)                    # (mx_seq registers the period-kind compare)
     dut.period_start.value = 1
     await FallingEdge(dut.clk)
     dut.period_start.value = 0
