@@ -16,8 +16,8 @@ event simulation of every combination of Ts in 1..4 with every phase (1..3 with 
 sample of Ts up to 12, and an interval argument (each axis's work lies in a fixed window after its
 own sample; the windows of different axes are disjoint modulo the PWM period), which holds for any Ts.
 
-Every duration is either measured on today's RTL (flow/seq_timeline.py, the xform and mpc_core models,
-issue 14's adc_spi) or a design figure of docs/four_axes.md (the word-ALU programs below); the table
+Every duration is either measured on the RTL (the bit-serial ctrl_seq's timeline, seq_timeline, retired with
+ctrl_seq at the mx_seq merge; the xform and mpc_core models, issue 14's adc_spi) or a design figure of docs/four_axes.md (the word-ALU programs below); the table
 TIMING says which.
 
     .venv/bin/python flow/mx_schedule.py [--json build/reports/mx_schedule.json] [--quick]

@@ -97,7 +97,7 @@ int empc_init(empc_caps *caps);
 int empc_axis_config(const empc_caps *caps, uint32_t axis, const empc_axis_cfg *cfg);
 
 /* Upload a coefficient image into the inactive bank of an axis (nwords <= EMPC_COEF_WORDS), then
- * request the bank swap (decided at the next control-period sample) and poll STATUS up to max_polls
+ * request the bank swap (decided at the PWM boundary before the next control sample) and poll STATUS up to max_polls
  * times until it is decided.  EMPC_ERR_BUSY if a swap was already pending, EMPC_ERR_REFUSED if the
  * FPGA refused the image (STATUS.swap_refused: incomplete, bad checksum or another build's format). */
 int empc_coef_load(uint32_t axis, const uint32_t *image, uint32_t nwords, uint32_t max_polls);

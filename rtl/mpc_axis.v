@@ -120,7 +120,7 @@ module mpc_axis #(
     wire        core_img_ok;
     // bridges_req asks pwm_center to switch (it also takes `trip` and its own latch);
     // bridges_on is what the outputs do (pwm_center.on, registered with the pins): STATUS,
-    // the controller (the law runs only while the outputs switch: with them off ctrl_seq
+    // the controller (the law runs only while the outputs switch: with them off mx_seq
     // holds u = 0 and restarts from u_prev = ebar = 0, a bumpless restart) and the ADC checks
     wire        bridges_req = ctrl_enable && theta_valid && core_img_ok;
     wire        bridges_on;
@@ -244,7 +244,6 @@ module mpc_axis #(
     wire [15:0]                     theta_trig;
     wire [3*CW-1:0]                 cmp;
     wire                            cmp_load;
-    wire                            st_sh, st_d, st_wr;
     wire [5:0]                      st_addr;
 
     // ---------------- field weakening and the governor's hold (rtlmodel/ctrl_seq.py) ----------------
@@ -273,20 +272,27 @@ module mpc_axis #(
                                        (iq_hold != 0 && iq_mag >= {{(`EMPC_I_W-4-`EMPC_A_IQ_HOLD_W){1'b0}}, iq_hold});
     end
 
-    ctrl_seq #(.N(N)) u_seq (
+    wire        st_we, stat_sweep;
+    // the core's pending coefficient swap is decided at the boundary before a control sample
+    // (mx_seq's ctl_boundary, one clock before its ref_advance): ref_gen's advance takes the new
+    // task_pos and the trigger starts the program of the new task, with the new bank (a swap at the
+    // trigger would mix the old task's words with the new bank for one control period)
+    wire        ctl_boundary;
+    wire [31:0] st_wdata;
+    mx_seq #(.N(N)) u_seq (
         .clk(clk), .rst(rst), .adc_trig(adc_trig), .period_start(period_start),
         .pwm_per_control(ctrl_pwm_per_control),
         .run(running), .theta(theta), .pos(pos), .pos_sample(pos_sample), .adc_valid(adc_valid),
         .cur0(cur0), .cur1(cur1), .cur2(cur2), .kdc(kdc), .kacc(kacc), .kacc_shift(kacc_shift),
         .load_shift(kacc_load_shift),
-        .id_ref(id_eff), .iq_ref(iq_ref), .task_pos(task_pos), .ref_advance(ref_advance), .ref_ok(ref_ok),
+        .id_ref(id_eff), .iq_ref(iq_ref), .task_pos(task_pos), .ctl_boundary(ctl_boundary),
+        .ref_advance(ref_advance), .ref_ok(ref_ok),
         .ref_age(ref_age), .ref_bit(ref_bit), .ref_q(ref_q),
         .core_start(core_start), .core_in_we(core_in_we), .core_in_addr(core_in_addr),
         .core_in_wdata(core_in_wdata), .core_done(core_done), .core_u(core_u), .core_ebar(core_ebar),
         .cmp(cmp), .cmp_load(cmp_load), .control_done(control_done), .overrun(overrun),
         .front_sat(seq_front_sat), .latency(seq_latency), .i_d(st_id), .i_q(st_iq), .omega(omega),
-        .theta_trig(theta_trig), .st_sh(st_sh), .st_d(st_d), .st_wr(st_wr), .st_addr(st_addr),
-        .st_bit(st_bit), .sw_req(sw_req), .sw_all(sw_all), .sw_go(sw_go), .sw_end(sw_end), .ctl_go(ctl_go));
+        .theta_trig(theta_trig), .st_we(st_we), .st_addr(st_addr), .st_wdata(st_wdata), .stat_sweep(stat_sweep));
 
     mpc_core #(.N(N), .BOOT_FILE(BOOT_FILE), .RSQRT_FILE(RSQRT_FILE)) u_core (
         .clk(clk), .rst(rst), .start(core_start), .in_we(core_in_we), .in_addr(core_in_addr),
@@ -294,7 +300,7 @@ module mpc_axis #(
         .done(core_done), .u(core_u), .du(core_du), .u_raw(core_u_raw), .ebar(core_ebar), .wn(core_wn),
         .flags(core_flags), .latency(core_latency), .fw_thr({fw_r2_lo, fw_r2_hi}), .fw_hi(core_fw_hi),
         .fw_lo(core_fw_lo), .cfg_we(coef_we), .cfg_addr(coef_addr),
-        .cfg_wdata(reg_wdata), .cfg_swap(cmd_coef_swap), .swap_at(pos_sample), .ready(core_ready), .bank(core_bank),
+        .cfg_wdata(reg_wdata), .cfg_swap(cmd_coef_swap), .swap_at(ctl_boundary), .ready(core_ready), .bank(core_bank),
         .swap_pending(core_swap_pending), .boot_ok(core_boot_ok), .img_ok(core_img_ok), .upl_ok(core_upl_ok),
         .swap_refused(core_swap_refused), .refused(core_refused), .task_pos(task_pos));
     wire img_bad = core_ready && !core_img_ok;
@@ -379,18 +385,16 @@ module mpc_axis #(
     assign period_tick = period_start;
 
     // ---------------- status words and counters: one block RAM ----------------
-    // axis_status owns them, the events of the control period and the sweeps (which ctrl_seq's
-    // engine clocks); s_q is its read data (0 unless one of its words is read)
-    wire        sw_req, sw_all, sw_go, sw_end, ctl_go;
-    wire [4:0]  st_bit;
+    // axis_status owns them and counts the events of each control period itself (stat_sweep:
+    // mx_seq's control job ended); mx_seq writes the status words; s_q is its read data
     wire [31:0] s_q;
+    wire        status_busy;
     axis_status u_status (
-        .clk(clk), .rst(rst), .reg_rd(reg_rd), .reg_addr(reg_addr), .cnt_re(cnt_re), .stat_re(stat_re), .rdata(s_q), .cnt_clear(cmd_clear_counters),
-        .core_done(core_done), .core_flags(core_flags), .front_sat(seq_front_sat || adc_sat || cmp_clip),
-        .overrun(overrun), .period(control_done && running), .gov(gov_ev && running), .st_sh(st_sh), .st_d(st_d),
-        .st_wr(st_wr),
-        .st_addr(st_addr), .st_bit(st_bit), .sw_req(sw_req), .sw_all(sw_all), .sw_go(sw_go), .sw_end(sw_end),
-        .ctl_go(ctl_go));
+        .clk(clk), .rst(rst), .reg_rd(reg_rd), .reg_addr(reg_addr), .cnt_re(cnt_re), .stat_re(stat_re), .rdata(s_q),
+        .cnt_clear(cmd_clear_counters), .core_done(core_done), .core_flags(core_flags),
+        .front_sat(seq_front_sat || adc_sat || cmp_clip), .overrun(overrun), .period(control_done && running),
+        .gov(gov_ev && running), .st_we(st_we), .st_addr(st_addr), .st_wdata(st_wdata), .sweep(stat_sweep),
+        .busy(status_busy));
 
     // ---------------- axis registers (generated: rtl/axis_regs.v) ----------------
     axis_regs u_regs (
@@ -433,8 +437,9 @@ module mpc_axis #(
     wire unused = &{1'b0, dir, index_seen, index_dir, mark_pos, mark_seen, mark_event, enc_err_flag,
                     enc_in_state, enc_ready, hall_code, hall_ready, hall_fault, speed_sat,
                     sample_valid, ps_speed, pos_at_sample, ps_speed_q, theta_at_sample,
-                    pwm_fault_latched, mode_eff, unlock_armed, adc_busy, adc_trig_miss, adc_fvalid, oc_ch, core_busy, core_du, core_u_raw,
-                    core_wn, core_latency, core_boot_ok, theta_trig, ref_busy, st_id, st_iq[3:0]};
+                    pwm_fault_latched, mode_eff, unlock_armed, adc_busy, adc_trig_miss, adc_fvalid, oc_ch, core_busy,
+                    core_du, core_u_raw, core_wn, core_latency, core_boot_ok, theta_trig, ref_busy, st_id, st_iq[3:0],
+                    status_busy};
 `ifdef FORMAL
 `include "mpc_axis_props.vh"
 `endif

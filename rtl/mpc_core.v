@@ -31,8 +31,9 @@
 // written (upl_ok: the inactive bank holds exactly one complete image, words 0..767 in
 // order, with magic, layout, N, format fingerprint and checksum of this build, and nothing
 // was written after it).  cfg_swap requests a bank swap (swap_pending); it is decided at
-// the next control-period boundary, `swap_at` (a pulse from the sequencer: the sample
-// instant of the next control update), at an edge with no update running:
+// the next control-period boundary, `swap_at` (a pulse from the sequencer: mx_seq's
+// ctl_boundary, the PWM boundary before the next control sample), at an edge with no update
+// running:
 //   - accepted if upl_ok and no CPU word is in flight (cfg_we or the registered port):
 //     bank flips at that edge, upl_ok clears (the new inactive bank is the old tuning,
 //     not an upload), img_ok = 1, swap_refused clears;

@@ -15,7 +15,7 @@ rtl/mpc_boot.v
 rtl/mpc_core.v
 rtl/global_regs.v
 rtl/lx_rocon_top.v
-rtl/ctrl_seq.v
+rtl/mx_seq.v
 rtl/axis_status.v
 rtl/clk_gen.v
 rtl/axis_regs.v

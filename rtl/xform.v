@@ -37,9 +37,14 @@
 //                    mod: inv_park, inv_clarke, min_sub, duty_scale clamp)
 //   i_d, i_q         signed I_W (18) bit, Q.4 ADC LSB; updated only by the done of a front op
 //   cmp_a..c         unsigned CW-bit compare values 0..PWM_HALF_PERIOD; only by a mod done
+//   mul_b, prod      the DSP's idle time after a front lent to the sequencer (its kacc * i_q):
+//                    mul_b (signed 18 bit) is sampled in the clock before a front's done; prod
+//                    = mul_b * i_q (signed 36 bit, exact: the accumulator) from the third clock
+//                    after done, held until the first row of the next operation reaches the
+//                    accumulator (the fourth clock after its start at the earliest)
 // Parameters: IN_W (13, at most 14), PWM_HALF_PERIOD, CW (as pwm_center).
 // Latency (start cycle -> done cycle): front 23, mod 84 cycles (xform.latency(), tested).
-// Resources: 1 DSP48A1, 1 RAMB16 (sine nodes + microprogram), 3 RAMB8 (RF_A, RF_B, destination
+// Resources: 1 DSP48A1 (shared with the sequencer's kacc * i_q: mul_b, prod), 1 RAMB16 (sine nodes + microprogram), 3 RAMB8 (RF_A, RF_B, destination
 //   table).
 // Reset: control, pipeline and output registers clear (outputs 0, not busy; an operation in
 //   flight is dropped).  The register files are not reset: every entry an operation reads is
@@ -63,6 +68,7 @@ module xform #(
     input  wire signed [`EMPC_U_W-1:0]   u_d,
     input  wire signed [`EMPC_U_W-1:0]   u_q,
     input  wire [`EMPC_KDC_W-1:0]        kdc,
+    input  wire signed [`EMPC_OPW-1:0]   mul_b,
     output reg                           busy,
     output reg                           done,
     output reg                           sat,
@@ -70,7 +76,8 @@ module xform #(
     output reg  signed [`EMPC_I_W-1:0]   i_q,
     output reg  [CW-1:0]                 cmp_a,
     output reg  [CW-1:0]                 cmp_b,
-    output reg  [CW-1:0]                 cmp_c
+    output reg  [CW-1:0]                 cmp_c,
+    output wire signed [2*`EMPC_OPW-1:0] prod
 );
     localparam integer W    = `EMPC_OPW;            // 18: every word (I_W = V_W = TRIG_W = KDC_W)
     localparam integer SH   = `EMPC_TRIG_FRAC;      // 16: output window acc >>> 16
@@ -202,23 +209,31 @@ module xform #(
     reg  [ULB-1:0]     xdl_q, xql_q;                                   // u_d, u_q & 63
     reg  [FB+1:0]      f_q;                                            // +-f or +-(32 - f)
     reg  [SH-1:0]      k_q;                                            // kdc >> 4 or (kdc & 15) << 12
+    reg  [W-1:0]       xm_q, km_q;                                     // mul_b * i_q: i_q, mul_b
+    reg                mp1, mp2, mp3;                                  // that product in stage 1, 2, 3
+    wire               mo;                                             // front's final write-back
+    wire [W-1:0]       y;                                              // stage 4 result
     wire [W-KLB-1:0]   kh = r_kdc[W-1:KLB];
     wire [KLB-1:0]     kl = r_kdc[KLB-1:0];
     // (no rst: a row's operands are used only if it was issued, and v1 is reset)
     always @(posedge clk) begin
-        rfa_q <= u_a[4]              ? {W{1'b0}}    : rf_a[ra];
-        rom_q <= !is_rom             ? {(W-1){1'b0}} : rom[rom_addr][W-2:0];
-        xa_q  <= (u_a != A_IA16)     ? {IN_W{1'b0}} : r_ia;
-        xb_q  <= (u_a != A_IB4)      ? {IN_W{1'b0}} : r_ib;
-        xc_q  <= (u_a != A_IC4)      ? {IN_W{1'b0}} : r_ic;
-        xdh_q <= (u_a != A_UHD)      ? {W{1'b0}}    : r_ud[UW-1:ULB];
-        xqh_q <= (u_a != A_UHQ)      ? {W{1'b0}}    : r_uq[UW-1:ULB];
-        xdl_q <= (u_a != A_ULD)      ? {ULB{1'b0}}  : r_ud[ULB-1:0];
-        xql_q <= (u_a != A_ULQ)      ? {ULB{1'b0}}  : r_uq[ULB-1:0];
-        rfb_q <= u_b[4]              ? {W{1'b0}}    : rf_b[u_b[3:0]];
-        f_q   <= (u_b != B_F)        ? {(FB+2){1'b0}} : fs;
-        k_q   <= (u_b == B_F || !u_b[4]) ? {SH{1'b0}} :
+        // mo: the clock after the front's last row, no row issues; the row then in uc (not
+        // issued) must not load its operands, the multiplier takes i_q (y) and mul_b
+        rfa_q <= (u_a[4] || mo)      ? {W{1'b0}}    : rf_a[ra];
+        rom_q <= (!is_rom || mo)     ? {(W-1){1'b0}} : rom[rom_addr][W-2:0];
+        xa_q  <= (u_a != A_IA16 || mo) ? {IN_W{1'b0}} : r_ia;
+        xb_q  <= (u_a != A_IB4 || mo)  ? {IN_W{1'b0}} : r_ib;
+        xc_q  <= (u_a != A_IC4 || mo)  ? {IN_W{1'b0}} : r_ic;
+        xdh_q <= (u_a != A_UHD || mo)  ? {W{1'b0}}    : r_ud[UW-1:ULB];
+        xqh_q <= (u_a != A_UHQ || mo)  ? {W{1'b0}}    : r_uq[UW-1:ULB];
+        xdl_q <= (u_a != A_ULD || mo)  ? {ULB{1'b0}}  : r_ud[ULB-1:0];
+        xql_q <= (u_a != A_ULQ || mo)  ? {ULB{1'b0}}  : r_uq[ULB-1:0];
+        rfb_q <= (u_b[4] || mo)      ? {W{1'b0}}    : rf_b[u_b[3:0]];
+        f_q   <= (u_b != B_F || mo)  ? {(FB+2){1'b0}} : fs;
+        k_q   <= (u_b == B_F || !u_b[4] || mo) ? {SH{1'b0}} :
                  (u_b == B_KH) ? {{(SH-W+KLB){1'b0}}, kh} : {kl, {(SH-KLB){1'b0}}};
+        xm_q  <= mo ? y : {W{1'b0}};
+        km_q  <= mo ? mul_b : {W{1'b0}};
     end
     always @(posedge clk) begin
         if (rst) begin
@@ -233,8 +248,10 @@ module xform #(
                              | {{(W-ULB){1'b0}}, xdl_q | xql_q}
                              | {{(W-IN_W-4){xa_q[IN_W-1]}}, xa_q, 4'b0000}       // 16 i_a
                              | {{(W-IN_W-2){xb_q[IN_W-1]}}, xb_q, 2'b00}         //  4 i_b
-                             | {{(W-IN_W-2){xc_q[IN_W-1]}}, xc_q, 2'b00};        //  4 i_c
-    wire signed [W-1:0] d_in = {f_q, {(W-FB-2){1'b0}}} | {{(W-SH){1'b0}}, k_q};  // +-f << 11 | kdc part
+                             | {{(W-IN_W-2){xc_q[IN_W-1]}}, xc_q, 2'b00}         //  4 i_c
+                             | xm_q;                                             // i_q (prod)
+    wire signed [W-1:0] d_in = {f_q, {(W-FB-2){1'b0}}} | {{(W-SH){1'b0}}, k_q}   // +-f << 11 | kdc part
+                             | km_q;                                             // mul_b (prod)
     wire signed [W-1:0] b_in = rfb_q;
 
     // ---------------- stages 1-3: one DSP48A1 ----------------
@@ -254,14 +271,18 @@ module xform #(
             a_r    <= a_in;                                            // A1REG
             b_r    <= d_in + b_in;                                     // pre-adder, B1REG
             prod_r <= a_r * b_r;                                       // MREG
-            if (v3) p_r <= (c_load ? c_val : p_r) + {{(AW-PW){prod_r[PW-1]}}, prod_r};  // post-adder, PREG
+            // post-adder, PREG (mp3: P = the product, held as prod until the next row's stage 3)
+            if (v3 || mp3) p_r <= ((c_load || mp3) ? (mp3 ? {AW{1'b0}} : c_val) : p_r)
+                                  + {{(AW-PW){prod_r[PW-1]}}, prod_r};
         end
     end
     always @(posedge clk) begin
         if (rst) begin
+            mp1 <= 1'b0; mp2 <= 1'b0; mp3 <= 1'b0;
             v2 <= 1'b0; v3 <= 1'b0; h2 <= 1'b0; h3 <= 1'b0; h4 <= 1'b0; c2 <= C_ACC; n2 <= 1'b0;
             d2 <= D_NONE; d3 <= D_NONE;
         end else begin
+            mp1 <= mo; mp2 <= mp1; mp3 <= mp2;
             v2 <= v1; v3 <= v2; h2 <= h1; h3 <= h2; h4 <= h3;
             c2 <= c1; n2 <= n1;
             d2 <= d1; d3 <= d2;
@@ -311,6 +332,8 @@ module xform #(
         cq <= dtab[{3'b100, c2, n2}][2:0];
     end
     assign fin = dq[DQ_FIN];
+    assign mo  = dq[DQ_IQ];
+    assign prod = p_r[PW-1:0];
 
     // ---------------- stage 4: window, saturation, write-back ----------------
     /* verilator lint_off UNUSEDSIGNAL */  // p_r[SH-1:0] is below the output window
@@ -321,7 +344,7 @@ module xform #(
     wire         ovf    = ~(&p_r[AW-1:SH+W-1] | ~|p_r[AW-1:SH+W-1]);
     wire         is_cmp = dq[DQ_CMP];
     wire         clamp  = is_cmp && (r_win > HPW);                     // compare values are >= 0
-    wire [W-1:0] y      = ovf ? {p_neg, {(W-1){~p_neg}}} : clamp ? HPW : r_win;
+    assign       y      = ovf ? {p_neg, {(W-1){~p_neg}}} : clamp ? HPW : r_win;
     reg  [W-1:0]  id_st;
     reg  [CW-1:0] ca_st, cb_st;
     reg           sat_acc;

@@ -11,7 +11,9 @@ the EMC bus-functional model (tb/emc_bfm.py) through the register-map driver (ge
 
 In lockstep, the bit-accurate axis model (gen/empc/bitloop.py AxisModel: sequencer
 with front end, MPC core and modulation, gen/empc/rtlmodel/ctrl_seq.py, and the
-reference generator's model) sees the same inputs at every ADC trigger; every
+reference generator's model) sees the same inputs at every ADC trigger and, like the
+RTL's sequencer (rtl/mx_seq.v), decides the period's kind and advances the references
+at the PWM boundary before the sample (AxisModel.boundary); every
 compare value the RTL loads must equal the model's (bit-exact).  The resulting
 trajectory is also compared with the float closed loop (closedloop.py, fitted
 gains) within the stated tolerance.  Reports: build/reports/closed_loop_<scenario>.{json,png}.
@@ -50,6 +52,7 @@ from empc.rtlmodel.ref_gen import GOV_FIELD, RefGen, gov_words, segments_from_po
 ROOT = Path(__file__).resolve().parents[1]
 REPORTS = ROOT / "build" / "reports"
 CLK_PERIOD_NS = 10                    # fabric clock (100 MHz); the PLL model passes it through
+LATENCY_MAX = 300                     # clocks from the last ADC bit to the compare values (issue 16 item 3)
 
 # Co-simulation scenarios: (paper scenario, simulated seconds, fault injection or None)
 COSIM = {
@@ -175,6 +178,13 @@ class CoSim:
         self.words_checked = 0
         self.sync_value = None     # Q.32 value of CMD.ref_sync (AxisModel.ref_sync)
         self.lat_max = {"control": 0, "modulation": 0}   # adc_trig -> cmp_load, clock cycles
+        # the last SCLK rising edge of the controller sample's last window frame -> cmp_load: ADC valid ->
+        # cmp_load (measured) + valid's fixed distance from that edge (adc_spi, AdcSpiParams); the frames
+        # run back to back, so the pin's last rising edge before cmp_load is another frame's
+        # (control periods only: a modulation-only period does not wait for the sample, its cmp_load
+        # comes before the valid)
+        self.lat_bit = 0
+        self.lat_valid = 0                                  # ADC valid -> cmp_load
         self.rec = {k: [] for k in ("t", "i_d", "i_q", "w_e", "theta_e", "u_d", "u_q", "ref", "ipk")}
         self.period = 0
         self.t = 0.0
@@ -185,7 +195,6 @@ class CoSim:
         self.sampled = None        # (ADC codes, encoder count) the running period's trigger samples
         self.py_cpu = 0.0          # CPU seconds in the per-period Python (plant, pins, axis model, check)
         self.lockstep = hasattr(dut, "dbg_ls_errors")   # COSIM_LOCKSTEP build: gated vs ungated MPC core
-        self.swap_params = None    # a coefficient swap requested: applied at the next control period
         self.kill = {}             # kill-path measurements (pstage / clock scenarios)
         # ADC: back-to-back frames, the controller takes the window mean (rtl defaults)
         self.adcp = AdcSpiParams(half_period=self.P)
@@ -208,6 +217,7 @@ class CoSim:
         self.enc_hold = None       # None or the frozen encoder count
         self.ipk_now = 0.0         # peak |phase current| of the plant since the last reset of it
         self.missed = 0            # periods without compare values (overrun run)
+        self.late = False          # the previous period lost its compare values
 
     @property
     def last_control(self):
@@ -261,6 +271,12 @@ class CoSim:
         (mirrored in the model), the plant to the period centre, the pins the trigger samples."""
         bridges_on = int(self.dut.pwm_en.value) == 0b111
         self.duties = np.array(self.cmp_rtl, dtype=float) / self.P if bridges_on else None
+        # the boundary before the sample: the period's kind, the references advance (before this
+        # half period's CPU commands, which the next advance takes)
+        if self.axis.boundary() and self.started and self.t_profile0 is None:
+            # this advance loads the profile's first value into the head w_{k+N}: the
+            # sample instant (half a period from now) is profile time -N Ts
+            self.t_profile0 = self.t + 0.5 * self.Tpwm + self.cfg.control.N * self.cfg.control.Ts
         c0 = time.process_time()
         # plant to the centre and the pins at once: the ADC window starts before the centre
         self._plant_half(self.duties)
@@ -286,23 +302,25 @@ class CoSim:
         assert lost or (n_trig == 1 and n_load == 1 and lat < self.P), \
             f"period {self.period}: {n_trig} ADC triggers, {n_load} compare loads, load {lat} clocks after the trigger"
         self.regs.run = bool(int(dut.dbg_run_trig.value))
-        control = self.axis.control_next
-        if control and self.swap_params is not None:      # the RTL swaps at this control sample
-            self.seq.params, self.swap_params = self.swap_params, None
-        if control and self.started and self.t_profile0 is None:
-            # this advance loads the profile's first value into the head w_{k+N}: the
-            # sample instant is profile time -N Ts
-            self.t_profile0 = self.t + self.cfg.control.N * self.cfg.control.Ts
+        control = self.axis.control_next                 # decided at the period's start (boundary; a
+                                                          # requested coefficient swap is taken there too)
         cur, count = self.sampled
         out = self.axis.period(count, cur=cur)
         if lost:
             self.missed += 1
+            self.late = True
             self._plant_half(self.duties)
             self.period += 1
             self.py_cpu += time.process_time() - c0
             return
         kind = "control" if control else "modulation"
-        self.lat_max[kind] = max(self.lat_max[kind], lat)
+        if not self.late:       # the period after a lost one ends the late job: its latencies span two periods
+            self.lat_max[kind] = max(self.lat_max[kind], lat)
+            if control:
+                lat_valid = int(dut.dbg_lat_valid_q.value)
+                self.lat_valid = max(self.lat_valid, lat_valid)
+                self.lat_bit = max(self.lat_bit, lat_valid + self.adcp.valid_after_last_bit())
+        self.late = False
         if control and "x" in out and self.regs.run:
             # the law off (not started at this trigger): the core does not run, its input words are don't-care
             # (the RTL zeroes u_prev / ebar_prev / the references at the trip, the model after the period)
@@ -633,17 +651,22 @@ async def _inj_dclink(fr):
 
 
 async def _inj_overrun(fr):
-    """The sequencer loses the controller's ADC sample of one period (its adc_seen flag is cleared
-    just after it was set; Verilator has no VPI force, a deposit on the flag holds until the next
-    sample): the period is still running at the PWM update, `overrun` pulses at that boundary,
-    the next period's trigger is ignored and its sample completes the late period."""
-    seq = fr.dut.u_top.g_axis[0].u_axis.u_seq          # adc_seen: public in tb/hdl/cosim_top.vlt
+    """The sequencer loses the controller's ADC sample of one control period (its adc_seen flag is
+    cleared just after it was set; Verilator has no VPI force, a deposit on the flag holds until the
+    next sample): the period is still running at the PWM update, `overrun` pulses at that boundary,
+    the next period's trigger is ignored and its sample completes the late period.  mx_seq's
+    modulation-only periods do not wait for the ADC: the first control period's sample is taken."""
+    seq = fr.dut.u_top.g_axis[0].u_axis.u_seq          # public in tb/hdl/cosim_top.vlt
 
     async def run():
         await RisingEdge(fr.dut.dbg_period_start)
-        await RisingEdge(fr.dut.dbg_adc_valid)
-        await RisingEdge(fr.dut.clk)                    # adc_seen set at this edge
-        await FallingEdge(fr.dut.clk)
+        while True:
+            await RisingEdge(fr.dut.dbg_adc_valid)
+            await RisingEdge(fr.dut.clk)                # adc_seen set at this edge
+            await FallingEdge(fr.dut.clk)
+            if int(seq.busy_period.value) and int(seq.is_control.value) and int(seq.adc_seen.value) \
+                    and not int(seq.front_go.value):
+                break
         seq.adc_seen.value = 0
         await RisingEdge(fr.dut.dbg_period_start)       # the PWM update the period missed
         fr.t_event = fr.now()
@@ -706,7 +729,8 @@ FAULTS = {
                      lat_max=HALL_DEBOUNCE + 2 + 2 + _TRIP + 4),
     "watchdog": dict(inject=_inj_watchdog, remove=_rm_wdog, hold=WDOG_FAST + 4, lat_max=_TRIP, setup=_wdog_fast),
     "dclink": dict(inject=_inj_dclink, remove=_rm_dclink, hold=3, lat_max=20),
-    "overrun": dict(inject=_inj_overrun, remove=None, hold=3, lat_max=_TRIP, exact=False),
+    # overrun: the injection waits for a control period (up to pwm_per_control = 5 PWM periods in fault_step)
+    "overrun": dict(inject=_inj_overrun, remove=None, hold=8, lat_max=_TRIP, exact=False),
     "adc": dict(inject=_persistent_adc(lambda cs: setattr(cs, "adc_lead", 0b1000)), remove=_clear_adc, hold=2,
                 lat_max=_VL + _TRIP),
     "adc_stuck": dict(inject=_persistent_adc(_hold(0, (1 << F.ADC_BITS) - 1)), remove=_clear_adc, hold=2,
@@ -804,13 +828,17 @@ async def run_cosim(dut, name: str) -> dict:
         async def swap():
             assert (await drv.read("STATUS") >> 9) & 1, "STATUS.coef_valid: the upload was not accepted as complete"
             await drv.command(coef_swap=1)
-            cs.swap_params = cs.params
+            cs.axis.swap(cs.params)
         plan.append([swap])
+        # the swap is decided at the next boundary before a control sample (rtl/mx_seq.v ctl_boundary),
+        # up to pwm_per_control PWM periods later: the reference sync below must see the new task
+        plan.extend([] for _ in range(cs.M - 1))
 
     async def ref_setup():
         # head = the measured output the RTL latches with the command: the encoder count (at rest: this
         # period's) or the last control period's speed estimate (not 0: ADC noise through KACC, 74 LSB
         # in speed_alg2 with the default seed; mirroring 0 made the alg-2 integrator diverge, period 41)
+        assert cs.axis.swap_params is None, "the coefficient swap is not decided before CMD.ref_sync"
         await drv.command(ref_sync=1)
         cs.sync_value = cs.axis.ref_sync(cs.sampled[1])
     plan.append([ref_setup])
@@ -875,14 +903,18 @@ async def run_cosim(dut, name: str) -> dict:
     plan.insert(0, [init_safety])
     spec = FAULTS[cs.fault] if cs.fault else None
     if spec and spec.get("setup"):
+        # in the period before the enable, after a kick: the configuration takes more PWM periods than
+        # WDOG_FAST (since the swap waits for its control boundary), a shortened watchdog set early
+        # would expire before the enable
         async def setup():
+            await kick()
             await spec["setup"](drv)
-        plan.insert(1, [setup])
+        plan.append([setup])
 
     async def enable():
         st = await drv.read("STATUS")
-        if cs.params != cs.boot:          # the swap was decided at a control sample since
-            assert (st >> 7) & 1 == 0 and (st >> 10) & 1 == 0 and (st >> 6) & 1 == 1 and cs.swap_params is None, \
+        if cs.params != cs.boot:          # the swap was decided at a control boundary since
+            assert (st >> 7) & 1 == 0 and (st >> 10) & 1 == 0 and (st >> 6) & 1 == 1 and cs.axis.swap_params is None, \
                 f"coefficient swap not applied (STATUS {st:#x})"
         await w("SEG_START", 0)
         cs.ref.start(0)
@@ -1054,6 +1086,8 @@ async def closed_loop(dut, name: str):
               "sim_ms_per_wall_s": sim_ms / res["wall"], "clocks_per_wall_s": clocks / res["wall"],
               # CPU time of the simulator process (Verilator + Python): the speed on an idle core
               "cpu_s": res["cpu"], "sim_ms_per_cpu_s": sim_ms / res["cpu"], "clocks_per_cpu_s": clocks / res["cpu"],
+              "latency_last_adc_bit_to_cmp_load_max_cycles": {"control": cs.lat_bit},
+              "latency_adc_valid_to_cmp_load_max_cycles": {"control": cs.lat_valid},
               "python_per_period_cpu_s": cs.py_cpu, "load_avg_1min": os.getloadavg()[0],
               "compare_sets_checked": cs.checked,
               "mismatches_vs_bit_accurate_model": len(cs.mismatches),
@@ -1077,6 +1111,8 @@ async def closed_loop(dut, name: str):
                               "clocks_differing": int(dut.dbg_ls_errors.value)}
         dut._log.info("lockstep: %s", report["lockstep"])
         assert report["lockstep"]["clocks_differing"] == 0, report["lockstep"]
+    if cs.fault is None or FAULTS[cs.fault].get("exact", True):   # else the model's period kinds drift from the RTL's
+        assert 0 < cs.lat_bit <= LATENCY_MAX, f"last ADC bit -> compare values: {cs.lat_bit} clocks"
     if cs.fault is None:
         assert not cs.word_mismatches, f"MPC core input words differ from the model: {cs.word_mismatches[:3]}"
         assert not cs.mismatches, f"RTL compare values differ from the bit-accurate model: {cs.mismatches[:3]}"

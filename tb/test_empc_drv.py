@@ -282,7 +282,7 @@ async def driver_flow(dut):
     st0 = await env.read("STATUS")
     n0 = len(env.writes)
     arr = (ctypes.c_uint32 * len(words))(*words)
-    # the swap is decided at the next control-period sample (up to pwm_per_control PWM periods)
+    # the swap is decided at the PWM boundary before the next control sample (up to pwm_per_control PWM periods)
     polls = 4 * m["PWM_PER_CONTROL"] * m["PWM_HALF_PERIOD"]
     assert await env.call("empc_coef_load", 0, arr, len(words), polls) == EMPC_OK
     coef_w = [(a, v) for a, v in env.writes[n0:] if a >= regmap.COEF_BASE]

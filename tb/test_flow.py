@@ -395,10 +395,12 @@ def test_committed_budget_one_axis():
     # Issue 6: one axis under half the LUTs (41.8 % then), so that a second axis fits with room for
     # placement.  Issue 15's current limit, load estimate and field weakening took it to 46.5 % (2660
     # LUT), issue 14's safety functions (kill path and clock monitor, image checks, sensor and ADC
-    # plausibility, back-to-back ADC, protected safety settings) to 53.8 % (3075 LUT, budget 3120):
-    # cap 55 %.  Both are required; four axes come from the shared engine, not from replicas
-    # (docs/four_axes.md), where the area is to be recovered.
-    assert b["lut"] < 0.55 * cap["lut"], "one axis must stay under 55 % of the LUTs"
+    # plausibility, back-to-back ADC, protected safety settings) to 53.8 % (3075 LUT, budget 3120),
+    # issue 16's word-parallel sequencer mx_seq (latency <= 300 clocks from the last ADC bit, the
+    # per-axis state in block RAM of the shared engine) to 59.9 % (3428 LUT), merged with main's DC-link
+    # and routing registers 60.5 % (3461 LUT, budget 3495 = 61.1 %): cap 62 %.
+    # All are required; four axes come from the shared engine, not from replicas (docs/four_axes.md).
+    assert b["lut"] < 0.62 * cap["lut"], "one axis must stay under 62 % of the LUTs"
     assert b["dsp48a1"] <= cap["dsp48a1"] // 2 and b["ramb16"] <= cap["ramb16"] // 2
     assert set(b) <= set(synth.resource_counts({"cells": {}, "ports": {}})) | {"iob", "fmax_mhz"}
     # the timing proxy must meet the 100 MHz fabric clock

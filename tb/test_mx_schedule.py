@@ -1,7 +1,9 @@
 """Tests of the four-axis planning tools behind docs/four_axes.md (fast: no Yosys).
 
 flow/mx_schedule.py   schedule of the shared engine: latency budget, stagger, every Ts combination
-flow/seq_timeline.py  today's single-axis control period, clock by clock (Icarus, ~5 s)
+(seq_timeline, the bit-serial ctrl_seq's timeline that docs/four_axes.md 4.1 starts from,
+was retired with ctrl_seq: its figures were measured at d212ea6 and, after issue 15, on ctrl_int:
+trigger -> cmp_load 981 clk, 574 engine clocks without the ADC sample, 256 with it, sweep 511.)
 
 The figures asserted here are the ones docs/four_axes.md quotes; a change of the timing table or of
 today's sequencer that moves them fails here first.
@@ -12,10 +14,8 @@ import dataclasses
 import re
 from pathlib import Path
 
-import pytest
 
 import mx_schedule as S
-import seq_timeline
 
 ROOT = Path(__file__).resolve().parents[1]
 DOC = ROOT / "docs" / "four_axes.md"
@@ -95,18 +95,3 @@ def test_doc_quotes_the_schedule():
     r = S.simulate([S.AxisCfg()])
     assert f"**{r.latency_last_bit[0]} clocks**" in text
     assert re.search(rf"\b{S.simulate([S.AxisCfg(ncols=64)]).latency_last_bit[0]}\b", text)
-
-
-@pytest.mark.parametrize("task, adc, trig_to_load, indep, dep", [("position_alg2", 195, 981, 574, 256)])
-def test_todays_sequencer_timeline(task, adc, trig_to_load, indep, dep):
-    """Today's bit-serial sequencer, measured.  docs/four_axes.md starts from the figures before
-    issue 15 (680 / 314 / 215 / sweep 477) and quotes these after it (the reference governor's
-    passes in the first REF wait, the load-estimate step LD, the SAT_GOV sweep word).  When the
-    shared engine replaces ctrl_seq, this tool and test go with it."""
-    r = seq_timeline.measure(task, adc)
-    assert r["cmp_load"] == trig_to_load
-    assert r["engine_clocks_adc_independent"] == indep
-    assert sum(s["clocks"] for s in r["engine_steps_adc_dependent"]) == dep
-    assert r["core_clocks"] == 61 and r["mod_clocks"] == 85
-    assert r["sweep_clocks"] == 511
-    assert f"**{trig_to_load} clk**" in DOC.read_text()

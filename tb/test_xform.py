@@ -332,7 +332,7 @@ def _front_steps_sat(ia: int, ib: int, ic: int, a: int) -> tuple[bool, bool]:
 async def _setup(dut):
     cocotb.start_soon(Clock(dut.clk, 10, unit="ns").start())
     dut.rst.value = 1
-    for n in ("start_front", "start_mod", *FRONT_IN, *MOD_IN[:2], "kdc"):
+    for n in ("start_front", "start_mod", *FRONT_IN, *MOD_IN[:2], "kdc", "mul_b"):
         getattr(dut, n).value = 0
     for _ in range(3):
         await RisingEdge(dut.clk)
@@ -516,6 +516,60 @@ async def protocol(dut):
     dut._log.info(f"protocol: {len(ops)} mixed requests checked every cycle over {cyc} cycles "
                   f"({n_b2b} back-to-back, {n_spur} ignored starts while busy, {n_both} start_mod with "
                   f"start_front ignored); reset mid-front and mid-mod")
+
+
+@cocotb.test()
+async def product(dut):
+    """The multiplier lent to the sequencer: prod = mul_b (sampled in the clock before a front's
+    done) * i_q, exact, from the third clock after done through the fourth after the next start
+    (front or mod, from the done cycle on), with garbage on mul_b in every other clock."""
+    in_w = int(os.environ["XFORM_IN_W"])
+    hp = int(os.environ["XFORM_HP"])
+    rng = random.Random(SEED + 11)
+    await _setup(dut)
+    fr = _front_vectors(rng, in_w, 60)
+    md = [dict(zip(MOD_IN, v)) for v in _mod_vectors(rng, hp, 20)]
+    mb_corners = [LO, LO + 1, -1, 0, 1, HI - 1, HI]
+    cyc, n, n_chk = 0, 0, 0
+    start, kind_f, exp, valid_to = None, None, None, None   # valid_to: last cycle prod must hold
+    ops = [("front", o) for o in fr] + [("mod", o) for o in rng.sample(md, 20)]
+    rng.shuffle(ops)
+    ops = [("front", fr[0])] + ops
+    nxt, mb = 0, None
+    while nxt < len(ops) or start is not None:
+        dut.start_front.value = 0
+        dut.start_mod.value = 0
+        done_cyc = None if start is None else start + LAT[kind_f]
+        new = None
+        if (start is None or cyc == done_cyc) and nxt < len(ops) and rng.random() >= 0.5:
+            kind, op = ops[nxt]
+            for k, v in op.items():
+                getattr(dut, k).value = v
+            getattr(dut, f"start_{kind}").value = 1
+            new = (cyc, kind)
+        if start is not None and kind_f == "front" and cyc == done_cyc - 1:
+            mb = rng.choice(mb_corners) if rng.random() < 0.3 else rng.randint(LO, HI)
+            dut.mul_b.value = mb
+        else:
+            dut.mul_b.value = rng.randint(LO, HI)                # not sampled
+        await RisingEdge(dut.clk)
+        if start is not None and cyc == done_cyc:
+            assert int(dut.done.value) == 1
+            if kind_f == "front":
+                exp = mb * dut.i_q.value.to_signed()
+                valid_from, valid_to = cyc + 3, None
+                n += 1
+            start = None
+        if exp is not None and cyc >= valid_from and (valid_to is None or cyc <= valid_to):
+            assert dut.prod.value.to_signed() == exp, f"cycle {cyc}: prod {dut.prod.value.to_signed()}, expected {exp}"
+            n_chk += 1
+        if new is not None:
+            start, kind_f = new
+            nxt += 1
+            if exp is not None and valid_to is None:
+                valid_to = cyc + 4
+        cyc += 1
+    dut._log.info(f"product: {n} fronts, prod checked in {n_chk} cycles (mul_b corners and random)")
 
 
 @cocotb.test(skip=os.environ.get("XFORM_SWEEP", "0") != "1")

@@ -65,11 +65,36 @@ class AxisModel:
         self.last_control = None    # outputs of the last control period (+ ref_w0: the w_k it applied)
         self.gov_clamps = 0         # control periods in which the governor shaped the reference (SAT_GOV)
         self._gdl, self._r_prev, self._v_gov = None, 0, 0     # governor of the refs path
+        self._boundary_ref = None   # (control, references) decided at boundary(), for the next period()
+        self.swap_params = None     # a coefficient swap requested (swap()): decided at the next control boundary
 
     @property
     def control_next(self) -> bool:
-        """True if the next :meth:`period` is a control period (the sequencer's period counter)."""
+        """True if the next :meth:`period` is a control period (decided at :meth:`boundary` if that
+        was called, else the sequencer's period counter now)."""
+        if self._boundary_ref is not None:
+            return self._boundary_ref[0]
         return self.seq.per_cnt + 1 >= self.regs.pwm_per_control
+
+    def boundary(self, t: float = 0.0) -> bool:
+        """The PWM boundary before the next sample (rtl/mx_seq.v, docs/four_axes.md D5): the kind of
+        the coming period is decided and, for a control period, the references advance here, so a
+        CPU command to the reference generator after this call is taken by the next advance.
+        ``t``: the coming trigger's time (for ``refs``).  The next :meth:`period` uses the decision;
+        without this call :meth:`period` decides and advances at the trigger (no commands between)."""
+        control = self.seq.boundary(self.regs)
+        if control and self.swap_params is not None:       # the core's bank flips first: the advance
+            self.seq.params, self.swap_params = self.swap_params, None    # and the period use the new task
+        self._boundary_ref = (control, self._reference(t) if control else None)
+        return control
+
+    def swap(self, params) -> None:
+        """CMD.coef_swap after a complete, valid upload of ``params`` (STATUS.coef_valid): the RTL
+        decides the swap at the next boundary before a control sample (mx_seq's ctl_boundary, the
+        core's swap_at), before that boundary's reference advance, so that control period and all
+        later ones run the new image's task, references and coefficients (:meth:`boundary`).  The
+        model assumes the swap is accepted (the caller checks STATUS)."""
+        self.swap_params = params
 
     @property
     def u(self) -> tuple:
@@ -83,7 +108,7 @@ class AxisModel:
         last control period, which runs with the law off too: ADC noise gives a few LSB of i_q, the
         KACC term makes them a nonzero omega).  The task is the active image's (the RTL's task_pos
         while the sync runs: a swap requested before the command but not yet decided at a control
-        sample has not changed it).  Returns the Q.32 value the generator was set to."""
+        boundary has not changed it).  Returns the Q.32 value the generator was set to."""
         if self.seq.params.task == "position":
             v = (count & M32) << 32
         else:
@@ -119,8 +144,14 @@ class AxisModel:
         if (codes is None) == (cur is None):
             raise ValueError("AxisModel.period needs exactly one of codes and cur")
         cfg = self.cfg
-        control = self.control_next
-        ref_w = self._reference(t) if control else None
+        if self._boundary_ref is not None:
+            control, ref_w = self._boundary_ref
+            self._boundary_ref = None
+        else:
+            control = self.control_next
+            if control and self.swap_params is not None:
+                self.seq.params, self.swap_params = self.swap_params, None
+            ref_w = self._reference(t) if control else None
         theta16 = pos_sense.angle(count, cfg.sensors.encoder_cpr, cfg.motor.p, base=self.cal_offset)
         off = cfg.sensors.adc_offset
         if cur is None:

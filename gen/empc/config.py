@@ -719,8 +719,8 @@ def _rtl_limits():
          lambda cfg: cfg.control.Ts * cfg.inverter.f_pwm, 1, (1 << ctrl_ppc.width) - 1, ("control.Ts", "inverter.f_pwm")),
         ("PWM half period in clocks x 2^V_FRAC (phase voltages after eq. 36 span up to it, Q14.4 in %d bit)" % F.V_W,
          lambda cfg: cfg.pwm_half_period * (1 << F.V_FRAC), 0, vmax, ("inverter.f_pwm", "fpga.f_clk")),
-        ("PWM half period in clocks (the control computation, ~1000 clocks for N = 4 (rtl/ctrl_seq.v), "
-         "must end before the next PWM boundary)",
+        ("PWM half period in clocks (the work of a control period, from the boundary's reference advance "
+         "to the compare values (rtl/mx_seq.v), must end before the next PWM boundary)",
          lambda cfg: cfg.pwm_half_period, SEQ_LATENCY_MAX, None, ("inverter.f_pwm", "fpga.f_clk")),
         ("encoder counts per control period at max |Omega_e| (speed word Q16.16 in %d bit)" % F.W_W,
          counts_per_ts, 0, (1 << (F.W_W - F.W_FRAC - 1)) - 1,
@@ -750,8 +750,10 @@ def _rtl_limits():
     ]
 
 
-# clocks: control-period latency bound of rtl/ctrl_seq.v (N = 4: 994 measured with the governor and the
-# load estimate, + 40 per saturated word; docs/blocks/ctrl_seq.md)
+# clocks: bound on a control period's work per half period.  It was the latency of the bit-serial
+# ctrl_seq (N = 4: 994 with the governor and the load estimate); rtl/mx_seq.v splits it: the boundary's
+# reference advance and prefetch before the sample, trigger -> cmp_load after it (about 270 at N = 4,
+# docs/blocks/mx_seq.md).  Kept at the old bound: no configuration that passed before is refused.
 SEQ_LATENCY_MAX = 1200
 
 

@@ -398,8 +398,8 @@ AXIS = (
         Field("adc_cal", 1, 1, "start ADC offset calibration (the write is refused while the bridges are live; "
               "bridges coming on abort it)", guard="bridges_live"),
         Field("ref_sync", 2, 1, "set the reference generator to the measured output (bumpless start)"),
-        Field("coef_swap", 3, 1, "make the uploaded coefficient bank active at the next control-period sample "
-              "instant; refused (STATUS.swap_refused, CNT_SWAP_REF) unless it holds a complete valid image"),
+        Field("coef_swap", 3, 1, "make the uploaded coefficient bank active at the PWM boundary before the next "
+              "control sample; refused (STATUS.swap_refused, CNT_SWAP_REF) unless it holds a complete valid image"),
         Field("clear_counters", 4, 1, "zero the saturation and event counters"),
         Field("align_clear", 5, 1, "forget the index alignment (back to HALL alignment)"))),
     Reg("STATUS", 0x02, "RO", 0, "Axis state.", (

@@ -1,7 +1,7 @@
-"""The microcode compiler of the microprogrammed blocks (``xform``, ``ctrl_seq``).
+"""The microcode compiler of the microprogrammed blocks (``xform``, ``mx_seq``).
 
 A block describes its microprogram in Python: a field layout of its microword and a table of
-rows (its model module, :mod:`empc.rtlmodel.xform` / :mod:`empc.rtlmodel.ctrl_seq`).  This
+rows (its model module, :mod:`empc.rtlmodel.xform` / :mod:`empc.rtlmodel.mx_seq`).  This
 module turns those tables into the Verilog the RTL includes, always the same way:
 
 * :class:`Layout` packs named fields into a word (LSB first, every value range-checked) and
@@ -14,7 +14,7 @@ module turns those tables into the Verilog the RTL includes, always the same way
 
 ``python -m empc.ucode`` rewrites every generated file listed in :func:`generated`;
 ``python -m empc.ucode --check`` lists the stale ones (exit 1).  Each block's test checks its
-own files (``tb/test_xform.py``, ``tb/test_ctrl_seq.py``).
+own files (``tb/test_xform.py``, ``tb/test_mx_seq.py``).
 """
 from __future__ import annotations
 
@@ -139,9 +139,9 @@ def rom_runs(array: str, width: int, words: list[int], var: str, base: str = "",
 
 def generated() -> dict[str, Callable[[], str]]:
     """Every file this compiler writes (path relative to the checkout) and its generator."""
-    from .rtlmodel import ctrl_seq, xform
+    from .rtlmodel import mx_seq, xform
     return {"rtl/xform_ucode.vh": xform.ucode_vh, "rtl/xform_rom.vh": xform.rom_vh,
-            "rtl/ctrl_seq_ucode.vh": ctrl_seq.ucode_vh, "rtl/ctrl_seq_rom.vh": ctrl_seq.rom_vh}
+            "rtl/mx_seq_ucode.vh": mx_seq.ucode_vh, "rtl/mx_seq_rom.vh": mx_seq.rom_vh}
 
 
 def stale(root: Path = ROOT) -> list[str]:

@@ -11,7 +11,8 @@
 // The clock runs here (Verilog delay, Verilator --timing), so Python never wakes up per clock
 // edge.  Python wakes once per PWM period, at dbg_period_start: the per-period observation
 // registers below hold what it used to wait for inside the period (the compare values loaded,
-// the trigger-to-load latency, the run flag at the trigger, how many triggers and loads the
+// the trigger-to-load latency and the latency from the ADC's valid (tb/test_closed_loop.py adds the
+// fixed clocks from the window's last bit to valid), the run flag at the trigger, how many triggers and loads the
 // period had) and a sticky monitor checks the bridges off on every clock after a trip.
 // Fault co-simulations (issue 14) wait for pin events inside the fault's period only: the
 // dbg_* ports below expose the events (ADC frame start, encoder error, watchdog expiry, ADC
@@ -83,6 +84,7 @@ module cosim_top #(
     // per-period observation (registered; read by Python at the next dbg_period_start)
     output reg  [35:0] dbg_cmp_q,      // compare values at the last cmp_load
     output reg  [15:0] dbg_lat_q,      // clocks from the last adc_trig to that cmp_load
+    output reg  [15:0] dbg_lat_valid_q, // clocks from the last ADC valid to that cmp_load
     output reg         dbg_run_trig,   // `running` at the last adc_trig
     output reg  [3:0]  dbg_n_trig,     // adc_trig pulses since the last period start
     output reg  [3:0]  dbg_n_load,     // cmp_load pulses since the last period start
@@ -148,8 +150,9 @@ module cosim_top #(
     assign dbg_enc_err = u_top.g_axis[0].u_axis.enc_err_pulse;
     assign dbg_wdog_expired = u_top.wdog_expired;
 
-    reg [15:0] lat_cnt;
+    reg [15:0] lat_cnt, valid_cnt;
     reg        tripped;
+    wire       adc_valid = u_top.g_axis[0].u_axis.adc_valid;
     always @(posedge clk) begin
         if (!rst_n) begin
             dbg_cmp_q <= 36'd0;
@@ -160,12 +163,16 @@ module cosim_top #(
             dbg_unsafe <= 1'b0;
             lat_cnt <= 16'd0;
             tripped <= 1'b0;
+            dbg_lat_valid_q <= 16'd0;
+            valid_cnt <= 16'd0;
         end else begin
             lat_cnt <= dbg_adc_trig ? 16'd1 : (&lat_cnt ? lat_cnt : lat_cnt + 16'd1);
             if (dbg_adc_trig) dbg_run_trig <= dbg_running;
+            valid_cnt <= adc_valid ? 16'd1 : (&valid_cnt ? valid_cnt : valid_cnt + 16'd1);
             if (dbg_cmp_load) begin
                 dbg_cmp_q <= dbg_cmp;
                 dbg_lat_q <= lat_cnt;
+                dbg_lat_valid_q <= valid_cnt;
             end
             dbg_n_trig <= (dbg_period_start ? 4'd0 : dbg_n_trig) + {3'd0, dbg_adc_trig};
             dbg_n_load <= (dbg_period_start ? 4'd0 : dbg_n_load) + {3'd0, dbg_cmp_load};

@@ -5,6 +5,6 @@ tb/hdl/mpc_core_stream.v
 tb/hdl/emc_regs_tb.v
 tb/hdl/quad_gen.v
 tb/hdl/cosim_top.v
-tb/hdl/ctrl_seq_tb.v
+tb/hdl/mx_seq_tb.v
 tb/hdl/adc_ripple.v
 tb/hdl/out_route_tb.v

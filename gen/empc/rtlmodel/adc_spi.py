@@ -185,6 +185,12 @@ class AdcSpiParams:
             return self.valid_latency() + 1
         return self.w_lead + self.valid_latency() + self.aw() + 2
 
+    def valid_after_last_bit(self) -> int:
+        """Clocks from the last SCLK rising edge of the controller sample's last frame (the window's
+        last, or the centre frame with avg_log2 = 0) to ``valid``: valid is registered at edge
+        E0 + VL (+ AW + 1 after the serial mean pass), the rising edge at E0 + last_sclk_rise()."""
+        return self.valid_latency() + (self.aw() + 1 if self.avg_log2 else 0) - self.last_sclk_rise()
+
     def sum_delay(self) -> int:
         """``sum_err`` of a frame changes this many cycles after its ``fvalid`` cycle."""
         return self.sw()
