@@ -173,6 +173,16 @@ def test_mx_seq_generated_files():
 
 
 # ============================== cocotb: the RTL ==============================
+async def _upload(dut, words):
+    """Write a coefficient image into the core's inactive bank, one word per clock."""
+    for a in range(image.USED):
+        dut.cfg_we.value = 1
+        dut.cfg_addr.value = a
+        dut.cfg_wdata.value = words[a]
+        await FallingEdge(dut.clk)
+    dut.cfg_we.value = 0
+
+
 @cocotb.test()
 async def random_periods(dut):
     seed = int(os.environ.get("EMPC_SEED", DEFAULT_SEED))
@@ -203,12 +213,7 @@ async def random_periods(dut):
         params = image.decode(image.read_hex(roms / "coef_alg2_position.hex"))
     elif task == "position":
         words = image.read_hex(roms / "coef_alg2_position.hex")
-        for a in range(image.USED):
-            dut.cfg_we.value = 1
-            dut.cfg_addr.value = a
-            dut.cfg_wdata.value = words[a]
-            await FallingEdge(dut.clk)
-        dut.cfg_we.value = 0
+        await _upload(dut, words)
         dut.cfg_swap.value = 1
         await FallingEdge(dut.clk)
         dut.cfg_swap.value = 0
@@ -281,12 +286,7 @@ async def random_periods(dut):
         ref.start(slot)
 
     async def upload(words):
-        for a in range(image.USED):
-            dut.cfg_we.value = 1
-            dut.cfg_addr.value = a
-            dut.cfg_wdata.value = words[a]
-            await FallingEdge(dut.clk)
-        dut.cfg_we.value = 0
+        await _upload(dut, words)
         await ClockCycles(dut.clk, 2, rising=False)
 
     # a coefficient swap to the other task in the middle of the run (N = 4: the only N with images):
