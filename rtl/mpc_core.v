@@ -183,10 +183,12 @@ module mpc_core #(
     reg         w_bank;
     assign ready = ready_r;
     reg  [NAXES-1:0] swap_go;                            // axis a's swap is applied at this edge
+    wire             boot_ok_n;                          // boot_ok at the next edge
     mpc_boot #(.BOOT_FILE(BOOT_FILE), .N(N), .NAXES(NAXES), .AXW(AXW)) u_boot (
         .clk(cclk), .rst(rst), .cfg_we(cfg_we), .cfg_axis(cfg_ax), .cfg_addr(cfg_addr[9:0]),
         .cfg_wdata(cfg_wdata), .ok_clr(swap_go),
-        .we(w_we), .wax(w_ax), .addr(w_addr), .data(w_data), .ready(ready_r), .ok(boot_ok), .upl_ok(upl_ok)
+        .we(w_we), .wax(w_ax), .addr(w_addr), .data(w_data), .ready(ready_r), .ok(boot_ok), .ok_next(boot_ok_n),
+        .upl_ok(upl_ok)
     );
     always @(posedge cclk) begin
         if (rst) w_bank <= 1'b0;
@@ -205,7 +207,15 @@ module mpc_core #(
                            !(w_we && w_ax == xa[AXW-1:0]);
         end
     end
-    assign img_ok = {NAXES{boot_ok}} | swapped;          // (every accepted swap brings a valid image)
+    // img_ok = boot_ok | swapped (every accepted swap brings a valid image), registered from their
+    // next values: the same value in every clock, but straight from a flip-flop into the kill path
+    // (mpc_axis: img_bad -> trip -> pwm_center; the gate here made it the drive's worst path, 10 LUTs)
+    reg  [NAXES-1:0] img_ok_r;
+    always @(posedge cclk) begin
+        if (rst) img_ok_r <= {NAXES{1'b0}};
+        else     img_ok_r <= {NAXES{boot_ok_n}} | swapped | swap_go;
+    end
+    assign img_ok = img_ok_r;
 
     // ---- sequencing: one-hot pre-phase and tail, column counter ----
     wire start_ok = (|start) && ready_r && !busy;
