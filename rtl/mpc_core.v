@@ -197,7 +197,6 @@ module mpc_core #(
 
     // ---- bank swap decisions, per axis: at the axis's boundary, with no update of that axis running ----
     reg  [NAXES-1:0] swap_dec;
-    reg  [NAXES-1:0] swapped;                            // a swap was accepted since reset
     integer xa;
     always @(*) begin
         for (xa = 0; xa < NAXES; xa = xa + 1) begin
@@ -207,13 +206,15 @@ module mpc_core #(
                            !(w_we && w_ax == xa[AXW-1:0]);
         end
     end
-    // img_ok = boot_ok | swapped (every accepted swap brings a valid image), registered from their
-    // next values: the same value in every clock, but straight from a flip-flop into the kill path
-    // (mpc_axis: img_bad -> trip -> pwm_center; the gate here made it the drive's worst path, 10 LUTs)
+    // img_ok = boot_ok | (a swap was accepted since reset): every accepted swap brings a valid image.
+    // Both parts only rise (boot_ok once, at the end of the boot stream), so the register takes
+    // boot_ok's next value, its own value and this edge's swaps: the same value in every clock, but
+    // straight from a flip-flop into the kill path (mpc_axis: img_bad -> trip -> pwm_center; the
+    // gate boot_ok | swapped made it the drive's worst path, 10 LUT levels)
     reg  [NAXES-1:0] img_ok_r;
     always @(posedge cclk) begin
         if (rst) img_ok_r <= {NAXES{1'b0}};
-        else     img_ok_r <= {NAXES{boot_ok_n}} | swapped | swap_go;
+        else     img_ok_r <= {NAXES{boot_ok_n}} | img_ok_r | swap_go;
     end
     assign img_ok = img_ok_r;
 
@@ -246,7 +247,6 @@ module mpc_core #(
             axis_r <= {AXW{1'b0}};
             bank <= {NAXES{1'b0}};
             swap_pending <= {NAXES{1'b0}};
-            swapped <= {NAXES{1'b0}};
             swap_refused <= {NAXES{1'b0}};
             refused <= {NAXES{1'b0}};
         end else begin
@@ -268,10 +268,7 @@ module mpc_core #(
                 end else if (cfg_swap[xa] && ready_r) begin
                     swap_pending[xa] <= 1'b1;
                 end
-                if (swap_go[xa]) begin
-                    bank[xa] <= ~bank[xa];
-                    swapped[xa] <= 1'b1;
-                end
+                if (swap_go[xa]) bank[xa] <= ~bank[xa];
             end
         end
     end
