@@ -219,7 +219,6 @@ module adc_spi #(
     localparam [PJ_W-1:0] PJ_SIGN = PJ_SIGNI[PJ_W-1:0];
     localparam [PJ_W-1:0] PJ_WEND = AW[PJ_W-1:0];        // = window width: the window's bits are in
     localparam [PJ_W-1:0] PJ_KM1  = PJ_KM1I[PJ_W-1:0];   // bit K-1: the rounding half
-    localparam [PJ_W-1:0] PJ_DW   = D_W[PJ_W-1:0];
     localparam [PJ_W-1:0] PJ_PSW  = PSW[PJ_W-1:0];
     localparam [PJ_W-1:0] PJ_AB   = ADC_BITS[PJ_W-1:0];
     localparam integer JD_W = $clog2(D_W), JT_W = $clog2(ADC_BITS);
@@ -641,7 +640,9 @@ module adc_spi #(
     reg              pfresh, snap_req;
     reg signed [PSW-1:0] pacc0, pacc1, pacc2;
 
-    wire [JD_W-1:0]  jd = (pj < PJ_DW) ? pj[JD_W-1:0] : JD_TOP;   // sign extension
+    // jd = min(pj, D_W - 1) (the sign extension), a register stepped with pj: the bit selects of
+    // the three differences start at a flip-flop, not behind a compare of pj (worst path of the drive)
+    reg  [JD_W-1:0]  jd;
     wire [2:0]       db = {diff2[jd], diff1[jd], diff0[jd]};
     wire             tb = (pj < PJ_AB) ? p_thr[pj[JT_W-1:0]] : 1'b0;
     wire [2:0]       s3 = {2'b00, db[0]} + {2'b00, db[1]} + {2'b00, db[2]} + {1'b0, s_c};
@@ -658,6 +659,7 @@ module adc_spi #(
         if (rst) begin
             pbusy    <= 1'b0;
             pj       <= {PJ_W{1'b0}};
+            jd       <= {JD_W{1'b0}};
             p_win    <= 1'b0;
             p_first  <= 1'b0;
             p_last   <= 1'b0;
@@ -692,6 +694,7 @@ module adc_spi #(
             if (st_a) begin                                 // pass start (stage B)
                 pbusy    <= 1'b1;
                 pj       <= {PJ_W{1'b0}};
+                jd       <= {JD_W{1'b0}};
                 p_win    <= f_win;
                 p_first  <= f_first;
                 p_last   <= f_last;
@@ -712,6 +715,7 @@ module adc_spi #(
                 end
                 if (pbusy) begin
                     pj  <= pj + 1'b1;
+                    if (jd != JD_TOP) jd <= jd + 1'b1;
                     if (pj == PJ_LAST) pbusy <= 1'b0;
                     s_c <= s3[2:1];
                     a_c <= (sb & ~tb) | (sb & a_c) | (~tb & a_c);

@@ -122,8 +122,11 @@ module axis_status (
     wire        go   = go_c || go_z;
     wire        sw_wr = go_z || (go_c && !(cnt_ev && c_full && cnt_a != `EMPC_A_PERIODS));
     wire [31:0] sw_d  = go_z ? 32'd0 : q + {31'd0, cnt_ev};
-    wire [5:0]  b_k   = go ? k + 6'd1 : k;
-    wire [5:0]  b_addr = (b_k < K_NEV) ? (A_CNT0[5:0] + b_k) : (b_k == K_NEV) ? `EMPC_A_PERIODS : `EMPC_A_SAT_GOV;
+    // port B reads word k + 1 when the sweep steps now, else word k: both addresses from registers,
+    // `go` (behind the CPU read decode, reg_rd) picks one in the last gate
+    wire [5:0]  k1    = k + 6'd1;
+    wire [5:0]  cnt_a1 = (k1 < K_NEV) ? (A_CNT0[5:0] + k1) : (k1 == K_NEV) ? `EMPC_A_PERIODS : `EMPC_A_SAT_GOV;
+    wire [5:0]  b_addr = go ? cnt_a1 : cnt_a;
     always @(posedge clk) q <= smem[b_addr];
     wire        s_rd = (cnt_re && !hide_cnt) || (stat_re && !hide_st);
     wire [5:0]  pa = reg_rd ? reg_addr[5:0] : w_st ? st_addr : sw_a;

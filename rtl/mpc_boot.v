@@ -38,7 +38,8 @@
 // Ports: cfg_we, cfg_axis, cfg_addr, cfg_wdata (CPU, used when ready); ok_clr[NAXES] (pulses);
 //   we, wax, addr, data (write port); ready; ok (boot image valid: latched at the end of the
 //   boot stream, the check of the last pass); upl_ok[NAXES] (a complete valid image was written
-//   into that axis since its last ok_clr, nothing after it).
+//   into that axis since its last ok_clr, nothing after it); ok_next (the value ok takes at the
+//   next edge unless rst: lets the core register its img_ok without a gate after the flip-flops).
 // Parameters: BOOT_FILE, DEPTH (ROM words, EMPC_IMG_DEPTH = 1024), USED (words streamed,
 //   EMPC_IMG_USED, <= 3/4 DEPTH: the CPU words go to the top quarter), N (the core's horizon),
 //   NAXES (axes, 1..8), AXW (axis index width, >= 1).
@@ -70,6 +71,7 @@ module mpc_boot #(
     output reg  [31:0]      data,
     output reg              ready,
     output reg              ok,
+    output wire             ok_next,
     output reg  [NAXES-1:0] upl_ok
 );
     localparam [9:0] A_CSUM  = `EMPC_IMG_A_CSUM;
@@ -141,6 +143,7 @@ module mpc_boot #(
         if (rst || (we_n && a_next == 10'd0)) acc <= 32'd0;    // restart: cleared before word 0
         else if (we)                          acc <= acc_n;
     end
+    assign ok_next = last ? upl_ok[NAXES-1] : ok;
     integer ai;
     always @(posedge clk) begin
         if (rst) begin

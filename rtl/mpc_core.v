@@ -183,10 +183,12 @@ module mpc_core #(
     reg         w_bank;
     assign ready = ready_r;
     reg  [NAXES-1:0] swap_go;                            // axis a's swap is applied at this edge
+    wire             boot_ok_n;                          // boot_ok at the next edge
     mpc_boot #(.BOOT_FILE(BOOT_FILE), .N(N), .NAXES(NAXES), .AXW(AXW)) u_boot (
         .clk(cclk), .rst(rst), .cfg_we(cfg_we), .cfg_axis(cfg_ax), .cfg_addr(cfg_addr[9:0]),
         .cfg_wdata(cfg_wdata), .ok_clr(swap_go),
-        .we(w_we), .wax(w_ax), .addr(w_addr), .data(w_data), .ready(ready_r), .ok(boot_ok), .upl_ok(upl_ok)
+        .we(w_we), .wax(w_ax), .addr(w_addr), .data(w_data), .ready(ready_r), .ok(boot_ok), .ok_next(boot_ok_n),
+        .upl_ok(upl_ok)
     );
     always @(posedge cclk) begin
         if (rst) w_bank <= 1'b0;
@@ -195,7 +197,6 @@ module mpc_core #(
 
     // ---- bank swap decisions, per axis: at the axis's boundary, with no update of that axis running ----
     reg  [NAXES-1:0] swap_dec;
-    reg  [NAXES-1:0] swapped;                            // a swap was accepted since reset
     integer xa;
     always @(*) begin
         for (xa = 0; xa < NAXES; xa = xa + 1) begin
@@ -205,7 +206,17 @@ module mpc_core #(
                            !(w_we && w_ax == xa[AXW-1:0]);
         end
     end
-    assign img_ok = {NAXES{boot_ok}} | swapped;          // (every accepted swap brings a valid image)
+    // img_ok = boot_ok | (a swap was accepted since reset): every accepted swap brings a valid image.
+    // Both parts only rise (boot_ok once, at the end of the boot stream), so the register takes
+    // boot_ok's next value, its own value and this edge's swaps: the same value in every clock, but
+    // straight from a flip-flop into the kill path (mpc_axis: img_bad -> trip -> pwm_center; the
+    // gate boot_ok | swapped made it the drive's worst path, 10 LUT levels)
+    reg  [NAXES-1:0] img_ok_r;
+    always @(posedge cclk) begin
+        if (rst) img_ok_r <= {NAXES{1'b0}};
+        else     img_ok_r <= {NAXES{boot_ok_n}} | img_ok_r | swap_go;
+    end
+    assign img_ok = img_ok_r;
 
     // ---- sequencing: one-hot pre-phase and tail, column counter ----
     wire start_ok = (|start) && ready_r && !busy;
@@ -236,7 +247,6 @@ module mpc_core #(
             axis_r <= {AXW{1'b0}};
             bank <= {NAXES{1'b0}};
             swap_pending <= {NAXES{1'b0}};
-            swapped <= {NAXES{1'b0}};
             swap_refused <= {NAXES{1'b0}};
             refused <= {NAXES{1'b0}};
         end else begin
@@ -258,10 +268,7 @@ module mpc_core #(
                 end else if (cfg_swap[xa] && ready_r) begin
                     swap_pending[xa] <= 1'b1;
                 end
-                if (swap_go[xa]) begin
-                    bank[xa] <= ~bank[xa];
-                    swapped[xa] <= 1'b1;
-                end
+                if (swap_go[xa]) bank[xa] <= ~bank[xa];
             end
         end
     end

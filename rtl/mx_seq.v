@@ -132,7 +132,7 @@ module mx_seq #(
     reg  [7:0]  per_nx;             // PWM periods since the last control period, + 1 (mod 256)
     reg         ctl_next;           // the coming sample is a control sample (decided at the boundary)
     reg         is_control, first, mfirst, busy_period;
-    reg  [15:0] lat_cnt;
+    reg  [15:0] lat_cnt;            // clocks since the trigger, + 1 (one adder: latency takes it as is)
     reg  [PW-1:0] pos_trig;
     reg  signed [UW-1:0] u_st0, u_st1;
     reg         zeroed;
@@ -260,7 +260,7 @@ module mx_seq #(
                 if (xf_sat) front_sat <= 1'b1;
                 cmp_load <= 1'b1;
                 stat_sweep <= is_control;
-                latency <= lat_cnt + 16'd1;
+                latency <= lat_cnt;
                 busy_period <= 1'b0;
             end
         end
@@ -271,7 +271,7 @@ module mx_seq #(
         else if (trig)
             per_nx <= per_nx + 8'd1;
         if (trig)
-            lat_cnt <= 16'd0;
+            lat_cnt <= 16'd1;
         else if (busy_period)
             lat_cnt <= lat_cnt + 16'd1;
         if (trig)
