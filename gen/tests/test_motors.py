@@ -188,16 +188,41 @@ FW_REACH_TOL = 0.97     # the plant holds at least 0.98 x min(top, 0.97 x its w_
 FW_RMS = 0.03           # RMS speed error where the reference is within reach: at most 3 % of the top speed
 FW_END = 0.01           # the speed at the end within 1 % of the top speed of 0
 FW_ID = -0.05           # i_d mean in the hold's second half below -0.05 i_max where the plant needs FW
-# spmsm_002 (J = 0.0134 kg m^2): its ramps take 12.5 s; the speed stops at 755 rad/s (0.61 x base, the
-# reference at 1538) at every plant, float and fixed: u_q carries a broadband 1.3-2.5 kHz ripple of 5.8 V
-# RMS (21 % of u_max; 0.94 A on i_q) under the scenario's load, the same without ADC noise, dead time,
-# friction or field weakening and with either speed estimate, so |u| touches the circle at 0.66 u_max on
-# average, the limiter's flag holds the governor (the reference stops) and the FW counter sees |u_raw|
-# cross u_hi and u_lo in turn.  Its algorithm-1 speed design (worst radius 0.9999 over the box) needs
-# retuning (issue 15 items 2/3), not the field weakening.
-FW_XFAIL = {("spmsm_002", plant, fixed): "spmsm_002: u_q ripple 21 % of u_max holds the governor at 0.61 x "
-            "base (its alg-1 speed design, not FW)" for plant in ("nominal", "corner_a", "corner_b")
-            for fixed in (False, True)}
+# spmsm_002 (J = 0.0134 kg m^2): its ramps take 12.5 s.  It stopped at 0.61 x base (755 of 1538 rad/s) at
+# every plant until its algorithm-1 speed weights were retuned: the default Q_dy[2] = 190 pu let the
+# encoder quantisation (1.9 rad/s per count at 200 us) drive 5.8 V RMS of u_q (21 % of u_max) through the
+# speed-increment term; Q_dy[2] = 68, Q_yw[2] = 40000 pu: 2.7 % (configs/spmsm_002.toml).  Now nominal and
+# corner_a pass (hold at 0.997 of the top, RMS error 0.6 % of the top, end 0.2 %, peak 0.73 / 0.77 i_max).
+# corner_b (L, R, J -30 %, psi +20 %: its steady-state limit w_fw = 0.81 x top) stops at 1176 rad/s, 0.976 of
+# what the test expects it to reach (0.97 w_fw = 1203), on the voltage circle (|u| = 0.998 u_max) with
+# i_d = -9.3 A of the -12 A the FW limit allows, and on the ramp down stays there for 3 s after the
+# reference has fallen below it (the reference keeps rising while the plant cannot follow: a windup on
+# the voltage limit, not the ripple); RMS error 8.2 % of the top.  Open, strict xfail:
+FW_XFAIL = {("spmsm_002", "corner_b", fixed): "spmsm_002 corner_b: stops at 0.976 of its reach on the voltage "
+            "circle (i_d -9.3 of -12 A), 3 s behind the ramp down (RMS 8.2 % of top)" for fixed in (False, True)}
+
+
+SPMSM_UQ_RIPPLE = 0.05      # u_q RMS about its mean at a steady speed, x u_max (was 0.21: the FW stop above)
+
+
+def test_spmsm_002_speed_design_quiet():
+    """spmsm_002's algorithm-1 speed design: the sensor quantisation drives at most 5 % of u_max, in the
+    linear noise model (robust.noise_rms: 0.026, was 0.205) and in a 0.3 s hold at 400 and 1000 rad/s
+    (float and fixed, the second half: 1.9-2.8 %, was 15-24 %)."""
+    from empc.reference import steps_and_ramps
+    cfg = load("spmsm_002")
+    g = robust.exact_gains(cfg, 1, "speed")(0.0)
+    assert robust.noise_rms(cfg, 1, "speed", g)["u_rms"] <= SPMSM_UQ_RIPPLE * cfg.u_max
+    c = cfg.with_control(algorithm=1, task="speed")
+    for w in (400.0, 1000.0):
+        sc = cl.Scenario("hold", "speed", 0.3, steps_and_ramps([(0.0, w, "step")]), x0=(0.0, 0.0, w, 0.0))
+        for ctl in (ExplicitMPC(c, gains="poly"), FixedMPC(c)):
+            tr = cl.simulate(c, ctl, sc)
+            half = tr.t >= 0.15
+            rip = float(np.std(tr.u_q[half]) / cfg.u_max)
+            assert rip <= SPMSM_UQ_RIPPLE, (w, type(ctl).__name__, rip)
+            # the start (i_q = 0 against friction) costs 26 rad/s that the heavy rotor recovers in ~0.3 s
+            assert abs(np.mean(tr.w_e[half]) - w) <= 0.05 * w, (w, type(ctl).__name__, np.mean(tr.w_e[half]))
 
 
 def _fw_check(cfg, name, plant, fixed):
@@ -277,5 +302,141 @@ def test_field_weakening_nominal_float(name):
 def test_field_weakening_every_motor_and_corner(name, plant, fixed, request):
     why = FW_XFAIL.get((name, plant, fixed))
     if why:
-        request.applymarker(pytest.mark.xfail(reason=why, strict=True))      # flags when the design is fixed
+        request.applymarker(pytest.mark.xfail(reason=why, strict=True))      # flags when fixed
     _fw_check(load(name), name, plant, fixed)
+
+
+# ------------------------------------------------------------------------------------------------
+# The closed loop at 50 us (control.Ts = 50 us, 20 kHz PWM: the variant test_every_design_passes_at_each_ts
+# checks), every motor and every design it has: the per-control-period weight tables
+# ([weights.<design>.Ts_50us]) pass the linear design check, this runs them.  A speed step (0.12 s of
+# speed_steps / speed_alg2: 0 -> 300 k rad/s at 10 ms) or a position step (0.06 s of position_alg1 /
+# position_alg2: 0 -> 20 k rad at 10 ms), nominal plant (the full sweep: also the box corners), float and
+# fixed, with the bounds:
+TS_50US = {"control.Ts": 50e-6, "inverter.f_pwm": 20000.0}
+STEP_50US = {(1, "speed"): ("speed_steps", 0.12), (2, "speed"): ("speed_alg2", 0.12),
+             (1, "position"): ("position_alg1", 0.06), (2, "position"): ("position_alg2", 0.06)}
+PEAK_50US = 1.05        # |i| <= 1.05 i_max (the reference governor's limit)
+OV_50US = 25.0          # overshoot of the step, % (the measured worst that passes: see the table below)
+UQ_50US = 0.25          # u_q RMS about its mean over the step's last 30 % (no limit cycle on the voltage limit), x u_max
+AGREE_50US = 0.10       # fixed vs float RMS tracking error within 10 % + 1 sensor LSB (as _bounds)
+# and the step settles (within max(2 % of the step, the sensor floor) before its segment ends).
+# Known failures (strict xfail, so they flag when fixed): the measured numbers (nominal plant, float / fixed)
+# and the cause.  Three causes:
+#  * the sensor resolution at 50 us: one encoder count per period is 126 rad/s on the BLWR233D (4000 cpr)
+#    and 123 rad/s on the EC 45 flat (its scaled speed step, 120 rad/s, is less than one count); the
+#    quantisation drives u_q (docs/design.md: u_rms 95 V against u_max 20.8 V for blwr alg2 speed);
+#  * the reference governor's catch-up (governor.shift_position = 4, 2^-4 of the error per period):
+#    it starts braking when the error falls below 2^4 periods of the reference speed, a distance that
+#    shrinks with Ts while the braking distance does not, so at 50 us the governed position reference
+#    itself overshoots; with shift_position = 7 the premo and the EC 45 flat algorithm-1 position steps
+#    do not overshoot (test_closed_loop_at_50us_governor_shift7);
+#  * not found in the time (stated as such).
+_RES_BLWR = "BLWR233D 4000 cpr: 126 rad/s per count at 50 us (sensor resolution, not a tuning problem)"
+_GOV = "governor catch-up shift_position = 4 brakes too late at 50 us"
+KNOWN_50US = {
+    ("blwr233d", "alg1.speed"): f"{_RES_BLWR}: the 300 rad/s step is 2.4 counts, overshoot 42.6 / 42.6 %",
+    ("blwr233d", "alg2.speed"): f"{_RES_BLWR}: u_q RMS 0.87 / 0.92 u_max in the step's tail (u_q bangs on the "
+                                "limit), overshoot 58 % (float), fixed not settled (final error 79 % of the step)",
+    ("blwr233d", "alg1.position"): f"{_RES_BLWR}: u_q RMS 0.50 / 0.48 u_max in the step's tail",
+    ("blwr233d", "alg2.position"): f"{_RES_BLWR}: u_q RMS 0.38 / 0.38 u_max in the step's tail (overshoot 5.5 %, "
+                                   "settled in 49 ms)",
+    ("ipmsm_001", "alg1.position"): "slow at 50 us: final error 71 / 71 % of the 1.19 rad step after 50 ms, peak "
+                                    "0.03 i_max (not governor-limited); cause not investigated",
+    ("spmsm_002", "alg1.position"): "does not move in 50 ms: final error 100 / 100 % of the 0.04 rad step, peak "
+                                    "0.005 i_max; cause not investigated",
+    ("ec45flat_24v", "alg1.position"): f"{_GOV}: overshoot 75 / 75 %, not settled, u_q RMS 0.49 u_max; with "
+                                       "shift_position = 7: 0.1 %, settled in 29 ms",
+    ("ec45flat_24v", "alg2.position"): "not settled: final error 75 / 75 % of the 8 rad step after 50 ms, u_q RMS "
+                                       "0.71 u_max in the tail (the same with shift_position = 7); not investigated",
+    ("ec45flat_24v", "alg2.speed"): "sensor resolution: 123 rad/s per count at 50 us, the scaled 120 rad/s step is "
+                                    "one count: overshoot 30.7 / 30.7 %",
+    ("premo_320v", "alg1.position"): f"{_GOV}: overshoot 82 / 82 %, not settled in 50 ms; with shift_position = 7: "
+                                     "0 %, settled in 27 ms",
+    ("premo_320v", "alg2.position"): f"{_GOV}: overshoot 88 / 88 %; with shift_position = 7: 5.3 %, settled in "
+                                     "48 ms, but u_q RMS 0.35 u_max in the tail",
+    ("premo_320v", "alg2.speed"): "overshoot 41 / 41 %, u_q RMS 0.54 / 0.53 u_max in the step's tail: its Ts_50us "
+                                  "weights' linear quantisation chatter is 0.50 u_max (7.7 rad/s per count); Q_dy[2] "
+                                  "x2 fails the box (radius 1.03); no quieter table found in the time",
+}
+# at the box corners (full sweep): the same designs fail there (blwr alg1 speed: overshoot 28 / 55 %), and
+KNOWN_50US_CORNERS = {
+    ("ipmsm_001", "alg2.speed", "corner_a"): "peak 1.033 / 1.096 i_max at the least-damped corner (0.64 i_max "
+                                             "nominal, 0.40 at corner_b)",
+    ("ec45flat_24v", "alg1.speed", "corner_a"): "sensor resolution (the step is one count): u_q RMS 0.49 / 0.50 "
+                                                "u_max in the tail, final error 26 %",
+}
+
+
+def _designs_50us(plants=(None,), only_task=None):
+    out = []
+    for name in MOTORS:
+        for key in sorted(load(name, **TS_50US).control.weights):
+            if only_task and key[1] != only_task:
+                continue
+            d = f"alg{key[0]}.{key[1]}"
+            for plant in plants:
+                why = KNOWN_50US.get((name, d)) or (KNOWN_50US_CORNERS.get((name, d, plant)) if plant else None)
+                marks = [pytest.mark.xfail(reason=why, strict=True)] if why else []
+                args = (name, key) if plant is None else (name, key, plant)
+                out.append(pytest.param(*args, id="-".join(x for x in (name, d, plant) if x), marks=marks))
+    return out
+
+
+def _step_50us(cfg, key, plant, fixed):
+    scen, dur = STEP_50US[key]
+    sc, tr, m = _run(cfg, scen, plant, fixed=fixed, duration=dur)
+    assert len(sc.segments) == 1 and sc.segments[0][0] == "step", sc.segments
+    _, t0, t1, v0, v1 = sc.segments[0]
+    seg = m["segments"][0]
+    tail = (tr.t >= t0 + 0.7 * (t1 - t0)) & (tr.t < t1 - cfg.control.N * cfg.control.Ts)
+    step = abs(v1 - v0)
+    # the governor's reference profile reaches the target within 60 % of the segment (else the step is
+    # governor-limited: a heavy motor's scaled step, and it only has to move at least half way)
+    reach = _governed_reach(cfg, sc.task, 0.6 * (t1 - t0 - cfg.control.N * cfg.control.Ts))
+    fig = {"peak/i_max": float(np.max(tr.i_phase_peak) / cfg.control.i_max), "overshoot_pct": seg["overshoot_pct"],
+           "settling_time": seg["settling_time"], "final_error/step": seg["final_error"] / step,
+           "governed": reach < step, "reach/step": min(reach, 1e9) / step,
+           "u_q_tail_rms/u_max": float(np.std(tr.u_q[tail]) / cfg.u_max), "rms_error": m["rms_error"]}
+    return sc, tr, fig
+
+
+def _check_50us(name, key, plant, extra=None):
+    cfg = load(name, **TS_50US, **(extra or {}))
+    assert cfg.control.Ts == 50e-6 and cfg.pwm_per_control == 1
+    res = cfg.rad_per_count if key[1] == "position" else cfg.rad_s_per_count_ts
+    figs = {}
+    for fixed in (False, True):
+        _, tr, fig = _step_50us(cfg, key, plant, fixed)
+        figs["fixed" if fixed else "float"] = fig
+        print(name, key, plant, "fixed" if fixed else "float", {k: (round(float(v), 4) if v is not None else None)
+                                                               for k, v in fig.items()})
+    for what, fig in figs.items():
+        assert np.isfinite(fig["rms_error"]), (name, key, what, fig)
+        assert fig["peak/i_max"] <= PEAK_50US, (name, key, what, fig)
+        assert fig["overshoot_pct"] <= OV_50US, (name, key, what, fig)
+        if not fig["governed"]:
+            assert fig["settling_time"] is not None, (name, key, what, fig)        # settles in the segment
+        else:                                                                      # moved at least half way
+            assert fig["final_error/step"] <= 1.0 - 0.5 * fig["reach/step"], (name, key, what, fig)
+        assert fig["u_q_tail_rms/u_max"] <= UQ_50US, (name, key, what, fig)        # no limit cycle
+    f, x = figs["float"]["rms_error"], figs["fixed"]["rms_error"]
+    assert abs(f - x) <= AGREE_50US * f + res, (name, key, f, x)
+
+
+@pytest.mark.parametrize("name,key", _designs_50us())
+def test_closed_loop_at_50us_nominal(name, key):
+    _check_50us(name, key, "nominal")
+
+
+# the governor's catch-up at 50 us (KNOWN_50US): shift_position 4 -> 7 (2^3 = 8 periods for the 5 x shorter
+# period) removes the position overshoot of the premo and the EC 45 flat (82 / 75 % -> 0 / 0.1 %)
+@pytest.mark.parametrize("name", ["premo_320v", "ec45flat_24v"])
+def test_closed_loop_at_50us_governor_shift7(name):
+    _check_50us(name, (1, "position"), "nominal", {"governor.shift_position": 7})
+
+
+@pytest.mark.full
+@pytest.mark.parametrize("name,key,plant", _designs_50us(plants=("corner_a", "corner_b")))
+def test_closed_loop_at_50us_box_corners(name, key, plant):
+    _check_50us(name, key, plant)
