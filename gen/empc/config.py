@@ -144,7 +144,8 @@ SCHEMA: list[Key] = [
     Key("governor", "hold_current", "float", 0.7, lo=0, lo_open=True, hi=1,
         doc="hold the reference after a period with |i_q| >= this x i_max (IQ_HOLD, 12 bit ADC LSB)"),
     Key("governor", "shift_speed", "int", 3, lo=0, hi=31, doc="catch-up gain 2^-shift per period, speed task (ksh, 5 bit)"),
-    Key("governor", "shift_position", "int", 4, lo=0, hi=31, doc="the same, position task"),
+    Key("governor", "shift_position", "int", None, lo=0, hi=31,
+        doc="the same, position task (default from control.Ts: Ts x 2^shift >= 4 ms, 4 at 250 us, 7 at 50 us)"),
     Key("governor", "jerk_periods", "int", 4, lo=1, hi=1 << 16,
         doc="speed task: periods the acceleration takes to ramp to its limit"),
     Key("field_weakening", "enable", "bool", True, doc="d-current reference from the voltage margin (FW register)"),
@@ -452,7 +453,9 @@ class Governor:
     (inertia x ``box_J``, flux x ``box_psi``), with the position reference's speed at most
     ``speed_frac`` of the no-load base speed u_max / psi (and of Omega_e); the reference
     holds its acceleration (speed) or speed (position) while |i_q| > ``hold_current`` x i_max
-    or the voltage limiter was active.  See gen/empc/governor.py."""
+    or the voltage limiter was active.  The position catch-up ``shift_position`` defaults to
+    :func:`governor.default_shift_position` of control.Ts (the same catch-up time at every Ts).
+    See gen/empc/governor.py."""
     enable: bool
     accel_current: float
     box_J: float
@@ -802,8 +805,11 @@ def from_dict(d: dict, source: str = "<dict>") -> Config:
     ratings = derive_ratings(v.get("ratings", {}), motor, inverter, c["i_max"], c["N"] * c["Ts"])
     robustness = Robustness(**_table(v, "robustness"))   # defaults: the schema (one source)
     gv = _table(v, "governor")
+    from .governor import default_shift_position
     governor = Governor(**dict(gv, box_J=1.0 + robustness.J if gv["box_J"] is None else gv["box_J"],
-                               box_psi=1.0 - robustness.psi if gv["box_psi"] is None else gv["box_psi"]))
+                               box_psi=1.0 - robustness.psi if gv["box_psi"] is None else gv["box_psi"],
+                               shift_position=(default_shift_position(c["Ts"]) if gv["shift_position"] is None
+                                               else gv["shift_position"])))
     if governor.box_psi <= 0.0:
         raise ConfigError(f"robustness.psi = {_fmt(robustness.psi)}: the governor's flux corner 1 - psi is not "
                           f"positive; allowed: robustness.psi < 1 or governor.box_psi given")

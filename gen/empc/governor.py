@@ -25,6 +25,18 @@ voltage limiter active) stops the reference from demanding more: the position re
 not speed up (it may slow down), the speed reference's acceleration decays to 0.  In steady tracking of a feasible
 profile (ramps within the limits) the governed reference equals the target exactly.
 
+The catch-up is a proportional position (speed) loop on the reference with time constant
+tau = Ts x 2^ksh: it brakes (v follows vd = e >> ksh down) from an error of tau x the reference speed
+w; it follows that braking exactly while the deceleration it asks, w / tau, is within the acceleration
+limit alpha, and stops without overshoot while the braking distance w^2 / 2 alpha is within w tau
+(w <= 2 alpha tau).  Position task: the limits are SI (vmax = w_max Ts, a = alpha Ts^2), so
+the same braking needs the same tau at every control period, and ``shift_position`` defaults to
+:func:`default_shift_position` of Ts: the smallest ksh with tau >= 4 ms, the tau of 4 at 250 us (the
+value the configurations were tuned with): 200 us 5, 100 us 6, 50 us 7.  Taken as 4 at 50 us (tau =
+0.8 ms) the governed position reference itself overshot 75-88 % on the premo and the EC 45 flat
+(docs/design.md).  Speed task: a = vmax / jerk_periods is per period, so the braking condition
+2^-ksh x vmax <= a (ksh >= log2 jerk_periods = 2) does not depend on Ts, and ``shift_speed`` stays 3.
+
 Raw form (rtl/ref_gen.v, rtlmodel/ref_gen.py): values Q.32 of the task unit (counts, counts/Ts),
 64-bit two's complement; :func:`raw_params` gives vmax, a (Q.32) and ksh.  This module holds the
 float form (SI units) used by the float and fixed controllers.
@@ -55,6 +67,17 @@ def speed_limit(cfg) -> float:
     c, g = cfg.control, cfg.control.governor
     w_top = min(c.omega_max, -c.omega_min, cfg.u_max / cfg.motor.psi)
     return g.speed_frac * w_top
+
+
+TS_REF = 250e-6               # control period of the position catch-up's reference shift
+SHIFT_POSITION_REF = 4        # 2^-4 per period at 250 us: tau = 4 ms
+
+
+def default_shift_position(Ts: float) -> int:
+    """Position catch-up shift for control period Ts (s): the smallest ksh whose tau = Ts x 2^ksh is at
+    least the 4 ms of 4 at 250 us (200 us: 5, 100 us: 6, 50 us: 7), within 0..31.  Rounded down
+    instead (tau >= 2.8 ms: 6 at 50 us) the premo's scaled position step still overshot 40 %."""
+    return min(31, max(0, SHIFT_POSITION_REF + math.ceil(math.log2(TS_REF / Ts) - 1e-9)))
 
 
 def params(cfg, task: str) -> Params:

@@ -108,3 +108,57 @@ def test_raw_form_tracks_float(task):
         worst = max(worst, abs(gr - gf))
     print(f"{task}: raw vs float governor max |diff| {worst:.3g} ({worst / unit:.3g} LSB of the task unit)")
     assert worst < 0.05 * unit
+
+
+def test_default_shift_position_follows_ts():
+    """The position catch-up's default shift keeps tau = Ts x 2^ksh at least at the 4 ms of 4 at 250 us
+    (the smallest such power of two); an explicit value is taken as given at every Ts; the speed shift does not
+    depend on Ts (its braking condition 2^-ksh <= 1 / jerk_periods is per period)."""
+    assert [gov.default_shift_position(ts * 1e-6) for ts in (1000, 500, 250, 200, 125, 100, 50, 25)] == \
+        [2, 3, 4, 5, 5, 6, 7, 8]
+    for ts in np.geomspace(10e-6, 2e-3, 57):
+        tau = ts * 2.0 ** gov.default_shift_position(ts)
+        assert 4e-3 * (1 - 1e-12) <= tau < 8e-3, (ts, tau)
+    assert CFG.control.Ts == 250e-6 and gov.raw_params(CFG, "position")["ksh"] == 4     # the ROMs' value
+    for ts, k in ((250e-6, 4), (100e-6, 6), (50e-6, 7)):
+        c = config.load(None, {"control.Ts": ts, "inverter.f_pwm": 20000.0})
+        assert gov.params(c, "position").ksh == k and gov.params(c, "speed").ksh == 3, ts
+        c = config.load(None, {"control.Ts": ts, "inverter.f_pwm": 20000.0, "governor.shift_position": 4})
+        assert gov.params(c, "position").ksh == 4, ts
+
+
+MOTOR_CFGS = ["blwr233d", "premo_320v", "ec45flat_24v", "ipmsm_001", "spmsm_002"]
+
+
+# at their own Ts (250 us, shift 4, unchanged: the ROMs are) the premo's and the EC 45 flat's governed step
+# overshoots 30 % (shift 5 would give 0 %); the closed loop at 250 us is not judged on overshoot here
+OWN_TS_KNOWN = {"premo_320v": "governed step overshoots 30.2 % at 250 us with shift 4 (5: 0 %)",
+                "ec45flat_24v": "governed step overshoots 30.2 % at 250 us with shift 4 (5: 0 %)"}
+
+
+@pytest.mark.parametrize("name,ts", [pytest.param(n, ts, id=f"{n}-{'own' if ts is None else '50us'}",
+                                                  marks=[pytest.mark.xfail(reason=OWN_TS_KNOWN[n], strict=True)]
+                                                  if ts is None and n in OWN_TS_KNOWN else [])
+                                     for n in MOTOR_CFGS for ts in (None, 50e-6)])
+def test_governed_position_step_does_not_overshoot(name, ts):
+    """The governed position reference of the scenarios' scaled position step (position_alg1's first,
+    50 ms) at the motor's own Ts and at 50 us: it stays within the target (the catch-up brakes in
+    time).  At 50 us with the 250 us shift (4) the premo's and the EC 45 flat's overshot by 70-80 %
+    of the step: the cause of the 50 us closed-loop overshoot (test_motors, docs/design.md)."""
+    from empc import scenarios
+    path = config.DEFAULT_CONFIG.parent / f"{name}.toml"
+    over = {} if ts is None else {"control.Ts": ts, "inverter.f_pwm": 20000.0}
+    cfg = config.load(path, overrides=over)
+    sc, _ = scenarios.get("position_alg1", cfg)
+    _, t0, t1, v0, v1 = sc.segments[0]
+    n = int(round((t1 - t0) / cfg.control.Ts))
+    tgt = np.concatenate([np.full(5, v0), np.full(n, v1)])
+    worst = {}
+    for shift in (None, 4):
+        c = cfg if shift is None else config.load(path, overrides=dict(over, **{"governor.shift_position": shift}))
+        g, _ = _run(gov.params(c, "position"), tgt)
+        worst[shift] = max(0.0, float(np.max((g - v1) * np.sign(v1 - v0)))) / abs(v1 - v0)
+    print(name, ts, cfg.control.governor.shift_position, {k: round(v, 4) for k, v in worst.items()})
+    assert worst[None] <= 0.01, (name, ts, worst)
+    if ts is not None and name in ("premo_320v", "ec45flat_24v"):
+        assert worst[4] > 0.5, (name, worst)                       # the cause, as measured before
