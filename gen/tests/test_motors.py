@@ -322,45 +322,44 @@ UQ_50US = 0.25          # u_q RMS about its mean over the step's last 30 % (no l
 AGREE_50US = 0.10       # fixed vs float RMS tracking error within 10 % + 1 sensor LSB (as _bounds)
 # and the step settles (within max(2 % of the step, the sensor floor) before its segment ends).
 # Known failures (strict xfail, so they flag when fixed): the measured numbers (nominal plant, float / fixed)
-# and the cause.  Three causes:
+# and the cause.  Two causes (a third, the reference governor's catch-up, is fixed: see below):
 #  * the sensor resolution at 50 us: one encoder count per period is 126 rad/s on the BLWR233D (4000 cpr)
 #    and 123 rad/s on the EC 45 flat (its scaled speed step, 120 rad/s, is less than one count); the
 #    quantisation drives u_q (docs/design.md: u_rms 95 V against u_max 20.8 V for blwr alg2 speed);
-#  * the reference governor's catch-up (governor.shift_position = 4, 2^-4 of the error per period):
-#    it starts braking when the error falls below 2^4 periods of the reference speed, a distance that
-#    shrinks with Ts while the braking distance does not, so at 50 us the governed position reference
-#    itself overshoots; with shift_position = 7 the premo and the EC 45 flat algorithm-1 position steps
-#    do not overshoot (test_closed_loop_at_50us_governor_shift7);
 #  * not found in the time (stated as such).
+# The reference governor's catch-up shift_position was 4 at every Ts (2^-4 of the error per period): it
+# starts braking when the error falls below 2^4 periods of the reference speed, a distance that shrinks
+# with Ts while the braking distance does not, so at 50 us the governed position reference itself
+# overshot (premo alg1 / alg2 position 82 / 88 %, EC 45 flat alg1 75 %, BLWR233D alg2 5.5 %).  Its
+# default now follows Ts (governor.default_shift_position: Ts x 2^ksh >= 4 ms, 7 at 50 us): the premo and
+# EC 45 flat algorithm-1 position steps pass (0 / 0.1 %, settled in 27 / 29 ms).
 _RES_BLWR = "BLWR233D 4000 cpr: 126 rad/s per count at 50 us (sensor resolution, not a tuning problem)"
-_GOV = "governor catch-up shift_position = 4 brakes too late at 50 us"
 KNOWN_50US = {
     ("blwr233d", "alg1.speed"): f"{_RES_BLWR}: the 300 rad/s step is 2.4 counts, overshoot 42.6 / 42.6 %",
     ("blwr233d", "alg2.speed"): f"{_RES_BLWR}: u_q RMS 0.87 / 0.92 u_max in the step's tail (u_q bangs on the "
                                 "limit), overshoot 58 % (float), fixed not settled (final error 79 % of the step)",
-    ("blwr233d", "alg1.position"): f"{_RES_BLWR}: u_q RMS 0.50 / 0.48 u_max in the step's tail",
-    ("blwr233d", "alg2.position"): f"{_RES_BLWR}: u_q RMS 0.38 / 0.38 u_max in the step's tail (overshoot 5.5 %, "
-                                   "settled in 49 ms)",
-    ("ipmsm_001", "alg1.position"): "slow at 50 us: final error 71 / 71 % of the 1.19 rad step after 50 ms, peak "
-                                    "0.03 i_max (not governor-limited); cause not investigated",
+    ("blwr233d", "alg1.position"): f"{_RES_BLWR}: u_q RMS 0.47 / 0.45 u_max in the step's tail",
+    ("blwr233d", "alg2.position"): f"{_RES_BLWR}: u_q RMS 0.37 / 0.37 u_max in the step's tail (overshoot 0 %, "
+                                   "settled in 45 ms)",
+    ("ipmsm_001", "alg1.position"): "slow at 50 us: final error 80 / 80 % of the 1.19 rad step after 50 ms, peak "
+                                    "0.02 i_max (71 % with the catch-up shift 4 of 250 us); cause not investigated",
     ("spmsm_002", "alg1.position"): "does not move in 50 ms: final error 100 / 100 % of the 0.04 rad step, peak "
                                     "0.005 i_max; cause not investigated",
-    ("ec45flat_24v", "alg1.position"): f"{_GOV}: overshoot 75 / 75 %, not settled, u_q RMS 0.49 u_max; with "
-                                       "shift_position = 7: 0.1 %, settled in 29 ms",
-    ("ec45flat_24v", "alg2.position"): "not settled: final error 75 / 75 % of the 8 rad step after 50 ms, u_q RMS "
-                                       "0.71 u_max in the tail (the same with shift_position = 7); not investigated",
+    ("ec45flat_24v", "alg2.position"): "not settled: final error 78 / 78 % of the 8 rad step after 50 ms, u_q RMS "
+                                       "0.74 u_max in the tail (75 % / 0.71 with the catch-up shift 4); not investigated",
     ("ec45flat_24v", "alg2.speed"): "sensor resolution: 123 rad/s per count at 50 us, the scaled 120 rad/s step is "
                                     "one count: overshoot 30.7 / 30.7 %",
-    ("premo_320v", "alg1.position"): f"{_GOV}: overshoot 82 / 82 %, not settled in 50 ms; with shift_position = 7: "
-                                     "0 %, settled in 27 ms",
-    ("premo_320v", "alg2.position"): f"{_GOV}: overshoot 88 / 88 %; with shift_position = 7: 5.3 %, settled in "
-                                     "48 ms, but u_q RMS 0.35 u_max in the tail",
+    ("premo_320v", "alg2.position"): "u_q RMS 0.36 / 0.35 u_max in the step's tail (overshoot 5.3 / 5.2 %, settled "
+                                     "in 48 ms; 88 % with the catch-up shift 4 of 250 us); not investigated",
     ("premo_320v", "alg2.speed"): "overshoot 41 / 41 %, u_q RMS 0.54 / 0.53 u_max in the step's tail: its Ts_50us "
                                   "weights' linear quantisation chatter is 0.50 u_max (7.7 rad/s per count); Q_dy[2] "
                                   "x2 fails the box (radius 1.03); no quieter table found in the time",
 }
 # at the box corners (full sweep): the same designs fail there (blwr alg1 speed: overshoot 28 / 55 %), and
 KNOWN_50US_CORNERS = {
+    ("ec45flat_24v", "alg1.position", "corner_a"): "peak 1.037 / 1.077 i_max, u_q RMS 0.34 / 0.35 u_max in the "
+                                                   "tail at the least-damped corner (overshoot 0.5 / 0.6 %, settled "
+                                                   "in 30 ms); not investigated",
     ("ipmsm_001", "alg2.speed", "corner_a"): "peak 1.033 / 1.096 i_max at the least-damped corner (0.64 i_max "
                                              "nominal, 0.40 at corner_b)",
     ("ec45flat_24v", "alg1.speed", "corner_a"): "sensor resolution (the step is one count): u_q RMS 0.49 / 0.50 "
@@ -427,13 +426,6 @@ def _check_50us(name, key, plant, extra=None):
 @pytest.mark.parametrize("name,key", _designs_50us())
 def test_closed_loop_at_50us_nominal(name, key):
     _check_50us(name, key, "nominal")
-
-
-# the governor's catch-up at 50 us (KNOWN_50US): shift_position 4 -> 7 (2^3 = 8 periods for the 5 x shorter
-# period) removes the position overshoot of the premo and the EC 45 flat (82 / 75 % -> 0 / 0.1 %)
-@pytest.mark.parametrize("name", ["premo_320v", "ec45flat_24v"])
-def test_closed_loop_at_50us_governor_shift7(name):
-    _check_50us(name, (1, "position"), "nominal", {"governor.shift_position": 7})
 
 
 @pytest.mark.full
