@@ -326,6 +326,14 @@ AGREE_50US = 0.10       # fixed vs float RMS tracking error within 10 % + 1 sens
 # overshot (premo alg1 / alg2 position 82 / 88 %, EC 45 flat alg1 75 %, BLWR233D alg2 5.5 %).  Its
 # default now follows Ts (governor.default_shift_position: Ts x 2^ksh >= 4 ms, 7 at 50 us): the premo and
 # EC 45 flat algorithm-1 position steps pass (0 / 0.1 %, settled in 27 / 29 ms).
+# A fourth cause, fixed: the ipmsm_001 and spmsm_002 algorithm-1 position designs had the default per-unit
+# weights, whose position loop follows 1 / T_m (T_m 115 ms / 3.1 s, 22 / 600 x the BLWR233D's): a static
+# stiffness of 0.21 / 0.020 A of i_q per electrical rad at 50 us, i.e. 0.25 / 0.0008 A for the scaled
+# 1.19 / 0.04 rad step (final error 80 / 100 % after 50 ms; no quantisation: float and fixed alike, and
+# spmsm_002 does not move in 50 ms without its Coulomb friction either; with it, 0.149 A, the rotor stuck
+# anywhere within 7.6 rad).  Their configurations now carry `empc tune` weights (ipmsm_001 task weight x16
+# at every Ts; spmsm_002 x90 = 2^6.5, and at 50 us x181 = 2^7.5 with Q_du x4): 53 / 507 A/rad, settled in
+# 28 / 37 ms, peak 0.36 / 0.24 i_max (nominal; corners 30-36 / 37-38 ms).
 _RES_BLWR = "BLWR233D 4000 cpr: 126 rad/s per count at 50 us (sensor resolution, not a tuning problem)"
 KNOWN_50US = {
     ("blwr233d", "alg1.speed"): f"{_RES_BLWR}: the 300 rad/s step is 2.4 counts, overshoot 42.6 / 42.6 %",
@@ -334,10 +342,6 @@ KNOWN_50US = {
     ("blwr233d", "alg1.position"): f"{_RES_BLWR}: u_q RMS 0.47 / 0.45 u_max in the step's tail",
     ("blwr233d", "alg2.position"): f"{_RES_BLWR}: u_q RMS 0.37 / 0.37 u_max in the step's tail (overshoot 0 %, "
                                    "settled in 45 ms)",
-    ("ipmsm_001", "alg1.position"): "slow at 50 us: final error 80 / 80 % of the 1.19 rad step after 50 ms, peak "
-                                    "0.02 i_max (71 % with the catch-up shift 4 of 250 us); cause not investigated",
-    ("spmsm_002", "alg1.position"): "does not move in 50 ms: final error 100 / 100 % of the 0.04 rad step, peak "
-                                    "0.005 i_max; cause not investigated",
     ("ec45flat_24v", "alg2.position"): "not settled: final error 78 / 78 % of the 8 rad step after 50 ms, u_q RMS "
                                        "0.74 u_max in the tail (75 % / 0.71 with the catch-up shift 4); not investigated",
     ("ec45flat_24v", "alg2.speed"): "sensor resolution: 123 rad/s per count at 50 us, the scaled 120 rad/s step is "
