@@ -346,8 +346,6 @@ KNOWN_50US = {
                                        "0.74 u_max in the tail (75 % / 0.71 with the catch-up shift 4); not investigated",
     ("ec45flat_24v", "alg2.speed"): "sensor resolution: 123 rad/s per count at 50 us, the scaled 120 rad/s step is "
                                     "one count: overshoot 30.7 / 30.7 %",
-    ("premo_320v", "alg2.position"): "u_q RMS 0.36 / 0.35 u_max in the step's tail (overshoot 5.3 / 5.2 %, settled "
-                                     "in 48 ms; 88 % with the catch-up shift 4 of 250 us); not investigated",
     ("premo_320v", "alg2.speed"): "overshoot 41 / 41 %, u_q RMS 0.54 / 0.53 u_max in the step's tail: its Ts_50us "
                                   "weights' linear quantisation chatter is 0.50 u_max (7.7 rad/s per count); Q_dy[2] "
                                   "x2 fails the box (radius 1.03); no quieter table found in the time",
