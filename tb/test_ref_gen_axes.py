@@ -192,11 +192,11 @@ async def random_run(dut, seed, n_clocks, sync_axis0=True, gov_axes=(0, 2)):
     next_adv = [rng.randrange(400) for _ in range(A)]
     while env.n < n_clocks:
         adv = [env.n >= next_adv[a] for a in range(A)]
-        if rng.random() < 0.002:                              # several axes in one clock
+        if rng.random() < 0.0008:                             # several axes in one clock
             adv = [x or rng.random() < 0.7 for x in adv]
         for a in range(A):
             if adv[a]:
-                next_adv[a] = env.n + rng.choice([1, 3, 40, 100, 200, 300, 500, 900])
+                next_adv[a] = env.n + rng.choice([1, 40, 1000, 2000, 3000, 4000])
                 st["adv_wait"] += int(m.engine_axis not in (None, a))
         st["adv"] += sum(adv)
         st["multi_adv"] += int(sum(adv) > 1)
@@ -211,7 +211,7 @@ async def random_run(dut, seed, n_clocks, sync_axis0=True, gov_axes=(0, 2)):
             r = (srng if a == 0 else rng).random()
             if a == 0 and not sync_axis0:
                 continue
-            if r < 0.0007 and not g.sync_pend and not (g._op is not None and g._op["kind"] == "sync"):
+            if r < 0.00012 and not g.sync_pend and not (g._op is not None and g._op["kind"] == "sync"):
                 sync[a] = (srng if a == 0 else rng).getrandbits(64)
                 st["sync"] += 1
                 st["sync_other_busy"] += int(any(m[b].busy for b in range(A) if b != a))
@@ -228,7 +228,7 @@ async def random_run(dut, seed, n_clocks, sync_axis0=True, gov_axes=(0, 2)):
         elif r < 0.045:
             seg_read = (rng.randrange(A), rng.randrange(NSLOT), rng.randrange(len(FIELDS) + 1))
             st["read"] += 1
-        elif r < 0.047:
+        elif r < 0.06:
             a = rng.choice(gov_axes)
             if not m[a].busy:
                 words = gov_words(*rand_gov(rng))
@@ -252,8 +252,9 @@ async def random_axes(dut):
     global CLOCK
     CLOCK = False
     seed = int(os.environ.get("EMPC_SEED", DEFAULT_SEED))
-    env, st = await random_run(dut, seed, int(os.environ.get("EMPC_REFGEN_CLOCKS", 60000)))
-    assert st["multi_adv"] > 5 and st["adv_wait"] > 50 and st["sync"] > 5 and st["sync_other_busy"] > 2
+    env, st = await random_run(dut, seed, int(os.environ.get("EMPC_REFGEN_CLOCKS", 80000)))
+    assert st["multi_adv"] > 5 and st["adv_wait"] > 50 and st["sync"] > 10 and st["sync_other_busy"] > 5
+    assert st["gov_write"] > 5 and env.cnt["w"] > env.n, "too few governor writes / delay-line compares"
     assert env.cnt["gov_ev"] > 10, "the governor never clamped"
     dut._log.info("random_axes: every output of every axis bit- and clock-exact vs RefGenAxes")
 
@@ -281,6 +282,8 @@ async def iso_run(dut, seed, n_clocks, sync_axis0):
         start, sync = [None] * A, [None] * A
         for a in range(A):
             if adv[a]:
+                # the premise: the axis's previous advance has run (no strobe merges into a pending one)
+                assert a == 0 or not m[a].busy, f"clock {env.n}: axis {a} still busy at its next advance"
                 next_adv[a] = env.n + rng.choice([2500, 2600, 3000])
                 if a > 0 or True:
                     env.hold[a] = int(rng.random() < 0.3)
@@ -291,7 +294,7 @@ async def iso_run(dut, seed, n_clocks, sync_axis0):
                     if rng.random() < 0.05 and a > 0:
                         sync[a] = v
         g = m[0]
-        if sync_axis0 and srng.random() < 0.002 and not g.sync_pend and not (g._op is not None and g._op["kind"] == "sync"):
+        if sync_axis0 and srng.random() < 0.0004 and not g.sync_pend and not (g._op is not None and g._op["kind"] == "sync"):
             sync[0] = srng.getrandbits(64)
             n_sync0 += 1
         await env.cycle(start=start, sync=sync, advance=adv)
@@ -305,10 +308,10 @@ async def isolation(dut):
     global CLOCK
     CLOCK = False
     seed = int(os.environ.get("EMPC_SEED", DEFAULT_SEED)) + 7
-    n = int(os.environ.get("EMPC_REFGEN_ISO_CLOCKS", 40000))
+    n = int(os.environ.get("EMPC_REFGEN_ISO_CLOCKS", 60000))
     env1, n1 = await iso_run(dut, seed, n, sync_axis0=True)
     env2, n2 = await iso_run(dut, seed, n, sync_axis0=False)
-    assert n1 > n / 4000 and n2 == 0, "axis 0 was never synced"
+    assert n1 > n / 6000 and n2 == 0, "axis 0 was never synced"
     for b in range(1, env1.A):
         t1, t2 = env1.trace[b], env2.trace[b]
         assert len(t1) > 20 and t1 == t2, f"axis {b} differs when axis 0 is synced"
@@ -343,7 +346,7 @@ def test_ref_gen_axes_mutant(tmp_path):
     orig = runner.rtl_sources
     runner.rtl_sources = lambda: [mut if p.name == "ref_gen.v" else p for p in rtl_sources()]
     try:
-        with pytest.raises(AssertionError, match="cocotb tests failed"):
+        with pytest.raises((AssertionError, SystemExit)):      # cocotb's runner exits on a failed test
             runner.run(toplevel="ref_gen", test_module="test_ref_gen_axes", parameters=PARAMS,
                        extra_env={"TB_PARAMS": json.dumps(PARAMS), "EMPC_REFGEN_CLOCKS": "20000"},
                        testcase="random_axes", name="test_ref_gen_axes_mutant")
