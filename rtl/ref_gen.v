@@ -191,6 +191,10 @@ module ref_gen #(
     // of slot 4 of each axis (written with it by the CPU, initialised with it at configuration,
     // kept over rst like the slot memory)
     reg            ends_we, ends_wd, rem_one_we, rem_one_wd, last_we, last_wd, slot_we, gcfg_we;
+    wire           zclr;                               // NAXES = 1: parallel clear of d1, d2, remaining, ends
+    /* verilator lint_off UNUSEDSIGNAL */
+    wire           lclr;                               // NAXES = 1: clear of last (unused at NAXES > 1)
+    /* verilator lint_on UNUSEDSIGNAL */
     wire           ends_ax, ends_nx, rem_one_nx, last_nx_r;
     wire [3:0]     slot_nx;
     wire           gen_nx;
@@ -262,9 +266,11 @@ module ref_gen #(
                 gksh_r = GOV_KSH;
             end
             always @(posedge clk) begin
-                if (ends_we) ends_r <= ends_wd;
+                if (zclr) ends_r <= 1'b0;
+                else if (ends_we) ends_r <= ends_wd;
                 if (rem_one_we) rem_one_r <= rem_one_wd;
-                if (last_we) last_r <= last_wd;
+                if (lclr) last_r <= 1'b0;
+                else if (last_we) last_r <= last_wd;
                 if (slot_we) slot_r <= ld_slot;
                 if (gcfg_we) begin
                     gen_r <= seg_wdata[0];
@@ -297,6 +303,18 @@ module ref_gen #(
                 if (dl_sh)  dl[ai * DL +: DL] <= {dl[ai * DL +: DL - 1], dl_in};
                 if (rt_sh)  rt[ai * 64 +: 64] <= {rt[ai * 64 +: 63], rt_in};
                 if (v_sh)   v[ai * 64 +: 64]  <= {v[ai * 64 +: 63], v_in};
+            end
+    // d1, d2 (and remaining) are cleared when a sync begins and by a hold: at NAXES > 1 (SRLs) by
+    // shifting in zeros (the first sync pass, the hold's head pass), at NAXES = 1 (flip-flops, fewer
+    // LUTs) by a parallel clear (zclr, also at rst)
+    localparam          SHZ = (NAXES > 1);
+    always @(posedge clk)
+        for (ai = 0; ai < NAXES; ai = ai + 1)
+            if (zclr) begin
+                d1[ai * 64 +: 64] <= 64'd0;
+                d2[ai * 32 +: 32] <= 32'd0;
+                rem[ai * 32 +: 32] <= 32'd0;
+            end else if (ax_hot[ai]) begin
                 if (d1_sh)  d1[ai * 64 +: 64] <= {d1_in, d1[ai * 64 + 1 +: 63]};
                 if (d2_sh)  d2[ai * 32 +: 32] <= {d2_in, d2[ai * 32 + 1 +: 31]};
                 if (rem_sh) rem[ai * 32 +: 32] <= {rem_in, rem[ai * 32 + 1 +: 31]};
@@ -307,7 +325,7 @@ module ref_gen #(
     // else bit 63 - rd_bit of word rd_age (64 * age + 63 - bit) for the readout
     wire          dl_busy, g_head;
     wire [5:0]    jcw;
-    wire [NAP-1:0] dl_q, rt_q, v_q, d1_q, d2_q, rem_q;
+    wire [NAP-1:0] dl_q, dl_e, rt_q, v_q, d1_q, d2_q, rem_q;
     wire [NAP-1:0] in_adv, in_sync, in_start, in_sbit, in_hold, in_pos;
     wire [3:0]     in_sslot [0:NAP-1];
     genvar ga;
@@ -317,9 +335,20 @@ module ref_gen #(
             assign ax_hot[ga] = (ax == AI);
             if (ga < NAXES) begin : g_on_ax
                 wire [DL-1:0]   dla = dl[ga * DL +: DL];
-                wire [AW+5:0]   idx = (dl_busy && ax_hot[ga]) ? {{AW{1'b0}}, 6'd63} :
-                                      (g_head && ax_hot[ga]) ? {{AW{1'b0}}, ~jcw} : {rd_age_w, ~rd_bit};
+                // NAXES = 1: one read port, as the engine and the readout never need it in the same
+                // clock; NAXES > 1: the readout (any axis, while the engine runs another) and the engine's
+                // tap (a copy of word 0, w_{k+N}: its address does not depend on the axis) are separate
+                wire [AW+5:0]   idx = (NAXES == 1 && dl_busy && ax_hot[ga]) ? {{AW{1'b0}}, 6'd63} :
+                                      (NAXES == 1 && g_head && ax_hot[ga]) ? {{AW{1'b0}}, ~jcw} : {rd_age_w, ~rd_bit};
                 assign dl_q[ga] = dla[idx];
+                if (NAXES > 1) begin : g_tap
+                    reg  [63:0] w0c;
+                    wire [5:0]  eidx = (g_head && !dl_busy) ? ~jcw : 6'd63;
+                    always @(posedge clk) if (dl_sh && ax_hot[ga]) w0c <= {w0c[62:0], dl_in};
+                    assign dl_e[ga] = w0c[eidx];
+                end else begin : g_tap1
+                    assign dl_e[ga] = 1'b0;
+                end
                 assign rt_q[ga] = rt[ga * 64 + 63];
                 assign v_q[ga] = v[ga * 64 + 63];
                 assign d1_q[ga] = d1[ga * 64];
@@ -334,6 +363,7 @@ module ref_gen #(
                 assign in_sslot[ga] = start_slot[4 * ga +: 4];
             end else begin : g_pad
                 assign dl_q[ga] = 1'b0;
+                assign dl_e[ga] = 1'b0;
                 assign rt_q[ga] = 1'b0;
                 assign v_q[ga] = 1'b0;
                 assign d1_q[ga] = 1'b0;
@@ -349,7 +379,7 @@ module ref_gen #(
             end
         end
     endgenerate
-    wire          tap = dl_q[ax];
+    wire          tap = (NAXES > 1) ? dl_e[ax] : dl_q[ax];
     assign rd_q = dl_q[rd_ax];
 
     // ---------------- governor scratch words (shared SRLs): sa, sb ----------------
@@ -390,7 +420,7 @@ module ref_gen #(
     wire        normal  = !m_load && !m_hold;
     assign      g_head  = run && (kind == K_HEAD) && g_on;
     wire        first_sync = run && act && (kind == K_SYNC) && (cp == N[AW-1:0]);
-    wire        head_sh = run && act && (kind == K_HEAD) && !jc[5] && (normal || m_hold);
+    wire        head_sh = run && act && (kind == K_HEAD) && !jc[5] && (normal || (SHZ && m_hold));
 
     // governor pass arithmetic (bit jc); k0..k2 are the carries of the pass's adders
     //   head: x1 = r_new - r_old -> sa (k0), e = r_old - g -> sb (k1)
@@ -449,28 +479,29 @@ module ref_gen #(
         // d1: d1' (0 in a hold) in the head pass, loaded in D1, cleared (0 shifted in) by the
         // first sync pass; d2 (recirculates in a normal head pass) and remaining: bits 0..31 of
         // the head pass (0 in a hold), loaded in D2 / LEN, cleared by the first sync pass
-        d1_sh = run && act && (kind == K_HEAD || kind == K_D1 || first_sync);
-        d1_in = (kind == K_D1) ? rb_q : (kind == K_HEAD && normal) ? d1n : 1'b0;
-        d2_sh = head_sh || (run && act && kind == K_D2) || (first_sync && !jc[5]);
-        d2_in = (kind == K_D2) ? rb_q : (kind == K_HEAD && normal) ? d2_q[ax] : 1'b0;
-        rem_sh = head_sh || (run && act && kind == K_LEN) || (first_sync && !jc[5]);
-        rem_in = (kind == K_LEN) ? rb_q : (kind == K_HEAD && normal) ? remn : 1'b0;
+        d1_sh = run && act && (kind == K_HEAD || kind == K_D1 || (SHZ && first_sync));
+        d1_in = (kind == K_D1) ? rb_q : ((!SHZ || kind == K_HEAD) && normal) ? d1n : 1'b0;
+        d2_sh = head_sh || (run && act && kind == K_D2) || (SHZ && first_sync && !jc[5]);
+        d2_in = (kind == K_D2) ? rb_q : ((!SHZ || kind == K_HEAD) && normal) ? d2_q[ax] : 1'b0;
+        // (remaining needs no clear: it counts only while ends = 1, and a sync and a hold clear ends)
+        rem_sh = (head_sh && normal) || (run && act && kind == K_LEN);
+        rem_in = (kind == K_LEN) ? rb_q : remn;
     end
 
     // per-axis segment state writes (at ax; never in a reset clock)
     wire        sync_lead = run && !act && (kind == K_SYNC) && (cp == N[AW-1:0]);
     always @(*) begin
         // ends: len != 0, bit by bit in LEN; cleared when a sync begins and by a hold
-        ends_we = !rst && ((run && act && kind == K_LEN && (jc == 6'd0 || rb_q)) || sync_lead ||
-                           (last_bit && kind == K_HEAD && m_hold));
+        ends_we = (run && act && kind == K_LEN && (jc == 6'd0 || rb_q)) ||
+                  (SHZ && (sync_lead || (last_bit && kind == K_HEAD && m_hold)));
         ends_wd = (kind == K_LEN) && rb_q;
         // remaining == 1: after a head pass without a load, and len == 1 after LEN (bit 31 is this clock's)
-        rem_one_we = !rst && last_bit && ((kind == K_HEAD && !m_load) || kind == K_LEN);
+        rem_one_we = last_bit && ((kind == K_HEAD && !m_load) || kind == K_LEN);
         rem_one_wd = (kind == K_LEN) ? (one_acc && !rb_q) : (normal && ends && one_acc);
         // last: the loaded flag after LEN, cleared when a sync begins; slot: the loaded slot
-        last_we = !rst && ((last_bit && kind == K_LEN) || sync_lead);
+        last_we = (last_bit && kind == K_LEN) || (SHZ && sync_lead);
         last_wd = (kind == K_LEN) && last_nx;
-        slot_we = !rst && last_bit && kind == K_LEN;
+        slot_we = last_bit && kind == K_LEN;
     end
 
     assign dl_busy = run && (kind == K_SYNC || (kind == K_HEAD && !g_on) || kind == K_G4);
@@ -493,13 +524,16 @@ module ref_gen #(
             if (adv_pend[ai]) nx_a = ai[AXW-1:0];
         end
     end
-    wire        any_sync = |sync_pend;
+    wire        any_sync = |sync_pend[NAXES-1:0];
     wire [AXW-1:0] nx = (NAXES < 2) ? {AXW{1'b0}} : any_sync ? nx_s : nx_a;
     wire        go_sync = !run && any_sync;
-    wire        go_adv  = !run && !any_sync && (|adv_pend);
+    wire        go_adv  = !run && !any_sync && (|adv_pend[NAXES-1:0]);
     wire        seg_end = ends_nx && rem_one_nx;
     wire        g_load  = pend[nx] || (seg_end && !last_nx_r);
     wire        g_hold  = !pend[nx] && seg_end && last_nx_r;
+    assign      zclr = !SHZ && (rst || go_sync || (m_hold && kind == K_HEAD && last_bit));
+    assign      lclr = !SHZ && (rst || go_sync);
+
 
     always @(posedge clk) begin
         for (ai = 0; ai < NAXES; ai = ai + 1) gov_ev[ai] <= 1'b0;
@@ -569,7 +603,7 @@ module ref_gen #(
                     ax_r <= nx;
                     kind <= K_SYNC;
                     cp <= N[AW-1:0];
-                    rst_sync <= rz[nx];
+                    rst_sync <= SHZ && rz[nx];
                 end else if (go_adv) begin
                     adv_pend[nx] <= in_adv[nx];
                     run <= 1'b1;
