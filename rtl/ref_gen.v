@@ -61,31 +61,55 @@
 // bits 12:8.  hold and task_pos are taken when an advance begins; gov_ev pulses at the end
 // of G4 when a clamp or the hold changed the reference.  Disabled: g = r, v = 0.
 //
-// Ports:
+// Axes (parameter NAXES = 1..4): every axis has its own slots, state, delay line and
+// pending flags; one engine runs the operations of all axes, one at a time.  When idle it
+// begins the pending sync of the lowest-numbered axis, else the pending advance of the
+// lowest-numbered axis (fixed order; an axis's operation may wait for another axis's).  An
+// operation reads and writes only its own axis's state: the slot memory is one block RAM
+// {axis, slot, field, bit} (16 Kbit at 4 axes); the delay line, d1, d2, remaining and the
+// governor's rt, v are shift registers (SRL) per axis, shifted only by an operation of
+// their axis (NAXES = 1: d1, d2, remaining in flip-flops); ends, last, remaining == 1, slot
+// and the governor's enable / ksh are a LUT-RAM {axis}; sa, sb and the engine's counters and
+// carries are shared scratch (empty between operations).  The CPU port and the readout take
+// the axis in the high bits of seg_slot and rd_age; the axis's strobes, sync value, hold /
+// task and w_ok, busy, gov_ev are bit a of per-axis vectors.  At NAXES = 1 the ports and the
+// timing are those of the one-axis block.
+//
+// Ports (a = axis, 0 .. NAXES-1; AXB = clog2(NAXES), 0 at NAXES = 1):
 //   clk, rst                  clock, synchronous active-high reset
-//   seg_we, seg_re, seg_slot[3:0], seg_field[2:0], seg_wdata[31:0]
+//   seg_we, seg_re, seg_slot[AXB+3:0] = {axis, slot}, seg_field[2:0], seg_wdata[31:0]
 //                             CPU field write / read of the slot memory
 //   seg_rdata[31:0]           field read, valid the clock after seg_re (0 in other clocks);
 //                             flags read back as written in bits 1:0, the rest 0
-//   start, start_slot[3:0]    begin the profile at start_slot at the next advance
-//   sync                      set all outputs to the sync value, zero differences, hold
-//   sync_idx[5:0], sync_bit   the sync value, bit by bit: sync_bit = bit sync_idx of the value
-//                             (combinational; the value must stay constant until busy falls)
-//   advance                   pulse once per control period
-//   rd_age, rd_bit[5:0], rd_q reference readout (rd_age 0 = w_{k+N} .. N = w_k)
-//   w_ok                      the delay line is current: no sync or advance is pending or
-//                             shifting (an advance with a load is done with the delay line
+//   start[a], start_slot[4a+3:4a]  begin axis a's profile at start_slot at its next advance
+//   sync[a]                   set all of axis a's outputs to the sync value, zero differences, hold
+//   sync_idx[5:0], sync_bit[a] the sync value of axis a, bit by bit: sync_bit[a] = bit sync_idx
+//                             of it (combinational; it must stay constant until busy[a] falls)
+//   advance[a]                pulse once per control period of axis a
+//   rd_age[AXB+AW-1:0] = {axis, age}, rd_bit[5:0], rd_q
+//                             reference readout (age 0 = w_{k+N} .. N = w_k), valid while the
+//                             axis's w_ok is 1 (also while the engine runs another axis)
+//   w_ok[a]                   axis a's delay line is current: no sync or advance of a is pending
+//                             or shifting (an advance with a load is done with the delay line
 //                             after its head pass)
-//   busy                      an operation is running or pending
+//   busy[a]                   an operation of axis a is running or pending
+//   hold[a], task_pos[a]      governor hold and task of axis a, taken when its advance begins
+//   gov_ev[a]                 pulse: the governor changed axis a's reference (end of G4)
 // Parameters:
 //   N                         prediction horizon (delay line N+1 deep), >= 1
-// Latency: advance strobe -> w_ok: 66 clocks (no load), 69 (load; busy 199); sync ->
-//   w_ok (N+1)*65 clocks (+ a running operation).  Consumers (ctrl_seq) wait for w_ok.
-// Reset: differences 0, hold, no start/advance pending, slot 0; the delay line (no
-//   reset pins) is cleared by a sync to 0 that starts with rst (busy for (N+1)*65 clocks).
-//   The slot memory is not reset (0 after configuration, kept over rst).
-// Resources (Yosys xc6s, N = 4): 1 RAMB16 (slot memory, ports x32 / x1), delay line
-//   in SRLC32E, 192 state flip-flops; no DSP.
+//   NAXES                     axes, 1..4 (AW, AXB: derived widths, leave at their defaults)
+// Latency (per axis, engine idle): advance strobe -> w_ok: 66 clocks (no load), 69 (load; busy
+//   199), with the governor 326 / 329 (busy 325 / 459); sync -> w_ok (N+1)*65 + 1 clocks.
+//   An operation that finds the engine busy with another axis waits for it (at most one
+//   operation per other axis with an advance pending, or all their pending syncs).  Consumers
+//   wait for w_ok.
+// Reset: differences 0, hold, no start/advance pending; every delay line (no reset pins) is
+//   cleared by a sync to 0: axis 0's starts with rst, the other axes' queue behind it (busy[a]
+//   for about (a+1)*(N+1)*65 clocks after rst; a CPU sync of an axis whose reset sync has not run
+//   yet gives that sync its value).  The slot memory and the governor enable / ksh copies are not
+//   reset (their configuration contents, kept over rst).
+// Resources (Yosys xc6s, N = 4, out of context): NAXES = 1 207 LUT (17 SRLC32E) / 244 FF /
+//   1 RAMB16; NAXES = 4 401 LUT (91 of them SRLC32E / RAM32M) / 151 FF / 1 RAMB16; no DSP.
 `default_nettype none
 `include "empc_formats.vh"
 module ref_gen #(

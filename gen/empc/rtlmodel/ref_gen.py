@@ -18,7 +18,8 @@ Per advance (see the RTL header for the exact rules)::
 ``w`` is the delay line w_k .. w_{k+N} (``w[N]`` = head).  A sync sets the head
 and the whole delay line.  The RTL is a bit-serial engine that executes one
 queued operation at a time (sync before advance); :meth:`RefGen.step` models its
-timing clock by clock, the other methods act at once.  Slots are written one
+timing clock by clock, the other methods act at once.  :class:`RefGenAxes` is the RTL's
+NAXES parameter: NAXES of these generators on the one shared engine, clock by clock.  Slots are written one
 32-bit field at a time (:meth:`RefGen.write_field`, fields :data:`FIELDS`).
 
 :func:`segments_from_points` turns a step/ramp profile in SI units into slots.
