@@ -176,6 +176,7 @@ class Env:
 
 async def random_run(dut, seed, n_clocks, sync_axis0=True, gov_axes=(0, 2)):
     env = Env(dut, seed)
+    gov_axes = tuple(a for a in gov_axes if a < env.A)
     await env.start()
     A, m = env.A, env.m
     srng = random.Random(seed + 1)          # axis 0's syncs: their own stream (isolation runs)
