@@ -61,79 +61,111 @@
 // bits 12:8.  hold and task_pos are taken when an advance begins; gov_ev pulses at the end
 // of G4 when a clamp or the hold changed the reference.  Disabled: g = r, v = 0.
 //
-// Ports:
+// Axes (parameter NAXES = 1..4): every axis has its own slots, state, delay line and
+// pending flags; one engine runs the operations of all axes, one at a time.  When idle it
+// begins the pending sync of the lowest-numbered axis, else the pending advance of the
+// lowest-numbered axis (fixed order; an axis's operation may wait for another axis's).  An
+// operation reads and writes only its own axis's state: the slot memory is one block RAM
+// {axis, slot, field, bit} (16 Kbit at 4 axes); the delay line, d1, d2, remaining and the
+// governor's rt, v are shift registers (SRL) per axis, shifted only by an operation of
+// their axis (NAXES = 1: d1, d2, remaining in flip-flops); ends, last, remaining == 1, slot
+// and the governor's enable / ksh are a LUT-RAM {axis}; sa, sb and the engine's counters and
+// carries are shared scratch (empty between operations).  The CPU port and the readout take
+// the axis in the high bits of seg_slot and rd_age; the axis's strobes, sync value, hold /
+// task and w_ok, busy, gov_ev are bit a of per-axis vectors.  At NAXES = 1 the ports and the
+// timing are those of the one-axis block.
+//
+// Ports (a = axis, 0 .. NAXES-1; AXB = clog2(NAXES), 0 at NAXES = 1):
 //   clk, rst                  clock, synchronous active-high reset
-//   seg_we, seg_re, seg_slot[3:0], seg_field[2:0], seg_wdata[31:0]
+//   seg_we, seg_re, seg_slot[AXB+3:0] = {axis, slot}, seg_field[2:0], seg_wdata[31:0]
 //                             CPU field write / read of the slot memory
 //   seg_rdata[31:0]           field read, valid the clock after seg_re (0 in other clocks);
 //                             flags read back as written in bits 1:0, the rest 0
-//   start, start_slot[3:0]    begin the profile at start_slot at the next advance
-//   sync                      set all outputs to the sync value, zero differences, hold
-//   sync_idx[5:0], sync_bit   the sync value, bit by bit: sync_bit = bit sync_idx of the value
-//                             (combinational; the value must stay constant until busy falls)
-//   advance                   pulse once per control period
-//   rd_age, rd_bit[5:0], rd_q reference readout (rd_age 0 = w_{k+N} .. N = w_k)
-//   w_ok                      the delay line is current: no sync or advance is pending or
-//                             shifting (an advance with a load is done with the delay line
+//   start[a], start_slot[4a+3:4a]  begin axis a's profile at start_slot at its next advance
+//   sync[a]                   set all of axis a's outputs to the sync value, zero differences, hold
+//   sync_idx[5:0], sync_bit[a] the sync value of axis a, bit by bit: sync_bit[a] = bit sync_idx
+//                             of it (combinational; it must stay constant until busy[a] falls)
+//   advance[a]                pulse once per control period of axis a
+//   rd_age[AXB+AW-1:0] = {axis, age}, rd_bit[5:0], rd_q
+//                             reference readout (age 0 = w_{k+N} .. N = w_k), valid while the
+//                             axis's w_ok is 1 (also while the engine runs another axis)
+//   w_ok[a]                   axis a's delay line is current: no sync or advance of a is pending
+//                             or shifting (an advance with a load is done with the delay line
 //                             after its head pass)
-//   busy                      an operation is running or pending
+//   busy[a]                   an operation of axis a is running or pending
+//   hold[a], task_pos[a]      governor hold and task of axis a, taken when its advance begins
+//   gov_ev[a]                 pulse: the governor changed axis a's reference (end of G4)
 // Parameters:
 //   N                         prediction horizon (delay line N+1 deep), >= 1
-// Latency: advance strobe -> w_ok: 66 clocks (no load), 69 (load; busy 199); sync ->
-//   w_ok (N+1)*65 clocks (+ a running operation).  Consumers (ctrl_seq) wait for w_ok.
-// Reset: differences 0, hold, no start/advance pending, slot 0; the delay line (no
-//   reset pins) is cleared by a sync to 0 that starts with rst (busy for (N+1)*65 clocks).
-//   The slot memory is not reset (0 after configuration, kept over rst).
-// Resources (Yosys xc6s, N = 4): 1 RAMB16 (slot memory, ports x32 / x1), delay line
-//   in SRLC32E, 192 state flip-flops; no DSP.
+//   NAXES                     axes, 1..4 (AW, AXB: derived widths, leave at their defaults)
+// Latency (per axis, engine idle): advance strobe -> w_ok: 66 clocks (no load), 69 (load; busy
+//   199), with the governor 326 / 329 (busy 325 / 459); sync -> w_ok (N+1)*65 + 1 clocks.
+//   An operation that finds the engine busy with another axis waits for it (at most one
+//   operation per other axis with an advance pending, or all their pending syncs).  Consumers
+//   wait for w_ok.
+// Reset: differences 0, hold, no start/advance pending; every delay line (no reset pins) is
+//   cleared by a sync to 0: axis 0's starts with rst, the other axes' queue behind it (busy[a]
+//   for about (a+1)*(N+1)*65 clocks after rst; a CPU sync of an axis whose reset sync has not run
+//   yet gives that sync its value).  The slot memory and the governor enable / ksh copies are not
+//   reset (their configuration contents, kept over rst).
+// Resources (Yosys xc6s, N = 4, out of context): NAXES = 1 207 LUT (17 SRLC32E) / 244 FF /
+//   1 RAMB16; NAXES = 4 401 LUT (91 of them SRLC32E / RAM32M) / 151 FF / 1 RAMB16; no DSP.
 `default_nettype none
 `include "empc_formats.vh"
 module ref_gen #(
     parameter integer N = `EMPC_N,
-    parameter integer AW = (N < 2) ? 1 : $clog2(N + 1)
+    parameter integer NAXES = 1,
+    parameter integer AW = (N < 2) ? 1 : $clog2(N + 1),
+    parameter integer AXB = (NAXES < 2) ? 0 : $clog2(NAXES)      // axis bits (derived, 0 at NAXES = 1)
 ) (
     input  wire                clk,
     input  wire                rst,
     input  wire                seg_we,
     input  wire                seg_re,
-    input  wire [3:0]          seg_slot,
+    input  wire [AXB+3:0]      seg_slot,                   // {axis, slot}
     input  wire [2:0]          seg_field,
     input  wire [31:0]         seg_wdata,
     output reg  [31:0]         seg_rdata,
-    input  wire                start,
-    input  wire [3:0]          start_slot,
-    input  wire                sync,
+    input  wire [NAXES-1:0]    start,
+    input  wire [4*NAXES-1:0]  start_slot,                 // axis a: [4a+3:4a]
+    input  wire [NAXES-1:0]    sync,
     output wire [5:0]          sync_idx,
-    input  wire                sync_bit,
-    input  wire                advance,
-    input  wire [AW-1:0]       rd_age,
+    input  wire [NAXES-1:0]    sync_bit,
+    input  wire [NAXES-1:0]    advance,
+    input  wire [AXB+AW-1:0]   rd_age,                     // {axis, age}
     input  wire [5:0]          rd_bit,
     output wire                rd_q,
-    output wire                w_ok,
-    output wire                busy,
-    input  wire                hold,
-    input  wire                task_pos,
-    output reg                 gov_ev
+    output wire [NAXES-1:0]    w_ok,
+    output wire [NAXES-1:0]    busy,
+    input  wire [NAXES-1:0]    hold,
+    input  wire [NAXES-1:0]    task_pos,
+    output reg  [NAXES-1:0]    gov_ev
 );
     localparam [2:0] F_LEN = 3'd0, F_R0 = 3'd1, F_D1 = 3'd3, F_D2 = 3'd5, F_FLAGS = 3'd6;
+    // internal axis numbers are AXW bits wide (1 at NAXES = 1: then always 0); per-axis vectors
+    // are padded to NAP = 2^AXW entries (the padding is constant 0 and synthesises away)
+    localparam integer AXW = (AXB < 1) ? 1 : AXB;
+    localparam integer NAP = 1 << AXW;
+    localparam integer MW = AXB + 12;                      // slot memory address {axis, slot, field, bit}
 
     // ---------------- slot memory: block RAM, port A x32 (CPU), port B x1 (engine) ----------------
-    reg  mem [0:4095];
-    integer mi;
+    reg  mem [0:(1 << MW) - 1];
+    integer mi, ai, ii;
     localparam [31:0] GOV_VMAX_LO = `EMPC_GOV_VMAX_LO, GOV_VMAX_HI = `EMPC_GOV_VMAX_HI,
                       GOV_A_LO = `EMPC_GOV_A_LO, GOV_A_HI = `EMPC_GOV_A_HI;
     localparam [4:0]  GOV_KSH = `EMPC_GOV_KSH;
     localparam        GOV_EN = (`EMPC_GOV_EN != 0);
     localparam [31:0] GOV_CFG = {19'd0, GOV_KSH, 7'd0, GOV_EN};
     initial begin
-        for (mi = 0; mi < 4096; mi = mi + 1) mem[mi] = 1'b0;
-        for (mi = 0; mi < 32; mi = mi + 1) begin           // field 7 of slots 0..4: governor words
-            mem[{4'd0, 3'd7, mi[4:0]}] = GOV_VMAX_LO[mi];
-            mem[{4'd1, 3'd7, mi[4:0]}] = GOV_VMAX_HI[mi];
-            mem[{4'd2, 3'd7, mi[4:0]}] = GOV_A_LO[mi];
-            mem[{4'd3, 3'd7, mi[4:0]}] = GOV_A_HI[mi];
-            mem[{4'd4, 3'd7, mi[4:0]}] = GOV_CFG[mi];
-        end
+        for (mi = 0; mi < (1 << MW); mi = mi + 1) mem[mi] = 1'b0;
+        for (ii = 0; ii < (1 << AXB); ii = ii + 1)
+            for (mi = 0; mi < 32; mi = mi + 1) begin       // field 7 of slots 0..4 of every axis: governor words
+                mem[ii * 4096 + 0 * 256 + 7 * 32 + mi] = GOV_VMAX_LO[mi];
+                mem[ii * 4096 + 1 * 256 + 7 * 32 + mi] = GOV_VMAX_HI[mi];
+                mem[ii * 4096 + 2 * 256 + 7 * 32 + mi] = GOV_A_LO[mi];
+                mem[ii * 4096 + 3 * 256 + 7 * 32 + mi] = GOV_A_HI[mi];
+                mem[ii * 4096 + 4 * 256 + 7 * 32 + mi] = GOV_CFG[mi];
+            end
     end
     wire is_flags = (seg_field == F_FLAGS);
     always @(posedge clk) begin
@@ -146,92 +178,273 @@ module ref_gen #(
         else
             for (mi = 0; mi < 32; mi = mi + 1) seg_rdata[mi] <= mem[{seg_slot, seg_field, mi[4:0]}];
     end
-    reg  [11:0] rb_addr;                               // port B: {slot, field, bit}
-    reg         rb_q;
+    reg  [MW-1:0] rb_addr;                             // port B: {axis, slot, field, bit}
+    reg           rb_q;
     always @(posedge clk) rb_q <= mem[rb_addr];
 
-    // ---------------- delay line (SRL) ----------------
-    localparam integer DL = (N + 1) * 64;
-    reg  [DL-1:0] dl;
-    reg           dl_sh;
-    reg           dl_in;
-    always @(posedge clk) if (dl_sh) dl <= {dl[DL-2:0], dl_in};
-    // one read port: bit 63 (the old head bit j in clock j of a pass) while the delay
-    // line shifts, bit j of the head (63 - j) in a governed head pass (the delay line stands
-    // still), else bit 63 - rd_bit of word rd_age (64 * age + 63 - bit)
-    wire          dl_busy, g_head;
-    wire [5:0]    jcw;
-    wire [AW+5:0] rd_idx = dl_busy ? {{AW{1'b0}}, 6'd63} : g_head ? {{AW{1'b0}}, ~jcw} : {rd_age, ~rd_bit};
-    wire          tap = dl[rd_idx];
-    assign rd_q = tap;
-
-    // ---------------- governor words (SRL): target rt, increment v, scratch sa, sb ----------------
-    // Each shifts LSB first like the delay line: bit j of the old word leaves at [63] in clock j.
-    reg  [63:0]   rt, v, sa, sb;
-    reg           rt_sh, v_sh, sa_sh, sb_sh;
-    reg           rt_in, v_in, sa_in, sb_in;
-    always @(posedge clk) begin
-        if (rt_sh) rt <= {rt[62:0], rt_in};
-        if (v_sh)  v  <= {v[62:0], v_in};
-        if (sa_sh) sa <= {sa[62:0], sa_in};
-        if (sb_sh) sb <= {sb[62:0], sb_in};
-    end
-    reg  [4:0]    ksh;                                 // latched when an advance begins
-    wire          rt_o = rt[63], v_o = v[63], sa_o = sa[63];
-    wire          sb_t = sb[{1'b1, ~ksh}];             // bit j + ksh of sb in clock j (63 - ksh)
-
-    // ---------------- engine ----------------
+    // ---------------- engine registers (shared: the operation that runs) ----------------
     localparam [3:0] K_FLG = 4'd0, K_HEAD = 4'd1, K_D1 = 4'd2, K_D2 = 4'd3, K_LEN = 4'd4, K_SYNC = 4'd5,
                      K_G1 = 4'd6, K_G2 = 4'd7, K_G3 = 4'd8, K_G4 = 4'd9;
     reg         run;                                   // a pass is running
+    reg  [AXW-1:0] ax_r;                               // axis of the running operation
+    wire [AXW-1:0] ax = (NAXES > 1) ? ax_r : {AXW{1'b0}};
     reg  [3:0]  kind;
     reg         act;                                   // past the lead clock
     reg  [5:0]  t;                                     // bit issued (address) in this clock
     reg  [5:0]  jc;                                    // bit consumed in this clock (act = 1)
     reg  [AW-1:0] cp;                                  // sync: copies still to run
-    reg         m_load, m_hold, m_rel;
-    reg         adv_pend, sync_pend, rst_sync;
-    reg         pend;
-    reg  [3:0]  pend_slot, slot, ld_slot;
-    reg  [63:0] d1;
-    reg  [31:0] d2, rem;
-    reg         ends, last_r, last_nx, rem_one, one_acc;
+    reg         m_load, m_hold, m_rel, rst_sync;
+    reg  [3:0]  ld_slot;
+    reg         last_nx, one_acc;
     reg         ch, cd, br, d2s;
-    // governor: enable (register, written by the CPU through field 7 of slot 4) and its copy
-    // for the running advance, hold / task, carries k0..k2, clamp flags
-    reg         gen_r;
-    reg  [4:0]  gksh_r;
     reg         g_on, gv_hold, gv_pos;
-    reg         k0, k1, k2;
+    reg  [4:0]  ksh;                                   // latched when an advance begins
+    reg         k0, k1, k2;                            // governor: carries of a pass's adders
     reg         e_sgn, ovr, x_sgn;                     // sign of e, sb tap past bit 63, sign of x1 / vdc
     reg         hi1, lo1, hi2, lo2, s2, v_nz, v_sgn, dv_nz;
-    assign jcw = jc;
 
+    // ---------------- per-axis pending flags (flip-flops) ----------------
+    reg  [NAP-1:0] adv_pend, sync_pend, pend;
+    reg  [NAP-1:0] rz;                                 // the pending sync is the reset's (value 0)
+    reg  [3:0]     pend_slot [0:NAP-1];
+
+    // ---------------- per-axis segment state (LUT-RAM {axis} at NAXES > 1, flip-flops at 1) ----------------
+    // written by the engine at its axis (ax), read there and at the next axis (nx) when an operation
+    // begins: ends (the active segment ends, len != 0), rem_one (remaining == 1), last (the active
+    // segment is the last), slot (the active slot); the governor's enable / ksh, a copy of field 7
+    // of slot 4 of each axis (written with it by the CPU, initialised with it at configuration,
+    // kept over rst like the slot memory)
+    reg            ends_we, ends_wd, rem_one_we, rem_one_wd, last_we, last_wd, slot_we, gcfg_we;
+    wire           zclr;                               // NAXES = 1: parallel clear of d1, d2, remaining, ends
+    /* verilator lint_off UNUSEDSIGNAL */
+    wire           lclr;                               // NAXES = 1: clear of last (unused at NAXES > 1)
+    /* verilator lint_on UNUSEDSIGNAL */
+    wire           ends_ax, ends_nx, rem_one_nx, last_nx_r;
+    wire [3:0]     slot_nx;
+    wire           gen_nx;
+    wire [4:0]     gksh_nx;
+    // ---------------- axis fields of the ports ----------------
+    wire [AXW-1:0] rd_ax;
+    wire [AXB+3:0] ld_slot_x, g_slot_x;
+    wire [3:0]     g_slot;
+    generate
+        if (NAXES > 1) begin : g_ax
+            assign rd_ax = rd_age[AXB+AW-1:AW];
+            assign ld_slot_x = {ax, ld_slot};
+            assign g_slot_x = {ax, g_slot};
+        end else begin : g_ax1
+            assign rd_ax = 1'b0;
+            assign ld_slot_x = ld_slot;
+            assign g_slot_x = g_slot;
+        end
+    endgenerate
+    wire [AW-1:0] rd_age_w = rd_age[AW-1:0];
+    always @(*) gcfg_we = seg_we && seg_field == 3'd7 && seg_slot[3:0] == 4'd4;
+    generate
+        if (NAXES > 1) begin : g_st
+            reg            ends_m    [0:NAP-1];
+            reg            rem_one_m [0:NAP-1];
+            reg            last_m    [0:NAP-1];
+            reg  [3:0]     slot_m    [0:NAP-1];
+            reg            gen_m     [0:NAP-1];
+            reg  [4:0]     gksh_m    [0:NAP-1];
+            wire [AXW-1:0] seg_ax = seg_slot[AXB+3:4];
+            integer        si;
+            initial begin
+                for (si = 0; si < NAP; si = si + 1) begin
+                    ends_m[si] = 1'b0;
+                    rem_one_m[si] = 1'b0;
+                    last_m[si] = 1'b0;
+                    slot_m[si] = 4'd0;
+                    gen_m[si] = GOV_EN;
+                    gksh_m[si] = GOV_KSH;
+                end
+            end
+            always @(posedge clk) begin
+                if (ends_we) ends_m[ax] <= ends_wd;
+                if (rem_one_we) rem_one_m[ax] <= rem_one_wd;
+                if (last_we) last_m[ax] <= last_wd;
+                if (slot_we) slot_m[ax] <= ld_slot;
+                if (gcfg_we) begin
+                    gen_m[seg_ax] <= seg_wdata[0];
+                    gksh_m[seg_ax] <= seg_wdata[12:8];
+                end
+            end
+            assign ends_ax = ends_m[ax];
+            assign ends_nx = ends_m[nx];
+            assign rem_one_nx = rem_one_m[nx];
+            assign last_nx_r = last_m[nx];
+            assign slot_nx = slot_m[nx];
+            assign gen_nx = gen_m[nx];
+            assign gksh_nx = gksh_m[nx];
+        end else begin : g_st1
+            reg            ends_r, rem_one_r, last_r, gen_r;
+            reg  [3:0]     slot_r;
+            reg  [4:0]     gksh_r;
+            initial begin
+                ends_r = 1'b0;
+                rem_one_r = 1'b0;
+                last_r = 1'b0;
+                slot_r = 4'd0;
+                gen_r = GOV_EN;
+                gksh_r = GOV_KSH;
+            end
+            always @(posedge clk) begin
+                if (zclr) ends_r <= 1'b0;
+                else if (ends_we) ends_r <= ends_wd;
+                if (rem_one_we) rem_one_r <= rem_one_wd;
+                if (lclr) last_r <= 1'b0;
+                else if (last_we) last_r <= last_wd;
+                if (slot_we) slot_r <= ld_slot;
+                if (gcfg_we) begin
+                    gen_r <= seg_wdata[0];
+                    gksh_r <= seg_wdata[12:8];
+                end
+            end
+            assign ends_ax = ends_r;
+            assign ends_nx = ends_r;
+            assign rem_one_nx = rem_one_r;
+            assign last_nx_r = last_r;
+            assign slot_nx = slot_r;
+            assign gen_nx = gen_r;
+            assign gksh_nx = gksh_r;
+        end
+    endgenerate
+
+    // ---------------- per-axis shift registers (SRL, the axis's own clock enable) ----------------
+    // delay line w_k .. w_{k+N} ((N+1)*64, SRL LUT-RAM): each pass shifts in a new head word; the
+    // old head is read at a fixed tap (bit 63); d1 (64), d2 (32), remaining (32): LSB out first;
+    // the governor's target rt and increment v (64): bit j of the old word leaves at [63] in clock j.
+    localparam integer DL = (N + 1) * 64;
+    reg  [NAXES*DL-1:0] dl;
+    reg  [NAXES*64-1:0] d1, rt, v;
+    reg  [NAXES*32-1:0] d2, rem;
+    reg                 dl_sh, dl_in, d1_sh, d1_in, d2_sh, d2_in, rem_sh, rem_in, rt_sh, rt_in, v_sh, v_in;
+    wire [NAP-1:0]      ax_hot;
+    always @(posedge clk)
+        for (ai = 0; ai < NAXES; ai = ai + 1)
+            if (ax_hot[ai]) begin
+                if (dl_sh)  dl[ai * DL +: DL] <= {dl[ai * DL +: DL - 1], dl_in};
+                if (rt_sh)  rt[ai * 64 +: 64] <= {rt[ai * 64 +: 63], rt_in};
+                if (v_sh)   v[ai * 64 +: 64]  <= {v[ai * 64 +: 63], v_in};
+            end
+    // d1, d2 (and remaining) are cleared when a sync begins and by a hold: at NAXES > 1 (SRLs) by
+    // shifting in zeros (the first sync pass, the hold's head pass), at NAXES = 1 (flip-flops, fewer
+    // LUTs) by a parallel clear (zclr, also at rst)
+    localparam          SHZ = (NAXES > 1);
+    always @(posedge clk)
+        for (ai = 0; ai < NAXES; ai = ai + 1)
+            if (zclr) begin
+                d1[ai * 64 +: 64] <= 64'd0;
+                d2[ai * 32 +: 32] <= 32'd0;
+                rem[ai * 32 +: 32] <= 32'd0;
+            end else if (ax_hot[ai]) begin
+                if (d1_sh)  d1[ai * 64 +: 64] <= {d1_in, d1[ai * 64 + 1 +: 63]};
+                if (d2_sh)  d2[ai * 32 +: 32] <= {d2_in, d2[ai * 32 + 1 +: 31]};
+                if (rem_sh) rem[ai * 32 +: 32] <= {rem_in, rem[ai * 32 + 1 +: 31]};
+            end
+
+    // one dynamic read port per axis's delay line: bit 63 (the old head bit j in clock j of a pass)
+    // while it shifts, bit j of the head (63 - j) in a governed head pass (the line stands still),
+    // else bit 63 - rd_bit of word rd_age (64 * age + 63 - bit) for the readout
+    wire          dl_busy, g_head;
+    wire [5:0]    jcw;
+    wire [NAP-1:0] dl_q, dl_e, rt_q, v_q, d1_q, d2_q, rem_q;
+    wire [NAP-1:0] in_adv, in_sync, in_start, in_sbit, in_hold, in_pos;
+    wire [3:0]     in_sslot [0:NAP-1];
+    genvar ga;
+    generate
+        for (ga = 0; ga < NAP; ga = ga + 1) begin : g_axis
+            localparam [AXW-1:0] AI = ga;
+            assign ax_hot[ga] = (ax == AI);
+            if (ga < NAXES) begin : g_on_ax
+                wire [DL-1:0]   dla = dl[ga * DL +: DL];
+                // NAXES = 1: one read port, as the engine and the readout never need it in the same
+                // clock; NAXES > 1: the readout (any axis, while the engine runs another) and the engine's
+                // tap (a copy of word 0, w_{k+N}: its address does not depend on the axis) are separate
+                wire [AW+5:0]   idx = (NAXES == 1 && dl_busy && ax_hot[ga]) ? {{AW{1'b0}}, 6'd63} :
+                                      (NAXES == 1 && g_head && ax_hot[ga]) ? {{AW{1'b0}}, ~jcw} : {rd_age_w, ~rd_bit};
+                assign dl_q[ga] = dla[idx];
+                if (NAXES > 1) begin : g_tap
+                    reg  [63:0] w0c;
+                    wire [5:0]  eidx = (g_head && !dl_busy) ? ~jcw : 6'd63;
+                    always @(posedge clk) if (dl_sh && ax_hot[ga]) w0c <= {w0c[62:0], dl_in};
+                    assign dl_e[ga] = w0c[eidx];
+                end else begin : g_tap1
+                    assign dl_e[ga] = 1'b0;
+                end
+                assign rt_q[ga] = rt[ga * 64 + 63];
+                assign v_q[ga] = v[ga * 64 + 63];
+                assign d1_q[ga] = d1[ga * 64];
+                assign d2_q[ga] = d2[ga * 32];
+                assign rem_q[ga] = rem[ga * 32];
+                assign in_adv[ga] = advance[ga];
+                assign in_sync[ga] = sync[ga];
+                assign in_start[ga] = start[ga];
+                assign in_sbit[ga] = sync_bit[ga];
+                assign in_hold[ga] = hold[ga];
+                assign in_pos[ga] = task_pos[ga];
+                assign in_sslot[ga] = start_slot[4 * ga +: 4];
+            end else begin : g_pad
+                assign dl_q[ga] = 1'b0;
+                assign dl_e[ga] = 1'b0;
+                assign rt_q[ga] = 1'b0;
+                assign v_q[ga] = 1'b0;
+                assign d1_q[ga] = 1'b0;
+                assign d2_q[ga] = 1'b0;
+                assign rem_q[ga] = 1'b0;
+                assign in_adv[ga] = 1'b0;
+                assign in_sync[ga] = 1'b0;
+                assign in_start[ga] = 1'b0;
+                assign in_sbit[ga] = 1'b0;
+                assign in_hold[ga] = 1'b0;
+                assign in_pos[ga] = 1'b0;
+                assign in_sslot[ga] = 4'd0;
+            end
+        end
+    endgenerate
+    wire          tap = (NAXES > 1) ? dl_e[ax] : dl_q[ax];
+    assign rd_q = dl_q[rd_ax];
+
+    // ---------------- governor scratch words (shared SRLs): sa, sb ----------------
+    reg  [63:0]   sa, sb;
+    reg           sa_sh, sb_sh;
+    reg           sa_in, sb_in;
+    always @(posedge clk) begin
+        if (sa_sh) sa <= {sa[62:0], sa_in};
+        if (sb_sh) sb <= {sb[62:0], sb_in};
+    end
+    wire          rt_o = rt_q[ax], v_o = v_q[ax], sa_o = sa[63];
+    wire          sb_t = sb[{1'b1, ~ksh}];             // bit j + ksh of sb in clock j (63 - ksh)
+
+    // ---------------- engine ----------------
+    assign jcw = jc;
+    wire        ends = ends_ax;
     wire        gk   = (kind == K_G1) || (kind == K_G2) || (kind == K_G3) || (kind == K_G4);
     wire [5:0]  jlast = (kind == K_FLG) ? 6'd1 : (kind == K_D2 || kind == K_LEN) ? 6'd31 : 6'd63;
     wire        last_bit = act && (jc == jlast);
-    wire        seg_end  = ends && rem_one;
     // field of the bit issued in this clock
     wire [2:0]  fld = (kind == K_FLG) ? F_FLAGS : (kind == K_HEAD) ? (F_R0 + {2'b00, t[5]}) :
                       (kind == K_D1) ? (F_D1 + {2'b00, t[5]}) : (kind == K_D2) ? F_D2 :
                       gk ? 3'd7 : F_LEN;
     // governor words: vmax in slots 0/1 (G1, G2), a in slots 2/3 (G3, G4); bit 63 reads as 0
-    wire [3:0]  g_slot = {2'b00, (kind == K_G3) || (kind == K_G4), t[5]};
+    assign      g_slot = {2'b00, (kind == K_G3) || (kind == K_G4), t[5]};
     wire        pm = rb_q && (jc != 6'd63);            // vmax / a bit jc
 
     // head pass arithmetic (bit jc)
-    wire        d1b  = d1[0];
-    wire        d2x  = (jc[5] ? d2s : d2[0]);
+    wire        d1b  = d1_q[ax];
+    wire        d2x  = (jc[5] ? d2s : d2_q[ax]);
     wire        h1   = rt_o ^ d1b ^ ch;
     wire        d1n  = d1b ^ d2x ^ cd;
-    wire        remn = rem[0] ^ br;
+    wire        remn = rem_q[ax] ^ br;
     assign      sync_idx = jc;
-    wire        sync_in  = !rst_sync && sync_bit;
+    wire        sync_in  = !rst_sync && in_sbit[ax];
     wire        in_head = (kind == K_SYNC) ? ((cp == N[AW-1:0]) ? sync_in : tap) :
                           (m_load && !m_rel) ? rb_q : h1;
     wire        normal  = !m_load && !m_hold;
     assign      g_head  = run && (kind == K_HEAD) && g_on;
     wire        first_sync = run && act && (kind == K_SYNC) && (cp == N[AW-1:0]);
+    wire        head_sh = run && act && (kind == K_HEAD) && !jc[5] && (normal || (SHZ && m_hold));
 
     // governor pass arithmetic (bit jc); k0..k2 are the carries of the pass's adders
     //   head: x1 = r_new - r_old -> sa (k0), e = r_old - g -> sb (k1)
@@ -275,7 +488,7 @@ module ref_gen #(
     always @(*) begin
         dl_sh = dl_pass;
         dl_in = (kind == K_G4) ? gnb : in_head;
-        rb_addr = gk ? {g_slot, fld, t[4:0]} : {ld_slot, fld, t[4:0]};
+        rb_addr = gk ? {g_slot_x, fld, t[4:0]} : {ld_slot_x, fld, t[4:0]};
         // rt: the new target in the head pass, the sync value in the first sync pass
         rt_sh = run && act && (kind == K_HEAD || (kind == K_SYNC && cp == N[AW-1:0]));
         rt_in = in_head;
@@ -287,55 +500,88 @@ module ref_gen #(
         sa_in = (kind == K_G1) ? vdb : (kind == K_G2) ? sa_o : x1b;
         sb_sh = run && act && ((kind == K_HEAD && g_on) || gk);
         sb_in = (kind == K_HEAD) ? eb : (kind == K_G2) ? dvb : sb[63];
+        // d1: d1' (0 in a hold) in the head pass, loaded in D1, cleared (0 shifted in) by the
+        // first sync pass; d2 (recirculates in a normal head pass) and remaining: bits 0..31 of
+        // the head pass (0 in a hold), loaded in D2 / LEN, cleared by the first sync pass
+        d1_sh = run && act && (kind == K_HEAD || kind == K_D1 || (SHZ && first_sync));
+        d1_in = (kind == K_D1) ? rb_q : ((!SHZ || kind == K_HEAD) && normal) ? d1n : 1'b0;
+        d2_sh = head_sh || (run && act && kind == K_D2) || (SHZ && first_sync && !jc[5]);
+        d2_in = (kind == K_D2) ? rb_q : ((!SHZ || kind == K_HEAD) && normal) ? d2_q[ax] : 1'b0;
+        // (remaining needs no clear: it counts only while ends = 1, and a sync and a hold clear ends)
+        rem_sh = (head_sh && normal) || (run && act && kind == K_LEN);
+        rem_in = (kind == K_LEN) ? rb_q : remn;
+    end
+
+    // per-axis segment state writes (at ax; never in a reset clock)
+    wire        sync_lead = run && !act && (kind == K_SYNC) && (cp == N[AW-1:0]);
+    always @(*) begin
+        // ends: len != 0, bit by bit in LEN; cleared when a sync begins and by a hold
+        ends_we = (run && act && kind == K_LEN && (jc == 6'd0 || rb_q)) ||
+                  (SHZ && (sync_lead || (last_bit && kind == K_HEAD && m_hold)));
+        ends_wd = (kind == K_LEN) && rb_q;
+        // remaining == 1: after a head pass without a load, and len == 1 after LEN (bit 31 is this clock's)
+        rem_one_we = last_bit && ((kind == K_HEAD && !m_load) || kind == K_LEN);
+        rem_one_wd = (kind == K_LEN) ? (one_acc && !rb_q) : (normal && ends && one_acc);
+        // last: the loaded flag after LEN, cleared when a sync begins; slot: the loaded slot
+        last_we = (last_bit && kind == K_LEN) || (SHZ && sync_lead);
+        last_wd = (kind == K_LEN) && last_nx;
+        slot_we = last_bit && kind == K_LEN;
     end
 
     assign dl_busy = run && (kind == K_SYNC || (kind == K_HEAD && !g_on) || kind == K_G4);
-    assign busy = run || adv_pend || sync_pend;
-    assign w_ok = !adv_pend && !sync_pend &&
-                  !(run && (kind == K_FLG || kind == K_HEAD || kind == K_SYNC || gk));
+    wire   w_run = run && (kind == K_FLG || kind == K_HEAD || kind == K_SYNC || gk);
+    generate
+        for (ga = 0; ga < NAXES; ga = ga + 1) begin : g_out
+            assign busy[ga] = (run && ax_hot[ga]) || adv_pend[ga] || sync_pend[ga];
+            assign w_ok[ga] = !adv_pend[ga] && !sync_pend[ga] && !(w_run && ax_hot[ga]);
+        end
+    endgenerate
 
-    // operation start (engine idle)
-    wire        go_sync = !run && sync_pend;
-    wire        go_adv  = !run && !sync_pend && adv_pend;
-    wire        g_load  = pend || (seg_end && !last_r);
-    wire        g_hold  = !pend && seg_end && last_r;
-    wire        zero_dif = rst || go_sync || (run && m_hold && kind == K_HEAD && last_bit);
-
-    // governor enable / ksh register: a copy of field 7 of slot 4 (written with it by the CPU,
-    // initialised with it at configuration, kept over rst like the slot memory)
-    initial begin
-        gen_r = GOV_EN;
-        gksh_r = GOV_KSH;
-    end
-    always @(posedge clk) begin
-        if (seg_we && seg_field == 3'd7 && seg_slot == 4'd4) begin
-            gen_r <= seg_wdata[0];
-            gksh_r <= seg_wdata[12:8];
+    // operation start (engine idle): a pending sync first (lowest axis first), else a pending
+    // advance (lowest axis first)
+    reg  [AXW-1:0] nx_s, nx_a;
+    always @(*) begin
+        nx_s = {AXW{1'b0}};
+        nx_a = {AXW{1'b0}};
+        for (ai = NAP - 1; ai >= 0; ai = ai - 1) begin
+            if (sync_pend[ai]) nx_s = ai[AXW-1:0];
+            if (adv_pend[ai]) nx_a = ai[AXW-1:0];
         end
     end
+    wire        any_sync = |sync_pend[NAXES-1:0];
+    wire [AXW-1:0] nx = (NAXES < 2) ? {AXW{1'b0}} : any_sync ? nx_s : nx_a;
+    wire        go_sync = !run && any_sync;
+    wire        go_adv  = !run && !any_sync && (|adv_pend[NAXES-1:0]);
+    wire        seg_end = ends_nx && rem_one_nx;
+    wire        g_load  = pend[nx] || (seg_end && !last_nx_r);
+    wire        g_hold  = !pend[nx] && seg_end && last_nx_r;
+    assign      zclr = !SHZ && (rst || go_sync || (m_hold && kind == K_HEAD && last_bit));
+    assign      lclr = !SHZ && (rst || go_sync);
+
 
     always @(posedge clk) begin
-        gov_ev <= 1'b0;
+        for (ai = 0; ai < NAXES; ai = ai + 1) gov_ev[ai] <= 1'b0;
         if (rst) begin
-            run <= 1'b1;                               // clear the delay line: sync to 0
+            run <= 1'b1;                               // clear axis 0's delay line: sync to 0
+            ax_r <= {AXW{1'b0}};
             kind <= K_SYNC;
             act <= 1'b0;
             t <= 6'd0;
             jc <= 6'd0;
             cp <= N[AW-1:0];
             rst_sync <= 1'b1;
-            adv_pend <= 1'b0;
-            sync_pend <= 1'b0;
-            pend <= 1'b0;
-            pend_slot <= 4'd0;
-            slot <= 4'd0;
+            for (ai = 0; ai < NAP; ai = ai + 1) begin
+                adv_pend[ai] <= 1'b0;
+                sync_pend[ai] <= (ai > 0 && ai < NAXES); // the other axes' reset syncs queue
+                rz[ai] <= (ai > 0 && ai < NAXES);
+                pend[ai] <= 1'b0;
+                pend_slot[ai] <= 4'd0;
+            end
             ld_slot <= 4'd0;
             m_load <= 1'b0;
             m_hold <= 1'b0;
             m_rel <= 1'b0;
-            last_r <= 1'b0;
             last_nx <= 1'b0;
-            rem_one <= 1'b0;
             one_acc <= 1'b0;
             ch <= 1'b0;
             cd <= 1'b0;
@@ -360,35 +606,42 @@ module ref_gen #(
             v_sgn <= 1'b0;
             dv_nz <= 1'b0;
         end else begin
-            if (advance) adv_pend <= 1'b1;
-            if (sync) sync_pend <= 1'b1;
-            if (start) begin
-                pend <= 1'b1;
-                pend_slot <= start_slot;
+            for (ai = 0; ai < NAP; ai = ai + 1) begin
+                if (in_adv[ai]) adv_pend[ai] <= 1'b1;
+                if (in_sync[ai]) begin
+                    sync_pend[ai] <= 1'b1;
+                    rz[ai] <= 1'b0;                    // the CPU's value, not the reset's
+                end
+                if (in_start[ai]) begin
+                    pend[ai] <= 1'b1;
+                    pend_slot[ai] <= in_sslot[ai];
+                end
             end
             if (!run) begin
                 t <= 6'd0;
                 act <= 1'b0;
                 if (go_sync) begin
-                    sync_pend <= sync;                 // a sync in this clock runs again after
+                    sync_pend[nx] <= in_sync[nx];      // a sync in this clock runs again after
+                    rz[nx] <= 1'b0;
                     run <= 1'b1;
+                    ax_r <= nx;
                     kind <= K_SYNC;
                     cp <= N[AW-1:0];
-                    rst_sync <= 1'b0;
-                    last_r <= 1'b0;
+                    rst_sync <= SHZ && rz[nx];
                 end else if (go_adv) begin
-                    adv_pend <= advance;
+                    adv_pend[nx] <= in_adv[nx];
                     run <= 1'b1;
+                    ax_r <= nx;
                     m_load <= g_load;
                     m_hold <= g_hold;
                     m_rel <= 1'b0;
-                    ld_slot <= pend ? pend_slot : slot + 4'd1;
-                    if (pend && !start) pend <= 1'b0;
+                    ld_slot <= pend[nx] ? pend_slot[nx] : slot_nx + 4'd1;
+                    if (pend[nx] && !in_start[nx]) pend[nx] <= 1'b0;
                     kind <= g_load ? K_FLG : K_HEAD;
-                    g_on <= gen_r;
-                    ksh <= gksh_r;
-                    gv_hold <= hold;
-                    gv_pos <= task_pos;
+                    g_on <= gen_nx;
+                    ksh <= gksh_nx;
+                    gv_hold <= in_hold[nx];
+                    gv_pos <= in_pos[nx];
                 end
             end else begin
                 // bit counters: t issues, jc = t delayed
@@ -402,7 +655,7 @@ module ref_gen #(
                             else last_nx <= rb_q;
                         end
                         K_HEAD: if (normal) begin
-                            if (jc == 6'd31) d2s <= d2[0];
+                            if (jc == 6'd31) d2s <= d2_q[ax];
                         end
                         K_LEN: begin
                             if (jc == 6'd0) one_acc <= rb_q;
@@ -413,7 +666,7 @@ module ref_gen #(
                     // carries (cleared at the lead clock below)
                     ch <= (rt_o & d1b) | (ch & (rt_o ^ d1b));
                     cd <= (d1b & d2x) | (cd & (d1b ^ d2x));
-                    br <= br & !rem[0];
+                    br <= br & !rem_q[ax];
                     k0 <= k0n;
                     k1 <= k1n;
                     k2 <= k2n;
@@ -461,7 +714,6 @@ module ref_gen #(
                     case (kind)
                         K_FLG: kind <= K_HEAD;
                         K_HEAD: begin
-                            if (!m_load) rem_one <= normal && ends && one_acc;
                             if (g_on) kind <= K_G1;
                             else if (m_load) kind <= K_D1;
                             else run <= 1'b0;
@@ -470,7 +722,8 @@ module ref_gen #(
                         K_G2: kind <= K_G3;
                         K_G3: kind <= K_G4;
                         K_G4: begin
-                            gov_ev <= gv_hold || hi1 || lo1 || hi2 || lo2;
+                            for (ai = 0; ai < NAXES; ai = ai + 1)
+                                if (ax_hot[ai]) gov_ev[ai] <= gv_hold || hi1 || lo1 || hi2 || lo2;
                             if (m_load) kind <= K_D1;
                             else run <= 1'b0;
                         end
@@ -478,9 +731,6 @@ module ref_gen #(
                         K_D2: kind <= K_LEN;
                         K_LEN: begin
                             run <= 1'b0;
-                            rem_one <= one_acc && !rb_q;   // len == 1 (bit 31 is this clock's)
-                            last_r <= last_nx;
-                            slot <= ld_slot;
                         end
                         default: begin                 // K_SYNC
                             if (cp == {AW{1'b0}}) run <= 1'b0;
@@ -492,37 +742,10 @@ module ref_gen #(
         end
     end
 
-    // state shift registers (d1 64, d2 32, rem 32: LSB out first)
-    always @(posedge clk) begin
-        if (zero_dif) begin
-            d1 <= 64'd0;
-            d2 <= 32'd0;
-            rem <= 32'd0;
-            ends <= 1'b0;
-        end else if (run && act) begin
-            case (kind)
-                K_HEAD: begin
-                    d1 <= {normal ? d1n : 1'b0, d1[63:1]};
-                    if (normal && !jc[5]) begin
-                        d2 <= {d2[0], d2[31:1]};
-                        rem <= {remn, rem[31:1]};
-                    end
-                end
-                K_D1: d1 <= {rb_q, d1[63:1]};
-                K_D2: d2 <= {rb_q, d2[31:1]};
-                K_LEN: begin
-                    rem <= {rb_q, rem[31:1]};
-                    if (jc == 6'd0) ends <= rb_q;
-                    else if (rb_q) ends <= 1'b1;
-                end
-                default: ;
-            endcase
-        end
-    end
-
 `ifndef SYNTHESIS
     initial begin
         if (N < 1) $display("ERROR: ref_gen N=%0d must be >= 1", N);
+        if (NAXES < 1 || NAXES > 4) $display("ERROR: ref_gen NAXES=%0d must be 1..4", NAXES);
     end
 `endif
 endmodule

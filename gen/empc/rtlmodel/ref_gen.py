@@ -18,7 +18,8 @@ Per advance (see the RTL header for the exact rules)::
 ``w`` is the delay line w_k .. w_{k+N} (``w[N]`` = head).  A sync sets the head
 and the whole delay line.  The RTL is a bit-serial engine that executes one
 queued operation at a time (sync before advance); :meth:`RefGen.step` models its
-timing clock by clock, the other methods act at once.  Slots are written one
+timing clock by clock, the other methods act at once.  :class:`RefGenAxes` is the RTL's
+NAXES parameter: NAXES of these generators on the one shared engine, clock by clock.  Slots are written one
 32-bit field at a time (:meth:`RefGen.write_field`, fields :data:`FIELDS`).
 
 :func:`segments_from_points` turns a step/ramp profile in SI units into slots.
@@ -191,6 +192,7 @@ class RefGen:
         self._sync_value = 0
         self._hold = False
         self._task_pos = False
+        self.gov_ev = False                # RTL gov_ev in this clock (clock level)
         if not settled:
             self._begin_sync(0)
 
@@ -317,7 +319,7 @@ class RefGen:
             w_left += PASS_CLOCKS["flags"]
         self.pend = False                          # consumed (a start in this clock re-pends)
         self._op = {"kind": "advance", "left": clocks, "w_left": w_left, "w_done": False,
-                    "load": load, "slot": ld, "result": snap}
+                    "load": load, "slot": ld, "result": snap, "gov": gov}
 
     def step(self, seg_we: bool = False, seg_slot: int = 0, seg_field: int = 0, seg_wdata: int = 0,
              start: bool = False, start_slot: int = 0, sync: bool = False, sync_value: int = 0,
@@ -330,31 +332,46 @@ class RefGen:
         if seg_we:                                 # port A write: seen by an advance beginning now
             self.write_field(seg_slot, seg_field, seg_wdata)
         self._hold_in, self._task_pos_in = bool(hold), bool(task_pos)   # sampled when an advance begins
-        op = self._op
-        if op is not None:                         # the running operation advances one clock
-            op["left"] -= 1
-            if op["w_left"] is not None and not op["w_done"]:
-                op["w_left"] -= 1
-                if op["w_left"] == 0:
-                    r = op["result"]
-                    self.head, self.dl = r.head, list(r.dl)
-                    op["w_done"] = True
-            if op["left"] == 0:
-                if op["kind"] == "sync":
-                    v = op["value"]
-                    self.head, self.dl, self.r, self.v = v, [v] * self.N, v, 0
-                else:
-                    r = op["result"]
-                    for k in ("d1", "d2", "rem", "ends", "last", "slot", "r", "v", "clamped"):
-                        setattr(self, k, getattr(r, k))
-                self._op = None
+        self.gov_ev = False
+        if self._op is not None:                   # the running operation advances one clock
+            self._tick()
         elif self.sync_pend:                       # idle: begin an operation
+            self._begin_pending()
+        elif self.adv_pend:
+            self._begin_pending()
+        self._strobes(start, start_slot, sync, sync_value, advance)
+
+    def _tick(self) -> None:
+        """One clock of the running operation (RTL engine timing)."""
+        op = self._op
+        op["left"] -= 1
+        if op["w_left"] is not None and not op["w_done"]:
+            op["w_left"] -= 1
+            if op["w_left"] == 0:
+                r = op["result"]
+                self.head, self.dl = r.head, list(r.dl)
+                op["w_done"] = True
+                self.gov_ev = op.get("gov", False) and r.clamped   # RTL gov_ev: the clock after G4
+        if op["left"] == 0:
+            if op["kind"] == "sync":
+                v = op["value"]
+                self.head, self.dl, self.r, self.v = v, [v] * self.N, v, 0
+            else:
+                r = op["result"]
+                for k in ("d1", "d2", "rem", "ends", "last", "slot", "r", "v", "clamped"):
+                    setattr(self, k, getattr(r, k))
+            self._op = None
+
+    def _begin_pending(self) -> None:
+        """The engine begins this generator's pending operation: a sync first, else an advance."""
+        if self.sync_pend:
             self.sync_pend = False
             self._begin_sync(self._sync_value)
-        elif self.adv_pend:
+        else:
             self.adv_pend = False
             self._begin_advance()
-        # strobes of this clock
+
+    def _strobes(self, start: bool, start_slot: int, sync: bool, sync_value: int, advance: bool) -> None:
         if advance:
             self.adv_pend = True
         if sync:
@@ -362,6 +379,81 @@ class RefGen:
             self._sync_value = sync_value & M64
         if start:
             self.pend, self.pend_slot = True, start_slot % NSLOT
+
+
+class RefGenAxes:
+    """``ref_gen`` with NAXES axes on its one shared engine (``rtl/ref_gen.v``, parameter NAXES).
+
+    Each axis is a :class:`RefGen` (its slots, state, delay line, pending flags), unchanged; the
+    engine runs one operation at a time for all of them, so an axis's operation may wait for
+    another's.  Clock-level schedule (:meth:`step`): an engine that is idle at a clock begins the
+    pending sync of the lowest-numbered axis, else the pending advance of the lowest-numbered
+    axis; the operation then takes the single-axis clocks of :data:`PASS_CLOCKS` and touches only
+    that axis.  After ``rst`` axis 0 runs its clearing sync at once and axes 1.. queue theirs
+    (value 0; a CPU sync strobe on the axis before it runs supplies the value instead).
+    At NAXES = 1 this is exactly :class:`RefGen`."""
+
+    def __init__(self, N: int = 4, naxes: int = 1):
+        if not 1 <= naxes <= 4:
+            raise ValueError("naxes must be 1..4")
+        self.N = N
+        self.naxes = naxes
+        self.axes = [RefGen(N) for _ in range(naxes)]
+
+    def __getitem__(self, a: int) -> RefGen:
+        return self.axes[a]
+
+    def reset(self, settled: bool = False) -> None:
+        for a, g in enumerate(self.axes):
+            g.reset(settled=settled or a > 0)
+            g.gov_ev = False
+            if not settled and a > 0:
+                g.sync_pend, g._sync_value = True, 0
+
+    @property
+    def engine_axis(self):
+        """Axis whose operation the engine runs (None: idle)."""
+        for a, g in enumerate(self.axes):
+            if g._op is not None:
+                return a
+        return None
+
+    def next_axis(self):
+        """Axis whose operation an idle engine begins in this clock (None: nothing pending)."""
+        for a, g in enumerate(self.axes):
+            if g.sync_pend:
+                return a
+        for a, g in enumerate(self.axes):
+            if g.adv_pend:
+                return a
+        return None
+
+    def step(self, seg=None, start=None, sync=None, sync_value=None, advance=None, hold=None,
+             task_pos=None) -> None:
+        """One clock.  ``seg`` = (axis, slot, field, value) is a CPU field write; the others are
+        per-axis lists (None: all 0) of the strobes and inputs of :meth:`RefGen.step`
+        (``start`` holds the start slot or None)."""
+        n = self.naxes
+        start = start or [None] * n
+        sync = sync or [False] * n
+        sync_value = sync_value or [0] * n
+        advance = advance or [False] * n
+        hold = hold or [False] * n
+        task_pos = task_pos or [False] * n
+        if seg is not None:
+            self.axes[seg[0]].write_field(seg[1], seg[2], seg[3])
+        for a, g in enumerate(self.axes):
+            g._hold_in, g._task_pos_in = bool(hold[a]), bool(task_pos[a])
+            g.gov_ev = False
+        run = self.engine_axis
+        if run is not None:
+            self.axes[run]._tick()
+        else:
+            nx = self.next_axis()
+            if nx is not None:
+                self.axes[nx]._begin_pending()
+        for a, g in enumerate(self.axes):
+            g._strobes(start[a] is not None, start[a] or 0, bool(sync[a]), sync_value[a], bool(advance[a]))
 
 
 def q32(value: float) -> int:
