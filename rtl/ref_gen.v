@@ -207,6 +207,7 @@ module ref_gen #(
     reg  [NAP-1:0] adv_pend, sync_pend, pend;
     reg  [NAP-1:0] rz;                                 // the pending sync is the reset's (value 0)
     reg  [3:0]     pend_slot [0:NAP-1];
+    wire [AXW-1:0] nx;                                 // the axis the next operation serves (chosen below)
 
     // ---------------- per-axis segment state (LUT-RAM {axis} at NAXES > 1, flip-flops at 1) ----------------
     // written by the engine at its axis (ax), read there and at the next axis (nx) when an operation
@@ -549,7 +550,7 @@ module ref_gen #(
         end
     end
     wire        any_sync = |sync_pend[NAXES-1:0];
-    wire [AXW-1:0] nx = (NAXES < 2) ? {AXW{1'b0}} : any_sync ? nx_s : nx_a;
+    assign nx = (NAXES < 2) ? {AXW{1'b0}} : any_sync ? nx_s : nx_a;
     wire        go_sync = !run && any_sync;
     wire        go_adv  = !run && !any_sync && (|adv_pend[NAXES-1:0]);
     wire        seg_end = ends_nx && rem_one_nx;
