@@ -111,6 +111,9 @@ module axis_status #(
     reg  [AW-1:0]  k;                   // word of the sweep
     wire [NAXES-1:0] eng_on;            // the engine's sweep is axis a's (or the zero sweep of all words)
     wire [NAXES-1:0] served;            // the idle engine starts axis a's requested sweep now
+    wire [NAXES-1:0] on_ax;             // the engine runs a sweep of axis a (or the zero sweep after rst from a)
+    wire        idle;
+    wire        zrun = zact && zall;                            // the zero sweep after rst
     wire        start;
     wire [AXW-1:0] pick;                // the axis whose request an idle engine starts
     wire [NAXES-1:0] take = sweep & ~busy;
@@ -124,6 +127,7 @@ module axis_status #(
         localparam [AXW-1:0] GA = ga;
         assign eng_on[ga] = (act || zact) && (zall || ax == GA);
         assign served[ga] = start && pick == GA;
+        assign on_ax[ga] = !idle && ax == GA;
         always @(posedge clk) begin
             if (rst || take[ga]) ev[NCNT*ga +: NCNT] <= {NCNT{1'b0}};
             else                 ev[NCNT*ga +: NCNT] <= ev_now[NCNT*ga +: NCNT];
@@ -202,8 +206,7 @@ module axis_status #(
     // one engine: the zero sweep after rst (all words), else one axis's zero or counting sweep at a
     // time; an idle engine starts the next axis (round robin) that has a request (a clear, a pending
     // sweep, a pulse taken now); a clear of the engine's axis restarts it as that axis's zero sweep
-    wire        idle = !act && !zact;
-    wire        zrun = zact && zall;                            // the zero sweep after rst
+    assign      idle = !act && !zact;
     // requests seen by an idle engine (busy = cp | zp then, so a pulse is taken unless zp: zp wins)
     wire [NAXES-1:0] rz = cnt_clear | zp;                       // zero-sweep requests
     wire [NAXES-1:0] rq = rz | cp | sweep;
@@ -242,7 +245,7 @@ module axis_status #(
                 // requests the engine does not serve now wait; a clear cancels a pending counting sweep;
                 // the zero sweep after rst covers every clear
                 cp <= (cp | take) & ~cnt_clear & ~served;
-                zp <= (zp | (cnt_clear & ~(restart ? eng_on : {NAXES{1'b0}}) & {NAXES{!zrun}})) & ~served;
+                zp <= (zp | (cnt_clear & ~on_ax & {NAXES{!zrun}})) & ~served;
             end
             if (zrun && |cnt_clear) begin
                 // a clear during the zero sweep after rst holds it one clock (it stays whole)

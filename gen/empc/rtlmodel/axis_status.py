@@ -172,7 +172,8 @@ class AxisStatus:
         self.hide_cnt |= cnt_clear & full
         if n > 1:
             self.cp = (self.cp | take) & ~cnt_clear & ~served & full
-            self.zp = (self.zp | (cnt_clear & ~(eng_on if restart else 0) & (0 if zrun else full))) & ~served & full
+            on_ax = 0 if idle else 1 << self.ax     # the engine runs a sweep of axis ax
+            self.zp = (self.zp | (cnt_clear & ~on_ax & (0 if zrun else full))) & ~served & full
         if zrun and cnt_clear & full:
             pass                            # a clear holds the zero sweep after rst one clock
         elif restart:
