@@ -26,6 +26,7 @@ module pwm_center_props #(
     parameter integer DEAD_W = 4,
     parameter integer SYNC_STAGES = 0,
     parameter integer SYNC_LEAD = 2,
+    parameter integer PHASE = 0,
     parameter integer CW = $clog2(P + 1)
 ) (
     input wire              clk,
@@ -44,7 +45,7 @@ module pwm_center_props #(
 
     pwm_center #(
         .NCH(NCH), .PWM_HALF_PERIOD(P), .CW(CW), .DEAD_W(DEAD_W),
-        .SYNC_STAGES(SYNC_STAGES), .SYNC_LEAD(SYNC_LEAD)
+        .SYNC_STAGES(SYNC_STAGES), .SYNC_LEAD(SYNC_LEAD), .PHASE(PHASE)
     ) dut (
         .clk(clk), .rst(rst), .enable(enable), .mode(mode), .dead(dead),
         .cmp_in(cmp_in), .cmp_load(cmp_load), .sync_in(sync_in),

@@ -30,8 +30,9 @@
 //                      values > P act as P (clipped; cmp_clip pulse)
 //   cmp_load           write cmp_in into the shadow registers; the shadow is
 //                      copied to the active compare at the next period boundary
-//   sync_in            rising edge restarts the counter at the boundary;
-//                      synchronous if SYNC_STAGES = 0, else through sync_2ff
+//   sync_in            rising edge restarts the counter at the boundary (PHASE > 0:
+//                      at its phase, see below); synchronous if SYNC_STAGES = 0,
+//                      else through sync_2ff
 //   fault              synchronous fault (all switches off at the next edge)
 //   fault_clear        clears the fault latch if fault is low
 //   hi[NCH-1:0]        high-side switch (mode 0) / PWM input (mode 1)
@@ -53,10 +54,23 @@
 //   SYNC_STAGES        0 = sync_in synchronous, >= 2 = sync_2ff depth
 //   SYNC_LEAD          sync_out lead over period_start, 0..P; a slave fed from
 //                      sync_out runs in phase if SYNC_LEAD = 2 + its SYNC_STAGES
+//   PHASE              carrier delay in clocks, 0..2P-1 (docs/four_axes.md D4: axis n of
+//                      NAXES = 4 gets n * `EMPC_PWM_STAGGER_4).  The counter starts at
+//                      reset at position 2P - PHASE of its period (position 0 = boundary,
+//                      P = centre), so counter, period_start, adc_trig and sync_out are
+//                      those of a PHASE = 0 instance delayed by PHASE clocks, from the first
+//                      clock after reset (the periodic waveform: before the first boundary
+//                      the end of a period; adc_trig comes before the first period_start
+//                      if PHASE > P).  A sync_in rise restarts the counter at the same
+//                      position (PHASE clocks before its boundary), so the strobes are again
+//                      those of a PHASE = 0 instance restarted by the same rise, delayed by
+//                      PHASE; that restart is no boundary: the outputs go off and restart
+//                      at the next boundary (as after enable; cmp and mode are taken there).
+//                      PHASE = 0: the block as before.
 // Latency: cmp_load -> effective at the next period boundary; fault/enable low ->
 //   outputs off 1 clock later; sync_in rise -> period_start 2 + SYNC_STAGES later.
-// Reset: counter 0 (boundary), shadow/active compare 0, mode 0, outputs off,
-//   fault latch clear, not running (needs enable and a boundary to start).
+// Reset: counter 0 (boundary; PHASE > 0: position 2P - PHASE), shadow/active compare 0,
+//   mode 0, outputs off, fault latch clear, not running (needs enable and a boundary to start).
 `default_nettype none
 `ifndef EMPC_PWM_HALF_PERIOD
 `include "empc_formats.vh"
@@ -67,7 +81,8 @@ module pwm_center #(
     parameter integer CW = $clog2(PWM_HALF_PERIOD + 1),
     parameter integer DEAD_W = 8,
     parameter integer SYNC_STAGES = 0,
-    parameter integer SYNC_LEAD = 2
+    parameter integer SYNC_LEAD = 2,
+    parameter integer PHASE = 0
 ) (
     input  wire              clk,
     input  wire              rst,
@@ -95,6 +110,16 @@ module pwm_center #(
     localparam [CW-1:0] LEAD = SYNC_LEAD[CW-1:0];
     localparam          LEAD_DIR = (SYNC_LEAD == 0) ? 1'b1 : 1'b0;
     localparam          MODE_COMPL = 1'b0;
+    // the counter's start (reset, and a sync_in rise when PHASE > 0): period position POS0
+    localparam integer  POS0 = (PHASE == 0) ? 0 : 2 * PWM_HALF_PERIOD - PHASE;
+    localparam integer  CNT0_I = (POS0 < PWM_HALF_PERIOD) ? POS0 : 2 * PWM_HALF_PERIOD - POS0;
+    localparam [CW-1:0] CNT0 = CNT0_I[CW-1:0];
+    localparam          DIR0 = (POS0 < PWM_HALF_PERIOD) ? 1'b1 : 1'b0;
+    localparam          DIRP0 = (PHASE == 0 || POS0 - 1 < PWM_HALF_PERIOD) ? 1'b1 : 1'b0;  // dir at POS0 - 1
+    localparam          SHIFTED = (PHASE != 0) ? 1'b1 : 1'b0;
+    generate if (PHASE < 0 || PHASE >= 2 * PWM_HALF_PERIOD) begin : g_bad_phase
+        pwm_center_phase_out_of_range u_error ();   // no such module: elaboration stops here
+    end endgenerate
 
     // ---- sync input: optional synchroniser, rising-edge detect ----------------
     wire sync_s;
@@ -116,7 +141,15 @@ module pwm_center #(
     reg  [NCH*CW-1:0] cmp_act;
     reg               mode_act;
     reg               run;
-    wire bnd_edge = (~dir & (cnt <= ONE)) | sync_rise;   // next cycle is a boundary
+    wire jump;                                          // PHASE > 0: a sync rise restarts at POS0
+    wire bnd_edge;                                      // next cycle is a boundary
+    generate if (PHASE > 0) begin : g_phase
+        assign jump = sync_rise;
+        assign bnd_edge = ~dir & (cnt <= ONE) & ~sync_rise;
+    end else begin : g_nophase
+        assign jump = 1'b0;
+        assign bnd_edge = (~dir & (cnt <= ONE)) | sync_rise;
+    end endgenerate
     wire ok = enable & ~fault & ~fault_latched;
     wire alive = run & ok;
     // decodes from the previous clock instead of counter compares: the boundary state
@@ -139,10 +172,10 @@ module pwm_center #(
     always @(posedge clk) begin
         if (rst) begin
             sync_prev     <= 1'b0;
-            at_bnd        <= 1'b1;
-            dir_prev      <= 1'b1;
-            cnt           <= {CW{1'b0}};
-            dir           <= 1'b1;
+            at_bnd        <= ~SHIFTED;
+            dir_prev      <= DIRP0;
+            cnt           <= CNT0;
+            dir           <= DIR0;
             shadow        <= {(NCH*CW){1'b0}};
             cmp_act       <= {(NCH*CW){1'b0}};
             mode_act      <= MODE_COMPL;
@@ -152,9 +185,12 @@ module pwm_center #(
         end else begin
             sync_prev <= sync_s;
             at_bnd    <= bnd_edge;
-            dir_prev  <= dir;
+            dir_prev  <= jump ? DIRP0 : dir;
             // one adder: +1 up, -1 down (P-1 -> P at the turn round); 0 at the boundary
-            if (bnd_edge) begin
+            if (jump) begin
+                cnt <= CNT0;
+                dir <= DIR0;
+            end else if (bnd_edge) begin
                 cnt <= {CW{1'b0}};
                 dir <= 1'b1;
             end else begin
@@ -168,7 +204,7 @@ module pwm_center #(
                 mode_act <= mode;
                 run      <= ok;
             end else begin
-                run      <= alive;
+                run      <= alive & ~jump;
             end
             fault_latched <= fault | (fault_latched & ~fault_clear);
         end

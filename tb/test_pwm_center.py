@@ -570,3 +570,180 @@ def test_pwm_center_default():
 
 def test_pwm_center_sync2():
     _run("sync2", toplevel="pwm_center_sync2", NCH=2, PWM_HALF_PERIOD=11, DEAD_W=4)
+
+
+# ----------------------------------------------------------------------------- carrier stagger (PHASE)
+PHASE = int(os.environ.get("PWM_PHASE", "0"))
+STROBES = ("period_start", "adc_trig", "sync_out")
+
+
+class PhaseBench:
+    """tb/hdl/pwm_center_phase.v: u_a (PHASE = 0) and u_b (PHASE), the same inputs; both against their
+    models every clock; records the counters (state after each edge), the strobes, and the restart
+    edges (rst, or a sync rise) for the shift check."""
+
+    def __init__(self, dut):
+        self.dut = dut
+        kw = dict(nch=NCH, half_period=P, dead_w=DEAD_W, sync_stages=SYNC_STAGES, sync_lead=SYNC_LEAD)
+        self.ma, self.mb = PwmCenter(**kw), PwmCenter(**kw, phase=PHASE)
+        self.pa, self.pb = Props(NCH, "a"), Props(NCH, "b")
+        self.rec = {"a": [], "b": []}           # per clock: (cnt, dir, outputs)
+        self.restart = []                      # clock indices of restart edges
+        self.kinds = {}                        # restart clock -> "rst" / "sync"
+        self.t = -1
+
+    async def start(self):
+        cocotb.start_soon(Clock(self.dut.clk, 10, unit="ns").start())
+        await FallingEdge(self.dut.clk)
+
+    async def cycle(self, inp: PwmInputs):
+        d = self.dut
+        d.rst.value = inp.rst
+        d.enable.value = inp.enable
+        d.mode.value = inp.mode
+        d.dead.value = inp.dead
+        d.cmp_in.value = pack(inp.cmp_in, CW)
+        d.cmp_load.value = inp.cmp_load
+        d.sync_in.value = inp.sync_in
+        d.fault.value = inp.fault
+        d.fault_clear.value = inp.fault_clear
+        m = self.ma
+        sync_s = m.sync_pipe[-1] if m.sync_stages else (inp.sync_in & 1)
+        rise = sync_s & (1 - m.sync_prev)
+        self.t += 1
+        if inp.rst or rise:
+            self.restart.append(self.t)
+            self.kinds[self.t] = "rst" if inp.rst else "sync"
+        exp = {"a": self.ma.step(inp), "b": self.mb.step(inp)}
+        await FallingEdge(d.clk)
+        for x, pr in (("a", self.pa), ("b", self.pb)):
+            o = {"hi": bits(int(getattr(d, x + "_hi").value), NCH), "lo": bits(int(getattr(d, x + "_lo").value), NCH)}
+            for f in OUT_FIELDS:
+                o[f] = int(getattr(d, f"{x}_{f}").value)
+            assert o == exp[x], f"{x} (PHASE {PHASE if x == 'b' else 0}) cycle {self.t}: DUT {o} != model {exp[x]}"
+            pr.check(inp, o, self.t)
+            u = getattr(d, "u_" + x)
+            cnt, dr = int(u.cnt.value), int(u.dir.value)
+            mm = self.ma if x == "a" else self.mb
+            assert (cnt, dr) == (mm.cnt, mm.dir), f"{x} cycle {self.t}: counter {(cnt, dr)} model {(mm.cnt, mm.dir)}"
+            self.rec[x].append((cnt, dr, o))
+
+    def check_shift(self, fields=STROBES):
+        """Within each segment between restart edges: u_b's counter after edge t equals u_a's after
+        t - PHASE (or t - PHASE + 2P before u_b's first boundary, the periodic waveform), u_b's
+        ``fields`` at output clock t those of u_a at t - PHASE (+ 2P).  Returns counts."""
+        n = dict(counter=0, strobes=0, first_period=0, after_rst=0, after_sync=0, ps=0, adc=0)
+        ends = self.restart[1:] + [self.t + 1]
+        for e, e_end in zip(self.restart, ends):
+            kind = self.kinds[e]
+            for t in range(e, e_end):
+                for lo, what in ((e, "counter"), (e + 1, "strobes")):
+                    if t < lo:
+                        continue
+                    s = t - PHASE
+                    if s < lo:
+                        s += 2 * P
+                        if s >= e_end:
+                            continue
+                        n["first_period"] += 1
+                    ra, rb = self.rec["a"][s], self.rec["b"][t]
+                    if what == "counter":
+                        assert rb[:2] == ra[:2], \
+                            f"counter of u_b after edge {t} {rb[:2]} != u_a's after {s} {ra[:2]} (segment from {kind} {e})"
+                    else:
+                        for f in fields:
+                            ga, gb = ra[2][f], rb[2][f]
+                            assert gb == ga, f"{f} of u_b at {t} = {gb}, u_a at {s} = {ga} (segment from {kind} {e})"
+                        n["ps"] += rb[2]["period_start"]
+                        n["adc"] += rb[2]["adc_trig"]
+                    n[what] += 1
+                    n["after_" + kind] += 1
+        return n
+
+
+@cocotb.test(skip=SUITE != "phase")
+async def test_phase_random(dut):
+    """PHASE build: random inputs (resets, sync rises, loads, faults), u_a (PHASE 0) and u_b (PHASE)
+    bit-exact against their models every clock; u_b's counter and strobes are u_a's delayed by PHASE
+    in every segment between restarts, including the clocks before u_b's first boundary."""
+    ncyc = int(os.environ.get("PWM_RANDOM_CYCLES", "24000"))
+    if ncyc == 0:
+        import pytest
+        pytest.skip("PWM_RANDOM_CYCLES = 0 (the default-P build runs the steady test only)")
+    seed = SEED + P + PHASE
+    rng = random.Random(seed)
+    dut._log.info("seed %d (EMPC_SEED=%d), NCH=%d P=%d PHASE=%d SYNC_STAGES=%d", seed, SEED, NCH, P, PHASE,
+                  SYNC_STAGES)
+    b = PhaseBench(dut)
+    await b.start()
+    for _ in range(3):
+        await b.cycle(PwmInputs(rst=1, cmp_in=[0] * NCH))
+    stim = RandomStimulus(rng, NCH, P, DEAD_W)
+    for _ in range(ncyc):
+        await b.cycle(stim.next())
+    n = b.check_shift()
+    kinds = list(b.kinds.values())
+    dut._log.info("PHASE %d: %d clocks, both instances bit-exact with their models; restarts %d rst, %d sync; "
+                  "shift checks %s; props a %s b %s", PHASE, b.t + 1, kinds.count("rst"), kinds.count("sync"), n,
+                  b.pa.n, b.pb.n)
+    assert kinds.count("rst") >= 2 and kinds.count("sync") >= 5, "too few restarts"
+    assert n["first_period"] > 0 and n["after_rst"] > 0 and n["after_sync"] > 0 and n["ps"] > 0 and n["adc"] > 0
+    assert b.pb.n["turn_on_dead"] > 0 and b.pb.n["fault_off"] > 0
+
+
+@cocotb.test(skip=SUITE != "phase")
+async def test_phase_steady(dut):
+    """Constant inputs from reset, then a sync rise: the strobes of u_b are u_a's delayed by PHASE from
+    the first clock after reset and after the sync; once both run, hi / lo / on of u_b are u_a's
+    delayed by PHASE (also across u_a's boundary loads of a new compare)."""
+    rng = random.Random(SEED + 7)
+    b = PhaseBench(dut)
+    await b.start()
+    cm = [rng.randint(1, P - 1) for _ in range(NCH)]
+    mode = MODE_COMPL
+    hold = PwmInputs(enable=1, mode=mode, dead=1, cmp_in=cm)
+    await b.cycle(replace(hold, rst=1))
+    await b.cycle(replace(hold, cmp_load=1))
+    for _ in range(6 * P):
+        await b.cycle(hold)
+    t_sync = b.t + 1
+    for _ in range(max(1, SYNC_STAGES)):         # a sync pulse (held for the synchroniser)
+        await b.cycle(replace(hold, sync_in=1))
+    for _ in range(8 * P + PHASE):
+        await b.cycle(hold)
+    n = b.check_shift()
+    # outputs: both running from u_a's second boundary after each restart and u_b's first one, so
+    # u_b(t) == u_a(t - PHASE) from 2P + PHASE + 1 clocks after the restart on
+    cmpd = 0
+    for e, e_end in zip(b.restart, b.restart[1:] + [b.t + 1]):
+        for t in range(e + 2 * P + PHASE + 2, e_end):
+            oa, ob = b.rec["a"][t - PHASE][2], b.rec["b"][t][2]
+            for f in ("hi", "lo", "on"):
+                assert ob[f] == oa[f], f"{f} of u_b at {t} {ob[f]} != u_a at {t - PHASE} {oa[f]} (restart at {e})"
+            cmpd += 1
+    assert cmpd > 4 * P and b.kinds.get(t_sync + SYNC_STAGES) == "sync", (cmpd, b.kinds, t_sync)
+    dut._log.info("PHASE %d steady: shift checks %s; %d clocks of hi/lo/on shifted; cmp %s", PHASE, n, cmpd, cm)
+
+
+def test_pwm_center_phase():
+    """The carrier stagger at P = 13: PHASE < P, = P, > P (one with SYNC_STAGES = 2)."""
+    for ph, ss in ((5, 0), (13, 0), (20, 2)):
+        _run("phase", toplevel="pwm_center_phase", env={"PWM_PHASE": str(ph)}, NCH=3, PWM_HALF_PERIOD=13,
+             DEAD_W=4, SYNC_STAGES=ss, SYNC_LEAD=2, PHASE=ph)
+
+
+def test_pwm_center_phase_default():
+    """Default P (2500) with axis 1 and axis 3 of the four-axis stagger (header PWM_STAGGER_4)."""
+    from empc.rtlmodel.pwm_center import default_half_period
+    from runner import roms_dir
+    from empc import header
+    import mx_schedule
+    h = header.read(roms_dir() / "empc_formats.vh")
+    for n in (2, 3, 4):                 # the header's stagger is the schedule's (flow/mx_schedule.py)
+        assert h[f"PWM_STAGGER_{n}"] == mx_schedule.stagger(n, mx_schedule.TIMING)[1], (n, h)
+    step = h["PWM_STAGGER_4"]
+    assert step == 1258, step
+    p = default_half_period()
+    for ph in (step, 3 * step):
+        _run("phase", toplevel="pwm_center_phase", env={"PWM_PHASE": str(ph), "PWM_RANDOM_CYCLES": "0"},
+             NCH=3, PWM_HALF_PERIOD=p, DEAD_W=8, SYNC_STAGES=0, SYNC_LEAD=2, PHASE=ph)

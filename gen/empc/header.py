@@ -80,6 +80,20 @@ def governor_raw(cfg, task: str | None = None) -> dict[str, int]:
             "IQ_HOLD": governor.hold_current_raw(cfg) if g["enable"] else 0}
 
 
+def stagger_constants(cfg) -> dict[str, int]:
+    """Carrier stagger (docs/four_axes.md D4, section 3.1): PWM_STAGGER_<n> = the PHASE step of pwm_center
+    between neighbouring axes of an n-axis build (axis a: PHASE = a * PWM_STAGGER_<n>), a whole number of
+    the ADC's frames (adc_spi's default frame period at this PWM period)."""
+    from .rtlmodel.adc_spi import AdcSpiParams
+    from .rtlmodel.pwm_center import stagger_step
+    tf = AdcSpiParams(half_period=cfg.pwm_half_period, pcnt_w=16).tf    # (TF does not depend on P or PCNT_W)
+    out = {f"PWM_STAGGER_{n}": stagger_step(n, cfg.pwm_half_period, tf) for n in (2, 3, 4)}
+    for n in (2, 3, 4):
+        if (n - 1) * out[f"PWM_STAGGER_{n}"] >= 2 * cfg.pwm_half_period:
+            raise ValueError(f"carrier stagger of {n} axes beyond one PWM period")
+    return out
+
+
 def config_constants(cfg) -> dict[str, int]:
     """Integer constants the RTL needs from the configuration (raw units)."""
     p = cfg.motor.p
@@ -94,6 +108,7 @@ def config_constants(cfg) -> dict[str, int]:
         "CLK_HZ": int(round(cfg.f_clk)),
         "PWM_HALF_PERIOD": cfg.pwm_half_period,
         "PWM_PER_CONTROL": cfg.pwm_per_control,
+        **stagger_constants(cfg),
         "ENC_CPR": cpr,
         "POLE_PAIRS": p,
         "ADC_OFFSET": cfg.sensors.adc_offset,

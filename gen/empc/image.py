@@ -62,7 +62,8 @@ PROD_SHIFT_MASK = (1 << F.PROD_SHIFT_BITS) - 1
 
 # header constants that do not change what an image word means (the boot-image choice, the
 # register reset values of the speed correction and the ADC offset), and the fingerprint itself
-FMT_EXCLUDE = ("BOOT_ALGORITHM", "BOOT_TASK_POSITION", "KACC", "KACC_SHIFT", "ADC_OFFSET", "IMG_FMT_ID")
+FMT_EXCLUDE = ("BOOT_ALGORITHM", "BOOT_TASK_POSITION", "KACC", "KACC_SHIFT", "ADC_OFFSET", "IMG_FMT_ID",
+               "PWM_STAGGER_2", "PWM_STAGGER_3", "PWM_STAGGER_4")      # the carrier stagger: not the image format
 
 
 def format_id(constants: dict, units: dict) -> int:

@@ -1,6 +1,7 @@
 tb/hdl/adc_spi_slave.v
 tb/hdl/adc_spi_tb.v
 tb/hdl/pwm_center_sync2.v
+tb/hdl/pwm_center_phase.v
 tb/hdl/mpc_core_stream.v
 tb/hdl/emc_regs_tb.v
 tb/hdl/quad_gen.v

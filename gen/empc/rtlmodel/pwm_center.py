@@ -19,6 +19,13 @@ symmetric about the period centre ``n = P`` (where ``adc_trig`` is).  Outputs la
 the counter by one register stage; ``period_start`` and ``adc_trig`` are aligned
 with the outputs (period_start in the output cycle of position 0, adc_trig in the
 output cycle of position P).
+
+Carrier stagger (``phase`` = the RTL's PHASE, docs/four_axes.md D4): the counter starts
+at reset, and restarts at a ``sync_in`` rise, at position ``2P - phase`` (:func:`start_position`),
+so its counter and strobes are those of a ``phase = 0`` instance delayed by ``phase``
+clocks; such a restart (``phase`` > 0) is no boundary: the outputs go off until the next
+boundary.  :func:`stagger_step` is the offset between neighbouring axes (the header's
+``PWM_STAGGER_<NAXES>``).
 """
 from __future__ import annotations
 
@@ -33,6 +40,27 @@ def default_half_period() -> int:
     """``EMPC_PWM_HALF_PERIOD`` of the default configuration (2500 at 100 MHz / 20 kHz)."""
     from .. import config
     return config.default().pwm_half_period
+
+
+def stagger_step(naxes: int, half_period: int, frame_period: int) -> int:
+    """Carrier offset between axis n and n + 1 (clocks): TF * round(2P / (NAXES TF)), a whole number
+    of ADC frames so that one frame grid centres a window on every axis's PWM centre
+    (docs/four_axes.md section 3.1; 2P = 5000, TF = 74: 2516, 1702, 1258 for 2, 3, 4 axes)."""
+    if naxes < 1:
+        raise ValueError("naxes >= 1")
+    return 0 if naxes == 1 else frame_period * round(2 * half_period / (naxes * frame_period))
+
+
+def start_position(phase: int, half_period: int) -> int:
+    """Period position (0 = boundary, P = centre) of the counter at reset / at a sync restart."""
+    if not 0 <= phase < 2 * half_period:
+        raise ValueError(f"phase {phase} outside 0..2P-1")
+    return (2 * half_period - phase) % (2 * half_period)
+
+
+def counter_at(pos: int, half_period: int) -> tuple[int, int]:
+    """(cnt, dir) of period position ``pos``: up 0..P-1, then P, P-1, .., 1 down."""
+    return (pos, 1) if pos < half_period else (2 * half_period - pos, 0)
 
 
 def ideal_high(pos: int, cmp: int, half_period: int) -> int:
@@ -88,14 +116,14 @@ class PwmCenter:
     """Register-level model of one ``pwm_center`` instance.
 
     Parameters mirror the RTL: ``nch``, ``half_period`` (P), ``dead_w``,
-    ``sync_stages``, ``sync_lead`` (``half_period`` None = the default config's P).  Output register values are attributes
+    ``sync_stages``, ``sync_lead``, ``phase`` (``half_period`` None = the default config's P).  Output register values are attributes
     (``hi``, ``lo`` as lists of bits, ``period_start``, ``adc_trig``, ``sync_out``,
     ``fault_latched``, ``mode_eff``, ``cmp_clip``) and are returned by :meth:`step`
     as a dict.  The state after construction is the reset state.
     """
 
     def __init__(self, nch: int = 3, half_period: int | None = None, dead_w: int = 8,
-                 sync_stages: int = 0, sync_lead: int = 2):
+                 sync_stages: int = 0, sync_lead: int = 2, phase: int = 0):
         if half_period is None:
             half_period = default_half_period()
         if half_period < 2:
@@ -109,6 +137,8 @@ class PwmCenter:
         self.q_max = (1 << dead_w) - 1
         self.sync_stages = sync_stages
         self.sync_lead = sync_lead
+        self.phase = phase
+        self.cnt0, self.dir0 = counter_at(start_position(phase, half_period), half_period)
         self.reset()
 
     # ------------------------------------------------------------------ state
@@ -117,8 +147,8 @@ class PwmCenter:
         n = self.nch
         self.sync_pipe = [0] * self.sync_stages
         self.sync_prev = 0
-        self.cnt = 0
-        self.dir = 1
+        self.cnt = self.cnt0
+        self.dir = self.dir0
         self.shadow = [0] * n
         self.cmp_act = [0] * n
         self.mode_act = MODE_COMPL
@@ -162,7 +192,9 @@ class PwmCenter:
         # combinational (stage A)
         sync_s = self.sync_pipe[-1] if self.sync_stages else (inp.sync_in & 1)
         sync_rise = sync_s & (1 - self.sync_prev)
-        bnd_edge = int((not self.dir and self.cnt <= 1) or sync_rise)
+        nat_bnd = int(not self.dir and self.cnt <= 1)
+        jump = int(bool(self.phase) and sync_rise)          # restart at the phase: no boundary
+        bnd_edge = int(nat_bnd and not sync_rise) if self.phase else int(nat_bnd or sync_rise)
         ok = int(inp.enable and not inp.fault and not self.fault_latched)
         alive = self.run & ok
         clipped = [min(c, P) for c in cmp_in]
@@ -188,7 +220,9 @@ class PwmCenter:
         mode_eff_n = self.mode_act
 
         # stage A next state
-        if bnd_edge:
+        if jump:
+            cnt_n, dir_n = self.cnt0, self.dir0
+        elif bnd_edge:
             cnt_n, dir_n = 0, 1
         elif self.dir:
             cnt_n, dir_n = (P, 0) if self.cnt >= P - 1 else (self.cnt + 1, 1)
@@ -198,7 +232,7 @@ class PwmCenter:
         if bnd_edge:
             cmp_act_n, mode_act_n, run_n = list(self.shadow), inp.mode & 1, ok
         else:
-            cmp_act_n, mode_act_n, run_n = self.cmp_act, self.mode_act, alive
+            cmp_act_n, mode_act_n, run_n = self.cmp_act, self.mode_act, alive & (1 - jump)
         fl_n = int(inp.fault or (self.fault_latched and not inp.fault_clear))
 
         # commit
