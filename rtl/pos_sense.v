@@ -549,15 +549,16 @@ module pos_sense #(
     wire [NAXES*MW-1:0]         m_w;
     wire [NAXES*HW-1:0]         ha_w;
     wire [NAXES-1:0]            ipend_w, ucal_w, vin_w, al_w;
-    wire [NAXES-1:0]            ev_any, dirty;
+    wire [NAXES-1:0]            ev_any, dirty, pend_w;
     // engine
     reg  [AW-1:0]  cur;                                     // axis of the reducer's job / last visit
     wire [AW-1:0]  nxt = (cur == LAST) ? {AW{1'b0}} : cur + 1'b1;
     wire [POS_W-1:0] pos_n = pos[nxt*POS_W +: POS_W];
     wire [POS_W-1:0] ref_n = ipend_w[nxt] ? ip_w[nxt*POS_W +: POS_W] : lp_w[nxt*POS_W +: POS_W];
     wire [POS_W-1:0] d = pos_n - ref_n;
-    wire [POS_W:0]   d_eqc = {1'b0, pos_n ~^ ref_n} + {{POS_W{1'b0}}, 1'b1};
-    wire             d_zero = d_eqc[POS_W];
+    // work for the visited axis: new counts (the per-axis comparator of theta_ok), or an index
+    // alignment (a job even when the lag pos - index_pos is 0: one clock)
+    wire             work = pend_w[nxt] || ipend_w[nxt];
     // the job ends: its last bit, or an alignment event of its axis (which restarts m)
     wire fin = busy && (r_done || ev_any[cur]);
     assign load = !busy || fin;                             // visit the next axis
@@ -572,7 +573,7 @@ module pos_sense #(
             cur  <= nxt;
             r    <= d;
             k    <= {KW{1'b0}};
-            busy <= !d_zero && !ev_any[nxt];
+            busy <= work && !ev_any[nxt];
         end else begin
             r    <= r_sh;
             k    <= k + 1'b1;
@@ -596,7 +597,8 @@ module pos_sense #(
         wire eng_ld = load && (nxt == A);
         wire eng_wr = busy && (cur == A) && r[0];
         assign ev_any[ga] = ev_index || ev_hall;
-        assign dirty[ga] = ipend || (pos_a != lp) || (busy && (cur == A)) || ev_index || ev_hall;
+        assign pend_w[ga] = (pos_a != lp);
+        assign dirty[ga] = ipend || pend_w[ga] || (busy && (cur == A)) || ev_index || ev_hall;
         assign lp_w[ga*POS_W +: POS_W] = lp;
         assign ip_w[ga*POS_W +: POS_W] = ip;
         assign ipend_w[ga] = ipend;

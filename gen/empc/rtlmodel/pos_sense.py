@@ -277,9 +277,10 @@ class PosSenseMx:
     :attr:`OUTPUTS`, the list over the axes after the edge.
 
     Engine: the reducer visits the axes in the fixed order 0, 1, ..., NAXES-1, 0, ...  A visit
-    captures d = pos - last_pos of that axis (pos - index_pos after an index alignment); d = 0
-    costs one clock, else one clock per bit of d (POS_W at most) and the next visit is captured
-    in the clock of the last bit.  An alignment event of an axis restarts its m at once (its job,
+    captures d = pos - last_pos of that axis (pos - index_pos after an index alignment); a visit
+    without work (pos = last_pos, no index alignment pending) costs one clock, else the job takes
+    one clock per bit of d (POS_W at most; 1 for d = 0 after an index) and the next visit is
+    captured in the clock of the last bit.  An alignment event of an axis restarts its m at once (its job,
     if running, ends).  The angle pipeline samples one axis per clock, round robin, and writes
     its theta / valid / aligned 3 clocks later; theta_ok tags the sample.
     """
@@ -358,7 +359,8 @@ class PosSenseMx:
             step = -(1 << k) if r == -1 else (1 << k)
             m_new = (self.m[cur] + step) % self.cpr
         if load:
-            n_cur, n_r, n_k, n_busy = nxt, F.wrap(d, pw), 0, int(d != 0 and not ev_any[nxt])
+            work = inp["pos"][nxt] != self.lp[nxt] or self.ipend[nxt]
+            n_cur, n_r, n_k, n_busy = nxt, F.wrap(d, pw), 0, int(bool(work) and not ev_any[nxt])
         else:
             n_cur, n_r, n_k, n_busy = cur, r >> 1, k + 1, busy
         # ---- angle pipeline (pre-edge values) ----
