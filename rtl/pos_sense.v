@@ -1,4 +1,4 @@
-// pos_sense: electrical angle, alignment and speed estimate for one axis
+// pos_sense: electrical angle, alignment and speed estimate for NAXES axes (one shared engine)
 // (paper 000 sec. V-A "Position Sensing", eq. 37).
 //
 // Mechanical position modulo CPR, exact and drift free:
@@ -62,28 +62,60 @@
 // Multi-turn position for the position loop: the raw POS_W-bit count pos
 // (modular; use differences).
 //
-// Ports:
+// Ports (NAXES = 1: exactly today's one-axis ports plus theta_ok; NAXES > 1: every
+// per-axis port is a vector, axis a at [a*W +: W]):
 //   pos[POS_W], index_event, index_pos[POS_W]   from irc_decoder
 //   hall_sector[3], hall_valid, hall_change     from hall_decoder
 //   cal_offset[16], hall_offset[16]             calibration registers
 //   align_clear, sample                          strobes
 //   theta[16], valid, aligned, pos_mod[MW]      angle (continuous)
+//   theta_ok                                     theta is the final angle of the count pos
+//                                                present in this clock (combinational from
+//                                                pos: pos != the count in m, the reducer busy
+//                                                on the axis or an alignment event clear it;
+//                                                offset changes do not, they reach theta
+//                                                within the angle latency)
 //   speed[POS_W], speed_q[W_W], speed_sat, pos_at_sample[POS_W],
 //   theta_at_sample[16], sample_valid           per sample
 // Parameters: CPR, POLE_PAIRS, POS_W, ANGLE_BITS, MUL_W, ANGLE_MUL_SHIFT (-1 =
 //   auto), W_W, W_FRAC (>= 1), REALIGN (0/1, see above), ANGLE_DSP (1 = the
 //   product on a DSP48A1; 0 = m * ANGLE_MUL tracked in fabric next to m, same
-//   outputs and latency, about 90 LUTs more, no DSP).  MW = clog2(CPR).
+//   outputs and latency, about 90 LUTs more, no DSP; NAXES = 1 only), NAXES (1 =
+//   today's one-axis datapath; > 1 = the shared engine below).  MW = clog2(CPR).
 //   2 <= CPR < 2**17 keeps the product in one DSP (larger works, more DSPs).
-// Latency: pos step -> pos_mod 2 clocks (+1 per extra bit of a jump);
+// Latency (NAXES = 1): pos step -> pos_mod 2 clocks (+1 per extra bit of a jump);
 //   pos_mod -> theta 2 clocks (DSP M register, then the DSP post-adder adds
 //   the offset and the rounding constant into the P register = theta);
-//   a +-1 count reaches theta 4 clocks after pos.  valid/aligned are delayed
-//   with theta.  sample -> speed/... 1 clock.
-// Reset: m = 0, not aligned, no HALL init, theta valid = 0, speed 0.
-// Resources (Yosys synth_xilinx xc6s, default): 1 DSP48A1, 1 RAMB8BWER (the
-//   c_k and HALL angle tables as a ROM), ~195 FFs, ~215 LUTs (~125 LUTs / ~95 FFs
-//   when the speed/sample outputs are left open, as in mpc_axis).
+//   a +-1 count reaches theta 4 clocks after pos (theta_ok 4 clocks after the last
+//   change).  valid/aligned are delayed with theta.  sample -> speed/... 1 clock.
+//
+// NAXES > 1, one shared engine (per-axis state in flip-flops: m, last_pos, the
+// latched index count, alignment / HALL state, base ROM address, theta, about 100
+// bits per axis without the speed outputs):
+//   - the reducer visits the axes in the fixed order 0, 1, ..., NAXES-1, 0, ...: a
+//     visit of axis a captures d = pos[a] - last_pos[a] (pos[a] - index_pos[a] once
+//     after an index alignment); no work (pos = last_pos, no index pending) costs
+//     one clock, a job one clock per bit of d (at most POS_W), and the next visit is
+//     captured in the clock of the job's last bit.  Same c_k ROM and reducer as above.
+//   - alignment events act in their own clock on their axis alone (m = 0, base,
+//     last_pos = pos at a HALL event, index_pos latched at an index alignment); a job
+//     of that axis in flight ends.  Same priorities and angles as NAXES = 1.
+//   - the angle pipeline samples one axis per clock, round robin (m, HALL-angle ROM
+//     read, offset), then m * ANGLE_MUL (DSP M), + base * 2**S + 2**(S-1) (DSP P),
+//     and writes theta / valid / aligned of that axis 4 clocks after the sample; a
+//     tag (axis not dirty before any of the 4 edges) sets theta_ok.
+//   - latency, count change of axis a -> theta_ok[a] (tb/test_pos_sense_naxes.py):
+//     all axes jump at once, from an idle engine: <= NAXES*POS_W + NAXES + 4 clocks
+//     (136 at NAXES = 4, POS_W = 32; measured worst 135; design figure 134); any
+//     situation (the engine may have just captured a's previous count): <=
+//     (NAXES+1)*POS_W + NAXES + 4 (168; measured 165).  A +-1 step of one axis: 8..11
+//     clocks (NAXES = 4).  An offset change reaches theta within NAXES + 4 clocks.
+// Reset: m = 0, not aligned, no HALL init, theta valid = 0, theta_ok = 0, speed 0.
+// Resources (Yosys synth_xilinx xc6s, OOC): NAXES = 1: 1 DSP48A1, 1 RAMB8BWER (the
+//   c_k and HALL angle tables as a ROM), 198 FFs, 218 LUTs (215 / 196 with theta_ok
+//   open; ~130 LUTs / ~98 FFs when the speed/sample outputs are left open, as in
+//   mpc_axis).  NAXES = 4: 1 DSP48A1, 1 RAMB8BWER, 929 FFs, 824 LUTs (464 LUTs /
+//   529 FFs with the per-axis speed/sample outputs open).
 `default_nettype none
 `include "empc_formats.vh"
 module pos_sense #(
