@@ -576,6 +576,7 @@ module pos_sense #(
     localparam [AW-1:0] LAST = LASTI[AW-1:0];
     localparam integer HW = TA + 1;                                     // ROM address width
     localparam [HW-1:0] ZERO_A = {1'b0, {TA{1'b1}}};                    // a ROM word that is 0
+    localparam integer PG = (POS_W + 2) / 3;                            // 3-bit groups of a count
     // per-axis state, flattened (axis a at [a*W +: W]) for the multiplexers
     wire [NAXES*POS_W-1:0]      lp_w, ip_w;
     wire [NAXES*MW-1:0]         m_w;
@@ -629,7 +630,16 @@ module pos_sense #(
         wire eng_ld = load && (nxt == A);
         wire eng_wr = busy && (cur == A) && r[0];
         assign ev_any[ga] = ev_index || ev_hall;
-        assign pend_w[ga] = (pos_a != lp);
+        // pos_a != lp: groups of 3 bit pairs (one LUT6 each), ANDed on a carry chain
+        wire [PG-1:0]    eq_g;
+        wire [3*PG-1:0]  pos_x = {{(3*PG-POS_W){1'b0}}, pos_a};
+        wire [3*PG-1:0]  lp_x = {{(3*PG-POS_W){1'b0}}, lp};
+        genvar gq;
+        for (gq = 0; gq < PG; gq = gq + 1) begin : g_eq
+            assign eq_g[gq] = (pos_x[3*gq +: 3] == lp_x[3*gq +: 3]);
+        end
+        wire [PG:0]      eq_c = {1'b0, eq_g} + {{PG{1'b0}}, 1'b1};
+        assign pend_w[ga] = !eq_c[PG];
         assign dirty[ga] = ipend || pend_w[ga] || (busy && (cur == A)) || ev_index || ev_hall;
         assign lp_w[ga*POS_W +: POS_W] = lp;
         assign ip_w[ga*POS_W +: POS_W] = ip;
@@ -696,7 +706,8 @@ module pos_sense #(
     reg  [MP_W-1:0]       mprod;
     reg  [ACC_W-1:0]      acc;
     /* verilator lint_on UNUSEDSIGNAL */
-    reg  [ANGLE_BITS-1:0] offq, base_d;
+    reg  [ANGLE_BITS-1:0] calq, hallq, base_d;
+    reg                   ucq;
     reg  [AW-1:0]         a1, a2, a3;
     reg                   c1, c2, c3, v1, v2, v3, l1, l2, l3;
     wire [AW-1:0]         ap_nx = (ap == LAST) ? {AW{1'b0}} : ap + 1'b1;
@@ -706,12 +717,20 @@ module pos_sense #(
         base_s[S +: ANGLE_BITS] = base_d;
     end
     wire [MP_W-1:0] m_mul = mb * MUL;
+    // base + offset as {base, 0} - {~offset, 1} (>> 1), the cal / hall select folded into
+    // the adder's LUTs (as for NAXES = 1)
+    wire [ANGLE_BITS-1:0] off_sel = ucq ? calq : hallq;
+    /* verilator lint_off UNUSEDSIGNAL */ // bit 0 is the carry-in position only
+    wire [ANGLE_BITS:0]   base_sum = {hq[ANGLE_BITS-1:0], 1'b0} - {~off_sel, 1'b1};
+    /* verilator lint_on UNUSEDSIGNAL */
     always @(posedge clk) hq <= trom[ha_w[ap*HW +: HW]];
     always @(posedge clk) begin
         if (rst) begin
             ap     <= {AW{1'b0}};
             mb     <= {MW{1'b0}};
-            offq   <= {ANGLE_BITS{1'b0}};
+            calq   <= {ANGLE_BITS{1'b0}};
+            hallq  <= {ANGLE_BITS{1'b0}};
+            ucq    <= 1'b0;
             base_d <= {ANGLE_BITS{1'b0}};
             mprod  <= {MP_W{1'b0}};
             acc    <= {ACC_W{1'b0}};
@@ -722,13 +741,15 @@ module pos_sense #(
         end else begin
             ap     <= ap_nx;
             mb     <= m_w[ap*MW +: MW];
-            offq   <= ucal_w[ap] ? cal_offset[ap*ANGLE_BITS +: ANGLE_BITS] : hall_offset[ap*ANGLE_BITS +: ANGLE_BITS];
+            calq   <= cal_offset[ap*ANGLE_BITS +: ANGLE_BITS];
+            hallq  <= hall_offset[ap*ANGLE_BITS +: ANGLE_BITS];
+            ucq    <= ucal_w[ap];
             a1     <= ap;
             c1     <= !dirty[ap];
             v1     <= vin_w[ap];
             l1     <= al_w[ap];
             mprod  <= m_mul;
-            base_d <= hq[ANGLE_BITS-1:0] + offq;
+            base_d <= base_sum[ANGLE_BITS:1];
             a2     <= a1;
             c2     <= c1 && !dirty[a1];
             v2     <= v1;
