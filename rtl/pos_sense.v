@@ -114,8 +114,8 @@
 // Resources (Yosys synth_xilinx xc6s, OOC): NAXES = 1: 1 DSP48A1, 1 RAMB8BWER (the
 //   c_k and HALL angle tables as a ROM), 198 FFs, 218 LUTs (215 / 196 with theta_ok
 //   open; ~130 LUTs / ~98 FFs when the speed/sample outputs are left open, as in
-//   mpc_axis).  NAXES = 4: 1 DSP48A1, 1 RAMB8BWER, 929 FFs, 824 LUTs (464 LUTs /
-//   529 FFs with the per-axis speed/sample outputs open).
+//   mpc_axis).  NAXES = 4: 1 DSP48A1, 1 RAMB8BWER, 946 FFs, 766 LUTs (409 LUTs /
+//   546 FFs with the per-axis speed/sample outputs open).
 `default_nettype none
 `include "empc_formats.vh"
 module pos_sense #(
