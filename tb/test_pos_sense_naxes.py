@@ -1,4 +1,7 @@
-"""pos_sense with NAXES = 4: one shared reducer / alignment engine and one angle DSP.
+"""pos_sense with NAXES > 1: one shared reducer / alignment engine and one angle DSP.
+
+Four builds: NAXES = 4 with CPR/P 4000/4 and 1000/7 (REALIGN = 1), NAXES = 3 (4096/3),
+NAXES = 2 (4000/4, REALIGN = 1); the figures below are NAXES = 4's.
 
 Every output of every axis is compared bit-exact with the stepping model
 empc.rtlmodel.pos_sense.PosSenseMx on every clock.  Independently of the model:
@@ -23,6 +26,8 @@ import json
 import os
 import random
 
+import pytest
+
 import cocotb
 from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge
@@ -44,9 +49,10 @@ class Env:
         cfg = json.loads(os.environ["TB_PARAMS"])
         self.n = cfg["NAXES"]
         self.cpr, self.p = cfg["CPR"], cfg["POLE_PAIRS"]
+        self.realign = bool(cfg.get("REALIGN", 0))
         self.seed = int(os.environ.get("EMPC_SEED", DEFAULT_SEED))
         self.rng = random.Random(self.seed)
-        self.model = PosSenseMx(self.n, self.cpr, self.p)
+        self.model = PosSenseMx(self.n, self.cpr, self.p, realign=self.realign)
         self.bound_sim, self.bound_any = latency_bound(self.n)
         self.mw = len(dut.pos_mod) // self.n
         self.wout = dict(theta=16, valid=1, aligned=1, theta_ok=1, pos_mod=self.mw, speed=32, speed_q=32,
@@ -57,8 +63,9 @@ class Env:
         self.n_lat = 0
         self.n_exact = 0
         self.max_lat = 0
-        dut._log.info("NAXES %d CPR %d P %d: theta_ok bounds %d (simultaneous 32-bit jumps) / %d (any); "
-                      "seed %d (EMPC_SEED)", self.n, self.cpr, self.p, self.bound_sim, self.bound_any, self.seed)
+        dut._log.info("NAXES %d CPR %d P %d REALIGN %d: theta_ok bounds %d (simultaneous 32-bit jumps) / %d (any); "
+                      "seed %d (EMPC_SEED)", self.n, self.cpr, self.p, self.realign, self.bound_sim, self.bound_any,
+                      self.seed)
 
     def fresh(self):
         n = self.n
@@ -112,8 +119,8 @@ class Env:
             if (prev is not None and prev[a] != inp["pos"][a]) or inp["index_event"][a] or inp["hall_change"][a] \
                     or (inp["hall_valid"][a] and not self._prev_hv[a]):
                 self.last[a] = c
-            # the test's own alignment state (REALIGN = 0)
-            if inp["index_event"][a] and (self.ref[a] is None or inp["align_clear"][a]):
+            # the test's own alignment state
+            if inp["index_event"][a] and (self.ref[a] is None or inp["align_clear"][a] or self.realign):
                 self.ref[a] = self._index_true[a]
             elif inp["align_clear"][a]:
                 self.ref[a] = None
@@ -244,7 +251,8 @@ async def fuzz_all_axes(dut):
 
 @cocotb.test()
 async def latency_bound_jumps(dut):
-    """Four simultaneous -2**31 jumps from every phase: theta_ok within 136 clocks; stale jobs within 168."""
+    """NAXES simultaneous -2**31 jumps from every phase: theta_ok within bound_sim (136 at NAXES = 4); stale
+    jobs within bound_any (168)."""
     env = Env(dut)
     await env.start()
     rng = env.rng
@@ -294,9 +302,9 @@ async def latency_bound_jumps(dut):
             assert lat is not None and lat <= env.bound_any, f"axis {a0}: stale-job latency {lat}"
             worst_any = max(worst_any, lat)
             await env.wait(env.bound_any)
-    dut._log.info("latency: four simultaneous 32-bit jumps, %d phases: worst %d <= %d clocks; new count right "
-                  "after the capture of the old one (stale job + 3 jobs + own): worst %d <= %d clocks",
-                  2 * n + 3, worst_sim, env.bound_sim, worst_any, env.bound_any)
+    dut._log.info("latency: %d simultaneous 32-bit jumps, %d phases: worst %d <= %d clocks; new count right "
+                  "after the capture of the old one (stale job + the others' jobs + own): worst %d <= %d clocks",
+                  n, 2 * n + 3, worst_sim, env.bound_sim, worst_any, env.bound_any)
 
 
 @cocotb.test()
@@ -371,8 +379,9 @@ async def isolation(dut):
                   n_cmp, n_ok)
 
 
-def test_pos_sense_naxes():
+@pytest.mark.parametrize("naxes,cpr,p,realign", [(4, 4000, 4, 0), (4, 1000, 7, 1), (3, 4096, 3, 0), (2, 4000, 4, 1)])
+def test_pos_sense_naxes(naxes, cpr, p, realign):
     from runner import run
-    params = dict(CPR=4000, POLE_PAIRS=4, NAXES=4)
+    params = dict(CPR=cpr, POLE_PAIRS=p, NAXES=naxes, REALIGN=realign)
     run(toplevel="pos_sense", test_module="test_pos_sense_naxes", parameters=params,
-        name="test_pos_sense_naxes4", extra_env={"TB_PARAMS": json.dumps(params)})
+        name=f"test_pos_sense_naxes{naxes}_{cpr}_{p}_{realign}", extra_env={"TB_PARAMS": json.dumps(params)})
