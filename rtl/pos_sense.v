@@ -90,7 +90,7 @@
 //   change).  valid/aligned are delayed with theta.  sample -> speed/... 1 clock.
 //
 // NAXES > 1, one shared engine (per-axis state in flip-flops: m, last_pos, the
-// latched index count, alignment / HALL state, base ROM address, theta, about 100
+// latched index count, alignment / HALL state, base ROM address, theta, about 110
 // bits per axis without the speed outputs):
 //   - the reducer visits the axes in the fixed order 0, 1, ..., NAXES-1, 0, ...: a
 //     visit of axis a captures d = pos[a] - last_pos[a] (pos[a] - index_pos[a] once

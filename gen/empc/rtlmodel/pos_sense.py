@@ -98,7 +98,9 @@ class PosSense:
     the attributes hold the registered outputs: ``theta``, ``valid``,
     ``aligned``, ``pos_mod``, ``speed`` (unsigned pos_w pattern), ``speed_q``
     (unsigned w_w pattern), ``speed_sat``, ``pos_at_sample``,
-    ``theta_at_sample``, ``sample_valid``.
+    ``theta_at_sample``, ``sample_valid``; ``theta_ok`` is combinational (theta is the final
+    angle of the count of the inputs of the last step: not dirty before the last two edges nor
+    now; dirty = pos != last_pos, the reducer busy, or an alignment event).
     """
 
     OUTPUTS = ("theta", "valid", "aligned", "theta_ok", "pos_mod", "speed", "speed_q", "speed_sat",
