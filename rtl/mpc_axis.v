@@ -158,7 +158,7 @@ module mpc_axis #(
         .clk(clk), .rst(rst), .pos(pos), .index_event(index_event), .index_pos(index_pos),
         .hall_sector(hall_sector), .hall_valid(hall_valid), .hall_change(hall_change),
         .cal_offset(angle_cal), .hall_offset(hall_offset), .align_clear(cmd_align_clear), .sample(pos_sample),
-        .theta(theta), .valid(theta_valid), .aligned(aligned), .pos_mod(),
+        .theta(theta), .valid(theta_valid), .aligned(aligned), .theta_ok(), .pos_mod(),
         .speed(ps_speed), .speed_q(ps_speed_q), .speed_sat(speed_sat), .pos_at_sample(pos_at_sample),
         .theta_at_sample(theta_at_sample), .sample_valid(sample_valid));
     /* verilator lint_on PINCONNECTEMPTY */

@@ -1,4 +1,4 @@
-// pos_sense: electrical angle, alignment and speed estimate for one axis
+// pos_sense: electrical angle, alignment and speed estimate for NAXES axes (one shared engine)
 // (paper 000 sec. V-A "Position Sensing", eq. 37).
 //
 // Mechanical position modulo CPR, exact and drift free:
@@ -62,28 +62,60 @@
 // Multi-turn position for the position loop: the raw POS_W-bit count pos
 // (modular; use differences).
 //
-// Ports:
+// Ports (NAXES = 1: exactly today's one-axis ports plus theta_ok; NAXES > 1: every
+// per-axis port is a vector, axis a at [a*W +: W]):
 //   pos[POS_W], index_event, index_pos[POS_W]   from irc_decoder
 //   hall_sector[3], hall_valid, hall_change     from hall_decoder
 //   cal_offset[16], hall_offset[16]             calibration registers
 //   align_clear, sample                          strobes
 //   theta[16], valid, aligned, pos_mod[MW]      angle (continuous)
+//   theta_ok                                     theta is the final angle of the count pos
+//                                                present in this clock (combinational from
+//                                                pos: pos != the count in m, the reducer busy
+//                                                on the axis or an alignment event clear it;
+//                                                offset changes do not, they reach theta
+//                                                within the angle latency)
 //   speed[POS_W], speed_q[W_W], speed_sat, pos_at_sample[POS_W],
 //   theta_at_sample[16], sample_valid           per sample
 // Parameters: CPR, POLE_PAIRS, POS_W, ANGLE_BITS, MUL_W, ANGLE_MUL_SHIFT (-1 =
 //   auto), W_W, W_FRAC (>= 1), REALIGN (0/1, see above), ANGLE_DSP (1 = the
 //   product on a DSP48A1; 0 = m * ANGLE_MUL tracked in fabric next to m, same
-//   outputs and latency, about 90 LUTs more, no DSP).  MW = clog2(CPR).
+//   outputs and latency, about 90 LUTs more, no DSP; NAXES = 1 only), NAXES (1 =
+//   today's one-axis datapath; > 1 = the shared engine below).  MW = clog2(CPR).
 //   2 <= CPR < 2**17 keeps the product in one DSP (larger works, more DSPs).
-// Latency: pos step -> pos_mod 2 clocks (+1 per extra bit of a jump);
+// Latency (NAXES = 1): pos step -> pos_mod 2 clocks (+1 per extra bit of a jump);
 //   pos_mod -> theta 2 clocks (DSP M register, then the DSP post-adder adds
 //   the offset and the rounding constant into the P register = theta);
-//   a +-1 count reaches theta 4 clocks after pos.  valid/aligned are delayed
-//   with theta.  sample -> speed/... 1 clock.
-// Reset: m = 0, not aligned, no HALL init, theta valid = 0, speed 0.
-// Resources (Yosys synth_xilinx xc6s, default): 1 DSP48A1, 1 RAMB8BWER (the
-//   c_k and HALL angle tables as a ROM), ~195 FFs, ~215 LUTs (~125 LUTs / ~95 FFs
-//   when the speed/sample outputs are left open, as in mpc_axis).
+//   a +-1 count reaches theta 4 clocks after pos (theta_ok 4 clocks after the last
+//   change).  valid/aligned are delayed with theta.  sample -> speed/... 1 clock.
+//
+// NAXES > 1, one shared engine (per-axis state in flip-flops: m, last_pos, the
+// latched index count, alignment / HALL state, base ROM address, theta, about 110
+// bits per axis without the speed outputs):
+//   - the reducer visits the axes in the fixed order 0, 1, ..., NAXES-1, 0, ...: a
+//     visit of axis a captures d = pos[a] - last_pos[a] (pos[a] - index_pos[a] once
+//     after an index alignment); no work (pos = last_pos, no index pending) costs
+//     one clock, a job one clock per bit of d (at most POS_W), and the next visit is
+//     captured in the clock of the job's last bit.  Same c_k ROM and reducer as above.
+//   - alignment events act in their own clock on their axis alone (m = 0, base,
+//     last_pos = pos at a HALL event, index_pos latched at an index alignment); a job
+//     of that axis in flight ends.  Same priorities and angles as NAXES = 1.
+//   - the angle pipeline samples one axis per clock, round robin (m, HALL-angle ROM
+//     read, offset), then m * ANGLE_MUL (DSP M), + base * 2**S + 2**(S-1) (DSP P),
+//     and writes theta / valid / aligned of that axis 4 clocks after the sample; a
+//     tag (axis not dirty before any of the 4 edges) sets theta_ok.
+//   - latency, count change of axis a -> theta_ok[a] (tb/test_pos_sense_naxes.py):
+//     all axes jump at once, from an idle engine: <= NAXES*POS_W + NAXES + 4 clocks
+//     (136 at NAXES = 4, POS_W = 32; measured worst 135; design figure 134); any
+//     situation (the engine may have just captured a's previous count): <=
+//     (NAXES+1)*POS_W + NAXES + 4 (168; measured 165).  A +-1 step of one axis: 8..11
+//     clocks (NAXES = 4).  An offset change reaches theta within NAXES + 4 clocks.
+// Reset: m = 0, not aligned, no HALL init, theta valid = 0, theta_ok = 0, speed 0.
+// Resources (Yosys synth_xilinx xc6s, OOC): NAXES = 1: 1 DSP48A1, 1 RAMB8BWER (the
+//   c_k and HALL angle tables as a ROM), 198 FFs, 218 LUTs (215 / 196 with theta_ok
+//   open; ~130 LUTs / ~98 FFs when the speed/sample outputs are left open, as in
+//   mpc_axis).  NAXES = 4: 1 DSP48A1, 1 RAMB8BWER, 946 FFs, 766 LUTs (409 LUTs /
+//   546 FFs with the per-axis speed/sample outputs open).
 `default_nettype none
 `include "empc_formats.vh"
 module pos_sense #(
@@ -96,31 +128,34 @@ module pos_sense #(
     parameter integer W_W = `EMPC_W_W,
     parameter integer W_FRAC = `EMPC_W_FRAC,
     parameter integer REALIGN = 0,
-    parameter integer ANGLE_DSP = 1
+    parameter integer ANGLE_DSP = 1,
+    parameter integer NAXES = 1
 ) (
-    input  wire                  clk,
-    input  wire                  rst,
-    input  wire [POS_W-1:0]      pos,
-    input  wire                  index_event,
-    input  wire [POS_W-1:0]      index_pos,
-    input  wire [2:0]            hall_sector,
-    input  wire                  hall_valid,
-    input  wire                  hall_change,
-    input  wire [ANGLE_BITS-1:0] cal_offset,
-    input  wire [ANGLE_BITS-1:0] hall_offset,
-    input  wire                  align_clear,
-    input  wire                  sample,
-    output wire [ANGLE_BITS-1:0] theta,
-    output reg                   valid,
-    output reg                   aligned,
-    output wire [MW-1:0]         pos_mod,
-    output reg  [POS_W-1:0]      speed,
-    output reg  [W_W-1:0]        speed_q,
-    output reg                   speed_sat,
-    output reg  [POS_W-1:0]      pos_at_sample,
-    output reg  [ANGLE_BITS-1:0] theta_at_sample,
-    output reg                   sample_valid
+    input  wire                          clk,
+    input  wire                          rst,
+    input  wire [NAXES*POS_W-1:0]        pos,
+    input  wire [NAXES-1:0]              index_event,
+    input  wire [NAXES*POS_W-1:0]        index_pos,
+    input  wire [NAXES*3-1:0]            hall_sector,
+    input  wire [NAXES-1:0]              hall_valid,
+    input  wire [NAXES-1:0]              hall_change,
+    input  wire [NAXES*ANGLE_BITS-1:0]   cal_offset,
+    input  wire [NAXES*ANGLE_BITS-1:0]   hall_offset,
+    input  wire [NAXES-1:0]              align_clear,
+    input  wire [NAXES-1:0]              sample,
+    output wire [NAXES*ANGLE_BITS-1:0]   theta,
+    output wire [NAXES-1:0]              valid,
+    output wire [NAXES-1:0]              aligned,
+    output wire [NAXES-1:0]              theta_ok,
+    output wire [NAXES*MW-1:0]           pos_mod,
+    output wire [NAXES*POS_W-1:0]        speed,
+    output wire [NAXES*W_W-1:0]          speed_q,
+    output wire [NAXES-1:0]              speed_sat,
+    output wire [NAXES*POS_W-1:0]        pos_at_sample,
+    output wire [NAXES*ANGLE_BITS-1:0]   theta_at_sample,
+    output wire [NAXES-1:0]              sample_valid
 );
+
     // ---------------- constants ----------------
     function integer clog2;
         input integer v;
@@ -259,42 +294,12 @@ module pos_sense #(
         end
     end
 
-    // ---------------- state ----------------
-    reg [POS_W-1:0]      last_pos;   // count already handed to the reducer
-    reg [POS_W-1:0]      r;          // remaining jump (signed), shifted right per clock
-    reg [KW-1:0]         k;          // bit of the jump in r[0]: weight 2**k
-    reg [MW-1:0]         m;          // (pos - ref) mod CPR
+    // ---------------- reducer datapath shared by both variants ----------------
+    reg  [POS_W-1:0]     r;          // remaining jump (signed), shifted right per clock
+    reg  [KW-1:0]        k;          // bit of the jump in r[0]: weight 2**k
     reg                  busy;
-    reg                  al;         // index aligned (internal, leads the output by 2 clocks)
-    reg                  rel_cal;    // not aligned, but base_rel is relative to cal_offset (align_clear)
-    reg                  hall_init;
-    reg [2:0]            last_sector;
-    /* verilator lint_off UNUSEDSIGNAL */ // ROM word bits above ANGLE_BITS
-    reg [TW-1:0]         base_r;     // ROM port A: angle added to f(m), relative to the offset in use
-    /* verilator lint_on UNUSEDSIGNAL */
-    wire [ANGLE_BITS-1:0] base_rel = base_r[ANGLE_BITS-1:0];
-
-    assign pos_mod = m;
-
-    // ---------------- alignment events ----------------
-    wire ev_hall_init = !al && !hall_init && hall_valid;
-    wire ev_hall_chg  = !al && hall_init && hall_valid && hall_change;
-    wire ev_hall = ev_hall_init || ev_hall_chg;
-    // ROM address of the HALL angle (hall_init = 0 there at the HALL init event)
-    wire [TA:0] hall_addr = HALL_BASE | {{(TA+1-HA){1'b0}}, hall_init, last_sector, hall_sector};
-    // index alignment: the first index after reset / align_clear (every index if REALIGN)
-    wire ev_index = index_event && (!al || align_clear || (REALIGN != 0));
-    wire ev_any = ev_index || ev_hall;
-
-    // ---------------- bit-serial modular accumulation ----------------
-    // d: the new counts (pos - last_pos), or at an index event the lag pos - index_pos
-    // (m restarts at 0 = index_pos and the reducer adds the counts since the index)
-    wire [POS_W-1:0] d_ref = ev_index ? index_pos : last_pos;
-    wire [POS_W-1:0] d = pos - d_ref;
-    // d == 0 without an OR tree over d: pos ~^ d_ref (the subtractor's own propagate LUTs)
-    // all ones, as the carry out of +1 on a carry chain
-    wire [POS_W:0]   d_eqc = {1'b0, pos ~^ d_ref} + {{POS_W{1'b0}}, 1'b1};
-    wire             d_zero = d_eqc[POS_W];
+    wire                 load;       // r <= d this clock (per variant)
+    wire [MW-1:0]        m_cur;      // m of the axis the reducer works on
     wire [POS_W-1:0] r_sh = {r[POS_W-1], r[POS_W-1:1]};
     // r[POS_W-1:1] all 0 or all 1 = r[POS_W-2:1] all equal to the sign r[POS_W-1]: groups of
     // UGS bits (one LUT6 each with the sign), ANDed on a carry chain (carry out of +1)
@@ -315,7 +320,6 @@ module pos_sense #(
     wire r_uni = r_unc[UG];                     // r[POS_W-1:1] is 0 or -1
     wire r_neg1 = r_uni & r[POS_W-1] & r[0];    // remainder -1: subtract 2**k, done
     wire r_done = r_uni & (~r[POS_W-1] | r[0]); // last bit of the jump
-    wire load = !busy || ev_any;                // r <= d (ignored when d = 0 or at a HALL event)
     // m +- c (c = 2**k mod CPR), then back into [0, CPR): + CPR if negative (subtract),
     // - CPR if >= CPR (add).  s is in (-CPR, 2*CPR); the reduced value's top bit is 0.
     // c = C_TAB[k]: ROM port B read with k's next value
@@ -325,18 +329,92 @@ module pos_sense #(
     /* verilator lint_on UNUSEDSIGNAL */
     always @(posedge clk) c_r <= trom[{{(TA+1-KW){1'b0}}, k_nx}];
     wire [MW-1:0] c = c_r[MW-1:0];
-    always @(posedge clk) begin
-        if (rst || ev_index || (align_clear && al))
-            base_r <= {TW{1'b0}};
-        else if (ev_hall)
-            base_r <= trom[hall_addr];
-    end
-    wire [MW+1:0] s = {2'b0, m} + ({2'b0, c} ^ {(MW+2){r_neg1}}) + {{(MW+1){1'b0}}, r_neg1};
+    wire [MW+1:0] s = {2'b0, m_cur} + ({2'b0, c} ^ {(MW+2){r_neg1}}) + {{(MW+1){1'b0}}, r_neg1};
     wire s_neg = s[MW+1];
     wire s_ge = !s_neg && (s[MW:0] >= CPR_C);
     /* verilator lint_off UNUSEDSIGNAL */
     wire [MW:0] s_red = s[MW:0] + (s_neg ? CPR_C : s_ge ? -CPR_C : {(MW+1){1'b0}});
     /* verilator lint_on UNUSEDSIGNAL */
+
+    // ---------------- angle constants ----------------
+    // Both variants give theta(t+2) = ((m(t) * ANGLE_MUL + 2**(S-1)) >> S) + base_d(t+1)
+    // (mod 2**ANGLE_BITS); only the low S + ANGLE_BITS bits of the product matter.
+    localparam integer ACC_W = S + ANGLE_BITS;
+    localparam integer MP_W = (PROD_W > ACC_W) ? PROD_W : ACC_W;   // DSP M register
+    localparam [ACC_W-1:0] HALF = (S > 0) ? ({{(ACC_W-1){1'b0}}, 1'b1} << (S - 1)) : {ACC_W{1'b0}};
+    // step of m * ANGLE_MUL for the DSP-free angle (ANGLE_DSP = 0): S_TAB[2k + corr] =
+    // c_k * ANGLE_MUL - corr * CPR * ANGLE_MUL (mod 2**ACC_W)
+    /* verilator lint_off UNUSEDSIGNAL */ // w: only the low ACC_W bits (mod 2**ACC_W)
+    function [2*POS_W*ACC_W-1:0] stab;
+        input integer dummy;
+        integer j, cr;
+        reg [63:0] v, w, cpr64, mul64;
+        begin
+            stab = {(2*POS_W*ACC_W){1'b0}};
+            cpr64 = 64'd0;
+            cpr64[31:0] = CPR + dummy;
+            mul64 = MUL64;
+            v = 64'd1 % cpr64;
+            for (j = 0; j < POS_W; j = j + 1) begin
+                for (cr = 0; cr < 2; cr = cr + 1) begin
+                    w = v * mul64 - ((cr != 0) ? cpr64 * mul64 : 64'd0);
+                    stab[(2*j+cr)*ACC_W +: ACC_W] = w[ACC_W-1:0];
+                end
+                v = (2 * v) % cpr64;
+            end
+        end
+    endfunction
+    /* verilator lint_on UNUSEDSIGNAL */
+    /* verilator lint_off UNUSEDPARAM */ // used only without the DSP (ANGLE_DSP = 0)
+    localparam [2*POS_W*ACC_W-1:0] S_TAB = stab(0);
+    /* verilator lint_on UNUSEDPARAM */
+
+    generate
+    if (NAXES == 1) begin : g_one
+    // ================= one axis: the reducer and the angle pipeline of that axis alone =================
+    reg [POS_W-1:0]      last_pos;   // count already handed to the reducer
+    reg [MW-1:0]         m;          // (pos - ref) mod CPR
+    reg                  al;         // index aligned (internal, leads the output by 2 clocks)
+    reg                  rel_cal;    // not aligned, but base_rel is relative to cal_offset (align_clear)
+    reg                  hall_init;
+    reg [2:0]            last_sector;
+    /* verilator lint_off UNUSEDSIGNAL */ // ROM word bits above ANGLE_BITS
+    reg [TW-1:0]         base_r;     // ROM port A: angle added to f(m), relative to the offset in use
+    /* verilator lint_on UNUSEDSIGNAL */
+    wire [ANGLE_BITS-1:0] base_rel = base_r[ANGLE_BITS-1:0];
+    reg                  valid_r, aligned_r;
+
+    assign pos_mod = m;
+    assign m_cur = m;
+    assign valid = valid_r;
+    assign aligned = aligned_r;
+
+    // ---------------- alignment events ----------------
+    wire ev_hall_init = !al && !hall_init && hall_valid[0];
+    wire ev_hall_chg  = !al && hall_init && hall_valid[0] && hall_change[0];
+    wire ev_hall = ev_hall_init || ev_hall_chg;
+    // ROM address of the HALL angle (hall_init = 0 there at the HALL init event)
+    wire [TA:0] hall_addr = HALL_BASE | {{(TA+1-HA){1'b0}}, hall_init, last_sector, hall_sector};
+    // index alignment: the first index after reset / align_clear (every index if REALIGN)
+    wire ev_index = index_event[0] && (!al || align_clear[0] || (REALIGN != 0));
+    wire ev_any = ev_index || ev_hall;
+
+    // ---------------- bit-serial modular accumulation ----------------
+    // d: the new counts (pos - last_pos), or at an index event the lag pos - index_pos
+    // (m restarts at 0 = index_pos and the reducer adds the counts since the index)
+    wire [POS_W-1:0] d_ref = ev_index ? index_pos : last_pos;
+    wire [POS_W-1:0] d = pos - d_ref;
+    // d == 0 without an OR tree over d: pos ~^ d_ref (the subtractor's own propagate LUTs)
+    // all ones, as the carry out of +1 on a carry chain
+    wire [POS_W:0]   d_eqc = {1'b0, pos ~^ d_ref} + {{POS_W{1'b0}}, 1'b1};
+    wire             d_zero = d_eqc[POS_W];
+    assign load = !busy || ev_any;              // r <= d (ignored when d = 0 or at a HALL event)
+    always @(posedge clk) begin
+        if (rst || ev_index || (align_clear[0] && al))
+            base_r <= {TW{1'b0}};
+        else if (ev_hall)
+            base_r <= trom[hall_addr];
+    end
 
     always @(posedge clk) begin
         if (rst) begin
@@ -374,50 +452,37 @@ module pos_sense #(
             // (base_rel: ROM port A above, same priority)
             if (ev_index) begin
                 al       <= 1'b1;
-            end else if (align_clear && al) begin
+            end else if (align_clear[0] && al) begin
                 al       <= 1'b0;
                 rel_cal  <= 1'b1;
             end else if (ev_hall) begin
                 rel_cal  <= 1'b0;
             end
-            if (hall_valid && (!hall_init || hall_change)) begin
+            if (hall_valid[0] && (!hall_init || hall_change[0])) begin
                 hall_init   <= 1'b1;
                 last_sector <= hall_sector;
             end
         end
     end
 
-    // ---------------- angle pipeline ----------------
-    // Both variants give theta(t+2) = ((m(t) * ANGLE_MUL + 2**(S-1)) >> S) + base_d(t+1)
-    // (mod 2**ANGLE_BITS); only the low S + ANGLE_BITS bits of the product matter.
-    localparam integer ACC_W = S + ANGLE_BITS;
-    localparam [ACC_W-1:0] HALF = (S > 0) ? ({{(ACC_W-1){1'b0}}, 1'b1} << (S - 1)) : {ACC_W{1'b0}};
-    // step of m * ANGLE_MUL for the DSP-free angle (ANGLE_DSP = 0): S_TAB[2k + corr] =
-    // c_k * ANGLE_MUL - corr * CPR * ANGLE_MUL (mod 2**ACC_W)
-    /* verilator lint_off UNUSEDSIGNAL */ // w: only the low ACC_W bits (mod 2**ACC_W)
-    function [2*POS_W*ACC_W-1:0] stab;
-        input integer dummy;
-        integer j, cr;
-        reg [63:0] v, w, cpr64, mul64;
-        begin
-            stab = {(2*POS_W*ACC_W){1'b0}};
-            cpr64 = 64'd0;
-            cpr64[31:0] = CPR + dummy;
-            mul64 = MUL64;
-            v = 64'd1 % cpr64;
-            for (j = 0; j < POS_W; j = j + 1) begin
-                for (cr = 0; cr < 2; cr = cr + 1) begin
-                    w = v * mul64 - ((cr != 0) ? cpr64 * mul64 : 64'd0);
-                    stab[(2*j+cr)*ACC_W +: ACC_W] = w[ACC_W-1:0];
-                end
-                v = (2 * v) % cpr64;
-            end
+    // ---------------- theta_ok ----------------
+    // dirty: counts not yet applied (pos != last_pos, or the reducer busy) or an alignment
+    // event in this clock.  theta after clock t+2 is f(state before t+1), so theta is final
+    // when the state was clean before the last two edges and still is (see the header).
+    wire dirty = !d_zero || busy || ev_any;
+    reg  ok1, okq;
+    always @(posedge clk) begin
+        if (rst) begin
+            ok1 <= 1'b0;
+            okq <= 1'b0;
+        end else begin
+            ok1 <= !dirty;
+            okq <= ok1 && !dirty;
         end
-    endfunction
-    /* verilator lint_on UNUSEDSIGNAL */
-    /* verilator lint_off UNUSEDPARAM */ // used only without the DSP (ANGLE_DSP = 0)
-    localparam [2*POS_W*ACC_W-1:0] S_TAB = stab(0);
-    /* verilator lint_on UNUSEDPARAM */
+    end
+    assign theta_ok = okq && !dirty;
+
+    // ---------------- angle pipeline ----------------
     reg  [ANGLE_BITS-1:0] base_d;
     // base_rel + offset as {base_rel, 0} - {~offset, 1} (>> 1): the offset multiplexer then
     // folds into the adder's LUTs (base_rel, the ROM output, is the carry chain's DI)
@@ -428,25 +493,23 @@ module pos_sense #(
     reg                   v1, al1;
     always @(posedge clk) begin
         if (rst) begin
-            base_d  <= {ANGLE_BITS{1'b0}};
-            v1      <= 1'b0;
-            al1     <= 1'b0;
-            valid   <= 1'b0;
-            aligned <= 1'b0;
+            base_d    <= {ANGLE_BITS{1'b0}};
+            v1        <= 1'b0;
+            al1       <= 1'b0;
+            valid_r   <= 1'b0;
+            aligned_r <= 1'b0;
         end else begin
-            base_d  <= base_sum[ANGLE_BITS:1];
-            v1      <= al | hall_init;
-            al1     <= al;
-            valid   <= v1;
-            aligned <= al1;
+            base_d    <= base_sum[ANGLE_BITS:1];
+            v1        <= al | hall_init;
+            al1       <= al;
+            valid_r   <= v1;
+            aligned_r <= al1;
         end
     end
 
-    generate
         if (ANGLE_DSP != 0) begin : g_dsp
             // mprod = m * ANGLE_MUL (DSP M register), acc = mprod + base_d * 2**S + 2**(S-1)
             // (DSP post-adder, P register): theta = acc[S +: ANGLE_BITS]
-            localparam integer MP_W = (PROD_W > ACC_W) ? PROD_W : ACC_W;
             /* verilator lint_off UNUSEDSIGNAL */ // product bits >= ACC_W are whole turns, acc bits < S rounding only
             reg  [MP_W-1:0]  mprod;
             reg  [ACC_W-1:0] acc;
@@ -504,49 +567,287 @@ module pos_sense #(
             end
             assign theta = th;
         end
-    endgenerate
-
-    // ---------------- speed (eq. 37) and sampling ----------------
-    localparam integer WIDE = POS_W + W_FRAC;
-    wire [POS_W-1:0] diff = pos - pos_at_sample;
-    wire [WIDE-1:0]  wide = {diff, {W_FRAC{1'b0}}};
-    wire [WIDE-W_W:0] top = wide[WIDE-1:W_W-1];
-    wire fits = (&top) | ~(|top);
-    localparam [W_W-1:0] QMAX = {1'b0, {(W_W-1){1'b1}}};
-    localparam [W_W-1:0] QMIN = {1'b1, {(W_W-1){1'b0}}};
-    reg have_prev;
+    end else begin : g_mx
+    // ================= NAXES axes, one shared engine =================
+    // Per-axis state in flip-flops (g_ax[a]); the reducer (r, k, busy, cur) and the angle
+    // pipeline (one DSP48A1) serve one axis at a time through axis multiplexers.
+    localparam integer AW = (clog2(NAXES) < 1) ? 1 : clog2(NAXES);
+    localparam integer LASTI = NAXES - 1;
+    localparam [AW-1:0] LAST = LASTI[AW-1:0];
+    localparam integer HW = TA + 1;                                     // ROM address width
+    localparam [HW-1:0] ZERO_A = {1'b0, {TA{1'b1}}};                    // a ROM word that is 0
+    localparam integer PG = (POS_W + 2) / 3;                            // 3-bit groups of a count
+    // per-axis state, flattened (axis a at [a*W +: W]) for the multiplexers
+    wire [NAXES*POS_W-1:0]      lp_w, ip_w;
+    wire [NAXES*MW-1:0]         m_w;
+    wire [NAXES*HW-1:0]         ha_w;
+    wire [NAXES-1:0]            ipend_w, ucal_w, vin_w, al_w;
+    wire [NAXES-1:0]            ev_any, dirty, pend_w;
+    // engine
+    reg  [AW-1:0]  cur;                                     // axis of the reducer's job / last visit
+    wire [AW-1:0]  nxt = (cur == LAST) ? {AW{1'b0}} : cur + 1'b1;
+    wire [POS_W-1:0] pos_n = pos[nxt*POS_W +: POS_W];
+    wire [POS_W-1:0] ref_n = ipend_w[nxt] ? ip_w[nxt*POS_W +: POS_W] : lp_w[nxt*POS_W +: POS_W];
+    wire [POS_W-1:0] d = pos_n - ref_n;
+    // work for the visited axis: new counts (the per-axis comparator of theta_ok), or an index
+    // alignment (a job even when the lag pos - index_pos is 0: one clock)
+    wire             work = pend_w[nxt] || ipend_w[nxt];
+    // the job ends: its last bit, or an alignment event of its axis (which restarts m)
+    wire fin = busy && (r_done || ev_any[cur]);
+    assign load = !busy || fin;                             // visit the next axis
+    assign m_cur = m_w[cur*MW +: MW];
     always @(posedge clk) begin
         if (rst) begin
-            speed           <= {POS_W{1'b0}};
-            speed_q         <= {W_W{1'b0}};
-            speed_sat       <= 1'b0;
-            pos_at_sample   <= {POS_W{1'b0}};
-            theta_at_sample <= {ANGLE_BITS{1'b0}};
-            sample_valid    <= 1'b0;
-            have_prev       <= 1'b0;
+            cur  <= LAST;
+            r    <= {POS_W{1'b0}};
+            k    <= {KW{1'b0}};
+            busy <= 1'b0;
+        end else if (load) begin
+            cur  <= nxt;
+            r    <= d;
+            k    <= {KW{1'b0}};
+            busy <= work && !ev_any[nxt];
         end else begin
-            sample_valid <= sample;
-            if (sample) begin
-                have_prev       <= 1'b1;
-                pos_at_sample   <= pos;
-                theta_at_sample <= theta;
-                if (have_prev) begin
-                    speed     <= diff;
-                    speed_q   <= fits ? wide[W_W-1:0] : (diff[POS_W-1] ? QMIN : QMAX);
-                    speed_sat <= !fits;
-                end else begin
-                    speed     <= {POS_W{1'b0}};
-                    speed_q   <= {W_W{1'b0}};
-                    speed_sat <= 1'b0;
+            r    <= r_sh;
+            k    <= k + 1'b1;
+        end
+    end
+
+    genvar ga;
+    for (ga = 0; ga < NAXES; ga = ga + 1) begin : g_ax
+        localparam integer AI = ga;
+        localparam [AW-1:0] A = AI[AW-1:0];
+        wire [POS_W-1:0] pos_a = pos[ga*POS_W +: POS_W];
+        reg  [POS_W-1:0] lp;            // count handed to the reducer
+        reg  [POS_W-1:0] ip;            // index count of the last index alignment
+        reg              ipend;         // the reducer still has to add pos - ip (m restarted at the index)
+        reg  [MW-1:0]    m;
+        reg              al, rel_cal, hall_init;
+        reg  [2:0]       last_sector;
+        reg  [HW-1:0]    ha;            // ROM address of base_rel: a HALL angle, or ZERO_A
+        wire ev_hall = !al && hall_valid[ga] && (!hall_init || hall_change[ga]);
+        wire ev_index = index_event[ga] && (!al || align_clear[ga] || (REALIGN != 0));
+        wire eng_ld = load && (nxt == A);
+        wire eng_wr = busy && (cur == A) && r[0];
+        assign ev_any[ga] = ev_index || ev_hall;
+        // pos_a != lp: groups of 3 bit pairs (one LUT6 each), ANDed on a carry chain
+        wire [PG-1:0]    eq_g;
+        wire [3*PG-1:0]  pos_x = {{(3*PG-POS_W){1'b0}}, pos_a};
+        wire [3*PG-1:0]  lp_x = {{(3*PG-POS_W){1'b0}}, lp};
+        genvar gq;
+        for (gq = 0; gq < PG; gq = gq + 1) begin : g_eq
+            assign eq_g[gq] = (pos_x[3*gq +: 3] == lp_x[3*gq +: 3]);
+        end
+        wire [PG:0]      eq_c = {1'b0, eq_g} + {{PG{1'b0}}, 1'b1};
+        assign pend_w[ga] = !eq_c[PG];
+        assign dirty[ga] = ipend || pend_w[ga] || (busy && (cur == A)) || ev_index || ev_hall;
+        assign lp_w[ga*POS_W +: POS_W] = lp;
+        assign ip_w[ga*POS_W +: POS_W] = ip;
+        assign ipend_w[ga] = ipend;
+        assign m_w[ga*MW +: MW] = m;
+        assign ha_w[ga*HW +: HW] = ha;
+        assign ucal_w[ga] = al || rel_cal;
+        assign vin_w[ga] = al || hall_init;
+        assign al_w[ga] = al;
+        assign pos_mod[ga*MW +: MW] = m;
+        always @(posedge clk) begin
+            if (rst) begin
+                lp          <= {POS_W{1'b0}};
+                ip          <= {POS_W{1'b0}};
+                ipend       <= 1'b0;
+                m           <= {MW{1'b0}};
+                al          <= 1'b0;
+                rel_cal     <= 1'b0;
+                hall_init   <= 1'b0;
+                last_sector <= 3'd0;
+                ha          <= ZERO_A;
+            end else begin
+                if (ev_hall || eng_ld)
+                    lp <= pos_a;
+                if (ev_index)
+                    ip <= index_pos[ga*POS_W +: POS_W];
+                if (ev_index)
+                    ipend <= 1'b1;
+                else if (ev_hall || eng_ld)
+                    ipend <= 1'b0;
+                if (ev_index || ev_hall)
+                    m <= {MW{1'b0}};
+                else if (eng_wr)
+                    m <= s_red[MW-1:0];
+                if (ev_index) begin
+                    al      <= 1'b1;
+                end else if (align_clear[ga] && al) begin
+                    al      <= 1'b0;
+                    rel_cal <= 1'b1;
+                end else if (ev_hall) begin
+                    rel_cal <= 1'b0;
                 end
+                if (hall_valid[ga] && (!hall_init || hall_change[ga])) begin
+                    hall_init   <= 1'b1;
+                    last_sector <= hall_sector[3*ga +: 3];
+                end
+                if (ev_index || (align_clear[ga] && al))
+                    ha <= ZERO_A;
+                else if (ev_hall)
+                    ha <= HALL_BASE | {{(TA+1-HA){1'b0}}, hall_init, last_sector, hall_sector[3*ga +: 3]};
             end
         end
     end
+
+    // ---------------- angle pipeline, round robin over the axes ----------------
+    // X: sample axis ap (m, ROM read of the base, offset); X+1: m * ANGLE_MUL (DSP M), base +
+    // offset; X+2: + base * 2**S + 2**(S-1) (DSP P); X+3: theta[axis] and valid/aligned of the
+    // sample.  A tag travels with the sample: "clean" = the axis was not dirty before any of the
+    // four edges, so theta is final (theta_ok).
+    reg  [AW-1:0]         ap;
+    reg  [MW-1:0]         mb;
+    /* verilator lint_off UNUSEDSIGNAL */ // ROM word bits above ANGLE_BITS; product bits >= ACC_W, acc bits < S
+    reg  [TW-1:0]         hq;
+    reg  [MP_W-1:0]       mprod;
+    reg  [ACC_W-1:0]      acc;
+    /* verilator lint_on UNUSEDSIGNAL */
+    reg  [ANGLE_BITS-1:0] calq, hallq, base_d;
+    reg                   ucq;
+    reg  [AW-1:0]         a1, a2, a3;
+    reg                   c1, c2, c3, v1, v2, v3, l1, l2, l3;
+    wire [AW-1:0]         ap_nx = (ap == LAST) ? {AW{1'b0}} : ap + 1'b1;
+    reg  [ACC_W-1:0]      base_s;
+    always @* begin
+        base_s = HALF;
+        base_s[S +: ANGLE_BITS] = base_d;
+    end
+    wire [MP_W-1:0] m_mul = mb * MUL;
+    // base + offset as {base, 0} - {~offset, 1} (>> 1), the cal / hall select folded into
+    // the adder's LUTs (as for NAXES = 1)
+    wire [ANGLE_BITS-1:0] off_sel = ucq ? calq : hallq;
+    /* verilator lint_off UNUSEDSIGNAL */ // bit 0 is the carry-in position only
+    wire [ANGLE_BITS:0]   base_sum = {hq[ANGLE_BITS-1:0], 1'b0} - {~off_sel, 1'b1};
+    /* verilator lint_on UNUSEDSIGNAL */
+    always @(posedge clk) hq <= trom[ha_w[ap*HW +: HW]];
+    always @(posedge clk) begin
+        if (rst) begin
+            ap     <= {AW{1'b0}};
+            mb     <= {MW{1'b0}};
+            calq   <= {ANGLE_BITS{1'b0}};
+            hallq  <= {ANGLE_BITS{1'b0}};
+            ucq    <= 1'b0;
+            base_d <= {ANGLE_BITS{1'b0}};
+            mprod  <= {MP_W{1'b0}};
+            acc    <= {ACC_W{1'b0}};
+            a1 <= {AW{1'b0}}; a2 <= {AW{1'b0}}; a3 <= {AW{1'b0}};
+            c1 <= 1'b0; c2 <= 1'b0; c3 <= 1'b0;
+            v1 <= 1'b0; v2 <= 1'b0; v3 <= 1'b0;
+            l1 <= 1'b0; l2 <= 1'b0; l3 <= 1'b0;
+        end else begin
+            ap     <= ap_nx;
+            mb     <= m_w[ap*MW +: MW];
+            calq   <= cal_offset[ap*ANGLE_BITS +: ANGLE_BITS];
+            hallq  <= hall_offset[ap*ANGLE_BITS +: ANGLE_BITS];
+            ucq    <= ucal_w[ap];
+            a1     <= ap;
+            c1     <= !dirty[ap];
+            v1     <= vin_w[ap];
+            l1     <= al_w[ap];
+            mprod  <= m_mul;
+            base_d <= base_sum[ANGLE_BITS:1];
+            a2     <= a1;
+            c2     <= c1 && !dirty[a1];
+            v2     <= v1;
+            l2     <= l1;
+            acc    <= mprod[ACC_W-1:0] + base_s;
+            a3     <= a2;
+            c3     <= c2 && !dirty[a2];
+            v3     <= v2;
+            l3     <= l2;
+        end
+    end
+    for (ga = 0; ga < NAXES; ga = ga + 1) begin : g_out
+        localparam integer AI = ga;
+        localparam [AW-1:0] A = AI[AW-1:0];
+        reg [ANGLE_BITS-1:0] th;
+        reg                  vq, alq, okq;
+        always @(posedge clk) begin
+            if (rst) begin
+                th  <= {ANGLE_BITS{1'b0}};
+                vq  <= 1'b0;
+                alq <= 1'b0;
+                okq <= 1'b0;
+            end else if (a3 == A) begin
+                th  <= acc[S +: ANGLE_BITS];
+                vq  <= v3;
+                alq <= l3;
+                okq <= c3 && !dirty[ga];
+            end else begin
+                okq <= okq && !dirty[ga];
+            end
+        end
+        assign theta[ga*ANGLE_BITS +: ANGLE_BITS] = th;
+        assign valid[ga] = vq;
+        assign aligned[ga] = alq;
+        assign theta_ok[ga] = okq && !dirty[ga];
+    end
+    end
+    endgenerate
+
+    // ---------------- speed (eq. 37) and sampling, per axis ----------------
+    localparam integer WIDE = POS_W + W_FRAC;
+    localparam [W_W-1:0] QMAX = {1'b0, {(W_W-1){1'b1}}};
+    localparam [W_W-1:0] QMIN = {1'b1, {(W_W-1){1'b0}}};
+    genvar gs;
+    generate
+        for (gs = 0; gs < NAXES; gs = gs + 1) begin : g_spd
+            wire [POS_W-1:0] pos_a = pos[gs*POS_W +: POS_W];
+            reg  [POS_W-1:0]      sp, pas;
+            reg  [W_W-1:0]        spq;
+            reg                   ssat, sv, have_prev;
+            reg  [ANGLE_BITS-1:0] tas;
+            wire [POS_W-1:0] diff = pos_a - pas;
+            wire [WIDE-1:0]  wide = {diff, {W_FRAC{1'b0}}};
+            wire [WIDE-W_W:0] top = wide[WIDE-1:W_W-1];
+            wire fits = (&top) | ~(|top);
+            always @(posedge clk) begin
+                if (rst) begin
+                    sp        <= {POS_W{1'b0}};
+                    spq       <= {W_W{1'b0}};
+                    ssat      <= 1'b0;
+                    pas       <= {POS_W{1'b0}};
+                    tas       <= {ANGLE_BITS{1'b0}};
+                    sv        <= 1'b0;
+                    have_prev <= 1'b0;
+                end else begin
+                    sv <= sample[gs];
+                    if (sample[gs]) begin
+                        have_prev <= 1'b1;
+                        pas       <= pos_a;
+                        tas       <= theta[gs*ANGLE_BITS +: ANGLE_BITS];
+                        if (have_prev) begin
+                            sp   <= diff;
+                            spq  <= fits ? wide[W_W-1:0] : (diff[POS_W-1] ? QMIN : QMAX);
+                            ssat <= !fits;
+                        end else begin
+                            sp   <= {POS_W{1'b0}};
+                            spq  <= {W_W{1'b0}};
+                            ssat <= 1'b0;
+                        end
+                    end
+                end
+            end
+            assign speed[gs*POS_W +: POS_W] = sp;
+            assign speed_q[gs*W_W +: W_W] = spq;
+            assign speed_sat[gs] = ssat;
+            assign pos_at_sample[gs*POS_W +: POS_W] = pas;
+            assign theta_at_sample[gs*ANGLE_BITS +: ANGLE_BITS] = tas;
+            assign sample_valid[gs] = sv;
+        end
+    endgenerate
 
 `ifndef SYNTHESIS
     initial begin
         if (CPR < 2) $display("ERROR: pos_sense CPR=%0d < 2", CPR);
         if (W_FRAC < 1 || WIDE < W_W) $display("ERROR: pos_sense needs W_FRAC >= 1 and POS_W + W_FRAC >= W_W");
+        if (NAXES < 1) $display("ERROR: pos_sense NAXES=%0d < 1", NAXES);
+        if (NAXES > 1 && ANGLE_DSP == 0) $display("ERROR: pos_sense NAXES > 1 needs ANGLE_DSP = 1");
+        if (NAXES > 1 && POS_W >= 2**TA) $display("ERROR: pos_sense NAXES > 1 needs POS_W < %0d (a zero ROM word)", 2**TA);
     end
 `endif
 endmodule
