@@ -194,8 +194,9 @@ FW_ID = -0.05           # i_d mean in the hold's second half below -0.05 i_max w
 # 41-98 % of the periods from 10 s) set vd = 0 both ways, so the governed reference crept up to 1330 rad/s
 # (155 above the plant) between held periods and, once the target turned, could not come down.  The hold is
 # now one-sided (governor.py, rtlmodel/ref_gen.gov_step, rtl/ref_gen.v: held, vd passes only towards lower
-# |g|): RMS 8.2 -> 0.6 % of the top (float and fixed), hold 0.977 / 0.976 of reach, peak 0.68 i_max, end
-# 0.2 % of the top, all unchanged (docs/field_weakening.md).  Open, strict xfail: the hold speed (0.977 < 0.98
+# |g|): RMS 8.2 -> 0.6 % of the top (float and fixed), the plant comes down 0.1 s (was 3.1 s) after the
+# target passed below it; hold 0.977 / 0.976 of reach, peak 0.68 i_max, end 0.2 % of the top unchanged
+# (docs/field_weakening.md).  Open, strict xfail: the hold speed (0.977 < 0.98
 # of reach, i.e. 0.948 of w_fw against 0.951 asked): the voltage circle's vector scaling leaves i_d 2.8 A
 # short of its reference (the lock mechanism of docs/field_weakening.md, here without a run-away).
 FW_XFAIL = {("spmsm_002", "corner_b", fixed): "spmsm_002 corner_b: stops at 0.977 of its reach on the voltage "
