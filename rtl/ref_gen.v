@@ -115,7 +115,7 @@
 //   for about (a+1)*(N+1)*65 clocks after rst; a CPU sync of an axis whose reset sync has not run
 //   yet gives that sync its value).  The slot memory and the governor enable / ksh copies are not
 //   reset (their configuration contents, kept over rst).
-// Resources (Yosys xc6s, N = 4, out of context): NAXES = 1 202 LUT (17 SRLC32E) / 247 FF /
+// Resources (Yosys xc6s, N = 4, out of context): NAXES = 1 198 LUT (17 SRLC32E) / 247 FF /
 //   1 RAMB16; NAXES = 4 406 LUT (91 of them SRLC32E / RAM32M) / 154 FF / 1 RAMB16; no DSP
 //   (the one-sided speed hold: +3 FF, LUTs within Yosys's noise: 207 / 244, 401 / 151 before).
 `default_nettype none
