@@ -53,13 +53,20 @@
 // and the delay line receives the governed g: after the head pass (r_old -> r_new) four
 // passes compute, in 64-bit two's complement with the 65th bit tracked for the clamps,
 //   G1: vd = (r_new - r_old) + ((r_old - g) >>> ksh), compared with +-vmax
-//   G2: dv = clamp(vd, +-vmax) [0 in the speed task when hold] - v
+//   G2: dv = clamp(vd, +-vmax) [0 in the speed task when hold and vd would raise |g|] - v
 //   G3: dv compared with +-a
 //   G4: v = v + clamp(dv, +-a) [0 in the position task when hold and dv would raise |v|],
 //       g = g + v shifted into the delay line
 // vmax, a: field 7 of slots 0/1 and 2/3 (63 bit: bit 63 reads as 0), ksh: field 7 of slot 4,
 // bits 12:8.  hold and task_pos are taken when an advance begins; gov_ev pulses at the end
 // of G4 when a clamp or the hold changed the reference.  Disabled: g = r, v = 0.
+// Speed-task hold, one-sided (issue 15 item 6): vd passes unless it would raise |g|, i.e.
+// vd = 0 unless g != 0 and sign(vd) != sign(g) (sign of the exact 65-bit vd; g = 0: every vd
+// raises |g|).  The head pass latches g != 0 (g_nz) and g's sign bit (g_sgn) from the tap, G1
+// decides at bit 63 (hblk), G2 applies it.  (Until then the speed hold set vd = 0 both ways:
+// on the voltage limit the reference then could not come down with the target: spmsm_002 at
+// box corner_b, field weakening, RMS speed error 8.2 % of the top, now 0.6 %;
+// docs/field_weakening.md.)
 //
 // Axes (parameter NAXES = 1..4): every axis has its own slots, state, delay line and
 // pending flags; one engine runs the operations of all axes, one at a time.  When idle it
@@ -108,8 +115,9 @@
 //   for about (a+1)*(N+1)*65 clocks after rst; a CPU sync of an axis whose reset sync has not run
 //   yet gives that sync its value).  The slot memory and the governor enable / ksh copies are not
 //   reset (their configuration contents, kept over rst).
-// Resources (Yosys xc6s, N = 4, out of context): NAXES = 1 207 LUT (17 SRLC32E) / 244 FF /
-//   1 RAMB16; NAXES = 4 401 LUT (91 of them SRLC32E / RAM32M) / 151 FF / 1 RAMB16; no DSP.
+// Resources (Yosys xc6s, N = 4, out of context): NAXES = 1 198 LUT (17 SRLC32E) / 247 FF /
+//   1 RAMB16; NAXES = 4 406 LUT (91 of them SRLC32E / RAM32M) / 154 FF / 1 RAMB16; no DSP
+//   (the one-sided speed hold: +3 FF, LUTs within Yosys's noise: 207 / 244, 401 / 151 before).
 `default_nettype none
 `include "empc_formats.vh"
 module ref_gen #(
@@ -202,6 +210,7 @@ module ref_gen #(
     reg         k0, k1, k2;                            // governor: carries of a pass's adders
     reg         e_sgn, ovr, x_sgn;                     // sign of e, sb tap past bit 63, sign of x1 / vdc
     reg         hi1, lo1, hi2, lo2, s2, v_nz, v_sgn, dv_nz;
+    reg         g_nz, g_sgn, hblk;                     // speed hold: g != 0, sign of g; vd = 0 in G2
 
     // ---------------- per-axis pending flags (flip-flops) ----------------
     reg  [NAP-1:0] adv_pend, sync_pend, pend;
@@ -456,7 +465,7 @@ module ref_gen #(
     wire        vdb  = sa_o ^ esb ^ k0;
     //   G2: vdc = clamp(vd) (-vmax = ~vmax + 1: k1), dv = vdc + ~v + 1 -> sb (k0)
     wire        nvm  = ~pm ^ k1;
-    wire        vdc  = (gv_hold && !gv_pos) ? 1'b0 : hi1 ? pm : lo1 ? nvm : sa_o;
+    wire        vdc  = hblk ? 1'b0 : hi1 ? pm : lo1 ? nvm : sa_o;
     wire        dvb  = vdc ^ ~v_o ^ k0;
     //   G3: dv + ~a (k1), dv + a (k2): the clamps; dv recirculates in sb
     //   G4: dvc = clamp(dv) (-a: k1) or 0 (hold), v' = v + dvc (k0), g' = g + v' (k2) -> delay line
@@ -606,6 +615,9 @@ module ref_gen #(
             v_nz <= 1'b0;
             v_sgn <= 1'b0;
             dv_nz <= 1'b0;
+            g_nz <= 1'b0;
+            g_sgn <= 1'b0;
+            hblk <= 1'b0;
         end else begin
             for (ai = 0; ai < NAP; ai = ai + 1) begin
                 if (in_adv[ai]) adv_pend[ai] <= 1'b1;
@@ -677,6 +689,10 @@ module ref_gen #(
                     end
                     // governor bookkeeping
                     if (kind == K_HEAD && jc == 6'd63) e_sgn <= eb;
+                    if (kind == K_HEAD) begin                       // the old head g, bit jc
+                        g_nz <= g_nz | tap;
+                        g_sgn <= tap;
+                    end
                     if (kind == K_G1 && jc == {1'b1, ~ksh}) ovr <= 1'b1;
                     if (kind == K_G2) begin
                         if (v_o) v_nz <= 1'b1;
@@ -691,6 +707,8 @@ module ref_gen #(
                         if (kind == K_G1) begin                 // exact vd: 65-bit sign if overflowed
                             hi1 <= ov1 ? !sa_o : (vdb ^ c_hi);
                             lo1 <= ov1 ? sa_o : (vdb ^ c_lo);
+                            // speed hold: vd = 0 unless it lowers |g| (g != 0, sign(vd) != sign(g))
+                            hblk <= gv_hold && !gv_pos && !(g_nz && ((ov1 ? sa_o : vdb) != g_sgn));
                         end
                         if (kind == K_G3) begin
                             hi2 <= x_sgn ? !s2 : (sb[63] ^ c_hi);
@@ -708,6 +726,7 @@ module ref_gen #(
                     if (kind == K_G1) ovr <= 1'b0;
                     if (kind == K_G2) v_nz <= 1'b0;
                     if (kind == K_G3) dv_nz <= 1'b0;
+                    if (kind == K_HEAD) g_nz <= 1'b0;
                 end
                 if (last_bit) begin
                     t <= 6'd0;

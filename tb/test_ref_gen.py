@@ -400,7 +400,9 @@ async def random_vs_model(dut):
             kw["advance"] = True
             stats["advance"] += 1
             stats["adv_busy"] += int(m.busy)
-            next_adv = env.n + rng.choice([1, 2, 3, 30, 70, 150, 200, 300])
+            # governed: an advance takes 326-459 clocks; half the spacings longer, so the delay line is
+            # compared (w_ok) and the governor words rewritten (idle) often enough
+            next_adv = env.n + rng.choice([1, 2, 3, 30, 70, 150, 200, 300] + ([400, 500, 700, 900] * 2 if gov else []))
         r = rng.random()
         if r < 0.004:
             kw["start_slot"] = rng.randrange(NSLOT)
@@ -433,7 +435,7 @@ async def random_vs_model(dut):
             # hold and task change at random (taken when an advance begins); the governor
             # words are rewritten only while the engine is idle (the passes read them)
             if rng.random() < 0.2:
-                env.hold = int(rng.random() < 0.3)
+                env.hold = int(rng.random() < 0.5)
                 env.task_pos = int(rng.random() < 0.5)
             if "seg" not in kw and not m.busy and rng.random() < 0.003:
                 words = gov_words(*rand_gov(rng, env.task_pos))
@@ -452,6 +454,11 @@ async def random_vs_model(dut):
         f"gov_ev pulses {getattr(env, 'gov_ev', 0)} != model clamps {getattr(env, 'model_ev', 0)}"
     if gov:
         assert env.model_ev > 20, "the governor never clamped"
+        # the one-sided speed hold: held advances of the speed task with g > 0 and g < 0, vd passing
+        # (towards lower |g|) and blocked, each seen (the model counts them when an advance begins)
+        hc = m.hold_cases
+        stats["speed_hold"] = {f"g{'<' if n else '>='}0 {'pass' if p else 'block'}": c for (n, p), c in hc.items()}
+        assert min(hc.values()) >= 5, f"speed-task hold cases not all exercised: {stats['speed_hold']}"
     dut._log.info("random%s: %d clocks, %d advances, %d delay-line compares, %d readout bits, %d field read-backs "
                   "bit-exact vs model (seed %d), %d governor clamps; %s", " (governor)" if gov else "", env.n,
                   env.n_adv, env.n_w, env.n_rd, env.n_seg, env.seed, getattr(env, "model_ev", 0), stats)
@@ -514,8 +521,35 @@ def test_ref_gen():
 def test_ref_gen_governed():
     from runner import run
     run(toplevel="ref_gen", test_module="test_ref_gen", parameters=PARAMS,
-        extra_env={"TB_PARAMS": json.dumps(PARAMS), "EMPC_REFGEN_GOV": "1", "EMPC_REFGEN_CLOCKS": "80000"},
+        extra_env={"TB_PARAMS": json.dumps(PARAMS), "EMPC_REFGEN_GOV": "1", "EMPC_REFGEN_CLOCKS": "150000"},
         testcase=["random_vs_model"], name="test_ref_gen_governed")
+
+
+def test_ref_gen_hold_mutant(tmp_path):
+    """The governed random test must fail on the old two-sided speed hold (vd = 0 whenever held), by a
+    delay-line mismatch against the model (not by a statistics check)."""
+    import pytest
+    import runner
+    from files import rtl_sources
+    for old in runner.BUILD.glob("sim/test_ref_gen_hold_mutant_*/results.xml"):
+        old.unlink()
+    src = next(p for p in rtl_sources() if p.name == "ref_gen.v").read_text()
+    good = "wire        vdc  = hblk ? 1'b0 :"
+    assert src.count(good) == 1, "the mutant no longer matches rtl/ref_gen.v"
+    mut = tmp_path / "ref_gen.v"
+    mut.write_text(src.replace(good, "wire        vdc  = (gv_hold && !gv_pos) ? 1'b0 :"))
+    orig = runner.rtl_sources
+    runner.rtl_sources = lambda: [mut if p.name == "ref_gen.v" else p for p in rtl_sources()]
+    try:
+        with pytest.raises((AssertionError, SystemExit)):  # cocotb's runner exits on a failed test
+            runner.run(toplevel="ref_gen", test_module="test_ref_gen", parameters=PARAMS,
+                       extra_env={"TB_PARAMS": json.dumps(PARAMS), "EMPC_REFGEN_GOV": "1",
+                                  "EMPC_REFGEN_CLOCKS": "150000"},
+                       testcase=["random_vs_model"], name="test_ref_gen_hold_mutant")
+    finally:
+        runner.rtl_sources = orig
+    res = list(runner.BUILD.glob("sim/test_ref_gen_hold_mutant_*/results.xml"))
+    assert len(res) == 1 and "w mismatch" in res[0].read_text(), "the mutant failed for another reason"
 
 
 def test_ref_gen_n1():

@@ -239,7 +239,7 @@ async def random_run(dut, seed, n_clocks, sync_axis0=True, gov_axes=(0, 2)):
                 st["gov_write"] += 1
         for a in range(A):
             if rng.random() < 0.01:
-                env.hold[a] = int(rng.random() < 0.3)
+                env.hold[a] = int(rng.random() < 0.5)
                 env.task_pos[a] = int(rng.random() < 0.5)
         await env.cycle(seg=seg, seg_read=seg_read, start=start, sync=sync, advance=adv)
     while any(g.busy for g in m.axes):
@@ -257,6 +257,9 @@ async def random_axes(dut):
     assert st["multi_adv"] > 5 and st["adv_wait"] > 50 and st["sync"] > 10 and st["sync_other_busy"] > 5
     assert st["gov_write"] > 5 and env.cnt["w"] > env.n, "too few governor writes / delay-line compares"
     assert env.cnt["gov_ev"] > 10, "the governor never clamped"
+    hc = {k: sum(m.hold_cases[k] for m in env.m.axes) for k in env.m[0].hold_cases}   # one-sided speed hold
+    dut._log.info("speed-task holds (g < 0, vd passes): %s", hc)
+    assert min(hc.values()) >= 2, f"speed-task hold cases not all exercised: {hc}"
     dut._log.info("random_axes: every output of every axis bit- and clock-exact vs RefGenAxes")
 
 

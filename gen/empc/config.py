@@ -452,8 +452,9 @@ class Governor:
     acceleration needs at most ``accel_current`` x i_max at the robustness-box corner
     (inertia x ``box_J``, flux x ``box_psi``), with the position reference's speed at most
     ``speed_frac`` of the no-load base speed u_max / psi (and of Omega_e); the reference
-    holds its acceleration (speed) or speed (position) while |i_q| > ``hold_current`` x i_max
-    or the voltage limiter was active.  The position catch-up ``shift_position`` defaults to
+    does not raise its |speed| (speed task: its acceleration decays, a demand towards lower |speed|
+    passes) or its speed (position) while |i_q| > ``hold_current`` x i_max or the voltage limiter
+    was active.  The position catch-up ``shift_position`` defaults to
     :func:`governor.default_shift_position` of control.Ts (the same catch-up time at every Ts).
     See gen/empc/governor.py."""
     enable: bool

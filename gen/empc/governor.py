@@ -11,7 +11,7 @@ reference g (what the controller gets), its increment v:
 
     vd = (r_k - r_{k-1}) + (r_{k-1} - g) >>> ksh      feed-forward + proportional catch-up
     vd = clamp(vd, -vmax, vmax)
-    if hold and speed task: vd = 0
+    if hold and speed task and vd would raise |g| (not: g != 0 and sign(vd) != sign(g)): vd = 0
     dv = clamp(vd - v, -a, a)
     if hold and position task and dv would increase |v|: dv = 0
     v += dv;  g += v
@@ -22,7 +22,13 @@ i_max at the box corner J x box_J, psi x box_psi).  Speed task: v is the referen
 acceleration (<= vmax, the same acceleration limit), dv its change per period (a = vmax /
 jerk_periods).  ``hold`` (the previous control period had |i_q| > hold_current x i_max or the
 voltage limiter active) stops the reference from demanding more: the position reference does
-not speed up (it may slow down), the speed reference's acceleration decays to 0.  In steady tracking of a feasible
+not speed up (it may slow down); the speed reference's acceleration decays to 0 unless vd points
+towards lower |g| (g != 0, sign(vd) != sign(g): braking, or backing off the voltage limit), which
+passes as without the hold.  Both signs of speed alike; at g = 0 every vd raises |g|.  The hold was
+two-sided (vd = 0) before issue 15 item 6: on the voltage limit (field weakening, spmsm_002 at
+box corner_b) the reference crept up in the periods between holds and the hold then also kept it
+up when the target turned down (RMS error 8.2 % of the top speed; one-sided: see
+docs/field_weakening.md).  In steady tracking of a feasible
 profile (ramps within the limits) the governed reference equals the target exactly.
 
 The catch-up is a proportional position (speed) loop on the reference with time constant
@@ -126,8 +132,8 @@ class Governor:
             return self.g
         vd0 = (r_new - self.r) + self.K * (self.r - self.g)
         vd = min(max(vd0, -p.vmax), p.vmax)
-        if hold and p.task == "speed":
-            vd = 0.0
+        if hold and p.task == "speed" and not (self.g != 0.0 and (vd < 0.0) != (self.g < 0.0)):
+            vd = 0.0                        # no more |speed| while held (towards lower |g| passes)
         dv0 = vd - self.v
         dv = min(max(dv0, -p.a), p.a)
         if hold and p.task == "position" and dv * self.v > 0:

@@ -60,8 +60,8 @@ def test_limits_from_the_box():
 
 
 def test_hold():
-    """Speed: under hold the increment decays to 0 (at most a per period); position: the
-    reference does not speed up while held."""
+    """Speed: under hold the increment decays to 0 (at most a per period) unless it lowers |g|;
+    position: the reference does not speed up while held."""
     ps = gov.params(CFG, "speed")
     tgt = np.concatenate([np.zeros(5), np.full(400, 900.0)])
     hold = np.zeros(405, bool); hold[12:200] = True
@@ -70,6 +70,20 @@ def test_hold():
     k0 = 12 + int(np.ceil(abs(v[11]) / ps.a))
     assert np.all(v[k0:200] == 0.0) and np.all(np.diff(g[k0:200]) == 0.0)
     assert abs(g[-1] - 900.0) < 1e-6
+    # one-sided (issue 15 item 6): held, vd passes towards lower |g| only, both signs of speed; at g = 0
+    # nothing passes.  The old two-sided hold kept g at the top (it was steady when the target turned)
+    for sgn in (1.0, -1.0):
+        tgt = sgn * np.concatenate([np.zeros(5), np.full(400, 900.0), np.full(1200, -300.0)])
+        hold = np.zeros(len(tgt), bool); hold[400:] = True
+        g, v = _run(ps, tgt, hold)
+        assert abs(g[404] - sgn * 900.0) < 1e-6 and abs(v[404]) < 1e-9
+        assert np.min(sgn * g[405:]) < 0.0 and np.all(np.abs(np.diff(g[405:])) <= ps.vmax * (1 + 1e-12))
+        assert np.min(sgn * g[405:]) > -300.0 + 1.0, "a held reference went on past 0 to the target"
+        cross = 405 + int(np.argmax(sgn * g[405:] <= 0.0))
+        kz = cross + int(np.ceil(ps.vmax / ps.a)) + 1                  # past 0: the acceleration decays to 0
+        assert np.all(v[kz:] == 0.0) and g[-1] == g[kz]
+    g, v = _run(ps, np.concatenate([np.zeros(5), np.full(50, -500.0)]), np.ones(55, bool))
+    assert np.all(g == 0.0)
     pp = gov.params(CFG, "position")
     tgt = np.concatenate([np.zeros(5), np.full(1500, 200.0)])
     hold = np.zeros(1505, bool); hold[20:60] = True

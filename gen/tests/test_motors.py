@@ -188,24 +188,20 @@ FW_ID = -0.05           # i_d mean in the hold's second half below -0.05 i_max w
 # corner_a pass (hold at 0.997 of the top, RMS error 0.6 % of the top, end 0.2 %, peak 0.73 / 0.77 i_max).
 # corner_b (L, R, J -30 %, psi +20 %: its steady-state limit w_fw = 0.81 x top) stops at 1176 rad/s, 0.976-0.977 of
 # what the test expects it to reach (0.97 w_fw = 1203), on the voltage circle (|u| = 0.998 u_max) with
-# i_d = -9.3 A of the -12.16 A the FW counter asks (u = (-3.2, 27.5) V: the law's voltage is nearly all q),
-# and on the ramp down stays there for 3.1 s after the reference has fallen below it; RMS error 8.2 % of
-# the top.  Two causes, measured (float; fixed the same):
-#  * the RMS: the reference governor's speed-task hold (governor.py, rtl/ref_gen.v: while the last period
-#    had the voltage limiter active, vd = 0, the reference's acceleration decays to 0) holds in 41-98 % of
-#    the periods from 10 s; the periods between let the governed reference creep up to 1330 rad/s (155
-#    above the plant) and, once the target turns, the hold also stops it from coming down: it is still at
-#    1154 when the plant leaves 1176 rad/s at 18.7 s (the target passed below the plant at 15.5 s).  A
-#    hold that passes vd only towards lower |g| (vd = 0 if sign(vd) = sign(g)), tried on the float
-#    governor: RMS 8.2 -> 0.57 % of the top, the rest unchanged.  Not done: an RTL change in ref_gen's
-#    bit-serial G2 pass (the signs of vd and g latched at bit 63) with its model, block test and
-#    co-simulation;
-#  * the hold speed (0.977 < 0.98 of reach, i.e. 0.948 of w_fw against 0.951 asked): the same with that
-#    governor; the voltage circle's vector scaling leaves i_d 2.8 A short of its reference (the lock
-#    mechanism of docs/field_weakening.md, here without a run-away).  Open, strict xfail:
+# i_d = -9.3 A of the -12.16 A the FW counter asks (u = (-3.2, 27.5) V: the law's voltage is nearly all q).
+# Until issue 15 item 6 it also stayed there for 3.1 s after the reference had fallen below it (RMS error
+# 8.2 % of the top): the reference governor's speed-task hold (a period with the voltage limiter active,
+# 41-98 % of the periods from 10 s) set vd = 0 both ways, so the governed reference crept up to 1330 rad/s
+# (155 above the plant) between held periods and, once the target turned, could not come down.  The hold is
+# now one-sided (governor.py, rtlmodel/ref_gen.gov_step, rtl/ref_gen.v: held, vd passes only towards lower
+# |g|): RMS 8.2 -> 0.6 % of the top (float and fixed), the plant comes down 0.1 s (was 3.1 s) after the
+# target passed below it; hold 0.977 / 0.976 of reach, peak 0.68 i_max, end 0.2 % of the top unchanged
+# (docs/field_weakening.md).  Open, strict xfail: the hold speed (0.977 < 0.98
+# of reach, i.e. 0.948 of w_fw against 0.951 asked): the voltage circle's vector scaling leaves i_d 2.8 A
+# short of its reference (the lock mechanism of docs/field_weakening.md, here without a run-away).
 FW_XFAIL = {("spmsm_002", "corner_b", fixed): "spmsm_002 corner_b: stops at 0.977 of its reach on the voltage "
-            "circle (i_d -9.3 of -12.2 A); the governor's speed-task hold keeps the reference 155 rad/s above the "
-            "plant and, on the ramp down, up: 3.1 s behind (RMS 8.2 % of top)" for fixed in (False, True)}
+            "circle (i_d -9.3 of -12.2 A: the vector scaling leaves i_d short of the FW reference)"
+            for fixed in (False, True)}
 
 
 SPMSM_UQ_RIPPLE = 0.05      # u_q RMS about its mean at a steady speed, x u_max (was 0.21: the FW stop above)

@@ -30,7 +30,9 @@ governed g.  Per advance, r_old -> r_new (the profile's advance), and in 64-bit 
 complement Q.32 (exact integers where stated; s64 = the signed value of a 64-bit word):
 
     vd  = s64(r_new - r_old) + (s64(r_old - g) >> ksh)              (exact, 65 bit)
-    vd  = vmax if vd > vmax, -vmax if vd < -vmax;  speed task and hold: vd = 0
+    vd  = vmax if vd > vmax, -vmax if vd < -vmax
+    speed task, hold, and not (s64(g) != 0 and sign(vd) != sign(s64(g))): vd = 0
+                                   (one-sided: vd passes only towards lower |g|; sign of the exact vd)
     dv  = vd - s64(v)                                                (exact)
     dv  = a if dv > a, -a if dv < -a
     position task, hold, dv != 0, v != 0 and sign(dv) = sign(v): dv = 0
@@ -90,6 +92,19 @@ GOV_KSH_LSB = 8                                                        # cfg wor
 M63 = (1 << 63) - 1
 
 
+def speed_hold_passes(vd: int, g: int) -> bool:
+    """Speed-task hold: does the (exact, signed) demand ``vd`` pass, i.e. point towards lower |g|
+    (``g`` the governed reference, a 64-bit word)?  g = 0: never (any vd raises |g|)."""
+    gs = wrap(g, 64)
+    return gs != 0 and (vd < 0) != (gs < 0)
+
+
+def speed_hold_case(gp: dict, r_old: int, r_new: int, g: int) -> tuple[bool, bool]:
+    """(g < 0, vd passes) of a speed-task hold with these operands (the block test counts the cases)."""
+    vd0 = wrap(r_new - r_old, 64) + (wrap(r_old - g, 64) >> gp["ksh"])
+    return wrap(g, 64) < 0, speed_hold_passes(vd0, g)
+
+
 def gov_step(gp: dict, v: int, r_old: int, r_new: int, g: int, hold: bool, task_pos: bool) -> tuple[int, int, bool]:
     """One governor step (module docstring): returns (g_new, v_new, clamped), 64-bit words."""
     if not gp["enable"]:
@@ -97,7 +112,7 @@ def gov_step(gp: dict, v: int, r_old: int, r_new: int, g: int, hold: bool, task_
     vmax, a = gp["vmax"], gp["a"]
     vd0 = wrap(r_new - r_old, 64) + (wrap(r_old - g, 64) >> gp["ksh"])
     vd = vmax if vd0 > vmax else -vmax if vd0 < -vmax else vd0
-    if hold and not task_pos:
+    if hold and not task_pos and not speed_hold_passes(vd0, g):
         vd = 0
     vs = wrap(v, 64)
     dv0 = vd - vs
@@ -168,6 +183,9 @@ class RefGen:
         self.mem = [Slot()] * NSLOT        # not cleared by reset (block RAM)
         self.gmem = [0] * NSLOT            # field 7 of each slot (governor words), block RAM too
         self.gcfg = 0                      # enable / ksh register (loaded by the field-7 write of slot 4)
+        # statistics for the tests (not state): speed-task holds by (g < 0, vd passes), counted when the
+        # advance is computed (clock level: when it begins; the snapshot shares this dict)
+        self.hold_cases = {(n, p): 0 for n in (False, True) for p in (False, True)}
         self.reset(settled=True)
 
     def reset(self, settled: bool = False) -> None:
@@ -277,6 +295,8 @@ class RefGen:
 
     def _govern(self, r_old: int, r_new: int, g: int) -> int:
         """The governed head after an advance of the target from r_old to r_new (g: the old head)."""
+        if self._hold and not self._task_pos and self.gov["enable"]:
+            self.hold_cases[speed_hold_case(self.gov, r_old, r_new, g)] += 1
         g_new, self.v, self.clamped = gov_step(self.gov, self.v, r_old, r_new, g, self._hold, self._task_pos)
         return g_new
 
