@@ -211,16 +211,9 @@ class PosSense:
         elif align_clear and self.al:
             al, rel_cal, base_rel = 0, 1, 0
         elif ev_hall:
-            s = hall_sector
             rel_cal = 0
-            if ev_hall_init:
-                base_rel = sector_centre(s, self.ab)
-            elif s == _next_sector(self.last_sector):
-                base_rel = sector_start(s, self.ab)
-            elif self.last_sector == _next_sector(s):
-                base_rel = sector_end(s, self.ab)
-            else:
-                base_rel = sector_centre(s, self.ab)
+            # the RTL's HALL ROM (one rule for both models; 0 for the invalid sectors 0 and 7)
+            base_rel = hall_rom(self.hall_init, self.last_sector, hall_sector, self.ab)
         hall_init, last_sector = self.hall_init, self.last_sector
         if hall_valid and ((not self.hall_init) or hall_change):
             hall_init, last_sector = 1, hall_sector
