@@ -15,6 +15,7 @@ import re
 from pathlib import Path
 
 
+import mx_budget as B
 import mx_schedule as S
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -95,3 +96,14 @@ def test_doc_quotes_the_schedule():
     r = S.simulate([S.AxisCfg()])
     assert f"**{r.latency_last_bit[0]} clocks**" in text
     assert re.search(rf"\b{S.simulate([S.AxisCfg(ncols=64)]).latency_last_bit[0]}\b", text)
+
+
+def test_doc_quotes_the_budget(tmp_path):
+    """docs/four_axes.md 8 quotes flow/mx_budget.py's current NAXES = 4 total (measured blocks in)."""
+    assert B.main(["--json", str(tmp_path / "b.json")]) == 0
+    c = B.current(B.SHARED, 4)
+    assert c["lut_flat"] == B.total(B.SHARED, 4)["lut_flat"] + sum(r["measured"] - r["estimate"] for r in c["rows"])
+    # every measured block replaces its estimate: a row that matches no MEASURED entry is a typo here
+    assert {r["basis"] for r in c["rows"]} == {src for _, src in B.MEASURED.values()}
+    text = DOC.read_text()
+    assert f"**{c['lut_flat']} LUT,\n    {c['lut_pct']} %: {c['over_cap']} over the 90 % cap**" in text
