@@ -381,8 +381,11 @@ async def _iso_run(dut, victim: int, faults: bool, first: bool, n_per: int):
     if faults:
         k = 20
         n_fr = n_per * P2 // p.tf
+        kinds = [0, 1, 2, 3]
         while k < n_fr // 2:
-            kind = vr.randrange(4)
+            if not kinds:                       # every kind once per round, in random order
+                kinds = [0, 1, 2, 3]
+            kind = kinds.pop(vr.randrange(len(kinds)))
             if kind == 0:                       # overcurrent frame (offset 2048, thr 500)
                 plan[k] = ((2048 + vr.choice([-1, 1]) * 900, 2048, 2048), (0, 0, 0))
             elif kind == 1:                     # frame error
