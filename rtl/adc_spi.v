@@ -76,9 +76,22 @@
 // Parameters: ADC_BITS, FRAME_BITS, LEAD_ZEROS (>= 1), SCLK_DIV (>= 1), SAMPLE_DELAY (>= 3),
 //   CS_QUIET (>= 1), HALF_PERIOD (pwm_center's P), AVG_LOG2 (K), FRAME_PERIOD (TF, 0 = auto),
 //   CAL_LOG2 (>= 1), CUR_W (>= 2), MISS_W, OFFSET_RESET, PCNT_W (period frame counter),
-//   SUM_PERSIST, STUCK_PERSIST (>= 1, frames), FROZEN_PERIODS (>= 1, PWM periods).
+//   SUM_PERSIST, STUCK_PERSIST (>= 1, frames), FROZEN_PERIODS (>= 1, PWM periods), NAXES (1..4),
+//   STAGGER (carrier offset between neighbouring axes, clk, a multiple of TF; NAXES > 1).
 //   Illegal combinations stop the elaboration (module adc_spi_bad_parameters).
 // Resources (Yosys synth_xilinx xc6s, defaults): see docs/blocks/adc_spi.md.
+// NAXES > 1 (docs/blocks/adc_spi.md "NAXES > 1"): one frame engine (one SCLK, one CS, one grid,
+//   one capture schedule) serves NAXES axes of 3 converters each (miso[3a+i] = axis a, phase i).
+//   Every per-axis port is a vector, axis a at [a*W +: W] (NAXES = 1: today's ports, bit- and
+//   cycle-exact).  Axis a's carrier is axis 0's delayed by a*STAGGER clk (pwm_center PHASE,
+//   `EMPC_PWM_STAGGER_<NAXES>, a whole number of frames): its window frames are the grid points
+//   centred on its own centre.  The grid is re-phased once per PWM period at cycle R of axis 0's
+//   period (R = the first clock after the last axis's last serial pass, where no window is); axis 0's
+//   period_start only re-loads the grid if it is out of phase (a sync restart: a "jump", which cuts
+//   the windows open then: miss per axis, no valid).  Everything per frame after the capture is
+//   replicated per axis (codes, checks, window / period accumulators, serial pass adders,
+//   calibration, offsets, frozen, centre check): each axis's outputs come at the single-axis
+//   latencies after its own frames / boundaries, and depend only on its own inputs and MISO lines.
 // Reset (synchronous, rst): cs_n = 1, sclk = 1, idle, grid restarts (no window until the
 //   first period_start), all outputs, sums, counters and flags 0, offsets = OFFSET_RESET,
 //   calibration idle.
@@ -102,56 +115,59 @@ module adc_spi #(
     parameter integer PCNT_W         = 7,
     parameter integer SUM_PERSIST    = `EMPC_ADC_SUM_FRAMES,
     parameter integer STUCK_PERSIST  = `EMPC_ADC_STUCK_FRAMES,
-    parameter integer FROZEN_PERIODS = `EMPC_ADC_FROZEN_PERIODS
+    parameter integer FROZEN_PERIODS = `EMPC_ADC_FROZEN_PERIODS,
+    parameter integer NAXES          = 1,
+    parameter integer STAGGER        = (NAXES == 2) ? `EMPC_PWM_STAGGER_2 : (NAXES == 3) ? `EMPC_PWM_STAGGER_3
+                                     : (NAXES == 4) ? `EMPC_PWM_STAGGER_4 : 0
 ) (
     input  wire                           clk,
     input  wire                           rst,
-    // PWM timing and state
-    input  wire                           period_start,  // PWM period boundary (1 clk)
-    input  wire                           trig,          // PWM centre (1 clk): checked
-    input  wire                           bridges_on,    // outputs may switch
-    output wire                           busy,          // a frame is in progress
-    output reg                            trig_miss,
-    output reg  [MISS_W-1:0]              miss_cnt,
-    // SPI pins
+    // PWM timing and state (per axis)
+    input  wire [NAXES-1:0]               period_start,  // PWM period boundary (1 clk)
+    input  wire [NAXES-1:0]               trig,          // PWM centre (1 clk): checked
+    input  wire [NAXES-1:0]               bridges_on,    // outputs may switch
+    output wire                           busy,          // a frame is in progress (shared)
+    output wire [NAXES-1:0]               trig_miss,
+    output wire [NAXES*MISS_W-1:0]        miss_cnt,
+    // SPI pins (one SCLK, one CS; three MISO lines per axis)
     output reg                            cs_n,
     output reg                            sclk,
-    input  wire [2:0]                     miso,          // asynchronous
+    input  wire [3*NAXES-1:0]             miso,          // asynchronous
     // every frame
-    output reg                            fvalid,
-    output reg  [ADC_BITS-1:0]            code0,
-    output reg  [ADC_BITS-1:0]            code1,
-    output reg  [ADC_BITS-1:0]            code2,
-    output reg                            frame_err,
-    input  wire [ADC_BITS-1:0]            oc_thr,
-    output reg                            oc,
-    output reg  [2:0]                     oc_ch,
-    input  wire [ADC_BITS-1:0]            sum_thr,
-    output reg                            sum_err,
-    output reg                            stuck,
-    output reg                            frozen,
-    // controller sample, once per PWM period
-    output reg                            valid,
-    output reg  signed [CUR_W-1:0]        cur0,
-    output reg  signed [CUR_W-1:0]        cur1,
-    output reg  signed [CUR_W-1:0]        cur2,
-    output reg                            sat,
+    output reg                            fvalid,        // shared: the frame is common
+    output wire [NAXES*ADC_BITS-1:0]      code0,
+    output wire [NAXES*ADC_BITS-1:0]      code1,
+    output wire [NAXES*ADC_BITS-1:0]      code2,
+    output wire [NAXES-1:0]               frame_err,
+    input  wire [NAXES*ADC_BITS-1:0]      oc_thr,
+    output wire [NAXES-1:0]               oc,
+    output wire [3*NAXES-1:0]             oc_ch,
+    input  wire [NAXES*ADC_BITS-1:0]      sum_thr,
+    output wire [NAXES-1:0]               sum_err,
+    output wire [NAXES-1:0]               stuck,
+    output wire [NAXES-1:0]               frozen,
+    // controller sample, once per PWM period (of the axis)
+    output wire [NAXES-1:0]               valid,
+    output wire signed [NAXES*CUR_W-1:0]  cur0,
+    output wire signed [NAXES*CUR_W-1:0]  cur1,
+    output wire signed [NAXES*CUR_W-1:0]  cur2,
+    output wire [NAXES-1:0]               sat,
     // sums of the last complete PWM period (offset-corrected)
-    output reg  signed [ADC_BITS+PCNT_W:0] psum0,
-    output reg  signed [ADC_BITS+PCNT_W:0] psum1,
-    output reg  signed [ADC_BITS+PCNT_W:0] psum2,
-    output reg  [PCNT_W-1:0]              pcount,
+    output wire signed [NAXES*(ADC_BITS+PCNT_W+1)-1:0] psum0,
+    output wire signed [NAXES*(ADC_BITS+PCNT_W+1)-1:0] psum1,
+    output wire signed [NAXES*(ADC_BITS+PCNT_W+1)-1:0] psum2,
+    output wire [NAXES*PCNT_W-1:0]        pcount,
     // offsets
-    input  wire [2:0]                     off_we,
-    input  wire [ADC_BITS-1:0]            off_wdata,
-    output reg  [ADC_BITS-1:0]            offset0,
-    output reg  [ADC_BITS-1:0]            offset1,
-    output reg  [ADC_BITS-1:0]            offset2,
-    input  wire                           cal_start,
-    output reg                            cal_busy,
-    output reg                            cal_done,
-    output reg                            refused,       // sticky: cal_start / offset write refused, calibration aborted
-    input  wire                           refused_clear
+    input  wire [3*NAXES-1:0]             off_we,
+    input  wire [NAXES*ADC_BITS-1:0]      off_wdata,
+    output wire [NAXES*ADC_BITS-1:0]      offset0,
+    output wire [NAXES*ADC_BITS-1:0]      offset1,
+    output wire [NAXES*ADC_BITS-1:0]      offset2,
+    input  wire [NAXES-1:0]               cal_start,
+    output wire [NAXES-1:0]               cal_busy,
+    output wire [NAXES-1:0]               cal_done,
+    output wire [NAXES-1:0]               refused,       // sticky: cal_start / offset write refused, calibration aborted
+    input  wire [NAXES-1:0]               refused_clear
 );
     // ---------------------------------------------------------------- sizes
     localparam integer HB_END = 2 * FRAME_BITS + 2;          // half-bit periods per frame
@@ -162,6 +178,7 @@ module adc_spi #(
     localparam integer D_W    = ADC_BITS + 1;                  // code - offset, exact
     localparam integer ACC_W  = ADC_BITS + CAL_LOG2;
     localparam integer CODE_MSB = FRAME_BITS - 1 - LEAD_ZEROS;
+    localparam integer PSW    = ADC_BITS + 1 + PCNT_W;         // period sum width
 
     localparam integer HB_LAST_I    = HB_END - 1;
     localparam integer HB_LLAUNCH_I = 2 * FRAME_BITS - 2;     // last launching half-bit
@@ -178,6 +195,13 @@ module adc_spi #(
 
     localparam [1:0] S_IDLE = 2'd0, S_XFER = 2'd1, S_WAIT = 2'd2, S_QUIET = 2'd3;
 
+    // serial pass after every frame: window (AW), sum check (SW), period sums (PSW) bits
+    localparam integer AW   = D_W + AVG_LOG2;
+    localparam integer SW   = D_W + 2;                         // |s| <= 3*(2^B-1), s -/+ thr fit
+    localparam integer PL_A = (AVG_LOG2 > 0) ? AW + 1 : 0;
+    localparam integer PL_B = (SW > PSW) ? SW : PSW;
+    localparam integer PL   = (PL_A > PL_B) ? PL_A : PL_B;     // pass length, clocks
+
     // ------------------------------------------------------------ schedule
     localparam integer T_CS_A = (2 * FRAME_BITS + 2) * SCLK_DIV;
     localparam integer T_CS_B = 2 * (FRAME_BITS - 1) * SCLK_DIV + SAMPLE_DELAY + 1;
@@ -188,31 +212,38 @@ module adc_spi #(
                               : (AVG_LOG2 > 0) ? MINP + (MINP % 2) : MINP;
     localparam integer NW     = 1 << AVG_LOG2;                 // window frames
     localparam integer WLEAD  = ((NW - 1) * TF) / 2;           // first window frame before the centre
-    localparam integer T0     = HALF_PERIOD - WLEAD;           // its cycle in the period
+    // Grid coordinates: cycle 0 = the cycle that (re)loads the grid (NAXES = 1: period_start;
+    // NAXES > 1: cycle R of axis 0's period).  Axis a's centre is grid cycle C0 + a*STAGGER.
+    // NAXES > 1: R = the first clock after the last axis's last window pass, so that pass ends in
+    // grid cycle 2P - 1 and every window lies inside one grid run.
+    localparam integer P2     = 2 * HALF_PERIOD;
+    localparam integer R_REPH = (NAXES > 1) ? (HALF_PERIOD + (NAXES - 1) * STAGGER + WLEAD + VL + PL + 1) % P2 : 0;
+    localparam integer C0     = (NAXES > 1) ? P2 - ((NAXES - 1) * STAGGER + WLEAD + VL + PL + 1) : HALF_PERIOD;
+    localparam integer T0     = C0 - WLEAD;                    // axis 0's first window frame, grid cycle
     localparam integer G0     = (T0 % TF == 0) ? TF : T0 % TF; // first grid point (>= 1)
-    localparam integer M0     = (T0 - G0) / TF;                // grid index of the window
-    localparam integer GC_C   = ((G0 - HALF_PERIOD) % TF + TF) % TF;            // grid state at
-    localparam integer GP_C   = (HALF_PERIOD > G0) ? (HALF_PERIOD - 1 - G0) / TF + 1 : 0;  // the centre
+    localparam integer M0     = (T0 - G0) / TF;                // grid index of axis 0's window
+    localparam integer GC_C   = ((G0 - C0) % TF + TF) % TF;    // gc at every axis's centre
     localparam integer GP_MAXI = (2 * HALF_PERIOD) / TF + 2;
     localparam integer GP_W   = $clog2(GP_MAXI + 1);
     localparam integer GC_W   = $clog2(TF);
     localparam [GP_W-1:0] GP_MAX = GP_MAXI[GP_W-1:0];
-    localparam [GP_W-1:0] W_FIRST = M0[GP_W-1:0];
-    localparam integer W_LASTI = M0 + NW - 1;
-    localparam [GP_W-1:0] W_LASTG = W_LASTI[GP_W-1:0];
-    localparam [GP_W-1:0] GP_CEN  = GP_C[GP_W-1:0];
     localparam [GC_W-1:0] GC_CEN  = GC_C[GC_W-1:0];
     localparam integer GC_G0I = G0 - 1;
-    localparam [GC_W-1:0] GC_G0   = GC_G0I[GC_W-1:0];          // gc after period_start
+    localparam [GC_W-1:0] GC_G0   = GC_G0I[GC_W-1:0];          // gc after a reload
     localparam integer GC_TOPI = TF - 1;
     localparam [GC_W-1:0] GC_TOP  = GC_TOPI[GC_W-1:0];
-    // serial pass after every frame: window (AW), sum check (SW), period sums (PSW) bits
-    localparam integer AW   = D_W + AVG_LOG2;
-    localparam integer SW   = D_W + 2;                         // |s| <= 3*(2^B-1), s -/+ thr fit
-    localparam integer PSW  = D_W + PCNT_W;
-    localparam integer PL_A = (AVG_LOG2 > 0) ? AW + 1 : 0;
-    localparam integer PL_B = (SW > PSW) ? SW : PSW;
-    localparam integer PL   = (PL_A > PL_B) ? PL_A : PL_B;     // pass length, clocks
+    // NAXES > 1: grid state (gc, gp) in grid cycle x >= 1 after a reload: gc = (G0 - x) mod TF,
+    // gp = x <= G0 ? 0 : (x - G0 - 1) / TF + 1.  Terminal state = grid cycle 2P (reload to G0 - 1, 0);
+    // axis 0's boundary is grid cycle Y0 = 2P - R (2P if R = 0): the state expected there (J) and
+    // the one loaded at its edge when it differs (L = grid cycle Y0 + 1).
+    localparam integer Y0     = P2 - R_REPH;
+    localparam integer Y1     = (Y0 == P2) ? 1 : Y0 + 1;
+    localparam integer GC_TI  = ((G0 - P2) % TF + TF) % TF;
+    localparam integer GP_TI  = (P2 - G0 - 1) / TF + 1;
+    localparam integer GC_JI  = ((G0 - Y0) % TF + TF) % TF;
+    localparam integer GP_JI  = (Y0 <= G0) ? 0 : (Y0 - G0 - 1) / TF + 1;
+    localparam integer GC_LI  = ((G0 - Y1) % TF + TF) % TF;
+    localparam integer GP_LI  = (Y1 <= G0) ? 0 : (Y1 - G0 - 1) / TF + 1;
     localparam integer PJ_W = $clog2(PL + 1);
     localparam integer PJ_LASTI = PL - 1, PJ_SIGNI = SW - 1, PJ_KM1I = (AVG_LOG2 > 0) ? AVG_LOG2 - 1 : 0;
     localparam [PJ_W-1:0] PJ_LAST = PJ_LASTI[PJ_W-1:0];
@@ -236,37 +267,31 @@ module adc_spi #(
 
     generate if (LEAD_ZEROS < 1 || LEAD_ZEROS + ADC_BITS > FRAME_BITS || SCLK_DIV < 1 || SAMPLE_DELAY < 3 ||
                  CS_QUIET < 1 || CAL_LOG2 < 1 || CUR_W < 2 || TF < MINP || (AVG_LOG2 > 0 && TF % 2 != 0) ||
-                 M0 < 1 || PL + 2 > TF || T0 + NW * TF + VL + PL + 2 > 2 * HALF_PERIOD ||
+                 M0 < 1 || PL + 2 > TF || (NAXES == 1 && T0 + NW * TF + VL + PL + 2 > 2 * HALF_PERIOD) ||
                  PCNT_MAXI < (2 * HALF_PERIOD - 1) / TF + 1 || SUM_PERSIST < 1 || STUCK_PERSIST < 1 ||
-                 FROZEN_PERIODS < 1 || AVG_LOG2 < 0)
+                 FROZEN_PERIODS < 1 || AVG_LOG2 < 0 || NAXES < 1 || NAXES > 4 ||
+                 (NAXES > 1 && (STAGGER < TF || STAGGER % TF != 0 || C0 <= WLEAD)))
     begin : g_bad_params
         adc_spi_bad_parameters u_error ();     // no such module: elaboration stops here
     end endgenerate
 
     // ------------------------------------------------------------ MISO sync
-    wire [2:0] miso_s;
-    sync_2ff #(.WIDTH(3), .STAGES(2)) u_sync_miso (
+    wire [3*NAXES-1:0] miso_s;
+    sync_2ff #(.WIDTH(3 * NAXES), .STAGES(2)) u_sync_miso (
         .clk(clk), .rst(rst), .d(miso), .q(miso_s)
     );
 
     // ------------------------------------------------------------ frame grid
     // gc counts down to the next grid point (0 = grid point now), gp counts the grid
-    // points of this period so far; period_start reloads both at its edge, so the new grid
-    // has its first point G0 >= 1 cycles after the boundary cycle (in the boundary cycle
-    // itself the old grid still applies: no multiplexer in front of the counters).
+    // points of this grid run so far.  NAXES = 1: period_start reloads both at its edge, so
+    // the new grid has its first point G0 >= 1 cycles after the boundary cycle (in the boundary
+    // cycle itself the old grid still applies: no multiplexer in front of the counters).
+    // NAXES > 1: the terminal state (grid cycle 2P) reloads them the same way; axis 0's
+    // period_start loads the state of the cycle after it only if they are out of phase (g_jump).
     reg  [GC_W-1:0] gc;
     reg  [GP_W-1:0] gp;
-    wire [GC_W-1:0] gc_e = gc;
-    wire [GP_W-1:0] gp_e = gp;
-    wire            go   = (gc_e == {GC_W{1'b0}});
-    wire            w_in    = (gp_e >= W_FIRST) && (gp_e <= W_LASTG);
-    wire            w_first = (gp_e == W_FIRST);
-    wire            w_last  = (gp_e == W_LASTG);
-    reg             win_open;              // window started, its last frame not yet started
-    wire            trig_ok = (gc_e == GC_CEN) && (gp_e == GP_CEN);
-    wire            miss_now = (trig & ~trig_ok) | (period_start & win_open);
-    wire [MISS_W:0] miss_p1 = {1'b0, miss_cnt} + {{MISS_W{1'b0}}, 1'b1};
-
+    wire            go     = (gc == {GC_W{1'b0}});
+    wire            g_jump;                // NAXES > 1: grid re-loaded out of phase (cuts open windows)
     // -------------------------------------------------------- frame control
     reg [1:0]        st;
     reg [DIV_W-1:0]  dcnt;
@@ -278,16 +303,9 @@ module adc_spi #(
     reg [PIPE_N-1:0] lpipe;                // llast delayed: the last capture
     reg              lcb;                  // bit launched at the previous edge is a code bit after the MSB
     reg [PIPE_N-1:0] cpipe;                // lcb delayed
-    reg [2:0]        ctr;                  // a code bit differed from the code bit before it (per channel)
     reg              all_cap;              // every bit of the frame captured
-    reg [CODE_MSB:0] shc;                  // code (+ trailing) bits of channel cal_ch (calibration)
-    reg [1:0]        cal_ch;               // channel being calibrated
-    reg [FRAME_BITS-1:0] sh0, sh1, sh2;
-    reg [2:0]        fchg;                 // frame differs from the previous one (per channel)
     reg              capdone;              // last bit captured at the previous edge
     reg              st_a;                 // stage A registered (codes, differences)
-    reg              frame_cal;            // this frame counts for calibration
-    reg              f_win, f_first, f_last;   // this frame's place in the window
 
     wire cap      = spipe[PIPE_N-1];
     wire cap_last = lpipe[PIPE_N-1];
@@ -296,33 +314,34 @@ module adc_spi #(
 
     assign busy = (st != S_IDLE) | capdone | st_a;
 
-    always @(posedge clk) begin
-        if (rst) begin
-            gc        <= GC_TOP;
-            gp        <= GP_MAX;           // no window before the first period_start
-            win_open  <= 1'b0;
-            f_win     <= 1'b0;
-            f_first   <= 1'b0;
-            f_last    <= 1'b0;
-            trig_miss <= 1'b0;
-            miss_cnt  <= {MISS_W{1'b0}};
-        end else begin
-            gc <= period_start ? GC_G0 : go ? GC_TOP : gc_e - 1'b1;
-            gp <= period_start ? {GP_W{1'b0}} : (go && gp_e != GP_MAX) ? gp_e + 1'b1 : gp_e;
-            trig_miss <= miss_now;
-            if (miss_now && !miss_p1[MISS_W])
-                miss_cnt <= miss_p1[MISS_W-1:0];
-            if (period_start) win_open <= 1'b0;
-            if (accept) begin
-                f_win   <= w_in;
-                f_first <= w_first;
-                f_last  <= w_last;
-                if (w_first) win_open <= 1'b1;
-                if (w_last)  win_open <= 1'b0;
+    generate
+        if (NAXES == 1) begin : g_grid1
+            assign g_jump = 1'b0;
+            always @(posedge clk) begin
+                if (rst) begin
+                    gc <= GC_TOP;
+                    gp <= GP_MAX;          // no window before the first period_start
+                end else begin
+                    gc <= period_start[0] ? GC_G0 : go ? GC_TOP : gc - 1'b1;
+                    gp <= period_start[0] ? {GP_W{1'b0}} : (go && gp != GP_MAX) ? gp + 1'b1 : gp;
+                end
+            end
+        end else begin : g_gridn
+            localparam [GC_W-1:0] GC_T = GC_TI[GC_W-1:0], GC_J = GC_JI[GC_W-1:0], GC_L = GC_LI[GC_W-1:0];
+            localparam [GP_W-1:0] GP_T = GP_TI[GP_W-1:0], GP_J = GP_JI[GP_W-1:0], GP_L = GP_LI[GP_W-1:0];
+            wire g_term = (gc == GC_T) && (gp == GP_T);
+            assign g_jump = period_start[0] && !((gc == GC_J) && (gp == GP_J));
+            always @(posedge clk) begin
+                if (rst) begin
+                    gc <= GC_TOP;
+                    gp <= GP_MAX;          // no window before axis 0's first period_start
+                end else begin
+                    gc <= g_jump ? GC_L : g_term ? GC_G0 : go ? GC_TOP : gc - 1'b1;
+                    gp <= g_jump ? GP_L : g_term ? {GP_W{1'b0}} : (go && gp != GP_MAX) ? gp + 1'b1 : gp;
+                end
             end
         end
-    end
-
+    endgenerate
     always @(posedge clk) begin
         if (rst) begin
             st        <= S_IDLE;
@@ -412,155 +431,25 @@ module adc_spi #(
         end
     endgenerate
 
-    // The bit leaving sh_i at a capture is the previous frame's bit at the same place:
-    // comparing them finds a frame that differs from the previous one without storing it.
+    // capture flags (shared): every bit of the frame captured, last capture, stage A
     always @(posedge clk) begin
         if (rst) begin
             all_cap <= 1'b0;
-            sh0     <= {FRAME_BITS{1'b0}};
-            sh1     <= {FRAME_BITS{1'b0}};
-            sh2     <= {FRAME_BITS{1'b0}};
-            shc     <= {(CODE_MSB+1){1'b0}};
-            fchg    <= 3'b000;
-            ctr     <= 3'b000;
             capdone <= 1'b0;
+            st_a    <= 1'b0;
+            fvalid  <= 1'b0;
         end else begin
             capdone <= cap_last;
             if (accept)
                 all_cap <= 1'b0;
             else if (cap_last)
                 all_cap <= 1'b1;
-            if (accept)
-                fchg <= 3'b000;
-            else if (cap)
-                fchg <= fchg | ({sh2[FRAME_BITS-1], sh1[FRAME_BITS-1], sh0[FRAME_BITS-1]} ^ miso_s);
-            // a code at a rail (0 or full scale) has all its bits equal: no code bit after the
-            // MSB differs from the one captured before it (sh_i[0])
-            if (accept)
-                ctr <= 3'b000;
-            else if (cap && cpipe[PIPE_N-1])
-                ctr <= ctr | ({sh2[0], sh1[0], sh0[0]} ^ miso_s);
-            if (cap) begin
-                sh0  <= {sh0[FRAME_BITS-2:0], miso_s[0]};
-                sh1  <= {sh1[FRAME_BITS-2:0], miso_s[1]};
-                sh2  <= {sh2[FRAME_BITS-2:0], miso_s[2]};
-                shc  <= {shc[CODE_MSB-1:0], cal_ch[1] ? miso_s[2] : cal_ch[0] ? miso_s[1] : miso_s[0]};
-            end
+            st_a   <= capdone;
+            fvalid <= st_a;
         end
     end
 
-    // ----------------------------------------- stage A: codes, differences, rails
-    wire [ADC_BITS-1:0] fcode0 = sh0[CODE_MSB -: ADC_BITS];
-    wire [ADC_BITS-1:0] fcode1 = sh1[CODE_MSB -: ADC_BITS];
-    wire [ADC_BITS-1:0] fcode2 = sh2[CODE_MSB -: ADC_BITS];
-    wire lead_bad = (|sh0[FRAME_BITS-1 -: LEAD_ZEROS]) | (|sh1[FRAME_BITS-1 -: LEAD_ZEROS])
-                  | (|sh2[FRAME_BITS-1 -: LEAD_ZEROS]);
-    wire rail = ~&ctr;                     // some channel's code at a rail
-
-    reg [D_W-1:0]        diff0, diff1, diff2;   // code - offset, exact (-4095..4095), two's complement
-    reg                  lead_bad_a, rail_a;
-
-    always @(posedge clk) begin
-        if (rst) begin
-            st_a       <= 1'b0;
-            code0      <= {ADC_BITS{1'b0}};
-            code1      <= {ADC_BITS{1'b0}};
-            code2      <= {ADC_BITS{1'b0}};
-            diff0      <= {D_W{1'b0}};
-            diff1      <= {D_W{1'b0}};
-            diff2      <= {D_W{1'b0}};
-            lead_bad_a <= 1'b0;
-            rail_a     <= 1'b0;
-        end else begin
-            st_a <= capdone;
-            if (capdone) begin
-                code0      <= fcode0;
-                code1      <= fcode1;
-                code2      <= fcode2;
-                diff0      <= {1'b0, fcode0} - {1'b0, offset0};
-                diff1      <= {1'b0, fcode1} - {1'b0, offset1};
-                diff2      <= {1'b0, fcode2} - {1'b0, offset2};
-                lead_bad_a <= lead_bad;
-                rail_a     <= rail;
-            end
-        end
-    end
-
-    // -------------------------------------------------------- calibration
-    // One channel after the other (cal_ch = 0, 1, 2), 2**CAL_LOG2 counted frames each,
-    // on one accumulator preset to 2**(CAL_LOG2-1): its top ADC_BITS bits are then the
-    // round-half-up mean (sum + 2**(CAL_LOG2-1)) >> CAL_LOG2 (cannot overflow:
-    // acc <= (2**ADC_BITS-1) * 2**CAL_LOG2 + 2**(CAL_LOG2-1) < 2**ACC_W).
-    localparam [ACC_W-1:0] ACC_HALF = {{ADC_BITS{1'b0}}, 1'b1, {(CAL_LOG2-1){1'b0}}};
-    reg [ACC_W-1:0]      acc;
-    reg [CAL_LOG2-1:0]   cal_cnt;
-    reg                  cal_last;              // stage A added the channel's last sample
-    wire [ADC_BITS-1:0]  cal_code = shc[CODE_MSB -: ADC_BITS];
-    // offset write port: the calibration result, or the CPU value (refused while a
-    // calibration runs or the bridges are on)
-    wire                 cpu_ok = ~cal_busy & ~bridges_on;
-    wire [ADC_BITS-1:0]  off_d = cal_last ? acc[ACC_W-1 -: ADC_BITS] : off_wdata;
-    wire [2:0]           cal_ld = {3{cal_last}} & {cal_ch == 2'd2, cal_ch == 2'd1, cal_ch == 2'd0};
-    wire [2:0]           off_ld = cal_ld | (off_we & {3{cpu_ok}});
-    wire                 cal_go = cal_start & ~bridges_on;
-    wire                 cal_abort = cal_busy & bridges_on;
-    wire                 refuse = (cal_start & bridges_on) | ((|off_we) & ~cpu_ok) | cal_abort;
-
-    always @(posedge clk) begin
-        if (rst) begin
-            frame_cal <= 1'b0;
-            cal_busy  <= 1'b0;
-            cal_done  <= 1'b0;
-            cal_ch    <= 2'd0;
-            cal_cnt   <= {CAL_LOG2{1'b0}};
-            cal_last  <= 1'b0;
-            acc       <= ACC_HALF;
-            offset0   <= OFFSET_RESET[ADC_BITS-1:0];
-            offset1   <= OFFSET_RESET[ADC_BITS-1:0];
-            offset2   <= OFFSET_RESET[ADC_BITS-1:0];
-            refused   <= 1'b0;
-        end else begin
-            cal_last <= 1'b0;
-            refused  <= refuse | (refused & ~refused_clear);
-            if (accept) frame_cal <= cal_busy;
-            if (off_ld[0]) offset0 <= off_d;
-            if (off_ld[1]) offset1 <= off_d;
-            if (off_ld[2]) offset2 <= off_d;
-            // accumulate at stage A
-            if (capdone && frame_cal) begin
-                acc       <= acc + {{CAL_LOG2{1'b0}}, cal_code};
-                cal_cnt   <= cal_cnt + 1'b1;
-                cal_last  <= (cal_cnt == CAL_LAST);
-                frame_cal <= 1'b0;
-            end
-            // load the offset at stage B, next channel
-            if (cal_last) begin
-                acc    <= ACC_HALF;
-                cal_ch <= cal_ch + 2'd1;
-                if (cal_ch == 2'd2) begin
-                    cal_busy <= 1'b0;
-                    cal_done <= 1'b1;
-                end
-            end
-            // bridges on: stop (the channels already loaded were measured with them off)
-            if (cal_abort) begin
-                cal_busy  <= 1'b0;
-                frame_cal <= 1'b0;
-            end
-            // (re)start: clears everything, the frame in flight does not count
-            if (cal_go) begin
-                cal_busy  <= 1'b1;
-                cal_done  <= 1'b0;
-                cal_ch    <= 2'd0;
-                cal_cnt   <= {CAL_LOG2{1'b0}};
-                cal_last  <= 1'b0;
-                frame_cal <= 1'b0;
-                acc       <= ACC_HALF;
-            end
-        end
-    end
-
-    // ---------------------- stage B: overcurrent, frame error, rails (every frame)
+    // ---------------------- stage B: overcurrent
     // |d| > thr on the registered difference: e = d ^ sign (= |d| - sign), so
     // |d| > thr <=> (d >= 0) ? e > thr : e >= thr <=> thr - e - 1 + ~sign < 0, i.e. no
     // carry out of thr + ~e + ~sign.  Written as one two-operand adder
@@ -577,31 +466,6 @@ module adc_spi #(
             oc_f = ~t[ADC_BITS+1];
         end
     endfunction
-    wire [2:0] oc_now = {oc_f(diff2, oc_thr), oc_f(diff1, oc_thr), oc_f(diff0, oc_thr)};
-    reg  [KP_W-1:0] kcnt;                  // consecutive frames with a rail (saturating)
-
-    always @(posedge clk) begin
-        if (rst) begin
-            fvalid    <= 1'b0;
-            frame_err <= 1'b0;
-            oc        <= 1'b0;
-            oc_ch     <= 3'b000;
-            kcnt      <= {KP_W{1'b0}};
-            stuck     <= 1'b0;
-        end else begin
-            fvalid    <= st_a;
-            frame_err <= st_a & lead_bad_a;
-            oc        <= st_a & (|oc_now);
-            if (st_a) begin
-                oc_ch <= oc_now;
-                stuck <= rail_a && (kcnt >= KP_TRIP);
-                if (!rail_a)
-                    kcnt <= {KP_W{1'b0}};
-                else if (kcnt != KP_TRIP)
-                    kcnt <= kcnt + 1'b1;
-            end
-        end
-    end
 
     // ------------------------------------------------ cur = sat(d, CUR_W)
     function [CUR_W:0] satf;               // {saturated, value}
@@ -628,203 +492,471 @@ module adc_spi #(
     // mean), the period accumulators and s = d0 + d1 + d2 with the two compares
     // s - thr - 1 >= 0 and s + thr < 0 (|s| > thr), whose signs are known at j = SW-1.
     // The accumulators are shift registers that rotate once per pass (flip-flops, no LUTs).
+    // The bit counter is shared (every axis passes the same frame); the adders are per axis.
     reg              pbusy;
     reg [PJ_W-1:0]   pj;
-    reg              p_win, p_first, p_last, p_pfirst, p_padd;
-    reg [ADC_BITS-1:0] p_thr;
-    reg [1:0]        s_c;                  // carry of d0 + d1 + d2 (0..2)
-    reg              a_c, b_c;
-    reg [2:0]        q_c;                  // period adder carries
-    reg [SP_W-1:0]   scnt;
-    reg [PCNT_W-1:0] pcnt;
-    reg              pfresh, snap_req;
-    reg signed [PSW-1:0] pacc0, pacc1, pacc2;
-
     // jd = min(pj, D_W - 1) (the sign extension), a register stepped with pj: the bit selects of
     // the three differences start at a flip-flop, not behind a compare of pj (worst path of the drive)
     reg  [JD_W-1:0]  jd;
-    wire [2:0]       db = {diff2[jd], diff1[jd], diff0[jd]};
-    wire             tb = (pj < PJ_AB) ? p_thr[pj[JT_W-1:0]] : 1'b0;
-    wire [2:0]       s3 = {2'b00, db[0]} + {2'b00, db[1]} + {2'b00, db[2]} + {1'b0, s_c};
-    wire             sb = s3[0];
-    wire             a_b = sb ^ ~tb ^ a_c;          // s + ~thr  = s - thr - 1
-    wire             b_b = sb ^ tb ^ b_c;           // s + thr
-    wire             sbad = ~a_b | b_b;             // at j = SW-1: |s| > thr
-    wire [2:0]       pa = p_pfirst ? 3'b000 : {pacc2[0], pacc1[0], pacc0[0]};
-    wire [2:0]       pd = db & {3{p_padd}};
-    wire [2:0]       pq = pa ^ pd ^ q_c;
-    wire             snap_now = (period_start | snap_req) & ~pbusy;
-
     always @(posedge clk) begin
         if (rst) begin
-            pbusy    <= 1'b0;
-            pj       <= {PJ_W{1'b0}};
-            jd       <= {JD_W{1'b0}};
-            p_win    <= 1'b0;
-            p_first  <= 1'b0;
-            p_last   <= 1'b0;
-            p_pfirst <= 1'b0;
-            p_padd   <= 1'b0;
-            p_thr    <= {ADC_BITS{1'b0}};
-            s_c      <= 2'd0;
-            a_c      <= 1'b0;
-            b_c      <= 1'b0;
-            q_c      <= 3'b000;
-            scnt     <= {SP_W{1'b0}};
-            sum_err  <= 1'b0;
-            pcnt     <= {PCNT_W{1'b0}};
-            pfresh   <= 1'b1;
-            snap_req <= 1'b0;
-            pacc0    <= {PSW{1'b0}};
-            pacc1    <= {PSW{1'b0}};
-            pacc2    <= {PSW{1'b0}};
-            psum0    <= {PSW{1'b0}};
-            psum1    <= {PSW{1'b0}};
-            psum2    <= {PSW{1'b0}};
-            pcount   <= {PCNT_W{1'b0}};
-        end else begin
-            // period boundary: take the sums once no pass is running
-            snap_req <= (period_start | snap_req) & pbusy;
-            if (snap_now) begin
-                psum0  <= pacc0;
-                psum1  <= pacc1;
-                psum2  <= pacc2;
-                pcount <= pcnt;
-            end
-            if (st_a) begin                                 // pass start (stage B)
-                pbusy    <= 1'b1;
-                pj       <= {PJ_W{1'b0}};
-                jd       <= {JD_W{1'b0}};
-                p_win    <= f_win;
-                p_first  <= f_first;
-                p_last   <= f_last;
-                p_thr    <= sum_thr;
-                p_pfirst <= pfresh | snap_now;
-                p_padd   <= pfresh | snap_now | (pcnt != PCNT_MAX);
-                pcnt     <= (pfresh | snap_now) ? {{(PCNT_W-1){1'b0}}, 1'b1}
-                          : (pcnt != PCNT_MAX) ? pcnt + 1'b1 : pcnt;
-                pfresh   <= 1'b0;
-                s_c      <= 2'd0;
-                a_c      <= 1'b0;
-                b_c      <= 1'b0;
-                    q_c      <= 3'b000;
-            end else begin
-                if (snap_now) begin
-                    pcnt   <= {PCNT_W{1'b0}};
-                    pfresh <= 1'b1;
-                end
-                if (pbusy) begin
-                    pj  <= pj + 1'b1;
-                    if (jd != JD_TOP) jd <= jd + 1'b1;
-                    if (pj == PJ_LAST) pbusy <= 1'b0;
-                    s_c <= s3[2:1];
-                    a_c <= (sb & ~tb) | (sb & a_c) | (~tb & a_c);
-                    b_c <= (sb & tb) | (sb & b_c) | (tb & b_c);
-                    if (pj == PJ_SIGN) begin
-                        sum_err <= sbad && (scnt >= SP_TRIP);
-                        if (!sbad)
-                            scnt <= {SP_W{1'b0}};
-                        else if (scnt != SP_TRIP)
-                            scnt <= scnt + 1'b1;
-                    end
-                    if (pj < PJ_PSW) begin
-                        pacc0 <= {pq[0], pacc0[PSW-1:1]};
-                        pacc1 <= {pq[1], pacc1[PSW-1:1]};
-                        pacc2 <= {pq[2], pacc2[PSW-1:1]};
-                        q_c   <= (pa & pd) | (pa & q_c) | (pd & q_c);
-                    end
-                end
-            end
+            pbusy <= 1'b0;
+            pj    <= {PJ_W{1'b0}};
+            jd    <= {JD_W{1'b0}};
+        end else if (st_a) begin                            // pass start (stage B)
+            pbusy <= 1'b1;
+            pj    <= {PJ_W{1'b0}};
+            jd    <= {JD_W{1'b0}};
+        end else if (pbusy) begin
+            pj <= pj + 1'b1;
+            if (jd != JD_TOP) jd <= jd + 1'b1;
+            if (pj == PJ_LAST) pbusy <= 1'b0;
         end
     end
 
-    // window mean: AVG_LOG2 = 0 takes the centre frame's difference at stage B (as the single
-    // conversion did); AVG_LOG2 > 0 accumulates the window bit-serially
+    // ================================================================ per axis
+    genvar ax;
     generate
-        if (AVG_LOG2 == 0) begin : g_k0
-            wire [CUR_W:0] s0 = satf(diff0), s1 = satf(diff1), s2 = satf(diff2);
+        for (ax = 0; ax < NAXES; ax = ax + 1) begin : g_ax
+            // window of this axis: centre at grid cycle C0 + ax*STAGGER (a whole number of frames)
+            localparam integer CN   = C0 + ax * STAGGER;
+            localparam integer MN   = M0 + (ax * STAGGER) / TF;
+            localparam integer WLN  = MN + NW - 1;
+            localparam integer GPCN = (CN > G0) ? (CN - 1 - G0) / TF + 1 : 0;
+            localparam [GP_W-1:0] W_FIRST = MN[GP_W-1:0];
+            localparam [GP_W-1:0] W_LASTG = WLN[GP_W-1:0];
+            localparam [GP_W-1:0] GP_CEN  = GPCN[GP_W-1:0];
+
+            wire                ps       = period_start[ax];
+            wire                bon      = bridges_on[ax];
+            wire [2:0]          mi       = miso_s[3 * ax +: 3];
+            wire [ADC_BITS-1:0] a_oc_thr = oc_thr[ax * ADC_BITS +: ADC_BITS];
+            wire [ADC_BITS-1:0] a_sum_thr = sum_thr[ax * ADC_BITS +: ADC_BITS];
+            wire [2:0]          a_off_we = off_we[3 * ax +: 3];
+            wire [ADC_BITS-1:0] a_off_wdata = off_wdata[ax * ADC_BITS +: ADC_BITS];
+
+            // ---------------------------------------- window flags, centre check
+            wire            w_in    = (gp >= W_FIRST) && (gp <= W_LASTG);
+            wire            w_first = (gp == W_FIRST);
+            wire            w_last  = (gp == W_LASTG);
+            reg             win_open;          // window started, its last frame not yet started
+            // NAXES > 1: a window frame counts only in a window that started (after a grid jump)
+            wire            w_ok    = (NAXES == 1) || w_first || win_open;
+            wire            trig_ok = (gc == GC_CEN) && (gp == GP_CEN);
+            wire            miss_now = (trig[ax] & ~trig_ok) | ((ps | g_jump) & win_open);
+            reg             r_trig_miss;
+            reg [MISS_W-1:0] r_miss_cnt;
+            wire [MISS_W:0] miss_p1 = {1'b0, r_miss_cnt} + {{MISS_W{1'b0}}, 1'b1};
+            reg             f_win, f_first, f_last;   // this frame's place in the window
             always @(posedge clk) begin
                 if (rst) begin
-                    valid <= 1'b0;
-                    sat   <= 1'b0;
-                    cur0  <= {CUR_W{1'b0}};
-                    cur1  <= {CUR_W{1'b0}};
-                    cur2  <= {CUR_W{1'b0}};
+                    win_open    <= 1'b0;
+                    f_win       <= 1'b0;
+                    f_first     <= 1'b0;
+                    f_last      <= 1'b0;
+                    r_trig_miss <= 1'b0;
+                    r_miss_cnt  <= {MISS_W{1'b0}};
                 end else begin
-                    valid <= st_a & f_last;
-                    sat   <= st_a & f_last & (s0[CUR_W] | s1[CUR_W] | s2[CUR_W]);
-                    if (st_a && f_last) begin
-                        cur0 <= s0[CUR_W-1:0];
-                        cur1 <= s1[CUR_W-1:0];
-                        cur2 <= s2[CUR_W-1:0];
+                    r_trig_miss <= miss_now;
+                    if (miss_now && !miss_p1[MISS_W])
+                        r_miss_cnt <= miss_p1[MISS_W-1:0];
+                    if (ps || g_jump) win_open <= 1'b0;
+                    if (accept) begin
+                        f_win   <= w_in & w_ok;
+                        f_first <= w_first;
+                        f_last  <= w_last & w_ok;
+                        if (w_first) win_open <= 1'b1;
+                        if (w_last)  win_open <= 1'b0;
                     end
                 end
             end
-            wire unused_k0 = &{1'b0, f_first, p_win, p_first, p_last};
-        end else begin : g_kn
-            reg [AW-1:0] accw0, accw1, accw2;
-            reg [2:0]    w_c;                  // window adder carries
-            wire [2:0] wa = p_first ? {3{pj == PJ_KM1}} : {accw2[0], accw1[0], accw0[0]};
-            wire [2:0] wq = wa ^ db ^ w_c;
-            wire [CUR_W:0] s0 = satf(accw0[AW-1:AVG_LOG2]), s1 = satf(accw1[AW-1:AVG_LOG2]),
-                           s2 = satf(accw2[AW-1:AVG_LOG2]);
-            wire w_end = pbusy && p_win && p_last && (pj == PJ_WEND);
+
+            // ---------------------------------------- capture
+            // The bit leaving sh_i at a capture is the previous frame's bit at the same place:
+            // comparing them finds a frame that differs from the previous one without storing it.
+            reg [FRAME_BITS-1:0] sh0, sh1, sh2;
+            reg [CODE_MSB:0] shc;              // code (+ trailing) bits of channel cal_ch (calibration)
+            reg [1:0]        cal_ch;           // channel being calibrated
+            reg [2:0]        fchg;             // frame differs from the previous one (per channel)
+            reg [2:0]        ctr;              // a code bit differed from the code bit before it (per channel)
             always @(posedge clk) begin
                 if (rst) begin
-                    accw0 <= {AW{1'b0}};
-                    accw1 <= {AW{1'b0}};
-                    accw2 <= {AW{1'b0}};
-                    w_c   <= 3'b000;
-                    valid <= 1'b0;
-                    sat   <= 1'b0;
-                    cur0  <= {CUR_W{1'b0}};
-                    cur1  <= {CUR_W{1'b0}};
-                    cur2  <= {CUR_W{1'b0}};
+                    sh0  <= {FRAME_BITS{1'b0}};
+                    sh1  <= {FRAME_BITS{1'b0}};
+                    sh2  <= {FRAME_BITS{1'b0}};
+                    shc  <= {(CODE_MSB+1){1'b0}};
+                    fchg <= 3'b000;
+                    ctr  <= 3'b000;
                 end else begin
-                    valid <= w_end;
-                    sat   <= w_end & (s0[CUR_W] | s1[CUR_W] | s2[CUR_W]);
-                    if (w_end) begin
-                        cur0 <= s0[CUR_W-1:0];
-                        cur1 <= s1[CUR_W-1:0];
-                        cur2 <= s2[CUR_W-1:0];
-                    end
-                    if (st_a)
-                        w_c <= 3'b000;
-                    else if (pbusy && p_win && pj < PJ_WEND) begin
-                        accw0 <= {wq[0], accw0[AW-1:1]};
-                        accw1 <= {wq[1], accw1[AW-1:1]};
-                        accw2 <= {wq[2], accw2[AW-1:1]};
-                        w_c   <= (wa & db) | (wa & w_c) | (db & w_c);
+                    if (accept)
+                        fchg <= 3'b000;
+                    else if (cap)
+                        fchg <= fchg | ({sh2[FRAME_BITS-1], sh1[FRAME_BITS-1], sh0[FRAME_BITS-1]} ^ mi);
+                    // a code at a rail (0 or full scale) has all its bits equal: no code bit after the
+                    // MSB differs from the one captured before it (sh_i[0])
+                    if (accept)
+                        ctr <= 3'b000;
+                    else if (cap && cpipe[PIPE_N-1])
+                        ctr <= ctr | ({sh2[0], sh1[0], sh0[0]} ^ mi);
+                    if (cap) begin
+                        sh0 <= {sh0[FRAME_BITS-2:0], mi[0]};
+                        sh1 <= {sh1[FRAME_BITS-2:0], mi[1]};
+                        sh2 <= {sh2[FRAME_BITS-2:0], mi[2]};
+                        shc <= {shc[CODE_MSB-1:0], cal_ch[1] ? mi[2] : cal_ch[0] ? mi[1] : mi[0]};
                     end
                 end
             end
+
+            // ---------------------------------------- stage A: codes, differences, rails
+            wire [ADC_BITS-1:0] fcode0 = sh0[CODE_MSB -: ADC_BITS];
+            wire [ADC_BITS-1:0] fcode1 = sh1[CODE_MSB -: ADC_BITS];
+            wire [ADC_BITS-1:0] fcode2 = sh2[CODE_MSB -: ADC_BITS];
+            wire lead_bad = (|sh0[FRAME_BITS-1 -: LEAD_ZEROS]) | (|sh1[FRAME_BITS-1 -: LEAD_ZEROS])
+                          | (|sh2[FRAME_BITS-1 -: LEAD_ZEROS]);
+            wire rail = ~&ctr;                 // some channel's code at a rail
+            reg [ADC_BITS-1:0]   r_code0, r_code1, r_code2;
+            reg [ADC_BITS-1:0]   r_offset0, r_offset1, r_offset2;
+            reg [D_W-1:0]        diff0, diff1, diff2;   // code - offset, exact (-4095..4095), two's complement
+            reg                  lead_bad_a, rail_a;
+            always @(posedge clk) begin
+                if (rst) begin
+                    r_code0    <= {ADC_BITS{1'b0}};
+                    r_code1    <= {ADC_BITS{1'b0}};
+                    r_code2    <= {ADC_BITS{1'b0}};
+                    diff0      <= {D_W{1'b0}};
+                    diff1      <= {D_W{1'b0}};
+                    diff2      <= {D_W{1'b0}};
+                    lead_bad_a <= 1'b0;
+                    rail_a     <= 1'b0;
+                end else if (capdone) begin
+                    r_code0    <= fcode0;
+                    r_code1    <= fcode1;
+                    r_code2    <= fcode2;
+                    diff0      <= {1'b0, fcode0} - {1'b0, r_offset0};
+                    diff1      <= {1'b0, fcode1} - {1'b0, r_offset1};
+                    diff2      <= {1'b0, fcode2} - {1'b0, r_offset2};
+                    lead_bad_a <= lead_bad;
+                    rail_a     <= rail;
+                end
+            end
+
+            // ---------------------------------------- calibration
+            // One channel after the other (cal_ch = 0, 1, 2), 2**CAL_LOG2 counted frames each,
+            // on one accumulator preset to 2**(CAL_LOG2-1): its top ADC_BITS bits are then the
+            // round-half-up mean (sum + 2**(CAL_LOG2-1)) >> CAL_LOG2 (cannot overflow:
+            // acc <= (2**ADC_BITS-1) * 2**CAL_LOG2 + 2**(CAL_LOG2-1) < 2**ACC_W).
+            localparam [ACC_W-1:0] ACC_HALF = {{ADC_BITS{1'b0}}, 1'b1, {(CAL_LOG2-1){1'b0}}};
+            reg [ACC_W-1:0]      acc;
+            reg [CAL_LOG2-1:0]   cal_cnt;
+            reg                  cal_last;     // stage A added the channel's last sample
+            reg                  frame_cal;    // this frame counts for calibration
+            reg                  r_cal_busy, r_cal_done, r_refused;
+            wire [ADC_BITS-1:0]  cal_code = shc[CODE_MSB -: ADC_BITS];
+            // offset write port: the calibration result, or the CPU value (refused while a
+            // calibration runs or the bridges are on)
+            wire                 cpu_ok = ~r_cal_busy & ~bon;
+            wire [ADC_BITS-1:0]  off_d = cal_last ? acc[ACC_W-1 -: ADC_BITS] : a_off_wdata;
+            wire [2:0]           cal_ld = {3{cal_last}} & {cal_ch == 2'd2, cal_ch == 2'd1, cal_ch == 2'd0};
+            wire [2:0]           off_ld = cal_ld | (a_off_we & {3{cpu_ok}});
+            wire                 cal_go = cal_start[ax] & ~bon;
+            wire                 cal_abort = r_cal_busy & bon;
+            wire                 refuse = (cal_start[ax] & bon) | ((|a_off_we) & ~cpu_ok) | cal_abort;
+            always @(posedge clk) begin
+                if (rst) begin
+                    frame_cal  <= 1'b0;
+                    r_cal_busy <= 1'b0;
+                    r_cal_done <= 1'b0;
+                    cal_ch     <= 2'd0;
+                    cal_cnt    <= {CAL_LOG2{1'b0}};
+                    cal_last   <= 1'b0;
+                    acc        <= ACC_HALF;
+                    r_offset0  <= OFFSET_RESET[ADC_BITS-1:0];
+                    r_offset1  <= OFFSET_RESET[ADC_BITS-1:0];
+                    r_offset2  <= OFFSET_RESET[ADC_BITS-1:0];
+                    r_refused  <= 1'b0;
+                end else begin
+                    cal_last  <= 1'b0;
+                    r_refused <= refuse | (r_refused & ~refused_clear[ax]);
+                    if (accept) frame_cal <= r_cal_busy;
+                    if (off_ld[0]) r_offset0 <= off_d;
+                    if (off_ld[1]) r_offset1 <= off_d;
+                    if (off_ld[2]) r_offset2 <= off_d;
+                    // accumulate at stage A
+                    if (capdone && frame_cal) begin
+                        acc       <= acc + {{CAL_LOG2{1'b0}}, cal_code};
+                        cal_cnt   <= cal_cnt + 1'b1;
+                        cal_last  <= (cal_cnt == CAL_LAST);
+                        frame_cal <= 1'b0;
+                    end
+                    // load the offset at stage B, next channel
+                    if (cal_last) begin
+                        acc    <= ACC_HALF;
+                        cal_ch <= cal_ch + 2'd1;
+                        if (cal_ch == 2'd2) begin
+                            r_cal_busy <= 1'b0;
+                            r_cal_done <= 1'b1;
+                        end
+                    end
+                    // bridges on: stop (the channels already loaded were measured with them off)
+                    if (cal_abort) begin
+                        r_cal_busy <= 1'b0;
+                        frame_cal  <= 1'b0;
+                    end
+                    // (re)start: clears everything, the frame in flight does not count
+                    if (cal_go) begin
+                        r_cal_busy <= 1'b1;
+                        r_cal_done <= 1'b0;
+                        cal_ch     <= 2'd0;
+                        cal_cnt    <= {CAL_LOG2{1'b0}};
+                        cal_last   <= 1'b0;
+                        frame_cal  <= 1'b0;
+                        acc        <= ACC_HALF;
+                    end
+                end
+            end
+
+            // ---------------------------------------- stage B: overcurrent, frame error, rails
+            wire [2:0] oc_now = {oc_f(diff2, a_oc_thr), oc_f(diff1, a_oc_thr), oc_f(diff0, a_oc_thr)};
+            reg  [KP_W-1:0] kcnt;              // consecutive frames with a rail (saturating)
+            reg             r_frame_err, r_oc, r_stuck;
+            reg  [2:0]      r_oc_ch;
+            always @(posedge clk) begin
+                if (rst) begin
+                    r_frame_err <= 1'b0;
+                    r_oc        <= 1'b0;
+                    r_oc_ch     <= 3'b000;
+                    kcnt        <= {KP_W{1'b0}};
+                    r_stuck     <= 1'b0;
+                end else begin
+                    r_frame_err <= st_a & lead_bad_a;
+                    r_oc        <= st_a & (|oc_now);
+                    if (st_a) begin
+                        r_oc_ch <= oc_now;
+                        r_stuck <= rail_a && (kcnt >= KP_TRIP);
+                        if (!rail_a)
+                            kcnt <= {KP_W{1'b0}};
+                        else if (kcnt != KP_TRIP)
+                            kcnt <= kcnt + 1'b1;
+                    end
+                end
+            end
+
+            // ---------------------------------------- serial pass (adders of this axis)
+            reg              p_win, p_first, p_last, p_pfirst, p_padd;
+            reg [ADC_BITS-1:0] p_thr;
+            reg [1:0]        s_c;              // carry of d0 + d1 + d2 (0..2)
+            reg              a_c, b_c;
+            reg [2:0]        q_c;              // period adder carries
+            reg [SP_W-1:0]   scnt;
+            reg [PCNT_W-1:0] pcnt;
+            reg              pfresh, snap_req, r_sum_err;
+            reg signed [PSW-1:0] pacc0, pacc1, pacc2;
+            reg signed [PSW-1:0] r_psum0, r_psum1, r_psum2;
+            reg [PCNT_W-1:0] r_pcount;
+            wire [2:0]       db = {diff2[jd], diff1[jd], diff0[jd]};
+            wire             tb = (pj < PJ_AB) ? p_thr[pj[JT_W-1:0]] : 1'b0;
+            wire [2:0]       s3 = {2'b00, db[0]} + {2'b00, db[1]} + {2'b00, db[2]} + {1'b0, s_c};
+            wire             sb = s3[0];
+            wire             a_b = sb ^ ~tb ^ a_c;          // s + ~thr  = s - thr - 1
+            wire             b_b = sb ^ tb ^ b_c;           // s + thr
+            wire             sbad = ~a_b | b_b;             // at j = SW-1: |s| > thr
+            wire [2:0]       pa = p_pfirst ? 3'b000 : {pacc2[0], pacc1[0], pacc0[0]};
+            wire [2:0]       pd = db & {3{p_padd}};
+            wire [2:0]       pq = pa ^ pd ^ q_c;
+            wire             snap_now = (ps | snap_req) & ~pbusy;
+            always @(posedge clk) begin
+                if (rst) begin
+                    p_win     <= 1'b0;
+                    p_first   <= 1'b0;
+                    p_last    <= 1'b0;
+                    p_pfirst  <= 1'b0;
+                    p_padd    <= 1'b0;
+                    p_thr     <= {ADC_BITS{1'b0}};
+                    s_c       <= 2'd0;
+                    a_c       <= 1'b0;
+                    b_c       <= 1'b0;
+                    q_c       <= 3'b000;
+                    scnt      <= {SP_W{1'b0}};
+                    r_sum_err <= 1'b0;
+                    pcnt      <= {PCNT_W{1'b0}};
+                    pfresh    <= 1'b1;
+                    snap_req  <= 1'b0;
+                    pacc0     <= {PSW{1'b0}};
+                    pacc1     <= {PSW{1'b0}};
+                    pacc2     <= {PSW{1'b0}};
+                    r_psum0   <= {PSW{1'b0}};
+                    r_psum1   <= {PSW{1'b0}};
+                    r_psum2   <= {PSW{1'b0}};
+                    r_pcount  <= {PCNT_W{1'b0}};
+                end else begin
+                    // period boundary: take the sums once no pass is running
+                    snap_req <= (ps | snap_req) & pbusy;
+                    if (snap_now) begin
+                        r_psum0  <= pacc0;
+                        r_psum1  <= pacc1;
+                        r_psum2  <= pacc2;
+                        r_pcount <= pcnt;
+                    end
+                    if (st_a) begin                         // pass start (stage B)
+                        p_win    <= f_win;
+                        p_first  <= f_first;
+                        p_last   <= f_last;
+                        p_thr    <= a_sum_thr;
+                        p_pfirst <= pfresh | snap_now;
+                        p_padd   <= pfresh | snap_now | (pcnt != PCNT_MAX);
+                        pcnt     <= (pfresh | snap_now) ? {{(PCNT_W-1){1'b0}}, 1'b1}
+                                  : (pcnt != PCNT_MAX) ? pcnt + 1'b1 : pcnt;
+                        pfresh   <= 1'b0;
+                        s_c      <= 2'd0;
+                        a_c      <= 1'b0;
+                        b_c      <= 1'b0;
+                        q_c      <= 3'b000;
+                    end else begin
+                        if (snap_now) begin
+                            pcnt   <= {PCNT_W{1'b0}};
+                            pfresh <= 1'b1;
+                        end
+                        if (pbusy) begin
+                            s_c <= s3[2:1];
+                            a_c <= (sb & ~tb) | (sb & a_c) | (~tb & a_c);
+                            b_c <= (sb & tb) | (sb & b_c) | (tb & b_c);
+                            if (pj == PJ_SIGN) begin
+                                r_sum_err <= sbad && (scnt >= SP_TRIP);
+                                if (!sbad)
+                                    scnt <= {SP_W{1'b0}};
+                                else if (scnt != SP_TRIP)
+                                    scnt <= scnt + 1'b1;
+                            end
+                            if (pj < PJ_PSW) begin
+                                pacc0 <= {pq[0], pacc0[PSW-1:1]};
+                                pacc1 <= {pq[1], pacc1[PSW-1:1]};
+                                pacc2 <= {pq[2], pacc2[PSW-1:1]};
+                                q_c   <= (pa & pd) | (pa & q_c) | (pd & q_c);
+                            end
+                        end
+                    end
+                end
+            end
+
+            // ---------------------------------------- window mean
+            // AVG_LOG2 = 0 takes the centre frame's difference at stage B (as the single
+            // conversion did); AVG_LOG2 > 0 accumulates the window bit-serially
+            reg                    r_valid, r_sat;
+            reg signed [CUR_W-1:0] r_cur0, r_cur1, r_cur2;
+            if (AVG_LOG2 == 0) begin : g_k0
+                wire [CUR_W:0] s0 = satf(diff0), s1 = satf(diff1), s2 = satf(diff2);
+                always @(posedge clk) begin
+                    if (rst) begin
+                        r_valid <= 1'b0;
+                        r_sat   <= 1'b0;
+                        r_cur0  <= {CUR_W{1'b0}};
+                        r_cur1  <= {CUR_W{1'b0}};
+                        r_cur2  <= {CUR_W{1'b0}};
+                    end else begin
+                        r_valid <= st_a & f_last;
+                        r_sat   <= st_a & f_last & (s0[CUR_W] | s1[CUR_W] | s2[CUR_W]);
+                        if (st_a && f_last) begin
+                            r_cur0 <= s0[CUR_W-1:0];
+                            r_cur1 <= s1[CUR_W-1:0];
+                            r_cur2 <= s2[CUR_W-1:0];
+                        end
+                    end
+                end
+                wire unused_k0 = &{1'b0, f_first, p_win, p_first, p_last};
+            end else begin : g_kn
+                reg [AW-1:0] accw0, accw1, accw2;
+                reg [2:0]    w_c;              // window adder carries
+                wire [2:0] wa = p_first ? {3{pj == PJ_KM1}} : {accw2[0], accw1[0], accw0[0]};
+                wire [2:0] wq = wa ^ db ^ w_c;
+                wire [CUR_W:0] s0 = satf(accw0[AW-1:AVG_LOG2]), s1 = satf(accw1[AW-1:AVG_LOG2]),
+                               s2 = satf(accw2[AW-1:AVG_LOG2]);
+                wire w_end = pbusy && p_win && p_last && (pj == PJ_WEND);
+                always @(posedge clk) begin
+                    if (rst) begin
+                        accw0   <= {AW{1'b0}};
+                        accw1   <= {AW{1'b0}};
+                        accw2   <= {AW{1'b0}};
+                        w_c     <= 3'b000;
+                        r_valid <= 1'b0;
+                        r_sat   <= 1'b0;
+                        r_cur0  <= {CUR_W{1'b0}};
+                        r_cur1  <= {CUR_W{1'b0}};
+                        r_cur2  <= {CUR_W{1'b0}};
+                    end else begin
+                        r_valid <= w_end;
+                        r_sat   <= w_end & (s0[CUR_W] | s1[CUR_W] | s2[CUR_W]);
+                        if (w_end) begin
+                            r_cur0 <= s0[CUR_W-1:0];
+                            r_cur1 <= s1[CUR_W-1:0];
+                            r_cur2 <= s2[CUR_W-1:0];
+                        end
+                        if (st_a)
+                            w_c <= 3'b000;
+                        else if (pbusy && p_win && pj < PJ_WEND) begin
+                            accw0 <= {wq[0], accw0[AW-1:1]};
+                            accw1 <= {wq[1], accw1[AW-1:1]};
+                            accw2 <= {wq[2], accw2[AW-1:1]};
+                            w_c   <= (wa & db) | (wa & w_c) | (db & w_c);
+                        end
+                    end
+                end
+            end
+
+            // ---------------------------------------- frozen ADC (per PWM period of the axis)
+            reg [2:0]        chg;              // channel changed in some frame of this period
+            reg              on_all;           // bridges on in every cycle of this period
+            reg [FZ_W-1:0]   fzc;              // consecutive frozen periods (saturating)
+            reg              r_frozen;
+            wire             frz_p = on_all & bon & (pcnt > 1) & ~(&chg);
+            always @(posedge clk) begin
+                if (rst) begin
+                    chg      <= 3'b000;
+                    on_all   <= 1'b0;
+                    fzc      <= {FZ_W{1'b0}};
+                    r_frozen <= 1'b0;
+                end else begin
+                    on_all <= ps ? bon : (on_all & bon);
+                    if (ps) begin
+                        chg      <= st_a ? fchg : 3'b000;   // a frame ending now is the new period's
+                        r_frozen <= frz_p && (fzc >= FZ_TRIP);
+                        if (!frz_p)
+                            fzc <= {FZ_W{1'b0}};
+                        else if (fzc != FZ_TRIP)
+                            fzc <= fzc + 1'b1;
+                    end else if (st_a) begin
+                        chg <= chg | fchg;
+                    end
+                end
+            end
+
+            // ---------------------------------------- outputs of axis ax
+            assign trig_miss[ax]                      = r_trig_miss;
+            assign miss_cnt[ax * MISS_W +: MISS_W]    = r_miss_cnt;
+            assign code0[ax * ADC_BITS +: ADC_BITS]   = r_code0;
+            assign code1[ax * ADC_BITS +: ADC_BITS]   = r_code1;
+            assign code2[ax * ADC_BITS +: ADC_BITS]   = r_code2;
+            assign frame_err[ax]                      = r_frame_err;
+            assign oc[ax]                             = r_oc;
+            assign oc_ch[3 * ax +: 3]                 = r_oc_ch;
+            assign sum_err[ax]                        = r_sum_err;
+            assign stuck[ax]                          = r_stuck;
+            assign frozen[ax]                         = r_frozen;
+            assign valid[ax]                          = r_valid;
+            assign cur0[ax * CUR_W +: CUR_W]          = r_cur0;
+            assign cur1[ax * CUR_W +: CUR_W]          = r_cur1;
+            assign cur2[ax * CUR_W +: CUR_W]          = r_cur2;
+            assign sat[ax]                            = r_sat;
+            assign psum0[ax * PSW +: PSW]             = r_psum0;
+            assign psum1[ax * PSW +: PSW]             = r_psum1;
+            assign psum2[ax * PSW +: PSW]             = r_psum2;
+            assign pcount[ax * PCNT_W +: PCNT_W]      = r_pcount;
+            assign offset0[ax * ADC_BITS +: ADC_BITS] = r_offset0;
+            assign offset1[ax * ADC_BITS +: ADC_BITS] = r_offset1;
+            assign offset2[ax * ADC_BITS +: ADC_BITS] = r_offset2;
+            assign cal_busy[ax]                       = r_cal_busy;
+            assign cal_done[ax]                       = r_cal_done;
+            assign refused[ax]                        = r_refused;
         end
     endgenerate
-
-    // ---------------------------------------------------- frozen ADC (per PWM period)
-    reg [2:0]        chg;                  // channel changed in some frame of this period
-    reg              on_all;               // bridges on in every cycle of this period
-    reg [FZ_W-1:0]   fzc;                  // consecutive frozen periods (saturating)
-    wire             frz_p = on_all & bridges_on & (pcnt > 1) & ~(&chg);
-    always @(posedge clk) begin
-        if (rst) begin
-            chg    <= 3'b000;
-            on_all <= 1'b0;
-            fzc    <= {FZ_W{1'b0}};
-            frozen <= 1'b0;
-        end else begin
-            on_all <= period_start ? bridges_on : (on_all & bridges_on);
-            if (period_start) begin
-                chg    <= st_a ? fchg : 3'b000;        // a frame ending now is the new period's
-                frozen <= frz_p && (fzc >= FZ_TRIP);
-                if (!frz_p)
-                    fzc <= {FZ_W{1'b0}};
-                else if (fzc != FZ_TRIP)
-                    fzc <= fzc + 1'b1;
-            end else if (st_a) begin
-                chg <= chg | fchg;
-            end
-        end
-    end
 endmodule
 `default_nettype wire

@@ -304,6 +304,7 @@ class AdcSpiCycle:
         self.GC_C = (p.g0 - p.half_period) % p.tf
         self.GP_C = (p.half_period - 1 - p.g0) // p.tf + 1 if p.half_period > p.g0 else 0
         self.gc, self.gp = p.tf - 1, p.gp_max
+        self.grid = None                      # AdcSpiAxes: the shared grid (gc, gp, jump of this cycle)
         self.win_open = False
         self.f = (False, False, False)
         self.trig_miss, self.miss_cnt = 0, 0
@@ -377,23 +378,30 @@ class AdcSpiCycle:
 
         # grid (period_start reloads it at its edge: first new grid point G0 >= 1 cycles later),
         # window flags, centre check
-        gc_e, gp_e = self.gc, self.gp
-        go = gc_e == 0
+        g = self.grid
+        if g is None:                            # own grid (NAXES = 1)
+            gc_e, gp_e, jump = self.gc, self.gp, False
+            go = gc_e == 0
+            nx["gc"] = self.G0 - 1 if ps else self.TF - 1 if go else gc_e - 1
+            nx["gp"] = 0 if ps else gp_e + 1 if go and gp_e != self.GPMAX else gp_e
+        else:                                    # the shared grid of AdcSpiAxes (stepped by it)
+            gc_e, gp_e, jump = g.gc, g.gp, g.jump
+            go = gc_e == 0
         accept = go and not self.busy(c)
-        nx["gc"] = self.G0 - 1 if ps else self.TF - 1 if go else gc_e - 1
-        nx["gp"] = 0 if ps else gp_e + 1 if go and gp_e != self.GPMAX else gp_e
         w_in = self.M0 <= gp_e <= self.M0 + self.NW - 1
         w_first, w_last = gp_e == self.M0, gp_e == self.M0 + self.NW - 1
+        w_ok = g is None or w_first or self.win_open   # NAXES > 1: only a window that started counts
         trig_ok = gc_e == self.GC_C and gp_e == self.GP_C
-        miss = (i.trig and not trig_ok) or (ps and self.win_open)
+        miss = (i.trig and not trig_ok) or ((ps or jump) and self.win_open)
         nx["trig_miss"] = int(bool(miss))
         nx["miss_cnt"] = min(self.miss_cnt + 1, (1 << p.miss_w) - 1) if miss else self.miss_cnt
-        win_open = False if ps else self.win_open
+        win_open = False if ps or jump else self.win_open
         if accept:
             if w_first:
                 win_open = True
             if w_last:
                 win_open = False
+            w_in, w_last = w_in and w_ok, w_last and w_ok
             nx["f"] = (w_in, w_first, w_last)
         nx["win_open"] = win_open
 
@@ -538,3 +546,88 @@ class AdcSpiCycle:
                     psum0=self.psum[0], psum1=self.psum[1], psum2=self.psum[2], pcount=self.pcount,
                     offset0=self.offsets[0], offset1=self.offsets[1], offset2=self.offsets[2],
                     cal_busy=int(self.cal_busy), cal_done=int(self.cal_done), refused=self.refused, sclk=self.sclk())
+
+
+# ---- NAXES > 1: one frame engine, per-axis instances of the cycle model on a common grid ----------
+class AdcSpiAxes:
+    """Cycle model of ``adc_spi`` with ``NAXES`` > 1: one :class:`AdcSpiCycle` per axis (its own
+    MISO codes, offsets, checks, sums, window), all on one frame grid (the RTL's one SCLK / CS).
+
+    Axis a's carrier is axis 0's delayed by a * ``stagger`` clk (pwm_center PHASE), a whole number
+    of frames, so its window frames are grid points centred on its own centre.  Grid coordinates:
+    cycle 0 reloads the grid (first point ``g0`` cycles later); it is cycle ``rephase`` (R) of axis
+    0's period, the first clock after the last axis's last window pass.  The terminal state (grid
+    cycle 2P) reloads the grid; axis 0's ``period_start`` loads the state of the cycle after it only
+    if the grid is out of phase (``jump``: every axis's open window is cut, counted as a miss).
+
+    :meth:`step` takes one :class:`AdcInputs` per axis (``period_start`` etc. of that axis; the
+    codes are what that axis's three converters send in a frame accepted now).
+    """
+
+    def __init__(self, p: AdcSpiParams, naxes: int, stagger: int | None = None):
+        from .pwm_center import stagger_step
+        if not 2 <= naxes <= 4:
+            raise ValueError("AdcSpiAxes: 2 <= naxes <= 4 (NAXES = 1 is AdcSpiCycle)")
+        self.p, self.n = p, naxes
+        tf, p2 = p.tf, 2 * p.half_period
+        self.stagger = stagger_step(naxes, p.half_period, tf) if stagger is None else stagger
+        s = self.stagger
+        if s < tf or s % tf:
+            raise ValueError(f"stagger {s}: a positive multiple of the frame period {tf}")
+        tail = (naxes - 1) * s + p.w_lead + p.valid_latency() + p.pass_len() + 1
+        self.rephase = (p.half_period + tail) % p2
+        self.c0 = p2 - tail                   # axis 0's centre, grid cycle
+        t0 = self.c0 - p.w_lead
+        if t0 <= 0:
+            raise ValueError("the windows of all axes do not fit in one PWM period")
+        self.g0 = t0 % tf or tf
+        self.m0 = (t0 - self.g0) // tf
+        if self.m0 < 1:
+            raise ValueError("axis 0's window less than one frame after the grid's re-phase point")
+        self.gp_max = p.gp_max
+        y0 = p2 - self.rephase
+        y1 = 1 if y0 == p2 else y0 + 1
+        self.T, self.J, self.L = self.state(p2), self.state(y0), self.state(y1)
+        self.gc, self.gp, self.jump = tf - 1, p.gp_max, False
+        self.t = 0
+        self.axes = []
+        for a in range(naxes):
+            m = AdcSpiCycle(p)
+            m.grid = self
+            cn = self.c0 + a * s
+            m.M0 = self.m0 + a * s // tf
+            m.GC_C, m.GP_C = self.state(cn)
+            self.axes.append(m)
+
+    def state(self, x: int) -> tuple[int, int]:
+        """(gc, gp) in grid cycle x >= 1 after a reload."""
+        g0, tf = self.g0, self.p.tf
+        return (g0 - x) % tf, 0 if x <= g0 else (x - g0 - 1) // tf + 1
+
+    def centre_cycle(self, a: int) -> int:
+        """Axis a's centre in axis 0's period (cycles after axis 0's period_start), mod 2P."""
+        return (self.p.half_period + a * self.stagger) % (2 * self.p.half_period)
+
+    def window_frames(self, a: int) -> list[int]:
+        """Accept cycles of axis a's window frames in axis 0's period (mod 2P)."""
+        return [(self.centre_cycle(a) + t) % (2 * self.p.half_period) for t in self.p.window_taus()]
+
+    def step(self, inputs) -> None:
+        assert len(inputs) == self.n
+        gc, gp, tf = self.gc, self.gp, self.p.tf
+        self.jump = bool(inputs[0].period_start) and (gc, gp) != self.J
+        for m, i in zip(self.axes, inputs):
+            m.step(i)
+        go = gc == 0
+        if self.jump:
+            self.gc, self.gp = self.L
+        elif (gc, gp) == self.T:
+            self.gc, self.gp = self.g0 - 1, 0
+        else:
+            self.gc = tf - 1 if go else gc - 1
+            self.gp = gp + 1 if go and gp != self.gp_max else gp
+        self.t += 1
+
+    def outputs(self) -> list[dict]:
+        """Per axis the port values of its slice (cs_n, sclk, busy, fvalid are shared: the same in every dict)."""
+        return [m.outputs() for m in self.axes]
