@@ -105,9 +105,9 @@ def measure(cfg, name: str, plant: str, form: str = "float", duration: float | N
     return out
 
 
-# The control-period tables ([weights.<design>.Ts_<us>us], docs/design.md) run the design's first step at
-# that Ts with 20 kHz PWM (as test_motors.test_closed_loop_at_50us_*): the full scenarios at 50 us cost
-# five times the periods.
+# Other control periods: every design at 50 us and at each period the configuration has a table for
+# ([weights.<design>.Ts_<us>us], docs/design.md) runs its first step at that Ts with 20 kHz PWM (as
+# test_motors.test_closed_loop_at_50us_*): the full scenarios at 50 us cost five times the periods.
 TS_STEP = {(1, "speed"): ("speed_steps", 0.12), (2, "speed"): ("speed_alg2", 0.12),
            (1, "position"): ("position_alg1", 0.06), (2, "position"): ("position_alg2", 0.06)}
 TS_PWM = 20000.0
@@ -127,6 +127,21 @@ def ts_tables(name: str) -> list[tuple[int, str, float]]:
                 if ts is not None:
                     out.append((int(ak[3:]), task, round(ts, 12)))       # 50e-6, not 50 x 1e-6
     return sorted(out)
+
+
+EXTRA_TS = (50e-6,)
+
+
+def other_ts(name: str) -> list[float]:
+    """The control periods besides the configured one: EXTRA_TS and those of the tables."""
+    own = load(name).control.Ts
+    return sorted({round(t, 12) for t in EXTRA_TS} | {t for _, _, t in ts_tables(name)} - {round(own, 12)})
+
+
+def table_of(cfg, alg: int, task: str) -> str:
+    """The weights a design runs with: its control-period table (``Ts_50us``) or ``base``."""
+    src = cfg.control.weight_tables.get((alg, task))
+    return src.rsplit(".", 1)[-1] if src else "base"
 
 
 def load_ts(name: str, ts: float):
