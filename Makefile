@@ -29,7 +29,7 @@ export EMPC_PACKAGE := $(PACKAGE)
 export EMPC_PART    := xc6slx9-$(SPEED)-$(PACKAGE)
 SYNTH_ARGS ?=
 
-.PHONY: all venv check-tools roms regs sim sim-full lint formal safety synth bitstream bench readme core clean distclean
+.PHONY: all venv check-tools roms regs sim sim-full lint formal safety synth bitstream bench corners readme core clean distclean
 
 all: roms lint synth ## main job: coefficient ROMs, lint, netlist + resource report
 	@echo "ROMs in $(ROMS), netlist and reports in build/synth and build/reports."
@@ -75,6 +75,10 @@ bitstream: synth ## ISE 14.7 ngdbuild/map/par/trce/bitgen (needs ISE on PATH and
 
 bench: $(STAMP) roms ## MPC core alone through flow/synth.py (same script and timing proxy as synth) -> build/reports/mpc_core.json (+ vectors of the last stream test)
 	$(PY) flow/synth.py --top mpc_core --summary build/reports/mpc_core.json
+
+corners: $(STAMP) ## peak |i| / i_max of every bundled motor's scenarios at the box corners (float, fixed; bit) -> build/reports/current_corners.json, current_corners_bit.json (about 4 + 1.5 CPU minutes, one process)
+	$(PY) flow/current_corners.py
+	$(PY) flow/current_corners.py --forms bit --no-tables --json build/reports/current_corners_bit.json
 
 readme: $(STAMP) ## refresh the README's results tables from build/reports (run after sim, synth, bench, compare)
 	$(PY) flow/readme_results.py --write

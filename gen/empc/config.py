@@ -135,6 +135,9 @@ SCHEMA: list[Key] = [
     Key("governor", "enable", "bool", True, doc="reference governor in rtl/ref_gen.v (the current limit)"),
     Key("governor", "accel_current", "float", 0.5, lo=0, lo_open=True, hi=1,
         doc="the governed reference's acceleration needs at most this x i_max at the box corner"),
+    Key("governor", "accel_current_position", "float", None, lo=0, lo_open=True, hi=1,
+        doc="the same for the position task (default accel_current); below it the default shift_position "
+            "grows with the catch-up time it needs (governor.default_shift_position)"),
     Key("governor", "box_J", "float", None, lo=0.5, hi=3,
         doc="inertia factor of that corner (default 1 + robustness.J)"),
     Key("governor", "box_psi", "float", None, lo=0, lo_open=True, hi=1,
@@ -456,9 +459,12 @@ class Governor:
     passes) or its speed (position) while |i_q| > ``hold_current`` x i_max or the voltage limiter
     was active.  The position catch-up ``shift_position`` defaults to
     :func:`governor.default_shift_position` of control.Ts (the same catch-up time at every Ts).
+    ``accel_current_position`` (default ``accel_current``) is the position task's own: a design
+    whose position loop rings at a box corner needs less (premo_320v, docs/design.md).
     See gen/empc/governor.py."""
     enable: bool
     accel_current: float
+    accel_current_position: float
     box_J: float
     box_psi: float
     speed_frac: float
@@ -747,7 +753,8 @@ def _rtl_limits():
          lambda cfg: cfg.control.governor.hold_current * cfg.control.i_max / cfg.sensors.adc_amps_per_lsb,
          0, (1 << iq_hold_w) - 1, ("governor.hold_current", "control.i_max", "sensors.adc_amps_per_lsb")),
         ("governor speed / acceleration limit vmax (Q.32 of the task unit, 63 bit)", gov_vmax, 1, (1 << 63) - 1,
-         ("governor.accel_current", "governor.speed_frac", "motor.J", "control.Ts", "sensors.encoder_cpr")),
+         ("governor.accel_current", "governor.accel_current_position", "governor.speed_frac", "motor.J", "control.Ts",
+          "sensors.encoder_cpr")),
         ("current limit in ADC LSB (the 12-bit ADC measures +-min(offset, 4095 - offset) LSB)",
          lambda cfg: cfg.control.i_max / cfg.sensors.adc_amps_per_lsb,
          0, None, ("control.i_max", "sensors.adc_amps_per_lsb", "sensors.adc_offset")),
@@ -807,10 +814,12 @@ def from_dict(d: dict, source: str = "<dict>") -> Config:
     robustness = Robustness(**_table(v, "robustness"))   # defaults: the schema (one source)
     gv = _table(v, "governor")
     from .governor import default_shift_position
+    acp = gv["accel_current"] if gv["accel_current_position"] is None else gv["accel_current_position"]
     governor = Governor(**dict(gv, box_J=1.0 + robustness.J if gv["box_J"] is None else gv["box_J"],
                                box_psi=1.0 - robustness.psi if gv["box_psi"] is None else gv["box_psi"],
-                               shift_position=(default_shift_position(c["Ts"]) if gv["shift_position"] is None
-                                               else gv["shift_position"])))
+                               accel_current_position=acp,
+                               shift_position=(default_shift_position(c["Ts"], gv["accel_current"] / acp)
+                                               if gv["shift_position"] is None else gv["shift_position"])))
     if governor.box_psi <= 0.0:
         raise ConfigError(f"robustness.psi = {_fmt(robustness.psi)}: the governor's flux corner 1 - psi is not "
                           f"positive; allowed: robustness.psi < 1 or governor.box_psi given")

@@ -62,10 +62,12 @@ class Params:
     enable: bool
 
 
-def accel_limit(cfg) -> float:
-    """Acceleration (rad/s^2, electrical) that needs accel_current x i_max at the box corner."""
+def accel_limit(cfg, task: str = "speed") -> float:
+    """Acceleration (rad/s^2, electrical) that needs accel_current x i_max at the box corner (position
+    task: accel_current_position x i_max)."""
     m, g = cfg.motor, cfg.control.governor
-    return g.accel_current * cfg.control.i_max * 1.5 * m.p * m.p * m.psi * g.box_psi / (m.J * g.box_J)
+    ac = g.accel_current_position if task == "position" else g.accel_current
+    return ac * cfg.control.i_max * 1.5 * m.p * m.p * m.psi * g.box_psi / (m.J * g.box_J)
 
 
 def speed_limit(cfg) -> float:
@@ -79,17 +81,19 @@ TS_REF = 250e-6               # control period of the position catch-up's refere
 SHIFT_POSITION_REF = 4        # 2^-4 per period at 250 us: tau = 4 ms
 
 
-def default_shift_position(Ts: float) -> int:
+def default_shift_position(Ts: float, stretch: float = 1.0) -> int:
     """Position catch-up shift for control period Ts (s): the smallest ksh whose tau = Ts x 2^ksh is at
     least the 4 ms of 4 at 250 us (200 us: 5, 100 us: 6, 50 us: 7), within 0..31.  Rounded down
-    instead (tau >= 2.8 ms: 6 at 50 us) the premo's scaled position step still overshot 40 %."""
-    return min(31, max(0, SHIFT_POSITION_REF + math.ceil(math.log2(TS_REF / Ts) - 1e-9)))
+    instead (tau >= 2.8 ms: 6 at 50 us) the premo's scaled position step still overshot 40 %.
+    ``stretch``: tau at least stretch x 4 ms, for an acceleration limit 1 / stretch of accel_current's
+    (accel_current_position: the braking condition w <= 2 alpha tau keeps its margin)."""
+    return min(31, max(0, SHIFT_POSITION_REF + math.ceil(math.log2(stretch * TS_REF / Ts) - 1e-9)))
 
 
 def params(cfg, task: str) -> Params:
     c, g = cfg.control, cfg.control.governor
     Ts = c.Ts
-    alpha = accel_limit(cfg)
+    alpha = accel_limit(cfg, task)
     if task == "speed":
         vmax = alpha * Ts
         return Params(task, vmax, vmax / g.jerk_periods, g.shift_speed, g.enable)
