@@ -9,3 +9,4 @@ tb/hdl/cosim_top.v
 tb/hdl/mx_seq_tb.v
 tb/hdl/adc_ripple.v
 tb/hdl/out_route_tb.v
+tb/hdl/mx_seq_axes_tb.v
