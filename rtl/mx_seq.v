@@ -155,7 +155,7 @@ module mx_seq #(
     reg  [NAXES-1:0]    tpend;      // a trigger waits in the job queue
     reg  [NAXES-1:0]    th_wait, th_ok, adc_seen;
     reg  [3*NAXES-1:0]  th_cnt;
-    reg  [16*NAXES-1:0] lat_cnt;    // clocks since the axis's trigger, + 1
+    wire [15:0]         lat_now;    // the job axis's clocks since its trigger, + 1 (at cmp_load: latency)
     reg  [PW*NAXES-1:0] pos_trig;
     reg  [AB*NAXES-1:0] th_trig;
     wire [NAXES-1:0]    busy_ax;    // a job of the axis waits or runs
@@ -217,14 +217,33 @@ module mx_seq #(
             else if (trig[ga])
                 per_nx[8*ga +: 8] <= per_nx[8*ga +: 8] + 8'd1;
             if (trig[ga])
-                lat_cnt[16*ga +: 16] <= 16'd1;
-            else if (busy_ax[ga])
-                lat_cnt[16*ga +: 16] <= lat_cnt[16*ga +: 16] + 16'd1;
-            if (trig[ga])
                 th_cnt[3*ga +: 3] <= THETA_LAT[2:0] - 3'd1;
             else if (th_wait[ga])
                 th_cnt[3*ga +: 3] <= th_cnt[3*ga +: 3] - 3'd1;
         end
+    end endgenerate
+    // latency: NAXES = 1 a counter from the trigger; NAXES > 1 one free-running clock count and the
+    // count at each axis's trigger (no adder per axis): cmp_load's count - the trigger's is the same
+    // value, modulo 2^16 as the counter's
+    generate if (NAXES == 1) begin : g_lat1
+        reg [15:0] lat_cnt;
+        always @(posedge clk) begin
+            if (trig[0])
+                lat_cnt <= 16'd1;
+            else if (busy_ax[0])
+                lat_cnt <= lat_cnt + 16'd1;
+        end
+        assign lat_now = lat_cnt;
+    end else begin : g_latn
+        reg [15:0] now;
+        reg [16*NAXES-1:0] t_trig;
+        integer li;
+        always @(posedge clk) begin
+            now <= rst ? 16'd0 : now + 16'd1;
+            for (li = 0; li < NAXES; li = li + 1)
+                if (trig[li]) t_trig[16*li +: 16] <= now;
+        end
+        assign lat_now = now - t_trig[16*ax +: 16];
     end endgenerate
 
     // ================================ job queue ================================
@@ -238,21 +257,21 @@ module mx_seq #(
         always @(posedge clk) tpend <= 1'b0;
         assign ax_oh = 1'b1;
     end else begin : g_qn
-        reg  [AXB*NAXES-1:0] q_ax, q_ax_n;      // FIFO of waiting axes, head at [AXB-1:0]
-        reg  [AXB:0]         q_n, q_n_n;
-        reg                  js;
-        reg  [AXB-1:0]       ja;
+        // each waiting axis holds its place in the sample order (q_seq, mod 4: at most NAXES wait);
+        // the head is the waiting axis whose place is q_pop
+        reg  [2*NAXES-1:0] q_seq, q_seq_n;
+        reg  [1:0]         q_push, q_pop, np;
+        reg  [NAXES-1:0]   push;
+        reg                js;
+        reg  [AXB-1:0]     ja;
         integer qi;
         always @(*) begin
-            q_ax_n = q_ax;
-            q_n_n = q_n;
             js = 1'b0;
             ja = {AXB{1'b0}};
-            if (!busy_period && q_n != 0) begin         // the oldest waiting trigger
+            if (!busy_period && |tpend) begin           // the oldest waiting trigger
                 js = 1'b1;
-                ja = q_ax[AXB-1:0];
-                q_ax_n = q_ax >> AXB;
-                q_n_n = q_n - 1'b1;
+                for (qi = 0; qi < NAXES; qi = qi + 1)
+                    if (tpend[qi] && q_seq[2*qi +: 2] == q_pop) ja = qi[AXB-1:0];
             end else if (!busy_period) begin            // an idle engine: the lowest trigger now
                 for (qi = NAXES - 1; qi >= 0; qi = qi - 1)
                     if (trig[qi]) begin
@@ -260,22 +279,27 @@ module mx_seq #(
                         ja = qi[AXB-1:0];
                     end
             end
-            for (qi = 0; qi < NAXES; qi = qi + 1)
-                if (trig[qi] && !(js && q_n == 0 && ja == qi[AXB-1:0])) begin
-                    q_ax_n[AXB*q_n_n +: AXB] = qi[AXB-1:0];
-                    q_n_n = q_n_n + 1'b1;
+            np = q_push;
+            q_seq_n = q_seq;
+            for (qi = 0; qi < NAXES; qi = qi + 1) begin
+                push[qi] = trig[qi] && !(js && !(|tpend) && ja == qi[AXB-1:0]);
+                if (push[qi]) begin
+                    q_seq_n[2*qi +: 2] = np;
+                    np = np + 2'd1;
                 end
+            end
         end
         always @(posedge clk) begin
             if (rst) begin
-                q_n <= {(AXB+1){1'b0}};
-                q_ax <= {(AXB*NAXES){1'b0}};
+                q_push <= 2'd0;
+                q_pop <= 2'd0;
                 tpend <= {NAXES{1'b0}};
             end else begin
-                q_n <= q_n_n;
-                q_ax <= q_ax_n;
-                tpend <= (tpend | trig) & ~jst_oh;
+                q_push <= np;
+                if (js && |tpend) q_pop <= q_pop + 2'd1;
+                tpend <= (tpend | push) & ~jst_oh;
             end
+            q_seq <= q_seq_n;
         end
         assign jstart = js;
         assign jax = ja;
@@ -381,7 +405,7 @@ module mx_seq #(
                 if (xf_sat) front_sat <= ax_oh;
                 cmp_load <= ax_oh;
                 stat_sweep <= {NAXES{is_control}} & ax_oh;
-                latency[16*ax +: 16] <= lat_cnt[16*ax +: 16];
+                latency[16*ax +: 16] <= lat_now;
                 busy_period <= 1'b0;
             end
         end

@@ -384,8 +384,8 @@ def schedule_axes(jobs: list[Job], theta_lat: int = THETA_LAT) -> list[dict]:
     triggers of the same cycle: the lower axis first): every job's start cycle, its ``delay`` after its
     trigger, the RTL's ``latency`` register of its axis (trigger -> cmp_load, the counter's
     convention: cmp_load's cycle - trigger's - 1) and cmp_load's cycle.  A job starts in its trigger's
-    cycle if the engine is free (busy_period low: from the cycle after the previous cmp_load), else the
-    cycle after the running job's cmp_load.  The references are taken as read (the prefetch after the
+    cycle if the engine is free (busy_period low: from the cycle of the previous cmp_load on), else in
+    the cycle of the running job's cmp_load.  The references are taken as read (the prefetch after the
     boundary ends long before the trigger with staggered carriers: docs/four_axes.md 3.3).  A trigger
     of an axis whose previous job is still waiting or running is not taken (the caller leaves it out:
     the RTL pulses that axis's overrun at its boundary)."""
@@ -397,7 +397,7 @@ def schedule_axes(jobs: list[Job], theta_lat: int = THETA_LAT) -> list[dict]:
         lat = d + latency(j.kind, j.n, j.kacc_shift, j.load_shift,
                           job_timing(j.t_valid, j.core_lat, theta_lat, delay=d))
         t_load = j.t_trig + 1 + lat
-        free = t_load + 1
+        free = t_load           # busy_period falls with cmp_load: a waiting job starts in that cycle
         out.append({"job": j, "start": start, "delay": d, "latency": lat, "t_load": t_load})
     return out
 
