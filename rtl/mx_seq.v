@@ -32,9 +32,11 @@
 //
 // Axes (NAXES = 1..4, docs/blocks/mx_seq.md "Several axes"): one engine, one job at a time.  Per axis
 // a timing block (period-kind counter with its own pwm_per_control, ctl_boundary, the count latched at
-// its trigger, its angle THETA_LAT clocks later, its ADC-valid flag, its latency counter, its first
-// flag, its reference prefetch flags); a job queue (a FIFO of axes whose trigger found the engine busy:
-// jobs start in sample order, simultaneous triggers the lower axis first) latches the job's axis `ax`,
+// its trigger, its angle THETA_LAT clocks later, its ADC-valid flag, its trigger's clock count (the
+// latency; NAXES = 1: a counter), its first flag, its reference prefetch flags); a job queue (a trigger
+// that finds the engine busy waits with its place in the sample order, simultaneous triggers the lower
+// axis first; the head starts in the clock of the running job's cmp_load; overrun[a] when a's boundary
+// meets a's job waiting or running; model rtlmodel.mx_seq.schedule_axes) latches the job's axis `ax`,
 // and every state RAM word, core input word ({ax, word}, start one-hot), status word ({ax, word}) and
 // the per-axis registers and measurements (vectors, element a at [a*W +: W]) are the job axis's.  The
 // held u / ebar(k-1) of each axis are copied at its core_done (the core's outputs are the last
