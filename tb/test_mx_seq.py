@@ -804,7 +804,8 @@ def test_mx_seq_axes(na):
 
 
 @pytest.mark.cost(30)
-def test_mx_seq_axes_in_phase():
-    """Two axes with their carriers in phase: the triggers meet, axis 1's job waits in the queue for axis 0's
-    (sample order), and its latency / cmp_load clock equal the schedule model's."""
-    _run_axes(2, stagger=0)
+@pytest.mark.parametrize("na", [2, pytest.param(4, marks=pytest.mark.full)])
+def test_mx_seq_axes_in_phase(na):
+    """The carriers in phase: the triggers meet, axes 1.. wait in the queue behind axis 0 (sample order, the
+    lower axis first), and their latency / cmp_load clock equal the schedule model's."""
+    _run_axes(na, stagger=0)
