@@ -30,9 +30,18 @@
 // load_shift + 1) are a 40-bit serial right shifter, one bit per clock.  Program and hazards: the
 // tables of gen/empc/rtlmodel/mx_seq.py (rtl/mx_seq_ucode.vh, rtl/mx_seq_rom.vh).
 //
-// Axes: the state RAM is addressed {axis, word} (AXB axis bits); with NAXES = 1 the job's axis is 0.
-// The job queue of several axes (one trigger-pending / ADC-valid-pending flag per axis, jobs in
-// sample order) is not built: the ports are one axis's (docs/blocks/mx_seq.md, "four axes").
+// Axes (NAXES = 1..4, docs/blocks/mx_seq.md "Several axes"): one engine, one job at a time.  Per axis
+// a timing block (period-kind counter with its own pwm_per_control, ctl_boundary, the count latched at
+// its trigger, its angle THETA_LAT clocks later, its ADC-valid flag, its trigger's clock count (the
+// latency; NAXES = 1: a counter), its first flag, its reference prefetch flags); a job queue (a trigger
+// that finds the engine busy waits with its place in the sample order, simultaneous triggers the lower
+// axis first; the head starts in the clock of the running job's cmp_load; overrun[a] when a's boundary
+// meets a's job waiting or running; model rtlmodel.mx_seq.schedule_axes) latches the job's axis `ax`,
+// and every state RAM word, core input word ({ax, word}, start one-hot), status word ({ax, word}) and
+// the per-axis registers and measurements (vectors, element a at [a*W +: W]) are the job axis's.  The
+// held u / ebar(k-1) of each axis are copied at its core_done (the core's outputs are the last
+// update's, of any axis).  One reference prefetch engine reads the axis of its latch (rd_age =
+// {axis, age}), the lowest ready axis first.  NAXES = 1: the one-axis ports and behaviour, clock-exact.
 //
 // Ports: as ctrl_seq's, except the status words: st_we / st_addr / st_wdata write one 32-bit word
 // (axis_status; st_addr / st_wdata are held until the next status or core write, >= 2 clocks
@@ -42,8 +51,8 @@
 // period_start and registers.  core_in_*, st_* and the ref_* read addresses are registered.
 // Latency: trigger -> cmp_load on `latency`; from the ADC's valid: 1 (front request) + 23 (front)
 // + the dependent program (21 + kacc_shift clocks) + 1 + the core (38 + columns) + 1 + 85 (mod).
-// Reset: idle, first period flagged, the axis state RAM cleared by a 32 x NAXES-clock sweep, the
-// reference prefetch re-armed (it waits for ref_gen's w_ok).
+// Reset: idle, every axis's first period flagged, the axis state RAM cleared by a 32 x NAXES-clock
+// sweep, the reference prefetch re-armed (it waits for ref_gen's w_ok), the job queue empty.
 `default_nettype none
 `include "empc_formats.vh"
 `include "empc_regs.vh"
@@ -51,103 +60,272 @@ module mx_seq #(
     parameter integer N = `EMPC_N,
     parameter integer CW = $clog2(`EMPC_PWM_HALF_PERIOD + 1),
     parameter integer THETA_LAT = 4,    // pos_sense: clocks from a count to its angle (1..8)
-    parameter integer NAXES = 1,
+    parameter integer NAXES = 1,        // axes served (1..4); per-axis vectors: element a at [a*W +: W]
     parameter integer AXB = (NAXES < 2) ? 1 : $clog2(NAXES),
     parameter integer AW = (N < 2) ? 1 : $clog2(N + 1)
 ) (
     input  wire                           clk,
     input  wire                           rst,
-    // timing
-    input  wire                           adc_trig,        // PWM period centre
-    input  wire                           period_start,    // PWM period boundary
-    input  wire [7:0]                     pwm_per_control,
-    input  wire                           run,             // control law active
-    // measurements
-    input  wire [`EMPC_ANGLE_BITS-1:0]    theta,
-    input  wire [`EMPC_POS_W-1:0]         pos,
-    output reg                            pos_sample,
-    input  wire                           adc_valid,
-    input  wire signed [`EMPC_ADC_BITS:0] cur0,
-    input  wire signed [`EMPC_ADC_BITS:0] cur1,
-    input  wire signed [`EMPC_ADC_BITS:0] cur2,
-    // registers
-    input  wire [17:0]                    kdc,
-    input  wire signed [17:0]             kacc,
-    input  wire [4:0]                     kacc_shift,
-    input  wire [3:0]                     load_shift,
-    input  wire signed [`EMPC_I_W-1:0]    id_ref,
-    input  wire signed [`EMPC_I_W-1:0]    iq_ref,
-    input  wire                           task_pos,
-    // reference generator
-    output wire                           ctl_boundary,    // boundary before a control sample (pulse)
-    output reg                            ref_advance,
-    input  wire                           ref_ok,
-    output wire [AW-1:0]                  ref_age,
+    // timing (per axis)
+    input  wire [NAXES-1:0]               adc_trig,        // PWM period centre of axis a
+    input  wire [NAXES-1:0]               period_start,    // PWM period boundary of axis a
+    input  wire [8*NAXES-1:0]             pwm_per_control,
+    input  wire [NAXES-1:0]               run,             // control law active
+    // measurements (per axis)
+    input  wire [`EMPC_ANGLE_BITS*NAXES-1:0] theta,
+    input  wire [`EMPC_POS_W*NAXES-1:0]   pos,
+    output reg  [NAXES-1:0]               pos_sample,
+    input  wire [NAXES-1:0]               adc_valid,
+    input  wire [(`EMPC_ADC_BITS+1)*NAXES-1:0] cur0,
+    input  wire [(`EMPC_ADC_BITS+1)*NAXES-1:0] cur1,
+    input  wire [(`EMPC_ADC_BITS+1)*NAXES-1:0] cur2,
+    // registers (per axis)
+    input  wire [18*NAXES-1:0]            kdc,
+    input  wire [18*NAXES-1:0]            kacc,            // signed 18 bit each
+    input  wire [5*NAXES-1:0]             kacc_shift,
+    input  wire [4*NAXES-1:0]             load_shift,
+    input  wire [`EMPC_I_W*NAXES-1:0]     id_ref,          // signed each
+    input  wire [`EMPC_I_W*NAXES-1:0]     iq_ref,
+    input  wire [NAXES-1:0]               task_pos,
+    // reference generator (ref_gen NAXES: per-axis strobes, the axis in the high bits of rd_age)
+    output wire [NAXES-1:0]               ctl_boundary,    // boundary before a control sample (pulse)
+    output reg  [NAXES-1:0]               ref_advance,
+    input  wire [NAXES-1:0]               ref_ok,
+    output wire [$clog2(NAXES)+AW-1:0]    ref_age,
     output wire [5:0]                     ref_bit,
     input  wire                           ref_q,
-    // MPC core
-    output reg                            core_start,
+    // MPC core (mpc_core NAXES: start one-hot per axis, in_addr = {axis, word})
+    output reg  [NAXES-1:0]               core_start,
     output reg                            core_in_we,
-    output reg  [5:0]                     core_in_addr,
+    output reg  [5+$clog2(NAXES):0]       core_in_addr,
     output reg  signed [`EMPC_SIG_W-1:0]  core_in_wdata,
     input  wire                           core_done,
     input  wire [2*`EMPC_U_W-1:0]         core_u,
     input  wire [3*`EMPC_SIG_W-1:0]       core_ebar,
-    // PWM
+    // PWM: cmp is the last job's, valid with its axis's cmp_load
     output wire [3*CW-1:0]                cmp,
-    output reg                            cmp_load,
-    // status
-    output reg                            control_done,
-    output reg                            overrun,
-    output reg                            front_sat,
-    output reg  [15:0]                    latency,
+    output reg  [NAXES-1:0]               cmp_load,
+    // status (per axis; i_d, i_q, omega, theta_trig: the running or last job's)
+    output reg  [NAXES-1:0]               control_done,
+    output reg  [NAXES-1:0]               overrun,
+    output reg  [NAXES-1:0]               front_sat,
+    output reg  [16*NAXES-1:0]            latency,
     output wire signed [`EMPC_I_W-1:0]    i_d,
     output wire signed [`EMPC_I_W-1:0]    i_q,
     output reg  signed [`EMPC_W_W-1:0]    omega,
-    output reg  [`EMPC_ANGLE_BITS-1:0]    theta_trig,
-    output reg                            st_we,
-    output reg  [5:0]                     st_addr,
+    output wire [`EMPC_ANGLE_BITS-1:0]    theta_trig,
+    output reg                            st_we,           // axis_status NAXES: st_addr = {axis, word}
+    output reg  [5+$clog2(NAXES):0]       st_addr,
     output reg  [31:0]                    st_wdata,
-    output reg                            stat_sweep
+    output reg  [NAXES-1:0]               stat_sweep
 );
     localparam integer SW = `EMPC_SIG_W;     // 32
     localparam integer UW = `EMPC_U_W;       // 24
     localparam integer IW = `EMPC_I_W;       // 18
     localparam integer AB = `EMPC_ANGLE_BITS; // 16
     localparam integer PW = `EMPC_POS_W;     // 32
+    localparam integer CUW = `EMPC_ADC_BITS + 1;   // 13: a phase current
     localparam integer XW = 48;              // ALU width
     localparam integer SHW = 40;             // serial shifter: |kacc i_q| < 2^35, |t2| < 2^37 (D wraps at 36 bits)
     localparam integer RW = 36;              // axis state RAM word
     localparam integer NREF = 64 * (N + 1);  // reference bits read after an advance
     localparam integer PFB = $clog2(NREF);
+    localparam integer CLB = $clog2(32 * NAXES) + 1;   // the clear sweep's counter (NAXES = 1: 6)
+    localparam integer CLR_LAST = 32 * NAXES - 1;
 `include "mx_seq_ucode.vh"
 
     generate if (SW != 32 || UW != 24 || IW != 18 || `EMPC_W_W != 32 || PW != 32 || AB != 16 || N > 8 || N < 1 ||
-                 THETA_LAT < 1 || THETA_LAT > 8 || NAXES != 1 || !UC_MAP_OK)
+                 THETA_LAT < 1 || THETA_LAT > 8 || NAXES < 1 || NAXES > 4 || !UC_MAP_OK)
     begin : g_bad_params
         mx_seq_unsupported_parameters u_error ();   // no such module: elaboration stops here
     end endgenerate
 
-    // ================================ period bookkeeping ================================
-    reg  [7:0]  per_nx;             // PWM periods since the last control period, + 1 (mod 256)
-    reg         ctl_next;           // the coming sample is a control sample (decided at the boundary)
-    reg         is_control, first, mfirst, busy_period;
-    reg  [15:0] lat_cnt;            // clocks since the trigger, + 1 (one adder: latency takes it as is)
-    reg  [PW-1:0] pos_trig;
-    reg  signed [UW-1:0] u_st0, u_st1;
-    reg         zeroed;
-    reg         th_wait, th_ok, adc_seen, front_go, front_done, core_run, core_fin;
-    reg  [2:0]  th_cnt;
+    // ================================ job state (one job at a time) ================================
+    reg         is_control, mfirst, busy_period;
+    reg         front_go, front_done, core_run, core_fin;
     reg  [AXB-1:0] ax;              // the job's axis (NAXES = 1: 0)
-    wire        trig = adc_trig && !busy_period;
-    // the coming sample is a control sample: the compare registered, so that ctl_boundary is one gate
-    // from registers into the core's swap logic (18 LUT less in the drive).  One clock old: per_nx
-    // changes at a trigger; a pwm_per_control write (bridges off only) in the clock before a boundary
-    // takes effect at the next one, for ctl_next, the advance and the swap alike
-    reg         ctl_now;
-    always @(posedge clk) ctl_now <= !rst && (per_nx >= pwm_per_control);
-    assign      ctl_boundary = period_start && ctl_now;
-    wire [7:0]  per_cnt = per_nx - 8'd1;    // (read by tb/hdl/cosim_top.v only)
+    wire [NAXES-1:0] ax_oh;         // one-hot of ax
+    wire        jstart;             // a job starts (NAXES = 1: the trigger)
+    wire [AXB-1:0] jax;             // its axis
+    wire [NAXES-1:0] jst_oh;        // jstart, one-hot of jax
+
+    // ================================ per-axis timing blocks ================================
+    reg  [8*NAXES-1:0]  per_nx;     // PWM periods since the last control period, + 1 (mod 256)
+    reg  [NAXES-1:0]    ctl_now;    // the coming sample would be a control sample (registered compare)
+    reg  [NAXES-1:0]    ctl_next;   // the coming sample is a control sample (decided at the boundary)
+    reg  [NAXES-1:0]    first;      // the axis's first period after rst
+    reg  [NAXES-1:0]    tpend;      // a trigger waits in the job queue
+    reg  [NAXES-1:0]    th_wait, th_ok, adc_seen;
+    reg  [3*NAXES-1:0]  th_cnt;
+    wire [15:0]         lat_now;    // the job axis's clocks since its trigger, + 1 (at cmp_load: latency)
+    reg  [PW*NAXES-1:0] pos_trig;
+    reg  [AB*NAXES-1:0] th_trig;
+    wire [NAXES-1:0]    busy_ax;    // a job of the axis waits or runs
+    wire [NAXES-1:0]    trig;       // a trigger taken
+    wire [8*NAXES-1:0]  per_cnt;    // (read by tb/hdl/cosim_top.v only)
+    genvar ga;
+    generate for (ga = 0; ga < NAXES; ga = ga + 1) begin : g_tim
+        assign busy_ax[ga] = tpend[ga] || (busy_period && ax_oh[ga]);
+        assign trig[ga] = adc_trig[ga] && !busy_ax[ga];
+        // the coming sample is a control sample: the compare registered, so that ctl_boundary is one
+        // gate from registers into the core's swap logic (18 LUT less in the drive).  One clock old:
+        // per_nx changes at a trigger; a pwm_per_control write (bridges off only) in the clock before
+        // a boundary takes effect at the next one, for ctl_next, the advance and the swap alike
+        always @(posedge clk) ctl_now[ga] <= !rst && (per_nx[8*ga +: 8] >= pwm_per_control[8*ga +: 8]);
+        assign ctl_boundary[ga] = period_start[ga] && ctl_now[ga];
+        assign per_cnt[8*ga +: 8] = per_nx[8*ga +: 8] - 8'd1;
+        always @(posedge clk) begin
+            pos_sample[ga] <= 1'b0;
+            ref_advance[ga] <= 1'b0;
+            overrun[ga] <= 1'b0;
+            if (rst) begin
+                ctl_next[ga] <= 1'b0;
+                first[ga] <= 1'b1;
+                pos_trig[PW*ga +: PW] <= {PW{1'b0}};
+                th_trig[AB*ga +: AB] <= {AB{1'b0}};
+                th_wait[ga] <= 1'b0;
+                th_ok[ga] <= 1'b0;
+                adc_seen[ga] <= 1'b0;
+            end else begin
+                if (period_start[ga] && busy_ax[ga])
+                    overrun[ga] <= 1'b1;
+                // ---- boundary: the coming sample's kind; the references advance now ----
+                if (period_start[ga]) begin
+                    ctl_next[ga] <= ctl_now[ga];
+                    ref_advance[ga] <= ctl_now[ga];
+                end
+                // ---- trigger: the count now, the angle THETA_LAT clocks later ----
+                if (trig[ga]) begin
+                    th_wait[ga] <= 1'b1;
+                    th_ok[ga] <= 1'b0;
+                    adc_seen[ga] <= 1'b0;
+                    if (ctl_next[ga]) begin
+                        pos_sample[ga] <= 1'b1;
+                        pos_trig[PW*ga +: PW] <= pos[PW*ga +: PW];
+                    end
+                end
+                if (jst_oh[ga]) first[ga] <= 1'b0;
+                if (th_wait[ga] && th_cnt[3*ga +: 3] == 3'd0) begin
+                    th_trig[AB*ga +: AB] <= theta[AB*ga +: AB];
+                    th_wait[ga] <= 1'b0;
+                    th_ok[ga] <= 1'b1;
+                end
+                if (busy_ax[ga] && adc_valid[ga]) adc_seen[ga] <= 1'b1;
+            end
+        end
+        always @(posedge clk) begin
+            if (rst || (trig[ga] && ctl_next[ga]))
+                per_nx[8*ga +: 8] <= 8'd1;
+            else if (trig[ga])
+                per_nx[8*ga +: 8] <= per_nx[8*ga +: 8] + 8'd1;
+            if (trig[ga])
+                th_cnt[3*ga +: 3] <= THETA_LAT[2:0] - 3'd1;
+            else if (th_wait[ga])
+                th_cnt[3*ga +: 3] <= th_cnt[3*ga +: 3] - 3'd1;
+        end
+    end endgenerate
+    // latency: NAXES = 1 a counter from the trigger; NAXES > 1 one free-running clock count and the
+    // count at each axis's trigger (no adder per axis): cmp_load's count - the trigger's is the same
+    // value, modulo 2^16 as the counter's
+    generate if (NAXES == 1) begin : g_lat1
+        reg [15:0] lat_cnt;
+        always @(posedge clk) begin
+            if (trig[0])
+                lat_cnt <= 16'd1;
+            else if (busy_ax[0])
+                lat_cnt <= lat_cnt + 16'd1;
+        end
+        assign lat_now = lat_cnt;
+    end else begin : g_latn
+        reg [15:0] now;
+        reg [16*NAXES-1:0] t_trig;
+        integer li;
+        always @(posedge clk) begin
+            now <= rst ? 16'd0 : now + 16'd1;
+            for (li = 0; li < NAXES; li = li + 1)
+                if (trig[li]) t_trig[16*li +: 16] <= now;
+        end
+        assign lat_now = now - t_trig[16*ax +: 16];
+    end endgenerate
+
+    // ================================ job queue ================================
+    // NAXES = 1: a trigger starts the job at once (the axis is busy until its cmp_load).  NAXES > 1:
+    // a trigger that finds the engine busy (or another axis starting in its clock) waits in a FIFO
+    // of axes; jobs start in sample order (simultaneous triggers: the lower axis first), the clock
+    // the engine is free; the axis is latched (ax) for the whole job.
+    generate if (NAXES == 1) begin : g_q1
+        assign jstart = trig[0];
+        assign jax = {AXB{1'b0}};
+        always @(posedge clk) tpend <= 1'b0;
+        assign ax_oh = 1'b1;
+    end else begin : g_qn
+        // each waiting axis holds its place in the sample order (q_seq, mod 4: at most NAXES wait);
+        // the head is the waiting axis whose place is q_pop
+        reg  [2*NAXES-1:0] q_seq, q_seq_n;
+        reg  [1:0]         q_push, q_pop, np;
+        reg  [NAXES-1:0]   push;
+        reg                js;
+        reg  [AXB-1:0]     ja;
+        integer qi;
+        always @(*) begin
+            js = 1'b0;
+            ja = {AXB{1'b0}};
+            if (!busy_period && |tpend) begin           // the oldest waiting trigger
+                js = 1'b1;
+                for (qi = 0; qi < NAXES; qi = qi + 1)
+                    if (tpend[qi] && q_seq[2*qi +: 2] == q_pop) ja = qi[AXB-1:0];
+            end else if (!busy_period) begin            // an idle engine: the lowest trigger now
+                for (qi = NAXES - 1; qi >= 0; qi = qi - 1)
+                    if (trig[qi]) begin
+                        js = 1'b1;
+                        ja = qi[AXB-1:0];
+                    end
+            end
+            np = q_push;
+            q_seq_n = q_seq;
+            for (qi = 0; qi < NAXES; qi = qi + 1) begin
+                push[qi] = trig[qi] && !(js && !(|tpend) && ja == qi[AXB-1:0]);
+                if (push[qi]) begin
+                    q_seq_n[2*qi +: 2] = np;
+                    np = np + 2'd1;
+                end
+            end
+        end
+        always @(posedge clk) begin
+            if (rst) begin
+                q_push <= 2'd0;
+                q_pop <= 2'd0;
+                tpend <= {NAXES{1'b0}};
+            end else begin
+                q_push <= np;
+                if (js && |tpend) q_pop <= q_pop + 2'd1;
+                tpend <= (tpend | push) & ~jst_oh;
+            end
+            q_seq <= q_seq_n;
+        end
+        assign jstart = js;
+        assign jax = ja;
+        assign ax_oh = {{(NAXES-1){1'b0}}, 1'b1} << ax;
+    end endgenerate
+    assign jst_oh = {NAXES{jstart}} & ({{(NAXES-1){1'b0}}, 1'b1} << jax);
+
+    // the job axis's inputs (NAXES = 1: the ports)
+    wire [PW-1:0]  j_pos   = pos_trig[PW*ax +: PW];
+    wire [CUW-1:0] j_cur0  = cur0[CUW*ax +: CUW];
+    wire [CUW-1:0] j_cur1  = cur1[CUW*ax +: CUW];
+    wire [CUW-1:0] j_cur2  = cur2[CUW*ax +: CUW];
+    wire [17:0]    j_kdc   = kdc[18*ax +: 18];
+    wire [17:0]    j_kacc  = kacc[18*ax +: 18];
+    wire [4:0]     j_ksh   = kacc_shift[5*ax +: 5];
+    wire [3:0]     j_lsh   = load_shift[4*ax +: 4];
+    wire [IW-1:0]  j_idr   = id_ref[IW*ax +: IW];
+    wire [IW-1:0]  j_iqr   = iq_ref[IW*ax +: IW];
+    wire           j_run   = run[ax];
+    wire           j_adc   = adc_seen[ax];
+    wire           j_thok  = th_ok[ax];
+    wire           s_ctl   = ctl_next[jax];     // the starting job's kind and task
+    wire           s_tpos  = task_pos[jax];
+    assign theta_trig = th_trig[AB*ax +: AB];
 
     // transform chain (xform): front with theta_trig, mod with theta_mod and the held u
     reg  xf_front, xf_mod, xf_run_mod;
@@ -156,8 +334,9 @@ module mx_seq #(
     wire signed [35:0] pr;          // kacc * i_q on xform's multiplier, after the front
     reg  [AB-1:0] th_mod;
     wire [AB-1:0] ang = xf_front ? theta_trig : th_mod;
+    wire signed [UW-1:0] u_st0, u_st1;      // the held u of the job's axis (0 while zeroed)
     xform u_xform (.clk(clk), .rst(rst), .start_front(xf_front), .start_mod(xf_mod), .angle(ang),
-                   .i_a(cur0), .i_b(cur1), .i_c(cur2), .u_d(u_st0), .u_q(u_st1), .kdc(kdc), .mul_b(kacc),
+                   .i_a(j_cur0), .i_b(j_cur1), .i_c(j_cur2), .u_d(u_st0), .u_q(u_st1), .kdc(j_kdc), .mul_b(j_kacc),
                    .busy(xf_busy), .done(xf_done), .sat(xf_sat), .i_d(i_d), .i_q(i_q),
                    .cmp_a(cmp_a), .cmp_b(cmp_b), .cmp_c(cmp_c), .prod(pr));
     assign cmp = {cmp_c, cmp_b, cmp_a};
@@ -168,27 +347,16 @@ module mx_seq #(
     always @(posedge clk) begin
         xf_front <= 1'b0;
         xf_mod <= 1'b0;
-        core_start <= 1'b0;
-        cmp_load <= 1'b0;
-        pos_sample <= 1'b0;
-        ref_advance <= 1'b0;
-        control_done <= 1'b0;
-        overrun <= 1'b0;
-        front_sat <= 1'b0;
-        stat_sweep <= 1'b0;
+        core_start <= {NAXES{1'b0}};
+        cmp_load <= {NAXES{1'b0}};
+        control_done <= {NAXES{1'b0}};
+        front_sat <= {NAXES{1'b0}};
+        stat_sweep <= {NAXES{1'b0}};
         if (rst) begin
-            ctl_next <= 1'b0;
             is_control <= 1'b0;
-            first <= 1'b1;
             mfirst <= 1'b1;
             busy_period <= 1'b0;
-            latency <= 16'd0;
-            pos_trig <= {PW{1'b0}};
-            theta_trig <= {AB{1'b0}};
-            zeroed <= 1'b1;
-            th_wait <= 1'b0;
-            th_ok <= 1'b0;
-            adc_seen <= 1'b0;
+            latency <= {(16*NAXES){1'b0}};
             front_go <= 1'b0;
             front_done <= 1'b0;
             core_run <= 1'b0;
@@ -196,99 +364,91 @@ module mx_seq #(
             xf_run_mod <= 1'b0;
             ax <= {AXB{1'b0}};
         end else begin
-            if (period_start && busy_period)
-                overrun <= 1'b1;
-            zeroed <= core_done ? 1'b0 : (!run ? 1'b1 : zeroed);
-            // ---- boundary: the coming sample's kind; the references advance now ----
-            if (period_start) begin
-                ctl_next <= ctl_now;
-                ref_advance <= ctl_now;
-            end
-            // ---- trigger ----
-            if (trig) begin
-                mfirst <= first;
-                first <= 1'b0;
+            // ---- job start ----
+            if (jstart) begin
+                ax <= jax;
+                mfirst <= first[jax];
                 busy_period <= 1'b1;
-                is_control <= ctl_next;
-                th_wait <= 1'b1;
-                th_ok <= 1'b0;
-                adc_seen <= 1'b0;
+                is_control <= s_ctl;
                 front_go <= 1'b0;
                 front_done <= 1'b0;
-                core_fin <= !ctl_next;          // a modulation-only period needs no core
-                if (ctl_next) begin
-                    pos_sample <= 1'b1;
-                    pos_trig <= pos;
-                end
-            end
-            if (th_wait && th_cnt == 3'd0) begin
-                theta_trig <= theta;
-                th_wait <= 1'b0;
-                th_ok <= 1'b1;
+                core_fin <= !s_ctl;             // a modulation-only period needs no core
             end
             // ---- ADC, front ----
-            if (busy_period && adc_valid) adc_seen <= 1'b1;
-            if (is_control && busy_period && adc_seen && th_ok && !front_go && !xf_busy) begin
+            if (is_control && busy_period && j_adc && j_thok && !front_go && !xf_busy) begin
                 xf_front <= 1'b1;
                 front_go <= 1'b1;
             end
             if (xf_done && !xf_run_mod && is_control) begin
                 front_done <= 1'b1;
-                if (xf_sat) front_sat <= 1'b1;
+                if (xf_sat) front_sat <= ax_oh;
             end
-            if (eng_sat) front_sat <= 1'b1;
+            if (eng_sat) front_sat <= ax_oh;
             // ---- core ----
             if (a_start) begin
-                if (run) begin
-                    core_start <= 1'b1;
+                if (j_run) begin
+                    core_start <= ax_oh;
                     core_run <= 1'b1;
                 end else begin
                     core_fin <= 1'b1;
-                    control_done <= 1'b1;
+                    control_done <= ax_oh;
                 end
             end
             if (core_run && core_done) begin
                 core_run <= 1'b0;
                 core_fin <= 1'b1;
-                control_done <= 1'b1;
+                control_done <= ax_oh;
             end
             // ---- modulation ----
             if (a_mod) xf_mod <= 1'b1;
             if (xf_mod && !xf_busy) xf_run_mod <= 1'b1;
             if (xf_done && xf_run_mod) begin
                 xf_run_mod <= 1'b0;
-                if (xf_sat) front_sat <= 1'b1;
-                cmp_load <= 1'b1;
-                stat_sweep <= is_control;
-                latency <= lat_cnt;
+                if (xf_sat) front_sat <= ax_oh;
+                cmp_load <= ax_oh;
+                stat_sweep <= {NAXES{is_control}} & ax_oh;
+                latency[16*ax +: 16] <= lat_now;
                 busy_period <= 1'b0;
             end
         end
     end
-    always @(posedge clk) begin
-        if (rst || (trig && ctl_next))
-            per_nx <= 8'd1;
-        else if (trig)
-            per_nx <= per_nx + 8'd1;
-        if (trig)
-            lat_cnt <= 16'd1;
-        else if (busy_period)
-            lat_cnt <= lat_cnt + 16'd1;
-        if (trig)
-            th_cnt <= THETA_LAT[2:0] - 3'd1;
-        else if (th_wait)
-            th_cnt <= th_cnt - 3'd1;
-    end
-    // held u: loaded at core_done, 0 while run is low
-    always @(posedge clk) begin
-        if (rst || (!run && !core_done)) begin
-            u_st0 <= {UW{1'b0}};
-            u_st1 <= {UW{1'b0}};
-        end else if (core_done) begin
-            u_st0 <= core_u[0 +: UW];
-            u_st1 <= core_u[UW +: UW];
+
+    // held u and ebar of the axis: u loaded at core_done, both 0 while the law is off (zeroed: the
+    // law was off since the axis's last core update).  NAXES = 1: u_st0/1 registers, ebar = the
+    // core's outputs (they hold until its next update); NAXES > 1: a copy per axis, taken at core_done
+    wire [NAXES-1:0] zeroed_nx;
+    wire [3*SW-1:0]  ebar_h;        // the job axis's ebar(k-1)
+    generate if (NAXES == 1) begin : g_hold1
+        reg zeroed;
+        reg signed [UW-1:0] u_h0, u_h1;
+        always @(posedge clk) zeroed <= rst ? 1'b1 : core_done ? 1'b0 : (!run[0] ? 1'b1 : zeroed);
+        always @(posedge clk) begin
+            if (rst || (!run[0] && !core_done)) begin
+                u_h0 <= {UW{1'b0}};
+                u_h1 <= {UW{1'b0}};
+            end else if (core_done) begin
+                u_h0 <= core_u[0 +: UW];
+                u_h1 <= core_u[UW +: UW];
+            end
         end
-    end
+        assign u_st0 = u_h0;
+        assign u_st1 = u_h1;
+        assign zeroed_nx = rst || (!core_done && (!run[0] || zeroed));
+        assign ebar_h = core_ebar;
+    end else begin : g_holdn
+        reg  [NAXES-1:0] zeroed;
+        reg  [2*UW+3*SW-1:0] hold [0:NAXES-1];      // {ebar, u} per axis
+        wire [2*UW+3*SW-1:0] hq = hold[ax];
+        always @(posedge clk) if (core_done) hold[ax] <= {core_ebar, core_u};
+        integer zi;
+        always @(posedge clk)
+            for (zi = 0; zi < NAXES; zi = zi + 1)
+                zeroed[zi] <= rst ? 1'b1 : (core_done && ax_oh[zi]) ? 1'b0 : (!run[zi] ? 1'b1 : zeroed[zi]);
+        assign u_st0 = zeroed[ax] ? {UW{1'b0}} : hq[0 +: UW];
+        assign u_st1 = zeroed[ax] ? {UW{1'b0}} : hq[UW +: UW];
+        assign zeroed_nx = rst ? {NAXES{1'b1}} : ~(ax_oh & {NAXES{core_done}}) & (~run | zeroed);
+        assign ebar_h = hq[2*UW +: 3*SW];
+    end endgenerate
 
     // ===================================== engine =====================================
     (* rom_style = "block" *) reg [35:0] rom [0:255];
@@ -299,14 +459,15 @@ module mx_seq #(
     reg  [7:0]  pc, pc_next;
     reg  [35:0] iw;                 // rom[pc] (block RAM output register)
     reg         prun;               // a program is running
-    reg         refs_ok, refs_taken;
+    reg  [NAXES-1:0] refs_ok;       // per axis: its references are in the state RAM
+    reg         refs_taken;
     reg         sh_busy;
     wire [2:0]  i_ctl = iw[UW_CTL +: 3];
     reg         cond_ok;
     always @(*) begin
         case (i_ctl)
-            CTL_WTH:    cond_ok = th_ok;
-            CTL_WREF:   cond_ok = refs_ok;
+            CTL_WTH:    cond_ok = j_thok;
+            CTL_WREF:   cond_ok = refs_ok[ax];
             CTL_WFRONT: cond_ok = front_done;
             CTL_WSH:    cond_ok = !sh_busy;
             CTL_WCORE:  cond_ok = core_fin;
@@ -315,7 +476,7 @@ module mx_seq #(
     end
     wire        issue = prun && cond_ok;
     always @(*) begin
-        if (trig) pc_next = !ctl_next ? PC_MOD : task_pos ? PC_POS : PC_SPD;
+        if (jstart) pc_next = !s_ctl ? PC_MOD : s_tpos ? PC_POS : PC_SPD;
         else if (issue) pc_next = pc + 8'd1;
         else pc_next = pc;
     end
@@ -327,7 +488,7 @@ module mx_seq #(
             refs_taken <= 1'b0;
         end else begin
             pc <= pc_next;
-            if (trig) begin
+            if (jstart) begin
                 prun <= 1'b1;
                 refs_taken <= 1'b0;
             end else if (issue && i_ctl == CTL_END) begin
@@ -351,20 +512,19 @@ module mx_seq #(
     reg  [35:0]   g_pr;
     reg  [SHW-1:0] g_sh;
     reg           g_p;
-    wire          zeroed_nx = rst || (!core_done && (!run || zeroed));
     reg  signed [SHW-1:0] sh;               // serial shifter
     always @(posedge clk) begin
-        g_pos <= (issue && i_as == AS_POS) ? pos_trig : {PW{1'b0}};
+        g_pos <= (issue && i_as == AS_POS) ? j_pos : {PW{1'b0}};
         g_th  <= (issue && i_as == AS_TH)  ? theta_trig : {AB{1'b0}};
         g_id  <= (issue && i_as == AS_ID)  ? i_d : {IW{1'b0}};
         g_iq  <= (issue && i_as == AS_IQ)  ? i_q : {IW{1'b0}};
-        g_idr <= (issue && i_as == AS_IDR) ? id_ref : {IW{1'b0}};
-        g_iqr <= (issue && i_as == AS_IQR) ? iq_ref : {IW{1'b0}};
+        g_idr <= (issue && i_as == AS_IDR) ? j_idr : {IW{1'b0}};
+        g_iqr <= (issue && i_as == AS_IQR) ? j_iqr : {IW{1'b0}};
         g_u0  <= (issue && i_as == AS_U0)  ? u_st0 : {UW{1'b0}};
         g_u1  <= (issue && i_as == AS_U1)  ? u_st1 : {UW{1'b0}};
-        g_e0  <= (issue && i_as == AS_E0 && !zeroed_nx) ? core_ebar[0*SW +: SW] : {SW{1'b0}};
-        g_e1  <= (issue && i_as == AS_E1 && !zeroed_nx) ? core_ebar[1*SW +: SW] : {SW{1'b0}};
-        g_e2  <= (issue && i_as == AS_E2 && !zeroed_nx) ? core_ebar[2*SW +: SW] : {SW{1'b0}};
+        g_e0  <= (issue && i_as == AS_E0 && !zeroed_nx[ax]) ? ebar_h[0*SW +: SW] : {SW{1'b0}};
+        g_e1  <= (issue && i_as == AS_E1 && !zeroed_nx[ax]) ? ebar_h[1*SW +: SW] : {SW{1'b0}};
+        g_e2  <= (issue && i_as == AS_E2 && !zeroed_nx[ax]) ? ebar_h[2*SW +: SW] : {SW{1'b0}};
         g_om  <= (issue && i_as == AS_OMR) ? omega : {SW{1'b0}};
         g_pr  <= (issue && i_as == AS_PR)  ? pr : 36'd0;
         g_sh  <= (issue && i_as == AS_SH)  ? sh : {SHW{1'b0}};
@@ -432,6 +592,7 @@ module mx_seq #(
     reg  [1:0]   w_wm, w_cond;
     reg  [2:0]   w_dk, w_ctl;
     reg  [5:0]   w_da;
+    wire [5+$clog2(NAXES):0] da_ax;     // {axis, word} of a core input / status write
     always @(posedge clk) begin
         if (e_v) r <= sum;
         if (e_v && e_pe) p_r <= sum;
@@ -455,8 +616,8 @@ module mx_seq #(
     always @(*) begin
         case (w_cond)
             CD_FIRST: w_ok_c = mfirst;
-            CD_LS:    w_ok_c = (load_shift != 4'd0);
-            CD_NOLS:  w_ok_c = (load_shift == 4'd0);
+            CD_LS:    w_ok_c = (j_lsh != 4'd0);
+            CD_NOLS:  w_ok_c = (j_lsh == 4'd0);
             default:  w_ok_c = 1'b1;
         endcase
     end
@@ -472,9 +633,9 @@ module mx_seq #(
         // write, so held after a status write until the next one (the schedule keeps it >= 2 issues
         // away: axis_status's deferred write takes them in the clock after st_we)
         if (wen && (w_dk == DK_CORE || w_dk == DK_STAT)) begin
-            core_in_addr <= w_da;
+            core_in_addr <= da_ax;
             core_in_wdata <= w32;
-            st_addr <= w_da;
+            st_addr <= da_ax;
             st_wdata <= w32;
         end
         if (rst) omega <= {SW{1'b0}};
@@ -487,8 +648,8 @@ module mx_seq #(
         if (wen && (w_dk == DK_SHKA || w_dk == DK_SHT2)) begin
             sh <= r[SHW-1:0];
             sh_r <= 1'b0;
-            sh_cnt <= (w_dk == DK_SHKA) ? kacc_shift : ({1'b0, load_shift} + 5'd1);
-            sh_busy <= (w_dk == DK_SHKA) ? (kacc_shift != 5'd0) : 1'b1;
+            sh_cnt <= (w_dk == DK_SHKA) ? j_ksh : ({1'b0, j_lsh} + 5'd1);
+            sh_busy <= (w_dk == DK_SHKA) ? (j_ksh != 5'd0) : 1'b1;
         end else if (sh_busy) begin
             sh <= sh >>> 1;
             sh_r <= sh[0];
@@ -499,55 +660,89 @@ module mx_seq #(
     end
 
     // ---------------- axis state RAM: port A (ALU W stage, reference prefetch, clear after rst) ----------------
-    reg  [5:0]    clr_cnt;              // 32 x NAXES words (NAXES = 1: 32)
+    reg  [CLB-1:0] clr_cnt;             // 32 x NAXES words (NAXES = 1: 32)
     reg           clr;
-    reg           pf_need, pf_act;
-    reg  [1:0]    pf_g;
+    reg  [NAXES-1:0] pf_need;           // per axis: its references are to be read (after its advance)
+    reg  [2*NAXES-1:0] pf_g;
+    reg           pf_act;               // the prefetch engine reads the references of axis pf_ax
+    reg  [AXB-1:0] pf_ax;
     reg  [PFB-1:0] pf_cnt;
     reg  [31:0]   pf_sr;
     wire          alu_ram = wen && w_dk == DK_RAM;
-    wire          pf_go = pf_act && !alu_ram && !clr && (!busy_period || !refs_taken);
+    // the prefetch pauses while the job of its axis takes the references (an overrun job)
+    wire          pf_go = pf_act && !alu_ram && !clr && (!busy_period || !refs_taken || ax != pf_ax);
     wire [31:0]   pf_word = {ref_q, pf_sr[31:1]};
     wire          pf_wr = pf_go && (pf_cnt[4:0] == 5'd31);
     wire [4:0]    pf_wa = SW_REF0 + {pf_cnt[PFB-1:5]};
-    assign ref_age = N[AW-1:0] - pf_cnt[PFB-1:6];
+    wire [AW-1:0] pf_age = N[AW-1:0] - pf_cnt[PFB-1:6];
     assign ref_bit = pf_cnt[5:0];
+    wire [AXB+4:0] clr_a;
+    generate if (NAXES == 1) begin : g_a1
+        assign ref_age = pf_age;
+        assign da_ax = w_da;
+        assign clr_a = {ax, clr_cnt[4:0]};
+    end else begin : g_an
+        assign ref_age = {pf_ax[$clog2(NAXES)-1:0], pf_age};
+        assign da_ax = {ax[$clog2(NAXES)-1:0], w_da};
+        assign clr_a = clr_cnt[AXB+4:0];
+    end endgenerate
     always @(posedge clk) begin
         if (clr)
-            sram[{ax, clr_cnt[4:0]}] <= {RW{1'b0}};
+            sram[clr_a] <= {RW{1'b0}};
         else if (alu_ram)
             sram[{ax, w_da[4:0]}] <= w36;
         else if (pf_wr)
-            sram[{ax, pf_wa}] <= {{(RW-32){pf_word[31]}}, pf_word};
+            sram[{pf_ax, pf_wa}] <= {{(RW-32){pf_word[31]}}, pf_word};
     end
     always @(posedge clk) begin
         if (rst) begin
             clr <= 1'b1;
-            clr_cnt <= 6'd0;
+            clr_cnt <= {CLB{1'b0}};
         end else if (clr) begin
-            clr_cnt <= clr_cnt + 6'd1;
-            if (clr_cnt == 6'd31) clr <= 1'b0;
+            clr_cnt <= clr_cnt + 1'b1;
+            if (clr_cnt == CLR_LAST[CLB-1:0]) clr <= 1'b0;
         end
     end
-    // reference prefetch: after each advance (and after anything else that drops w_ok), read
-    // w_k .. w_{k+N} into the RAM; refs_ok while they are current
-    always @(posedge clk) begin
-        if (rst || (period_start && ctl_now) || (!ref_ok && (pf_act || refs_ok))) begin
-            pf_need <= 1'b1;
-            pf_act <= 1'b0;
-            refs_ok <= 1'b0;
-            pf_g <= 2'd3;               // ref_gen's w_ok falls 2 clocks after our advance strobe
-        end else begin
-            if (pf_g != 2'd0) pf_g <= pf_g - 2'd1;
-            if (pf_need && pf_g == 2'd0 && ref_ok) begin
-                pf_need <= 1'b0;
-                pf_act <= 1'b1;
+    // reference prefetch: after each advance of an axis (and after anything else that drops its
+    // w_ok), read its w_k .. w_{k+N} into its RAM words; refs_ok while they are current.  One engine:
+    // the lowest axis first among those ready (the advances of different axes are a stagger apart)
+    wire [NAXES-1:0] pf_rst;            // the axis's references are (again) to be read
+    wire          pf_done = pf_go && pf_cnt == NREF[PFB-1:0] - 1'b1 && !pf_rst[pf_ax];
+    reg           pf_take;
+    reg  [AXB-1:0] pf_sel;
+    integer pi;
+    always @(*) begin
+        pf_take = 1'b0;
+        pf_sel = {AXB{1'b0}};
+        for (pi = NAXES - 1; pi >= 0; pi = pi - 1)
+            if (!pf_act && pf_need[pi] && pf_g[2*pi +: 2] == 2'd0 && ref_ok[pi] && !pf_rst[pi]) begin
+                pf_take = 1'b1;
+                pf_sel = pi[AXB-1:0];
             end
-            if (pf_go && pf_cnt == NREF[PFB-1:0] - 1'b1) begin
-                pf_act <= 1'b0;
-                refs_ok <= 1'b1;
+    end
+    generate for (ga = 0; ga < NAXES; ga = ga + 1) begin : g_pf
+        assign pf_rst[ga] = rst || (period_start[ga] && ctl_now[ga]) ||
+                            (!ref_ok[ga] && ((pf_act && pf_ax == ga) || refs_ok[ga]));
+        always @(posedge clk) begin
+            if (pf_rst[ga]) begin
+                pf_need[ga] <= 1'b1;
+                refs_ok[ga] <= 1'b0;
+                pf_g[2*ga +: 2] <= 2'd3;    // ref_gen's w_ok falls 2 clocks after our advance strobe
+            end else begin
+                if (pf_g[2*ga +: 2] != 2'd0) pf_g[2*ga +: 2] <= pf_g[2*ga +: 2] - 2'd1;
+                if (pf_take && pf_sel == ga) pf_need[ga] <= 1'b0;
+                if (pf_done && pf_ax == ga) refs_ok[ga] <= 1'b1;
             end
         end
+    end endgenerate
+    always @(posedge clk) begin
+        if (rst || (pf_act && pf_rst[pf_ax]) || pf_done)
+            pf_act <= 1'b0;
+        else if (pf_take) begin
+            pf_act <= 1'b1;
+            pf_ax <= pf_sel;
+        end
+        if (rst) pf_ax <= {AXB{1'b0}};
         if (!pf_act)
             pf_cnt <= {PFB{1'b0}};
         else if (pf_go) begin

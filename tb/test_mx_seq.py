@@ -525,3 +525,287 @@ def test_mx_seq_position():
 def test_mx_seq_horizons(n):
     """N = 1 and 8 (the law off: the boot image is N = 4's; every input word and compare value checked)."""
     _run("speed" if n == 1 else "position", n, periods=150)
+
+
+# ============================== cocotb: several axes (NAXES = 2..4) ==============================
+AX_T_VALID = 195                # the ADC's valid after the trigger in the drive (issue 14's 4-frame mean)
+AX_EVENT = 600                  # Python sets an axis's next sample this many clocks before its boundary
+
+
+def _vec(vals, w):
+    return sum((v & ((1 << w) - 1)) << (w * i) for i, v in enumerate(vals))
+
+
+@cocotb.test()
+async def random_axes(dut):
+    """NAXES axes on the shared sequencer, the carriers staggered by STAGGER (or in phase: the job queue):
+    every PWM period of every axis, the compare values equal the axis's own CtrlSeq.period (bit-exact),
+    the latency register and the clock of cmp_load equal the schedule model (rtlmodel.mx_seq.schedule_axes),
+    the status writes land at the axis's words (count and U_Q), no overrun, every core start is of the
+    axis whose input words were written.  Per-axis random streams (seed EMPC_SEED + axis), so a run that
+    drops one axis's law mid-run (MX_DROP) must leave the other axes' traces identical (pytest compares
+    the traces of the two runs)."""
+    import json
+    seed = int(os.environ.get("EMPC_SEED", DEFAULT_SEED))
+    na = int(os.environ["MX_NAXES"])
+    stagger = int(os.environ["MX_STAGGER"])
+    periods = int(os.environ.get("EMPC_MX_PERIODS", "120"))
+    drop = int(os.environ.get("MX_DROP", "-1"))
+    n = 4
+    half = header.read(Path(os.environ["EMPC_ROMS"]) / "empc_formats.vh")["PWM_HALF_PERIOD"]
+    roms = Path(os.environ["EMPC_ROMS"])
+    hdr = header.read(roms / "empc_formats.vh")
+    Clock(dut.clk, 10, unit="ns").start()
+    for nm in ("go", "run", "hold", "theta", "pos", "cur0", "cur1", "cur2", "kacc", "kacc_shift", "load_shift",
+               "id_ref", "iq_ref", "seg_we", "seg_slot", "seg_field", "seg_wdata", "start", "start_slot", "sync",
+               "sync_val", "cfg_we", "cfg_addr", "cfg_wdata", "cfg_swap", "swap_at"):
+        getattr(dut, nm).value = 0
+    dut.ppc.value = _vec([1] * na, 8)
+    dut.kdc.value = _vec([1 << F.KDC_FRAC] * na, 18)
+    dut.rst.value = 1
+    await ClockCycles(dut.clk, 5)
+    dut.rst.value = 0
+    await FallingEdge(dut.clk)
+    while not int(dut.core_ready.value) or int(dut.ref_busy.value):
+        await ClockCycles(dut.clk, 50, rising=False)
+    # axis 1: the position task (an uploaded image, swapped at an extra boundary); the others: speed
+    tasks = ["position" if a == 1 else "speed" for a in range(na)]
+    params = []
+    for a in range(na):
+        if tasks[a] == "position":
+            words = image.read_hex(roms / "coef_alg2_position.hex")
+            for i in range(image.USED):
+                dut.cfg_we.value = 1
+                dut.cfg_addr.value = (a << 10) | i
+                dut.cfg_wdata.value = words[i]
+                await FallingEdge(dut.clk)
+            dut.cfg_we.value = 0
+            await ClockCycles(dut.clk, 2, rising=False)
+            dut.cfg_swap.value = 1 << a
+            await FallingEdge(dut.clk)
+            dut.cfg_swap.value = 0
+            await ClockCycles(dut.clk, 3, rising=False)
+            dut.swap_at.value = 1 << a
+            await FallingEdge(dut.clk)
+            dut.swap_at.value = 0
+            await ClockCycles(dut.clk, 5, rising=False)
+            params.append(image.decode(words))
+        else:
+            params.append(image.decode(image.read_hex(roms / "coef_boot.hex")))
+    tp = int(dut.task_pos.value)
+    assert [(tp >> a) & 1 for a in range(na)] == [int(t == "position") for t in tasks], f"task_pos {tp:b}"
+
+    rngs = [random.Random(seed * 16 + a) for a in range(na)]
+    models = [CtrlSeq(params=params[a], N=n) for a in range(na)]
+    refs = []
+    for a in range(na):
+        r = RefGen(n)
+        r.write_gov(hdr["GOV_VMAX_LO"] | hdr["GOV_VMAX_HI"] << 32, hdr["GOV_A_LO"] | hdr["GOV_A_HI"] << 32,
+                    hdr["GOV_KSH"], bool(hdr["GOV_EN"]))
+        refs.append(r)
+    regs = [Regs(pwm_per_control=[1, 2, 3, 5][a], half_period=half, run=True) for a in range(na)]
+    val = {nm: [0] * na for nm in ("ppc", "run", "hold", "theta", "pos", "cur0", "cur1", "cur2", "kdc", "kacc",
+                                   "kacc_shift", "load_shift", "id_ref", "iq_ref", "sync_val", "start_slot")}
+    width = dict(ppc=8, run=1, hold=1, theta=16, pos=32, cur0=13, cur1=13, cur2=13, kdc=18, kacc=18, kacc_shift=5,
+                 load_shift=4, id_ref=18, iq_ref=18, sync_val=64, start_slot=4)
+    pos = [rngs[a].getrandbits(32) for a in range(na)]
+
+    def put(*names):
+        for nm in names:
+            getattr(dut, nm).value = _vec(val[nm], width[nm])
+
+    async def until(t):
+        now = int(dut.tick.value)
+        if t > now:
+            await ClockCycles(dut.clk, t - now, rising=False)
+        return int(dut.tick.value)
+
+    async def pulse(nm, a):
+        getattr(dut, nm).value = 1 << a
+        await FallingEdge(dut.clk)
+        getattr(dut, nm).value = 0
+
+    async def write_slot(a, i, s):
+        s = s.normalised()
+        for f in range(len(FIELDS)):
+            dut.seg_we.value = 1
+            dut.seg_slot.value = (a << 4) | i
+            dut.seg_field.value = f
+            dut.seg_wdata.value = slot_field(s, f)
+            await FallingEdge(dut.clk)
+        dut.seg_we.value = 0
+        refs[a].write_slot(i, s)
+
+    async def stimulus(a, k):
+        """Axis a's registers and measurements for its boundary k and sample k; the model's period."""
+        rng, m, rg = rngs[a], models[a], regs[a]
+        task = tasks[a]
+        if rng.random() < 0.5 or task != "position":
+            pos[a] = (pos[a] + rng.choice([0, 1, -1, 300, -300, rng.getrandbits(32), 1 << 15, -(1 << 15), 40000,
+                                           1 << 23, -(1 << 23), (1 << 23) - 1])) & 0xFFFFFFFF
+        cmd = "none"
+        if rng.random() < 0.1:
+            slot = rng.randrange(16)
+            if task == "position" and rng.random() < 0.7:
+                hi = rng.choice([0x7FFFFFFF, 0x7FFFFE, 0x7FFFFF, 0x800000, -0x800000, -0x800001])
+                frac = rng.choice([0xFF800000 | rng.getrandbits(23), rng.getrandbits(32)])
+                s = Slot(0, (((pos[a] + hi) & 0xFFFFFFFF) << 32) | frac, 0, 0)
+            else:
+                s = Slot(rng.choice([0, 1, 3, 7]), rng.getrandbits(64), rng.getrandbits(rng.choice([8, 40, 64])),
+                         rng.randrange(-2**31, 2**31), relative=rng.random() < 0.3, last=rng.random() < 0.3)
+            await write_slot(a, slot, s)
+            val["start_slot"][a] = slot
+            put("start_slot")
+            await pulse("start", a)
+            rg_cmd = "start"
+            refs[a].start(slot)
+            cmd = rg_cmd
+        elif rng.random() < 0.04:
+            val["sync_val"][a] = rng.getrandbits(64)
+            put("sync_val")
+            await pulse("sync", a)
+            refs[a].sync(val["sync_val"][a])
+            cmd = "sync"
+        if rng.random() < 0.3:
+            rg.kacc = rng.choice([rng.randrange(-2**17, 2**17), -2**17])
+            rg.kacc_shift = rng.randrange(32)
+        if rng.random() < 0.2:
+            rg.load_shift = rng.choice([0, 1, 6, 15, rng.randrange(16)])
+        hold = rng.random() < 0.3
+        if rng.random() < 0.2:
+            rg.kdc = rng.randrange(2**18)
+        if rng.random() < 0.2:
+            rg.id_ref = rng.randrange(-2**17, 2**17)
+            rg.iq_ref = rng.randrange(-2**17, 2**17)
+        if rng.random() < 0.05:
+            rg.pwm_per_control = rng.choice([1, 2, 3, 5])
+        rg.run = rng.random() > 0.1
+        if a == drop and k >= periods // 2:
+            rg.run = False                       # the isolation run: this axis's law dropped mid-run
+        theta = rng.getrandbits(16)
+        cur = (_s13(rng), _s13(rng), _s13(rng))
+        for nm, v in (("kacc", rg.kacc), ("kacc_shift", rg.kacc_shift), ("load_shift", rg.load_shift),
+                      ("hold", int(hold)), ("kdc", rg.kdc), ("id_ref", rg.id_ref), ("iq_ref", rg.iq_ref),
+                      ("ppc", rg.pwm_per_control), ("run", int(rg.run)), ("theta", theta), ("pos", pos[a]),
+                      ("cur0", cur[0]), ("cur1", cur[1]), ("cur2", cur[2])):
+            val[nm][a] = v
+        put("kacc", "kacc_shift", "load_shift", "hold", "kdc", "id_ref", "iq_ref", "ppc", "run", "theta", "pos",
+            "cur0", "cur1", "cur2")
+        control = m.boundary(rg)
+        if control:
+            rg_ = refs[a]
+            rg_.advance(hold=hold, task_pos=task == "position")
+        ref_w = list(refs[a].w) if control else None
+        out = m.period(theta, pos[a], cur, rg, ref_w)
+        kind = ("POS" if task == "position" else "SPD") if control else "MOD"
+        core_lat = core.latency(m.params.ncols) if rg.run else None
+        return dict(out=out, control=control, kind=kind, run=rg.run, u1=m.u[1], cmd=cmd,
+                    job=MX.Job(a, 0, kind, n, rg.kacc_shift, rg.load_shift, AX_T_VALID, core_lat))
+
+    P2 = 2 * half
+
+    def boundary(a, k):                          # the tick of axis a's period_start k (tb's carriers)
+        return 1 + a * stagger + k * P2
+
+    pend = {}                                    # axis -> the sample in flight
+    jobs = []
+    trace = {a: [] for a in range(na)}
+    st = dict(checked=0, control=0, mod=0, run0=0, front_sat=0, queued=0, cmds=0)
+    cnt = {a: dict(nload=0, nfs=0, nst=0) for a in range(na)}
+
+    def rd(nm, a, w):
+        return (int(getattr(dut, nm).value) >> (w * a)) & ((1 << w) - 1)
+
+    def check(a, k, smp):
+        sch = {(e["job"].axis, e["job"].t_trig): e for e in MX.schedule_axes(jobs)}[(a, smp["job"].t_trig)]
+        out = smp["out"]
+        nload = rd("nload", a, 16)
+        assert nload == cnt[a]["nload"] + 1, f"axis {a} sample {k}: {nload - cnt[a]['nload']} cmp_loads, want 1"
+        cmpv = rd("cmp_q", a, 36)
+        got = tuple((cmpv >> (12 * i)) & 0xFFF for i in range(3))
+        lat, tl = rd("latency", a, 16), rd("tload", a, 32)
+        assert got == tuple(out["cmp"]), f"axis {a} sample {k} ({smp['kind']}): cmp rtl {got} model {out['cmp']}"
+        assert (lat, tl) == (sch["latency"], sch["t_load"]), \
+            f"axis {a} sample {k} ({smp['kind']}, run {smp['run']}): latency / cmp_load clock rtl {(lat, tl)} " \
+            f"schedule model {(sch['latency'], sch['t_load'])} (delay {sch['delay']})"
+        nfs = rd("nfs", a, 16)
+        assert (nfs != cnt[a]["nfs"]) == bool(out["front_sat"]), f"axis {a} sample {k}: front_sat"
+        nst = rd("nst", a, 16)
+        assert nst - cnt[a]["nst"] == (6 if smp["control"] else 2), \
+            f"axis {a} sample {k}: {nst - cnt[a]['nst']} status writes at the axis's words"
+        assert rd("st_last", a, 32) == smp["u1"] & 0xFFFFFFFF, f"axis {a} sample {k}: U_Q"
+        cnt[a].update(nload=nload, nfs=nfs, nst=nst)
+        trace[a].append([k, list(got), lat, tl])
+        st["checked"] += 1
+        st["control"] += int(smp["control"])
+        st["mod"] += int(not smp["control"])
+        st["run0"] += int(not smp["run"])
+        st["front_sat"] += int(bool(out["front_sat"]))
+        st["queued"] += int(sch["delay"] > 0)
+        st["cmds"] += int(smp["cmd"] != "none")
+
+    # sample 0 of every axis before the carriers start; then per axis and period an event AX_EVENT
+    # clocks before its boundary k: check sample k - 1, set sample k
+    for a in range(na):
+        pend[a] = await stimulus(a, 0)
+        pend[a]["job"].t_trig = boundary(a, 0) + half
+        jobs.append(pend[a]["job"])
+    dut.go.value = 1
+    events = sorted((boundary(a, k) - AX_EVENT, a, k) for k in range(1, periods + 1) for a in range(na))
+    for t, a, k in events:
+        await until(t)
+        check(a, k - 1, pend[a])
+        if k < periods:
+            pend[a] = await stimulus(a, k)
+            pend[a]["job"].t_trig = boundary(a, k) + half
+            jobs.append(pend[a]["job"])
+        assert int(dut.tick.value) < boundary(a, k) - 20, f"axis {a}: stimulus of sample {k} too late"
+    novr = [rd("novr", a, 16) for a in range(na)]
+    assert novr == [0] * na, f"overrun pulses per axis {novr}"
+    assert int(dut.bad_in.value) == 0, f"{int(dut.bad_in.value)} core starts of another axis than its input words"
+    dut._log.info("mx_seq NAXES=%d stagger %d drop %d: seed %d, %s (every axis's compare values bit-exact, latency "
+                  "and cmp_load clock equal the schedule model)", na, stagger, drop, seed, st)
+    for key in ("control", "mod", "run0", "front_sat", "cmds"):
+        assert st[key] > 0, f"no sample exercised {key}: {st}"
+    if stagger == 0:
+        assert st["queued"] > 0, "in-phase carriers and no job waited in the queue"
+    if os.environ.get("MX_TRACE"):
+        Path(os.environ["MX_TRACE"]).write_text(json.dumps(trace))
+
+
+def _run_axes(na: int, stagger: int | None = None, drop: int = -1, tag: str = "base", periods: int | None = None) -> Path:
+    from runner import run
+    st = hdr_stagger(na) if stagger is None else stagger
+    trace = ROOT / "build" / f"mx_seq_axes{na}_{st}_{tag}.json"
+    env = {"MX_NAXES": str(na), "MX_STAGGER": str(st), "MX_DROP": str(drop), "MX_TRACE": str(trace),
+           "EMPC_MX_PERIODS": str(periods or int(os.environ.get("MX_AX_PERIODS", "120")))}
+    run(toplevel="mx_seq_axes_tb", test_module="test_mx_seq", sim="verilator", name=f"mx_seq_axes{na}",
+        run_name=f"s{st}_{tag}", parameters={"NAXES": na, "STAGGER": st, "T_VALID": AX_T_VALID}, extra_env=env,
+        testcase="random_axes")
+    return trace
+
+
+def hdr_stagger(na: int) -> int:
+    roms = Path(os.environ.get("EMPC_ROMS", ROOT / "build" / "roms" / "default"))
+    return header.read(roms / "empc_formats.vh")[f"PWM_STAGGER_{na}"]
+
+
+@pytest.mark.cost(40)
+@pytest.mark.parametrize("na", [2, 4])
+def test_mx_seq_axes(na):
+    """NAXES axes, carriers staggered by EMPC_PWM_STAGGER_<NAXES>; then the same seed with the last axis's law
+    dropped mid-run: every other axis's trace (compare values, latency, cmp_load clock) identical."""
+    import json
+    base = json.loads(_run_axes(na).read_text())
+    dropped = json.loads(_run_axes(na, drop=na - 1, tag="drop").read_text())
+    for a in range(na - 1):
+        assert base[str(a)] == dropped[str(a)], f"axis {a}: trace changed when axis {na - 1}'s law was dropped"
+    assert base[str(na - 1)] != dropped[str(na - 1)], "the dropped axis's trace did not change"
+
+
+@pytest.mark.cost(30)
+@pytest.mark.parametrize("na", [2, pytest.param(4, marks=pytest.mark.full)])
+def test_mx_seq_axes_in_phase(na):
+    """The carriers in phase: the triggers meet, axes 1.. wait in the queue behind axis 0 (sample order, the
+    lower axis first), and their latency / cmp_load clock equal the schedule model's."""
+    _run_axes(na, stagger=0)

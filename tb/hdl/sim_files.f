@@ -10,3 +10,4 @@ tb/hdl/mx_seq_tb.v
 tb/hdl/adc_ripple.v
 tb/hdl/out_route_tb.v
 tb/hdl/adc_spi_axes_tb.v
+tb/hdl/mx_seq_axes_tb.v

@@ -340,14 +340,18 @@ class Ctx:
 THETA_LAT = 4      # rtl/mx_seq.v default: pos_sense's clocks from a count to its angle
 
 
-def job_timing(t_valid: int, core_lat: int | None, theta_lat: int = THETA_LAT) -> dict:
-    """The wait conditions of a job in :func:`run_job`'s clocks (clock 1 = the clock after the
-    trigger cycle: the first issue).  ``t_valid``: the ADC's valid pulse, in clocks after the trigger
-    cycle; ``core_lat``: mpc_core.latency(ncols), or None with the law off (run low).
-    rtl/mx_seq.v: adc_seen the clock after valid, the front request the next (its start cycle),
-    done ``xform.latency("front")`` later, front_done the clock after; theta_trig after theta_lat."""
+def job_timing(t_valid: int, core_lat: int | None, theta_lat: int = THETA_LAT, delay: int = 0) -> dict:
+    """The wait conditions of a job in :func:`run_job`'s clocks (clock 1 = the clock after the job's
+    start cycle: the first issue).  ``t_valid``: the ADC's valid pulse, in clocks after the trigger
+    cycle; ``core_lat``: mpc_core.latency(ncols), or None with the law off (run low); ``delay``: clocks
+    from the trigger to the job's start (0: the trigger starts it; NAXES > 1: the job waited in the
+    queue, :func:`schedule_axes`).
+    rtl/mx_seq.v: adc_seen the clock after valid, th_ok the clock after theta_lat clocks, the front
+    request the clock after all three of them and the job running (its start cycle), done
+    ``xform.latency("front")`` later, front_done the clock after."""
     from . import xform
-    return {"th": 1 + theta_lat, "front": t_valid + 2 + xform.latency("front") + 1, "core_lat": core_lat}
+    req = max(delay + 1, t_valid + 1, theta_lat + 1)
+    return {"th": 1 + theta_lat - delay, "front": req + 1 + xform.latency("front") + 1 - delay, "core_lat": core_lat}
 
 
 def latency(kind: str, n: int, kacc_shift: int, load_shift: int, timing: dict) -> int:
@@ -360,6 +364,42 @@ def latency(kind: str, n: int, kacc_shift: int, load_shift: int, timing: dict) -
     ctx = Ctx(pos=0, theta=0, kacc_shift=kacc_shift, load_shift=load_shift)
     r = run_job(kind, n, {}, ctx, timing)
     return r["wcore"] + 3 + xform.latency("mod")
+
+
+@dataclass
+class Job:
+    """One PWM sample of one axis for :func:`schedule_axes`: the trigger's cycle and what the job runs."""
+    axis: int
+    t_trig: int                 # the cycle of the axis's adc_trig (the trigger taken)
+    kind: str                   # SPD, POS (control) or MOD (modulation only)
+    n: int
+    kacc_shift: int = 0
+    load_shift: int = 0
+    t_valid: int = 71           # the axis's ADC valid, clocks after its trigger
+    core_lat: int | None = None  # mpc_core.latency(ncols), None with the law off
+
+
+def schedule_axes(jobs: list[Job], theta_lat: int = THETA_LAT) -> list[dict]:
+    """The job queue of rtl/mx_seq.v with NAXES > 1 (one job at a time, jobs in sample order,
+    triggers of the same cycle: the lower axis first): every job's start cycle, its ``delay`` after its
+    trigger, the RTL's ``latency`` register of its axis (trigger -> cmp_load, the counter's
+    convention: cmp_load's cycle - trigger's - 1) and cmp_load's cycle.  A job starts in its trigger's
+    cycle if the engine is free (busy_period low: from the cycle of the previous cmp_load on), else in
+    the cycle of the running job's cmp_load.  The references are taken as read (the prefetch after the
+    boundary ends long before the trigger with staggered carriers: docs/four_axes.md 3.3).  A trigger
+    of an axis whose previous job is still waiting or running is not taken (the caller leaves it out:
+    the RTL pulses that axis's overrun at its boundary)."""
+    out = []
+    free = None                 # the first cycle the engine is free again
+    for j in sorted(jobs, key=lambda j: (j.t_trig, j.axis)):
+        start = j.t_trig if free is None else max(j.t_trig, free)
+        d = start - j.t_trig
+        lat = d + latency(j.kind, j.n, j.kacc_shift, j.load_shift,
+                          job_timing(j.t_valid, j.core_lat, theta_lat, delay=d))
+        t_load = j.t_trig + 1 + lat
+        free = t_load           # busy_period falls with cmp_load: a waiting job starts in that cycle
+        out.append({"job": j, "start": start, "delay": d, "latency": lat, "t_load": t_load})
+    return out
 
 
 def run_job(kind: str, n: int, ram: dict, ctx: Ctx, timing: dict | None = None) -> dict:
