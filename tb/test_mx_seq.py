@@ -791,13 +791,15 @@ def hdr_stagger(na: int) -> int:
 
 
 @pytest.mark.cost(40)
-@pytest.mark.parametrize("na", [2, 4])
-def test_mx_seq_axes(na):
+@pytest.mark.parametrize("na,periods", [(2, None), (4, 48), pytest.param(4, None, marks=pytest.mark.full)])
+def test_mx_seq_axes(na, periods):
     """NAXES axes, carriers staggered by EMPC_PWM_STAGGER_<NAXES>; then the same seed with the last axis's law
-    dropped mid-run: every other axis's trace (compare values, latency, cmp_load clock) identical."""
+    dropped mid-run: every other axis's trace (compare values, latency, cmp_load clock) identical.
+    NAXES = 4 runs 48 periods per axis in `make sim` (the drop at period 24) and 120 in `make sim-full`."""
     import json
-    base = json.loads(_run_axes(na).read_text())
-    dropped = json.loads(_run_axes(na, drop=na - 1, tag="drop").read_text())
+    tag = "" if periods is None else f"_p{periods}"
+    base = json.loads(_run_axes(na, tag="base" + tag, periods=periods).read_text())
+    dropped = json.loads(_run_axes(na, drop=na - 1, tag="drop" + tag, periods=periods).read_text())
     for a in range(na - 1):
         assert base[str(a)] == dropped[str(a)], f"axis {a}: trace changed when axis {na - 1}'s law was dropped"
     assert base[str(na - 1)] != dropped[str(na - 1)], "the dropped axis's trace did not change"
