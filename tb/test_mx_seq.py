@@ -333,20 +333,8 @@ async def random_periods(dut):
             await (do_start(slot) if cmd == "start" else do_sync())
             while int(dut.ref_busy.value):
                 await FallingEdge(dut.clk)
-        if rng.random() < 0.3:
-            regs.kacc = rng.choice([rng.randrange(-2**17, 2**17), -2**17])
-            regs.kacc_shift = rng.randrange(32)
-        if rng.random() < 0.2:
-            regs.load_shift = rng.choice([0, 1, 6, 15, rng.randrange(16)])
-        hold = rng.random() < 0.3
-        if rng.random() < 0.2:
-            regs.kdc = rng.randrange(2**18)
-        if rng.random() < 0.2:
-            regs.id_ref = rng.randrange(-2**17, 2**17)
-            regs.iq_ref = rng.randrange(-2**17, 2**17)
-        if rng.random() < 0.05:
-            regs.pwm_per_control = rng.choice([1, 2, 3, 5])
-            st["ppc_change"] += 1
+        hold, ppc = _draw_regs(rng, regs)
+        st["ppc_change"] += ppc
         regs.run = law and rng.random() > 0.1
         dut.kacc.value = regs.kacc & 0x3FFFF
         dut.kacc_shift.value = regs.kacc_shift
@@ -527,6 +515,27 @@ def test_mx_seq_horizons(n):
     _run("speed" if n == 1 else "position", n, periods=150)
 
 
+def _draw_regs(rng, r) -> tuple[bool, bool]:
+    """One period's random register changes (the same draw order in the one- and the several-axes test):
+    KACC and its shift (with the -2^17 corner), the load shift, KDC, the current references, and rarely
+    CTRL.pwm_per_control. Returns (the reference hold flag of this period, pwm_per_control changed)."""
+    if rng.random() < 0.3:
+        r.kacc = rng.choice([rng.randrange(-2**17, 2**17), -2**17])
+        r.kacc_shift = rng.randrange(32)
+    if rng.random() < 0.2:
+        r.load_shift = rng.choice([0, 1, 6, 15, rng.randrange(16)])
+    hold = rng.random() < 0.3
+    if rng.random() < 0.2:
+        r.kdc = rng.randrange(2**18)
+    if rng.random() < 0.2:
+        r.id_ref = rng.randrange(-2**17, 2**17)
+        r.iq_ref = rng.randrange(-2**17, 2**17)
+    ppc = rng.random() < 0.05
+    if ppc:
+        r.pwm_per_control = rng.choice([1, 2, 3, 5])
+    return hold, ppc
+
+
 # ============================== cocotb: several axes (NAXES = 2..4) ==============================
 AX_T_VALID = 195                # the ADC's valid after the trigger in the drive (issue 14's 4-frame mean)
 AX_EVENT = 600                  # Python sets an axis's next sample this many clocks before its boundary
@@ -666,19 +675,7 @@ async def random_axes(dut):
             await pulse("sync", a)
             refs[a].sync(val["sync_val"][a])
             cmd = "sync"
-        if rng.random() < 0.3:
-            rg.kacc = rng.choice([rng.randrange(-2**17, 2**17), -2**17])
-            rg.kacc_shift = rng.randrange(32)
-        if rng.random() < 0.2:
-            rg.load_shift = rng.choice([0, 1, 6, 15, rng.randrange(16)])
-        hold = rng.random() < 0.3
-        if rng.random() < 0.2:
-            rg.kdc = rng.randrange(2**18)
-        if rng.random() < 0.2:
-            rg.id_ref = rng.randrange(-2**17, 2**17)
-            rg.iq_ref = rng.randrange(-2**17, 2**17)
-        if rng.random() < 0.05:
-            rg.pwm_per_control = rng.choice([1, 2, 3, 5])
+        hold, _ = _draw_regs(rng, rg)
         rg.run = rng.random() > 0.1
         if a == drop and k >= periods // 2:
             rg.run = False                       # the isolation run: this axis's law dropped mid-run
