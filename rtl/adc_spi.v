@@ -836,7 +836,6 @@ module adc_spi #(
                     p_pfirst  <= 1'b0;
                     p_padd    <= 1'b0;
                     p_thr     <= {ADC_BITS{1'b0}};
-                    pcnt      <= {PCNT_W{1'b0}};
                     pfresh    <= 1'b1;
                     snap_req  <= 1'b0;
                     pacc0     <= {PSW{1'b0}};
@@ -862,14 +861,10 @@ module adc_spi #(
                         p_thr    <= a_sum_thr;
                         p_pfirst <= pfresh | snap_now;
                         p_padd   <= pfresh | snap_now | (pcnt != PCNT_MAX);
-                        pcnt     <= (pfresh | snap_now) ? {{(PCNT_W-1){1'b0}}, 1'b1}
-                                  : (pcnt != PCNT_MAX) ? pcnt + 1'b1 : pcnt;
                         pfresh   <= 1'b0;
                     end else begin
-                        if (snap_now) begin
-                            pcnt   <= {PCNT_W{1'b0}};
+                        if (snap_now)
                             pfresh <= 1'b1;
-                        end
                         if (pbusy && pj < PJ_PSW) begin
                             pacc0 <= {pq[0], pacc0[PSW-1:1]};
                             pacc1 <= {pq[1], pacc1[PSW-1:1]};
@@ -877,6 +872,15 @@ module adc_spi #(
                         end
                     end
                 end
+            end
+            // frames of this period: cleared by a snapshot outside stage B (reset pin), counted at stage B
+            // (restarting at 1 with the period's first frame, saturating)
+            wire p_new = pfresh | snap_now;
+            always @(posedge clk) begin
+                if (rst || (snap_now && !st_a))
+                    pcnt <= {PCNT_W{1'b0}};
+                else if (st_a && (p_new || pcnt != PCNT_MAX))
+                    pcnt <= (p_new ? {PCNT_W{1'b0}} : pcnt) + 1'b1;
             end
             // carries: cleared at the pass start (p_clr), stepped in the pass
             always @(posedge clk) begin
