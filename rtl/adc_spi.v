@@ -89,9 +89,11 @@
 //   period (R = the first clock after the last axis's last serial pass, where no window is); axis 0's
 //   period_start only re-loads the grid if it is out of phase (a sync restart: a "jump", which cuts
 //   the windows open then: miss per axis, no valid).  Everything per frame after the capture is
-//   replicated per axis (codes, checks, window / period accumulators, serial pass adders,
-//   calibration, offsets, frozen, centre check): each axis's outputs come at the single-axis
-//   latencies after its own frames / boundaries, and depend only on its own inputs and MISO lines.
+//   replicated per axis (codes, checks, period accumulators, serial pass adders, calibration,
+//   offsets, frozen, centre check), except the three window accumulators: the axes' windows are
+//   disjoint (STAGGER >= 2^AVG_LOG2 frames), so one set serves all axes (g_wsh).  Each axis's
+//   outputs come at the single-axis latencies after its own frames / boundaries, and depend only
+//   on its own inputs and MISO lines.
 // Reset (synchronous, rst): cs_n = 1, sclk = 1, idle, grid restarts (no window until the
 //   first period_start), all outputs, sums, counters and flags 0, offsets = OFFSET_RESET,
 //   calibration idle.
