@@ -128,7 +128,7 @@ MEASURED = {
     "ref_gen": ({1: 198, 4: 406}, "docs/blocks/ref_gen.md, piece 2a"),
     "axis_status": ({1: 114, 4: 239}, "docs/blocks/axis_status.md, piece 2b"),
     "pos_sense": ({1: 214, 4: 409}, "docs/blocks/pos_sense.md, piece 4b (speed outputs open, as in mpc_axis)"),
-    "adc_spi": ({1: 296, 4: 990}, "docs/blocks/adc_spi.md, piece 4 (serial pass per axis)"),
+    "adc_spi": ({1: 290, 4: 946}, "docs/blocks/adc_spi.md, piece 4 (serial pass per axis)"),
     "out_route": ({4: 387}, "docs/blocks/out_route.md, piece 3"),
     # the routing select registers in global_regs: +106 LUT in a build that routes (docs/four_axes.md 8)
     "bus, global regs": ({4: 92 + 106}, "docs/four_axes.md 8: global_regs +106 LUT with routing"),

@@ -89,9 +89,11 @@
 //   period (R = the first clock after the last axis's last serial pass, where no window is); axis 0's
 //   period_start only re-loads the grid if it is out of phase (a sync restart: a "jump", which cuts
 //   the windows open then: miss per axis, no valid).  Everything per frame after the capture is
-//   replicated per axis (codes, checks, window / period accumulators, serial pass adders,
-//   calibration, offsets, frozen, centre check): each axis's outputs come at the single-axis
-//   latencies after its own frames / boundaries, and depend only on its own inputs and MISO lines.
+//   replicated per axis (codes, checks, period accumulators, serial pass adders, calibration,
+//   offsets, frozen, centre check), except the three window accumulators: the axes' windows are
+//   disjoint (STAGGER >= 2^AVG_LOG2 frames), so one set serves all axes (g_wsh).  Each axis's
+//   outputs come at the single-axis latencies after its own frames / boundaries, and depend only
+//   on its own inputs and MISO lines.
 // Reset (synchronous, rst): cs_n = 1, sclk = 1, idle, grid restarts (no window until the
 //   first period_start), all outputs, sums, counters and flags 0, offsets = OFFSET_RESET,
 //   calibration idle.
@@ -256,13 +258,13 @@ module adc_spi #(
     localparam integer D_TOPI = D_W - 1;
     localparam [JD_W-1:0] JD_TOP = D_TOPI[JD_W-1:0];
     localparam [PCNT_W-1:0] PCNT_MAX = {PCNT_W{1'b1}};
-    localparam integer SP_W = $clog2(SUM_PERSIST + 1);
-    localparam integer KP_W = $clog2(STUCK_PERSIST + 1);
-    localparam integer FZ_W = $clog2(FROZEN_PERIODS + 1);
-    localparam integer SP_TRIPI = SUM_PERSIST - 1, KP_TRIPI = STUCK_PERSIST - 1, FZ_TRIPI = FROZEN_PERIODS - 1;
-    localparam [SP_W-1:0] SP_TRIP = SP_TRIPI[SP_W-1:0];
-    localparam [KP_W-1:0] KP_TRIP = KP_TRIPI[KP_W-1:0];
-    localparam [FZ_W-1:0] FZ_TRIP = FZ_TRIPI[FZ_W-1:0];
+    // persistence (sum check, rails, frozen): thermometer codes, bit k = "at least k consecutive bad
+    // frames (periods) before this one", bit 0 constant 1: a shift and a clear, no counter (saturates
+    // by itself); the output trips on a bad one with bit PERSIST - 1 set
+    localparam integer SP_T = SUM_PERSIST - 1, KP_T = STUCK_PERSIST - 1, FZ_T = FROZEN_PERIODS - 1;
+    localparam [SP_T:0] SP_ONE = 1;
+    localparam [KP_T:0] KP_ONE = 1;
+    localparam [FZ_T:0] FZ_ONE = 1;
     localparam integer PCNT_MAXI = (1 << PCNT_W) - 1;
 
     generate if (LEAD_ZEROS < 1 || LEAD_ZEROS + ADC_BITS > FRAME_BITS || SCLK_DIV < 1 || SAMPLE_DELAY < 3 ||
@@ -495,6 +497,10 @@ module adc_spi #(
     // The bit counter is shared (every axis passes the same frame); the adders are per axis.
     reg              pbusy;
     reg [PJ_W-1:0]   pj;
+    // the pass adders' carries clear at the pass start and step in the pass: one clear net and one
+    // enable net for every axis (flip-flop reset / enable pins), so a carry's LUT sees only its data
+    wire             p_clr = rst | st_a;
+    wire             p_sce = pbusy & ~st_a & (pj == PJ_SIGN);   // the sum check's sign bit
     // jd = min(pj, D_W - 1) (the sign extension), a register stepped with pj: the bit selects of
     // the three differences start at a flip-flop, not behind a compare of pj (worst path of the drive)
     reg  [JD_W-1:0]  jd;
@@ -513,6 +519,65 @@ module adc_spi #(
             if (pj == PJ_LAST) pbusy <= 1'b0;
         end
     end
+
+    // ------------------------------------------- one window accumulator for all axes
+    // NAXES > 1 with AVG_LOG2 > 0 and STAGGER >= 2^K frames: the axes' window frames are disjoint
+    // ranges of the grid index gp (axis a's: MN .. MN + 2^K - 1, MN = M0 + a*STAGGER/TF), and gp steps
+    // by one per grid point between the reloads (the terminal one lies after every window, a jump
+    // closes every window).  A window frame is therefore counted (p_win) for one axis at most, and
+    // between an axis's first and last counted window frame no other axis counts one: the three
+    // window accumulators, preset at every first window frame, serve all axes (the per-axis
+    // `valid`, `sat`, `cur` registers load from them at their axis's last frame, as before).
+    localparam integer WSHARE = (NAXES > 1 && AVG_LOG2 > 0 && STAGGER >= NW * TF) ? 1 : 0;
+    wire [NAXES-1:0]   wx_win, wx_first;   // per axis: this pass is a window frame / the first one
+    wire [3*NAXES-1:0] wx_db;              // per axis: the differences' bits of this pass
+    wire [CUR_W:0]     wsh0, wsh1, wsh2;   // satf of the shared window means
+    generate
+        if (WSHARE != 0) begin : g_wsh
+            reg [AW-1:0] accw0, accw1, accw2;
+            reg [2:0]    w_c;              // window adder carries
+            reg [2:0]    dbw;
+            reg          any_win, any_first;
+            integer      k;
+            always @(*) begin
+                dbw       = 3'b000;
+                any_win   = 1'b0;
+                any_first = 1'b0;
+                for (k = 0; k < NAXES; k = k + 1) begin
+                    dbw       = dbw | (wx_db[3 * k +: 3] & {3{wx_win[k]}});
+                    any_win   = any_win | wx_win[k];
+                    any_first = any_first | (wx_win[k] & wx_first[k]);
+                end
+            end
+            wire [2:0] wa = any_first ? {3{pj == PJ_KM1}} : {accw2[0], accw1[0], accw0[0]};
+            wire [2:0] wq = wa ^ dbw ^ w_c;
+            assign wsh0 = satf(accw0[AW-1:AVG_LOG2]);
+            assign wsh1 = satf(accw1[AW-1:AVG_LOG2]);
+            assign wsh2 = satf(accw2[AW-1:AVG_LOG2]);
+            always @(posedge clk) begin
+                if (rst) begin
+                    accw0 <= {AW{1'b0}};
+                    accw1 <= {AW{1'b0}};
+                    accw2 <= {AW{1'b0}};
+                end else if (!st_a && pbusy && any_win && pj < PJ_WEND) begin
+                    accw0 <= {wq[0], accw0[AW-1:1]};
+                    accw1 <= {wq[1], accw1[AW-1:1]};
+                    accw2 <= {wq[2], accw2[AW-1:1]};
+                end
+            end
+            always @(posedge clk) begin
+                if (p_clr)
+                    w_c <= 3'b000;
+                else if (pbusy && any_win && pj < PJ_WEND)
+                    w_c <= (wa & dbw) | (wa & w_c) | (dbw & w_c);
+            end
+        end else begin : g_wsh_none
+            assign wsh0 = {(CUR_W+1){1'b0}};
+            assign wsh1 = {(CUR_W+1){1'b0}};
+            assign wsh2 = {(CUR_W+1){1'b0}};
+            wire unused_wsh = &{1'b0, wx_win, wx_first, wx_db, wsh0, wsh1, wsh2};   // per-axis accumulators instead
+        end
+    endgenerate
 
     // ================================================================ per axis
     genvar ax;
@@ -717,7 +782,7 @@ module adc_spi #(
 
             // ---------------------------------------- stage B: overcurrent, frame error, rails
             wire [2:0] oc_now = {oc_f(diff2, a_oc_thr), oc_f(diff1, a_oc_thr), oc_f(diff0, a_oc_thr)};
-            reg  [KP_W-1:0] kcnt;              // consecutive frames with a rail (saturating)
+            reg  [KP_T:0]   kth;               // consecutive frames with a rail (thermometer)
             reg             r_frame_err, r_oc, r_stuck;
             reg  [2:0]      r_oc_ch;
             always @(posedge clk) begin
@@ -725,20 +790,21 @@ module adc_spi #(
                     r_frame_err <= 1'b0;
                     r_oc        <= 1'b0;
                     r_oc_ch     <= 3'b000;
-                    kcnt        <= {KP_W{1'b0}};
                     r_stuck     <= 1'b0;
                 end else begin
                     r_frame_err <= st_a & lead_bad_a;
                     r_oc        <= st_a & (|oc_now);
                     if (st_a) begin
                         r_oc_ch <= oc_now;
-                        r_stuck <= rail_a && (kcnt >= KP_TRIP);
-                        if (!rail_a)
-                            kcnt <= {KP_W{1'b0}};
-                        else if (kcnt != KP_TRIP)
-                            kcnt <= kcnt + 1'b1;
+                        r_stuck <= rail_a && kth[KP_T];
                     end
                 end
+            end
+            always @(posedge clk) begin              // a frame without a rail clears (reset pin)
+                if (rst || (st_a && !rail_a))
+                    kth <= KP_ONE;
+                else if (st_a)
+                    kth <= (kth << 1) | KP_ONE;
             end
 
             // ---------------------------------------- serial pass (adders of this axis)
@@ -747,13 +813,13 @@ module adc_spi #(
             reg [1:0]        s_c;              // carry of d0 + d1 + d2 (0..2)
             reg              a_c, b_c;
             reg [2:0]        q_c;              // period adder carries
-            reg [SP_W-1:0]   scnt;
+            reg [SP_T:0]     sth;              // consecutive frames with |s| > thr (thermometer)
             reg [PCNT_W-1:0] pcnt;
             reg              pfresh, snap_req, r_sum_err;
             reg signed [PSW-1:0] pacc0, pacc1, pacc2;
             reg signed [PSW-1:0] r_psum0, r_psum1, r_psum2;
             reg [PCNT_W-1:0] r_pcount;
-            wire [2:0]       db = {diff2[jd], diff1[jd], diff0[jd]};
+            wire [2:0] db = {diff2[jd], diff1[jd], diff0[jd]};
             wire             tb = (pj < PJ_AB) ? p_thr[pj[JT_W-1:0]] : 1'b0;
             wire [2:0]       s3 = {2'b00, db[0]} + {2'b00, db[1]} + {2'b00, db[2]} + {1'b0, s_c};
             wire             sb = s3[0];
@@ -772,13 +838,6 @@ module adc_spi #(
                     p_pfirst  <= 1'b0;
                     p_padd    <= 1'b0;
                     p_thr     <= {ADC_BITS{1'b0}};
-                    s_c       <= 2'd0;
-                    a_c       <= 1'b0;
-                    b_c       <= 1'b0;
-                    q_c       <= 3'b000;
-                    scnt      <= {SP_W{1'b0}};
-                    r_sum_err <= 1'b0;
-                    pcnt      <= {PCNT_W{1'b0}};
                     pfresh    <= 1'b1;
                     snap_req  <= 1'b0;
                     pacc0     <= {PSW{1'b0}};
@@ -804,38 +863,52 @@ module adc_spi #(
                         p_thr    <= a_sum_thr;
                         p_pfirst <= pfresh | snap_now;
                         p_padd   <= pfresh | snap_now | (pcnt != PCNT_MAX);
-                        pcnt     <= (pfresh | snap_now) ? {{(PCNT_W-1){1'b0}}, 1'b1}
-                                  : (pcnt != PCNT_MAX) ? pcnt + 1'b1 : pcnt;
                         pfresh   <= 1'b0;
-                        s_c      <= 2'd0;
-                        a_c      <= 1'b0;
-                        b_c      <= 1'b0;
-                        q_c      <= 3'b000;
                     end else begin
-                        if (snap_now) begin
-                            pcnt   <= {PCNT_W{1'b0}};
+                        if (snap_now)
                             pfresh <= 1'b1;
-                        end
-                        if (pbusy) begin
-                            s_c <= s3[2:1];
-                            a_c <= (sb & ~tb) | (sb & a_c) | (~tb & a_c);
-                            b_c <= (sb & tb) | (sb & b_c) | (tb & b_c);
-                            if (pj == PJ_SIGN) begin
-                                r_sum_err <= sbad && (scnt >= SP_TRIP);
-                                if (!sbad)
-                                    scnt <= {SP_W{1'b0}};
-                                else if (scnt != SP_TRIP)
-                                    scnt <= scnt + 1'b1;
-                            end
-                            if (pj < PJ_PSW) begin
-                                pacc0 <= {pq[0], pacc0[PSW-1:1]};
-                                pacc1 <= {pq[1], pacc1[PSW-1:1]};
-                                pacc2 <= {pq[2], pacc2[PSW-1:1]};
-                                q_c   <= (pa & pd) | (pa & q_c) | (pd & q_c);
-                            end
+                        if (pbusy && pj < PJ_PSW) begin
+                            pacc0 <= {pq[0], pacc0[PSW-1:1]};
+                            pacc1 <= {pq[1], pacc1[PSW-1:1]};
+                            pacc2 <= {pq[2], pacc2[PSW-1:1]};
                         end
                     end
                 end
+            end
+            // frames of this period: cleared by a snapshot outside stage B (reset pin), counted at stage B
+            // (restarting at 1 with the period's first frame, saturating)
+            wire p_new = pfresh | snap_now;
+            always @(posedge clk) begin
+                if (rst || (snap_now && !st_a))
+                    pcnt <= {PCNT_W{1'b0}};
+                else if (st_a && (p_new || pcnt != PCNT_MAX))
+                    pcnt <= (p_new ? {PCNT_W{1'b0}} : pcnt) + 1'b1;
+            end
+            // carries: cleared at the pass start (p_clr), stepped in the pass
+            always @(posedge clk) begin
+                if (p_clr) begin
+                    s_c <= 2'd0;
+                    a_c <= 1'b0;
+                    b_c <= 1'b0;
+                    q_c <= 3'b000;
+                end else if (pbusy) begin
+                    s_c <= s3[2:1];
+                    a_c <= (sb & ~tb) | (sb & a_c) | (~tb & a_c);
+                    b_c <= (sb & tb) | (sb & b_c) | (tb & b_c);
+                    if (pj < PJ_PSW)
+                        q_c <= (pa & pd) | (pa & q_c) | (pd & q_c);
+                end
+            end
+            // sum check persistence at the sign bit: a good frame clears the thermometer (reset pin)
+            always @(posedge clk) begin
+                if (rst || (p_sce && !sbad))
+                    sth <= SP_ONE;
+                else if (p_sce)
+                    sth <= (sth << 1) | SP_ONE;
+                if (rst)
+                    r_sum_err <= 1'b0;
+                else if (p_sce)
+                    r_sum_err <= sbad && sth[SP_T];
             end
 
             // ---------------------------------------- window mean
@@ -863,6 +936,26 @@ module adc_spi #(
                     end
                 end
                 wire unused_k0 = &{1'b0, f_first, p_win, p_first, p_last};
+            end else if (WSHARE != 0) begin : g_kw
+                // the shared accumulator (g_wsh) holds this axis's window sum at its last frame
+                wire w_end = pbusy && p_win && p_last && (pj == PJ_WEND);
+                always @(posedge clk) begin
+                    if (rst) begin
+                        r_valid <= 1'b0;
+                        r_sat   <= 1'b0;
+                        r_cur0  <= {CUR_W{1'b0}};
+                        r_cur1  <= {CUR_W{1'b0}};
+                        r_cur2  <= {CUR_W{1'b0}};
+                    end else begin
+                        r_valid <= w_end;
+                        r_sat   <= w_end & (wsh0[CUR_W] | wsh1[CUR_W] | wsh2[CUR_W]);
+                        if (w_end) begin
+                            r_cur0 <= wsh0[CUR_W-1:0];
+                            r_cur1 <= wsh1[CUR_W-1:0];
+                            r_cur2 <= wsh2[CUR_W-1:0];
+                        end
+                    end
+                end
             end else begin : g_kn
                 reg [AW-1:0] accw0, accw1, accw2;
                 reg [2:0]    w_c;              // window adder carries
@@ -876,7 +969,6 @@ module adc_spi #(
                         accw0   <= {AW{1'b0}};
                         accw1   <= {AW{1'b0}};
                         accw2   <= {AW{1'b0}};
-                        w_c     <= 3'b000;
                         r_valid <= 1'b0;
                         r_sat   <= 1'b0;
                         r_cur0  <= {CUR_W{1'b0}};
@@ -890,44 +982,52 @@ module adc_spi #(
                             r_cur1 <= s1[CUR_W-1:0];
                             r_cur2 <= s2[CUR_W-1:0];
                         end
-                        if (st_a)
-                            w_c <= 3'b000;
-                        else if (pbusy && p_win && pj < PJ_WEND) begin
+                        if (!st_a && pbusy && p_win && pj < PJ_WEND) begin
                             accw0 <= {wq[0], accw0[AW-1:1]};
                             accw1 <= {wq[1], accw1[AW-1:1]};
                             accw2 <= {wq[2], accw2[AW-1:1]};
-                            w_c   <= (wa & db) | (wa & w_c) | (db & w_c);
                         end
                     end
+                end
+                always @(posedge clk) begin
+                    if (p_clr)
+                        w_c <= 3'b000;
+                    else if (pbusy && p_win && pj < PJ_WEND)
+                        w_c <= (wa & db) | (wa & w_c) | (db & w_c);
                 end
             end
 
             // ---------------------------------------- frozen ADC (per PWM period of the axis)
             reg [2:0]        chg;              // channel changed in some frame of this period
             reg              on_all;           // bridges on in every cycle of this period
-            reg [FZ_W-1:0]   fzc;              // consecutive frozen periods (saturating)
+            reg [FZ_T:0]     fzt;              // consecutive frozen periods (thermometer)
             reg              r_frozen;
             wire             frz_p = on_all & bon & (pcnt > 1) & ~(&chg);
             always @(posedge clk) begin
                 if (rst) begin
                     chg      <= 3'b000;
                     on_all   <= 1'b0;
-                    fzc      <= {FZ_W{1'b0}};
                     r_frozen <= 1'b0;
                 end else begin
                     on_all <= ps ? bon : (on_all & bon);
                     if (ps) begin
                         chg      <= st_a ? fchg : 3'b000;   // a frame ending now is the new period's
-                        r_frozen <= frz_p && (fzc >= FZ_TRIP);
-                        if (!frz_p)
-                            fzc <= {FZ_W{1'b0}};
-                        else if (fzc != FZ_TRIP)
-                            fzc <= fzc + 1'b1;
+                        r_frozen <= frz_p && fzt[FZ_T];
                     end else if (st_a) begin
                         chg <= chg | fchg;
                     end
                 end
             end
+            always @(posedge clk) begin              // a period not frozen clears (reset pin)
+                if (rst || (ps && !frz_p))
+                    fzt <= FZ_ONE;
+                else if (ps)
+                    fzt <= (fzt << 1) | FZ_ONE;
+            end
+
+            assign wx_win[ax]         = p_win;
+            assign wx_first[ax]       = p_first;
+            assign wx_db[3 * ax +: 3] = db;
 
             // ---------------------------------------- outputs of axis ax
             assign trig_miss[ax]                      = r_trig_miss;

@@ -483,6 +483,10 @@ CONFIGS = {
     # three axes, single centre sample (K = 0: odd TF = 73), persistence 1 / 2 / 2
     "n3_k0": (3, {"half_period": 600, "cal_log2": 3, "avg_log2": 0, "sum_persist": 1, "stuck_persist": 2,
                   "frozen_periods": 2}, {"T_HOLD_PS": 3000, "T_OUT_PS": 15000}, {}),
+    # two axes 2 frames apart (stagger < 2^K frames): the windows overlap, so each axis keeps its own window
+    # accumulators (the per-axis window path, not g_wsh); a board might stagger its carriers this little
+    "n2_s2": (2, {"half_period": 400, "cal_log2": 4}, {"T_HOLD_PS": 3000, "T_OUT_PS": 15000},
+              {"ADC_AXES_PERIODS": "40", "STAGGER_FRAMES": "2"}),
     # four axes at every default (P = 2500, stagger 1258 = `EMPC_PWM_STAGGER_4): docs/four_axes.md 3.1
     "n4_p2500": (4, {}, {"T_HOLD_PS": 3000, "T_OUT_PS": 15000},
                  {"ADC_AXES_PERIODS": "6", "ADC_AXES_REPHASE": "1473",
@@ -501,7 +505,9 @@ def _build_args(cfg):
     from empc.rtlmodel.pwm_center import stagger_step
     n, rtl, slave, env = CONFIGS[cfg]
     p = AdcSpiParams(**rtl)
-    stagger = stagger_step(n, p.half_period, p.tf)
+    env = dict(env)
+    frames = env.pop("STAGGER_FRAMES", None)
+    stagger = stagger_step(n, p.half_period, p.tf) if frames is None else int(frames) * p.tf
     params = {RTL_NAMES[k]: getattr(p, k) for k in RTL_NAMES}
     params.update(slave, NAXES=n, STAGGER=stagger)
     e = {"ADC_AXES_PARAMS": json.dumps({"rtl": {k: getattr(p, k) for k in RTL_NAMES}, "naxes": n,
