@@ -30,11 +30,11 @@ import sys
 import time
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "gen"))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from files import REPORTS, ROOT  # noqa: E402
 
+sys.path.insert(0, str(ROOT / "gen"))
 from empc import corners  # noqa: E402
-from files import REPORTS  # noqa: E402
 
 MAX_DURATION = 1.0
 

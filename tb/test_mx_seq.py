@@ -788,11 +788,11 @@ def hdr_stagger(na: int) -> int:
 
 
 @pytest.mark.cost(40)
-@pytest.mark.parametrize("na,periods", [(2, None), (4, 48), pytest.param(4, None, marks=pytest.mark.full)])
+@pytest.mark.parametrize("na,periods", [(2, 60), (4, 48)] + [pytest.param(n, None, marks=pytest.mark.full) for n in (2, 4)])
 def test_mx_seq_axes(na, periods):
     """NAXES axes, carriers staggered by EMPC_PWM_STAGGER_<NAXES>; then the same seed with the last axis's law
     dropped mid-run: every other axis's trace (compare values, latency, cmp_load clock) identical.
-    NAXES = 4 runs 48 periods per axis in `make sim` (the drop at period 24) and 120 in `make sim-full`."""
+    `make sim` runs 60 / 48 periods per axis at NAXES = 2 / 4 (the drop half way), `make sim-full` 120."""
     import json
     tag = "" if periods is None else f"_p{periods}"
     base = json.loads(_run_axes(na, tag="base" + tag, periods=periods).read_text())
