@@ -914,74 +914,56 @@ module adc_spi #(
             // ---------------------------------------- window mean
             // AVG_LOG2 = 0 takes the centre frame's difference at stage B (as the single
             // conversion did); AVG_LOG2 > 0 accumulates the window bit-serially
+            // each branch gives the window's end (w_take) and its saturated means (m0..m2, bit CUR_W = saturated);
+            // one set of output registers takes them
             reg                    r_valid, r_sat;
             reg signed [CUR_W-1:0] r_cur0, r_cur1, r_cur2;
-            if (AVG_LOG2 == 0) begin : g_k0
-                wire [CUR_W:0] s0 = satf(diff0), s1 = satf(diff1), s2 = satf(diff2);
-                always @(posedge clk) begin
-                    if (rst) begin
-                        r_valid <= 1'b0;
-                        r_sat   <= 1'b0;
-                        r_cur0  <= {CUR_W{1'b0}};
-                        r_cur1  <= {CUR_W{1'b0}};
-                        r_cur2  <= {CUR_W{1'b0}};
-                    end else begin
-                        r_valid <= st_a & f_last;
-                        r_sat   <= st_a & f_last & (s0[CUR_W] | s1[CUR_W] | s2[CUR_W]);
-                        if (st_a && f_last) begin
-                            r_cur0 <= s0[CUR_W-1:0];
-                            r_cur1 <= s1[CUR_W-1:0];
-                            r_cur2 <= s2[CUR_W-1:0];
-                        end
+            wire                   w_take;
+            wire [CUR_W:0]         m0, m1, m2;
+            always @(posedge clk) begin
+                if (rst) begin
+                    r_valid <= 1'b0;
+                    r_sat   <= 1'b0;
+                    r_cur0  <= {CUR_W{1'b0}};
+                    r_cur1  <= {CUR_W{1'b0}};
+                    r_cur2  <= {CUR_W{1'b0}};
+                end else begin
+                    r_valid <= w_take;
+                    r_sat   <= w_take & (m0[CUR_W] | m1[CUR_W] | m2[CUR_W]);
+                    if (w_take) begin
+                        r_cur0 <= m0[CUR_W-1:0];
+                        r_cur1 <= m1[CUR_W-1:0];
+                        r_cur2 <= m2[CUR_W-1:0];
                     end
                 end
+            end
+            if (AVG_LOG2 == 0) begin : g_k0
+                assign w_take = st_a & f_last;
+                assign m0 = satf(diff0);
+                assign m1 = satf(diff1);
+                assign m2 = satf(diff2);
                 wire unused_k0 = &{1'b0, f_first, p_win, p_first, p_last};
             end else if (WSHARE != 0) begin : g_kw
                 // the shared accumulator (g_wsh) holds this axis's window sum at its last frame
-                wire w_end = pbusy && p_win && p_last && (pj == PJ_WEND);
-                always @(posedge clk) begin
-                    if (rst) begin
-                        r_valid <= 1'b0;
-                        r_sat   <= 1'b0;
-                        r_cur0  <= {CUR_W{1'b0}};
-                        r_cur1  <= {CUR_W{1'b0}};
-                        r_cur2  <= {CUR_W{1'b0}};
-                    end else begin
-                        r_valid <= w_end;
-                        r_sat   <= w_end & (wsh0[CUR_W] | wsh1[CUR_W] | wsh2[CUR_W]);
-                        if (w_end) begin
-                            r_cur0 <= wsh0[CUR_W-1:0];
-                            r_cur1 <= wsh1[CUR_W-1:0];
-                            r_cur2 <= wsh2[CUR_W-1:0];
-                        end
-                    end
-                end
+                assign w_take = pbusy && p_win && p_last && (pj == PJ_WEND);
+                assign m0 = wsh0;
+                assign m1 = wsh1;
+                assign m2 = wsh2;
             end else begin : g_kn
                 reg [AW-1:0] accw0, accw1, accw2;
                 reg [2:0]    w_c;              // window adder carries
                 wire [2:0] wa = p_first ? {3{pj == PJ_KM1}} : {accw2[0], accw1[0], accw0[0]};
                 wire [2:0] wq = wa ^ db ^ w_c;
-                wire [CUR_W:0] s0 = satf(accw0[AW-1:AVG_LOG2]), s1 = satf(accw1[AW-1:AVG_LOG2]),
-                               s2 = satf(accw2[AW-1:AVG_LOG2]);
-                wire w_end = pbusy && p_win && p_last && (pj == PJ_WEND);
+                assign m0 = satf(accw0[AW-1:AVG_LOG2]);
+                assign m1 = satf(accw1[AW-1:AVG_LOG2]);
+                assign m2 = satf(accw2[AW-1:AVG_LOG2]);
+                assign w_take = pbusy && p_win && p_last && (pj == PJ_WEND);
                 always @(posedge clk) begin
                     if (rst) begin
                         accw0   <= {AW{1'b0}};
                         accw1   <= {AW{1'b0}};
                         accw2   <= {AW{1'b0}};
-                        r_valid <= 1'b0;
-                        r_sat   <= 1'b0;
-                        r_cur0  <= {CUR_W{1'b0}};
-                        r_cur1  <= {CUR_W{1'b0}};
-                        r_cur2  <= {CUR_W{1'b0}};
                     end else begin
-                        r_valid <= w_end;
-                        r_sat   <= w_end & (s0[CUR_W] | s1[CUR_W] | s2[CUR_W]);
-                        if (w_end) begin
-                            r_cur0 <= s0[CUR_W-1:0];
-                            r_cur1 <= s1[CUR_W-1:0];
-                            r_cur2 <= s2[CUR_W-1:0];
-                        end
                         if (!st_a && pbusy && p_win && pj < PJ_WEND) begin
                             accw0 <= {wq[0], accw0[AW-1:1]};
                             accw1 <= {wq[1], accw1[AW-1:1]};
