@@ -38,6 +38,7 @@ from empc import formats as F
 from empc import header, image
 from empc.rtlmodel import mpc_core as core
 from empc.rtlmodel import mx_seq as MX
+from empc.rtlmodel.adc_spi import AdcSpiParams
 from empc.rtlmodel.ctrl_seq import CtrlSeq, Regs
 from empc.rtlmodel.ref_gen import FIELDS, RefGen, Slot, slot_field
 
@@ -537,7 +538,7 @@ def _draw_regs(rng, r) -> tuple[bool, bool]:
 
 
 # ============================== cocotb: several axes (NAXES = 2..4) ==============================
-AX_T_VALID = 195                # the ADC's valid after the trigger in the drive (issue 14's 4-frame mean)
+AX_T_VALID = AdcSpiParams().valid_delay()   # the ADC's valid after the trigger in the drive (195: 4-frame mean)
 AX_EVENT = 600                  # Python sets an axis's next sample this many clocks before its boundary
 
 
@@ -697,7 +698,7 @@ async def random_axes(dut):
         kind = ("POS" if task == "position" else "SPD") if control else "MOD"
         core_lat = core.latency(m.params.ncols) if rg.run else None
         return dict(out=out, control=control, kind=kind, run=rg.run, u1=m.u[1], cmd=cmd,
-                    job=MX.Job(a, 0, kind, n, rg.kacc_shift, rg.load_shift, AX_T_VALID, core_lat))
+                    job=MX.Job(a, 0, kind, n, AX_T_VALID, rg.kacc_shift, rg.load_shift, core_lat))
 
     P2 = 2 * half
 

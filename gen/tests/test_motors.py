@@ -11,22 +11,17 @@ form with the plant at nominal and at box corners, with bounds:
   * |i| <= 1.05 i_max (the reference governor's current limit, issue 15 item 4) and below the ADC range.
 The fast suite checks the two added motors on short runs; the full sweep is ``@pytest.mark.full``.
 """
-import dataclasses
-
 import numpy as np
 import pytest
 
-from empc import closedloop as cl, config, design, governor, report, robust, scenarios
+from empc import closedloop as cl, config, corners, design, governor, report, robust, scenarios
 from empc.controllers.explicit import ExplicitMPC
 from empc.controllers.fixed import FixedMPC
 
-CONFIGS = config.DEFAULT_CONFIG.parent
-MOTORS = ["blwr233d", "ipmsm_001", "spmsm_002", "ec45flat_24v", "premo_320v"]
+CONFIGS = corners.CONFIGS
+MOTORS = list(corners.MOTORS)
 NEW = ["ec45flat_24v", "premo_320v"]
-
-
-def load(name, **ov):
-    return config.load(CONFIGS / f"{name}.toml", ov or None)
+load = corners.load
 
 
 def test_new_motors_are_10x_apart():
@@ -62,7 +57,7 @@ KNOWN: dict = {}
 @pytest.mark.parametrize("name", MOTORS)
 @pytest.mark.parametrize("ts", [None, 250e-6, 50e-6])
 def test_every_design_passes_at_each_ts(name, ts):
-    cfg = load(name) if ts is None else load(name, **{"control.Ts": ts, "inverter.f_pwm": 20000.0})
+    cfg = load(name) if ts is None else load(name, **{"control.Ts": ts, "inverter.f_pwm": corners.TS_PWM})
     for key in sorted(cfg.control.weights):
         why = KNOWN.get((name, ts)) or KNOWN.get((name, ts, key))
         try:
@@ -76,25 +71,12 @@ def test_every_design_passes_at_each_ts(name, ts):
         assert ok, (name, ts, key, reason)
 
 
-def _plant(cfg, alg, task, plant):
-    """None (nominal), or the box point where the design's loop is least damped ("corner_a", from
-    its design check) or the opposite corner ("corner_b")."""
-    if plant == "nominal":
-        return None
-    f = design.design(cfg, alg, task)["stability"]["worst_damping"]["factors"]
-    if plant == "corner_b":
-        f = {k: 2.0 - v for k, v in f.items()}
-    return f
+_plant = corners.plant_factors     # nominal: None; corner_a: the design check's least-damped box point; corner_b
 
 
 def _run(cfg, name, plant, fixed, duration=None):
-    sc, alg = scenarios.get(name, cfg)
-    if duration:
-        sc = dataclasses.replace(sc, duration=duration, segments=[s for s in sc.segments if s[2] <= duration + 1e-9])
-    c = cfg.with_control(algorithm=alg, task=sc.task)
-    pt = _plant(c, alg, sc.task, plant)
-    ctl = FixedMPC(c) if fixed else ExplicitMPC(c, gains="poly")
-    tr = cl.simulate(c, ctl, sc, plant_motor=robust.perturbed(c.motor, pt) if pt else None)
+    """One scenario run (corners.simulate: the same plants and forms as `make corners`) and its metrics."""
+    sc, c, tr, _ = corners.simulate(cfg, name, plant, "fixed" if fixed else "float", duration)
     m = cl.metrics(tr, sc, settle_floor=report._band(c, sc), preview=c.control.N * c.control.Ts)
     return sc, tr, m
 
@@ -315,9 +297,8 @@ def test_field_weakening_every_motor_and_corner(name, plant, fixed, request):
 # speed_steps / speed_alg2: 0 -> 300 k rad/s at 10 ms) or a position step (0.06 s of position_alg1 /
 # position_alg2: 0 -> 20 k rad at 10 ms), nominal plant (the full sweep: also the box corners), float and
 # fixed, with the bounds:
-TS_50US = {"control.Ts": 50e-6, "inverter.f_pwm": 20000.0}
-STEP_50US = {(1, "speed"): ("speed_steps", 0.12), (2, "speed"): ("speed_alg2", 0.12),
-             (1, "position"): ("position_alg1", 0.06), (2, "position"): ("position_alg2", 0.06)}
+TS_50US = {"control.Ts": 50e-6, "inverter.f_pwm": corners.TS_PWM}
+STEP_50US = corners.TS_STEP
 PEAK_50US = 1.05        # |i| <= 1.05 i_max (the reference governor's limit)
 OV_50US = 25.0          # overshoot of the step, % (the measured worst that passes: see the table below)
 UQ_50US = 0.25          # u_q RMS about its mean over the step's last 30 % (no limit cycle on the voltage limit), x u_max

@@ -373,9 +373,9 @@ class Job:
     t_trig: int                 # the cycle of the axis's adc_trig (the trigger taken)
     kind: str                   # SPD, POS (control) or MOD (modulation only)
     n: int
+    t_valid: int                # the axis's ADC valid, clocks after its trigger (adc_spi valid_delay)
     kacc_shift: int = 0
     load_shift: int = 0
-    t_valid: int = 71           # the axis's ADC valid, clocks after its trigger
     core_lat: int | None = None  # mpc_core.latency(ncols), None with the law off
 
 
