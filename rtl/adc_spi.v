@@ -534,11 +534,10 @@ module adc_spi #(
     wire [CUR_W:0]     wsh0, wsh1, wsh2;   // satf of the shared window means
     generate
         if (WSHARE != 0) begin : g_wsh
-            reg [AW-1:0] accw0, accw1, accw2;
-            reg [2:0]    w_c;              // window adder carries
-            reg [2:0]    dbw;
-            reg          any_win, any_first;
-            integer      k;
+            wire [AW-AVG_LOG2-1:0] accw0, accw1, accw2;
+            reg  [2:0]    dbw;
+            reg           any_win, any_first;
+            integer       k;
             always @(*) begin
                 dbw       = 3'b000;
                 any_win   = 1'b0;
@@ -549,28 +548,13 @@ module adc_spi #(
                     any_first = any_first | (wx_win[k] & wx_first[k]);
                 end
             end
-            wire [2:0] wa = any_first ? {3{pj == PJ_KM1}} : {accw2[0], accw1[0], accw0[0]};
-            wire [2:0] wq = wa ^ dbw ^ w_c;
-            assign wsh0 = satf(accw0[AW-1:AVG_LOG2]);
-            assign wsh1 = satf(accw1[AW-1:AVG_LOG2]);
-            assign wsh2 = satf(accw2[AW-1:AVG_LOG2]);
-            always @(posedge clk) begin
-                if (rst) begin
-                    accw0 <= {AW{1'b0}};
-                    accw1 <= {AW{1'b0}};
-                    accw2 <= {AW{1'b0}};
-                end else if (!st_a && pbusy && any_win && pj < PJ_WEND) begin
-                    accw0 <= {wq[0], accw0[AW-1:1]};
-                    accw1 <= {wq[1], accw1[AW-1:1]};
-                    accw2 <= {wq[2], accw2[AW-1:1]};
-                end
-            end
-            always @(posedge clk) begin
-                if (p_clr)
-                    w_c <= 3'b000;
-                else if (pbusy && any_win && pj < PJ_WEND)
-                    w_c <= (wa & dbw) | (wa & w_c) | (dbw & w_c);
-            end
+            adc_win_acc #(.AW(AW), .K(AVG_LOG2)) u_acc (
+                .clk(clk), .rst(rst), .p_clr(p_clr), .st_a(st_a),
+                .step_en(pbusy && any_win && pj < PJ_WEND), .first(any_first), .km1(pj == PJ_KM1), .db(dbw),
+                .mean0(accw0), .mean1(accw1), .mean2(accw2));
+            assign wsh0 = satf(accw0);
+            assign wsh1 = satf(accw1);
+            assign wsh2 = satf(accw2);
         end else begin : g_wsh_none
             assign wsh0 = {(CUR_W+1){1'b0}};
             assign wsh1 = {(CUR_W+1){1'b0}};
@@ -950,33 +934,15 @@ module adc_spi #(
                 assign m1 = wsh1;
                 assign m2 = wsh2;
             end else begin : g_kn
-                reg [AW-1:0] accw0, accw1, accw2;
-                reg [2:0]    w_c;              // window adder carries
-                wire [2:0] wa = p_first ? {3{pj == PJ_KM1}} : {accw2[0], accw1[0], accw0[0]};
-                wire [2:0] wq = wa ^ db ^ w_c;
-                assign m0 = satf(accw0[AW-1:AVG_LOG2]);
-                assign m1 = satf(accw1[AW-1:AVG_LOG2]);
-                assign m2 = satf(accw2[AW-1:AVG_LOG2]);
+                wire [AW-AVG_LOG2-1:0] accw0, accw1, accw2;
+                adc_win_acc #(.AW(AW), .K(AVG_LOG2)) u_acc (
+                    .clk(clk), .rst(rst), .p_clr(p_clr), .st_a(st_a),
+                    .step_en(pbusy && p_win && pj < PJ_WEND), .first(p_first), .km1(pj == PJ_KM1), .db(db),
+                    .mean0(accw0), .mean1(accw1), .mean2(accw2));
+                assign m0 = satf(accw0);
+                assign m1 = satf(accw1);
+                assign m2 = satf(accw2);
                 assign w_take = pbusy && p_win && p_last && (pj == PJ_WEND);
-                always @(posedge clk) begin
-                    if (rst) begin
-                        accw0   <= {AW{1'b0}};
-                        accw1   <= {AW{1'b0}};
-                        accw2   <= {AW{1'b0}};
-                    end else begin
-                        if (!st_a && pbusy && p_win && pj < PJ_WEND) begin
-                            accw0 <= {wq[0], accw0[AW-1:1]};
-                            accw1 <= {wq[1], accw1[AW-1:1]};
-                            accw2 <= {wq[2], accw2[AW-1:1]};
-                        end
-                    end
-                end
-                always @(posedge clk) begin
-                    if (p_clr)
-                        w_c <= 3'b000;
-                    else if (pbusy && p_win && pj < PJ_WEND)
-                        w_c <= (wa & db) | (wa & w_c) | (db & w_c);
-                end
             end
 
             // ---------------------------------------- frozen ADC (per PWM period of the axis)

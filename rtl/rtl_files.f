@@ -1,4 +1,5 @@
 rtl/sync_2ff.v
+rtl/adc_win_acc.v
 rtl/adc_spi.v
 rtl/glitch_filter.v
 rtl/pwm_center.v
