@@ -299,7 +299,7 @@ def test_field_weakening_every_motor_and_corner(name, plant, fixed, request):
 # fixed, with the bounds:
 TS_50US = {"control.Ts": 50e-6, "inverter.f_pwm": corners.TS_PWM}
 STEP_50US = corners.TS_STEP
-PEAK_50US = 1.05        # |i| <= 1.05 i_max (the reference governor's limit)
+PEAK_50US = corners.LIMIT   # |i| <= 1.05 i_max (the reference governor's limit; test_current_corners too)
 OV_50US = 25.0          # overshoot of the step, % (the measured worst that passes: see the table below)
 UQ_50US = 0.25          # u_q RMS about its mean over the step's last 30 % (no limit cycle on the voltage limit), x u_max
 AGREE_50US = 0.10       # fixed vs float RMS tracking error within 10 % + 1 sensor LSB (as _bounds)
