@@ -4,7 +4,7 @@
 // Write port: one 32-bit image word per clock (we, waxis, wbank, waddr = word address of the
 // image layout, wdata).  Decoded as it is written:
 //   A_CFG        algorithm[14:13], task[12] (1 = position), N[11:8], ncols[6:0] -> registers
-//   A_WS .. A_EBAR+2  header LUT RAM, one SIG_W-bit entry per field (sign-extended value):
+//   A_WS .. A_EBAR+2  header RAM, one SIG_W-bit entry per field (sign-extended value):
 //                field 0 ws = wdata[SIG_SHIFT_BITS-1:0];  1 / 2 wn_min / wn_max: signed 32 ->
 //                clamped to +-(2^17-1);  3 u_max: unsigned 32 -> min(u_max, 2^17-1);
 //                4..6 ebar_lim[o]: unsigned 32 -> min(ebar_lim, 2^(SIG_W-1)-1).
@@ -16,15 +16,15 @@
 // ncols is clamped to MAX_COLS; neff = min(N_img, N, N_MAX) (horizon steps the core reads).
 // Read side (bank {raxis, rbank}): synchronous reads, data valid one clock after the address:
 // desc at ra_desc, p2 / p1 at ra_c, p0 at ra_p0, the product shifts at ra_s (s_clr reads 0 instead);
-// the header entry hdr_field is read asynchronously (hdr); the CFG fields are
+// the header entry hdr_field is read synchronously too (hdr, block RAM); the CFG fields are
 // combinational outputs of the bank registers; pos_v[a] = the task of axis a's bank bank_v[a].
 // Storage: block RAM (p0/p1/p2 x rows: 2 NA x 64 x 18 each; descriptors 2 NA x 64 x 10; shifts
-// 2 NA x 64 x {4, 4}; NA = 2^AXB: one RAMB8 each up to four axes); header: LUT RAM 2 NA x 8 x
-// SIG_W; CFG fields: registers.
+// 2 NA x 64 x {4, 4}; NA = 2^AXB: one RAMB8 each up to four axes); header: block RAM 2 NA x 8 x
+// SIG_W (one RAMB8 up to 16 axes); CFG fields: registers.
 // Parameters: N (horizon inputs of the core, <= EMPC_N_MAX), NAXES, AXW (axis index width,
 // max(1, AXB)).
 // Reset: CFG registers of both banks clear to 0 (ncols = 0: an empty bank gives du = 0);
-// memories are not reset (LUT RAM initial contents 0); read registers clear to 0.
+// memories are not reset (header initial contents 0); read registers clear to 0 (hdr: not reset).
 `default_nettype none
 `include "empc_formats.vh"
 module mpc_coef_mem #(
@@ -190,33 +190,40 @@ module mpc_coef_mem #(
         end
     end endgenerate
 
-    // ---- header LUT RAM: address {axis, bank, field} ----
-    reg [SW-1:0] m_hdr [0:8*NK-1];
+    // ---- header block RAM: address {axis, bank, field}, read one clock ahead ----
+    // hdr_field is the field of the next clock (O0 of the operand pipeline), so the registered read
+    // gives the entry that an asynchronous read of the same field would give one clock later: writes
+    // go to inactive banks only, so no word the core reads is written in the clock it is read (as a
+    // LUT RAM it cost 4 LUT per 3 bits at 8 banks, per 6 bits at 2)
+    (* ram_style = "block" *) reg [SW-1:0] m_hdr [0:8*NK-1];
     integer hi;
     initial for (hi = 0; hi < 8 * NK; hi = hi + 1) m_hdr[hi] = {SW{1'b0}};
-    always @(posedge clk)
+    reg [SW-1:0] hdr_r;
+    always @(posedge clk) begin
         if (w_hdr) m_hdr[{wk, h_f}] <= dd;
-    assign hdr = m_hdr[{rk, hdr_field}];
+        hdr_r <= m_hdr[{rk, hdr_field}];
+    end
+    assign hdr = hdr_r;
 
     // ---- block memories: address {bank, column} ----
     (* ram_style = "block" *) reg [DW-1:0]  m_desc [0:NK*MAXC-1];
     (* ram_style = "block" *) reg [OPW-1:0] m_p0d [0:NK*MAXC-1];
-    (* ram_style = "block" *) reg [OPW-1:0] m_p1d [0:NK*MAXC-1];
-    (* ram_style = "block" *) reg [OPW-1:0] m_p2d [0:NK*MAXC-1];
+    // p2 and p1 of a row are read at the same address: one memory {p2, p1} per row (half-word
+    // writes), one RAMB8 in the 36-bit mode for one axis (two RAMB8 otherwise), a RAMB16 for four
+    (* ram_style = "block" *) reg [2*OPW-1:0] m_p21d [0:NK*MAXC-1];
     (* ram_style = "block" *) reg [OPW-1:0] m_p0q [0:NK*MAXC-1];
-    (* ram_style = "block" *) reg [OPW-1:0] m_p1q [0:NK*MAXC-1];
-    (* ram_style = "block" *) reg [OPW-1:0] m_p2q [0:NK*MAXC-1];
+    (* ram_style = "block" *) reg [2*OPW-1:0] m_p21q [0:NK*MAXC-1];
     (* ram_style = "block" *) reg [8:0]     m_s   [0:NK*MAXC-1];     // {s_q, 1'b0, s_d}
 
     always @(posedge clk) begin
         if (w_col) m_desc[wa_col] <= {wdata[CB+7:8], wdata[5:0]};
         if (w_gain && !g_row && g_k == 2'd0) m_p0d[wa_gain] <= wsat;
-        if (w_gain && !g_row && g_k == 2'd1) m_p1d[wa_gain] <= wsat;
-        if (w_gain && !g_row && g_k == 2'd2) m_p2d[wa_gain] <= wsat;
+        if (w_gain && !g_row && g_k == 2'd1) m_p21d[wa_gain][OPW-1:0] <= wsat;
+        if (w_gain && !g_row && g_k == 2'd2) m_p21d[wa_gain][2*OPW-1:OPW] <= wsat;
         if (w_gain && !g_row && g_k == 2'd3) m_s[wa_gain][3:0] <= wdata[3:0];
         if (w_gain &&  g_row && g_k == 2'd0) m_p0q[wa_gain] <= wsat;
-        if (w_gain &&  g_row && g_k == 2'd1) m_p1q[wa_gain] <= wsat;
-        if (w_gain &&  g_row && g_k == 2'd2) m_p2q[wa_gain] <= wsat;
+        if (w_gain &&  g_row && g_k == 2'd1) m_p21q[wa_gain][OPW-1:0] <= wsat;
+        if (w_gain &&  g_row && g_k == 2'd2) m_p21q[wa_gain][2*OPW-1:OPW] <= wsat;
         if (w_gain &&  g_row && g_k == 2'd3) m_s[wa_gain][8:5] <= wdata[3:0];
     end
 
@@ -231,10 +238,8 @@ module mpc_coef_mem #(
             p0_d <= {OPW{1'b0}}; p0_q <= {OPW{1'b0}};
         end else begin
             desc <= m_desc[{rk, ra_desc}];
-            p2_d <= m_p2d[{rk, ra_c}];
-            p2_q <= m_p2q[{rk, ra_c}];
-            p1_d <= m_p1d[{rk, ra_c}];
-            p1_q <= m_p1q[{rk, ra_c}];
+            {p2_d, p1_d} <= m_p21d[{rk, ra_c}];
+            {p2_q, p1_q} <= m_p21q[{rk, ra_c}];
             p0_d <= m_p0d[{rk, ra_p0}];
             p0_q <= m_p0q[{rk, ra_p0}];
         end

@@ -55,8 +55,8 @@ module mpc_operand #(
     input  wire                          alg2,
     input  wire                          pos,
     input  wire [3:0]                    neff,       // min(N_img, N, N_MAX)
-    output reg  [2:0]                    hdr_field,  // header entry read at O1
-    input  wire signed [`EMPC_SIG_W-1:0] hdr,       // header field, sign-extended (ebar_lim >= 0)
+    output reg  [2:0]                    hdr_field,  // header entry of the item at O0 (block RAM address)
+    input  wire signed [`EMPC_SIG_W-1:0] hdr,       // that entry at O1, sign-extended (ebar_lim >= 0)
     // lanes / limiter
     input  wire signed [`EMPC_U_W-1:0]   du_d,       // at O1 of UR items
     input  wire signed [`EMPC_U_W-1:0]   du_q,
@@ -252,9 +252,9 @@ module mpc_operand #(
     reg  [5:0]  a_addr;
     reg         a_zero, b_zero, sub1r, nosig1, ebar1;
     reg  [1:0]  b_sel1;
-    reg  [2:0]  hf1;
+    reg  [1:0]  hf1;                    // o of the item (low bits of its header field)
     reg  [CB-1:0] cd1;                  // desc c of the item (used for COL)
-    wire [1:0]  eo1   = hf1[1:0];
+    wire [1:0]  eo1   = hf1;
     wire [3:0]  s_addr = (ebar1 ? R_INC : R_Y) | {2'd0, eo1};
     wire        cl1   = ebar1 && alg2 && clamp_o[eo1];
     wire [1:0]  b_sel = cl1 ? B_HDR : b_sel1;
@@ -268,7 +268,7 @@ module mpc_operand #(
             default:    c1 = C_0;
         endcase
     end
-    always @* hdr_field = hf1;
+    always @* hdr_field = hf0;                      // registered read: hdr = that entry at O1
     wire [5+AXB:0] a_ra;
     generate if (AXB == 0) begin : g_ra1
         assign a_ra = a_addr;
@@ -426,7 +426,7 @@ module mpc_operand #(
             kind4 <= `MPC_K_NONE; kind5 <= `MPC_K_NONE;
             idx1 <= 2'd0; idx2 <= 2'd0; idx3 <= 2'd0;
             a_addr <= 6'd0; a_zero <= 1'b1; b_zero <= 1'b1; sub1r <= 1'b0; nosig1 <= 1'b0; ebar1 <= 1'b0;
-            b_sel1 <= B_SCR; hf1 <= F_WS; cd1 <= {CB{1'b0}};
+            b_sel1 <= B_SCR; hf1 <= F_WS[1:0]; cd1 <= {CB{1'b0}};
             sub2 <= 1'b0; nosig2 <= 1'b0; nosig3 <= 1'b0;
             c2 <= {CB{1'b0}}; c3 <= {CB{1'b0}}; c4a <= 2'd0; yc3 <= 1'b0; eba3 <= 1'b0; ur3 <= 1'b0; eba3_o <= 3'd0;
             av <= {SW{1'b0}};
@@ -457,7 +457,7 @@ module mpc_operand #(
             nosig1 <= nosig0;
             ebar1  <= ebar0;
             b_sel1 <= b_sel0;
-            hf1    <= hf0;
+            hf1    <= hf0[1:0];
             cd1    <= desc[CB+5:6];
             // O1 -> O2
             av <= a_zero ? {SW{1'b0}} : a_rd;
