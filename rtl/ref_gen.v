@@ -321,45 +321,74 @@ module ref_gen #(
         end
     endgenerate
 
-    // ---------------- per-axis shift registers (SRL, the axis's own clock enable) ----------------
+    // ---------------- per-axis delay line (SRL, the axis's own clock enable) ----------------
     // delay line w_k .. w_{k+N} ((N+1)*64, SRL LUT-RAM): each pass shifts in a new head word; the
-    // old head is read at a fixed tap (bit 63); d1 (64), d2 (32), remaining (32): LSB out first;
-    // the governor's target rt and increment v (64): bit j of the old word leaves at [63] in clock j.
+    // old head is read at a fixed tap (bit 63).
     localparam integer DL = (N + 1) * 64;
     reg  [NAXES*DL-1:0] dl;
-    reg  [NAXES*64-1:0] d1, rt, v;
-    reg  [NAXES*32-1:0] d2, rem;
     reg                 dl_sh, dl_in, d1_sh, d1_in, d2_sh, d2_in, rem_sh, rem_in, rt_sh, rt_in, v_sh, v_in;
     wire [NAP-1:0]      ax_hot;
     always @(posedge clk)
         for (ai = 0; ai < NAXES; ai = ai + 1)
-            if (ax_hot[ai]) begin
-                if (dl_sh)  dl[ai * DL +: DL] <= {dl[ai * DL +: DL - 1], dl_in};
-                if (rt_sh)  rt[ai * 64 +: 64] <= {rt[ai * 64 +: 63], rt_in};
-                if (v_sh)   v[ai * 64 +: 64]  <= {v[ai * 64 +: 63], v_in};
-            end
-    // d1, d2 (and remaining) are cleared when a sync begins and by a hold: at NAXES > 1 (SRLs) by
-    // shifting in zeros (the first sync pass, the hold's head pass), at NAXES = 1 (flip-flops, fewer
-    // LUTs) by a parallel clear (zclr, also at rst)
+            if (ax_hot[ai] && dl_sh) dl[ai * DL +: DL] <= {dl[ai * DL +: DL - 1], dl_in};
+    // ---------------- d1 (64), d2 (32), remaining (32), the governor's rt and v (64) ----------------
+    // Bit-serial words, LSB first: every pass that changes one of them visits its bits j = 0 .. L-1
+    // in the clocks jc = j of the pass (L = 64 or 32), reading bit j and writing the new bit j in the
+    // same clock.  st_* = bit jc of the engine's axis's word (for d2 / remaining only meaningful for
+    // jc < 32).  d1, d2 (and remaining) are cleared when a sync begins and by a hold: at NAXES > 1 by
+    // writing zeros (the first sync pass, the hold's head pass), at NAXES = 1 by a parallel clear
+    // (zclr, also at rst).
     localparam          SHZ = (NAXES > 1);
-    always @(posedge clk)
-        for (ai = 0; ai < NAXES; ai = ai + 1)
-            if (zclr) begin
-                d1[ai * 64 +: 64] <= 64'd0;
-                d2[ai * 32 +: 32] <= 32'd0;
-                rem[ai * 32 +: 32] <= 32'd0;
-            end else if (ax_hot[ai]) begin
-                if (d1_sh)  d1[ai * 64 +: 64] <= {d1_in, d1[ai * 64 + 1 +: 63]};
-                if (d2_sh)  d2[ai * 32 +: 32] <= {d2_in, d2[ai * 32 + 1 +: 31]};
-                if (rem_sh) rem[ai * 32 +: 32] <= {rem_in, rem[ai * 32 + 1 +: 31]};
+    wire                st_d1, st_d2, st_rem, st_rt, st_v;
+    generate
+        if (NAXES > 1) begin : g_sram
+            // block RAM {axis, bit} x {v, rt, remaining, d2, d1}: read bit t (the next bit) one clock
+            // ahead like the slot memory, write bit jc in every clock of a pass (a word that does not
+            // change writes back the bit it read: no read and write of the same address in one clock)
+            (* ram_style = "block" *) reg [4:0] st_m [0:NAP*64-1];
+            reg  [4:0]  st_q;
+            integer     sj;
+            initial for (sj = 0; sj < NAP * 64; sj = sj + 1) st_m[sj] = 5'd0;
+            always @(posedge clk) begin
+                st_q <= st_m[{ax, t}];
+                if (run && act)
+                    st_m[{ax, jc}] <= {v_sh ? v_in : st_q[4], rt_sh ? rt_in : st_q[3], rem_sh ? rem_in : st_q[2],
+                                       d2_sh ? d2_in : st_q[1], d1_sh ? d1_in : st_q[0]};
             end
+            assign {st_v, st_rt, st_rem, st_d2, st_d1} = st_q;
+        end else begin : g_sff
+            // one axis: shift registers (rt, v: SRL; d1, d2, remaining: flip-flops with a parallel clear)
+            reg  [63:0] d1, rt, v;
+            reg  [31:0] d2, rem;
+            always @(posedge clk)
+                if (ax_hot[0]) begin
+                    if (rt_sh) rt <= {rt[62:0], rt_in};
+                    if (v_sh)  v  <= {v[62:0], v_in};
+                end
+            always @(posedge clk)
+                if (zclr) begin
+                    d1  <= 64'd0;
+                    d2  <= 32'd0;
+                    rem <= 32'd0;
+                end else if (ax_hot[0]) begin
+                    if (d1_sh)  d1  <= {d1_in, d1[63:1]};
+                    if (d2_sh)  d2  <= {d2_in, d2[31:1]};
+                    if (rem_sh) rem <= {rem_in, rem[31:1]};
+                end
+            assign st_d1 = d1[0];
+            assign st_d2 = d2[0];
+            assign st_rem = rem[0];
+            assign st_rt = rt[63];
+            assign st_v = v[63];
+        end
+    endgenerate
 
     // one dynamic read port per axis's delay line: bit 63 (the old head bit j in clock j of a pass)
     // while it shifts, bit j of the head (63 - j) in a governed head pass (the line stands still),
     // else bit 63 - rd_bit of word rd_age (64 * age + 63 - bit) for the readout
     wire          dl_busy, g_head;
     wire [5:0]    jcw;
-    wire [NAP-1:0] dl_q, dl_e, rt_q, v_q, d1_q, d2_q, rem_q;
+    wire [NAP-1:0] dl_q, dl_e;
     wire [NAP-1:0] in_adv, in_sync, in_start, in_sbit, in_hold, in_pos;
     wire [3:0]     in_sslot [0:NAP-1];
     genvar ga;
@@ -383,11 +412,6 @@ module ref_gen #(
                 end else begin : g_tap1
                     assign dl_e[ga] = 1'b0;
                 end
-                assign rt_q[ga] = rt[ga * 64 + 63];
-                assign v_q[ga] = v[ga * 64 + 63];
-                assign d1_q[ga] = d1[ga * 64];
-                assign d2_q[ga] = d2[ga * 32];
-                assign rem_q[ga] = rem[ga * 32];
                 assign in_adv[ga] = advance[ga];
                 assign in_sync[ga] = sync[ga];
                 assign in_start[ga] = start[ga];
@@ -398,11 +422,6 @@ module ref_gen #(
             end else begin : g_pad
                 assign dl_q[ga] = 1'b0;
                 assign dl_e[ga] = 1'b0;
-                assign rt_q[ga] = 1'b0;
-                assign v_q[ga] = 1'b0;
-                assign d1_q[ga] = 1'b0;
-                assign d2_q[ga] = 1'b0;
-                assign rem_q[ga] = 1'b0;
                 assign in_adv[ga] = 1'b0;
                 assign in_sync[ga] = 1'b0;
                 assign in_start[ga] = 1'b0;
@@ -424,7 +443,7 @@ module ref_gen #(
         if (sa_sh) sa <= {sa[62:0], sa_in};
         if (sb_sh) sb <= {sb[62:0], sb_in};
     end
-    wire          rt_o = rt_q[ax], v_o = v_q[ax], sa_o = sa[63];
+    wire          rt_o = st_rt, v_o = st_v, sa_o = sa[63];
     wire          sb_t = sb[{1'b1, ~ksh}];             // bit j + ksh of sb in clock j (63 - ksh)
 
     // ---------------- engine ----------------
@@ -442,11 +461,11 @@ module ref_gen #(
     wire        pm = rb_q && (jc != 6'd63);            // vmax / a bit jc
 
     // head pass arithmetic (bit jc)
-    wire        d1b  = d1_q[ax];
-    wire        d2x  = (jc[5] ? d2s : d2_q[ax]);
+    wire        d1b  = st_d1;
+    wire        d2x  = (jc[5] ? d2s : st_d2);
     wire        h1   = rt_o ^ d1b ^ ch;
     wire        d1n  = d1b ^ d2x ^ cd;
-    wire        remn = rem_q[ax] ^ br;
+    wire        remn = st_rem ^ br;
     assign      sync_idx = jc;
     wire        sync_in  = !rst_sync && in_sbit[ax];
     wire        in_head = (kind == K_SYNC) ? ((cp == N[AW-1:0]) ? sync_in : tap) :
@@ -516,7 +535,7 @@ module ref_gen #(
         d1_sh = run && act && (kind == K_HEAD || kind == K_D1 || (SHZ && first_sync));
         d1_in = (kind == K_D1) ? rb_q : ((!SHZ || kind == K_HEAD) && normal) ? d1n : 1'b0;
         d2_sh = head_sh || (run && act && kind == K_D2) || (SHZ && first_sync && !jc[5]);
-        d2_in = (kind == K_D2) ? rb_q : ((!SHZ || kind == K_HEAD) && normal) ? d2_q[ax] : 1'b0;
+        d2_in = (kind == K_D2) ? rb_q : ((!SHZ || kind == K_HEAD) && normal) ? st_d2 : 1'b0;
         // (remaining needs no clear: it counts only while ends = 1, and a sync and a hold clear ends)
         rem_sh = (head_sh && normal) || (run && act && kind == K_LEN);
         rem_in = (kind == K_LEN) ? rb_q : remn;
@@ -668,7 +687,7 @@ module ref_gen #(
                             else last_nx <= rb_q;
                         end
                         K_HEAD: if (normal) begin
-                            if (jc == 6'd31) d2s <= d2_q[ax];
+                            if (jc == 6'd31) d2s <= st_d2;
                         end
                         K_LEN: begin
                             if (jc == 6'd0) one_acc <= rb_q;
@@ -679,7 +698,7 @@ module ref_gen #(
                     // carries (cleared at the lead clock below)
                     ch <= (rt_o & d1b) | (ch & (rt_o ^ d1b));
                     cd <= (d1b & d2x) | (cd & (d1b ^ d2x));
-                    br <= br & !rem_q[ax];
+                    br <= br & !st_rem;
                     k0 <= k0n;
                     k1 <= k1n;
                     k2 <= k2n;

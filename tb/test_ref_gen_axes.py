@@ -330,16 +330,15 @@ def test_ref_gen_axes():
 
 
 def test_ref_gen_axes_mutant(tmp_path):
-    """The test must fail on an engine that shifts every axis's target word (wrong axis's state)."""
+    """The test must fail on an engine that reads the wrong axis's state (the state RAM's read port
+    without the axis bits: every axis sees axis 0's d1, d2, remaining, rt and v)."""
     import pytest
     import runner
     from files import ROOT, rtl_sources
     src = (ROOT / "rtl" / "ref_gen.v").read_text()
-    good = "                if (rt_sh)  rt[ai * 64 +: 64] <= {rt[ai * 64 +: 63], rt_in};\n"
-    anchor = "    // d1, d2 (and remaining) are cleared"
-    assert src.count(good) == 1 and src.count(anchor) == 1, "the mutant no longer matches rtl/ref_gen.v"
-    lines = src.replace(good, "").replace(anchor, "    always @(posedge clk)\n        for (ai = 0; ai < NAXES; ai = ai + 1)\n"
-                                                   "            if (rt_sh) rt[ai * 64 +: 64] <= {rt[ai * 64 +: 63], rt_in};\n" + anchor)
+    good = "st_q <= st_m[{ax, t}];"
+    assert src.count(good) == 1, "the mutant no longer matches rtl/ref_gen.v"
+    lines = src.replace(good, "st_q <= st_m[{{AXW{1'b0}}, t}];")
     mut = tmp_path / "ref_gen.v"
     mut.write_text(lines)
     orig = runner.rtl_sources
