@@ -225,8 +225,8 @@ module ref_gen #(
     // of slot 4 of each axis (written with it by the CPU, initialised with it at configuration,
     // kept over rst like the slot memory)
     reg            ends_we, ends_wd, rem_one_we, rem_one_wd, last_we, last_wd, slot_we, gcfg_we;
-    wire           zclr;                               // NAXES = 1: parallel clear of d1, d2, remaining, ends
     /* verilator lint_off UNUSEDSIGNAL */
+    wire           zclr;                               // NAXES = 1: parallel clear of d1, d2, remaining, ends (unused at NAXES > 1)
     wire           lclr;                               // NAXES = 1: clear of last (unused at NAXES > 1)
     /* verilator lint_on UNUSEDSIGNAL */
     wire           ends_ax, ends_nx, rem_one_nx, last_nx_r;
@@ -339,23 +339,27 @@ module ref_gen #(
     // writing zeros (the first sync pass, the hold's head pass), at NAXES = 1 by a parallel clear
     // (zclr, also at rst).
     localparam          SHZ = (NAXES > 1);
-    wire                st_d1, st_d2, st_rem, st_rt, st_v;
+    // NAXES > 1: also the engine's copy of the head w_{k+N} (st_w, the tap: bit jc of the old head
+    // while the delay line shifts, of the head in a governed head pass, where it stands still).
+    wire                st_d1, st_d2, st_rem, st_rt, st_v, st_w;
     generate
         if (NAXES > 1) begin : g_sram
-            // block RAM {axis, bit} x {v, rt, remaining, d2, d1}: read bit t (the next bit) one clock
+            // block RAM {axis, bit} x {w, v, rt, remaining, d2, d1}: read bit t (the next bit) one clock
             // ahead like the slot memory, write bit jc in every clock of a pass (a word that does not
-            // change writes back the bit it read: no read and write of the same address in one clock)
-            (* ram_style = "block" *) reg [4:0] st_m [0:NAP*64-1];
-            reg  [4:0]  st_q;
+            // change writes back the bit it read: no read and write of the same address in one clock).
+            // In a pass that does not change a word its bit is not needed (the carries that see it are
+            // preset at every lead clock).
+            (* ram_style = "block" *) reg [5:0] st_m [0:NAP*64-1];
+            reg  [5:0]  st_q;
             integer     sj;
-            initial for (sj = 0; sj < NAP * 64; sj = sj + 1) st_m[sj] = 5'd0;
+            initial for (sj = 0; sj < NAP * 64; sj = sj + 1) st_m[sj] = 6'd0;
             always @(posedge clk) begin
                 st_q <= st_m[{ax, t}];
                 if (run && act)
-                    st_m[{ax, jc}] <= {v_sh ? v_in : st_q[4], rt_sh ? rt_in : st_q[3], rem_sh ? rem_in : st_q[2],
-                                       d2_sh ? d2_in : st_q[1], d1_sh ? d1_in : st_q[0]};
+                    st_m[{ax, jc}] <= {dl_sh ? dl_in : st_q[5], v_sh ? v_in : st_q[4], rt_sh ? rt_in : st_q[3],
+                                       rem_sh ? rem_in : st_q[2], d2_sh ? d2_in : st_q[1], d1_sh ? d1_in : st_q[0]};
             end
-            assign {st_v, st_rt, st_rem, st_d2, st_d1} = st_q;
+            assign {st_w, st_v, st_rt, st_rem, st_d2, st_d1} = st_q;
         end else begin : g_sff
             // one axis: shift registers (rt, v: SRL; d1, d2, remaining: flip-flops with a parallel clear)
             reg  [63:0] d1, rt, v;
@@ -380,6 +384,7 @@ module ref_gen #(
             assign st_rem = rem[0];
             assign st_rt = rt[63];
             assign st_v = v[63];
+            assign st_w = 1'b0;                            // the tap is the delay line's read port
         end
     endgenerate
 
@@ -388,7 +393,7 @@ module ref_gen #(
     // else bit 63 - rd_bit of word rd_age (64 * age + 63 - bit) for the readout
     wire          dl_busy, g_head;
     wire [5:0]    jcw;
-    wire [NAP-1:0] dl_q, dl_e;
+    wire [NAP-1:0] dl_q;
     wire [NAP-1:0] in_adv, in_sync, in_start, in_sbit, in_hold, in_pos;
     wire [3:0]     in_sslot [0:NAP-1];
     genvar ga;
@@ -399,19 +404,11 @@ module ref_gen #(
             if (ga < NAXES) begin : g_on_ax
                 wire [DL-1:0]   dla = dl[ga * DL +: DL];
                 // NAXES = 1: one read port, as the engine and the readout never need it in the same
-                // clock; NAXES > 1: the readout (any axis, while the engine runs another) and the engine's
-                // tap (a copy of word 0, w_{k+N}: its address does not depend on the axis) are separate
+                // clock; NAXES > 1: the readout (any axis, while the engine runs another) only, the engine's
+                // tap is a copy of word 0 (w_{k+N}) in the state RAM (st_w)
                 wire [AW+5:0]   idx = (NAXES == 1 && dl_busy && ax_hot[ga]) ? {{AW{1'b0}}, 6'd63} :
                                       (NAXES == 1 && g_head && ax_hot[ga]) ? {{AW{1'b0}}, ~jcw} : {rd_age_w, ~rd_bit};
                 assign dl_q[ga] = dla[idx];
-                if (NAXES > 1) begin : g_tap
-                    reg  [63:0] w0c;
-                    wire [5:0]  eidx = (g_head && !dl_busy) ? ~jcw : 6'd63;
-                    always @(posedge clk) if (dl_sh && ax_hot[ga]) w0c <= {w0c[62:0], dl_in};
-                    assign dl_e[ga] = w0c[eidx];
-                end else begin : g_tap1
-                    assign dl_e[ga] = 1'b0;
-                end
                 assign in_adv[ga] = advance[ga];
                 assign in_sync[ga] = sync[ga];
                 assign in_start[ga] = start[ga];
@@ -421,7 +418,6 @@ module ref_gen #(
                 assign in_sslot[ga] = start_slot[4 * ga +: 4];
             end else begin : g_pad
                 assign dl_q[ga] = 1'b0;
-                assign dl_e[ga] = 1'b0;
                 assign in_adv[ga] = 1'b0;
                 assign in_sync[ga] = 1'b0;
                 assign in_start[ga] = 1'b0;
@@ -432,7 +428,7 @@ module ref_gen #(
             end
         end
     endgenerate
-    wire          tap = (NAXES > 1) ? dl_e[ax] : dl_q[ax];
+    wire          tap = (NAXES > 1) ? st_w : dl_q[ax];
     assign rd_q = dl_q[rd_ax];
 
     // ---------------- governor scratch words (shared SRLs): sa, sb ----------------
