@@ -73,8 +73,8 @@
 // Parameters: N (horizon inputs, default EMPC_N), NAXES (axes, 1..8; AXB = clog2(NAXES)),
 // BOOT_FILE, RSQRT_FILE ($readmemh paths).
 // Resources: 6 DSP48A1 (3 per lane, the limiter reuses them), block RAM for the boot
-// ROM (1024 x 32), RSQRT (1024 x 18) and the coefficient memories, LUT RAM for the input
-// buffer, the scratch words and the bank headers.
+// ROM (1024 x 32), RSQRT (1024 x 18), the coefficient memories, the bank headers and the
+// input buffer, LUT RAM for the scratch words.
 `default_nettype none
 `include "empc_formats.vh"
 `include "mpc_items.vh"

@@ -73,9 +73,10 @@
 // begins the pending sync of the lowest-numbered axis, else the pending advance of the
 // lowest-numbered axis (fixed order; an axis's operation may wait for another axis's).  An
 // operation reads and writes only its own axis's state: the slot memory is one block RAM
-// {axis, slot, field, bit} (16 Kbit at 4 axes); the delay line, d1, d2, remaining and the
-// governor's rt, v are shift registers (SRL) per axis, shifted only by an operation of
-// their axis (NAXES = 1: d1, d2, remaining in flip-flops); ends, last, remaining == 1, slot
+// {axis, slot, field, bit} (16 Kbit at 4 axes); the delay line is a shift register (SRL) per
+// axis, shifted only by an operation of its axis; d1, d2, remaining, the governor's rt, v and a
+// copy of the head are one block RAM {axis, bit} read and written bit-serially by the engine
+// (NAXES = 1: rt, v SRLs, d1, d2, remaining flip-flops); ends, last, remaining == 1, slot
 // and the governor's enable / ksh are a LUT-RAM {axis}; sa, sb and the engine's counters and
 // carries are shared scratch (empty between operations).  The CPU port and the readout take
 // the axis in the high bits of seg_slot and rd_age; the axis's strobes, sync value, hold /
@@ -115,9 +116,9 @@
 //   for about (a+1)*(N+1)*65 clocks after rst; a CPU sync of an axis whose reset sync has not run
 //   yet gives that sync its value).  The slot memory and the governor enable / ksh copies are not
 //   reset (their configuration contents, kept over rst).
-// Resources (Yosys xc6s, N = 4, out of context): NAXES = 1 198 LUT (17 SRLC32E) / 247 FF /
-//   1 RAMB16; NAXES = 4 406 LUT (91 of them SRLC32E / RAM32M) / 154 FF / 1 RAMB16; no DSP
-//   (the one-sided speed hold: +3 FF, LUTs within Yosys's noise: 207 / 244, 401 / 151 before).
+// Resources (Yosys xc6s, N = 4, out of context): NAXES = 1 212 LUT (17 SRLC32E) / 247 FF /
+//   1 RAMB16; NAXES = 4 323 LUT (51 of them SRLC32E / RAM32M) / 154 FF / 1.5 RAMB16; no DSP
+//   (406 LUT / 1 RAMB16 at NAXES = 4 with the state in SRLs; 198 at NAXES = 1, mapping noise).
 `default_nettype none
 `include "empc_formats.vh"
 module ref_gen #(
