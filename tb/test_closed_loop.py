@@ -1146,7 +1146,7 @@ async def closed_loop(dut, name: str):
         assert report["rms_error_rtl_vs_float_rel"] < 0.10, report["rms_error_rtl_vs_float_rel"]
         assert res["status"]["CNT_OVERRUN"] == 0 and res["status"]["FAULT"] == 0, res["status"]
         assert res["status"]["CNT_ADC_MISS"] == 0, "PWM centre off the ADC frame grid"
-        if not cs.lockstep:
+        if not cs.lockstep or name in LOCKSTEP:      # (LOCKSTEP: make sim runs only the lockstep copy)
             _plot(cs, tr, ftr, REPORTS / f"closed_loop_{name}.png")
     else:
         fr = res["fault"]
@@ -1240,7 +1240,12 @@ def build_and_run(names: str, lockstep: bool = False):
 SIM_MS_PER_S = 13.0         # co-simulation speed on one core (build/reports/closed_loop_*.json), for the order
 
 
-@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.cost(5 + COSIM[n][1] * 1e3 / SIM_MS_PER_S))
+# The runs of LOCKSTEP (short and three fault runs) are in make sim as test_closed_loop_lockstep, which runs the
+# same scenario, seed and checks on the build with the ungated core copy beside (and writes the same report,
+# closed_loop_<name>_lockstep.json, and figure): their plain copies here would repeat those runs, so they
+# are make sim-full only.
+@pytest.mark.parametrize("name", [pytest.param(n, marks=[pytest.mark.cost(5 + COSIM[n][1] * 1e3 / SIM_MS_PER_S)]
+                                               + ([pytest.mark.full] if n in LOCKSTEP else []))
                                   for n in COSIM if n not in SOAK])
 def test_closed_loop(name):
     """RTL in the loop (Verilator): every compare value bit-exact against the model, the trajectory
