@@ -73,7 +73,8 @@ def build() -> dict:
         c = {"fault_bit": f.lsb, "maskable": f.name not in ("pstage", "clock", "coef", "watchdog", "overrun"),
              "pin_event": event, "tests": list(tests)}
         if run:
-            rep = _load(f"closed_loop_{run}.json")
+            # make sim runs some fault runs only as their lockstep copy (tb/test_closed_loop.py LOCKSTEP): same run
+            rep = _load(f"closed_loop_{run}.json") or _load(f"closed_loop_{run}_lockstep.json")
             c["co_simulation"] = f"tb/test_closed_loop.py cosim_fault_{run}"
             if rep is None or "fault" not in rep:
                 c["co_simulation_result"] = "missing: run tb/test_closed_loop.py"

@@ -77,9 +77,99 @@ def _verilator_runner(public_all: bool, timing: bool):
             if not public_all:
                 cmds[0] = [a for a in cmds[0] if a != "--public-flat-rw"]
             cmds[1] = list(cmds[1]) + MAKE_VARS + (MAKE_VARS_TIMING if timing else [])
+            self._empc_build_cmds = cmds
             return cmds
 
+        def _execute_cmds(self, cmds, cwd, stdout=None):
+            # the build: Verilator, then the Verilator runtime objects from the shared cache, then make
+            if cmds is not getattr(self, "_empc_build_cmds", None):
+                return super()._execute_cmds(cmds, cwd, stdout)
+            super()._execute_cmds(cmds[:1], cwd, stdout)
+            make = list(cmds[1])
+            key = _seed_runtime_objs(self.build_dir, make, self.env)
+            super()._execute_cmds(cmds[1:], cwd, stdout)
+            _store_runtime_objs(self.build_dir, key)
+
     return _Verilator()
+
+
+# The Verilator runtime (verilated.cpp, verilated_vpi.cpp, ... : VM_GLOBAL_FAST/SLOW of Vtop_classes.mk) is
+# the same C++ in every build with the same compile commands, about 16 CPU s of each build: it is compiled
+# once per command set and copied into the other build directories (BUILD/sim/_vlt_runtime/<key>).  The key
+# is the hash of the exact compile commands (``make -n -B``), the compiler and the runtime sources, so a
+# different flag, Verilator or compiler never reuses an object.  The model's own objects (and cocotb's
+# verilator.cpp main, which includes the model header) are always compiled.
+RUNTIME_CACHE = "_vlt_runtime"
+
+
+def _runtime_objs(build_dir: Path) -> list[str]:
+    names, grab = [], False
+    for line in (build_dir / "Vtop_classes.mk").read_text().splitlines():
+        s = line.strip()
+        if s.startswith(("VM_GLOBAL_FAST +=", "VM_GLOBAL_SLOW +=")):
+            grab = True
+            continue
+        if grab:
+            if not s or not s.endswith("\\"):
+                grab = False
+                continue
+            names.append(s.rstrip("\\").strip())
+    return [f"{n}.o" for n in names if n]
+
+
+def _seed_runtime_objs(build_dir: Path, make: list[str], env) -> str | None:
+    """Copy the cached runtime objects of this build's compile commands into ``build_dir`` (newer than
+    Vtop.mk, so make takes them as built); returns the cache key, or None if anything is unusual."""
+    import subprocess
+    try:
+        objs = _runtime_objs(build_dir)
+        if not objs:
+            return None
+        i = make.index("Vtop.mk")
+        dry = subprocess.run(["make", "-n", "-B", "--no-print-directory", "-f", "Vtop.mk"] + make[i + 1:] + objs,
+                             cwd=build_dir, env=env, capture_output=True, text=True, check=True).stdout
+        lines = [l for l in dry.splitlines() if " -c -o " in l]
+        dry = "\n".join(lines)
+        if len(lines) != len(objs):
+            return None
+        h = hashlib.sha1(dry.encode())
+        cxx = lines[0].split()[0]
+        h.update(subprocess.run([cxx, "--version"], env=env, capture_output=True, text=True).stdout.encode())
+        for line in lines:
+            src = Path(line.split()[-1])
+            h.update(src.read_bytes() if src.is_file() else b"<missing>")
+        key = h.hexdigest()[:16]
+        cached = BUILD / "sim" / RUNTIME_CACHE / key
+        if all((cached / o).is_file() for o in objs):
+            for o in objs:
+                for f in (o, o[:-2] + ".d"):
+                    if (cached / f).is_file():
+                        shutil.copyfile(cached / f, build_dir / f)      # mtime now: after Vtop.mk
+        return key
+    except (OSError, ValueError, subprocess.CalledProcessError):
+        return None
+
+
+def _store_runtime_objs(build_dir: Path, key: str | None) -> None:
+    if key is None:
+        return
+    cached = BUILD / "sim" / RUNTIME_CACHE / key
+    if cached.is_dir():
+        return
+    objs = _runtime_objs(build_dir)
+    if not all((build_dir / o).is_file() for o in objs):
+        return
+    tmp = cached.with_name(f"{key}.tmp{os.getpid()}")
+    shutil.rmtree(tmp, ignore_errors=True)
+    tmp.mkdir(parents=True)
+    for o in objs:
+        for f in (o, o[:-2] + ".d"):
+            if (build_dir / f).is_file():
+                shutil.copyfile(build_dir / f, tmp / f)
+    try:
+        tmp.rename(cached)              # atomic: another worker's complete copy may have won
+    except OSError:
+        shutil.rmtree(tmp, ignore_errors=True)
 
 
 def _digest(parts: list, files: list[Path]) -> str:

@@ -1146,7 +1146,7 @@ async def closed_loop(dut, name: str):
         assert report["rms_error_rtl_vs_float_rel"] < 0.10, report["rms_error_rtl_vs_float_rel"]
         assert res["status"]["CNT_OVERRUN"] == 0 and res["status"]["FAULT"] == 0, res["status"]
         assert res["status"]["CNT_ADC_MISS"] == 0, "PWM centre off the ADC frame grid"
-        if not cs.lockstep:
+        if not cs.lockstep or name in LOCKSTEP:      # (LOCKSTEP: make sim runs only the lockstep copy)
             _plot(cs, tr, ftr, REPORTS / f"closed_loop_{name}.png")
     else:
         fr = res["fault"]
@@ -1237,10 +1237,15 @@ def build_and_run(names: str, lockstep: bool = False):
         run_name=names.replace(",", "+"), extra_env={"EMPC_COSIM": names})
 
 
-SIM_MS_PER_S = 13.0         # co-simulation speed on one core (build/reports/closed_loop_*.json), for the order
+SIM_MS_PER_S = 9.5          # co-simulation speed on one idle core (README: 9.0-9.7 sim ms per CPU s), for the order
 
 
-@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.cost(5 + COSIM[n][1] * 1e3 / SIM_MS_PER_S))
+# The runs of LOCKSTEP (short and three fault runs) are in make sim as test_closed_loop_lockstep, which runs the
+# same scenario, seed and checks on the build with the ungated core copy beside (and writes the same report,
+# closed_loop_<name>_lockstep.json, and figure): their plain copies here would repeat those runs, so they
+# are make sim-full only.
+@pytest.mark.parametrize("name", [pytest.param(n, marks=[pytest.mark.cost(5 + COSIM[n][1] * 1e3 / SIM_MS_PER_S)]
+                                               + ([pytest.mark.full] if n in LOCKSTEP else []))
                                   for n in COSIM if n not in SOAK])
 def test_closed_loop(name):
     """RTL in the loop (Verilator): every compare value bit-exact against the model, the trajectory
@@ -1256,8 +1261,21 @@ def test_closed_loop_soak(name):
     build_and_run(name)
 
 
+LOCKSTEP_BUILD_S = 55      # the lockstep build (two MPC cores) on an idle core, charged to lockstep[short]
+
+
+def _lockstep_cost(n: str) -> float:
+    """lockstep[short] builds the lockstep model (its cost includes the build, so it starts early); the
+    lockstep fault runs are short and ordered after the plain fault runs (cost 5.5 < 5 + 6.5 ms / 9.5), so
+    that the build is done when they start instead of holding a second pytest-xdist worker on the build
+    lock (tb/runner.py)."""
+    if COSIM[n][2] is not None:
+        return 5.5
+    return 5 + COSIM[n][1] * 1e3 / SIM_MS_PER_S * 1.4 + (LOCKSTEP_BUILD_S if n == "short" else 0)
+
+
 @pytest.mark.parametrize("name", [
-    pytest.param(n, marks=[pytest.mark.cost(5 + COSIM[n][1] * 1e3 / SIM_MS_PER_S * 1.4)]
+    pytest.param(n, marks=[pytest.mark.cost(_lockstep_cost(n))]
                  + ([] if n in LOCKSTEP else [pytest.mark.full])) for n in COSIM])
 def test_closed_loop_lockstep(name):
     """The scenario with the gated MPC core next to an ungated copy: every output equal every clock

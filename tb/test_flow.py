@@ -504,6 +504,10 @@ def test_safety_report_from_the_test_reports(tmp_path, monkeypatch):
     assert rep["causes"]["pstage"]["proofs"]["out_kill/prove"] == "PASS"
     assert rep["bad_register_writes"]["refused_total"] == 7 and rep["formal"]["mutants_caught"] == 1
     assert "not present" in rep["bad_configurations"]
+    # a run make sim has only as its lockstep copy (tb/test_closed_loop.py LOCKSTEP) is read from that report
+    (tmp_path / "closed_loop_overcurrent.json").rename(tmp_path / "closed_loop_overcurrent_lockstep.json")
+    rep = safety_report.build()
+    assert rep["problems"] == [] and rep["causes"]["overcurrent"]["co_simulation_result"] == "pass"
     (tmp_path / "closed_loop_hall.json").unlink()
     entries["mpc_axis/mutant0:prove_pe"]["ok"] = False
     (tmp_path / "formal.json").write_text(json.dumps({"entries": entries}))

@@ -499,17 +499,17 @@ def _run(task: str, n: int = 4, periods: int | None = None):
         parameters={"N": n}, extra_env=env, testcase="random_periods")     # one Verilator build per N
 
 
-@pytest.mark.cost(25)          # Verilator build (shared by the two tasks) + 400 periods
+@pytest.mark.cost(50)          # Verilator build (shared by the two tasks) + 400 periods (costs: x 1/2.3 of a loaded make sim)
 def test_mx_seq_speed():
     _run("speed")
 
 
-@pytest.mark.cost(25)
+@pytest.mark.cost(45)          # below speed's and the horizons': starts after the shared build, not waiting on its lock
 def test_mx_seq_position():
     _run("position")
 
 
-@pytest.mark.cost(25)          # a Verilator build each + 150 periods
+@pytest.mark.cost(60)          # a Verilator build each + 150 periods
 @pytest.mark.parametrize("n", [1, 8])
 def test_mx_seq_horizons(n):
     """N = 1 and 8 (the law off: the boot image is N = 4's; every input word and compare value checked)."""
@@ -788,7 +788,7 @@ def hdr_stagger(na: int) -> int:
     return header.read(roms / "empc_formats.vh")[f"PWM_STAGGER_{na}"]
 
 
-@pytest.mark.cost(40)
+@pytest.mark.cost(70)
 @pytest.mark.parametrize("na,periods", [(4, 48)] + [pytest.param(n, None, marks=pytest.mark.full) for n in (2, 4)])
 def test_mx_seq_axes(na, periods):
     """NAXES axes, carriers staggered by EMPC_PWM_STAGGER_<NAXES>; then the same seed with the last axis's law
@@ -804,7 +804,7 @@ def test_mx_seq_axes(na, periods):
     assert base[str(na - 1)] != dropped[str(na - 1)], "the dropped axis's trace did not change"
 
 
-@pytest.mark.cost(30)
+@pytest.mark.cost(70)
 @pytest.mark.parametrize("na", [2, pytest.param(4, marks=pytest.mark.full)])
 def test_mx_seq_axes_in_phase(na):
     """The carriers in phase: the triggers meet, axes 1.. wait in the queue behind axis 0 (sample order, the

@@ -14,3 +14,4 @@ os.environ["PYTHONPATH"] = os.pathsep.join([str(ROOT / "gen")] + [p for p in os.
 
 def pytest_configure(config):
     config.addinivalue_line("markers", "full: long scenario, run by `make sim-full` only")
+    config.addinivalue_line("markers", "cost(seconds): estimated run time; make sim starts the costliest tests first")

@@ -51,6 +51,7 @@ def rep(testrun_uid):
     return r
 
 
+@pytest.mark.cost(25)          # the module fixture's comparison (24 s): started with the long tests
 def test_outputs_written(rep):
     d = json.loads((OUT / "compare.json").read_text())
     assert set(d["cases"]) == set(rep["cases"])

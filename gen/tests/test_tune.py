@@ -3,6 +3,8 @@ tables are a valid configuration whose design passes the check."""
 import copy
 import tomllib
 
+import pytest
+
 from empc import config, design, tune
 
 CFG = config.default()
@@ -33,6 +35,7 @@ def test_tune_reports_infeasible_specifications():
     assert not r.passed and "settling" in r.binding, r.binding
 
 
+@pytest.mark.cost(43)          # seconds on an idle core (clean-clone make sim): started with the long tests
 def test_refine_finds_control_period_weights_at_50_us():
     """The weights tuned at 250 us fail the check at 50 us (algorithm 2 speed: radius 1.155, a 3.7 kHz
     current mode); `empc tune --refine` finds per-element factors and the proportional weight Q_yp that
