@@ -158,8 +158,8 @@ module mx_seq #(
     reg  [NAXES-1:0]    ctl_next;   // the coming sample is a control sample (decided at the boundary)
     reg  [NAXES-1:0]    first;      // the axis's first period after rst
     reg  [NAXES-1:0]    tpend;      // a trigger waits in the job queue
-    reg  [NAXES-1:0]    th_wait, th_ok, adc_seen;
-    reg  [3*NAXES-1:0]  th_cnt;
+    reg  [NAXES-1:0]    th_ok, adc_seen;
+    reg  [THETA_LAT*NAXES-1:0] th_sr;   // the trigger delayed by 1..THETA_LAT clocks (the angle: at the last)
     wire [15:0]         lat_now;    // the job axis's clocks since its trigger, + 1 (at cmp_load: latency)
     reg  [PW*NAXES-1:0] pos_trig;
     reg  [AB*NAXES-1:0] th_trig;
@@ -186,7 +186,6 @@ module mx_seq #(
                 first[ga] <= 1'b1;
                 pos_trig[PW*ga +: PW] <= {PW{1'b0}};
                 th_trig[AB*ga +: AB] <= {AB{1'b0}};
-                th_wait[ga] <= 1'b0;
                 th_ok[ga] <= 1'b0;
                 adc_seen[ga] <= 1'b0;
             end else begin
@@ -199,7 +198,6 @@ module mx_seq #(
                 end
                 // ---- trigger: the count now, the angle THETA_LAT clocks later ----
                 if (trig[ga]) begin
-                    th_wait[ga] <= 1'b1;
                     th_ok[ga] <= 1'b0;
                     adc_seen[ga] <= 1'b0;
                     if (ctl_next[ga]) begin
@@ -208,9 +206,8 @@ module mx_seq #(
                     end
                 end
                 if (jst_oh[ga]) first[ga] <= 1'b0;
-                if (th_wait[ga] && th_cnt[3*ga +: 3] == 3'd0) begin
+                if (th_sr[THETA_LAT*ga + THETA_LAT - 1]) begin
                     th_trig[AB*ga +: AB] <= theta[AB*ga +: AB];
-                    th_wait[ga] <= 1'b0;
                     th_ok[ga] <= 1'b1;
                 end
                 if (busy_ax[ga] && adc_valid[ga]) adc_seen[ga] <= 1'b1;
@@ -221,10 +218,9 @@ module mx_seq #(
                 per_nx[8*ga +: 8] <= 8'd1;
             else if (trig[ga])
                 per_nx[8*ga +: 8] <= per_nx[8*ga +: 8] + 8'd1;
-            if (trig[ga])
-                th_cnt[3*ga +: 3] <= THETA_LAT[2:0] - 3'd1;
-            else if (th_wait[ga])
-                th_cnt[3*ga +: 3] <= th_cnt[3*ga +: 3] - 3'd1;
+            // no trigger of the axis while it waits (it is busy until its cmp_load, after the angle)
+            th_sr[THETA_LAT*ga +: THETA_LAT] <= rst ? {THETA_LAT{1'b0}} :
+                ((th_sr[THETA_LAT*ga +: THETA_LAT] << 1) | {{(THETA_LAT-1){1'b0}}, trig[ga]});
         end
     end endgenerate
     // latency: NAXES = 1 a counter from the trigger; NAXES > 1 one free-running clock count and the
