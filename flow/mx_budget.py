@@ -124,7 +124,7 @@ SHARED = [
 # row-name prefix -> {naxes: LUT}, and where the figure comes from (docs/blocks/<block>.md).
 MEASURED = {
     "mpc_core": ({1: 1164, 4: 1264}, "docs/blocks/mpc_core.md, piece 1"),
-    "mx_seq": ({1: 698, 4: 1343}, "docs/blocks/mx_seq.md, piece 5's sequencer (several axes)"),
+    "mx_seq": ({1: 685, 4: 1058}, "docs/blocks/mx_seq.md, piece 5's sequencer (several axes)"),
     "ref_gen": ({1: 212, 4: 323}, "docs/blocks/ref_gen.md, piece 2a"),
     "axis_status": ({1: 114, 4: 239}, "docs/blocks/axis_status.md, piece 2b"),
     "pos_sense": ({1: 214, 4: 409}, "docs/blocks/pos_sense.md, piece 4b (speed outputs open, as in mpc_axis)"),

@@ -279,11 +279,12 @@ module mpc_axis #(
     // trigger would mix the old task's words with the new bank for one control period)
     wire        ctl_boundary;
     wire [31:0] st_wdata;
+    /* verilator lint_off PINCONNECTEMPTY */    // job_axis: one axis, its registers are the ports
     mx_seq #(.N(N)) u_seq (
         .clk(clk), .rst(rst), .adc_trig(adc_trig), .period_start(period_start),
         .pwm_per_control(ctrl_pwm_per_control),
         .run(running), .theta(theta), .pos(pos), .pos_sample(pos_sample), .adc_valid(adc_valid),
-        .cur0(cur0), .cur1(cur1), .cur2(cur2), .kdc(kdc), .kacc(kacc), .kacc_shift(kacc_shift),
+        .cur0(cur0), .cur1(cur1), .cur2(cur2), .job_axis(), .kdc(kdc), .kacc(kacc), .kacc_shift(kacc_shift),
         .load_shift(kacc_load_shift),
         .id_ref(id_eff), .iq_ref(iq_ref), .task_pos(task_pos), .ctl_boundary(ctl_boundary),
         .ref_advance(ref_advance), .ref_ok(ref_ok),
@@ -293,6 +294,7 @@ module mpc_axis #(
         .cmp(cmp), .cmp_load(cmp_load), .control_done(control_done), .overrun(overrun),
         .front_sat(seq_front_sat), .latency(seq_latency), .i_d(st_id), .i_q(st_iq), .omega(omega),
         .theta_trig(theta_trig), .st_we(st_we), .st_addr(st_addr), .st_wdata(st_wdata), .stat_sweep(stat_sweep));
+    /* verilator lint_on PINCONNECTEMPTY */
 
     mpc_core #(.N(N), .BOOT_FILE(BOOT_FILE), .RSQRT_FILE(RSQRT_FILE)) u_core (
         .clk(clk), .rst(rst), .start(core_start), .in_we(core_in_we), .in_addr(core_in_addr),

@@ -38,9 +38,10 @@
 // axis first; the head starts in the clock of the running job's cmp_load; overrun[a] when a's boundary
 // meets a's job waiting or running; model rtlmodel.mx_seq.schedule_axes) latches the job's axis `ax`,
 // and every state RAM word, core input word ({ax, word}, start one-hot), status word ({ax, word}) and
-// the per-axis registers and measurements (vectors, element a at [a*W +: W]) are the job axis's.  The
-// held u / ebar(k-1) of each axis are copied at its core_done (the core's outputs are the last
-// update's, of any axis).  One reference prefetch engine reads the axis of its latch (rd_age =
+// the per-axis measurements (vectors, element a at [a*W +: W]) are the job axis's; the registers (KDC,
+// KACC, kacc_shift, load_shift, ID_REF, IQ_REF) come from outside, read at job_axis = ax (the register
+// block's LUT RAM {axis, reg}).  The held u / ebar(k-1) of each axis are copied at its core_done into a
+// block RAM word of the axis (the core's outputs are the last update's, of any axis).  One reference prefetch engine reads the axis of its latch (rd_age =
 // {axis, age}), the lowest ready axis first.  NAXES = 1: the one-axis ports and behaviour, clock-exact.
 //
 // Ports: as ctrl_seq's, except the status words: st_we / st_addr / st_wdata write one 32-bit word
@@ -79,13 +80,15 @@ module mx_seq #(
     input  wire [(`EMPC_ADC_BITS+1)*NAXES-1:0] cur0,
     input  wire [(`EMPC_ADC_BITS+1)*NAXES-1:0] cur1,
     input  wire [(`EMPC_ADC_BITS+1)*NAXES-1:0] cur2,
-    // registers (per axis)
-    input  wire [18*NAXES-1:0]            kdc,
-    input  wire [18*NAXES-1:0]            kacc,            // signed 18 bit each
-    input  wire [5*NAXES-1:0]             kacc_shift,
-    input  wire [4*NAXES-1:0]             load_shift,
-    input  wire [`EMPC_I_W*NAXES-1:0]     id_ref,          // signed each
-    input  wire [`EMPC_I_W*NAXES-1:0]     iq_ref,
+    // registers of the job's axis: read at job_axis = {axis} from the register block (docs/four_axes.md
+    // 2.1: a LUT RAM {axis, reg} whose read address is job_axis; NAXES = 1: the axis's registers)
+    output wire [AXB-1:0]                 job_axis,
+    input  wire [17:0]                    kdc,
+    input  wire [17:0]                    kacc,            // signed 18 bit
+    input  wire [4:0]                     kacc_shift,
+    input  wire [3:0]                     load_shift,
+    input  wire [`EMPC_I_W-1:0]           id_ref,          // signed
+    input  wire [`EMPC_I_W-1:0]           iq_ref,
     input  wire [NAXES-1:0]               task_pos,
     // reference generator (ref_gen NAXES: per-axis strobes, the axis in the high bits of rd_age)
     output wire [NAXES-1:0]               ctl_boundary,    // boundary before a control sample (pulse)
@@ -155,8 +158,8 @@ module mx_seq #(
     reg  [NAXES-1:0]    ctl_next;   // the coming sample is a control sample (decided at the boundary)
     reg  [NAXES-1:0]    first;      // the axis's first period after rst
     reg  [NAXES-1:0]    tpend;      // a trigger waits in the job queue
-    reg  [NAXES-1:0]    th_wait, th_ok, adc_seen;
-    reg  [3*NAXES-1:0]  th_cnt;
+    reg  [NAXES-1:0]    th_ok, adc_seen;
+    reg  [THETA_LAT*NAXES-1:0] th_sr;   // the trigger delayed by 1..THETA_LAT clocks (the angle: at the last)
     wire [15:0]         lat_now;    // the job axis's clocks since its trigger, + 1 (at cmp_load: latency)
     reg  [PW*NAXES-1:0] pos_trig;
     reg  [AB*NAXES-1:0] th_trig;
@@ -183,7 +186,6 @@ module mx_seq #(
                 first[ga] <= 1'b1;
                 pos_trig[PW*ga +: PW] <= {PW{1'b0}};
                 th_trig[AB*ga +: AB] <= {AB{1'b0}};
-                th_wait[ga] <= 1'b0;
                 th_ok[ga] <= 1'b0;
                 adc_seen[ga] <= 1'b0;
             end else begin
@@ -196,7 +198,6 @@ module mx_seq #(
                 end
                 // ---- trigger: the count now, the angle THETA_LAT clocks later ----
                 if (trig[ga]) begin
-                    th_wait[ga] <= 1'b1;
                     th_ok[ga] <= 1'b0;
                     adc_seen[ga] <= 1'b0;
                     if (ctl_next[ga]) begin
@@ -205,9 +206,8 @@ module mx_seq #(
                     end
                 end
                 if (jst_oh[ga]) first[ga] <= 1'b0;
-                if (th_wait[ga] && th_cnt[3*ga +: 3] == 3'd0) begin
+                if (th_sr[THETA_LAT*ga + THETA_LAT - 1]) begin
                     th_trig[AB*ga +: AB] <= theta[AB*ga +: AB];
-                    th_wait[ga] <= 1'b0;
                     th_ok[ga] <= 1'b1;
                 end
                 if (busy_ax[ga] && adc_valid[ga]) adc_seen[ga] <= 1'b1;
@@ -218,10 +218,9 @@ module mx_seq #(
                 per_nx[8*ga +: 8] <= 8'd1;
             else if (trig[ga])
                 per_nx[8*ga +: 8] <= per_nx[8*ga +: 8] + 8'd1;
-            if (trig[ga])
-                th_cnt[3*ga +: 3] <= THETA_LAT[2:0] - 3'd1;
-            else if (th_wait[ga])
-                th_cnt[3*ga +: 3] <= th_cnt[3*ga +: 3] - 3'd1;
+            // no trigger of the axis while it waits (it is busy until its cmp_load, after the angle)
+            th_sr[THETA_LAT*ga +: THETA_LAT] <= rst ? {THETA_LAT{1'b0}} :
+                ((th_sr[THETA_LAT*ga +: THETA_LAT] << 1) | {{(THETA_LAT-1){1'b0}}, trig[ga]});
         end
     end endgenerate
     // latency: NAXES = 1 a counter from the trigger; NAXES > 1 one free-running clock count and the
@@ -314,12 +313,13 @@ module mx_seq #(
     wire [CUW-1:0] j_cur0  = cur0[CUW*ax +: CUW];
     wire [CUW-1:0] j_cur1  = cur1[CUW*ax +: CUW];
     wire [CUW-1:0] j_cur2  = cur2[CUW*ax +: CUW];
-    wire [17:0]    j_kdc   = kdc[18*ax +: 18];
-    wire [17:0]    j_kacc  = kacc[18*ax +: 18];
-    wire [4:0]     j_ksh   = kacc_shift[5*ax +: 5];
-    wire [3:0]     j_lsh   = load_shift[4*ax +: 4];
-    wire [IW-1:0]  j_idr   = id_ref[IW*ax +: IW];
-    wire [IW-1:0]  j_iqr   = iq_ref[IW*ax +: IW];
+    assign job_axis = ax;           // the register block reads the job axis's registers at it
+    wire [17:0]    j_kdc   = kdc;
+    wire [17:0]    j_kacc  = kacc;
+    wire [4:0]     j_ksh   = kacc_shift;
+    wire [3:0]     j_lsh   = load_shift;
+    wire [IW-1:0]  j_idr   = id_ref;
+    wire [IW-1:0]  j_iqr   = iq_ref;
     wire           j_run   = run[ax];
     wire           j_adc   = adc_seen[ax];
     wire           j_thok  = th_ok[ax];
@@ -437,15 +437,22 @@ module mx_seq #(
         assign ebar_h = core_ebar;
     end else begin : g_holdn
         reg  [NAXES-1:0] zeroed;
-        reg  [2*UW+3*SW-1:0] hold [0:NAXES-1];      // {ebar, u} per axis
-        wire [2*UW+3*SW-1:0] hq = hold[ax];
-        always @(posedge clk) if (core_done) hold[ax] <= {core_ebar, core_u};
+        // block RAM (4 RAMB8 of 36 bits, one word {ebar, u} per axis; 96 LUT as LUT RAM), read
+        // registered at the job axis and cleared (the RAMs' output reset) while zeroed: hq is the word
+        // of ax, 0 while zeroed[ax], from the second clock after its write or a job start (the program
+        // reads u >= 2 clocks after core_done, u and ebar >= 6 after a job start, ebar never at a done)
+        (* ram_style = "block" *) reg [2*UW+3*SW-1:0] hold [0:NAXES-1];
+        reg  [2*UW+3*SW-1:0] hq;
+        always @(posedge clk) begin
+            if (core_done) hold[ax] <= {core_ebar, core_u};
+            hq <= zeroed_nx[ax] ? {(2*UW+3*SW){1'b0}} : hold[ax];
+        end
         integer zi;
         always @(posedge clk)
             for (zi = 0; zi < NAXES; zi = zi + 1)
                 zeroed[zi] <= rst ? 1'b1 : (core_done && ax_oh[zi]) ? 1'b0 : (!run[zi] ? 1'b1 : zeroed[zi]);
-        assign u_st0 = zeroed[ax] ? {UW{1'b0}} : hq[0 +: UW];
-        assign u_st1 = zeroed[ax] ? {UW{1'b0}} : hq[UW +: UW];
+        assign u_st0 = hq[0 +: UW];
+        assign u_st1 = hq[UW +: UW];
         assign zeroed_nx = rst ? {NAXES{1'b1}} : ~(ax_oh & {NAXES{core_done}}) & (~run | zeroed);
         assign ebar_h = hq[2*UW +: 3*SW];
     end endgenerate
@@ -509,7 +516,6 @@ module mx_seq #(
     reg  [IW-1:0] g_id, g_iq, g_idr, g_iqr;
     reg  [UW-1:0] g_u0, g_u1;
     reg  [SW-1:0] g_e0, g_e1, g_e2, g_om;
-    reg  [35:0]   g_pr;
     reg  [SHW-1:0] g_sh;
     reg           g_p;
     reg  signed [SHW-1:0] sh;               // serial shifter
@@ -526,7 +532,6 @@ module mx_seq #(
         g_e1  <= (issue && i_as == AS_E1 && !zeroed_nx[ax]) ? ebar_h[1*SW +: SW] : {SW{1'b0}};
         g_e2  <= (issue && i_as == AS_E2 && !zeroed_nx[ax]) ? ebar_h[2*SW +: SW] : {SW{1'b0}};
         g_om  <= (issue && i_as == AS_OMR) ? omega : {SW{1'b0}};
-        g_pr  <= (issue && i_as == AS_PR)  ? pr : 36'd0;
         g_sh  <= (issue && i_as == AS_SH)  ? sh : {SHW{1'b0}};
         g_p   <= issue && i_as == AS_P;
     end
@@ -575,7 +580,7 @@ module mx_seq #(
                           {{(XW-IW){g_id[IW-1] | g_iq[IW-1] | g_idr[IW-1] | g_iqr[IW-1]}}, g_id | g_iq | g_idr | g_iqr} |
                           {{(XW-UW){g_u0[UW-1] | g_u1[UW-1]}}, g_u0 | g_u1} |
                           {{(XW-SW){g_e0[SW-1] | g_e1[SW-1] | g_e2[SW-1] | g_om[SW-1]}}, g_e0 | g_e1 | g_e2 | g_om} |
-                          {{(XW-36){g_pr[35]}}, g_pr} | {{(XW-SHW){g_sh[SHW-1]}}, g_sh} | p_fwd;
+                          {{(XW-SHW){g_sh[SHW-1]}}, g_sh} | p_fwd;
     wire [XW-1:0] a_sh  = a_or;
     reg  [XW-1:0] b_op;
     always @(*) begin
@@ -642,11 +647,12 @@ module mx_seq #(
         else if (wen && w_dk == DK_OMR) omega <= w32;
         if (wen && w_dk == DK_THM) th_mod <= w32[AB-1:0];
     end
-    // serial shifter: loaded with R, then count steps of an arithmetic right shift (sh_r: the bit out)
+    // serial shifter: loaded with R (SHKA: with kacc * i_q, xform's product, held since the front: no A stage for
+    // it), then count steps of an arithmetic right shift (sh_r: the bit out)
     reg  [4:0]    sh_cnt;
     always @(posedge clk) begin
         if (wen && (w_dk == DK_SHKA || w_dk == DK_SHT2)) begin
-            sh <= r[SHW-1:0];
+            sh <= (w_dk == DK_SHKA) ? {{(SHW-36){pr[35]}}, pr} : r[SHW-1:0];
             sh_r <= 1'b0;
             sh_cnt <= (w_dk == DK_SHKA) ? j_ksh : ({1'b0, j_lsh} + 5'd1);
             sh_busy <= (w_dk == DK_SHKA) ? (j_ksh != 5'd0) : 1'b1;

@@ -35,7 +35,7 @@ if (N == 1) begin
     rom[29] = 36'h042451818;   // 29 dx0 = i_d - i_d,prev
     rom[30] = 36'h012400020;   // 30 y1 = i_q
     rom[31] = 36'h052461820;   // 31 dx1 = i_q - i_q,prev
-    rom[32] = 36'h00cc00060;   // 32 shifter = kacc * i_q, kacc_shift steps
+    rom[32] = 36'h00c400000;   // 32 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
     rom[33] = 36'h000400000;   // 33 (pipeline gap)
     rom[34] = 36'h000400000;   // 34 (pipeline gap)
     rom[35] = 36'h00060806c;   // 35 WSH P = ka = rshift_round(kacc i_q, s)
@@ -95,7 +95,7 @@ if (N == 1) begin
     rom[126] = 36'h042451818;   // 126 dx0 = i_d - i_d,prev
     rom[127] = 36'h012400020;   // 127 y1 = i_q
     rom[128] = 36'h052461820;   // 128 dx1 = i_q - i_q,prev
-    rom[129] = 36'h00cc00060;   // 129 shifter = kacc * i_q, kacc_shift steps
+    rom[129] = 36'h00c400000;   // 129 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
     rom[130] = 36'h000400000;   // 130 (pipeline gap)
     rom[131] = 36'h000400000;   // 131 (pipeline gap)
     rom[132] = 36'h00060806c;   // 132 WSH P = ka = rshift_round(kacc i_q, s)
@@ -171,7 +171,7 @@ if (N == 2) begin
     rom[33] = 36'h042451818;   // 33 dx0 = i_d - i_d,prev
     rom[34] = 36'h012400020;   // 34 y1 = i_q
     rom[35] = 36'h052461820;   // 35 dx1 = i_q - i_q,prev
-    rom[36] = 36'h00cc00060;   // 36 shifter = kacc * i_q, kacc_shift steps
+    rom[36] = 36'h00c400000;   // 36 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
     rom[37] = 36'h000400000;   // 37 (pipeline gap)
     rom[38] = 36'h000400000;   // 38 (pipeline gap)
     rom[39] = 36'h00060806c;   // 39 WSH P = ka = rshift_round(kacc i_q, s)
@@ -235,7 +235,7 @@ if (N == 2) begin
     rom[130] = 36'h042451818;   // 130 dx0 = i_d - i_d,prev
     rom[131] = 36'h012400020;   // 131 y1 = i_q
     rom[132] = 36'h052461820;   // 132 dx1 = i_q - i_q,prev
-    rom[133] = 36'h00cc00060;   // 133 shifter = kacc * i_q, kacc_shift steps
+    rom[133] = 36'h00c400000;   // 133 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
     rom[134] = 36'h000400000;   // 134 (pipeline gap)
     rom[135] = 36'h000400000;   // 135 (pipeline gap)
     rom[136] = 36'h00060806c;   // 136 WSH P = ka = rshift_round(kacc i_q, s)
@@ -315,7 +315,7 @@ if (N == 3) begin
     rom[37] = 36'h042451818;   // 37 dx0 = i_d - i_d,prev
     rom[38] = 36'h012400020;   // 38 y1 = i_q
     rom[39] = 36'h052461820;   // 39 dx1 = i_q - i_q,prev
-    rom[40] = 36'h00cc00060;   // 40 shifter = kacc * i_q, kacc_shift steps
+    rom[40] = 36'h00c400000;   // 40 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
     rom[41] = 36'h000400000;   // 41 (pipeline gap)
     rom[42] = 36'h000400000;   // 42 (pipeline gap)
     rom[43] = 36'h00060806c;   // 43 WSH P = ka = rshift_round(kacc i_q, s)
@@ -383,7 +383,7 @@ if (N == 3) begin
     rom[134] = 36'h042451818;   // 134 dx0 = i_d - i_d,prev
     rom[135] = 36'h012400020;   // 135 y1 = i_q
     rom[136] = 36'h052461820;   // 136 dx1 = i_q - i_q,prev
-    rom[137] = 36'h00cc00060;   // 137 shifter = kacc * i_q, kacc_shift steps
+    rom[137] = 36'h00c400000;   // 137 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
     rom[138] = 36'h000400000;   // 138 (pipeline gap)
     rom[139] = 36'h000400000;   // 139 (pipeline gap)
     rom[140] = 36'h00060806c;   // 140 WSH P = ka = rshift_round(kacc i_q, s)
@@ -467,7 +467,7 @@ if (N == 4) begin
     rom[41] = 36'h042451818;   // 41 dx0 = i_d - i_d,prev
     rom[42] = 36'h012400020;   // 42 y1 = i_q
     rom[43] = 36'h052461820;   // 43 dx1 = i_q - i_q,prev
-    rom[44] = 36'h00cc00060;   // 44 shifter = kacc * i_q, kacc_shift steps
+    rom[44] = 36'h00c400000;   // 44 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
     rom[45] = 36'h000400000;   // 45 (pipeline gap)
     rom[46] = 36'h000400000;   // 46 (pipeline gap)
     rom[47] = 36'h00060806c;   // 47 WSH P = ka = rshift_round(kacc i_q, s)
@@ -539,7 +539,7 @@ if (N == 4) begin
     rom[138] = 36'h042451818;   // 138 dx0 = i_d - i_d,prev
     rom[139] = 36'h012400020;   // 139 y1 = i_q
     rom[140] = 36'h052461820;   // 140 dx1 = i_q - i_q,prev
-    rom[141] = 36'h00cc00060;   // 141 shifter = kacc * i_q, kacc_shift steps
+    rom[141] = 36'h00c400000;   // 141 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
     rom[142] = 36'h000400000;   // 142 (pipeline gap)
     rom[143] = 36'h000400000;   // 143 (pipeline gap)
     rom[144] = 36'h00060806c;   // 144 WSH P = ka = rshift_round(kacc i_q, s)
@@ -627,7 +627,7 @@ if (N == 5) begin
     rom[45] = 36'h042451818;   // 45 dx0 = i_d - i_d,prev
     rom[46] = 36'h012400020;   // 46 y1 = i_q
     rom[47] = 36'h052461820;   // 47 dx1 = i_q - i_q,prev
-    rom[48] = 36'h00cc00060;   // 48 shifter = kacc * i_q, kacc_shift steps
+    rom[48] = 36'h00c400000;   // 48 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
     rom[49] = 36'h000400000;   // 49 (pipeline gap)
     rom[50] = 36'h000400000;   // 50 (pipeline gap)
     rom[51] = 36'h00060806c;   // 51 WSH P = ka = rshift_round(kacc i_q, s)
@@ -703,7 +703,7 @@ if (N == 5) begin
     rom[142] = 36'h042451818;   // 142 dx0 = i_d - i_d,prev
     rom[143] = 36'h012400020;   // 143 y1 = i_q
     rom[144] = 36'h052461820;   // 144 dx1 = i_q - i_q,prev
-    rom[145] = 36'h00cc00060;   // 145 shifter = kacc * i_q, kacc_shift steps
+    rom[145] = 36'h00c400000;   // 145 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
     rom[146] = 36'h000400000;   // 146 (pipeline gap)
     rom[147] = 36'h000400000;   // 147 (pipeline gap)
     rom[148] = 36'h00060806c;   // 148 WSH P = ka = rshift_round(kacc i_q, s)
@@ -795,7 +795,7 @@ if (N == 6) begin
     rom[49] = 36'h042451818;   // 49 dx0 = i_d - i_d,prev
     rom[50] = 36'h012400020;   // 50 y1 = i_q
     rom[51] = 36'h052461820;   // 51 dx1 = i_q - i_q,prev
-    rom[52] = 36'h00cc00060;   // 52 shifter = kacc * i_q, kacc_shift steps
+    rom[52] = 36'h00c400000;   // 52 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
     rom[53] = 36'h000400000;   // 53 (pipeline gap)
     rom[54] = 36'h000400000;   // 54 (pipeline gap)
     rom[55] = 36'h00060806c;   // 55 WSH P = ka = rshift_round(kacc i_q, s)
@@ -875,7 +875,7 @@ if (N == 6) begin
     rom[146] = 36'h042451818;   // 146 dx0 = i_d - i_d,prev
     rom[147] = 36'h012400020;   // 147 y1 = i_q
     rom[148] = 36'h052461820;   // 148 dx1 = i_q - i_q,prev
-    rom[149] = 36'h00cc00060;   // 149 shifter = kacc * i_q, kacc_shift steps
+    rom[149] = 36'h00c400000;   // 149 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
     rom[150] = 36'h000400000;   // 150 (pipeline gap)
     rom[151] = 36'h000400000;   // 151 (pipeline gap)
     rom[152] = 36'h00060806c;   // 152 WSH P = ka = rshift_round(kacc i_q, s)
@@ -971,7 +971,7 @@ if (N == 7) begin
     rom[53] = 36'h042451818;   // 53 dx0 = i_d - i_d,prev
     rom[54] = 36'h012400020;   // 54 y1 = i_q
     rom[55] = 36'h052461820;   // 55 dx1 = i_q - i_q,prev
-    rom[56] = 36'h00cc00060;   // 56 shifter = kacc * i_q, kacc_shift steps
+    rom[56] = 36'h00c400000;   // 56 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
     rom[57] = 36'h000400000;   // 57 (pipeline gap)
     rom[58] = 36'h000400000;   // 58 (pipeline gap)
     rom[59] = 36'h00060806c;   // 59 WSH P = ka = rshift_round(kacc i_q, s)
@@ -1055,7 +1055,7 @@ if (N == 7) begin
     rom[150] = 36'h042451818;   // 150 dx0 = i_d - i_d,prev
     rom[151] = 36'h012400020;   // 151 y1 = i_q
     rom[152] = 36'h052461820;   // 152 dx1 = i_q - i_q,prev
-    rom[153] = 36'h00cc00060;   // 153 shifter = kacc * i_q, kacc_shift steps
+    rom[153] = 36'h00c400000;   // 153 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
     rom[154] = 36'h000400000;   // 154 (pipeline gap)
     rom[155] = 36'h000400000;   // 155 (pipeline gap)
     rom[156] = 36'h00060806c;   // 156 WSH P = ka = rshift_round(kacc i_q, s)
@@ -1155,7 +1155,7 @@ if (N == 8) begin
     rom[57] = 36'h042451818;   // 57 dx0 = i_d - i_d,prev
     rom[58] = 36'h012400020;   // 58 y1 = i_q
     rom[59] = 36'h052461820;   // 59 dx1 = i_q - i_q,prev
-    rom[60] = 36'h00cc00060;   // 60 shifter = kacc * i_q, kacc_shift steps
+    rom[60] = 36'h00c400000;   // 60 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
     rom[61] = 36'h000400000;   // 61 (pipeline gap)
     rom[62] = 36'h000400000;   // 62 (pipeline gap)
     rom[63] = 36'h00060806c;   // 63 WSH P = ka = rshift_round(kacc i_q, s)
@@ -1243,7 +1243,7 @@ if (N == 8) begin
     rom[154] = 36'h042451818;   // 154 dx0 = i_d - i_d,prev
     rom[155] = 36'h012400020;   // 155 y1 = i_q
     rom[156] = 36'h052461820;   // 156 dx1 = i_q - i_q,prev
-    rom[157] = 36'h00cc00060;   // 157 shifter = kacc * i_q, kacc_shift steps
+    rom[157] = 36'h00c400000;   // 157 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
     rom[158] = 36'h000400000;   // 158 (pipeline gap)
     rom[159] = 36'h000400000;   // 159 (pipeline gap)
     rom[160] = 36'h00060806c;   // 160 WSH P = ka = rshift_round(kacc i_q, s)

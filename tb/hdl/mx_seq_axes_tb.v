@@ -71,6 +71,7 @@ module mx_seq_axes_tb #(
     wire [10:0] core_flags; wire [7:0] core_latency; wire core_busy, core_boot_ok;
     wire [NAXES-1:0] core_bank;
     wire [17:0] i_d, i_q; wire [31:0] omega; wire [15:0] theta_trig; wire [31:0] seg_rdata;
+    wire [AXP-1:0] job_axis;         // the register block's read address (here: the vectors' element)
     wire st_we; wire [5+AXP:0] st_addr; wire [31:0] st_wdata; wire [35:0] cmp;
     generate for (a = 0; a < NAXES; a = a + 1) begin : g_sync
         assign sync_bit[a] = sync_val[64 * a + sync_idx];
@@ -82,8 +83,10 @@ module mx_seq_axes_tb #(
         .task_pos(task_pos), .gov_ev());
     mx_seq #(.N(N), .NAXES(NAXES)) u_seq (.clk(clk), .rst(rst), .adc_trig(adc_trig), .period_start(period_start),
         .pwm_per_control(ppc), .run(run), .theta(theta), .pos(pos), .pos_sample(pos_sample), .adc_valid(adc_valid),
-        .cur0(cur0), .cur1(cur1), .cur2(cur2), .kdc(kdc), .kacc(kacc), .kacc_shift(kacc_shift),
-        .load_shift(load_shift), .id_ref(id_ref), .iq_ref(iq_ref), .task_pos(task_pos),
+        .cur0(cur0), .cur1(cur1), .cur2(cur2), .job_axis(job_axis), .kdc(kdc[18*job_axis +: 18]),
+        .kacc(kacc[18*job_axis +: 18]), .kacc_shift(kacc_shift[5*job_axis +: 5]),
+        .load_shift(load_shift[4*job_axis +: 4]), .id_ref(id_ref[18*job_axis +: 18]),
+        .iq_ref(iq_ref[18*job_axis +: 18]), .task_pos(task_pos),
         .ctl_boundary(ctl_boundary), .ref_advance(ref_advance), .ref_ok(ref_ok), .ref_age(ref_age),
         .ref_bit(ref_bit), .ref_q(ref_q), .core_start(core_start), .core_in_we(core_in_we),
         .core_in_addr(core_in_addr), .core_in_wdata(core_in_wdata), .core_done(core_done), .core_u(core_u),

@@ -37,7 +37,7 @@ module mx_seq_tb #(
         .gov_ev());
     mx_seq #(.N(N)) u_seq (.clk(clk), .rst(rst), .adc_trig(adc_trig), .period_start(period_start),
         .pwm_per_control(ppc), .run(run), .theta(theta), .pos(pos), .pos_sample(pos_sample), .adc_valid(adc_valid),
-        .cur0(cur0), .cur1(cur1), .cur2(cur2), .kdc(kdc), .kacc(kacc), .kacc_shift(kacc_shift),
+        .cur0(cur0), .cur1(cur1), .cur2(cur2), .job_axis(), .kdc(kdc), .kacc(kacc), .kacc_shift(kacc_shift),
         .load_shift(load_shift), .id_ref(id_ref), .iq_ref(iq_ref), .task_pos(task_pos), .ctl_boundary(ctl_boundary), .ref_advance(ref_advance),
         .ref_ok(ref_ok), .ref_age(ref_age), .ref_bit(ref_bit), .ref_q(ref_q), .core_start(core_start),
         .core_in_we(core_in_we), .core_in_addr(core_in_addr), .core_in_wdata(core_in_wdata), .core_done(core_done),

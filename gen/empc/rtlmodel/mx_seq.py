@@ -34,7 +34,7 @@ from . import mpc_core as core
 # ---- microword ----------------------------------------------------------------------------
 CTL = {"OP": 0, "WTH": 1, "WREF": 2, "WFRONT": 3, "WSH": 4, "START": 5, "WCORE": 6, "END": 7}
 ASEL = {"NONE": 0, "POS": 1, "TH": 2, "ID": 3, "IQ": 4, "IDR": 5, "IQR": 6, "U0": 7, "U1": 8, "E0": 9,
-        "E1": 10, "E2": 11, "PR": 12, "SH": 13, "OMR": 14, "P": 15}
+        "E1": 10, "E2": 11, "SH": 13, "OMR": 14, "P": 15}      # 12: was PR (SHKA loads the product itself)
 ASH = {0: 0, 1: 1, 8: 2, 16: 3}
 BM = {"ZERO": 0, "Q": 1, "HI16": 2, "HI24": 3}
 WM = {"SAT32": 0, "WRAP32": 1, "WRAP36": 2, "FULL": 3}
@@ -182,7 +182,7 @@ def _dependent_ops(task_pos: bool) -> list[Op]:
             Op(a="ID", nb=True, bm="Q", rb="ID_PREV", dk="CORE", da=core.IN_DX + 0, note="dx0 = i_d - i_d,prev"),
             Op(a="IQ", dk="CORE", da=core.IN_Y + 1, note="y1 = i_q"),
             Op(a="IQ", nb=True, bm="Q", rb="IQ_PREV", dk="CORE", da=core.IN_DX + 1, note="dx1 = i_q - i_q,prev"),
-            Op(a="PR", wm="FULL", dk="SHKA", note="shifter = kacc * i_q, kacc_shift steps"),
+            Op(dk="SHKA", note="shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps"),
             Op("WSH", "SH", cr=True, pe=True, note="P = ka = rshift_round(kacc i_q, s)"),
             Op(a="P", nb=True, bm="Q", rb="D", pe=True, note="P = u1 = ka - D"),
             Op(a="P", bm="Q", rb="SPD", wm="SAT32", fs=True, dk="OMR", note="omega = sat32(spd + u1)"),
@@ -414,7 +414,7 @@ def run_job(kind: str, n: int, ram: dict, ctx: Ctx, timing: dict | None = None) 
     prog = program(kind, n)
     src = {"NONE": 0, "POS": ctx.pos & 0xFFFFFFFF, "TH": ctx.theta, "ID": ctx.i_d, "IQ": ctx.i_q,
            "IDR": ctx.id_ref, "IQR": ctx.iq_ref, "U0": ctx.u[0], "U1": ctx.u[1], "E0": ctx.ebar[0], "E1": ctx.ebar[1],
-           "E2": ctx.ebar[2], "PR": ctx.kacc * ctx.i_q}
+           "E2": ctx.ebar[2]}
     out = {"core": {}, "stat": {}, "thm": None, "fs": False, "omr": None, "wcore": None}
     regs = {"P": 0, "OMR": 0, "SH": 0, "r": 0, "sh_left": 0, "THM": 0}
     pending = []               # (clock at whose end it lands, what)
@@ -496,8 +496,8 @@ def run_job(kind: str, n: int, ram: dict, ctx: Ctx, timing: dict | None = None) 
                     elif op.dk == "THM":
                         regs["THM"] = wv & 0xFFFF
                         out["thm"] = regs["THM"]
-                    elif op.dk in ("SHKA", "SHT2"):
-                        regs["SH"] = F.wrap(wv, SH_W)
+                    elif op.dk in ("SHKA", "SHT2"):   # SHKA: the product kacc * i_q, not R
+                        regs["SH"] = F.wrap(ctx.kacc * ctx.i_q if op.dk == "SHKA" else wv, SH_W)
                         regs["r"] = 0
                         regs["sh_left"] = ctx.kacc_shift if op.dk == "SHKA" else ctx.load_shift + 1
                         regs["sh_load"] = True
