@@ -45,6 +45,11 @@ $(STAMP): requirements.txt pyproject.toml
 
 check-tools:
 	@command -v iverilog >/dev/null || { echo "Icarus Verilog not found. Install it with: sudo apt-get install -y iverilog"; exit 1; }
+	@# the firmware header / driver cross-build of gen/tests/test_fw.py: installed here where we may (root with
+	@# apt, about 30 s), else named; without it that test builds for the host only and says why it skipped
+	@command -v arm-none-eabi-gcc >/dev/null || { [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null && \
+	  { apt-get update -qq && apt-get install -y -qq --no-install-recommends gcc-arm-none-eabi >/dev/null; } ; } || \
+	  echo "note: arm-none-eabi-gcc not found (sudo apt-get install -y gcc-arm-none-eabi); test_fw cross-build skipped"
 
 roms: $(STAMP) ## coefficient ROMs, Verilog header and manifest for CONFIG (default: BLWR233D, paper 000)
 	$(EMPC) roms $(CONFIG_ARG) --out $(ROMS)
