@@ -18,6 +18,7 @@ import random
 from dataclasses import replace
 
 import cocotb
+import pytest
 from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge
 
@@ -725,6 +726,7 @@ async def test_phase_steady(dut):
     dut._log.info("PHASE %d steady: shift checks %s; %d clocks of hi/lo/on shifted; cmp %s", PHASE, n, cmpd, cm)
 
 
+@pytest.mark.cost(12)          # seconds on an idle core (make sim starts the costliest first)
 def test_pwm_center_phase():
     """The carrier stagger at P = 13: PHASE < P, = P, > P (one with SYNC_STAGES = 2)."""
     for ph, ss in ((5, 0), (13, 0), (20, 2)):
@@ -732,6 +734,7 @@ def test_pwm_center_phase():
              DEAD_W=4, SYNC_STAGES=ss, SYNC_LEAD=2, PHASE=ph)
 
 
+@pytest.mark.cost(11)          # seconds on an idle core (make sim starts the costliest first)
 def test_pwm_center_phase_default():
     """Default P (2500) with axis 1 and axis 3 of the four-axis stagger (header PWM_STAGGER_4)."""
     from empc.rtlmodel.pwm_center import default_half_period

@@ -41,6 +41,7 @@ import os
 import random
 
 import cocotb
+import pytest
 from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, FallingEdge, Timer
 
@@ -512,12 +513,14 @@ async def governor(dut):
     dut._log.info("governor: %d checks, %d clamps", checks, env.model_ev)
 
 
+@pytest.mark.cost(150)          # seconds on an idle core (make sim starts the costliest first)
 def test_ref_gen():
     from runner import run
     run(toplevel="ref_gen", test_module="test_ref_gen", parameters=PARAMS,
         extra_env={"TB_PARAMS": json.dumps(PARAMS)})
 
 
+@pytest.mark.cost(17)          # seconds on an idle core (make sim starts the costliest first)
 def test_ref_gen_governed():
     from runner import run
     run(toplevel="ref_gen", test_module="test_ref_gen", parameters=PARAMS,
@@ -552,6 +555,7 @@ def test_ref_gen_hold_mutant(tmp_path):
     assert len(res) == 1 and "w mismatch" in res[0].read_text(), "the mutant failed for another reason"
 
 
+@pytest.mark.cost(17)          # seconds on an idle core (make sim starts the costliest first)
 def test_ref_gen_n1():
     from runner import run
     p = {"N": 1}

@@ -25,6 +25,7 @@ import random
 from pathlib import Path
 
 import cocotb
+import pytest
 from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, Timer
 
@@ -196,6 +197,7 @@ def _run(block: Block) -> None:
         extra_sources=extra, extra_env={"TB_BLOCK": block.module})
 
 
+@pytest.mark.cost(7)          # seconds on an idle core (make sim starts the costliest first)
 def test_axis_regs():
     _run(ALL_BLOCKS["axis_regs"])
 

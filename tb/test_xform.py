@@ -59,6 +59,7 @@ def _header_half_period() -> int:
 
 
 # ---------------------------------------------------------------- pytest entries
+@pytest.mark.cost(7)          # seconds on an idle core (make sim starts the costliest first)
 def test_xform():
     from runner import run
     run(toplevel="xform", test_module="test_xform",
