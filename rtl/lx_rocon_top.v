@@ -4,9 +4,10 @@
 // EMC bus (asynchronous) enters through emc_bus; word addresses select the global
 // registers (0x000..0x0ff), axis n's registers (0x100 + 0x100 n) or axis n's
 // coefficient-image window (0x1000 + 0x400 n, write-only); see docs/registers.md.
-// NAXES axes (mpc_axis), PWM periods phase-locked to axis 0 (sync chain); the
-// current ADCs of all axes share SCLK/CS (driven by axis 0; the axes' conversions
-// are simultaneous because their PWMs are in phase), one MISO triple per axis.
+// NAXES = 1: one axis (mpc_axis).  NAXES = 2..4: mx_axes, the shared control engine (mx_seq,
+// mpc_core, ref_gen, axis_status, adc_spi with NAXES) and the periphery per axis, carrier of axis n
+// delayed by n x EMPC_PWM_STAGGER_<NAXES> (docs/four_axes.md 3.1); the current ADCs of all axes share
+// SCLK/CS (one frame grid, per-axis windows), one MISO triple per axis.
 // Safety: after reset every axis is disabled (bridges off); the watchdog
 // (WDOG_TIMEOUT PWM periods, on by default) latches a fault on every axis when the
 // CPU stops writing WDOG_KICK; any latched, unmasked fault switches the bridges of
@@ -212,31 +213,61 @@ module lx_rocon_top #(
         .wr_refused(g_wr_refused));
 
     // ---------------- axes ----------------
+    // NAXES = 1: mpc_axis (the one-axis drive, unchanged).  NAXES > 1: mx_axes, one shared engine
+    // (sequencer, MPC core, reference generator, status RAM, ADC frame engine) and the periphery per
+    // axis, carriers staggered by EMPC_PWM_STAGGER_<NAXES> (no sync chain), one SCLK / CS for all ADCs.
     wire [32*NAXES-1:0] a_rdata;
-    wire [NAXES-1:0]    sync_out;
-    wire [NAXES-1:0]    sclk_ax, cs_ax;
     genvar n;
     generate
-        for (n = 0; n < NAXES; n = n + 1) begin : g_axis
-            localparam [31:0] AP = AXIS_PAGE + n;
-            localparam [31:0] CP = COEF_PAGE + n;
-            wire sel = (apage == AP[EMC_AW-9:0]);
-            wire csel = (cpage == CP[EMC_AW-11:0]);
+        // NAXES = 1 only (the loop runs once): the instance keeps its name g_axis[0].u_axis
+        for (n = 0; n < ((NAXES == 1) ? 1 : 0); n = n + 1) begin : g_axis
+            wire sel = (apage == AXIS_PAGE[EMC_AW-9:0]);
+            wire csel = (cpage == COEF_PAGE[EMC_AW-11:0]);
+            wire sync_out;
             mpc_axis #(.BOOT_FILE(BOOT_FILE), .RSQRT_FILE(RSQRT_FILE), .COMPLEMENTARY(COMPLEMENTARY)) u_axis (
                 .clk(clk), .rst(rst),
                 .reg_wr(reg_wr && sel), .reg_rd(reg_rd && sel), .reg_addr(reg_addr[7:0]), .reg_wdata(reg_wdata),
-                .reg_rdata(a_rdata[32*n +: 32]), .coef_we(reg_wr && csel), .coef_addr(reg_addr[9:0]),
-                .watchdog_expired(wdog_expired), .g_wr_refused(g_wr_refused), .ext_fault({kill_clock, kill_pstage}), .pwm_sync_in(n == 0 ? 1'b0 : sync_out[0]),
-                .pwm_sync_out(sync_out[n]),
-                .irc_a(irc_a[n]), .irc_b(irc_b[n]), .irc_idx(irc_idx[n]), .irc_mark(irc_mark[n]),
-                .hall(hall[3*n +: 3]), .pwm_hi(hi_r[3*n +: 3]), .pwm_lo(lo_r[3*n +: 3]),
-                .adc_sclk(sclk_ax[n]), .adc_cs_n(cs_ax[n]), .adc_miso(adc_miso[3*n +: 3]),
-                .period_tick(period_tick[n]), .control_done(control_done[n]), .fault_any(fault_any[n]),
-                .bridges_live(live[n]));
+                .reg_rdata(a_rdata[31:0]), .coef_we(reg_wr && csel), .coef_addr(reg_addr[9:0]),
+                .watchdog_expired(wdog_expired), .g_wr_refused(g_wr_refused), .ext_fault({kill_clock, kill_pstage}),
+                .pwm_sync_in(1'b0), .pwm_sync_out(sync_out),
+                .irc_a(irc_a[0]), .irc_b(irc_b[0]), .irc_idx(irc_idx[0]), .irc_mark(irc_mark[0]),
+                .hall(hall[2:0]), .pwm_hi(hi_r[2:0]), .pwm_lo(lo_r[2:0]),
+                .adc_sclk(adc_sclk), .adc_cs_n(adc_cs_n), .adc_miso(adc_miso[2:0]),
+                .period_tick(period_tick[0]), .control_done(control_done[0]), .fault_any(fault_any[0]),
+                .bridges_live(live[0]));
+            wire unused_one = &{1'b0, sync_out};
         end
     endgenerate
-    assign adc_sclk = sclk_ax[0];
-    assign adc_cs_n = cs_ax[0];
+    generate if (NAXES > 1) begin : g_mx
+        localparam integer AXB = $clog2(NAXES);
+        // the axis of the page (equality decode, no magnitude compares: see above)
+        wire [NAXES-1:0] sel, csel;
+        reg  [AXB-1:0]   ax, cax;
+        integer k;
+        for (n = 0; n < NAXES; n = n + 1) begin : g_sel
+            localparam [31:0] AP = AXIS_PAGE + n;
+            localparam [31:0] CP = COEF_PAGE + n;
+            assign sel[n] = (apage == AP[EMC_AW-9:0]);
+            assign csel[n] = (cpage == CP[EMC_AW-11:0]);
+        end
+        always @(*) begin
+            ax = {AXB{1'b0}};
+            cax = {AXB{1'b0}};
+            for (k = 0; k < NAXES; k = k + 1) begin
+                if (sel[k]) ax = ax | k[AXB-1:0];
+                if (csel[k]) cax = cax | k[AXB-1:0];
+            end
+        end
+        mx_axes #(.NAXES(NAXES), .BOOT_FILE(BOOT_FILE), .RSQRT_FILE(RSQRT_FILE), .COMPLEMENTARY(COMPLEMENTARY)) u_mx (
+            .clk(clk), .rst(rst),
+            .reg_wr(reg_wr && |sel), .reg_rd(reg_rd && |sel), .reg_addr({ax, reg_addr[7:0]}), .reg_wdata(reg_wdata),
+            .reg_rdata(a_rdata[31:0]), .coef_we(reg_wr && |csel), .coef_addr({cax, reg_addr[9:0]}),
+            .watchdog_expired(wdog_expired), .g_wr_refused(g_wr_refused), .ext_fault({kill_clock, kill_pstage}),
+            .irc_a(irc_a), .irc_b(irc_b), .irc_idx(irc_idx), .irc_mark(irc_mark), .hall(hall),
+            .pwm_hi(hi_r), .pwm_lo(lo_r), .adc_sclk(adc_sclk), .adc_cs_n(adc_cs_n), .adc_miso(adc_miso),
+            .period_tick(period_tick), .control_done(control_done), .fault_any(fault_any), .bridges_live(live));
+        assign a_rdata[32*NAXES-1:32] = {(32*(NAXES-1)){1'b0}};
+    end endgenerate
 
     // every axis' read data is 0 unless that axis was read (gated copies, see mpc_axis): OR them
     reg [31:0] a_or;
@@ -249,7 +280,7 @@ module lx_rocon_top #(
     // clock after reg_rd as emc_bus expects (RD_LAT = 1)
     always @(*) reg_rdata = g_rdata | a_or;
 
-    wire unused = &{1'b0, err_wr_short, err_rd_short, sclk_ax, cs_ax, sync_out, scratch, wdog_armed,
+    wire unused = &{1'b0, err_wr_short, err_rd_short, scratch, wdog_armed, period_tick, control_done,   // [NAXES-1:1]: axis 0 times TIME, IRQ
                          r_osel, r_asel, r_esel, r_hsel, r_osel_wr};
 endmodule
 `default_nettype wire

@@ -24,6 +24,7 @@ rtl/clk_mon.v
 rtl/out_kill.v
 rtl/out_route.v
 rtl/mpc_axis.v
+rtl/mx_axes.v
 rtl/fault_ctrl.v
 rtl/watchdog.v
 rtl/ref_gen.v
