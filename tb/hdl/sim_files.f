@@ -11,3 +11,4 @@ tb/hdl/adc_ripple.v
 tb/hdl/out_route_tb.v
 tb/hdl/adc_spi_axes_tb.v
 tb/hdl/mx_seq_axes_tb.v
+tb/hdl/mx_axes_tb.v

@@ -1,0 +1,159 @@
+// mx_axes_tb: simulation wrapper for tb/test_mx_axes.py, the time-shift equivalence test of the
+// multi-axis drive: a one-axis mpc_axis (the reference, lane 0) and mx_axes with NAXES axes (lanes
+// 1..NAXES) side by side.  Axis n of mx_axes gets the reference's stimuli delayed by its carrier
+// PHASE_n = n x STAGGER (pwm_center's PHASE, docs/four_axes.md 3.1): encoder A/B from a count that is a
+// function of the lane's local time lt = tick - PHASE (still before t_move, then a triangle of 64 counts
+// up and down, one count per 2^SPD_SH clocks: the HALL code stays constant, within sens_check's tolerance), the HALL code (constant), the ADC codes (adc_ripple on the lane's own PWM period, into an
+// adc_spi_slave on the lane's SCLK / CS; mx_axes: the shared ones), and (from Python) the register
+// writes, each PHASE_n clocks after the reference's.  Then axis n's PWM outputs must equal the
+// reference's outputs PHASE_n clocks earlier, on every clock.
+// Monitors per axis n (Python reads them): mism (clocks with a difference while cmp_en and before the
+// axis's first fault), t_mism (the first such clock), dev (sticky: the axis's fault_any was seen),
+// off_bad (clocks with fault_any and an output on), nz (clocks with an output on), nz_ref_f (clocks with
+// fault_any where the delayed reference had an output on: the trip changed something).
+// Injection: inj forces channel 0's base code of mx axis inj_ax to 4095 (an overcurrent at its pins).
+// The clock runs here (Verilator --timing).
+`default_nettype none
+`timescale 1ns / 1ps
+`include "empc_formats.vh"
+module mx_axes_tb #(
+    parameter integer NAXES = 2,
+    parameter integer STAGGER = 2516,
+    parameter integer SPD_SH = 7
+) (
+    output reg                  clk,
+    input  wire                 rst,
+    output reg  [31:0]          tick,
+    input  wire [31:0]          t_move,
+    input  wire [2:0]           hall_code,
+    input  wire [11:0]          base0,
+    input  wire [11:0]          base1,
+    input  wire [11:0]          base2,
+    input  wire [31:0]          adc_seed,
+    input  wire [3:0]           adc_noise,
+    input  wire                 inj,
+    input  wire [1:0]           inj_ax,
+    input  wire                 cmp_en,
+    // register ports: the reference and mx_axes ({axis, offset})
+    input  wire                 r_wr, input wire r_rd, input wire [7:0] r_addr, input wire [31:0] r_wdata,
+    output wire [31:0]          r_rdata,
+    input  wire                 m_wr, input wire m_rd, input wire [9:0] m_addr, input wire [31:0] m_wdata,
+    output wire [31:0]          m_rdata,
+    // monitors
+    output wire [NAXES-1:0]     fault_any,
+    output wire                 ref_fault,
+    output reg  [32*NAXES-1:0]  mism,
+    output reg  [32*NAXES-1:0]  t_mism,
+    output reg  [NAXES-1:0]     dev,
+    output reg  [32*NAXES-1:0]  off_bad,
+    output reg  [32*NAXES-1:0]  nz,
+    output reg  [32*NAXES-1:0]  nz_ref_f,
+    output reg  [31:0]          nz_ref,
+    output reg  [31:0]          n_ctl_ref
+);
+    localparam integer P = `EMPC_PWM_HALF_PERIOD;
+    localparam integer NL = NAXES + 1;
+    localparam integer AXB = (NAXES < 2) ? 1 : $clog2(NAXES);
+    initial clk = 1'b0;
+    always #5 clk = ~clk;
+    always @(posedge clk) tick <= rst ? 32'd0 : tick + 32'd1;
+
+    // ---- stimuli per lane ----
+    wire [NL-1:0]   a_l, b_l, ps_l;
+    wire [3*NL-1:0] miso_l;
+    wire [NL-1:0]   sclk_l, cs_l;
+    genvar l;
+    generate for (l = 0; l < NL; l = l + 1) begin : g_lane
+        localparam integer PH = (l == 0) ? 0 : (l - 1) * STAGGER;
+        wire signed [32:0] lt = $signed({1'b0, tick}) - PH;
+        wire signed [32:0] dt = lt - $signed({1'b0, t_move});
+        wire [31:0] ph = dt[32] ? 32'd0 : dt[31:0] >> SPD_SH;     // a triangle of 64 counts (within a HALL sector)
+        wire [31:0] cnt = ph[6] ? 32'd128 - {25'd0, ph[6:0]} : {25'd0, ph[6:0]};
+        assign a_l[l] = cnt[0] ^ cnt[1];
+        assign b_l[l] = cnt[1];
+        wire inj_here = inj && (l != 0) && (inj_ax == l - 1);
+        wire [11:0] c0, c1, c2;
+        adc_ripple #(.HALF_PERIOD(P)) u_rip (
+            .clk(clk), .period_start(ps_l[l]), .base0(inj_here ? 12'd4095 : base0), .base1(base1), .base2(base2),
+            .amp0(16'sd0), .amp1(16'sd0), .amp2(16'sd0), .seed(adc_seed), .noise(adc_noise), .inj_en(1'b0),
+            .inj_tau(16'sd0), .inj_ch(2'd0), .inj_code(12'd0), .hold(3'b000), .code0(c0), .code1(c1), .code2(c2));
+        adc_spi_slave u_slave (.sclk(sclk_l[l]), .cs_n(cs_l[l]), .code0(c0), .code1(c1), .code2(c2),
+            .lead(12'd0), .miso(miso_l[3*l +: 3]));
+    end endgenerate
+
+    // ---- the reference: one axis ----
+    wire [2:0] r_hi, r_lo;
+    wire       r_sync, r_ctl, r_live;
+    mpc_axis u_ref (
+        .clk(clk), .rst(rst), .reg_wr(r_wr), .reg_rd(r_rd), .reg_addr(r_addr), .reg_wdata(r_wdata),
+        .reg_rdata(r_rdata), .coef_we(1'b0), .coef_addr(10'd0), .watchdog_expired(1'b0), .g_wr_refused(1'b0),
+        .ext_fault(2'b00), .pwm_sync_in(1'b0), .pwm_sync_out(r_sync), .irc_a(a_l[0]), .irc_b(b_l[0]),
+        .irc_idx(1'b0), .irc_mark(1'b0), .hall(hall_code), .pwm_hi(r_hi), .pwm_lo(r_lo), .adc_sclk(sclk_l[0]),
+        .adc_cs_n(cs_l[0]), .adc_miso(miso_l[2:0]), .period_tick(ps_l[0]), .control_done(r_ctl),
+        .fault_any(ref_fault), .bridges_live(r_live));
+
+    // ---- the multi-axis drive ----
+    wire [3*NAXES-1:0] m_hi, m_lo;
+    wire               m_sclk, m_cs;
+    wire [NAXES-1:0]   m_ctl, m_live;
+    mx_axes #(.NAXES(NAXES)) u_mx (
+        .clk(clk), .rst(rst), .reg_wr(m_wr), .reg_rd(m_rd), .reg_addr(m_addr[AXB+7:0]), .reg_wdata(m_wdata),
+        .reg_rdata(m_rdata), .coef_we(1'b0), .coef_addr({(AXB+10){1'b0}}), .watchdog_expired(1'b0),
+        .g_wr_refused(1'b0), .ext_fault(2'b00), .irc_a(a_l[NL-1:1]), .irc_b(b_l[NL-1:1]), .irc_idx({NAXES{1'b0}}),
+        .irc_mark({NAXES{1'b0}}), .hall({NAXES{hall_code}}), .pwm_hi(m_hi), .pwm_lo(m_lo), .adc_sclk(m_sclk),
+        .adc_cs_n(m_cs), .adc_miso(miso_l[3*NL-1:3]), .period_tick(ps_l[NL-1:1]), .control_done(m_ctl),
+        .fault_any(fault_any), .bridges_live(m_live));
+    generate for (l = 1; l < NL; l = l + 1) begin : g_spi
+        assign sclk_l[l] = m_sclk;
+        assign cs_l[l] = m_cs;
+    end endgenerate
+
+    // ---- comparison: axis n against the reference PHASE_n clocks earlier ----
+    wire [5:0] r_out = {r_lo, r_hi};
+    reg  [5:0] hist [0:8191];
+    always @(posedge clk) hist[tick[12:0]] <= r_out;
+    always @(posedge clk) begin
+        if (rst) begin
+            nz_ref <= 32'd0;
+            n_ctl_ref <= 32'd0;
+        end else begin
+            if (r_out != 6'd0) nz_ref <= nz_ref + 32'd1;
+            if (r_ctl) n_ctl_ref <= n_ctl_ref + 32'd1;
+        end
+    end
+    genvar a;
+    generate for (a = 0; a < NAXES; a = a + 1) begin : g_cmp
+        localparam integer PH = a * STAGGER;
+        localparam [31:0] PH32 = PH;
+        wire [31:0] tp = tick - PH32;
+        wire [5:0] exp_o = (PH == 0) ? r_out : hist[tp[12:0]];
+        wire [5:0] out = {m_lo[3*a +: 3], m_hi[3*a +: 3]};
+        wire       on_time;
+        if (PH == 0) begin : g_t0
+            assign on_time = 1'b1;
+        end else begin : g_tn
+            assign on_time = (tick >= PH32);
+        end
+        always @(posedge clk) begin
+            if (rst) begin
+                mism[32*a +: 32] <= 32'd0;
+                t_mism[32*a +: 32] <= 32'd0;
+                dev[a] <= 1'b0;
+                off_bad[32*a +: 32] <= 32'd0;
+                nz[32*a +: 32] <= 32'd0;
+                nz_ref_f[32*a +: 32] <= 32'd0;
+            end else if (cmp_en && on_time) begin
+                if (fault_any[a]) dev[a] <= 1'b1;
+                if (!fault_any[a] && !dev[a] && out != exp_o) begin
+                    if (mism[32*a +: 32] == 32'd0) t_mism[32*a +: 32] <= tick;
+                    mism[32*a +: 32] <= mism[32*a +: 32] + 32'd1;
+                end
+                if (fault_any[a] && out != 6'd0) off_bad[32*a +: 32] <= off_bad[32*a +: 32] + 32'd1;
+                if (fault_any[a] && exp_o != 6'd0) nz_ref_f[32*a +: 32] <= nz_ref_f[32*a +: 32] + 32'd1;
+                if (out != 6'd0) nz[32*a +: 32] <= nz[32*a +: 32] + 32'd1;
+            end
+        end
+    end endgenerate
+    wire unused = &{1'b0, r_sync, r_live, m_ctl, m_live, m_addr};
+endmodule
+`default_nettype wire

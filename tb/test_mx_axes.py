@@ -1,0 +1,210 @@
+"""mx_axes (NAXES axes on the shared engine) against the one-axis drive: time-shift equivalence.
+
+tb/hdl/mx_axes_tb.v runs the one-axis mpc_axis (the reference) and mx_axes side by side.  Axis n of
+mx_axes gets exactly the reference's stimuli delayed by its carrier phase PHASE_n = n x
+EMPC_PWM_STAGGER_<NAXES>: encoder motion, HALL, the ADC codes (per lane on its own PWM period, read
+through the shared SCLK / CS) and the register writes (UDC, the fault clear, IQ_REF, CTRL with a control
+period every PWM period).  Checked, bit- and clock-exact without a model:
+  * every axis's six PWM outputs equal the reference's outputs PHASE_n clocks earlier, on every clock
+    (the MPC runs: the reference switches and counts its control periods);
+  * an overcurrent at the last axis's ADC pins (its channel 0 forced to full scale) trips that axis
+    only: its outputs are 0 on every clock its fault is latched (from the clock the cause is
+    registered), FAULT.overcurrent is set there and nowhere else, every other axis stays equal to the
+    reference; after the cause is gone one CMD.fault_clear on that axis restarts it (bridges on).
+"""
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+ROOT = Path(__file__).resolve().parents[1]
+
+T0 = 8000              # first register write of the reference (mpc_core of 4 axes has booted: 3843 clk)
+WRITE_GAP = 4          # clocks between two register writes of one lane
+
+
+def _hdr() -> dict:
+    from empc import header
+    roms = Path(os.environ.get("EMPC_ROMS", ROOT / "build" / "roms" / "default"))
+    return header.read(roms / "empc_formats.vh")
+
+
+try:
+    import cocotb
+    from cocotb.triggers import ClockCycles, ReadOnly, RisingEdge
+except ImportError:                     # collection without cocotb: only the pytest wrapper below
+    cocotb = None
+
+
+class _Recorder:
+    """A bus for empc.driver.Drive that records the (word address, data) writes."""
+
+    def __init__(self):
+        self.ops: list[tuple[int, int]] = []
+
+    async def write(self, addr: int, data: int) -> None:
+        self.ops.append((addr, data))
+
+    async def read(self, addr: int) -> int:     # pragma: no cover
+        raise AssertionError("recorder: no reads")
+
+
+async def _ops(fn) -> list[tuple[int, int]]:
+    from empc import driver
+    rec = _Recorder()
+    await fn(driver.Drive(rec))
+    return rec.ops
+
+
+def _split(addr: int) -> tuple[int, int]:
+    from empc import regmap
+    off = addr - regmap.AXIS_BASE
+    assert 0 <= off < 4 * regmap.AXIS_STRIDE, hex(addr)
+    return off // regmap.AXIS_STRIDE, off % regmap.AXIS_STRIDE
+
+
+async def _play(dut, events: list[tuple[int, dict]]) -> None:
+    """events: (clock relative to the first, {port: value}); a write pulse is cleared a clock later."""
+    cur = 0
+    for t, assign in sorted(events, key=lambda e: e[0]):
+        if t > cur:
+            await ClockCycles(dut.clk, t - cur)
+            cur = t
+        for k, v in assign.items():
+            getattr(dut, k).value = v
+
+
+def _write_events(t: int, port: str, axis: int, ops: list[tuple[int, int]], na_bits: int) -> list:
+    ev = []
+    for i, (addr, data) in enumerate(ops):
+        ax, off = _split(addr)
+        assert ax == 0
+        a = off if port == "r" else (axis << 8) | off
+        ev.append((t + WRITE_GAP * i, {f"{port}_wr": 1, f"{port}_addr": a, f"{port}_wdata": data}))
+        ev.append((t + WRITE_GAP * i + 1, {f"{port}_wr": 0}))
+    return ev
+
+
+async def _read(dut, port: str, addr: int) -> int:
+    await RisingEdge(dut.clk)
+    getattr(dut, f"{port}_rd").value = 1
+    getattr(dut, f"{port}_addr").value = addr
+    await RisingEdge(dut.clk)
+    getattr(dut, f"{port}_rd").value = 0
+    await ReadOnly()
+    v = int(getattr(dut, f"{port}_rdata").value)
+    await RisingEdge(dut.clk)
+    return v
+
+
+def _vec(sig, k: int, w: int = 32) -> int:
+    return (int(sig.value) >> (w * k)) & ((1 << w) - 1)
+
+
+if cocotb is not None:
+    @cocotb.test()
+    async def time_shift(dut):
+        from empc import regmap
+        na = int(os.environ["MXA_NAXES"])
+        periods = int(os.environ.get("MXA_PERIODS", "10"))
+        h = _hdr()
+        P2 = 2 * h["PWM_HALF_PERIOD"]
+        st = h[f"PWM_STAGGER_{na}"]
+        off = h["ADC_OFFSET"]
+        last = na - 1
+        reg = {r.name: r.offset for r in regmap.AXIS}
+        bit = {f.name: f.lsb for f in regmap.axis_reg("FAULT").fields}
+        sbit = {f.name: f.lsb for f in regmap.axis_reg("STATUS").fields}
+        dut.rst.value = 1
+        for p in ("r", "m"):
+            for s, v in (("wr", 0), ("rd", 0), ("addr", 0), ("wdata", 0)):
+                getattr(dut, f"{p}_{s}").value = v
+        dut.t_move.value = T0 + 2 * P2
+        dut.hall_code.value = 0b001
+        dut.base0.value = off + 60          # phase currents summing to 0 (the sum check)
+        dut.base1.value = off - 20
+        dut.base2.value = off - 40
+        dut.adc_seed.value = 12345
+        dut.adc_noise.value = 3
+        dut.inj.value = 0
+        dut.inj_ax.value = last
+        dut.cmp_en.value = 0
+        await ClockCycles(dut.clk, 10)
+        dut.rst.value = 0
+        dut.cmp_en.value = 1
+        await RisingEdge(dut.clk)
+
+        async def setup(drv):
+            await drv.udc(36000)
+            await drv.command(fault_clear=1)
+            await drv.write("IQ_REF", 3000)
+            await drv.write("ID_REF", 0x3FF00)
+            await drv.control(enable=True, run=True, pwm_per_control=1)
+        ops = await _ops(setup)
+        ab = max(1, (na - 1).bit_length())
+        ev = _write_events(T0, "r", 0, ops, ab)
+        for n in range(na):
+            ev += _write_events(T0 + n * st, "m", n, ops, ab)
+        t_end = T0 + (na - 1) * st + periods * P2
+        ev.append((t_end, {}))
+        await _play(dut, ev)
+
+        mism = [_vec(dut.mism, n) for n in range(na)]
+        tm = [_vec(dut.t_mism, n) for n in range(na)]
+        nz = [_vec(dut.nz, n) for n in range(na)]
+        nz_ref, n_ctl = int(dut.nz_ref.value), int(dut.n_ctl_ref.value)
+        dut._log.info(f"NAXES={na} stagger {st}: mismatches {mism} (first {tm}), clocks on {nz}, reference on "
+                      f"{nz_ref}, reference control periods {n_ctl}")
+        st_ref = await _read(dut, "r", reg["STATUS"])
+        assert (st_ref >> sbit["running"]) & 1, f"reference not running (STATUS {st_ref:#x}, FAULT " \
+                                                 f"{await _read(dut, 'r', reg['FAULT']):#x})"
+        assert nz_ref > 0 and n_ctl >= periods, (nz_ref, n_ctl)
+        assert all(m == 0 for m in mism), f"axes differ from the shifted reference: {mism} first at {tm}"
+        assert all(x > 0 for x in nz), f"an axis never switched: {nz}"
+        assert int(dut.fault_any.value) == 0 and int(dut.ref_fault.value) == 0
+
+        # ---- overcurrent at the last axis's pins ----
+        dut.inj.value = 1
+        await ClockCycles(dut.clk, 2 * P2)
+        fa = int(dut.fault_any.value)
+        assert fa == 1 << last, f"fault_any {fa:#x}: only axis {last} may trip"
+        f_last = await _read(dut, "m", (last << 8) | reg["FAULT"])
+        assert (f_last >> bit["overcurrent"]) & 1, f"axis {last} FAULT {f_last:#x}: no overcurrent"
+        for n in range(na - 1):
+            assert await _read(dut, "m", (n << 8) | reg["FAULT"]) == 0, f"axis {n} latched a fault"
+        off_bad = _vec(dut.off_bad, last)
+        assert off_bad == 0, f"axis {last}: {off_bad} clocks with an output on while its fault was latched"
+        assert _vec(dut.nz_ref_f, last) > 0, "the shifted reference did not switch during the fault"
+        dut.inj.value = 0
+        await ClockCycles(dut.clk, P2)
+        nz_before = _vec(dut.nz, last)
+        ops_clr = await _ops(lambda drv: drv.command(fault_clear=1))
+        await _play(dut, _write_events(1, "m", last, ops_clr, ab) + [(3 * P2, {})])
+        assert (int(dut.fault_any.value) >> last) & 1 == 0, "the clear did not clear the fault"
+        s_last = await _read(dut, "m", (last << 8) | reg["STATUS"])
+        assert (s_last >> sbit["bridges_on"]) & 1, f"axis {last} did not restart (STATUS {s_last:#x})"
+        assert _vec(dut.nz, last) > nz_before, f"axis {last} does not switch after the clear"
+        assert _vec(dut.off_bad, last) == 0
+        mism2 = [_vec(dut.mism, n) for n in range(na)]
+        assert all(mism2[n] == 0 for n in range(na)), f"mismatches {mism2} (axes other than {last} " \
+                                                      f"compared to the end, axis {last} up to its trip)"
+        dut._log.info(f"fault at axis {last}: only it tripped, off on every clock of the fault "
+                      f"({_vec(dut.nz_ref_f, last)} clocks the reference switched), restarted after the clear; "
+                      f"tick {int(dut.tick.value)}")
+
+
+@pytest.mark.cost(90)            # Verilator build of two drives (one- and two-axis) + ~70k clocks
+@pytest.mark.parametrize("na", [2, pytest.param(4, marks=pytest.mark.full)])
+def test_mx_axes_time_shift(na):
+    """NAXES axes against the one-axis drive, each shifted by its carrier phase: every PWM output bit- and
+    clock-equal; an overcurrent at one axis's pins switches off that axis only, a clear restarts it."""
+    from runner import run
+    h = _hdr()
+    run(toplevel="mx_axes_tb", test_module="test_mx_axes", sim="verilator", name=f"mx_axes{na}",
+        public=ROOT / "tb" / "hdl" / "mx_axes_tb.vlt", timing=True,
+        parameters={"NAXES": na, "STAGGER": h[f"PWM_STAGGER_{na}"]}, run_name="time_shift",
+        extra_env={"MXA_NAXES": str(na), "MXA_PERIODS": "10"}, testcase="time_shift")
