@@ -1,12 +1,14 @@
 """mx_axes (NAXES axes on the shared engine) against the one-axis drive: time-shift equivalence.
 
-tb/hdl/mx_axes_tb.v runs the one-axis mpc_axis (the reference) and mx_axes side by side.  Axis n of
-mx_axes gets exactly the reference's stimuli delayed by its carrier phase PHASE_n = n x
+tb/hdl/mx_axes_tb.v runs NAXES one-axis mpc_axis (the references) and mx_axes side by side.  Axis n of
+mx_axes gets exactly reference n's stimuli delayed by its carrier phase PHASE_n = n x
 EMPC_PWM_STAGGER_<NAXES>: encoder motion, HALL, the ADC codes (per lane on its own PWM period, read
-through the shared SCLK / CS) and the register writes (UDC, the fault clear, IQ_REF, CTRL with a control
-period every PWM period).  Checked, bit- and clock-exact without a model:
-  * every axis's six PWM outputs equal the reference's outputs PHASE_n clocks earlier, on every clock
-    (the MPC runs: the reference switches and counts its control periods);
+through the shared SCLK / CS) and the register writes (UDC, the fault clear, IQ_REF, ID_REF, CTRL with a
+control period every PWM period).  The stimuli differ between the axes (HALL sector, ADC codes and noise
+seed, encoder speed, IQ_REF / ID_REF), so a register or measurement of the wrong axis shows.  Checked,
+bit- and clock-exact without a model:
+  * every axis's six PWM outputs equal its reference's outputs PHASE_n clocks earlier, on every clock
+    (the MPC runs: every reference switches, runs and counts its control periods);
   * an overcurrent at the last axis's ADC pins (its channel 0 forced to full scale) trips that axis
     only: its outputs are 0 on every clock its fault is latched (from the clock the cause is
     registered), FAULT.overcurrent is set there and nowhere else, every other axis stays equal to the
@@ -78,19 +80,34 @@ async def _play(dut, events: list[tuple[int, dict]]) -> None:
             getattr(dut, k).value = v
 
 
-def _write_events(t: int, port: str, axis: int, ops: list[tuple[int, int]], na_bits: int) -> list:
+def _write_events(t: int, axis: int, ops: list[tuple[int, int]]) -> list:
+    """mx_axes's register port: axis `axis`'s writes from clock t."""
     ev = []
     for i, (addr, data) in enumerate(ops):
         ax, off = _split(addr)
         assert ax == 0
-        a = off if port == "r" else (axis << 8) | off
-        ev.append((t + WRITE_GAP * i, {f"{port}_wr": 1, f"{port}_addr": a, f"{port}_wdata": data}))
-        ev.append((t + WRITE_GAP * i + 1, {f"{port}_wr": 0}))
+        ev.append((t + WRITE_GAP * i, {"m_wr": 1, "m_addr": (axis << 8) | off, "m_wdata": data}))
+        ev.append((t + WRITE_GAP * i + 1, {"m_wr": 0}))
     return ev
 
 
-async def _read(dut, port: str, addr: int) -> int:
+def _ref_events(t: int, ops_per_axis: list[list[tuple[int, int]]]) -> list:
+    """The references' ports: the same register sequence, each reference its own values, from clock t."""
+    ev = []
+    na = len(ops_per_axis)
+    for i in range(len(ops_per_axis[0])):
+        offs = {_split(o[i][0])[1] for o in ops_per_axis}
+        assert len(offs) == 1
+        data = sum(o[i][1] << (32 * k) for k, o in enumerate(ops_per_axis))
+        ev.append((t + WRITE_GAP * i, {"r_wr": (1 << na) - 1, "r_addr": offs.pop(), "r_wdata": data}))
+        ev.append((t + WRITE_GAP * i + 1, {"r_wr": 0}))
+    return ev
+
+
+async def _read(dut, port: str, addr: int, sel: int = 0) -> int:
     await RisingEdge(dut.clk)
+    if port == "r":
+        dut.r_sel.value = sel
     getattr(dut, f"{port}_rd").value = 1
     getattr(dut, f"{port}_addr").value = addr
     await RisingEdge(dut.clk)
@@ -121,14 +138,19 @@ if cocotb is not None:
         sbit = {f.name: f.lsb for f in regmap.axis_reg("STATUS").fields}
         dut.rst.value = 1
         for p in ("r", "m"):
-            for s, v in (("wr", 0), ("rd", 0), ("addr", 0), ("wdata", 0)):
-                getattr(dut, f"{p}_{s}").value = v
+            for sg, v in (("wr", 0), ("rd", 0), ("addr", 0), ("wdata", 0)):
+                getattr(dut, f"{p}_{sg}").value = v
+        dut.r_sel.value = 0
         dut.t_move.value = T0 + 2 * P2
-        dut.hall_code.value = 0b001
-        dut.base0.value = off + 60          # phase currents summing to 0 (the sum check)
-        dut.base1.value = off - 20
-        dut.base2.value = off - 40
-        dut.adc_seed.value = 12345
+        halls = [0b001, 0b011, 0b010, 0b110]            # a valid HALL code per axis (different sectors)
+        dut.hall_code.value = sum(halls[k] << (3 * k) for k in range(na))
+        # phase currents summing to 0 (the sum check), different per axis
+        b0 = [off + 60 + 25 * k for k in range(na)]
+        b1 = [off - 20 - 5 * k for k in range(na)]
+        b2 = [off - 40 - 20 * k for k in range(na)]
+        for name, b in (("base0", b0), ("base1", b1), ("base2", b2)):
+            getattr(dut, name).value = sum(v << (12 * k) for k, v in enumerate(b))
+        dut.adc_seed.value = sum((12345 + 977 * k) << (32 * k) for k in range(na))
         dut.adc_noise.value = 3
         dut.inj.value = 0
         dut.inj_ax.value = last
@@ -138,17 +160,18 @@ if cocotb is not None:
         dut.cmp_en.value = 1
         await RisingEdge(dut.clk)
 
-        async def setup(drv):
-            await drv.udc(36000)
-            await drv.command(fault_clear=1)
-            await drv.write("IQ_REF", 3000)
-            await drv.write("ID_REF", 0x3FF00)
-            await drv.control(enable=True, run=True, pwm_per_control=1)
-        ops = await _ops(setup)
-        ab = max(1, (na - 1).bit_length())
-        ev = _write_events(T0, "r", 0, ops, ab)
+        def setup(k):
+            async def f(drv):
+                await drv.udc(36000 - 1000 * k)
+                await drv.command(fault_clear=1)
+                await drv.write("IQ_REF", 3000 + 700 * k)
+                await drv.write("ID_REF", (0x3FF00 - 0x40 * k) & 0x3FFFF)
+                await drv.control(enable=True, run=True, pwm_per_control=1)
+            return f
+        ops = [await _ops(setup(k)) for k in range(na)]
+        ev = _ref_events(T0, ops)
         for n in range(na):
-            ev += _write_events(T0 + n * st, "m", n, ops, ab)
+            ev += _write_events(T0 + n * st, n, ops[n])
         t_end = T0 + (na - 1) * st + periods * P2
         ev.append((t_end, {}))
         await _play(dut, ev)
@@ -156,13 +179,15 @@ if cocotb is not None:
         mism = [_vec(dut.mism, n) for n in range(na)]
         tm = [_vec(dut.t_mism, n) for n in range(na)]
         nz = [_vec(dut.nz, n) for n in range(na)]
-        nz_ref, n_ctl = int(dut.nz_ref.value), int(dut.n_ctl_ref.value)
+        nz_ref = [_vec(dut.nz_ref, n) for n in range(na)]
+        n_ctl = [_vec(dut.n_ctl_ref, n) for n in range(na)]
         dut._log.info(f"NAXES={na} stagger {st}: mismatches {mism} (first {tm}), clocks on {nz}, reference on "
                       f"{nz_ref}, reference control periods {n_ctl}")
-        st_ref = await _read(dut, "r", reg["STATUS"])
-        assert (st_ref >> sbit["running"]) & 1, f"reference not running (STATUS {st_ref:#x}, FAULT " \
-                                                 f"{await _read(dut, 'r', reg['FAULT']):#x})"
-        assert nz_ref > 0 and n_ctl >= periods, (nz_ref, n_ctl)
+        for n in range(na):
+            st_ref = await _read(dut, "r", reg["STATUS"], n)
+            assert (st_ref >> sbit["running"]) & 1, f"reference {n} not running (STATUS {st_ref:#x}, FAULT " \
+                                                     f"{await _read(dut, 'r', reg['FAULT'], n):#x})"
+        assert all(x > 0 for x in nz_ref) and all(c >= periods for c in n_ctl), (nz_ref, n_ctl)
         assert all(m == 0 for m in mism), f"axes differ from the shifted reference: {mism} first at {tm}"
         assert all(x > 0 for x in nz), f"an axis never switched: {nz}"
         assert int(dut.fault_any.value) == 0 and int(dut.ref_fault.value) == 0
@@ -183,7 +208,7 @@ if cocotb is not None:
         await ClockCycles(dut.clk, P2)
         nz_before = _vec(dut.nz, last)
         ops_clr = await _ops(lambda drv: drv.command(fault_clear=1))
-        await _play(dut, _write_events(1, "m", last, ops_clr, ab) + [(3 * P2, {})])
+        await _play(dut, _write_events(1, last, ops_clr) + [(3 * P2, {})])
         assert (int(dut.fault_any.value) >> last) & 1 == 0, "the clear did not clear the fault"
         s_last = await _read(dut, "m", (last << 8) | reg["STATUS"])
         assert (s_last >> sbit["bridges_on"]) & 1, f"axis {last} did not restart (STATUS {s_last:#x})"

@@ -1,7 +1,7 @@
 // mx_axes_tb: simulation wrapper for tb/test_mx_axes.py, the time-shift equivalence test of the
-// multi-axis drive: a one-axis mpc_axis (the reference, lane 0) and mx_axes with NAXES axes (lanes
-// 1..NAXES) side by side.  Axis n of mx_axes gets the reference's stimuli delayed by its carrier
-// PHASE_n = n x STAGGER (pwm_center's PHASE, docs/four_axes.md 3.1): encoder A/B from a count that is a
+// multi-axis drive: NAXES one-axis mpc_axis (the references, lanes 0..NAXES-1, each with its own stimuli)
+// and mx_axes with NAXES axes (lanes NAXES..2 NAXES-1) side by side.  Axis n of mx_axes gets reference
+// n's stimuli delayed by its carrier PHASE_n = n x STAGGER (pwm_center's PHASE, docs/four_axes.md 3.1): encoder A/B from a count that is a
 // function of the lane's local time lt = tick - PHASE (still before t_move, then a triangle of 64 counts
 // up and down, one count per 2^SPD_SH clocks: the HALL code stays constant, within sens_check's tolerance), the HALL code (constant), the ADC codes (adc_ripple on the lane's own PWM period, into an
 // adc_spi_slave on the lane's SCLK / CS; mx_axes: the shared ones), and (from Python) the register
@@ -25,34 +25,36 @@ module mx_axes_tb #(
     input  wire                 rst,
     output reg  [31:0]          tick,
     input  wire [31:0]          t_move,
-    input  wire [2:0]           hall_code,
-    input  wire [11:0]          base0,
-    input  wire [11:0]          base1,
-    input  wire [11:0]          base2,
-    input  wire [31:0]          adc_seed,
+    input  wire [3*NAXES-1:0]   hall_code,     // axis / reference n: [3n +: 3], and so on
+    input  wire [12*NAXES-1:0]  base0,
+    input  wire [12*NAXES-1:0]  base1,
+    input  wire [12*NAXES-1:0]  base2,
+    input  wire [32*NAXES-1:0]  adc_seed,
     input  wire [3:0]           adc_noise,
     input  wire                 inj,
     input  wire [1:0]           inj_ax,
     input  wire                 cmp_en,
-    // register ports: the reference and mx_axes ({axis, offset})
-    input  wire                 r_wr, input wire r_rd, input wire [7:0] r_addr, input wire [31:0] r_wdata,
+    // register ports: the references (reference n: r_wr[n], r_wdata[32n +: 32]; r_rd reads reference
+    // r_sel) and mx_axes ({axis, offset})
+    input  wire [NAXES-1:0]     r_wr, input wire r_rd, input wire [1:0] r_sel, input wire [7:0] r_addr,
+    input  wire [32*NAXES-1:0]  r_wdata,
     output wire [31:0]          r_rdata,
     input  wire                 m_wr, input wire m_rd, input wire [9:0] m_addr, input wire [31:0] m_wdata,
     output wire [31:0]          m_rdata,
     // monitors
     output wire [NAXES-1:0]     fault_any,
-    output wire                 ref_fault,
+    output wire [NAXES-1:0]     ref_fault,
     output reg  [32*NAXES-1:0]  mism,
     output reg  [32*NAXES-1:0]  t_mism,
     output reg  [NAXES-1:0]     dev,
     output reg  [32*NAXES-1:0]  off_bad,
     output reg  [32*NAXES-1:0]  nz,
     output reg  [32*NAXES-1:0]  nz_ref_f,
-    output reg  [31:0]          nz_ref,
-    output reg  [31:0]          n_ctl_ref
+    output reg  [32*NAXES-1:0]  nz_ref,
+    output reg  [32*NAXES-1:0]  n_ctl_ref
 );
     localparam integer P = `EMPC_PWM_HALF_PERIOD;
-    localparam integer NL = NAXES + 1;
+    localparam integer NL = 2 * NAXES;
     localparam integer AXB = (NAXES < 2) ? 1 : $clog2(NAXES);
     initial clk = 1'b0;
     always #5 clk = ~clk;
@@ -64,33 +66,49 @@ module mx_axes_tb #(
     wire [NL-1:0]   sclk_l, cs_l;
     genvar l;
     generate for (l = 0; l < NL; l = l + 1) begin : g_lane
-        localparam integer PH = (l == 0) ? 0 : (l - 1) * STAGGER;
+        localparam integer K = l % NAXES;                          // the stimulus set (axis) of the lane
+        localparam integer PH = (l < NAXES) ? 0 : K * STAGGER;
         wire signed [32:0] lt = $signed({1'b0, tick}) - PH;
         wire signed [32:0] dt = lt - $signed({1'b0, t_move});
-        wire [31:0] ph = dt[32] ? 32'd0 : dt[31:0] >> SPD_SH;     // a triangle of 64 counts (within a HALL sector)
+        wire [31:0] ph = dt[32] ? 32'd0 : dt[31:0] >> (SPD_SH + K);   // a triangle of 64 counts (within a HALL sector)
         wire [31:0] cnt = ph[6] ? 32'd128 - {25'd0, ph[6:0]} : {25'd0, ph[6:0]};
         assign a_l[l] = cnt[0] ^ cnt[1];
         assign b_l[l] = cnt[1];
-        wire inj_here = inj && (l != 0) && (inj_ax == l - 1);
+        wire inj_here = inj && (l >= NAXES) && (inj_ax == K);
         wire [11:0] c0, c1, c2;
         adc_ripple #(.HALF_PERIOD(P)) u_rip (
-            .clk(clk), .period_start(ps_l[l]), .base0(inj_here ? 12'd4095 : base0), .base1(base1), .base2(base2),
-            .amp0(16'sd0), .amp1(16'sd0), .amp2(16'sd0), .seed(adc_seed), .noise(adc_noise), .inj_en(1'b0),
+            .clk(clk), .period_start(ps_l[l]), .base0(inj_here ? 12'd4095 : base0[12*K +: 12]),
+            .base1(base1[12*K +: 12]), .base2(base2[12*K +: 12]),
+            .amp0(16'sd0), .amp1(16'sd0), .amp2(16'sd0), .seed(adc_seed[32*K +: 32]), .noise(adc_noise), .inj_en(1'b0),
             .inj_tau(16'sd0), .inj_ch(2'd0), .inj_code(12'd0), .hold(3'b000), .code0(c0), .code1(c1), .code2(c2));
         adc_spi_slave u_slave (.sclk(sclk_l[l]), .cs_n(cs_l[l]), .code0(c0), .code1(c1), .code2(c2),
             .lead(12'd0), .miso(miso_l[3*l +: 3]));
     end endgenerate
 
-    // ---- the reference: one axis ----
-    wire [2:0] r_hi, r_lo;
-    wire       r_sync, r_ctl, r_live;
-    mpc_axis u_ref (
-        .clk(clk), .rst(rst), .reg_wr(r_wr), .reg_rd(r_rd), .reg_addr(r_addr), .reg_wdata(r_wdata),
-        .reg_rdata(r_rdata), .coef_we(1'b0), .coef_addr(10'd0), .watchdog_expired(1'b0), .g_wr_refused(1'b0),
-        .ext_fault(2'b00), .pwm_sync_in(1'b0), .pwm_sync_out(r_sync), .irc_a(a_l[0]), .irc_b(b_l[0]),
-        .irc_idx(1'b0), .irc_mark(1'b0), .hall(hall_code), .pwm_hi(r_hi), .pwm_lo(r_lo), .adc_sclk(sclk_l[0]),
-        .adc_cs_n(cs_l[0]), .adc_miso(miso_l[2:0]), .period_tick(ps_l[0]), .control_done(r_ctl),
-        .fault_any(ref_fault), .bridges_live(r_live));
+    // ---- the references: one-axis drives ----
+    wire [3*NAXES-1:0]  r_hi, r_lo;
+    wire [NAXES-1:0]    r_ctl;
+    wire [32*NAXES-1:0] r_rd_v;
+    genvar r;
+    generate for (r = 0; r < NAXES; r = r + 1) begin : g_ref
+        wire r_sync, r_live;
+        mpc_axis u_ref (
+            .clk(clk), .rst(rst), .reg_wr(r_wr[r]), .reg_rd(r_rd && r_sel == r), .reg_addr(r_addr),
+            .reg_wdata(r_wdata[32*r +: 32]), .reg_rdata(r_rd_v[32*r +: 32]), .coef_we(1'b0), .coef_addr(10'd0),
+            .watchdog_expired(1'b0), .g_wr_refused(1'b0), .ext_fault(2'b00), .pwm_sync_in(1'b0),
+            .pwm_sync_out(r_sync), .irc_a(a_l[r]), .irc_b(b_l[r]), .irc_idx(1'b0), .irc_mark(1'b0),
+            .hall(hall_code[3*r +: 3]), .pwm_hi(r_hi[3*r +: 3]), .pwm_lo(r_lo[3*r +: 3]), .adc_sclk(sclk_l[r]),
+            .adc_cs_n(cs_l[r]), .adc_miso(miso_l[3*r +: 3]), .period_tick(ps_l[r]), .control_done(r_ctl[r]),
+            .fault_any(ref_fault[r]), .bridges_live(r_live));
+        wire unused_r = &{1'b0, r_sync, r_live};
+    end endgenerate
+    reg [31:0] r_or;
+    integer ri;
+    always @(*) begin
+        r_or = 32'd0;
+        for (ri = 0; ri < NAXES; ri = ri + 1) r_or = r_or | r_rd_v[32*ri +: 32];
+    end
+    assign r_rdata = r_or;
 
     // ---- the multi-axis drive ----
     wire [3*NAXES-1:0] m_hi, m_lo;
@@ -99,26 +117,24 @@ module mx_axes_tb #(
     mx_axes #(.NAXES(NAXES)) u_mx (
         .clk(clk), .rst(rst), .reg_wr(m_wr), .reg_rd(m_rd), .reg_addr(m_addr[AXB+7:0]), .reg_wdata(m_wdata),
         .reg_rdata(m_rdata), .coef_we(1'b0), .coef_addr({(AXB+10){1'b0}}), .watchdog_expired(1'b0),
-        .g_wr_refused(1'b0), .ext_fault(2'b00), .irc_a(a_l[NL-1:1]), .irc_b(b_l[NL-1:1]), .irc_idx({NAXES{1'b0}}),
-        .irc_mark({NAXES{1'b0}}), .hall({NAXES{hall_code}}), .pwm_hi(m_hi), .pwm_lo(m_lo), .adc_sclk(m_sclk),
-        .adc_cs_n(m_cs), .adc_miso(miso_l[3*NL-1:3]), .period_tick(ps_l[NL-1:1]), .control_done(m_ctl),
+        .g_wr_refused(1'b0), .ext_fault(2'b00), .irc_a(a_l[NL-1:NAXES]), .irc_b(b_l[NL-1:NAXES]),
+        .irc_idx({NAXES{1'b0}}), .irc_mark({NAXES{1'b0}}), .hall(hall_code), .pwm_hi(m_hi), .pwm_lo(m_lo), .adc_sclk(m_sclk),
+        .adc_cs_n(m_cs), .adc_miso(miso_l[3*NL-1:3*NAXES]), .period_tick(ps_l[NL-1:NAXES]), .control_done(m_ctl),
         .fault_any(fault_any), .bridges_live(m_live));
-    generate for (l = 1; l < NL; l = l + 1) begin : g_spi
+    generate for (l = NAXES; l < NL; l = l + 1) begin : g_spi
         assign sclk_l[l] = m_sclk;
         assign cs_l[l] = m_cs;
     end endgenerate
 
-    // ---- comparison: axis n against the reference PHASE_n clocks earlier ----
-    wire [5:0] r_out = {r_lo, r_hi};
-    reg  [5:0] hist [0:8191];
-    always @(posedge clk) hist[tick[12:0]] <= r_out;
-    always @(posedge clk) begin
+    // ---- comparison: axis n against reference n PHASE_n clocks earlier ----
+    always @(posedge clk) begin : b_ref_mon
+        integer k;
         if (rst) begin
-            nz_ref <= 32'd0;
-            n_ctl_ref <= 32'd0;
-        end else begin
-            if (r_out != 6'd0) nz_ref <= nz_ref + 32'd1;
-            if (r_ctl) n_ctl_ref <= n_ctl_ref + 32'd1;
+            nz_ref <= 0;
+            n_ctl_ref <= 0;
+        end else for (k = 0; k < NAXES; k = k + 1) begin
+            if ({r_lo[3*k +: 3], r_hi[3*k +: 3]} != 6'd0) nz_ref[32*k +: 32] <= nz_ref[32*k +: 32] + 32'd1;
+            if (r_ctl[k]) n_ctl_ref[32*k +: 32] <= n_ctl_ref[32*k +: 32] + 32'd1;
         end
     end
     genvar a;
@@ -126,6 +142,9 @@ module mx_axes_tb #(
         localparam integer PH = a * STAGGER;
         localparam [31:0] PH32 = PH;
         wire [31:0] tp = tick - PH32;
+        wire [5:0] r_out = {r_lo[3*a +: 3], r_hi[3*a +: 3]};
+        reg  [5:0] hist [0:8191];
+        always @(posedge clk) hist[tick[12:0]] <= r_out;
         wire [5:0] exp_o = (PH == 0) ? r_out : hist[tp[12:0]];
         wire [5:0] out = {m_lo[3*a +: 3], m_hi[3*a +: 3]};
         wire       on_time;
@@ -154,6 +173,6 @@ module mx_axes_tb #(
             end
         end
     end endgenerate
-    wire unused = &{1'b0, r_sync, r_live, m_ctl, m_live, m_addr};
+    wire unused = &{1'b0, m_ctl, m_live, m_addr};
 endmodule
 `default_nettype wire
