@@ -145,33 +145,38 @@ if cocotb is not None:
         halls = [0b001, 0b011, 0b010, 0b110]            # a valid HALL code per axis (different sectors)
         dut.hall_code.value = sum(halls[k] << (3 * k) for k in range(na))
         # phase currents summing to 0 (the sum check), different per axis
-        b0 = [off + 60 + 25 * k for k in range(na)]
-        b1 = [off - 20 - 5 * k for k in range(na)]
-        b2 = [off - 40 - 20 * k for k in range(na)]
+        # (small: the MPC is not driven into its voltage limit, u follows the references and the noise)
+        b0 = [off + 6 + 2 * k for k in range(na)]
+        b1 = [off - 2 - k for k in range(na)]
+        b2 = [off - 4 - k for k in range(na)]
         for name, b in (("base0", b0), ("base1", b1), ("base2", b2)):
             getattr(dut, name).value = sum(v << (12 * k) for k, v in enumerate(b))
         dut.adc_seed.value = sum((12345 + 977 * k) << (32 * k) for k in range(na))
-        dut.adc_noise.value = 3
+        dut.adc_noise.value = 8
         dut.inj.value = 0
         dut.inj_ax.value = last
         dut.cmp_en.value = 0
         await ClockCycles(dut.clk, 10)
         dut.rst.value = 0
-        dut.cmp_en.value = 1
         await RisingEdge(dut.clk)
 
         def setup(k):
             async def f(drv):
                 await drv.udc(36000 - 1000 * k)
                 await drv.command(fault_clear=1)
-                await drv.write("IQ_REF", 3000 + 700 * k)
-                await drv.write("ID_REF", (0x3FF00 - 0x40 * k) & 0x3FFFF)
+                await drv.write("IQ_REF", 2000 + 3000 * k)
+                await drv.write("ID_REF", (-(500 + 1500 * k)) & 0x3FFFF)
+                await drv.write("KDC", 65536 - 6000 * k)        # the job axis's registers must be its own
                 await drv.control(enable=True, run=True, pwm_per_control=1)
             return f
         ops = [await _ops(setup(k)) for k in range(na)]
         ev = _ref_events(T0, ops)
         for n in range(na):
             ev += _write_events(T0 + n * st, n, ops[n])
+        # compare from the clock after every axis's first fault clear (UDC resets to 0: FAULT.dclink is
+        # latched from reset until then, and a latched fault ends an axis's comparison); before it every
+        # output is off anyway
+        ev.append((T0 + (na - 1) * st + WRITE_GAP * len(ops[0]), {"cmp_en": 1}))
         t_end = T0 + (na - 1) * st + periods * P2
         ev.append((t_end, {}))
         await _play(dut, ev)
@@ -188,8 +193,17 @@ if cocotb is not None:
             assert (st_ref >> sbit["running"]) & 1, f"reference {n} not running (STATUS {st_ref:#x}, FAULT " \
                                                      f"{await _read(dut, 'r', reg['FAULT'], n):#x})"
         assert all(x > 0 for x in nz_ref) and all(c >= periods for c in n_ctl), (nz_ref, n_ctl)
+        dchg = [_vec(dut.n_duty_chg, n) for n in range(na)]
+        words = {}
+        for n in range(na):
+            words[n] = {w: await _read(dut, "r", reg[w], n) for w in ("U_D", "U_Q", "I_D", "I_Q", "SAT_U", "SAT_LIMIT")}
+        dut._log.info(f"references: duty changes per axis {dchg}; status words {words}")
+        assert all(c >= 3 for c in dchg), f"the references' duty does not move: {dchg}"
+        assert all(words[n]["SAT_U"] == 0 for n in range(na)), f"a reference's u saturates: {words}"
+        assert len({(words[n]["U_D"], words[n]["U_Q"]) for n in range(na)}) == na, f"equal voltages {words}"
         assert all(m == 0 for m in mism), f"axes differ from the shifted reference: {mism} first at {tm}"
-        assert all(x > 0 for x in nz), f"an axis never switched: {nz}"
+        assert all(x > 2 * P2 for x in nz), f"an axis hardly switched while compared: {nz}"
+        assert int(dut.dev.value) == 0, "an axis's comparison ended before the fault"
         assert int(dut.fault_any.value) == 0 and int(dut.ref_fault.value) == 0
 
         # ---- overcurrent at the last axis's pins ----

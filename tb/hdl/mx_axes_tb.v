@@ -51,7 +51,8 @@ module mx_axes_tb #(
     output reg  [32*NAXES-1:0]  nz,
     output reg  [32*NAXES-1:0]  nz_ref_f,
     output reg  [32*NAXES-1:0]  nz_ref,
-    output reg  [32*NAXES-1:0]  n_ctl_ref
+    output reg  [32*NAXES-1:0]  n_ctl_ref,
+    output reg  [32*NAXES-1:0]  n_duty_chg     // reference n: PWM periods whose phase-A on-time differs from the last
 );
     localparam integer P = `EMPC_PWM_HALF_PERIOD;
     localparam integer NL = 2 * NAXES;
@@ -137,6 +138,20 @@ module mx_axes_tb #(
             if (r_ctl[k]) n_ctl_ref[32*k +: 32] <= n_ctl_ref[32*k +: 32] + 32'd1;
         end
     end
+    generate for (r = 0; r < NAXES; r = r + 1) begin : g_duty
+        reg [15:0] on_cnt, on_last;
+        always @(posedge clk) begin
+            if (rst) begin
+                on_cnt <= 16'd0;
+                on_last <= 16'd0;
+                n_duty_chg[32*r +: 32] <= 32'd0;
+            end else if (ps_l[r]) begin
+                on_cnt <= 16'd0;
+                on_last <= on_cnt;
+                if (on_cnt != on_last) n_duty_chg[32*r +: 32] <= n_duty_chg[32*r +: 32] + 32'd1;
+            end else if (r_hi[3*r]) on_cnt <= on_cnt + 16'd1;
+        end
+    end endgenerate
     genvar a;
     generate for (a = 0; a < NAXES; a = a + 1) begin : g_cmp
         localparam integer PH = a * STAGGER;
