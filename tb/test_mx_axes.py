@@ -247,3 +247,43 @@ def test_mx_axes_time_shift(na):
         public=ROOT / "tb" / "hdl" / "mx_axes_tb.vlt", timing=True,
         parameters={"NAXES": na, "STAGGER": h[f"PWM_STAGGER_{na}"]}, run_name="time_shift",
         extra_env={"MXA_NAXES": str(na), "MXA_PERIODS": "10"}, testcase="time_shift")
+
+
+MUTANTS = {
+    # the engine reads axis 0's registers for every job (the job_axis multiplexer ignored)
+    "job_regs": ("        for (ji = 0; ji < NAXES; ji = ji + 1) if (job_axis == ji[AXB-1:0]) begin\n",
+                 "        for (ji = 0; ji < NAXES; ji = ji + 1) if (ji == 0) begin\n",
+                 "axes differ from the shifted reference"),
+    # any axis's overcurrent trips every axis (a shared fault cause)
+    "shared_oc": ("        assign causes[`EMPC_A_FAULT_OVERCURRENT] = adc_oc[n];\n",
+                  "        assign causes[`EMPC_A_FAULT_OVERCURRENT] = |adc_oc;\n",
+                  "only axis 1 may trip"),
+}
+
+
+@pytest.mark.full
+@pytest.mark.cost(90)
+@pytest.mark.parametrize("mutant", list(MUTANTS))
+def test_mx_axes_mutant(mutant, tmp_path):
+    """The time-shift test must fail on a wrong job-axis register multiplexer and on a shared fault cause."""
+    import runner
+    from files import rtl_sources
+    good, bad, why = MUTANTS[mutant]
+    src = (ROOT / "rtl" / "mx_axes.v").read_text()
+    assert src.count(good) == 1, "the mutant no longer matches rtl/mx_axes.v"
+    mut = tmp_path / "mx_axes.v"
+    mut.write_text(src.replace(good, bad))
+    h = _hdr()
+    orig = runner.rtl_sources
+    runner.rtl_sources = lambda: [mut if p.name == "mx_axes.v" else p for p in rtl_sources()]
+    try:
+        with pytest.raises((AssertionError, SystemExit)):  # cocotb's runner exits on a failed test
+            runner.run(toplevel="mx_axes_tb", test_module="test_mx_axes", sim="verilator",
+                       name=f"mx_axes_mutant_{mutant}", public=ROOT / "tb" / "hdl" / "mx_axes_tb.vlt", timing=True,
+                       parameters={"NAXES": 2, "STAGGER": h["PWM_STAGGER_2"]}, run_name="time_shift",
+                       extra_env={"MXA_NAXES": "2", "MXA_PERIODS": "10"}, testcase="time_shift")
+    finally:
+        runner.rtl_sources = orig
+    res = max((runner.BUILD / "sim").glob(f"mx_axes_mutant_{mutant}_mx_axes_tb_*/run_time_shift/results.xml"),
+              key=lambda f: f.stat().st_mtime).read_text()
+    assert why in res, res[-2000:]
