@@ -52,7 +52,7 @@ module mx_axes_tb #(
     output reg  [32*NAXES-1:0]  nz_ref_f,
     output reg  [32*NAXES-1:0]  nz_ref,
     output reg  [32*NAXES-1:0]  n_ctl_ref,
-    output reg  [32*NAXES-1:0]  n_duty_chg     // reference n: PWM periods whose phase-A on-time differs from the last
+    output reg  [32*NAXES-1:0]  n_duty_chg     // reference n: PWM periods whose on-time (three phases) differs from the last
 );
     localparam integer P = `EMPC_PWM_HALF_PERIOD;
     localparam integer NL = 2 * NAXES;
@@ -71,7 +71,7 @@ module mx_axes_tb #(
         localparam integer PH = (l < NAXES) ? 0 : K * STAGGER;
         wire signed [32:0] lt = $signed({1'b0, tick}) - PH;
         wire signed [32:0] dt = lt - $signed({1'b0, t_move});
-        wire [31:0] ph = dt[32] ? 32'd0 : dt[31:0] >> (SPD_SH + K);   // a triangle of 64 counts (within a HALL sector)
+        wire [31:0] ph = dt[32] ? 32'd0 : dt[31:0] >> (SPD_SH + K % 2);   // a triangle of 64 counts (within a HALL sector)
         wire [31:0] cnt = ph[6] ? 32'd128 - {25'd0, ph[6:0]} : {25'd0, ph[6:0]};
         assign a_l[l] = cnt[0] ^ cnt[1];
         assign b_l[l] = cnt[1];
@@ -149,7 +149,7 @@ module mx_axes_tb #(
                 on_cnt <= 16'd0;
                 on_last <= on_cnt;
                 if (on_cnt != on_last) n_duty_chg[32*r +: 32] <= n_duty_chg[32*r +: 32] + 32'd1;
-            end else if (r_hi[3*r]) on_cnt <= on_cnt + 16'd1;
+            end else on_cnt <= on_cnt + {15'd0, r_hi[3*r]} + {15'd0, r_hi[3*r+1]} + {15'd0, r_hi[3*r+2]};
         end
     end endgenerate
     genvar a;
