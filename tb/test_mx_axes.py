@@ -236,8 +236,8 @@ if cocotb is not None:
                       f"tick {int(dut.tick.value)}")
 
 
-@pytest.mark.cost(90)            # Verilator build of two drives (one- and two-axis) + ~70k clocks
-@pytest.mark.parametrize("na", [2, pytest.param(4, marks=pytest.mark.full)])
+@pytest.mark.cost(80)            # Verilator build (three drives' worth of RTL: about 75 s) + 91k clocks (3 s)
+@pytest.mark.parametrize("na", [2, pytest.param(4, marks=[pytest.mark.full, pytest.mark.cost(135)])])
 def test_mx_axes_time_shift(na):
     """NAXES axes against the one-axis drive, each shifted by its carrier phase: every PWM output bit- and
     clock-equal; an overcurrent at one axis's pins switches off that axis only, a clear restarts it."""
