@@ -52,6 +52,7 @@ from empc.rtlmodel.ref_gen import GOV_FIELD, RefGen, gov_words, segments_from_po
 ROOT = Path(__file__).resolve().parents[1]
 REPORTS = ROOT / "build" / "reports"
 CLK_PERIOD_NS = 10                    # fabric clock (100 MHz); the PLL model passes it through
+NO_REPORT = bool(os.environ.get("EMPC_COSIM_NO_REPORT"))   # the PGO training run: every check, no report
 LATENCY_MAX = 300                     # clocks from the last ADC bit to the compare values (issue 16 item 3)
 
 # Co-simulation scenarios: (paper scenario, simulated seconds, fault injection or None)
@@ -1171,7 +1172,7 @@ async def closed_loop(dut, name: str):
         assert report["rms_error_rtl_vs_float_rel"] < 0.10, report["rms_error_rtl_vs_float_rel"]
         assert res["status"]["CNT_OVERRUN"] == 0 and res["status"]["FAULT"] == 0, res["status"]
         assert res["status"]["CNT_ADC_MISS"] == 0, "PWM centre off the ADC frame grid"
-        if not cs.lockstep or name in LOCKSTEP:      # (LOCKSTEP: make sim runs only the lockstep copy)
+        if (not cs.lockstep or name in LOCKSTEP) and not NO_REPORT:   # (LOCKSTEP: make sim runs only the lockstep copy)
             _plot(cs, tr, ftr, REPORTS / f"closed_loop_{name}.png")
     else:
         fr = res["fault"]
@@ -1206,6 +1207,8 @@ async def closed_loop(dut, name: str):
             assert v < 0xFFFFFFFF, f"counter {k} saturated/wrapped"
     if name in COSIM_IQ_HOLD:
         assert min(report["gov_speed_hold_cases"].values()) > 0, f"held cases not all seen: {report['gov_speed_hold_cases']}"
+    if NO_REPORT:                   # the PGO training run (build_and_run): checked, not reported
+        return
     REPORTS.mkdir(parents=True, exist_ok=True)
     tag = "_lockstep" if cs.lockstep else ""
     (REPORTS / f"closed_loop_{name}{tag}.json").write_text(json.dumps(report, indent=1, default=float) + "\n")
@@ -1254,12 +1257,19 @@ LOCKSTEP = ("short", "overcurrent", "encoder", "watchdog")   # make sim (81 ms +
 VLT = ROOT / "tb" / "hdl" / "cosim_top.vlt"       # the signals Python touches through VPI
 
 
+# The plain build (the paper-length runs) is compiled with C++ profile-guided optimisation (tb/runner.py PGO_*):
+# trained on the short run, whose checks all run (no report is written); the lockstep build is not (its runs
+# are short).
+PGO_TRAIN = "short"
+
+
 def build_and_run(names: str, lockstep: bool = False):
     from runner import run
     defines = {"EMPC_SIM_GATE": 1, **({"COSIM_LOCKSTEP": 1} if lockstep else {})}
     run(toplevel="cosim_top", test_module="test_closed_loop", sim="verilator", name="cosim", public=VLT,
         timing=True, parameters={"CLK_HALF_PS": CLK_PERIOD_NS * 500}, defines=defines,
-        run_name=names.replace(",", "+"), extra_env={"EMPC_COSIM": names})
+        run_name=names.replace(",", "+"), extra_env={"EMPC_COSIM": names},
+        pgo=None if lockstep else {"EMPC_COSIM": PGO_TRAIN, "EMPC_COSIM_NO_REPORT": "1"})
 
 
 SIM_MS_PER_S = 9.5          # co-simulation speed on one idle core (README: 9.0-9.7 sim ms per CPU s), for the order
