@@ -83,6 +83,11 @@ class ExplicitMPC(Controller):
         f = x - i
         return {n: (1 - f) * v[i] + f * v[i + 1] for n, v in tab.items()}
 
+    def ebar_increment(self, inc: np.ndarray, meas) -> np.ndarray:
+        """The clamped increments of eq. 25 as added to ebar (as the RTL: unchanged).  A hook for studies
+        of the integral action (flow/antiwindup.py: conditional integration, not in the RTL)."""
+        return inc
+
     def references(self, meas) -> tuple[np.ndarray, np.ndarray]:
         """w_k and W = w_{k+1..k+N} after the governor (task output) and field weakening (i_d)."""
         c = self.cfg.control
@@ -119,7 +124,7 @@ class ExplicitMPC(Controller):
         if self.algorithm == 1:
             du = g["K_e"] @ (Wv - np.tile(y, self.N)) - g["K_dx"] @ dx
         else:
-            self.ebar = self.ebar + np.clip(w_k - y, -self.ebar_max, self.ebar_max)   # (25), clamped
+            self.ebar = self.ebar + self.ebar_increment(np.clip(w_k - y, -self.ebar_max, self.ebar_max), meas)  # (25)
             du = g["K_ebar"] @ self.ebar + g["K_WL"] @ Wv - g["K_y"] @ y - g["K_dx"] @ dx
         u_raw = self.u_dq + du
         u, sat = limit_circle(u_raw, self.cfg.u_max)
