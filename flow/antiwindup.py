@@ -1,38 +1,33 @@
 #!/usr/bin/env python3
-"""Study (issue 15): conditional integration of algorithm 2's task-output error, load_speed at corner_a.
+"""Study (issue 15): anti-windup of algorithm 2's speed integral, load_speed at corner_a.
 
 The rated-current load step of ``load_speed`` is a disturbance the reference governor does not see; at
-corner_a (psi -20 %) the algorithm-2 speed loop's integral action overshoots the load current 1.65-1.8 x
-(docs/design.md "Current limit at the box corners").  The prototype here is the standard conditional
-integration of a drive's speed controller: the task output's increment of eq. 25 (speed or angle,
-ebar[2]) is not added in a control period where the measured |i_q| > ``thr`` x i_max and the increment
-has the sign of i_q (it would drive |i_q| further); the clamped increment is used otherwise, so the
-loop stays offset-free for every load below thr x i_max.  The current increments (not integrated in the
-bundled designs) are untouched.
+corner_a (psi -20 %) the algorithm-2 speed loop's integral action overshot the load current 1.65-1.8 x
+(docs/design.md "Current limit at the box corners").  The model and the RTL now hold the speed error's
+increment of eq. 25 (ebar[2], speed task) in a control period where |i_q| >= hold_current x i_max (the
+governor's hold current, register IQ_HOLD) and the increment has the sign of i_q (it would drive |i_q|
+further): the standard conditional integration of a drive's speed controller, offset-free for every
+load below hold_current x i_max (rtlmodel/mpc_core.update step 2, rtl/mpc_operand.v, ExplicitMPC).
 
-NOT in the model nor in the RTL: the study installs it around the existing code for the time of a run,
+This script measures it against other thresholds ``--thr`` (x i_max; 0 = no hold, the model before) and
+the position task (``--tasks speed,position``: the angle error held the same way, through the core's
+inputs, w_k[2] := y[2]), installed around the models for the time of a run (ExplicitMPC.ebar_increment,
+mpc_core.update as FixedMPC and the sequencer model, ctrl_seq / bitloop, call it):
 
-  * float: ExplicitMPC.ebar_increment (the hook is the identity in the model);
-  * fixed and bit: the core model's inputs, w_k[2] := y[2] (the increment is then 0, every other
-    word unchanged) in mpc_core.update as FixedMPC and the sequencer model (ctrl_seq, bitloop) call it,
-    i.e. what the sequencer would write into the core's input buffer (IN_WREF + 2); the RTL would need a
-    condition the 36-bit microword has no code for (``cond`` is full) or a freeze input of the core's
-    EBA item (rtl/mpc_operand.v), a threshold word and a status counter: not done.
+    PYTHONPATH=$PWD/gen .venv/bin/python flow/antiwindup.py [--thr 0.7] [--cases motor:scenario:plant,...]
+        [--forms float,fixed,bit] [--tasks speed] [--offsets] [--sweep] [--json build/reports/antiwindup.json]
 
-    PYTHONPATH=$PWD/gen .venv/bin/python flow/antiwindup.py [--thr 0.8] [--cases motor:scenario:plant,...]
-        [--forms float,fixed,bit] [--offsets] [--sweep] [--json build/reports/antiwindup.json (default)]
-
-``--cases`` (default: the load_speed / corner_a xfails and the EC 45 flat's corner_b ones) prints the
-peak |i| / i_max with and without the prototype and the number of periods it held the integral;
-``--offsets`` test_alg2_load's load_speed metric (speed offset under the rated load / rated speed, i_d
-mean / I_rated, peak) for the four algorithm-2 speed designs at nominal and corner_a; ``--sweep`` every
-scenario of every motor at its own Ts, three plants, the given forms (only the runs where it acted
-differ from the model's).
+``--cases`` (default: the load_speed / corner_a cases and the EC 45 flat's corner_b ones) prints the
+peak |i| / i_max without the hold (thr 0) and with each thr, and the number of periods it held;
+``--offsets`` test_alg2_load's load_speed metric (speed offset under the rated load in % of the rated
+speed, i_d and i_q means / I_rated, peak) for the four algorithm-2 speed designs at nominal and corner_a;
+``--sweep`` every scenario of every motor at its own Ts, three plants, the given forms.
 """
 from __future__ import annotations
 
 import argparse
 import contextlib
+import dataclasses
 import json
 import sys
 import time
@@ -56,13 +51,14 @@ HELD = {"n": 0}          # periods the prototype held the integral (what a statu
 
 @contextlib.contextmanager
 def conditional_integration(cfg, thr: float, tasks=("speed",)):
-    """Install the prototype for runs of ``cfg`` in the designs of ``tasks`` (thr <= 0: the model as it is)."""
+    """Runs of ``cfg`` with the hold at ``thr`` x i_max in the designs of ``tasks`` (thr = 0: no hold, the
+    model before issue 15's anti-windup; the model: thr = governor.hold_current, speed task)."""
     i_max = cfg.control.i_max
-    thr_raw = int(round(thr * i_max / cfg.amps_per_lsb)) << F.I_FRAC       # i_q in ADC LSB Q.4
+    thr_raw = int(round(thr * i_max / cfg.amps_per_lsb))       # as governor.hold_current_raw (IQ_HOLD)
     orig_inc, orig_update = ExplicitMPC.ebar_increment, mpc_core.update
 
     def ebar_increment(self, inc, meas):
-        if self.task in tasks and thr > 0 and abs(meas.i_q) > thr * i_max and inc[2] * meas.i_q > 0:
+        if self.task in tasks and thr > 0 and abs(meas.i_q) >= thr * i_max and (inc[2] < 0) == (meas.i_q < 0):
             HELD["n"] += 1
             inc = inc.copy()
             inc[2] = 0.0
@@ -70,11 +66,18 @@ def conditional_integration(cfg, thr: float, tasks=("speed",)):
 
     def update(p, x):
         iq = x.y[1]
-        if p.algorithm == 2 and p.task in tasks and thr > 0 and abs(iq) > thr_raw and (x.wref[0][2] - x.y[2]) * iq > 0:
-            HELD["n"] += 1
-            w0 = x.wref[0]
-            x = mpc_core.Inputs(y=x.y, omega=x.omega, dx=x.dx, wref=((w0[0], w0[1], x.y[2]),) + tuple(x.wref[1:]),
-                                u_prev=x.u_prev, ebar_prev=x.ebar_prev, fw_thr=x.fw_thr)
+        aw = mpc_core.aw_bits(iq, thr_raw)
+        held = (p.algorithm == 2 and p.task in tasks and bool(aw & 1)
+                and ((x.wref[0][2] - x.y[2]) < 0) == (iq < 0))
+        HELD["n"] += int(held)
+        if p.task == "position":
+            # the model holds the speed task only: the angle error through the inputs, w_k[2] := y[2]
+            x = dataclasses.replace(x, aw=0)
+            if held:
+                w0 = x.wref[0]
+                x = dataclasses.replace(x, wref=((w0[0], w0[1], x.y[2]),) + tuple(x.wref[1:]))
+        else:
+            x = dataclasses.replace(x, aw=aw if p.task in tasks else 0)
         return orig_update(p, x)
 
     ExplicitMPC.ebar_increment = ebar_increment
@@ -110,7 +113,7 @@ def offsets(motor, plant, form, thr) -> dict:
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--thr", default="0.8", help="thresholds x i_max, comma separated (0: the model)")
+    ap.add_argument("--thr", default="0.7", help="thresholds x i_max, comma separated (0: no hold)")
     ap.add_argument("--cases", default=",".join(CASES))
     ap.add_argument("--forms", default="float,fixed,bit")
     ap.add_argument("--tasks", default="speed", help="designs with the prototype: speed (default), position")
