@@ -783,7 +783,9 @@
 #define EMPC_A_FW_R2_LO_MASK    0xFFFF0000u
 #define EMPC_A_FW_R2_LO_WIDTH   16u
 /* IQ_HOLD (RW): Reference-governor hold: a control period with |i_q| >= IQ_HOLD ADC LSB (or the voltage
-   limit active) holds the reference's acceleration in the next (0 = no current hold). */
+   limit active) holds the reference's acceleration in the next (0 = no current hold); in that period
+   the algorithm-2 speed task's integral is held too when the speed error would drive |i_q| further
+   (anti-windup, counted in SAT_EBAR_INC). */
 #define EMPC_A_IQ_HOLD            0x07Cu
 #define EMPC_A_IQ_HOLD_ACCESS     EMPC_ACC_RW
 #define EMPC_A_IQ_HOLD_RESET      0x00000000u
@@ -980,7 +982,8 @@
 #define EMPC_A_SAT_EBAR_RESET_MASK 0x00000000u
 #define EMPC_A_SAT_EBAR_BITS       0xFFFFFFFFu
 #define EMPC_A_SAT_EBAR_SIGNED     0
-/* SAT_EBAR_INC (RO, in cnt): Counter: ebar increment clamped (eq. 25 anti-windup active). */
+/* SAT_EBAR_INC (RO, in cnt): Counter: ebar increment clamped or the speed increment held (eq. 25
+   anti-windup active, IQ_HOLD). */
 #define EMPC_A_SAT_EBAR_INC            0x0DCu
 #define EMPC_A_SAT_EBAR_INC_ACCESS     EMPC_ACC_RO
 #define EMPC_A_SAT_EBAR_INC_RESET      0x00000000u

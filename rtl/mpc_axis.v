@@ -266,10 +266,12 @@ module mpc_axis #(
                                          {id_sum[`EMPC_I_W], {(`EMPC_I_W-1){~id_sum[`EMPC_I_W]}}} : id_sum[`EMPC_I_W-1:0];
     wire [`EMPC_I_W-5:0] iq_int = st_iq[`EMPC_I_W-1:4];           // floor(i_q / 16): ADC LSB
     wire [`EMPC_I_W-5:0] iq_mag = iq_int[`EMPC_I_W-5] ? ~iq_int : iq_int;   // |i_q| >= 16 H <=> iq_mag >= H
+    // |i_q| at the hold current: the governor's hold (after the update) and the core's speed-integral hold
+    // (aw, during the update: st_iq is the front's i_q of this period, held until the next front)
+    wire iq_big = iq_hold != 0 && iq_mag >= {{(`EMPC_I_W-4-`EMPC_A_IQ_HOLD_W){1'b0}}, iq_hold};
     always @(posedge clk) begin
         if (rst || !running) gov_hold <= 1'b0;
-        else if (core_done) gov_hold <= core_flags[`EMPC_FLAG_LIMIT] ||
-                                       (iq_hold != 0 && iq_mag >= {{(`EMPC_I_W-4-`EMPC_A_IQ_HOLD_W){1'b0}}, iq_hold});
+        else if (core_done) gov_hold <= core_flags[`EMPC_FLAG_LIMIT] || iq_big;
     end
 
     wire        st_we, stat_sweep;
@@ -301,7 +303,7 @@ module mpc_axis #(
         .in_wdata(core_in_wdata), .busy(core_busy),
         .done(core_done), .u(core_u), .du(core_du), .u_raw(core_u_raw), .ebar(core_ebar), .wn(core_wn),
         .flags(core_flags), .latency(core_latency), .fw_thr({fw_r2_lo, fw_r2_hi}), .fw_hi(core_fw_hi),
-        .fw_lo(core_fw_lo), .cfg_we(coef_we), .cfg_addr(coef_addr),
+        .fw_lo(core_fw_lo), .aw({st_iq[`EMPC_I_W-1], iq_big}), .cfg_we(coef_we), .cfg_addr(coef_addr),
         .cfg_wdata(reg_wdata), .cfg_swap(cmd_coef_swap), .swap_at(ctl_boundary), .ready(core_ready), .bank(core_bank),
         .swap_pending(core_swap_pending), .boot_ok(core_boot_ok), .img_ok(core_img_ok), .upl_ok(core_upl_ok),
         .swap_refused(core_swap_refused), .refused(core_refused), .task_pos(task_pos));

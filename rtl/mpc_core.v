@@ -70,6 +70,9 @@
 //   selects y2 / references accordingly), latency.
 //   Field weakening (model step 7): fw_thr = {lo, hi} (register FW_R2) in; fw_hi, fw_lo out,
 //   loaded with the other outputs (|u_raw|^2 of the update above hi / below lo).
+//   Anti-windup (model step 2): aw = {i_q < 0, |i_q| >= the hold current} (mpc_axis: register IQ_HOLD,
+//   0 = off; stable during an update): the speed task's speed-error increment is held while aw[0] and it
+//   has the sign aw[1] (it would drive |i_q| further).
 // Parameters: N (horizon inputs, default EMPC_N), NAXES (axes, 1..8; AXB = clog2(NAXES)),
 // BOOT_FILE, RSQRT_FILE ($readmemh paths).
 // Resources: 6 DSP48A1 (3 per lane, the limiter reuses them), block RAM for the boot
@@ -106,6 +109,7 @@ module mpc_core #(
     input  wire [31:0]                     fw_thr,
     output reg                             fw_hi,
     output reg                             fw_lo,
+    input  wire [1:0]                      aw,
     // coefficient banks
     input  wire                            cfg_we,
     input  wire [9+$clog2(NAXES):0]        cfg_addr,     // {axis, image word}
@@ -357,7 +361,7 @@ module mpc_core #(
     mpc_operand #(.NAXES(NAXES), .AXW(AXW)) u_op (
         .clk(cclk), .rst(rst), .clr(start_ok),
         .in_we(in_we), .in_addr(in_addr), .raxis(axis_r), .in_wdata(in_wdata),
-        .kind(kind0), .idx(idx0), .desc(desc), .alg2(alg2), .pos(pos), .neff(neff),
+        .kind(kind0), .idx(idx0), .desc(desc), .alg2(alg2), .pos(pos), .aw(aw), .neff(neff),
         .hdr_field(hdr_field), .hdr(hdr), .du_d(dun_d), .du_q(dun_q), .sel_f(tl[U_SELF]), .f(lim_f),
         .op_next(op_next), .op(op), .wn(wn_c), .wn_s(wn_s), .ur_d(ur_d), .ur_q(ur_q), .ebar_s(ebar_c),
         .f_signal(f_signal), .f_operand(f_operand), .f_wn(f_wn), .f_ebar(f_ebar), .f_ebar_inc(f_ebar_inc),

@@ -25,8 +25,11 @@
 //   COL (W_rel, E, Y, EBAR, DX per the signal layout SIG_*; m > neff and indices 59..63 read
 //   0; EBAR[o] = satSW(ebar_prev[o] + clamp(inc[o])) recomputed), UR i (u_prev[i] + du[i],
 //   c = U_FRAC - V_FRAC: op = u18[i]), UMX / NUMX (op = +-u_max), EBB o (ebar[o]).
+// Anti-windup of the speed integral (speed task, EBA 2): held (the EBA clamp patch with B = 0: increment 0)
+//   when aw[0] (|i_q| at the hold current, mpc_axis) and inc[2] has the sign aw[1] (i_q < 0); f_ebar_inc
+//   then too (model: mpc_core.update step 2).
 // Flags (sticky, cleared by clr): f_signal (a column's signal saturated to SIG_W bit),
-//   f_operand, f_wn (wn != unsaturated rshift_round(omega, ws)), f_ebar, f_ebar_inc, f_u.
+//   f_operand, f_wn (wn != unsaturated rshift_round(omega, ws)), f_ebar, f_ebar_inc (clamped or held), f_u.
 // Parameters: NAXES (axes), AXW (axis index width, max(1, clog2(NAXES))); widths and the word map
 //   from empc_formats.vh.
 // Reset: registers 0 (the buffers are LUT RAM: not reset, initial contents 0), except two
@@ -54,6 +57,7 @@ module mpc_operand #(
     // fields of the running coefficient bank (stable during an update)
     input  wire                          alg2,
     input  wire                          pos,
+    input  wire [1:0]                    aw,         // {i_q < 0, |i_q| at the hold current}: speed integral hold
     input  wire [3:0]                    neff,       // min(N_img, N, N_MAX)
     output reg  [2:0]                    hdr_field,  // header entry of the item at O0 (block RAM address)
     input  wire signed [`EMPC_SIG_W-1:0] hdr,       // that entry at O1, sign-extended (ebar_lim >= 0)
@@ -146,6 +150,7 @@ module mpc_operand #(
     // ---- O0: decode (the descriptor of a column at O0 is valid at O0) -> O1 registers ----
     reg  [1:0]  idx1;
     reg  [2:0]  clamp_o, neg_o;         // EBA results per o
+    reg         held2;                  // EBA 2 held (anti-windup): the clamp patch adds 0
     wire [TE-1:0] ent = COLTAB[desc[5:0]*TE +: TE];
     wire [2:0] e_cat = ent[13:11];
     wire [2:0] e_m1  = ent[10:8];
@@ -259,6 +264,7 @@ module mpc_operand #(
     wire        cl1   = ebar1 && alg2 && clamp_o[eo1];
     wire [1:0]  b_sel = cl1 ? B_HDR : b_sel1;
     wire        sub1  = cl1 ? neg_o[eo1] : sub1r;
+    wire        hz1   = cl1 && held2 && eo1 == 2'd2;      // held: B = 0 instead of the clamp
     reg  [CB-1:0] c1;
     always @* begin
         case (kind1)
@@ -319,6 +325,8 @@ module mpc_operand #(
     wire [SW+1:0] lx    = {d_sgn, {2'b00, lim3} ^ {(SW+1){d_sgn}}};
     wire [SW+2:0] ccmpx = {dv[SW], dv, 1'b0} - {lx, 1'b1};
     wire          clamp = ccmpx[SW+2] ^ ~d_sgn;
+    // anti-windup (EBA 2: held when inc[2] has the sign of i_q)
+    wire          held3  = alg2 && !pos && aw[0] && (d_sgn == aw[1]);    // EBA 2: D = inc[2]
     // op = sat18(rshift_round(S << B, c)) = sat18(rshift_round(S, c - B)), c = 4 c[3:2] + c[1:0]
     // (the stored field): Y1 >>> 4 c[3:2] here (a 4:1 multiplexer per bit), >> c[1:0], rounding
     // and saturation at O4.  The shift takes the unsaturated D (SW + 1 bit; Y1 = D << (1 + B)),
@@ -443,6 +451,7 @@ module mpc_operand #(
             ebar_s <= {(3*SW){1'b0}};
             clamp_o <= 3'd0;
             neg_o <= 3'd0;
+            held2 <= 1'b0;
             f_signal <= 1'b0; f_operand <= 1'b0; f_wn <= 1'b0; f_ebar <= 1'b0; f_ebar_inc <= 1'b0;
             f_u <= 1'b0;
         end else begin
@@ -461,7 +470,7 @@ module mpc_operand #(
             cd1    <= desc[CB+5:6];
             // O1 -> O2
             av <= a_zero ? {SW{1'b0}} : a_rd;
-            bv <= b_zero ? {SW{1'b0}} : b_rd;
+            bv <= (b_zero || hz1) ? {SW{1'b0}} : b_rd;
             sub2 <= sub1;
             nosig2 <= nosig1;
             c2 <= c1;
@@ -485,9 +494,10 @@ module mpc_operand #(
             c4a <= c3[1:0];
             for (o = 0; o < 3; o = o + 1)
                 if (eba3_o[o]) begin
-                    clamp_o[o] <= clamp;
+                    clamp_o[o] <= clamp || (o == 2 && held3);
                     neg_o[o] <= d_sgn;
                 end
+            if (eba3_o[2]) held2 <= held3;
             if (kind3 == `MPC_K_EBB)
                 for (o = 0; o < 3; o = o + 1)
                     if (idx3 == o[1:0]) ebar_s[o*SW +: SW] <= s_y1;
@@ -515,7 +525,7 @@ module mpc_operand #(
                 f_u <= 1'b0;
             end else begin
                 if (kind3 == `MPC_K_COL && d_ovf && !nosig3) f_signal <= 1'b1;
-                if (eba3 && alg2 && clamp) f_ebar_inc <= 1'b1;
+                if (eba3 && alg2 && (clamp || (eba3_o[2] && held3))) f_ebar_inc <= 1'b1;
                 if (kind3 == `MPC_K_EBB && alg2 && d_ovf) f_ebar <= 1'b1;
                 if (ur3 && !u_fit) f_u <= 1'b1;
                 if (kind4 == `MPC_K_COL && a_sat) f_operand <= 1'b1;

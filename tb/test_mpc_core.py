@@ -115,7 +115,8 @@ async def reset_core(dut, RisingEdge, ReadOnly, limit: int, swap_at: int = 0) ->
     """Three clocks of reset with every input idle, then the clocks until ready (boot streamed); returns
     that count, in the ReadOnly phase of the clock where ready rose."""
     dut.rst.value = 1
-    for name in ("start", "cfg_we", "cfg_swap", "in_we", "fw_thr", "cfg_addr", "cfg_wdata", "in_addr", "in_wdata"):
+    for name in ("start", "cfg_we", "cfg_swap", "in_we", "fw_thr", "aw", "cfg_addr", "cfg_wdata", "in_addr",
+                 "in_wdata"):
         getattr(dut, name).value = 0
     dut.swap_at.value = swap_at
     for _ in range(3):
@@ -139,6 +140,7 @@ class Bench:
         self.rng = np.random.default_rng(SEED + 7)
         self.boundary_always = True      # swap_at = 1 every clock: a swap is decided at the first idle edge
         self.fw_seen = set()
+        self.aw_seen = set()
         # the axis the bench drives (cfg_addr / in_addr top bits, one-hot start, cfg_swap, swap_at)
         self.NA = int(os.environ.get("EMPC_NAXES", "1"))
         self.ax = int(os.environ.get("EMPC_IMG_AXIS", "0"))
@@ -171,11 +173,12 @@ class Bench:
             w = {**unused_words(self.rng, self.N), **w}
         await write_inputs(self.dut, w, self.RisingEdge, self.ax)
 
-    async def run(self, x: dict, i: int, swap_at: int | None = None, fw_thr=(0, 0)) -> tuple[dict, int]:
+    async def run(self, x: dict, i: int, swap_at: int | None = None, fw_thr=(0, 0), aw: int = 0) -> tuple[dict, int]:
         """Write vector i, pulse start, wait for done; returns outputs and start->done cycles."""
         dut = self.dut
         await self.load(x, i)
         dut.fw_thr.value = fw_thr[0] | (fw_thr[1] << 16)
+        dut.aw.value = aw
         dut.start.value = self.sel
         await self.RisingEdge(dut.clk)
         dut.start.value = 0
@@ -568,9 +571,10 @@ def foreign_builds(log) -> list[tuple[str, list[int]]]:
     return out
 
 
-def _model_outputs(p: core.Params, x: dict, i: int, fw_thr=(0, 0)) -> dict:
+def _model_outputs(p: core.Params, x: dict, i: int, fw_thr=(0, 0), aw: int = 0) -> dict:
     xi = V.to_inputs(x, i)
-    o = core.update(p, core.Inputs(xi.y, xi.omega, xi.dx, xi.wref, xi.u_prev, xi.ebar_prev, fw_thr=fw_thr))
+    o = core.update(p, core.Inputs(xi.y, xi.omega, xi.dx, xi.wref, xi.u_prev, xi.ebar_prev, fw_thr=fw_thr,
+                                   aw=aw))
     return {**V.outputs_of(o), "fw": (int(o.fw_hi), int(o.fw_lo))}
 
 
@@ -582,12 +586,21 @@ def _fw_thresholds(rng, p: core.Params, x: dict, i: int) -> tuple[int, int]:
     return pick(), pick()
 
 
+def _aw(rng, x: dict, i: int) -> int:
+    """The speed-integral hold input for vector i: off, or on with either sign (a random increment has
+    either sign: held or not)."""
+    return int(rng.choice([0, 2, 1, 3]))
+
+
 async def _check_vectors(tb: Bench, p: core.Params, x: dict, names=None, log=None) -> int:
     lat_exp = core.latency(p.ncols)
     for i in range(len(x["omega"])):
         thr = _fw_thresholds(tb.rng, p, x, i)
-        got, lat = await tb.run(x, i, fw_thr=thr)
-        exp = _model_outputs(p, x, i, thr)
+        aw = _aw(tb.rng, x, i)
+        got, lat = await tb.run(x, i, fw_thr=thr, aw=aw)
+        exp = _model_outputs(p, x, i, thr, aw)
+        if aw & 1 and p.algorithm == 2 and p.task == "speed":       # the hold changed ebar (else both sides agree)
+            tb.aw_seen.add(_model_outputs(p, x, i, thr)["ebar"] != exp["ebar"])
         tb.fw_seen.update({(k, v) for k, v in zip(("hi", "lo"), exp["fw"])})
         err = _mismatch(got, exp)
         assert err is None, f"vector {i} ({names[i] if names else 'random'}): {err}; inputs {V.to_inputs(x, i)}"
@@ -694,6 +707,7 @@ try:
         assert _mismatch(read_out(dut), _model_outputs(p_new, x, 0)) is None, "swap with start in one cycle"
         total += 1
         assert tb.fw_seen == {("hi", 0), ("hi", 1), ("lo", 0), ("lo", 1)}, f"field-weakening flags seen: {tb.fw_seen}"
+        assert tb.aw_seen == {False, True}, f"speed-integral hold changed ebar: {tb.aw_seen}"
         dut._log.info(f"checked {total} vectors bit-exact (outputs u, du, u_raw, ebar, wn, flags, fw_hi, fw_lo; inputs written "
                       f"through in_we with garbage in the unused buffer words), latency = {LAT_BASE} + ncols, "
                       f"boot {n_ready} cycles")

@@ -490,7 +490,8 @@ AXIS = (
         Field("lo", 16, 16, "below: n down", reset="EMPC_FW_R2_LO"))),
     Reg("IQ_HOLD", 0x1f, "RW", "EMPC_IQ_HOLD", "Reference-governor hold: a control period with |i_q| >= IQ_HOLD "
         "ADC LSB (or the voltage limit active) holds the reference's acceleration in the next (0 = no current "
-        "hold).", width=12),
+        "hold); in that period the algorithm-2 speed task's integral is held too when the speed error would drive "
+        "|i_q| further (anti-windup, counted in SAT_EBAR_INC).", width=12),
     Reg("POS", 0x20, "RO", 0, "Encoder count (x4, modular 32 bit)."),
     Reg("SPEED", 0x21, "RO", 0, "Speed estimate at the last control period, counts per Ts, signed Q16.16.",
         ext="stat"),
@@ -525,7 +526,8 @@ AXIS = (
     Reg("SAT_DU", 0x34, "RO", 0, "Saturation counter: du.", ext="cnt"),
     Reg("SAT_U", 0x35, "RO", 0, "Saturation counter: u before the limiter.", ext="cnt"),
     Reg("SAT_EBAR", 0x36, "RO", 0, "Saturation counter: ebar.", ext="cnt"),
-    Reg("SAT_EBAR_INC", 0x37, "RO", 0, "Counter: ebar increment clamped (eq. 25 anti-windup active).", ext="cnt"),
+    Reg("SAT_EBAR_INC", 0x37, "RO", 0, "Counter: ebar increment clamped or the speed increment held "
+        "(eq. 25 anti-windup active, IQ_HOLD).", ext="cnt"),
     Reg("SAT_LIMIT", 0x38, "RO", 0, "Counter: voltage limit active.", ext="cnt"),
     Reg("SAT_WN", 0x39, "RO", 0, "Counter: scheduling speed clamped to Omega_e.", ext="cnt"),
     Reg("SAT_SIGNAL", 0x3a, "RO", 0, "Saturation counter: core signal (SIG_W).", ext="cnt"),

@@ -348,13 +348,13 @@ KNOWN_50US = {
                                   "weights' linear quantisation chatter is 0.50 u_max (7.7 rad/s per count); Q_dy[2] "
                                   "x2 fails the box (radius 1.03); no quieter table found in the time",
 }
+# ipmsm_001 alg2 speed at corner_a (peak 1.033 / 1.096 i_max) passes since the speed integral's anti-windup
+# (issue 15, docs/design.md): 0.994 / 0.842, overshoot 15.2 / 8.3 %.
 # at the box corners (full sweep): the same designs fail there (blwr alg1 speed: overshoot 28 / 55 %), and
 KNOWN_50US_CORNERS = {
     ("ec45flat_24v", "alg1.position", "corner_a"): "peak 1.037 / 1.077 i_max, u_q RMS 0.34 / 0.35 u_max in the "
                                                    "tail at the least-damped corner (overshoot 0.5 / 0.6 %, settled "
                                                    "in 30 ms); not investigated",
-    ("ipmsm_001", "alg2.speed", "corner_a"): "peak 1.033 / 1.096 i_max at the least-damped corner (0.64 i_max "
-                                             "nominal, 0.40 at corner_b)",
     ("ec45flat_24v", "alg1.speed", "corner_a"): "sensor resolution (the step is one count): u_q RMS 0.49 / 0.50 "
                                                 "u_max in the tail, final error 26 %",
 }

@@ -212,6 +212,7 @@ module cosim_top #(
         .in_wdata(u_top.g_axis[0].u_axis.u_core.in_wdata), .busy(ls_busy), .done(ls_done), .u(ls_u),
         .du(ls_du), .u_raw(ls_u_raw), .ebar(ls_ebar), .wn(ls_wn), .flags(ls_flags), .latency(ls_latency),
         .fw_thr(u_top.g_axis[0].u_axis.u_core.fw_thr), .fw_hi(ls_fw_hi), .fw_lo(ls_fw_lo),
+        .aw(u_top.g_axis[0].u_axis.u_core.aw),
         .cfg_we(u_top.g_axis[0].u_axis.u_core.cfg_we), .cfg_addr(u_top.g_axis[0].u_axis.u_core.cfg_addr),
         .cfg_wdata(u_top.g_axis[0].u_axis.u_core.cfg_wdata), .cfg_swap(u_top.g_axis[0].u_axis.u_core.cfg_swap),
         .swap_at(u_top.g_axis[0].u_axis.u_core.swap_at),

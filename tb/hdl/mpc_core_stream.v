@@ -57,7 +57,7 @@ module mpc_core_stream #(
     mpc_core #(.N(N), .BOOT_FILE(BOOT_FILE), .RSQRT_FILE(RSQRT_FILE)) dut (
         .clk(clk), .rst(rst), .start(start), .in_we(in_we), .in_addr(in_addr), .in_wdata(in_wdata),
         .busy(busy), .done(done), .u(u), .du(du),
-        .u_raw(u_raw), .ebar(ebar), .wn(wn), .flags(flags), .latency(latency), .fw_thr(32'd0), .fw_hi(), .fw_lo(),
+        .u_raw(u_raw), .ebar(ebar), .wn(wn), .flags(flags), .latency(latency), .fw_thr(32'd0), .fw_hi(), .fw_lo(), .aw(2'b00),
         .cfg_we(cfg_we),
         .cfg_addr(cfg_addr), .cfg_wdata(cfg_wdata), .cfg_swap(cfg_swap), .swap_at(state == S_SWAP && !cfg_swap), .ready(ready),
         .bank(bank), .swap_pending(swap_pending), .boot_ok(boot_ok), .img_ok(img_ok), .upl_ok(upl_ok),

@@ -46,7 +46,7 @@ module mx_seq_tb #(
         .theta_trig(theta_trig), .st_we(st_we), .st_addr(st_addr), .st_wdata(st_wdata), .stat_sweep(stat_sweep));
     mpc_core #(.N(N)) u_core (.clk(clk), .rst(rst), .start(core_start), .in_we(core_in_we), .in_addr(core_in_addr),
         .in_wdata(core_in_wdata), .busy(core_busy), .done(core_done), .u(core_u), .du(core_du), .u_raw(core_u_raw),
-        .ebar(core_ebar), .wn(core_wn), .flags(core_flags), .latency(core_latency), .fw_thr(32'd0), .fw_hi(),
+        .ebar(core_ebar), .wn(core_wn), .flags(core_flags), .latency(core_latency), .fw_thr(32'd0), .aw(2'b00), .fw_hi(),
         .fw_lo(), .cfg_we(cfg_we),
         .cfg_addr(cfg_addr), .cfg_wdata(cfg_wdata), .cfg_swap(cfg_swap), .swap_at(ctl_boundary | swap_at),
         .ready(core_ready), .bank(core_bank), .swap_pending(swap_pending), .boot_ok(core_boot_ok), .img_ok(),

@@ -6,7 +6,8 @@ dense table over Omega_e (``EXACT_POINTS``) with linear interpolation, whose err
 is far below the polynomial fit's (tests check both).
 Online stage (sec. V-A): the error increments of (25) are clamped per output
 and u is limited to the circle |u| <= Udc/sqrt(3) by vector scaling; u_{k-1}
-keeps the limited value (incremental-form anti-windup).
+keeps the limited value (incremental-form anti-windup); the speed task's speed increment is held while
+|i_q| is at the governor's hold current and it would drive |i_q| further (``ebar_increment``, issue 15).
 
 Position task: the law is invariant to a common shift of all angle signals
 (sum of the K_WL angle columns = K_y angle column, exactly), so angles are
@@ -71,6 +72,7 @@ class ExplicitMPC(Controller):
         self.i_fw = 0.0
         self.u_raw_mag = 0.0
         self.gov_clamps = 0
+        self.aw_holds = 0
 
     def gains_at(self, w: float) -> dict:
         c = self.cfg.control
@@ -82,6 +84,19 @@ class ExplicitMPC(Controller):
         i = min(max(int(x), 0), len(grid) - 2)
         f = x - i
         return {n: (1 - f) * v[i] + f * v[i + 1] for n, v in tab.items()}
+
+    def ebar_increment(self, inc: np.ndarray, meas) -> np.ndarray:
+        """The clamped increments of eq. 25 as added to ebar.  Anti-windup of the speed integral (issue 15,
+        as the RTL core, rtlmodel/mpc_core.update step 2): in the speed task the speed increment is 0 while
+        |i_q| >= hold_current x i_max (the governor's hold current, register IQ_HOLD; off with the governor)
+        and it has the sign of i_q (it would drive |i_q| further).  flow/antiwindup.py studies it."""
+        g = self.cfg.control.governor
+        if (self.task == "speed" and g.enable and abs(meas.i_q) >= g.hold_current * self.cfg.control.i_max
+                and (inc[2] < 0) == (meas.i_q < 0)):
+            self.aw_holds += 1
+            inc = inc.copy()
+            inc[2] = 0.0
+        return inc
 
     def references(self, meas) -> tuple[np.ndarray, np.ndarray]:
         """w_k and W = w_{k+1..k+N} after the governor (task output) and field weakening (i_d)."""
@@ -119,7 +134,7 @@ class ExplicitMPC(Controller):
         if self.algorithm == 1:
             du = g["K_e"] @ (Wv - np.tile(y, self.N)) - g["K_dx"] @ dx
         else:
-            self.ebar = self.ebar + np.clip(w_k - y, -self.ebar_max, self.ebar_max)   # (25), clamped
+            self.ebar = self.ebar + self.ebar_increment(np.clip(w_k - y, -self.ebar_max, self.ebar_max), meas)  # (25)
             du = g["K_ebar"] @ self.ebar + g["K_WL"] @ Wv - g["K_y"] @ y - g["K_dx"] @ dx
         u_raw = self.u_dq + du
         u, sat = limit_circle(u_raw, self.cfg.u_max)

@@ -82,7 +82,8 @@ class FixedMPC(Controller):
         wref = tuple((F.sat(self.i_raw(r[0]) + i_fw, F.I_W), self.i_raw(r[1]), self.out3_raw(r[2]))
                      for r in refs)
         out = core.update(self.params, core.Inputs(y=(i_d, i_q, y2), omega=omega, dx=dx, wref=wref,
-                                                   u_prev=self.u_raw, ebar_prev=self.ebar, fw_thr=self.regs.fw_thr))
+                                                   u_prev=self.u_raw, ebar_prev=self.ebar, fw_thr=self.regs.fw_thr,
+                                                   aw=core.aw_bits(i_q, self.regs.iq_hold)))
         self.u_raw = out.u
         self.ebar = out.ebar
         self.fw_flags = (out.fw_hi, out.fw_lo)

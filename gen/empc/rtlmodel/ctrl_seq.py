@@ -23,6 +23,9 @@ Front end of a control period (issue 15 items 1 and 6), raw units:
     hold (for the reference governor, rtl/mpc_axis.v): after the core update of a running
         control period, (iq_hold > 0 and (i_q >= 16 iq_hold or i_q < -16 iq_hold)) or the
         voltage limiter was active; 0 when the law is off.
+    anti-windup of the speed integral: the core's aw input from i_q and iq_hold (mpc_core.aw_bits; step 2
+        of mpc_core.update: the speed task's eq. 25 increment is held while |i_q| >= 16 iq_hold and it would
+        drive |i_q| further).
 
 How the RTL computes it (the word-parallel microprogram, its pipeline and latency) is
 :mod:`empc.rtlmodel.mx_seq`.  The RTL decides a period's kind and advances the references at
@@ -194,7 +197,8 @@ class CtrlSeq:
         out["front_sat"] |= eng_sat
         dx = (i_d - self.id_prev, i_q - self.iq_prev, dom, dth, 0)
         x = core.Inputs(y=(i_d, i_q, 0 if task_pos else omega), omega=omega, dx=dx, wref=tuple(wref),
-                        u_prev=self.u, ebar_prev=self.ebar, fw_thr=regs.fw_thr)
+                        u_prev=self.u, ebar_prev=self.ebar, fw_thr=regs.fw_thr,
+                        aw=core.aw_bits(i_q, regs.iq_hold))
         self.id_prev, self.iq_prev, self.omega_prev, self.pos_prev = i_d, i_q, omega, pos
         out.update(i_d=i_d, i_q=i_q, omega=omega, dpos=dpos, i_fw=fw_offset(self.fw_n, regs), id_eff=id_eff,
                    x=x, eng_sat=eng_sat)

@@ -12,6 +12,10 @@ One update, in this order:
    flag wn_clamp: wn differs from the unsaturated rshift_round(omega, WS), or the limits are
    inverted (wn_min > wn_max: wn = wn_max, the RTL's second clamp step always acts).
 2. Algorithm 2 only: ``ebar[o] = satSIG(ebar_prev[o] + clamp(w_k[o] - y[o], +-ebar_lim[o]))`` (eq. 25).
+   Anti-windup of the speed integral (speed task, o = 2; issue 15): the increment is 0 in an update with
+   aw bit 0 set (|i_q| at the governor's hold current: :func:`aw_bits`, register IQ_HOLD, 0 = off) where
+   w_k[2] - y[2] has the sign aw bit 1 (< 0 with i_q < 0, else >= 0): it would drive |i_q| further.
+   flag ebar_inc: an increment was clamped or held.
 3. Signal vector S (fixed index layout, see ``SIG_*``), all SIG_W-bit saturated
    (horizon m = 1..min(N, N_MAX, len(wref) - 1); all other indices up to 63 read 0):
    W_rel[m,o] = w_{k+m}[o] - (position task and o == 2 ? y[2] : 0)
@@ -139,6 +143,7 @@ class Inputs:
     u_prev: tuple                  # 2 x Q16.8
     ebar_prev: tuple = (0, 0, 0)
     fw_thr: tuple = (0xFFFF, 0)    # field-weakening thresholds (hi, lo) on r >> FW_R_SHIFT (FW_R2)
+    aw: int = 0                    # speed-integral hold: bit 0 |i_q| at the hold current, bit 1 i_q < 0 (aw_bits)
 
 
 @dataclass
@@ -213,6 +218,13 @@ def signals(p: Params, x: Inputs, ebar: tuple, saturated: set | None = None) -> 
     return S
 
 
+def aw_bits(i_q: int, iq_hold: int) -> int:
+    """The core's aw input: bit 0 |i_q| >= 16 iq_hold (i_q Q.4, register IQ_HOLD in ADC LSB, 0 = off; the
+    governor's hold comparison, rtlmodel/ctrl_seq.hold_flag, rtl/mpc_axis.v), bit 1 i_q < 0."""
+    big = iq_hold > 0 and (i_q >= 16 * iq_hold or i_q < -16 * iq_hold)
+    return int(big) | (int(i_q < 0) << 1)
+
+
 def update(p: Params, x: Inputs) -> Outputs:
     counts: dict = {}
     # 1. scheduling speed
@@ -230,7 +242,10 @@ def update(p: Params, x: Inputs) -> Outputs:
             inc = x.wref[0][o] - x.y[o]
             lim = min(p.ebar_lim[o], EBAR_LIM_MAX)
             inc_c = min(max(inc, -lim), lim)
-            _count(counts, "ebar_inc", inc_c != inc)
+            held = o == 2 and p.task == "speed" and bool(x.aw & 1) and (inc < 0) == bool(x.aw & 2)
+            if held:
+                inc_c = 0
+            _count(counts, "ebar_inc", inc_c != inc or held)
             v = x.ebar_prev[o] + inc_c
             s = sat(v, SIG_W)
             _count(counts, "ebar", s != v)
@@ -476,7 +491,7 @@ class MxCore:
     def write_input(self, axis: int, word: int, value: int) -> None:
         self.words[axis][word] = wrap(value, SIG_W)
 
-    def start(self, axis: int, fw_thr: tuple = (0xFFFF, 0)) -> Outputs:
+    def start(self, axis: int, fw_thr: tuple = (0xFFFF, 0), aw: int = 0) -> Outputs:
         x = inputs_from_words(self.words[axis], self.N)
-        x = Inputs(x.y, x.omega, x.dx, x.wref, x.u_prev, x.ebar_prev, fw_thr=fw_thr)
+        x = Inputs(x.y, x.omega, x.dx, x.wref, x.u_prev, x.ebar_prev, fw_thr=fw_thr, aw=aw)
         return update(self.banks.active(axis), x)
