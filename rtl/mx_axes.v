@@ -104,6 +104,7 @@ module mx_axes #(
     wire [5*NAXES-1:0]     kacc_shift_v;
     wire [4*NAXES-1:0]     load_shift_v;
     wire [32*NAXES-1:0]    fw_thr_v;
+    wire [NAXES-1:0]       iq_big_v;        // |i_q| (the job's, st_iq) >= the axis's IQ_HOLD
     wire [AD*NAXES-1:0]    oc_thr_v, sum_thr_v, off_wdata_v;
     wire [3*NAXES-1:0]     off_we_v;
     wire [4*NAXES-1:0]     seg_addr_v, start_slot_v;
@@ -221,7 +222,7 @@ module mx_axes #(
         .in_wdata(core_in_wdata), .busy(core_busy),
         .done(core_done), .u(core_u), .du(core_du), .u_raw(core_u_raw), .ebar(core_ebar), .wn(core_wn),
         .flags(core_flags), .latency(core_latency), .fw_thr(j_fw), .fw_hi(core_fw_hi),
-        .fw_lo(core_fw_lo), .cfg_we(coef_we), .cfg_addr(coef_addr),
+        .fw_lo(core_fw_lo), .aw({st_iq[IW-1], iq_big_v[job_axis]}), .cfg_we(coef_we), .cfg_addr(coef_addr),
         .cfg_wdata(reg_wdata), .cfg_swap(cmd_coef_swap), .swap_at(ctl_boundary), .ready(core_ready), .bank(core_bank),
         .swap_pending(core_swap_pending), .boot_ok(core_boot_ok), .img_ok(core_img_ok), .upl_ok(core_upl_ok),
         .swap_refused(core_swap_refused), .refused(core_refused), .task_pos(task_pos));
@@ -343,11 +344,13 @@ module mx_axes #(
                                                                    : id_sum[IW-1:0];
         wire [IW-5:0] iq_int = st_iq[IW-1:4];
         wire [IW-5:0] iq_mag = iq_int[IW-5] ? ~iq_int : iq_int;
+        // |i_q| at this axis's hold current: the governor's hold (after the update) and, for the job's
+        // axis, the core's speed-integral hold (aw, during the update; st_iq is the job's i_q)
+        assign iq_big_v[n] = iq_hold != 0 && iq_mag >= {{(IW-4-`EMPC_A_IQ_HOLD_W){1'b0}}, iq_hold};
         reg  hold_r;
         always @(posedge clk) begin
             if (rst || !running[n]) hold_r <= 1'b0;
-            else if (ax_core_done[n]) hold_r <= core_flags[`EMPC_FLAG_LIMIT] ||
-                                                (iq_hold != 0 && iq_mag >= {{(IW-4-`EMPC_A_IQ_HOLD_W){1'b0}}, iq_hold});
+            else if (ax_core_done[n]) hold_r <= core_flags[`EMPC_FLAG_LIMIT] || iq_big_v[n];
         end
         assign gov_hold[n] = hold_r;
 
