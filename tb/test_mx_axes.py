@@ -25,14 +25,19 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 ROOT = Path(__file__).resolve().parents[1]
 
-T0 = 8000              # first register write of the reference (mpc_core of 4 axes has booted: 3843 clk)
+T0 = 8000              # first image / register write of the reference (mpc_core of 4 axes has booted: 3843 clk)
 WRITE_GAP = 4          # clocks between two register writes of one lane
+ALG2 = (1, 3)          # the axes that upload the algorithm-2 speed image (the others keep the boot image)
+IQ_HOLD = {1: 6}       # the axes' IQ_HOLD (ADC LSB; 0 = the anti-windup off): axis 3 (NAXES = 4) runs alg. 2 with 0
+
+
+def _roms() -> Path:
+    return Path(os.environ.get("EMPC_ROMS", ROOT / "build" / "roms" / "default"))
 
 
 def _hdr() -> dict:
     from empc import header
-    roms = Path(os.environ.get("EMPC_ROMS", ROOT / "build" / "roms" / "default"))
-    return header.read(roms / "empc_formats.vh")
+    return header.read(_roms() / "empc_formats.vh")
 
 
 try:
@@ -156,9 +161,26 @@ if cocotb is not None:
         dut.inj.value = 0
         dut.inj_ax.value = last
         dut.cmp_en.value = 0
+        for sg in ("r_cwe", "r_caddr", "m_cwe", "m_caddr"):
+            getattr(dut, sg).value = 0
         await ClockCycles(dut.clk, 10)
         dut.rst.value = 0
         await RisingEdge(dut.clk)
+
+        # the algorithm-2 speed image into the inactive bank of the ALG2 axes: every reference's at once,
+        # one word a clock, then mx_axes's axes one after the other (not time-shifted: the upload does not
+        # change the outputs; the swap command below is)
+        from empc import image
+        img2 = image.read_hex(_roms() / "coef_alg2_speed.hex")
+        a2 = [k for k in ALG2 if k < na]
+        ev = [(T0 + i, {"r_cwe": sum(1 << k for k in a2), "r_caddr": i,
+                        "r_wdata": sum(img2[i] << (32 * k) for k in a2)}) for i in range(image.USED)]
+        ev.append((T0 + image.USED, {"r_cwe": 0}))
+        for j, k in enumerate(a2):
+            ev += [(T0 + j * image.USED + i, {"m_cwe": 1, "m_caddr": (k << 10) | i, "m_wdata": img2[i]})
+                   for i in range(image.USED)]
+        ev.append((T0 + len(a2) * image.USED, {"m_cwe": 0}))
+        t1 = T0 + len(a2) * image.USED + 64        # the first register write of the reference
 
         def setup(k):
             async def f(drv):
@@ -167,17 +189,19 @@ if cocotb is not None:
                 await drv.write("IQ_REF", 2000 + 3000 * k)
                 await drv.write("ID_REF", (-(500 + 1500 * k)) & 0x3FFFF)
                 await drv.write("KDC", 65536 - 6000 * k)        # the job axis's registers must be its own
+                await drv.write("IQ_HOLD", IQ_HOLD.get(k, 0))   # the job axis's IQ_HOLD drives the core's aw
+                await drv.command(coef_swap=int(k in a2))       # decided at the axis's next boundary
                 await drv.control(enable=True, run=True, pwm_per_control=1)
             return f
         ops = [await _ops(setup(k)) for k in range(na)]
-        ev = _ref_events(T0, ops)
+        ev += _ref_events(t1, ops)
         for n in range(na):
-            ev += _write_events(T0 + n * st, n, ops[n])
+            ev += _write_events(t1 + n * st, n, ops[n])
         # compare from the clock after every axis's first fault clear (UDC resets to 0: FAULT.dclink is
         # latched from reset until then, and a latched fault ends an axis's comparison); before it every
         # output is off anyway
-        ev.append((T0 + (na - 1) * st + WRITE_GAP * len(ops[0]), {"cmp_en": 1}))
-        t_end = T0 + (na - 1) * st + periods * P2
+        ev.append((t1 + (na - 1) * st + WRITE_GAP * len(ops[0]), {"cmp_en": 1}))
+        t_end = t1 + (na - 1) * st + periods * P2
         ev.append((t_end, {}))
         await _play(dut, ev)
 
@@ -196,12 +220,35 @@ if cocotb is not None:
         dchg = [_vec(dut.n_duty_chg, n) for n in range(na)]
         words = {}
         for n in range(na):
-            words[n] = {w: await _read(dut, "r", reg[w], n) for w in ("U_D", "U_Q", "I_D", "I_Q", "SAT_U", "SAT_LIMIT")}
+            words[n] = {w: await _read(dut, "r", reg[w], n) for w in ("U_D", "U_Q", "I_D", "I_Q", "SAT_U", "SAT_LIMIT",
+                                                                      "SAT_EBAR_INC", "STATUS")}
         dut._log.info(f"references: duty changes per axis {dchg}; status words {words}")
         assert all(c >= 3 for c in dchg), f"the references' duty does not move: {dchg}"
         assert all(words[n]["SAT_U"] == 0 for n in range(na)), f"a reference's u saturates: {words}"
         assert len({(words[n]["U_D"], words[n]["U_Q"]) for n in range(na)}) == na, f"equal voltages {words}"
         assert all(m == 0 for m in mism), f"axes differ from the shifted reference: {mism} first at {tm}"
+        # the images: the ALG2 axes switched to the uploaded bank (reference and mx_axes), the others not;
+        # the anti-windup (aw from the job axis's IQ_HOLD) held the speed increment of an IQ_HOLD axis in some
+        # periods, equally often in mx_axes
+        for n in range(na):
+            m_st = await _read(dut, "m", (n << 8) | reg["STATUS"])
+            bank = ((words[n]["STATUS"] >> sbit["coef_bank"]) & 1, (m_st >> sbit["coef_bank"]) & 1)
+            assert bank == ((n in a2),) * 2, f"axis {n}: active bank (reference, mx_axes) {bank}"
+            m_sat = await _read(dut, "m", (n << 8) | reg["SAT_EBAR_INC"])
+            assert m_sat == words[n]["SAT_EBAR_INC"], f"axis {n}: SAT_EBAR_INC {m_sat} != reference's {words[n]}"
+            if IQ_HOLD.get(n, 0) and n in a2:
+                assert m_sat > 0, f"axis {n}: the anti-windup never acted (SAT_EBAR_INC 0)"
+        # aw[0] (|i_q| >= IQ_HOLD, the job axis's register): in some but not all periods of an IQ_HOLD axis,
+        # never elsewhere, and in the same periods' count in mx_axes as in the reference
+        n_aw = [(_vec(dut.n_aw_ref, n), _vec(dut.n_aw_mx, n)) for n in range(na)]
+        dut._log.info(f"algorithm-2 axes {a2}, IQ_HOLD {IQ_HOLD}: control periods with aw[0] (reference, mx_axes) "
+                      f"{n_aw}; SAT_EBAR_INC {[words[n]['SAT_EBAR_INC'] for n in range(na)]}")
+        for n in range(na):
+            assert n_aw[n][0] == n_aw[n][1], f"axis {n}: aw[0] periods (reference, mx_axes) {n_aw[n]}"
+            if IQ_HOLD.get(n, 0):
+                assert 0 < n_aw[n][0] < n_ctl[n], f"axis {n}: aw[0] in {n_aw[n][0]} of {n_ctl[n]} periods"
+            else:
+                assert n_aw[n][0] == 0, f"axis {n} (IQ_HOLD 0): aw[0] in {n_aw[n][0]} periods"
         assert all(x > 2 * P2 for x in nz), f"an axis hardly switched while compared: {nz}"
         assert int(dut.dev.value) == 0, "an axis's comparison ended before the fault"
         assert int(dut.fault_any.value) == 0 and int(dut.ref_fault.value) == 0
@@ -236,7 +283,7 @@ if cocotb is not None:
                       f"tick {int(dut.tick.value)}")
 
 
-@pytest.mark.cost(80)            # Verilator build (three drives' worth of RTL: about 75 s) + 91k clocks (3 s)
+@pytest.mark.cost(80)            # Verilator build (three drives' worth of RTL: about 75 s) + 92k clocks with the image upload (3 s)
 @pytest.mark.parametrize("na", [2, pytest.param(4, marks=[pytest.mark.full, pytest.mark.cost(135)])])
 def test_mx_axes_time_shift(na):
     """NAXES axes against the one-axis drive, each shifted by its carrier phase: every PWM output bit- and
@@ -249,15 +296,22 @@ def test_mx_axes_time_shift(na):
         extra_env={"MXA_NAXES": str(na), "MXA_PERIODS": "10"}, testcase="time_shift")
 
 
-MUTANTS = {
+MUTANTS = {    # name: (file in rtl/, its text, the mutant's text, the failure the test must report)
     # the engine reads axis 0's registers for every job (the job_axis multiplexer ignored)
-    "job_regs": ("        for (ji = 0; ji < NAXES; ji = ji + 1) if (job_axis == ji[AXB-1:0]) begin\n",
+    "job_regs": ("mx_axes.v", "        for (ji = 0; ji < NAXES; ji = ji + 1) if (job_axis == ji[AXB-1:0]) begin\n",
                  "        for (ji = 0; ji < NAXES; ji = ji + 1) if (ji == 0) begin\n",
                  "axes differ from the shifted reference"),
     # any axis's overcurrent trips every axis (a shared fault cause)
-    "shared_oc": ("        assign causes[`EMPC_A_FAULT_OVERCURRENT] = adc_oc[n];\n",
+    "shared_oc": ("mx_axes.v", "        assign causes[`EMPC_A_FAULT_OVERCURRENT] = adc_oc[n];\n",
                   "        assign causes[`EMPC_A_FAULT_OVERCURRENT] = |adc_oc;\n",
                   "only axis 1 may trip"),
+    # the core's anti-windup input from axis 0's IQ_HOLD comparison for every job (axis 0: IQ_HOLD 0, off)
+    "aw_axis0": ("mx_axes.v", ".aw({st_iq[IW-1], iq_big_v[job_axis]})", ".aw({st_iq[IW-1], iq_big_v[0]})",
+                 "axes differ from the shifted reference"),
+    # mx_seq hands every job axis 0's held ebar(k-1) (axis 0 runs algorithm 1: its ebar stays 0)
+    "ebar_axis0": ("mx_seq.v", "            hq <= zeroed_nx[ax] ? {(2*UW+3*SW){1'b0}} : hold[ax];\n",
+                   "            hq <= zeroed_nx[ax] ? {(2*UW+3*SW){1'b0}} : {hold[0][2*UW +: 3*SW], hold[ax][0 +: 2*UW]};\n",
+                   "axes differ from the shifted reference"),
 }
 
 
@@ -265,17 +319,18 @@ MUTANTS = {
 @pytest.mark.cost(90)
 @pytest.mark.parametrize("mutant", list(MUTANTS))
 def test_mx_axes_mutant(mutant, tmp_path):
-    """The time-shift test must fail on a wrong job-axis register multiplexer and on a shared fault cause."""
+    """The time-shift test must fail on a wrong job-axis register multiplexer, a shared fault cause, the
+    anti-windup input or the held ebar(k-1) of the wrong axis."""
     import runner
     from files import rtl_sources
-    good, bad, why = MUTANTS[mutant]
-    src = (ROOT / "rtl" / "mx_axes.v").read_text()
-    assert src.count(good) == 1, "the mutant no longer matches rtl/mx_axes.v"
-    mut = tmp_path / "mx_axes.v"
+    fname, good, bad, why = MUTANTS[mutant]
+    src = (ROOT / "rtl" / fname).read_text()
+    assert src.count(good) == 1, f"the mutant no longer matches rtl/{fname}"
+    mut = tmp_path / fname
     mut.write_text(src.replace(good, bad))
     h = _hdr()
     orig = runner.rtl_sources
-    runner.rtl_sources = lambda: [mut if p.name == "mx_axes.v" else p for p in rtl_sources()]
+    runner.rtl_sources = lambda: [mut if p.name == fname else p for p in rtl_sources()]
     try:
         with pytest.raises((AssertionError, SystemExit)):  # cocotb's runner exits on a failed test
             runner.run(toplevel="mx_axes_tb", test_module="test_mx_axes", sim="verilator",

@@ -41,6 +41,10 @@ module mx_axes_tb #(
     output wire [31:0]          r_rdata,
     input  wire                 m_wr, input wire m_rd, input wire [9:0] m_addr, input wire [31:0] m_wdata,
     output wire [31:0]          m_rdata,
+    // coefficient-image windows: reference n's word r_caddr (data r_wdata[32n +: 32]) while r_cwe[n];
+    // mx_axes's {axis, image word} m_caddr (data m_wdata) while m_cwe
+    input  wire [NAXES-1:0]     r_cwe, input wire [9:0] r_caddr,
+    input  wire                 m_cwe, input wire [11:0] m_caddr,
     // monitors
     output wire [NAXES-1:0]     fault_any,
     output wire [NAXES-1:0]     ref_fault,
@@ -52,7 +56,9 @@ module mx_axes_tb #(
     output reg  [32*NAXES-1:0]  nz_ref_f,
     output reg  [32*NAXES-1:0]  nz_ref,
     output reg  [32*NAXES-1:0]  n_ctl_ref,
-    output reg  [32*NAXES-1:0]  n_duty_chg     // reference n: PWM periods whose on-time (three phases) differs from the last
+    output reg  [32*NAXES-1:0]  n_duty_chg,    // reference n: PWM periods whose on-time (three phases) differs from the last
+    output reg  [32*NAXES-1:0]  n_aw_ref,      // reference n: control periods ending with aw[0] (|i_q| >= IQ_HOLD)
+    output reg  [32*NAXES-1:0]  n_aw_mx        // mx axis n: the same (iq_big_v[n] at its control_done)
 );
     localparam integer P = `EMPC_PWM_HALF_PERIOD;
     localparam integer NL = 2 * NAXES;
@@ -95,7 +101,7 @@ module mx_axes_tb #(
         wire r_sync, r_live;
         mpc_axis u_ref (
             .clk(clk), .rst(rst), .reg_wr(r_wr[r]), .reg_rd(r_rd && r_sel == r), .reg_addr(r_addr),
-            .reg_wdata(r_wdata[32*r +: 32]), .reg_rdata(r_rd_v[32*r +: 32]), .coef_we(1'b0), .coef_addr(10'd0),
+            .reg_wdata(r_wdata[32*r +: 32]), .reg_rdata(r_rd_v[32*r +: 32]), .coef_we(r_cwe[r]), .coef_addr(r_caddr),
             .watchdog_expired(1'b0), .g_wr_refused(1'b0), .ext_fault(2'b00), .pwm_sync_in(1'b0),
             .pwm_sync_out(r_sync), .irc_a(a_l[r]), .irc_b(b_l[r]), .irc_idx(1'b0), .irc_mark(1'b0),
             .hall(hall_code[3*r +: 3]), .pwm_hi(r_hi[3*r +: 3]), .pwm_lo(r_lo[3*r +: 3]), .adc_sclk(sclk_l[r]),
@@ -117,7 +123,7 @@ module mx_axes_tb #(
     wire [NAXES-1:0]   m_ctl, m_live;
     mx_axes #(.NAXES(NAXES)) u_mx (
         .clk(clk), .rst(rst), .reg_wr(m_wr), .reg_rd(m_rd), .reg_addr(m_addr[AXB+7:0]), .reg_wdata(m_wdata),
-        .reg_rdata(m_rdata), .coef_we(1'b0), .coef_addr({(AXB+10){1'b0}}), .watchdog_expired(1'b0),
+        .reg_rdata(m_rdata), .coef_we(m_cwe), .coef_addr(m_caddr[AXB+9:0]), .watchdog_expired(1'b0),
         .g_wr_refused(1'b0), .ext_fault(2'b00), .irc_a(a_l[NL-1:NAXES]), .irc_b(b_l[NL-1:NAXES]),
         .irc_idx({NAXES{1'b0}}), .irc_mark({NAXES{1'b0}}), .hall(hall_code), .pwm_hi(m_hi), .pwm_lo(m_lo), .adc_sclk(m_sclk),
         .adc_cs_n(m_cs), .adc_miso(miso_l[3*NL-1:3*NAXES]), .period_tick(ps_l[NL-1:NAXES]), .control_done(m_ctl),
@@ -140,6 +146,15 @@ module mx_axes_tb #(
     end
     generate for (r = 0; r < NAXES; r = r + 1) begin : g_duty
         reg [15:0] on_cnt, on_last;
+        always @(posedge clk) begin
+            if (rst) begin
+                n_aw_ref[32*r +: 32] <= 32'd0;
+                n_aw_mx[32*r +: 32] <= 32'd0;
+            end else begin
+                if (r_ctl[r] && g_ref[r].u_ref.iq_big) n_aw_ref[32*r +: 32] <= n_aw_ref[32*r +: 32] + 32'd1;
+                if (m_ctl[r] && u_mx.iq_big_v[r]) n_aw_mx[32*r +: 32] <= n_aw_mx[32*r +: 32] + 32'd1;
+            end
+        end
         always @(posedge clk) begin
             if (rst) begin
                 on_cnt <= 16'd0;
@@ -188,6 +203,6 @@ module mx_axes_tb #(
             end
         end
     end endgenerate
-    wire unused = &{1'b0, m_ctl, m_live, m_addr};
+    wire unused = &{1'b0, m_ctl, m_live, m_addr, m_caddr};
 endmodule
 `default_nettype wire
