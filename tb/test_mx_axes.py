@@ -5,10 +5,17 @@ mx_axes gets exactly reference n's stimuli delayed by its carrier phase PHASE_n 
 EMPC_PWM_STAGGER_<NAXES>: encoder motion, HALL, the ADC codes (per lane on its own PWM period, read
 through the shared SCLK / CS) and the register writes (UDC, the fault clear, IQ_REF, ID_REF, CTRL with a
 control period every PWM period).  The stimuli differ between the axes (HALL sector, ADC codes and noise
-seed, encoder speed, IQ_REF / ID_REF), so a register or measurement of the wrong axis shows.  Checked,
+seed, encoder speed, IQ_REF / ID_REF), so a register or measurement of the wrong axis shows.  The
+algorithms differ too: the ALG2 axes (1, and 3 at NAXES = 4) upload the algorithm-2 speed image into
+reference and mx_axes axis (coefficient window, before the register writes) and CMD.coef_swap to it, the
+others keep the boot image (algorithm 1); IQ_HOLD is small on axis 1 (the core's anti-windup input aw,
+from the job axis's IQ_HOLD, holds its speed increment in some periods) and 0 (off) on axis 3.  Checked,
 bit- and clock-exact without a model:
   * every axis's six PWM outputs equal its reference's outputs PHASE_n clocks earlier, on every clock
     (the MPC runs: every reference switches, runs and counts its control periods);
+  * STATUS.coef_bank is 1 on the ALG2 axes only, SAT_EBAR_INC of mx_axes equals the reference's (> 0 on
+    axis 1), and the control periods ending with aw[0] are as many in mx_axes as in the reference: some
+    but not all on axis 1, none elsewhere;
   * an overcurrent at the last axis's ADC pins (its channel 0 forced to full scale) trips that axis
     only: its outputs are 0 on every clock its fault is latched (from the clock the cause is
     registered), FAULT.overcurrent is set there and nowhere else, every other axis stays equal to the
@@ -227,28 +234,35 @@ if cocotb is not None:
         assert all(words[n]["SAT_U"] == 0 for n in range(na)), f"a reference's u saturates: {words}"
         assert len({(words[n]["U_D"], words[n]["U_Q"]) for n in range(na)}) == na, f"equal voltages {words}"
         assert all(m == 0 for m in mism), f"axes differ from the shifted reference: {mism} first at {tm}"
-        # the images: the ALG2 axes switched to the uploaded bank (reference and mx_axes), the others not;
-        # the anti-windup (aw from the job axis's IQ_HOLD) held the speed increment of an IQ_HOLD axis in some
-        # periods, equally often in mx_axes
+        # the images: the ALG2 axes switched to the uploaded bank (reference and mx_axes), the others not
         for n in range(na):
             m_st = await _read(dut, "m", (n << 8) | reg["STATUS"])
             bank = ((words[n]["STATUS"] >> sbit["coef_bank"]) & 1, (m_st >> sbit["coef_bank"]) & 1)
             assert bank == ((n in a2),) * 2, f"axis {n}: active bank (reference, mx_axes) {bank}"
-            m_sat = await _read(dut, "m", (n << 8) | reg["SAT_EBAR_INC"])
-            assert m_sat == words[n]["SAT_EBAR_INC"], f"axis {n}: SAT_EBAR_INC {m_sat} != reference's {words[n]}"
-            if IQ_HOLD.get(n, 0) and n in a2:
-                assert m_sat > 0, f"axis {n}: the anti-windup never acted (SAT_EBAR_INC 0)"
-        # aw[0] (|i_q| >= IQ_HOLD, the job axis's register): in some but not all periods of an IQ_HOLD axis,
-        # never elsewhere, and in the same periods' count in mx_axes as in the reference
-        n_aw = [(_vec(dut.n_aw_ref, n), _vec(dut.n_aw_mx, n)) for n in range(na)]
-        dut._log.info(f"algorithm-2 axes {a2}, IQ_HOLD {IQ_HOLD}: control periods with aw[0] (reference, mx_axes) "
-                      f"{n_aw}; SAT_EBAR_INC {[words[n]['SAT_EBAR_INC'] for n in range(na)]}")
+
+        # counters at the same local time (mx axis n: PHASE_n clocks after its reference): SAT_EBAR_INC and
+        # the control periods ending with aw[0] (|i_q| >= IQ_HOLD, the job axis's register; harness monitors)
+        async def snap(port, n, delay):
+            if delay:
+                await ClockCycles(dut.clk, delay)
+            await RisingEdge(dut.clk)
+            sfx = "ref" if port == "r" else "mx"
+            aw, nc = _vec(getattr(dut, f"n_aw_{sfx}"), n), _vec(dut.n_ctl_ref, n)
+            a = reg["SAT_EBAR_INC"] if port == "r" else (n << 8) | reg["SAT_EBAR_INC"]
+            return await _read(dut, port, a, n), aw, nc
+        cnt = []
         for n in range(na):
-            assert n_aw[n][0] == n_aw[n][1], f"axis {n}: aw[0] periods (reference, mx_axes) {n_aw[n]}"
+            t_r = cocotb.start_soon(snap("r", n, 0))
+            t_m = cocotb.start_soon(snap("m", n, n * st))
+            cnt.append((await t_r, await t_m))
+        dut._log.info(f"algorithm-2 axes {a2}, IQ_HOLD {IQ_HOLD}: (SAT_EBAR_INC, periods with aw[0]) reference / "
+                      f"mx_axes per axis {[(r[:2], m[:2]) for r, m in cnt]}, of {[r[2] for r, m in cnt]} periods")
+        for n, (r, m) in enumerate(cnt):
+            assert r[:2] == m[:2], f"axis {n}: (SAT_EBAR_INC, aw[0] periods) reference {r[:2]} mx_axes {m[:2]}"
             if IQ_HOLD.get(n, 0):
-                assert 0 < n_aw[n][0] < n_ctl[n], f"axis {n}: aw[0] in {n_aw[n][0]} of {n_ctl[n]} periods"
+                assert r[0] > 0 and 0 < r[1] < r[2], f"axis {n}: IQ_HOLD acted in {r[1]} of {r[2]} periods"
             else:
-                assert n_aw[n][0] == 0, f"axis {n} (IQ_HOLD 0): aw[0] in {n_aw[n][0]} periods"
+                assert r[1] == 0, f"axis {n} (IQ_HOLD 0): aw[0] in {r[1]} periods"
         assert all(x > 2 * P2 for x in nz), f"an axis hardly switched while compared: {nz}"
         assert int(dut.dev.value) == 0, "an axis's comparison ended before the fault"
         assert int(dut.fault_any.value) == 0 and int(dut.ref_fault.value) == 0
@@ -283,8 +297,8 @@ if cocotb is not None:
                       f"tick {int(dut.tick.value)}")
 
 
-@pytest.mark.cost(80)            # Verilator build (three drives' worth of RTL: about 75 s) + 92k clocks with the image upload (3 s)
-@pytest.mark.parametrize("na", [2, pytest.param(4, marks=[pytest.mark.full, pytest.mark.cost(135)])])
+@pytest.mark.cost(80)            # Verilator build (three drives' worth of RTL: about 55-75 s) + 94k clocks with the image upload (2 s)
+@pytest.mark.parametrize("na", [2, pytest.param(4, marks=[pytest.mark.full, pytest.mark.cost(135)])])   # NAXES = 4: 101k clocks (3 s)
 def test_mx_axes_time_shift(na):
     """NAXES axes against the one-axis drive, each shifted by its carrier phase: every PWM output bit- and
     clock-equal; an overcurrent at one axis's pins switches off that axis only, a clear restarts it."""
