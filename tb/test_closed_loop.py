@@ -1043,9 +1043,9 @@ async def period_loop(cs: CoSim, drv, plan: list, kick, n_periods: int):
     return fr
 
 
-async def final_status(cs: CoSim, drv, psum: bool = True) -> dict:
-    """After the run: the status registers over the bus, the ADC period sums (``psum``: the one-axis
-    frame schedule), the status words of the last control period against the model, CMD.clear_counters."""
+async def final_status(cs: CoSim, drv) -> dict:
+    """After the run: the status registers over the bus, the ADC period sums (frames per period: the
+    schedule's), the status words of the last control period against the model, CMD.clear_counters."""
     dut = cs.dut
     spec = FAULTS[cs.fault] if cs.fault else None
     if cs.mismatches:
@@ -1062,15 +1062,14 @@ async def final_status(cs: CoSim, drv, psum: bool = True) -> dict:
     # its base codes are those of the period being summed only approximately, allow the step too)
     fpp = cs.adcp.frames_per_period()
     codes, amps, _ = cs.adc_set
-    means = []
+    psum = []
     for i in range(3):
         v = status[f"ADC_PSUM{i}"]
         sm, cnt = v & 0xFFFFF, (v >> 24) & 0x7F
         sm -= (sm >> 19) << 20
-        if psum:
-            assert cnt == fpp, f"ADC_PSUM{i}: {cnt} frames, the schedule has {fpp} per period"
-        means.append(sm / cnt if cnt else None)
-    cs.adc_psum_mean = means
+        assert cnt == fpp, f"ADC_PSUM{i}: {cnt} frames, the schedule has {fpp} per period"
+        psum.append(sm / cnt)
+    cs.adc_psum_mean = psum
     # status words of the last control period (and the u applied) against the model
     lc = cs.last_control
     m32 = 0xFFFFFFFF

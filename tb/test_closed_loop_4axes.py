@@ -60,8 +60,9 @@ AXES = (
     ("fault_overcurrent", ("fault_step", DURATION, "overcurrent"), None, None, None),
 )
 SEED = 4088                    # EMPC_SEED's default; axis n's ADC noise seed is seed + n
-# a deliberate error (EMPC_COSIM4_MUTANT, make sim-full's test_closed_loop_4axes_mutant): "adc_swap": axis 1's
-# model takes axis 2's ADC sample (the test must report compare-value mismatches on axis 1)
+# a mutant run (EMPC_COSIM4_MUTANT, make sim-full's test_closed_loop_4axes_mutant, MUTANTS below): "adc_swap" is
+# the test's own deliberate error (axis 1's model takes axis 2's ADC sample), any other name an RTL mutant's
+# run (no report is written)
 MUTANT = os.environ.get("EMPC_COSIM4_MUTANT", "")
 
 
@@ -254,7 +255,7 @@ if cocotb is not None:
             fr = await tcl.period_loop(cs, drv, plan, kicks[n], k_end - len(plan))
             t = (time.perf_counter(), time.process_time())
             try:                         # (a failure here must not stop the other axes' loops)
-                status, err = await tcl.final_status(cs, drv, psum=False), None
+                status, err = await tcl.final_status(cs, drv), None
             except AssertionError as e:
                 status, err = None, f"final status: {e}"
             return {"cs": cs, "fault": fr, "status": status, "status_error": err, "t_end": t}
@@ -276,8 +277,10 @@ if cocotb is not None:
                        "latency_last_adc_bit_to_cmp_load_max_cycles": cs.lat_bit}
             try:
                 if r["status_error"]:
-                    mism = f"compare values differ from the model: {len(cs.mismatches)} mismatches, first " \
-                           f"{cs.mismatches[:3]}; " if cs.mismatches else ""
+                    mism = f"compare values or core input words differ from the model: {len(cs.mismatches)} " \
+                           f"compare-value mismatches (first {cs.mismatches[:2]}), {len(cs.word_mismatches)} " \
+                           f"core input word sets (first {cs.word_mismatches[:1]}); " \
+                        if cs.mismatches or cs.word_mismatches else ""
                     raise AssertionError(mism + r["status_error"])
                 rep, _ = tcl.check_run(cs, r)
                 if cs.fault is None:
@@ -313,30 +316,46 @@ if cocotb is not None:
         assert not errors, "; ".join(errors)
 
 
-def _run(mutant: str = "", run_name: str = "four_axes"):
+def _run(mutant: str = "", name: str = "cosim4", run_name: str = "four_axes"):
     from runner import run
     import test_closed_loop as tcl
-    run(toplevel="cosim4_top", test_module="test_closed_loop_4axes", sim="verilator", name="cosim4",
+    run(toplevel="cosim4_top", test_module="test_closed_loop_4axes", sim="verilator", name=name,
         public=ROOT / "tb" / "hdl" / "cosim4_top.vlt", timing=True,
         parameters={"NAXES": NAXES, "CLK_HALF_PS": tcl.CLK_PERIOD_NS * 500}, defines={"EMPC_SIM_GATE": 1},
         run_name=run_name, extra_env={"EMPC_COSIM4_MUTANT": mutant}, testcase="four_axes")
 
 
-@pytest.mark.cost(120)           # Verilator build of the four-axis top (about 60-90 s) + 45 ms of four axes
+@pytest.mark.cost(150)           # Verilator build of the four-axis top (60-115 s) + 44 ms of four axes (20-40 s)
 def test_closed_loop_4axes():
     """Four axes on one engine, four plants and four bit-accurate models: every compare value of every axis
     bit-exact, each trajectory within the one-axis float tolerance, a fault on one axis only (AXES)."""
     _run()
 
 
+# The run must fail on (mutant: RTL change from test_mx_axes.MUTANTS or None, what results.xml must say):
+MUTANTS = {
+    # the test's own deliberate error: axis 1's model fed axis 2's ADC sample (the same build)
+    "adc_swap": (None, "axis 1 (position_alg2): compare values or core input words differ"),
+    # the engine reads axis 0's registers for every job (axis 0 runs at Ts = 50 us: KACC, KACC_SHIFT and the
+    # control-period count differ); its own build
+    "job_regs": ("job_regs", "axis 1 (position_alg2): compare values or core input words differ"),
+}
+
+
 @pytest.mark.full
-@pytest.mark.cost(100)
-def test_closed_loop_4axes_mutant():
-    """The deliberate error (MUTANT "adc_swap": axis 1's model fed axis 2's ADC sample) must fail the run with
-    compare-value mismatches on axis 1."""
+@pytest.mark.parametrize("mutant", [pytest.param("adc_swap", marks=pytest.mark.cost(45)),
+                                    pytest.param("job_regs", marks=pytest.mark.cost(150))])
+def test_closed_loop_4axes_mutant(mutant, tmp_path):
+    """The four-axis run must fail on a deliberate error in its own checking (adc_swap) and on an engine that
+    reads the wrong axis's registers (job_regs), naming the axis."""
+    import contextlib
     import runner
-    with pytest.raises((AssertionError, SystemExit)):   # cocotb's runner exits on a failed test
-        _run("adc_swap", run_name="mutant_adc_swap")
-    res = max((runner.BUILD / "sim").glob("cosim4_cosim4_top_*/run_mutant_adc_swap/results.xml"),
-              key=lambda f: f.stat().st_mtime).read_text()
-    assert "axis 1 (position_alg2)" in res and "compare values differ" in res, res[-2000:]
+    import test_mx_axes
+    rtl, why = MUTANTS[mutant]
+    name = "cosim4" if rtl is None else f"cosim4_mutant_{mutant}"
+    ctx = runner.rtl_mutant(*test_mx_axes.MUTANTS[rtl][:3], tmp_path) if rtl else contextlib.nullcontext()
+    with ctx:
+        with pytest.raises((AssertionError, SystemExit)):   # cocotb's runner exits on a failed test
+            _run(mutant, name=name, run_name=f"mutant_{mutant}")
+    res = runner.results_text(name, "cosim4_top", f"mutant_{mutant}")
+    assert why in res, res[-2000:]
