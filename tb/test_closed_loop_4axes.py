@@ -325,7 +325,7 @@ def _run(mutant: str = "", name: str = "cosim4", run_name: str = "four_axes"):
         run_name=run_name, extra_env={"EMPC_COSIM4_MUTANT": mutant}, testcase="four_axes")
 
 
-@pytest.mark.cost(150)           # Verilator build of the four-axis top (60-115 s) + 44 ms of four axes (20-40 s)
+@pytest.mark.cost(130)           # Verilator build of the four-axis top (70-115 s) + 44 ms of four axes (23-42 s)
 def test_closed_loop_4axes():
     """Four axes on one engine, four plants and four bit-accurate models: every compare value of every axis
     bit-exact, each trajectory within the one-axis float tolerance, a fault on one axis only (AXES)."""

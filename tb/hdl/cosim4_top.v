@@ -58,9 +58,11 @@ module cosim4_top #(
             .pwm_out(pwm_out[3*n +: 3]), .pwm_en(pwm_en[3*n +: 3]), .adc_sclk(adc_sclk), .adc_cs_n(adc_cs_n),
             .enc_a(enc_a[n]), .enc_b(enc_b[n]), .enc_idx(enc_idx[n]), .hall_pins(hall[3*n +: 3]),
             .adc_miso(adc_miso[3*n +: 3]),
+            /* verilator lint_off PINCONNECTEMPTY */   // the observation ports: Python reads them by name
             .dbg_period_start(), .dbg_per_cnt(), .dbg_adc_sclk(), .dbg_adc_cs_n(), .dbg_adc_valid(), .dbg_cmp_q(),
             .dbg_lat_q(), .dbg_lat_valid_q(), .dbg_run_trig(), .dbg_n_trig(), .dbg_n_load(), .dbg_unsafe(),
             .dbg_in_words());
+            /* verilator lint_on PINCONNECTEMPTY */
     end endgenerate
 
     lx_rocon_top #(.NAXES(NAXES)) u_top (

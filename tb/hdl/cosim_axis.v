@@ -58,6 +58,7 @@ module cosim_axis #(
     output wire [`EMPC_IN_WORDS*`EMPC_SIG_W-1:0] dbg_in_words
 );
     // ---- written by Python (VPI) ----
+    /* verilator lint_off UNDRIVEN */    // driven through VPI only (tb/hdl/cosim4_top.vlt)
     reg [31:0]        enc_target;
     reg               idx_enable;
     reg [2:0]         hall;
@@ -71,6 +72,7 @@ module cosim_axis #(
     reg [11:0]        adc_inj_code;
     reg [2:0]         adc_hold;                           // channel i outputs adc_code<i> exactly
     reg [11:0]        adc_lead;                           // frames' leading-bit pattern (0 = correct)
+    /* verilator lint_on UNDRIVEN */
 
     wire [31:0] enc_count;
     wire        enc_at_target;
