@@ -61,6 +61,15 @@ def cosim_table() -> str | None:
         if p.stem.endswith("_lockstep") and p.with_name(p.name.replace("_lockstep", "")).exists():
             continue
         r = json.loads(p.read_text())
+        if "axes" in r:             # closed_loop_4axes.json (tb/test_closed_loop_4axes.py): a row per axis
+            for a in r["axes"]:
+                lm = a["detail"].get("latency_max_cycles") or {}
+                rows.append(f"| 4axes: {a['axis']} {a['name']} ({fmt(a['Ts_us'])} us) | {fmt(r['simulated_ms'])} | "
+                            f"{a['compare_sets_checked']} | {a['mismatches']} | "
+                            f"{lm.get('control', '-')} / {lm.get('modulation', '-')} | "
+                            f"{fmt(a.get('rms_error_rtl_vs_float_rel'))} | {fmt(r['simulated_ms'] / r['wall_s'])} | "
+                            f"{fmt(r['sim_ms_per_cpu_s'])} | {fmt(r['simulated_ms'] * 1e5 / r['cpu_s'])} |")
+            continue
         lm = r.get("latency_max_cycles")
         lat = f"{lm['control']} / {lm['modulation']}" if lm else r["latency_adc_trigger_to_pwm_update_cycles"]
         rows.append(f"| {r['scenario']} | {fmt(r['simulated_ms'])} | {r['compare_sets_checked']} | "

@@ -31,6 +31,7 @@ Waveforms: ``WAVES=1`` (FST on Icarus and Verilator).
 """
 from __future__ import annotations
 
+import contextlib
 import fcntl
 import hashlib
 import os
@@ -47,6 +48,29 @@ from files import (BUILD, ROOT, VENV_VERILATOR_BIN, include_dirs, read_filelist,
 VERILATOR_OPT_FAST = "-O2"          # C++ -O3 measured no faster on the co-simulation (9.4 vs 9.7 sim ms per CPU s)
 STAMP = ".empc_build_stamp"
 REWRITE_ASSERTS = "tb/*.py empc/*.py flow/*.py"     # pytest python_files patterns (path patterns: */tb/*.py)
+
+
+@contextlib.contextmanager
+def rtl_mutant(fname: str, good: str, bad: str, tmp: Path):
+    """Inside the block the builds take rtl/``fname`` with the text ``good`` (which must occur once)
+    replaced by ``bad``, written to ``tmp``: a test's mutant (its build directory must have its own ``name``)."""
+    global rtl_sources
+    src = (ROOT / "rtl" / fname).read_text()
+    assert src.count(good) == 1, f"the mutant no longer matches rtl/{fname}"
+    mut = Path(tmp) / fname
+    mut.write_text(src.replace(good, bad))
+    orig = rtl_sources
+    rtl_sources = lambda: [mut if p.name == fname else p for p in orig()]      # noqa: E731
+    try:
+        yield mut
+    finally:
+        rtl_sources = orig
+
+
+def results_text(name: str, toplevel: str, run_name: str) -> str:
+    """results.xml of the latest run ``run_name`` of build ``name`` (Verilator)."""
+    return max((BUILD / "sim").glob(f"{name}_{toplevel}_*/run_{run_name}/results.xml"),
+               key=lambda f: f.stat().st_mtime).read_text()
 
 
 def default_sim() -> str:

@@ -149,22 +149,37 @@ class CoSim:
     trigger).  The pins change at the same instants as when Python waited for each event.
     """
 
-    def __init__(self, dut, name: str):
+    def __init__(self, dut, name: str, spec: tuple | None = None, overrides: dict | None = None,
+                 image_words: list | None = None, plant_motor=None, scenario=None, seed: int | None = None):
+        """``dut``: the harness (cosim_top) or any handle with its pin and dbg_* names (tb/hdl/cosim_axis.v,
+        one axis of the four-axis co-simulation).  ``spec`` (default COSIM[name]): (paper scenario, seconds,
+        fault); ``overrides``: configuration values (config.load); ``image_words``: the coefficient image
+        (default: the ROM of the scenario's algorithm and task); ``plant_motor``: the plant's motor
+        (default: the design's); ``scenario``: a cl.Scenario replacing the paper scenario (same name and
+        task); ``seed``: the ADC noise seed (default EMPC_SEED or 4088)."""
         self.dut = dut
         self.name = name
-        scen_name, self.duration, self.fault = COSIM[name]
+        scen_name, self.duration, self.fault = spec if spec is not None else COSIM[name]
         self.sc, alg = scenarios.get(scen_name)
-        base = config.load(None, {"governor.hold_current": COSIM_IQ_HOLD[name]}) if name in COSIM_IQ_HOLD \
-            else config.default()                       # the float loop and the model with the same hold
+        if scenario is not None:
+            assert (scenario.name, scenario.task) == (self.sc.name, self.sc.task), scenario
+            self.sc = scenario
+        ov = dict(overrides or {})
+        if name in COSIM_IQ_HOLD:
+            ov["governor.hold_current"] = COSIM_IQ_HOLD[name]
+        base = config.load(None, ov) if ov else config.default()   # the float loop and the model alike
         self.cfg = base.with_control(algorithm=alg, task=self.sc.task)
         c = self.cfg.control
         self.M = self.cfg.pwm_per_control
         self.P = self.cfg.pwm_half_period
         self.Tpwm = 1.0 / self.cfg.inverter.f_pwm
-        self.plant = pmsm.Plant(self.cfg.motor, self.cfg.inverter.Udc, self.cfg.inverter.f_pwm, substeps=4)
+        self.plant_motor = plant_motor           # None: the design motor (the float loop uses the same)
+        self.plant = pmsm.Plant(plant_motor or self.cfg.motor, self.cfg.inverter.Udc, self.cfg.inverter.f_pwm,
+                                substeps=4)
         self.sensors = pmsm.Sensors(self.cfg)
         roms_dir = Path(os.environ.get("EMPC_ROMS", ROOT / "build" / "roms" / "default"))
-        self.image = image.read_hex(roms_dir / f"coef_alg{alg}_{self.sc.task}.hex")
+        self.image = image_words if image_words is not None else \
+            image.read_hex(roms_dir / f"coef_alg{alg}_{self.sc.task}.hex")
         self.boot = image.decode(image.read_hex(roms_dir / "coef_boot.hex"))
         self.params = image.decode(self.image)
         # the bit-accurate axis (gen/empc/bitloop.py), fed with what the RTL's trigger sampled; its
@@ -213,7 +228,8 @@ class CoSim:
         # ADC: back-to-back frames, the controller takes the window mean (rtl defaults)
         self.adcp = AdcSpiParams(half_period=self.P)
         self.ripple = AdcRipple(self.P)
-        self.adc_rng = np.random.default_rng(int(os.environ.get("EMPC_SEED", "4088")))
+        self.seed = int(os.environ.get("EMPC_SEED", "4088")) if seed is None else seed
+        self.adc_rng = np.random.default_rng(self.seed)
         self.adc_noise = 2          # LSB peak, on every frame (plus the sensor model's own noise)
         # amplitude of the odd ripple triangle per unit of (d_i - mean d): Udc * (P/2 clk) / L, in LSB
         m = self.cfg.motor
@@ -816,13 +832,31 @@ async def run_cosim(dut, name: str) -> dict:
     await check_global_regs(dut, bus, drv)
     wall0 = time.perf_counter()
     cpu0 = time.process_time()
-    # lockstep from the first PWM period after alignment: the sequencer's state so far is known
-    # (disabled, zero currents: every control period just shifted its counter), take it over
+    await lockstep_start(cs)
+    plan, kick = config_plan(cs, bus, drv)
+    fr = await period_loop(cs, drv, plan, kick, int(round(cs.duration / cs.Tpwm)))
+    wall = time.perf_counter() - wall0
+    cpu = time.process_time() - cpu0
+    status = await final_status(cs, drv)
+    return {"cs": cs, "wall": wall, "cpu": cpu, "status": status, "fault": fr}
+
+
+async def lockstep_start(cs: CoSim) -> None:
+    """Lockstep from the axis's first PWM period after alignment: the sequencer's state so far is known
+    (disabled, zero currents: every control period just shifted its counter), take it over."""
+    dut = cs.dut
     await RisingEdge(dut.dbg_period_start)
     await ReadOnly()
     cs.seq.per_cnt = int(dut.dbg_per_cnt.value)
     cs.seq.first = False
     await RisingEdge(dut.clk)           # the loop's first period begins one clock after this boundary
+
+
+def config_plan(cs: CoSim, bus, drv, regcheck: bool = True) -> tuple[list, object]:
+    """The configuration of one axis as one short burst of CPU accesses per PWM period (a list of
+    action lists; the last one enables the drive), mirrored in the model; and ``kick``, the CPU's periodic
+    duties (watchdog, DC-link reading).  ``regcheck``: the register read-back check (one-axis runs)."""
+    name = cs.name
 
     async def w(name, value):
         await drv.write(name, value)
@@ -834,7 +868,7 @@ async def run_cosim(dut, name: str) -> dict:
         chunk = 100
         for a0 in range(0, image.USED, chunk):
             async def up(a0=a0):
-                base = regmap.COEF_BASE
+                base = regmap.COEF_BASE + drv.axis * regmap.COEF_STRIDE     # the axis's window
                 for a in range(a0, min(image.USED, a0 + chunk)):
                     await bus.write(base + a, words[a])
             plan.append([up])
@@ -874,7 +908,7 @@ async def run_cosim(dut, name: str) -> dict:
             assert await drv.read("IQ_HOLD") == v == cs.regs.iq_hold      # the model's regs_for has it already
         plan.append([iq_hold])
 
-    async def regcheck():
+    async def regcheck_():
         # RW registers read back in the format of the register map (width mask, sign extension,
         # fields): random words written and read back, then the run's values restored (all
         # before this period's trigger; these registers do not stop the drive)
@@ -896,7 +930,8 @@ async def run_cosim(dut, name: str) -> dict:
             assert await drv.read(n) == keep[n]
         # the co-simulation never writes these three: they still hold their reset values
         assert all(keep[n] == regmap.axis_reg(n).reset for n in ("KDC", "ID_REF", "DEAD_TIME")), keep
-    plan.append([regcheck])
+    if regcheck:
+        plan.append([regcheck_])
     for i, s in enumerate(cs.slots):
         async def wslot(i=i, s=s):
             await w("SEG_ADDR", i)
@@ -941,7 +976,15 @@ async def run_cosim(dut, name: str) -> dict:
         cs.started = True
         await drv.control(enable=True, run=True, pwm_per_control=cs.M)
     plan.append([kick, enable])
-    n_periods = int(round(cs.duration / cs.Tpwm))
+    return plan, kick
+
+
+async def period_loop(cs: CoSim, drv, plan: list, kick, n_periods: int):
+    """The lockstep loop of one axis: one wake-up per PWM period (at its start), ``plan[k]``'s CPU
+    actions in period k, then ``n_periods`` periods of the run; the fault's life (FAULTS) if the run has
+    one.  Returns the FaultRun or None."""
+    dut, name = cs.dut, cs.name
+    spec = FAULTS[cs.fault] if cs.fault else None
     k_on = len(plan)                      # first period with the bridges commanded on
     fr = FaultRun(dut, cs, drv, spec) if spec else None
     if fr:
@@ -997,8 +1040,14 @@ async def run_cosim(dut, name: str) -> dict:
             acts.append(restart_check)
         cs.ipk_now = 0.0
         await cs.begin_period(acts)
-    wall = time.perf_counter() - wall0
-    cpu = time.process_time() - cpu0
+    return fr
+
+
+async def final_status(cs: CoSim, drv) -> dict:
+    """After the run: the status registers over the bus, the ADC period sums (frames per period: the
+    schedule's), the status words of the last control period against the model, CMD.clear_counters."""
+    dut = cs.dut
+    spec = FAULTS[cs.fault] if cs.fault else None
     if cs.mismatches:
         dut._log.error("first mismatches (period, RTL cmp, model cmp): %s", cs.mismatches[:5])
     if cs.word_mismatches:
@@ -1039,7 +1088,7 @@ async def run_cosim(dut, name: str) -> dict:
     for n in ("PERIODS", "SAT_OPERAND", "SAT_EBAR_INC", "SAT_LIMIT", "CNT_OVERRUN"):
         assert await drv.read(n) < 2, f"{n} not zeroed"
     cs.reg_checks += 9
-    return {"cs": cs, "wall": wall, "cpu": cpu, "status": status, "fault": fr}
+    return status
 
 
 def _profile_output(prof, t: np.ndarray, out: int = 2) -> np.ndarray:
@@ -1119,6 +1168,31 @@ def metrics_report(cs: CoSim, res: dict) -> dict:
 async def closed_loop(dut, name: str):
     res = await run_cosim(dut, name)
     cs = res["cs"]
+    report, traces = check_run(cs, res)
+    if cs.lockstep:
+        report["lockstep"] = {"clocks_compared": int(dut.dbg_ls_clocks.value),
+                              "clocks_core_clock_stopped": int(dut.dbg_ls_gated.value),
+                              "clocks_differing": int(dut.dbg_ls_errors.value)}
+        dut._log.info("lockstep: %s", report["lockstep"])
+        assert report["lockstep"]["clocks_differing"] == 0, report["lockstep"]
+    if traces and (not cs.lockstep or name in LOCKSTEP) and not NO_REPORT:   # (LOCKSTEP: make sim runs only the lockstep copy)
+        _plot(cs, *traces, REPORTS / f"closed_loop_{name}.png")
+    if name == "speed_hold":
+        assert min(report["gov_speed_hold_cases"].values()) > 0, f"held cases not all seen: {report['gov_speed_hold_cases']}"
+    if NO_REPORT:                   # the PGO training run (build_and_run): checked, not reported
+        return
+    REPORTS.mkdir(parents=True, exist_ok=True)
+    tag = "_lockstep" if cs.lockstep else ""
+    (REPORTS / f"closed_loop_{name}{tag}.json").write_text(json.dumps(report, indent=1, default=float) + "\n")
+
+
+def check_run(cs: CoSim, res: dict) -> tuple[dict, tuple | None]:
+    """The checks of one axis's run (res: run_cosim's result) and its report: every compare value and core
+    input word bit-exact against the model, the latency, the trajectory against the float loop (fitted
+    gains, same plant) within the stated tolerance; or (fault runs, FAULTS) the fault's life.  Returns
+    the report and (RTL trace, float trace) for the figure (None for fault runs)."""
+    dut, name = cs.dut, cs.name
+    traces = None
     sim_ms = cs.period * cs.Tpwm * 1e3
     clocks = cs.period * 2 * cs.P            # fabric clocks of the checked periods
     dut._log.info("%s: %d PWM periods (%.1f ms simulated) in %.1f s wall, %.1f s CPU (%.2f sim ms per CPU s); "
@@ -1153,12 +1227,6 @@ async def closed_loop(dut, name: str):
                       "window_taus_clk": cs.adcp.window_taus(), "valid_after_trig_clk": cs.adcp.valid_delay(),
                       "frames_per_period": cs.adcp.frames_per_period(), "noise_lsb_peak": cs.adc_noise,
                       "ripple_lsb_per_duty": cs.ripple_k, "period_mean_minus_offset": cs.adc_psum_mean}}
-    if cs.lockstep:
-        report["lockstep"] = {"clocks_compared": int(dut.dbg_ls_clocks.value),
-                              "clocks_core_clock_stopped": int(dut.dbg_ls_gated.value),
-                              "clocks_differing": int(dut.dbg_ls_errors.value)}
-        dut._log.info("lockstep: %s", report["lockstep"])
-        assert report["lockstep"]["clocks_differing"] == 0, report["lockstep"]
     if cs.fault is None or FAULTS[cs.fault].get("exact", True):   # else the model's period kinds drift from the RTL's
         assert 0 < cs.lat_bit <= LATENCY_MAX, f"last ADC bit -> compare values: {cs.lat_bit} clocks"
     if cs.fault is None:
@@ -1168,7 +1236,7 @@ async def closed_loop(dut, name: str):
         report["metrics"] = m
         # float loop (fitted gains) on the same profile for the stated tolerance
         from empc.controllers.explicit import ExplicitMPC
-        ftr = cl.simulate(cs.cfg, ExplicitMPC(cs.cfg), sc_cut)
+        ftr = cl.simulate(cs.cfg, ExplicitMPC(cs.cfg), sc_cut, plant_motor=cs.plant_motor)
         fm = cl.metrics(ftr, sc_cut, settle_floor=cs.cfg.rad_s_per_count_ts if cs.sc.task == "speed"
                         else 4 * cs.cfg.rad_per_count, preview=cs.cfg.control.N * cs.cfg.control.Ts)
         report["float_metrics"] = fm
@@ -1176,8 +1244,7 @@ async def closed_loop(dut, name: str):
         assert report["rms_error_rtl_vs_float_rel"] < 0.10, report["rms_error_rtl_vs_float_rel"]
         assert res["status"]["CNT_OVERRUN"] == 0 and res["status"]["FAULT"] == 0, res["status"]
         assert res["status"]["CNT_ADC_MISS"] == 0, "PWM centre off the ADC frame grid"
-        if (not cs.lockstep or name in LOCKSTEP) and not NO_REPORT:   # (LOCKSTEP: make sim runs only the lockstep copy)
-            _plot(cs, tr, ftr, REPORTS / f"closed_loop_{name}.png")
+        traces = (tr, ftr)
     else:
         fr = res["fault"]
         spec = fr.spec
@@ -1209,13 +1276,7 @@ async def closed_loop(dut, name: str):
         report["kill_path"] = cs.kill
         for k, v in res["status"].items():
             assert v < 0xFFFFFFFF, f"counter {k} saturated/wrapped"
-    if name == "speed_hold":
-        assert min(report["gov_speed_hold_cases"].values()) > 0, f"held cases not all seen: {report['gov_speed_hold_cases']}"
-    if NO_REPORT:                   # the PGO training run (build_and_run): checked, not reported
-        return
-    REPORTS.mkdir(parents=True, exist_ok=True)
-    tag = "_lockstep" if cs.lockstep else ""
-    (REPORTS / f"closed_loop_{name}{tag}.json").write_text(json.dumps(report, indent=1, default=float) + "\n")
+    return report, traces
 
 
 def _plot(cs, tr, ftr, path):

@@ -336,23 +336,13 @@ def test_mx_axes_mutant(mutant, tmp_path):
     """The time-shift test must fail on a wrong job-axis register multiplexer, a shared fault cause, the
     anti-windup input or the held ebar(k-1) of the wrong axis."""
     import runner
-    from files import rtl_sources
     fname, good, bad, why = MUTANTS[mutant]
-    src = (ROOT / "rtl" / fname).read_text()
-    assert src.count(good) == 1, f"the mutant no longer matches rtl/{fname}"
-    mut = tmp_path / fname
-    mut.write_text(src.replace(good, bad))
     h = _hdr()
-    orig = runner.rtl_sources
-    runner.rtl_sources = lambda: [mut if p.name == fname else p for p in rtl_sources()]
-    try:
+    with runner.rtl_mutant(fname, good, bad, tmp_path):
         with pytest.raises((AssertionError, SystemExit)):  # cocotb's runner exits on a failed test
             runner.run(toplevel="mx_axes_tb", test_module="test_mx_axes", sim="verilator",
                        name=f"mx_axes_mutant_{mutant}", public=ROOT / "tb" / "hdl" / "mx_axes_tb.vlt", timing=True,
                        parameters={"NAXES": 2, "STAGGER": h["PWM_STAGGER_2"]}, run_name="time_shift",
                        extra_env={"MXA_NAXES": "2", "MXA_PERIODS": "10"}, testcase="time_shift")
-    finally:
-        runner.rtl_sources = orig
-    res = max((runner.BUILD / "sim").glob(f"mx_axes_mutant_{mutant}_mx_axes_tb_*/run_time_shift/results.xml"),
-              key=lambda f: f.stat().st_mtime).read_text()
+    res = runner.results_text(f"mx_axes_mutant_{mutant}", "mx_axes_tb", "time_shift")
     assert why in res, res[-2000:]

@@ -82,13 +82,14 @@ module cosim_top #(
     output wire        dbg_enc_err,    // encoder illegal-transition pulse (mpc_axis.enc_err_pulse)
     output wire        dbg_wdog_expired,
     // per-period observation (registered; read by Python at the next dbg_period_start)
-    output reg  [35:0] dbg_cmp_q,      // compare values at the last cmp_load
-    output reg  [15:0] dbg_lat_q,      // clocks from the last adc_trig to that cmp_load
-    output reg  [15:0] dbg_lat_valid_q, // clocks from the last ADC valid to that cmp_load
-    output reg         dbg_run_trig,   // `running` at the last adc_trig
-    output reg  [3:0]  dbg_n_trig,     // adc_trig pulses since the last period start
-    output reg  [3:0]  dbg_n_load,     // cmp_load pulses since the last period start
-    output reg         dbg_unsafe      // sticky: a bridge enable or PWM output high in a clock after one with trip
+    // (tb/hdl/cosim_obs.v)
+    output wire [35:0] dbg_cmp_q,      // compare values at the last cmp_load
+    output wire [15:0] dbg_lat_q,      // clocks from the last adc_trig to that cmp_load
+    output wire [15:0] dbg_lat_valid_q, // clocks from the last ADC valid to that cmp_load
+    output wire        dbg_run_trig,   // `running` at the last adc_trig
+    output wire [3:0]  dbg_n_trig,     // adc_trig pulses since the last period start
+    output wire [3:0]  dbg_n_load,     // cmp_load pulses since the last period start
+    output wire        dbg_unsafe      // sticky: a bridge enable or PWM output high in a clock after one with trip
 `ifdef COSIM_LOCKSTEP
     ,
     // proof of the MPC core's simulation-only clock gating (EMPC_SIM_GATE): an ungated copy on the
@@ -150,46 +151,19 @@ module cosim_top #(
     assign dbg_enc_err = u_top.g_axis[0].u_axis.enc_err_pulse;
     assign dbg_wdog_expired = u_top.wdog_expired;
 
-    reg [15:0] lat_cnt, valid_cnt;
-    reg        tripped;
-    wire       adc_valid = u_top.g_axis[0].u_axis.adc_valid;
-    always @(posedge clk) begin
-        if (!rst_n) begin
-            dbg_cmp_q <= 36'd0;
-            dbg_lat_q <= 16'd0;
-            dbg_run_trig <= 1'b0;
-            dbg_n_trig <= 4'd0;
-            dbg_n_load <= 4'd0;
-            dbg_unsafe <= 1'b0;
-            lat_cnt <= 16'd0;
-            tripped <= 1'b0;
-            dbg_lat_valid_q <= 16'd0;
-            valid_cnt <= 16'd0;
-        end else begin
-            lat_cnt <= dbg_adc_trig ? 16'd1 : (&lat_cnt ? lat_cnt : lat_cnt + 16'd1);
-            if (dbg_adc_trig) dbg_run_trig <= dbg_running;
-            valid_cnt <= adc_valid ? 16'd1 : (&valid_cnt ? valid_cnt : valid_cnt + 16'd1);
-            if (dbg_cmp_load) begin
-                dbg_cmp_q <= dbg_cmp;
-                dbg_lat_q <= lat_cnt;
-                dbg_lat_valid_q <= valid_cnt;
-            end
-            dbg_n_trig <= (dbg_period_start ? 4'd0 : dbg_n_trig) + {3'd0, dbg_adc_trig};
-            dbg_n_load <= (dbg_period_start ? 4'd0 : dbg_n_load) + {3'd0, dbg_cmp_load};
-            tripped <= dbg_trip;
-            if (tripped && (|pwm_en || |pwm_out)) dbg_unsafe <= 1'b1;
-        end
-    end
-
-    // the MPC core's input words as the sequencer last wrote them (core word map EMPC_IN_*, word a at
-    // [a*SIG_W +: SIG_W]; one vector: one VPI read per control period): Python checks them against the
-    // model's every control period and names the words that differ
+    // the per-period observation registers and the MPC core's input words as the sequencer last wrote
+    // them (core word map EMPC_IN_*): Python checks them against the model's every control period and
+    // names the words that differ
     localparam integer IN_AW = $clog2(`EMPC_IN_WORDS);
-    reg [`EMPC_IN_WORDS*`EMPC_SIG_W-1:0] dbg_in_words;
-    always @(posedge clk)
-        if (u_top.g_axis[0].u_axis.u_core.in_we)
-            dbg_in_words[u_top.g_axis[0].u_axis.u_core.in_addr[IN_AW-1:0]*`EMPC_SIG_W +: `EMPC_SIG_W] <=
-                u_top.g_axis[0].u_axis.u_core.in_wdata;
+    wire [`EMPC_IN_WORDS*`EMPC_SIG_W-1:0] dbg_in_words;
+    cosim_obs #(.IN_AW(IN_AW)) u_obs (
+        .clk(clk), .rst_n(rst_n), .period_start(dbg_period_start), .adc_trig(dbg_adc_trig),
+        .adc_valid(u_top.g_axis[0].u_axis.adc_valid), .cmp_load(dbg_cmp_load), .cmp(dbg_cmp),
+        .running(dbg_running), .trip(dbg_trip), .pins({pwm_en, pwm_out}),
+        .in_we(u_top.g_axis[0].u_axis.u_core.in_we), .in_addr(u_top.g_axis[0].u_axis.u_core.in_addr[IN_AW-1:0]),
+        .in_wdata(u_top.g_axis[0].u_axis.u_core.in_wdata), .cmp_q(dbg_cmp_q), .lat_q(dbg_lat_q),
+        .lat_valid_q(dbg_lat_valid_q), .run_trig(dbg_run_trig), .n_trig(dbg_n_trig), .n_load(dbg_n_load),
+        .unsafe(dbg_unsafe), .in_words(dbg_in_words));
 
 `ifdef COSIM_LOCKSTEP
 `ifndef EMPC_SIM_GATE

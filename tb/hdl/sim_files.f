@@ -5,7 +5,10 @@ tb/hdl/pwm_center_phase.v
 tb/hdl/mpc_core_stream.v
 tb/hdl/emc_regs_tb.v
 tb/hdl/quad_gen.v
+tb/hdl/cosim_obs.v
 tb/hdl/cosim_top.v
+tb/hdl/cosim_axis.v
+tb/hdl/cosim4_top.v
 tb/hdl/mx_seq_tb.v
 tb/hdl/adc_ripple.v
 tb/hdl/out_route_tb.v
