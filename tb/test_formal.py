@@ -16,14 +16,11 @@ sys.path.insert(0, str(ROOT / "flow"))
 import formal  # noqa: E402  (flow/formal.py)
 
 
-# seconds on one idle core (make sim starts the costliest first; the rest are a few seconds).  prove_cp as in
-# the clean-clone .ci/run of c9990f2 (88 s); the others scaled from one loaded make sim run
-# (build/reports/formal.json "seconds" x 88 / 190): the mutants of the deep mpc_axis tasks run as long as a
-# proof (a counterexample near the task's depth), not the default 5 s.
-COST = {"mpc_axis/prove_cp": 88, "mpc_axis/prove_pe": 74, "mpc_axis/cover": 62, "mpc_axis/mutant6:bmc_pe": 49,
-        "mpc_axis/mutant3:prove_pe": 44, "mpc_axis/mutant0:prove_pe": 36, "mpc_axis/bmc_pe": 37,
-        "mpc_axis/mutant4:bmc_pe": 29, "mpc_axis/mutant2:prove_pe": 22, "out_route/prove": 8, "out_kill/bmc": 7,
-        "mpc_axis/mutant1:prove_pe": 6}
+# seconds on one idle core (make sim starts the costliest first; the rest are 2-5 s): CPU s of
+# `flow/formal.py <label>` with smtbmc yices (measured one at a time on a shared machine, see flow/formal.py)
+COST = {"mpc_axis/prove_cp": 18, "mpc_axis/bmc_pe": 15, "mpc_axis/mutant4:bmc_pe": 12, "mpc_axis/prove_pe": 11,
+        "mpc_axis/mutant3:prove_pe": 10, "mpc_axis/mutant6:bmc_pe": 10, "mpc_axis/cover": 8,
+        "mpc_axis/mutant0:prove_pe": 7, "mpc_axis/mutant2:prove_pe": 7, "out_route/prove": 6}
 
 
 @pytest.mark.skipif(formal.sby_cmd() is None, reason="yowasp-sby not installed")
@@ -43,3 +40,17 @@ def test_every_proof_has_mutants():
     """A proof without a mutant it must catch could be vacuous (rules: mutants for every safety proof)."""
     for sby in sorted(formal.FORMAL.glob("*.sby")):
         assert formal.mutants_of(sby.read_text()), f"{sby.name} has no '# mutant:' line"
+
+
+def test_every_engine_uses_the_pinned_solver():
+    """One solver for every proof (flow/formal.SOLVER, installed by requirements.txt): yices-smt2 is 4-15x
+    faster than z3 on these proofs; a task left on another solver would quietly cost make sim minutes."""
+    import re
+    for sby in sorted(formal.FORMAL.glob("*.sby")):
+        m = re.search(r"^\[engines\]\s*\n(.*?)(?=^\[|\Z)", sby.read_text(), re.M | re.S)
+        assert m, f"{sby.name} has no [engines] section"
+        for line in m.group(1).splitlines():
+            line = line.split("#", 1)[0].strip()
+            if line:
+                engine = line.split(":", 1)[-1].split() if re.match(r"\S+:\s", line) else line.split()
+                assert engine[:2] == ["smtbmc", formal.SOLVER], f"{sby.name}: [engines] '{line}' (expected smtbmc {formal.SOLVER})"

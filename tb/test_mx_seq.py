@@ -32,7 +32,7 @@ from pathlib import Path
 import cocotb
 import pytest
 from cocotb.clock import Clock
-from cocotb.triggers import ClockCycles, FallingEdge
+from cocotb.triggers import ClockCycles, FallingEdge, Timer
 
 from empc import formats as F
 from empc import header, image
@@ -194,7 +194,7 @@ async def random_periods(dut):
     roms = Path(os.environ["EMPC_ROMS"])
     half = int(os.environ.get("MX_HALF", "2500"))
     dut._log.info("mx_seq random periods: task %s, N %d, seed %d (EMPC_SEED), %d periods", task, n, seed, PERIODS)
-    Clock(dut.clk, 10, unit="ns").start()
+    Clock(dut.clk, 10, unit="ns", impl="gpi").start()   # C clock: no Python per edge (inputs change at falling edges)
     for nm in ("adc_trig", "period_start", "run", "adc_valid", "seg_we", "start", "sync", "sync_bit", "cfg_we",
                "cfg_swap", "swap_at", "force_pos", "seg_slot", "seg_field", "seg_wdata", "start_slot", "cfg_addr", "cfg_wdata", "theta", "pos",
                "cur0", "cur1", "cur2", "kacc", "kacc_shift", "load_shift", "hold", "id_ref", "iq_ref"):
@@ -565,7 +565,7 @@ async def random_axes(dut):
     half = header.read(Path(os.environ["EMPC_ROMS"]) / "empc_formats.vh")["PWM_HALF_PERIOD"]
     roms = Path(os.environ["EMPC_ROMS"])
     hdr = header.read(roms / "empc_formats.vh")
-    Clock(dut.clk, 10, unit="ns").start()
+    Clock(dut.clk, 10, unit="ns", impl="gpi").start()   # C clock: no Python per edge (inputs change at falling edges)
     for nm in ("go", "run", "hold", "theta", "pos", "cur0", "cur1", "cur2", "kacc", "kacc_shift", "load_shift",
                "id_ref", "iq_ref", "seg_we", "seg_slot", "seg_field", "seg_wdata", "start", "start_slot", "sync",
                "sync_val", "cfg_we", "cfg_addr", "cfg_wdata", "cfg_swap", "swap_at"):
@@ -625,9 +625,11 @@ async def random_axes(dut):
             getattr(dut, nm).value = _vec(val[nm], width[nm])
 
     async def until(t):
+        """To the falling edge at tick t under one timer (ClockCycles would wake Python every clock)."""
         now = int(dut.tick.value)
-        if t > now:
-            await ClockCycles(dut.clk, t - now, rising=False)
+        if t > now:                              # we are at a falling edge (10 ns clock)
+            await Timer(10 * (t - now) - 2, unit="ns")
+            await FallingEdge(dut.clk)
         return int(dut.tick.value)
 
     async def pulse(nm, a):
@@ -788,7 +790,7 @@ def hdr_stagger(na: int) -> int:
     return header.read(roms / "empc_formats.vh")[f"PWM_STAGGER_{na}"]
 
 
-@pytest.mark.cost(70)
+@pytest.mark.cost(50)            # Verilator build (about 35 CPU s) + two runs (the schedule model's latencies cached)
 @pytest.mark.parametrize("na,periods", [(4, 48)] + [pytest.param(n, None, marks=pytest.mark.full) for n in (2, 4)])
 def test_mx_seq_axes(na, periods):
     """NAXES axes, carriers staggered by EMPC_PWM_STAGGER_<NAXES>; then the same seed with the last axis's law
@@ -804,7 +806,7 @@ def test_mx_seq_axes(na, periods):
     assert base[str(na - 1)] != dropped[str(na - 1)], "the dropped axis's trace did not change"
 
 
-@pytest.mark.cost(70)
+@pytest.mark.cost(40)            # Verilator build (about 32 CPU s) + 120 periods per axis (5 CPU s)
 @pytest.mark.parametrize("na", [2, pytest.param(4, marks=pytest.mark.full)])
 def test_mx_seq_axes_in_phase(na):
     """The carriers in phase: the triggers meet, axes 1.. wait in the queue behind axis 0 (sample order, the

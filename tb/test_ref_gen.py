@@ -33,6 +33,11 @@ readout port (rd_age, rd_bit -> rd_q).
   never exceeds vmax and changes by at most a per period (speed and position task, with
   and without hold), ending exactly on the target; the extreme words (a step of 2^63,
   vmax = a = 2^63 - 1, ksh = 31) bit-exact against gov_step.
+
+Cost: test_ref_gen and test_ref_gen_governed share one Verilator build (the clock-level checks of 1.3 M
+clocks ran 3-4 minutes on Icarus); test_ref_gen_n1 and the hold mutant stay on Icarus.  The clock is cocotb's
+C clock (inputs change at falling edges, so its write timing does not matter), and wait_idle lets the clocks of
+an operation pass under one timer (nothing is driven then; gov_ev_monitor counts the gov_ev pulses).
 """
 from __future__ import annotations
 
@@ -43,13 +48,14 @@ import random
 import cocotb
 import pytest
 from cocotb.clock import Clock
-from cocotb.triggers import ClockCycles, FallingEdge, Timer
+from cocotb.triggers import FallingEdge, RisingEdge, Timer
 
 from empc.formats import wrap
 from empc.rtlmodel.ref_gen import (FIELDS, GOV_FIELD, GOV_SLOTS, M32, M63, M64, NSLOT, RefGen, Slot, gov_words,
                                    q32, segments_from_points, slot_field)
 
 DEFAULT_SEED = 20240
+CLK_NS = 10             # clock period
 FRESH = True            # the simulation has just started: the RAM holds its configuration contents
 PARAMS = {"N": 4}
 
@@ -78,6 +84,7 @@ class Env:
         self.n_w = 0          # delay-line comparisons
         self.n_rd = 0         # readout-port checks
         self.n_seg = 0        # field read-backs
+        self.gov_ev = 0       # gov_ev pulses (clocks with gov_ev = 1), counted by gov_ev_monitor
         dut._log.info("params %s seed %d (EMPC_SEED)", self.p, self.seed)
 
     async def sync_driver(self):
@@ -92,13 +99,28 @@ class Env:
                 self.driving = False
                 return
 
+    async def gov_ev_monitor(self):
+        """Counts the clocks with gov_ev = 1 (as sampled at the falling edge), waking only on a pulse:
+        wait_idle lets the clocks of an operation pass without Python."""
+        d = self.dut
+        while True:
+            await RisingEdge(d.gov_ev)              # set by the clock edge just passed
+            self.gov_ev += 1                        # its falling-edge sample
+            await FallingEdge(d.clk)
+            while True:                             # a pulse longer than one clock counts every clock
+                await FallingEdge(d.clk)
+                if not int(d.gov_ev.value):
+                    break
+                self.gov_ev += 1
+
     def drive_sync(self):
         if not getattr(self, "driving", False):
             cocotb.start_soon(self.sync_driver())
 
     async def start(self, governor=False):
         d = self.dut
-        Clock(d.clk, 10, unit="ns").start()
+        Clock(d.clk, CLK_NS, unit="ns", impl="gpi").start()   # C clock: no Python per edge (inputs change at falling edges)
+        cocotb.start_soon(self.gov_ev_monitor())
         d.sync_bit.value = 0
         d.rst.value = 1
         self._idle()
@@ -191,7 +213,6 @@ class Env:
         await FallingEdge(d.clk)
         self.n += 1
         self.n_adv += int(advance)
-        self.gov_ev = getattr(self, "gov_ev", 0) + int(d.gov_ev.value)
         if was_op and self.model._op is None:
             self.model_ev = getattr(self, "model_ev", 0) + int(self.model.clamped)
         if seg_read is not None:
@@ -205,9 +226,9 @@ class Env:
             self.check()
 
     async def wait_idle(self, limit=10000):
-        """Clocks without inputs until the engine is idle (model and RTL), checked at the end."""
+        """Clocks without inputs until the engine is idle (model and RTL), checked at the end.  Python
+        sleeps through them (one timer): nothing is driven, and gov_ev_monitor counts any gov_ev pulse."""
         n = 0
-        ev0 = int(self.dut.gov_ev.value)
         while self.model.busy:
             was_op = self.model._op is not None and self.model._op["kind"] == "advance"
             self.model.step(hold=bool(getattr(self, "hold", 0)), task_pos=bool(getattr(self, "task_pos", 0)))
@@ -216,9 +237,9 @@ class Env:
             n += 1
             assert n < limit, "engine does not finish"
         self._idle()
-        for _ in range(n):
+        if n:                                   # we are at (or 10 ps after) a falling edge
+            await Timer(n * CLK_NS - 2, unit="ns")  # past the n-th rising edge, before the n-th falling one
             await FallingEdge(self.dut.clk)
-            self.gov_ev = getattr(self, "gov_ev", 0) + int(self.dut.gov_ev.value)
         self.n += n
         self.check()
 
@@ -451,8 +472,8 @@ async def random_vs_model(dut):
             stats["readouts"] += 1
     await env.wait_idle()
     assert stats["adv_busy"] > 50 and stats["write_load"] > 3 and stats["start_adv"] > 0 and stats["sync_adv"] >= 0
-    assert getattr(env, "gov_ev", 0) == getattr(env, "model_ev", 0), \
-        f"gov_ev pulses {getattr(env, 'gov_ev', 0)} != model clamps {getattr(env, 'model_ev', 0)}"
+    assert env.gov_ev == getattr(env, "model_ev", 0), \
+        f"gov_ev pulses {env.gov_ev} != model clamps {getattr(env, 'model_ev', 0)}"
     if gov:
         assert env.model_ev > 20, "the governor never clamped"
         # the one-sided speed hold: held advances of the speed task with g > 0 and g < 0, vd passing
@@ -513,19 +534,20 @@ async def governor(dut):
     dut._log.info("governor: %d checks, %d clamps", checks, env.model_ev)
 
 
-@pytest.mark.cost(150)          # seconds on an idle core (make sim starts the costliest first)
+@pytest.mark.cost(45)           # Verilator build (about 28 CPU s, shared with test_ref_gen_governed) + 21 s of tests
 def test_ref_gen():
     from runner import run
-    run(toplevel="ref_gen", test_module="test_ref_gen", parameters=PARAMS,
-        extra_env={"TB_PARAMS": json.dumps(PARAMS)})
+    run(toplevel="ref_gen", test_module="test_ref_gen", parameters=PARAMS, sim="verilator", name="test_ref_gen",
+        run_name="all", extra_env={"TB_PARAMS": json.dumps(PARAMS)})
 
 
-@pytest.mark.cost(17)          # seconds on an idle core (make sim starts the costliest first)
+@pytest.mark.cost(40)           # waits for test_ref_gen's Verilator build (or makes it) + 150,000 clocks (about 12 s)
 def test_ref_gen_governed():
     from runner import run
-    run(toplevel="ref_gen", test_module="test_ref_gen", parameters=PARAMS,
+    run(toplevel="ref_gen", test_module="test_ref_gen", parameters=PARAMS, sim="verilator", name="test_ref_gen",
+        run_name="governed",
         extra_env={"TB_PARAMS": json.dumps(PARAMS), "EMPC_REFGEN_GOV": "1", "EMPC_REFGEN_CLOCKS": "150000"},
-        testcase=["random_vs_model"], name="test_ref_gen_governed")
+        testcase=["random_vs_model"])
 
 
 def test_ref_gen_hold_mutant(tmp_path):

@@ -108,6 +108,20 @@ def radius_bound(cfg) -> float:
     return math.exp(-decay_min(cfg) * cfg.control.Ts)
 
 
+def _memo(f):
+    """f(omega) evaluated once per omega: the gains are a pure function of the speed, read and never
+    changed by loop.law / operating_point (the loaded points ask for f(w) and f(w +- h) at each of
+    +-i_q0, and the law for f(w) at every load)."""
+    cache = {}
+
+    def g(w):
+        w = float(w)
+        if w not in cache:
+            cache[w] = f(w)
+        return cache[w]
+    return g
+
+
 def survey(cfg, algorithm: int, task: str, gain_sets: dict, points: list[dict] | None = None,
            grid: np.ndarray | None = None, estimator=None, loads: float | None = None) -> dict:
     """Worst radius and damping over the box and the speed grid for each gain set, at i = 0 and at the
@@ -120,6 +134,7 @@ def survey(cfg, algorithm: int, task: str, gain_sets: dict, points: list[dict] |
     ``worst_damping`` (:class:`Worst`), ``nominal_radius``, ``nominal_damping`` and per
     gain set its worst radius."""
     rob = cfg.robustness
+    gain_sets = {name: _memo(f) for name, f in gain_sets.items()}    # f(w) is asked 9 times per speed
     points = points if points is not None else box_points(rob)
     grid = grid if grid is not None else speeds(cfg, rob.speed_points)
     Ts = cfg.control.Ts

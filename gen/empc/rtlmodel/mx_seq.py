@@ -24,6 +24,7 @@ shifter) is read >= 3 issues after the op that writes it; status words are writt
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 from .. import formats as F
@@ -359,10 +360,16 @@ def latency(kind: str, n: int, kacc_shift: int, load_shift: int, timing: dict) -
     references are ready (read before the control program's WREF step): the program executed clock by
     clock with the waits of ``timing`` (:func:`job_timing`), then the modulation: the WCORE op's W
     stage requests it (issue + 2), xform starts the clock after and is done ``xform.latency("mod")``
-    later, cmp_load the clock after.  The latency register counts cmp_load's cycle - trigger's - 1."""
+    later, cmp_load the clock after.  The latency register counts cmp_load's cycle - trigger's - 1.
+    A pure function of its arguments, cached (:func:`schedule_axes` asks it for every job of a run)."""
+    return _latency(kind, n, kacc_shift, load_shift, tuple(sorted(timing.items())))
+
+
+@functools.lru_cache(maxsize=4096)
+def _latency(kind: str, n: int, kacc_shift: int, load_shift: int, timing_items: tuple) -> int:
     from . import xform
     ctx = Ctx(pos=0, theta=0, kacc_shift=kacc_shift, load_shift=load_shift)
-    r = run_job(kind, n, {}, ctx, timing)
+    r = run_job(kind, n, {}, ctx, dict(timing_items))
     return r["wcore"] + 3 + xform.latency("mod")
 
 
