@@ -408,8 +408,8 @@ class MxBanks:
         if addr == im.A_FMT:
             return v != self.fmt
         if addr == im.A_CFG:
-            return (v >> 24 != im.LAYOUT or (v >> 15) & 0x1FF != 0 or (v >> 13) & 3 not in (1, 2)
-                    or (v >> 8) & 0xF != self.N or (v >> 7) & 1 or v & 0x7F > MAX_COLS)
+            return (v >> 24 != im.LAYOUT or v & im.CFG_RESERVED or (v >> 13) & 3 not in (1, 2)
+                    or (v >> 8) & 0xF != self.N or v & 0x7F > MAX_COLS)
         return False
 
     def _check(self, axis: int, addr: int, v: int) -> None:
