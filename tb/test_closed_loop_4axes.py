@@ -32,7 +32,8 @@ algorithm, control period, load and plant parameters.  The fingerprint does not 
 the image records its control period in CFG[23:16] instead), so axis 0 uploads the generator's own
 Ts = 50 us image (`empc roms --set control.Ts=5e-5 --set inverter.f_pwm=20000`; image_at_ts checks that its
 formats and fingerprint are the build's and that the drivers refuse it at the build's 5 PWM periods), after
-CTRL.pwm_per_control = 1; see docs/four_axes.md.
+CTRL.pwm_per_control = 1.  Until its swap the active image is the boot image (5 PWM periods): mpc_core holds
+img_ok low (FAULT.coef, checked set), one CMD.fault_clear after the swap; see docs/four_axes.md.
 """
 from __future__ import annotations
 
@@ -222,6 +223,7 @@ if cocotb is not None:
                 orig()
             a1.end_period = end_period
 
+        coef_bit = {f.name: f.lsb for f in regmap.axis_reg("FAULT").fields}["coef"]
         wall0, cpu0 = time.perf_counter(), time.process_time()
         plans, kicks = [], []
         for cs, drv in axes:
@@ -245,6 +247,19 @@ if cocotb is not None:
                 for k in reset_regs():
                     setattr(cs.regs, k, getattr(r, k))
             plan.insert(1, [regs])
+            if cs.M != reset_regs()["pwm_per_control"]:
+                async def coef_clear(cs=cs, drv=drv):
+                    # from the CTRL write above until the swap the active image was the boot image, of the build's
+                    # control period: FAULT.coef (mpc_core img_ok needs the active image's period = CTRL.
+                    # pwm_per_control; the bridges were off); the swapped image is of this period: one clear
+                    f = await drv.read("FAULT")
+                    assert (f >> coef_bit) & 1, f"{cs.name}: FAULT {f:#x}: the control-period mismatch was not seen"
+                    await drv.command(fault_clear=1)
+                    f2 = await drv.read("FAULT")
+                    assert f2 == 0, f"{cs.name}: FAULT {f2:#x} after the clear (image of period {cs.M} active)"
+                    extra[cs.name]["fault_while_boot_image_at_other_period"] = f
+                k = next(i for i, acts in enumerate(plan) if acts and getattr(acts[0], "__name__", "") == "ref_setup")
+                plan.insert(k, [coef_clear])
             plans.append([_guard(cs, acts) for acts in plan])
             kicks.append(kick)
         # the axes are configured one after the other: axis n's plan starts when axis n-1's has ended
