@@ -42,8 +42,9 @@ CAUSES = {
     "adc": ("adc_frame", "CS fall of the first frame with a leading bit 1", ["tb/test_adc_spi.py"]),
     "pstage": ("pstage", "pwr_fault_n falling (3 ns pulse)", ["tb/test_out_kill.py (300 sub-clock pulses)"]),
     "clock": ("clock", "the last fabric clock edge (clock stopped)", ["tb/test_clk_mon.py", "tb/test_out_kill.py"]),
-    "coef": (None, "no valid coefficient image: a state, the bridges never switch",
-             ["tb/test_mpc_core.py bad_boot, image_checks (39 swap decisions)"]),
+    "coef": (None, "no valid coefficient image, or its control period is not CTRL.pwm_per_control: a state, "
+                   "the bridges never switch",
+             ["tb/test_mpc_core.py bad_boot, image_checks (43 swap decisions: image checks and the control period)"]),
     "hall_enc": ("hall_enc", "HALL pins two sectors ahead of the encoder angle", ["tb/test_sens_check.py"]),
     "enc_break": ("line_break", "encoder A/B frozen while the rotor turns", ["tb/test_sens_check.py"]),
     "adc_stuck": ("adc_stuck", "CS fall of the first frame with a channel at the rail (overcurrent masked)",

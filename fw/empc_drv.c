@@ -88,8 +88,12 @@ int empc_coef_load(uint32_t axis, const uint32_t *image, uint32_t nwords, uint32
 {
     uint32_t w, st, bank;
 
-    if (image == 0 || nwords == 0 || nwords > EMPC_COEF_WORDS)
+    if (image == 0 || nwords <= EMPC_IMG_A_CFG || nwords > EMPC_COEF_WORDS)
         return EMPC_ERR_ARG;
+    /* the image's control period (gains for that Ts) must be the axis's */
+    if (((image[EMPC_IMG_A_CFG] >> EMPC_IMG_CFG_PERIOD_LSB) & ((1u << EMPC_IMG_CFG_PERIOD_BITS) - 1u))
+        != EMPC_GET(EMPC_A_CTRL_PWM_PER_CONTROL, RD_A(axis, CTRL)))
+        return EMPC_ERR_PERIOD;
     st = RD_A(axis, STATUS);
     if (EMPC_GET(EMPC_A_STATUS_SWAP_PENDING, st))
         return EMPC_ERR_BUSY;

@@ -45,8 +45,10 @@ typedef enum {
     EMPC_ERR_VERIFY = -5,    /* a register did not read back what was written */
     EMPC_ERR_TIMEOUT = -6,   /* the poll count ran out */
     EMPC_ERR_FAULT = -7,     /* a fault is still latched (its cause has not gone) */
-    EMPC_ERR_REFUSED = -8    /* the FPGA refused it (coefficient swap: no complete valid image; a register
+    EMPC_ERR_REFUSED = -8,   /* the FPGA refused it (coefficient swap: no complete valid image; a register
                                 write outside the build limits or while the bridges are live) */
+    EMPC_ERR_PERIOD = -9     /* coefficient image designed for another control period than the axis's
+                                CTRL.pwm_per_control (image CFG[23:16]): gains for another Ts, not loaded */
 } empc_err;
 
 /* Build parameters of the bitstream (CAPS, PWM_HALF). */
@@ -99,7 +101,9 @@ int empc_axis_config(const empc_caps *caps, uint32_t axis, const empc_axis_cfg *
 /* Upload a coefficient image into the inactive bank of an axis (nwords <= EMPC_COEF_WORDS), then
  * request the bank swap (decided at the PWM boundary before the next control sample) and poll STATUS up to max_polls
  * times until it is decided.  EMPC_ERR_BUSY if a swap was already pending, EMPC_ERR_REFUSED if the
- * FPGA refused the image (STATUS.swap_refused: incomplete, bad checksum or another build's format). */
+ * FPGA refused the image (STATUS.swap_refused: incomplete, bad checksum or another build's format),
+ * EMPC_ERR_PERIOD (nothing written) if the image's control period (CFG field EMPC_IMG_CFG_PERIOD) is not
+ * the axis's CTRL.pwm_per_control: set that first (empc_axis_config, bridges off). */
 int empc_coef_load(uint32_t axis, const uint32_t *image, uint32_t nwords, uint32_t max_polls);
 
 /* Switch the bridges on (run = 0: zero voltage, run = 1: control law) or off (enable = 0). */

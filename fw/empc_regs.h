@@ -24,28 +24,31 @@
 
 #include <stdint.h>
 
-#define EMPC_EMC_BASE           0x80000000u  /* CPU byte address of FPGA word 0 (EMC CS0) */
-#define EMPC_WORD_BYTES         4u           /* bytes per FPGA word (32-bit accesses only) */
-#define EMPC_AXIS_BASE          0x00000400u  /* byte offset of axis 0's registers */
-#define EMPC_AXIS_STRIDE        0x00000400u  /* bytes per axis */
-#define EMPC_COEF_BASE          0x00004000u  /* byte offset of axis 0's coefficient window (write-only, inactive bank) */
-#define EMPC_COEF_STRIDE        0x00001000u  /* bytes per coefficient window */
-#define EMPC_COEF_WORDS         1024u        /* words in one coefficient window */
-#define EMPC_IMG_USED           768u         /* words of a coefficient image (gen/empc/image.py) */
-#define EMPC_IMG_LAYOUT         3u           /* image layout version (CAPS.img_layout) */
-#define EMPC_ID_MAGIC           0x454D5043u  /* value of ID ('EMPC') */
-#define EMPC_IP_VERSION         0x00010000u  /* value of VERSION (major 31:16, minor 15:8, patch 7:0) */
-#define EMPC_WDOG_KEY           0x5A5Au      /* write to WDOG_KICK to restart the watchdog */
-#define EMPC_UNLOCK_KEY         0xC0DEu      /* write to UNLOCK: the next write of that block may change FAULT_MASK / WDOG_TIMEOUT */
-#define EMPC_UNLOCK_ARM_PERIODS 2u           /* the unlock ends at this PWM period start after the key (or at the next write of the block) */
-#define EMPC_UDC_FRESH_PERIODS  200u         /* PWM periods a UDC value stays valid (rewrite it more often, else FAULT.dclink) */
-#define EMPC_ROUTE_AXES         4u           /* axes the routing registers can name */
-#define EMPC_ROUTE_PHASES       3u           /* OUT_SEL code of axis a, phase p: 1 + EMPC_ROUTE_PHASES * a + p (0 = output off) */
-#define EMPC_ROUTE_OUTPUTS      16u          /* half-bridge outputs (OUT_SEL0/1 fields) */
-#define EMPC_ACC_RO             0u           /* access: read-only */
-#define EMPC_ACC_RW             1u           /* access: read/write */
-#define EMPC_ACC_WO             2u           /* access: write pulses (reads 0) */
-#define EMPC_ACC_W1C            3u           /* access: sticky bits, write 1 to clear */
+#define EMPC_EMC_BASE            0x80000000u  /* CPU byte address of FPGA word 0 (EMC CS0) */
+#define EMPC_WORD_BYTES          4u           /* bytes per FPGA word (32-bit accesses only) */
+#define EMPC_AXIS_BASE           0x00000400u  /* byte offset of axis 0's registers */
+#define EMPC_AXIS_STRIDE         0x00000400u  /* bytes per axis */
+#define EMPC_COEF_BASE           0x00004000u  /* byte offset of axis 0's coefficient window (write-only, inactive bank) */
+#define EMPC_COEF_STRIDE         0x00001000u  /* bytes per coefficient window */
+#define EMPC_COEF_WORDS          1024u        /* words in one coefficient window */
+#define EMPC_IMG_USED            768u         /* words of a coefficient image (gen/empc/image.py) */
+#define EMPC_IMG_LAYOUT          4u           /* image layout version (CAPS.img_layout) */
+#define EMPC_IMG_A_CFG           1u           /* image word holding the configuration (CFG) */
+#define EMPC_IMG_CFG_PERIOD_LSB  16u          /* CFG field: control period the image was designed for (PWM periods; = CTRL.pwm_per_control) */
+#define EMPC_IMG_CFG_PERIOD_BITS 8u           /* width of that field */
+#define EMPC_ID_MAGIC            0x454D5043u  /* value of ID ('EMPC') */
+#define EMPC_IP_VERSION          0x00010000u  /* value of VERSION (major 31:16, minor 15:8, patch 7:0) */
+#define EMPC_WDOG_KEY            0x5A5Au      /* write to WDOG_KICK to restart the watchdog */
+#define EMPC_UNLOCK_KEY          0xC0DEu      /* write to UNLOCK: the next write of that block may change FAULT_MASK / WDOG_TIMEOUT */
+#define EMPC_UNLOCK_ARM_PERIODS  2u           /* the unlock ends at this PWM period start after the key (or at the next write of the block) */
+#define EMPC_UDC_FRESH_PERIODS   200u         /* PWM periods a UDC value stays valid (rewrite it more often, else FAULT.dclink) */
+#define EMPC_ROUTE_AXES          4u           /* axes the routing registers can name */
+#define EMPC_ROUTE_PHASES        3u           /* OUT_SEL code of axis a, phase p: 1 + EMPC_ROUTE_PHASES * a + p (0 = output off) */
+#define EMPC_ROUTE_OUTPUTS       16u          /* half-bridge outputs (OUT_SEL0/1 fields) */
+#define EMPC_ACC_RO              0u           /* access: read-only */
+#define EMPC_ACC_RW              1u           /* access: read/write */
+#define EMPC_ACC_WO              2u           /* access: write pulses (reads 0) */
+#define EMPC_ACC_W1C             3u           /* access: sticky bits, write 1 to clear */
 
 #define EMPC_GLOBAL_ADDR(ofs)   (EMPC_EMC_BASE + (uint32_t)(ofs))
 #define EMPC_AXIS_ADDR(n, ofs)  (EMPC_EMC_BASE + EMPC_AXIS_BASE + (uint32_t)(n) * EMPC_AXIS_STRIDE \

@@ -306,7 +306,7 @@ module mpc_axis #(
         .fw_lo(core_fw_lo), .aw({st_iq[`EMPC_I_W-1], iq_big}), .cfg_we(coef_we), .cfg_addr(coef_addr),
         .cfg_wdata(reg_wdata), .cfg_swap(cmd_coef_swap), .swap_at(ctl_boundary), .ready(core_ready), .bank(core_bank),
         .swap_pending(core_swap_pending), .boot_ok(core_boot_ok), .img_ok(core_img_ok), .upl_ok(core_upl_ok),
-        .swap_refused(core_swap_refused), .refused(core_refused), .task_pos(task_pos));
+        .swap_refused(core_swap_refused), .refused(core_refused), .task_pos(task_pos), .pwm_per_control(ctrl_pwm_per_control));
     wire img_bad = core_ready && !core_img_ok;
     // refused register writes (axis_regs and global_regs: guard, unlock, legal): 8-bit saturating
     // counter and a sticky flag, both cleared by CMD.clear_counters

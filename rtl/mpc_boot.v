@@ -20,7 +20,8 @@
 //   word 0     restart: acc = the word (its sync reset one clock ahead), bad = (word != MAGIC)
 //   other      in sequence iff addr == previous addr + 1 and the same axis as the previous
 //              word; bad |= out of sequence or a wrong
-//              header word: CFG (layout == LAYOUT, reserved bits 0, algorithm 1 or 2,
+//              header word: CFG (layout == LAYOUT, reserved bits 15 and 7 0, algorithm 1 or 2,
+//              any control period [23:16]: not the checker's, mpc_core compares it with the axis's,
 //              N == the build's N, ncols <= 64), USED (== USED), FMT (== the build's format
 //              fingerprint EMPC_IMG_FMT_ID); acc += word (csum word: acc -= word)
 //   upl_ok[wax] <= (this word is USED-1, in sequence, !bad, acc after it == 0): the words since
@@ -127,7 +128,7 @@ module mpc_boot #(
     wire        we_n = ready ? cfg_we : (a_next < USED[9:0]);
     // header words: one comparator against the constant of the word (MAGIC, USED or the format id)
     wire [31:0] hexp = h0 ? MAGIC : hused ? USED_W : FMT_ID;
-    wire        cfg_bad = (hq[31:24] != LAYOUT) || (hq[23:15] != 9'd0) || (hq[14:13] == 2'd0) ||
+    wire        cfg_bad = (hq[31:24] != LAYOUT) || hq[15] || (hq[14:13] == 2'd0) ||
                           (hq[14:13] == 2'd3) || (hq[11:8] != N_W[3:0]) || hq[7] || (hq[6:0] > MAXC);
     wire        hdr_bad = ((h0 || hused || hfmt) && (hq != hexp)) || (hcfg && cfg_bad);
     always @(posedge clk) begin

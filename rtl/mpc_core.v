@@ -42,9 +42,14 @@
 // A request in the clock of swap_at is decided at that edge.  An update in progress always
 // finishes with the bank it started with.  Writes always go to the bank that is inactive in
 // the cycle of the request (a word written while a swap is pending makes it refused).
+// Control period: an image records the control period its gains were designed for (CFG[23:16],
+// PWM periods); a swap is also refused if the upload's period is not the axis's pwm_per_control
+// (CTRL.pwm_per_control: the old tuning stays, swap_refused), and img_ok needs the active bank's
+// period to equal it (a CTRL.pwm_per_control write with the bridges off that does not match the
+// active image: img_ok = 0, FAULT.coef, the bridges stay off until a matching image is swapped in).
 // img_ok: the active bank holds a valid image (the boot image passed the check, or an
-// accepted swap); a bad boot image leaves img_ok = 0 until a valid upload is swapped in
-// (the axis keeps the bridges off meanwhile).
+// accepted swap) designed for the axis's control period; a bad boot image leaves img_ok = 0 until
+// a valid upload is swapped in (the axis keeps the bridges off meanwhile).
 // Reset: bank 0 active, the boot image (BOOT_FILE) is streamed into bank 0 through the
 // same write path (mpc_boot, USED = 768 words); `ready` rises 771 cycles after rst is
 // released, boot_ok = img_ok = the boot image passed the check.  start, cfg_we and
@@ -70,11 +75,13 @@
 //   selects y2 / references accordingly), latency.
 //   Field weakening (model step 7): fw_thr = {lo, hi} (register FW_R2) in; fw_hi, fw_lo out,
 //   loaded with the other outputs (|u_raw|^2 of the update above hi / below lo).
+//   Control period: pwm_per_control[PERW*a +: PERW] = axis a's CTRL.pwm_per_control (in; img_ok and
+//   the swap decision compare it with the image's CFG[23:16]).
 //   Anti-windup (model step 2): aw = {i_q < 0, |i_q| >= the hold current} (mpc_axis: register IQ_HOLD,
 //   0 = off; stable during an update): the speed task's speed-error increment is held while aw[0] and it
 //   has the sign aw[1] (it would drive |i_q| further).
 // Parameters: N (horizon inputs, default EMPC_N), NAXES (axes, 1..8; AXB = clog2(NAXES)),
-// BOOT_FILE, RSQRT_FILE ($readmemh paths).
+// BOOT_FILE, RSQRT_FILE ($readmemh paths), PERW (control period width, EMPC_IMG_CFG_PERIOD_BITS = 8).
 // Resources: 6 DSP48A1 (3 per lane, the limiter reuses them), block RAM for the boot
 // ROM (1024 x 32), RSQRT (1024 x 18), the coefficient memories, the bank headers and the
 // input buffer, LUT RAM for the scratch words.
@@ -85,7 +92,8 @@ module mpc_core #(
     parameter integer N = `EMPC_N,
     parameter integer NAXES = 1,            // axes sharing the core (1..8): a bank pair and input words each
     parameter BOOT_FILE = "coef_boot.hex",
-    parameter RSQRT_FILE = "rsqrt.hex"
+    parameter RSQRT_FILE = "rsqrt.hex",
+    parameter integer PERW = `EMPC_IMG_CFG_PERIOD_BITS  // control period field (CTRL.pwm_per_control's width)
 `ifdef EMPC_SIM_GATE
     , parameter integer SIM_GATE = 1        // simulation only: 0 = clock never stopped (see "core clock")
 `endif
@@ -124,7 +132,8 @@ module mpc_core #(
     output wire [NAXES-1:0]                upl_ok,       // the inactive bank holds a complete valid upload
     output reg  [NAXES-1:0]                swap_refused, // the last decided swap was refused
     output reg  [NAXES-1:0]                refused,      // pulse: a swap was refused
-    output wire [NAXES-1:0]                task_pos      // active bank: 1 = position task
+    output wire [NAXES-1:0]                task_pos,     // active bank: 1 = position task
+    input  wire [PERW*NAXES-1:0]           pwm_per_control  // CTRL.pwm_per_control of every axis
 );
     localparam integer AXB  = $clog2(NAXES);    // axis bits of in_addr / cfg_addr
     localparam integer AXW  = (AXB > 0) ? AXB : 1;
@@ -199,6 +208,29 @@ module mpc_core #(
         else     w_bank <= ready_r & ~bank[cfg_ax];
     end
 
+    // ---- control periods (image CFG[23:16], PWM periods per control period the gains are for), per
+    // axis: upl_per = the last CFG word written into the axis's inactive bank (the boot stream's too),
+    // act_per = the active bank's (upl_per while booting; upl_per at an accepted swap).  A swap is
+    // accepted only if the upload's period is the axis's pwm_per_control, and img_ok needs the active
+    // bank's period to be it (CTRL.pwm_per_control changes only with the bridges off) ----
+    localparam [9:0] A_CFG = `EMPC_IMG_A_CFG;
+    localparam integer PER_LSB = `EMPC_IMG_CFG_PERIOD_LSB;
+    reg  [PERW-1:0] upl_per [0:NAXES-1];
+    reg  [PERW-1:0] act_per [0:NAXES-1];
+    wire            w_cfg = w_we && (w_addr == A_CFG);
+    integer pa;
+    always @(posedge cclk) begin
+        for (pa = 0; pa < NAXES; pa = pa + 1) begin
+            if (rst) begin
+                upl_per[pa] <= {PERW{1'b0}};
+                act_per[pa] <= {PERW{1'b0}};
+            end else begin
+                if (w_cfg && w_ax == pa[AXW-1:0]) upl_per[pa] <= w_data[PER_LSB +: PERW];
+                if (!ready_r || swap_go[pa])      act_per[pa] <= upl_per[pa];
+            end
+        end
+    end
+
     // ---- bank swap decisions, per axis: at the axis's boundary, with no update of that axis running ----
     reg  [NAXES-1:0] swap_dec;
     integer xa;
@@ -207,20 +239,26 @@ module mpc_core #(
             swap_dec[xa] = ready_r && (swap_pending[xa] || cfg_swap[xa]) && swap_at[xa] &&
                            !(busy && axis_r == xa[AXW-1:0]);
             swap_go[xa]  = swap_dec[xa] && upl_ok[xa] && !(cfg_we && cfg_ax == xa[AXW-1:0]) &&
-                           !(w_we && w_ax == xa[AXW-1:0]);
+                           !(w_we && w_ax == xa[AXW-1:0]) &&
+                           (upl_per[xa] == pwm_per_control[PERW*xa +: PERW]);
         end
     end
-    // img_ok = boot_ok | (a swap was accepted since reset): every accepted swap brings a valid image.
+    // img_val = boot_ok | (a swap was accepted since reset): every accepted swap brings a valid image.
     // Both parts only rise (boot_ok once, at the end of the boot stream), so the register takes
-    // boot_ok's next value, its own value and this edge's swaps: the same value in every clock, but
-    // straight from a flip-flop into the kill path (mpc_axis: img_bad -> trip -> pwm_center; the
-    // gate boot_ok | swapped made it the drive's worst path, 10 LUT levels)
-    reg  [NAXES-1:0] img_ok_r;
+    // boot_ok's next value, its own value and this edge's swaps (the gate boot_ok | swapped after the
+    // flip-flops made the kill path the drive's worst path, 10 LUT levels).
+    // img_ok = img_val and the active bank's period is the axis's pwm_per_control, in the same clock
+    // (a CTRL write may change pwm_per_control and set enable at once: a registered compare would be a
+    // clock late); the compare is one 2 x PERW-input equality of two flip-flop vectors
+    reg  [NAXES-1:0] img_val_r;
     always @(posedge cclk) begin
-        if (rst) img_ok_r <= {NAXES{1'b0}};
-        else     img_ok_r <= {NAXES{boot_ok_n}} | img_ok_r | swap_go;
+        if (rst) img_val_r <= {NAXES{1'b0}};
+        else     img_val_r <= {NAXES{boot_ok_n}} | img_val_r | swap_go;
     end
-    assign img_ok = img_ok_r;
+    genvar gp;
+    generate for (gp = 0; gp < NAXES; gp = gp + 1) begin : g_per
+        assign img_ok[gp] = img_val_r[gp] && (act_per[gp] == pwm_per_control[PERW*gp +: PERW]);
+    end endgenerate
 
     // ---- sequencing: one-hot pre-phase and tail, column counter ----
     wire start_ok = (|start) && ready_r && !busy;

@@ -225,7 +225,7 @@ module mx_axes #(
         .fw_lo(core_fw_lo), .aw({st_iq[IW-1], iq_big_v[job_axis]}), .cfg_we(coef_we), .cfg_addr(coef_addr),
         .cfg_wdata(reg_wdata), .cfg_swap(cmd_coef_swap), .swap_at(ctl_boundary), .ready(core_ready), .bank(core_bank),
         .swap_pending(core_swap_pending), .boot_ok(core_boot_ok), .img_ok(core_img_ok), .upl_ok(core_upl_ok),
-        .swap_refused(core_swap_refused), .refused(core_refused), .task_pos(task_pos));
+        .swap_refused(core_swap_refused), .refused(core_refused), .task_pos(task_pos), .pwm_per_control(ppc));
 
     // ---------------- status words and counters, shared (one block RAM {axis, word}) ----------------
     wire [31:0]      s_q;

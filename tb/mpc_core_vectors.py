@@ -336,13 +336,14 @@ def _pythagorean(r: int, limit: int = 8) -> list[tuple[int, int]]:
 
 
 # ----------------------------------------------------------------------------- random images
-def random_image(rng, N: int, fmt_id: int = 0, valid: bool = True) -> tuple[list[int], core.Params]:
+def random_image(rng, N: int, fmt_id: int = 0, valid: bool = True, period: int = 1) -> tuple[list[int], core.Params]:
     """An image with random (also out-of-range) field values, and its decoded Params.
 
     valid: a header the RTL accepts for a build with horizon N and fingerprint fmt_id
     (image.check: algorithm 1 or 2, N, ncols <= 64, reserved bits 0); else also other
     algorithms, horizons, ncols up to 127 and bit 7 set (for the model alone: the RTL refuses
     such an image, and the clamps it would apply are then only reachable from a bad boot image).
+    period: the control period field (CFG[23:16]; the core accepts a swap only at the axis's pwm_per_control).
     """
     w = [0] * image.DEPTH
     alg = int(rng.integers(1, 3)) if valid else int(rng.integers(0, 4))
@@ -350,7 +351,7 @@ def random_image(rng, N: int, fmt_id: int = 0, valid: bool = True) -> tuple[list
     Nimg = N if valid else int(rng.integers(0, 16))
     ncols = int(rng.integers(0, 65)) if valid or rng.random() >= 0.2 else int(rng.integers(0, 128))
     w[image.A_MAGIC] = image.MAGIC
-    w[image.A_CFG] = (image.LAYOUT << 24) | (alg << 13) | (task << 12) | (Nimg << 8) | ncols \
+    w[image.A_CFG] = (image.LAYOUT << 24) | (period << image.CFG_PERIOD_LSB) | (alg << 13) | (task << 12) | (Nimg << 8) | ncols \
         | ((0 if valid else int(rng.integers(0, 2))) << 7)
     w[image.A_FMT] = fmt_id
     w[image.A_WS] = int(rng.integers(0, 1 << 32))

@@ -28,11 +28,12 @@ exact).  Report: build/reports/closed_loop_4axes.json.
 
 Motors: the build's formats are per build (empc_formats.vh; an image carries the build's fingerprint, which
 covers the motor's raw-unit scalings), so every axis runs the BLWR233D; the axes differ in task,
-algorithm, control period, load and plant parameters.  The fingerprint also covers Ts (PWM_PER_CONTROL,
-the governor's reset words, rad/s per count per Ts): the generator's own Ts = 50 us image
-(`empc roms --set control.Ts=5e-5`) is refused by this build (image.check, the rule of rtl/mpc_boot.v), so
-axis 0 uploads the Ts = 50 us design encoded with the build's fingerprint (its formats are the build's:
-checked below); see docs/four_axes.md.
+algorithm, control period, load and plant parameters.  The fingerprint does not cover Ts (image layout 4:
+the image records its control period in CFG[23:16] instead), so axis 0 uploads the generator's own
+Ts = 50 us image (`empc roms --set control.Ts=5e-5 --set inverter.f_pwm=20000`; image_at_ts checks that its
+formats and fingerprint are the build's and that the drivers refuse it at the build's 5 PWM periods), after
+CTRL.pwm_per_control = 1.  Until its swap the active image is the boot image (5 PWM periods): mpc_core holds
+img_ok low (FAULT.coef, checked set), one CMD.fault_clear after the swap; see docs/four_axes.md.
 """
 from __future__ import annotations
 
@@ -76,9 +77,12 @@ def ts_overrides(ts: float | None) -> dict:
 
 
 def image_at_ts(ts: float, alg: int, task: str) -> tuple[list, dict]:
-    """The (alg, task) design at control period ``ts`` encoded with this build's format fingerprint, and
-    what the fingerprint of the generator's own build at ``ts`` differs in (the header constants)."""
-    from empc import config, design, header, image
+    """The generator's own (alg, task) image for control period ``ts`` (what `empc roms --set control.Ts=...`
+    writes, its own fingerprint and control period), checked to be accepted by this build: the same
+    formats and fingerprint as the build (Ts is not in it), refused only for another CTRL.pwm_per_control
+    (the drivers' rule).  Returns the words and what the header constants differ in (all Ts-dependent
+    register reset values: image.FMT_EXCLUDE)."""
+    from empc import config, design, driver, header, image
     build = header.read(_roms() / "empc_formats.vh")
     base = config.default()
     cfg = config.load(None, ts_overrides(ts)).with_control(algorithm=alg, task=task)
@@ -86,14 +90,15 @@ def image_at_ts(ts: float, alg: int, task: str) -> tuple[list, dict]:
     assert mine["IMG_FMT_ID"] == build["IMG_FMT_ID"], "build/roms is not the default configuration's"
     assert {k: header.FORMATS[k] for k in header.FORMATS} == {k: other[k] for k in header.FORMATS}, \
         "the formats differ at this Ts"
-    params = design.design(cfg, alg, task)["params"]
-    own = image.encode(params, other["IMG_FMT_ID"])
-    why = image.check(own, cfg.control.N, build["IMG_FMT_ID"])
-    assert why and all("fingerprint" in w for w in why), f"the Ts = {ts} image: {why}"
+    assert other["IMG_FMT_ID"] == build["IMG_FMT_ID"], "the Ts = %g image has another fingerprint" % ts
     diff = sorted(k for k in set(mine) | set(other) if mine.get(k) != other.get(k))
-    words = image.encode(params, build["IMG_FMT_ID"])
-    assert not image.check(words, cfg.control.N, build["IMG_FMT_ID"])
-    return words, {"own_image_refused": why, "header_constants_differ": diff}
+    assert set(diff) <= set(image.FMT_EXCLUDE), diff
+    words = image.encode(design.design(cfg, alg, task)["params"], other["IMG_FMT_ID"], period=cfg.pwm_per_control)
+    assert image.check(words, cfg.control.N, build["IMG_FMT_ID"], cfg.pwm_per_control) == []
+    refused = driver.period_mismatch(words, build["PWM_PER_CONTROL"])
+    assert refused, "the drivers would load the Ts = %g image on an axis at the build's period" % ts
+    return words, {"image_period_pwm_periods": image.period(words), "header_constants_differ": diff,
+                   "refused_at_build_period": refused}
 
 
 def reset_regs() -> dict:
@@ -218,6 +223,7 @@ if cocotb is not None:
                 orig()
             a1.end_period = end_period
 
+        coef_bit = {f.name: f.lsb for f in regmap.axis_reg("FAULT").fields}["coef"]
         wall0, cpu0 = time.perf_counter(), time.process_time()
         plans, kicks = [], []
         for cs, drv in axes:
@@ -241,6 +247,19 @@ if cocotb is not None:
                 for k in reset_regs():
                     setattr(cs.regs, k, getattr(r, k))
             plan.insert(1, [regs])
+            if cs.M != reset_regs()["pwm_per_control"]:
+                async def coef_clear(cs=cs, drv=drv):
+                    # from the CTRL write above until the swap the active image was the boot image, of the build's
+                    # control period: FAULT.coef (mpc_core img_ok needs the active image's period = CTRL.
+                    # pwm_per_control; the bridges were off); the swapped image is of this period: one clear
+                    f = await drv.read("FAULT")
+                    assert (f >> coef_bit) & 1, f"{cs.name}: FAULT {f:#x}: the control-period mismatch was not seen"
+                    await drv.command(fault_clear=1)
+                    f2 = await drv.read("FAULT")
+                    assert f2 == 0, f"{cs.name}: FAULT {f2:#x} after the clear (image of period {cs.M} active)"
+                    extra[cs.name]["fault_while_boot_image_at_other_period"] = f
+                k = next(i for i, acts in enumerate(plan) if acts and getattr(acts[0], "__name__", "") == "ref_setup")
+                plan.insert(k, [coef_clear])
             plans.append([_guard(cs, acts) for acts in plan])
             kicks.append(kick)
         # the axes are configured one after the other: axis n's plan starts when axis n-1's has ended

@@ -15,7 +15,8 @@ bus, SCS.EMCSC = 0: emc_a = byte address bits [15:2]); any other address fails t
   (sign-extended if _SIGNED) and is restored.
 * driver_flow: empc_init (ID, VERSION, CAPS against empc_formats.vh), empc_axis_config
   (read back by the driver and checked here over the bus), refused with the bridges on
-  (empc_axis_enable), empc_coef_load of another image (alg1 speed) into the inactive bank
+  (empc_axis_enable), empc_coef_load refuses (EMPC_ERR_PERIOD, nothing written) an image designed for
+  another control period than CTRL.pwm_per_control; empc_coef_load of another image (alg1 speed) into the inactive bank
   and the swap (the bank's decoded configuration, seen in mpc_coef_mem, is the image's;
   the window writes are the image words in order), empc_status_read against plain reads,
   the watchdog fault: empc_wdog_set(1) expires it, empc_fault_clear reports the cause while
@@ -70,7 +71,7 @@ class Status(ctypes.Structure):
 
 RD_FN = ctypes.CFUNCTYPE(ctypes.c_uint32, ctypes.c_uint32)
 WR_FN = ctypes.CFUNCTYPE(None, ctypes.c_uint32, ctypes.c_uint32)
-EMPC_OK, EMPC_ERR_ARG, EMPC_ERR_BUSY, EMPC_ERR_FAULT, EMPC_ERR_REFUSED = 0, -3, -4, -7, -8
+EMPC_OK, EMPC_ERR_ARG, EMPC_ERR_BUSY, EMPC_ERR_FAULT, EMPC_ERR_REFUSED, EMPC_ERR_PERIOD = 0, -3, -4, -7, -8, -9
 
 
 def _roms() -> Path:
@@ -284,6 +285,14 @@ async def driver_flow(dut):
     arr = (ctypes.c_uint32 * len(words))(*words)
     # the swap is decided at the PWM boundary before the next control sample (up to pwm_per_control PWM periods)
     polls = 4 * m["PWM_PER_CONTROL"] * m["PWM_HALF_PERIOD"]
+    # the same image designed for another control period (CFG[23:16]): refused by the driver, nothing written
+    other = list(words)
+    assert image.period(other) == m["PWM_PER_CONTROL"]
+    other[image.A_CFG] += (1 if m["PWM_PER_CONTROL"] != 1 else 2) - m["PWM_PER_CONTROL"] << image.CFG_PERIOD_LSB
+    other[image.A_CSUM] = image.checksum(other)
+    oarr = (ctypes.c_uint32 * len(other))(*other)
+    assert await env.call("empc_coef_load", 0, oarr, len(other), polls) == EMPC_ERR_PERIOD
+    assert not [a for a, _ in env.writes[n0:] if a >= regmap.COEF_BASE], "a refused image was written"
     assert await env.call("empc_coef_load", 0, arr, len(words), polls) == EMPC_OK
     coef_w = [(a, v) for a, v in env.writes[n0:] if a >= regmap.COEF_BASE]
     assert coef_w == [(regmap.COEF_BASE + i, v) for i, v in enumerate(words)], "window writes are not the image"

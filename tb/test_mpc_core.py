@@ -53,6 +53,11 @@ def header_n() -> int:
     return header_consts()["N"]
 
 
+def header_ppc() -> int:
+    """CTRL.pwm_per_control after reset = the control period of the build's images (CFG[23:16])."""
+    return header_consts()["PWM_PER_CONTROL"]
+
+
 # the axis rides above the word address: in_addr = {axis, word}, cfg_addr = {axis, image word}
 IN_AW = (core.IN_WORDS - 1).bit_length()
 IMG_AW = (image.DEPTH - 1).bit_length()
@@ -119,6 +124,8 @@ async def reset_core(dut, RisingEdge, ReadOnly, limit: int, swap_at: int = 0) ->
                  "in_wdata"):
         getattr(dut, name).value = 0
     dut.swap_at.value = swap_at
+    per_w = image.CFG_PERIOD_BITS
+    dut.pwm_per_control.value = sum(header_ppc() << (per_w * a) for a in range(len(dut.pwm_per_control) // per_w))
     for _ in range(3):
         await RisingEdge(dut.clk)
     dut.rst.value = 0
@@ -243,7 +250,8 @@ class ImgBench(Bench):
         n = await super().reset()
         await RisingEdge(self.dut.clk)               # leave the ReadOnly phase
         self.mx = core.MxBanks(image.read_hex(Path(os.environ.get("EMPC_BOOT_HEX", roms() / "coef_boot.hex"))),
-                               self.N, self.fmt, self.NA)
+                               self.N, self.fmt, self.NA, ppc=header_ppc())
+        self.ppcs = [header_ppc()] * self.NA
         self.m = AxisView(self.mx, self.ax)
         self.dut._log.info(f"seed {SEED} (EMPC_SEED); NAXES {self.NA}, axis {self.ax}; boot_ok model "
                            f"{self.m.boot_ok} RTL {int(self.dut.boot_ok.value)}")
@@ -261,6 +269,13 @@ class ImgBench(Bench):
     async def idle(self, n: int) -> None:
         for _ in range(n):
             await self.RisingEdge(self.dut.clk)
+
+    async def set_ppc(self, v: int) -> None:
+        """CTRL.pwm_per_control of the bench's axis (the core's input; the others keep theirs)."""
+        self.ppcs[self.ax] = v
+        self.dut.pwm_per_control.value = sum(x << (image.CFG_PERIOD_BITS * a) for a, x in enumerate(self.ppcs))
+        await self.RisingEdge(self.dut.clk)
+        self.mx.set_ppc(self.ax, v)
 
     async def upload(self, words) -> None:
         """Write (addr, word) pairs back to back, one per clock."""
@@ -378,7 +393,7 @@ class AxBench:
         n = await reset_core(dut, self.RisingEdge, self.ReadOnly, 10000)
         await self.RisingEdge(dut.clk)
         boot = image.read_hex(roms() / "coef_boot.hex")
-        self.m = core.MxCore(boot, self.N, self.fmt, self.NA)
+        self.m = core.MxCore(boot, self.N, self.fmt, self.NA, ppc=header_ppc())
         dut._log.info(f"seed {SEED} (EMPC_SEED), NAXES {self.NA}: ready {n} cycles after reset")
 
         async def watch():
@@ -443,7 +458,7 @@ class AxBench:
         if r < 0.5:
             w = list(self.good[int(self.rng.integers(0, len(self.good)))])
         else:
-            w = list(V.random_image(self.rng, self.N, self.fmt, valid=True)[0])
+            w = list(V.random_image(self.rng, self.N, self.fmt, valid=True, period=header_ppc())[0])
         if self.rng.random() < 0.25:
             w[int(self.rng.integers(0, image.USED))] ^= 1 << int(self.rng.integers(0, 32))
         return list(enumerate(w[:image.USED]))
@@ -744,6 +759,13 @@ try:
         tb = ImgBench(dut)
         await tb.reset()
         await tb.compare("boot")
+        # the boot image runs only at its control period (the build's CTRL.pwm_per_control reset value)
+        await tb.set_ppc(header_ppc() % 255 + 1)
+        await tb.compare("boot image, pwm_per_control != its period")
+        assert tb.bit("img_ok") == 0
+        await tb.set_ppc(header_ppc())
+        await tb.compare("boot image at its period")
+        assert tb.bit("img_ok") == 1
         rng = tb.rng
         good = [load_image(n) for n in IMAGES]
         boot_w = image.read_hex(roms() / "coef_boot.hex")
@@ -801,6 +823,7 @@ try:
                    "algorithm 3": rebuilt(good[1], image.A_CFG, cfg | (3 << 13)),
                    "ncols 65": rebuilt(good[1], image.A_CFG, (cfg & ~0x7F) | 65),
                    "reserved CFG bit 7": rebuilt(good[1], image.A_CFG, cfg | 0x80),
+                   "reserved CFG bit 15": rebuilt(good[1], image.A_CFG, cfg | 0x8000),
                    "used words 767": rebuilt(good[1], image.A_USED, image.USED - 1),
                    "magic 'EMPD'": rebuilt(good[1], image.A_MAGIC, image.MAGIC + 1)}
         for name, w in foreign.items():
@@ -854,6 +877,24 @@ try:
         await tb.compare("next boundary, idle: applied")
         acc += 1
         await tb.vectors(4)
+        # control period (CFG[23:16]): an image runs only at the axis's pwm_per_control
+        ppc0 = tb.ppcs[tb.ax]
+        per = ppc0 + 1 if ppc0 < 255 else 1
+        w_per = rebuilt(good[1], image.A_CFG, (good[1][image.A_CFG] & ~(0xFF << image.CFG_PERIOD_LSB))
+                        | (per << image.CFG_PERIOD_LSB))
+        assert not image.check(w_per, tb.N, fmt) and image.check(w_per, tb.N, fmt, ppc0)
+        await swap("a valid image of another control period (not the axis's pwm_per_control)", False, full(w_per))
+        assert tb.bit("img_ok") == 1 and tb.bit("upl_ok") == 1, "the old tuning must stay valid"
+        await tb.set_ppc(per)
+        await tb.compare("pwm_per_control changed: the active image's period differs")
+        assert tb.bit("img_ok") == 0, "img_ok with the active image's period != pwm_per_control"
+        await swap("the same upload, now at its own pwm_per_control", True)
+        assert tb.bit("img_ok") == 1
+        await tb.set_ppc(ppc0)
+        await tb.compare("pwm_per_control back: the active image is of the other period")
+        assert tb.bit("img_ok") == 0
+        await swap("an image of the build's period at the build's pwm_per_control", True, full(good[2]))
+        assert tb.bit("img_ok") == 1
         assert tb.m.refused == tb.refused_seen
         dut._log.info("image checks: %d swaps accepted, %d refused (RTL refused pulses %d = model), %d vectors "
                       "bit-exact on the active bank; every step compared with the bank model", acc, ref,
@@ -931,7 +972,7 @@ def stream_jobs(rng, N: int) -> list[dict]:
     n_rand = int(os.environ.get("EMPC_MPC_RANDOM_IMAGES", "12"))
     fmt = header_consts()["IMG_FMT_ID"]
     for k in range(n_rand):
-        w, p = V.random_image(rng, N, fmt)
+        w, p = V.random_image(rng, N, fmt, period=header_ppc())
         x = V.random_inputs(rng, 2000, p, N)
         jobs.append({"name": f"random{k}", "words": w, "p": p, "x": x, "corners": 0})
     return jobs

@@ -20,6 +20,8 @@ bit- and clock-exact without a model:
     only: its outputs are 0 on every clock its fault is latched (from the clock the cause is
     registered), FAULT.overcurrent is set there and nowhere else, every other axis stays equal to the
     reference; after the cause is gone one CMD.fault_clear on that axis restarts it (bridges on).
+Every axis runs at CTRL.pwm_per_control = 1 on the build's images re-encoded for that control period
+(roms_at_period: the same gains and fingerprint; mpc_core runs an image only at its own period).
 """
 from __future__ import annotations
 
@@ -40,6 +42,40 @@ IQ_HOLD = {1: 6}       # the axes' IQ_HOLD (ADC LSB; 0 = the anti-windup off): a
 
 def _roms() -> Path:
     return Path(os.environ.get("EMPC_ROMS", ROOT / "build" / "roms" / "default"))
+
+
+PPC = 1     # CTRL.pwm_per_control of every axis: a control period every PWM period (many in a short run)
+
+
+def roms_at_period(ppc: int = PPC) -> Path:
+    """The build's ROM directory (EMPC_ROMS or build/roms/default) at control period ``ppc``: the images
+    re-encoded with CFG[23:16] = ppc (the same gains and fingerprint: Ts is not in it, image layout 4)
+    and the header's PWM_PER_CONTROL (CTRL.pwm_per_control after reset, CAPS) = ppc; everything else
+    the same.  mpc_core runs an image only at its own control period (img_ok); this test checks the
+    engine's bit-equality with the one-axis drive, not the gains' Ts."""
+    import re
+    import shutil
+    from empc import header, image
+    src = _roms()
+    if header.read(src / "empc_formats.vh")["PWM_PER_CONTROL"] == ppc:
+        return src
+    out = ROOT / "build" / "roms" / f"{src.name}_ppc{ppc}"
+    out.mkdir(parents=True, exist_ok=True)
+    for f in src.iterdir():
+        if f.is_file():
+            shutil.copyfile(f, out / f.name)
+    for f in out.glob("coef_*.hex"):
+        w = image.read_hex(f)
+        w[image.A_CFG] = (w[image.A_CFG] & ~(((1 << image.CFG_PERIOD_BITS) - 1) << image.CFG_PERIOD_LSB)) \
+            | (ppc << image.CFG_PERIOD_LSB)
+        w[image.A_CSUM] = image.checksum(w)
+        image.write_hex(w, f)
+    vh = out / "empc_formats.vh"
+    text, n = re.subn(r"^`define EMPC_PWM_PER_CONTROL \d+$", f"`define EMPC_PWM_PER_CONTROL {ppc}",
+                      vh.read_text(), flags=re.M)
+    assert n == 1
+    vh.write_text(text)
+    return out
 
 
 def _hdr() -> dict:
@@ -198,7 +234,7 @@ if cocotb is not None:
                 await drv.write("KDC", 65536 - 6000 * k)        # the job axis's registers must be its own
                 await drv.write("IQ_HOLD", IQ_HOLD.get(k, 0))   # the job axis's IQ_HOLD drives the core's aw
                 await drv.command(coef_swap=int(k in a2))       # decided at the axis's next boundary
-                await drv.control(enable=True, run=True, pwm_per_control=1)
+                await drv.control(enable=True, run=True, pwm_per_control=PPC)   # the images' period (roms_at_period)
             return f
         ops = [await _ops(setup(k)) for k in range(na)]
         ev += _ref_events(t1, ops)
@@ -299,10 +335,11 @@ if cocotb is not None:
 
 @pytest.mark.cost(80)            # Verilator build (three drives' worth of RTL: about 55-75 s) + 94k clocks with the image upload (2 s)
 @pytest.mark.parametrize("na", [2, pytest.param(4, marks=[pytest.mark.full, pytest.mark.cost(135)])])   # NAXES = 4: 101k clocks (3 s)
-def test_mx_axes_time_shift(na):
+def test_mx_axes_time_shift(na, monkeypatch):
     """NAXES axes against the one-axis drive, each shifted by its carrier phase: every PWM output bit- and
     clock-equal; an overcurrent at one axis's pins switches off that axis only, a clear restarts it."""
     from runner import run
+    monkeypatch.setenv("EMPC_ROMS", str(roms_at_period()))
     h = _hdr()
     run(toplevel="mx_axes_tb", test_module="test_mx_axes", sim="verilator", name=f"mx_axes{na}",
         public=ROOT / "tb" / "hdl" / "mx_axes_tb.vlt", timing=True,
@@ -332,10 +369,11 @@ MUTANTS = {    # name: (file in rtl/, its text, the mutant's text, the failure t
 @pytest.mark.full
 @pytest.mark.cost(90)
 @pytest.mark.parametrize("mutant", list(MUTANTS))
-def test_mx_axes_mutant(mutant, tmp_path):
+def test_mx_axes_mutant(mutant, tmp_path, monkeypatch):
     """The time-shift test must fail on a wrong job-axis register multiplexer, a shared fault cause, the
     anti-windup input or the held ebar(k-1) of the wrong axis."""
     import runner
+    monkeypatch.setenv("EMPC_ROMS", str(roms_at_period()))
     fname, good, bad, why = MUTANTS[mutant]
     h = _hdr()
     with runner.rtl_mutant(fname, good, bad, tmp_path):

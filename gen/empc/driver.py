@@ -38,6 +38,15 @@ def field_value(reg: str, **fields) -> int:
     return v
 
 
+def period_mismatch(words: list[int], pwm_per_control: int) -> str:
+    """Why image ``words`` must not run on an axis with CTRL.pwm_per_control = ``pwm_per_control``
+    ('' if its control period is that one): image.check's control-period rule."""
+    if len(words) < image_mod.USED:
+        return f"{len(words)} words, an image has {image_mod.USED}"
+    why = [w for w in image_mod.check(list(words), 0, 0, pwm_per_control) if w.startswith("control period")]
+    return why[0] if why else ""
+
+
 class Drive:
     def __init__(self, bus, axis: int = 0):
         self.bus = bus
@@ -73,8 +82,20 @@ class Drive:
         """DC-link voltage in mV: at least every regmap.UDC_FRESH_PERIODS PWM periods (else FAULT.dclink)."""
         await self.write("UDC", mv)
 
+    async def control_period(self) -> int:
+        """The axis's control period in PWM periods (CTRL.pwm_per_control)."""
+        f = {f.name: f for f in _AXIS["CTRL"].fields}["pwm_per_control"]
+        return (await self.read("CTRL") >> f.lsb) & ((1 << f.width) - 1)
+
     async def upload_image(self, words: list[int], swap: bool = True) -> None:
-        """Write a coefficient image into the inactive bank, then (optionally) request the swap."""
+        """Write a coefficient image into the inactive bank, then (optionally) request the swap.
+        Refuses (ValueError, nothing written) an image designed for another control period than the
+        axis's CTRL.pwm_per_control: its gains (speed in counts per control period, KACC, integrators)
+        would be wrong and may be unstable.  Set CTRL.pwm_per_control first (bridges off)."""
+        ppc = await self.control_period()
+        why = period_mismatch(words, ppc)
+        if why:
+            raise ValueError(f"axis {self.axis}: image refused: {why}")
         base = regmap.COEF_BASE + self.axis * regmap.COEF_STRIDE
         for a in range(image_mod.USED):
             await self.bus.write(base + a, words[a])

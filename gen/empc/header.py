@@ -30,6 +30,7 @@ IMAGE = {
     "IMG_A_EBAR": image.A_EBAR, "IMG_A_USED": image.A_USED, "IMG_A_CSUM": image.A_CSUM, "IMG_A_FMT": image.A_FMT,
     "IMG_A_COLS": image.A_COLS,
     "IMG_A_GAINS": image.A_GAINS, "IMG_USED": image.USED,
+    "IMG_CFG_PERIOD_LSB": image.CFG_PERIOD_LSB, "IMG_CFG_PERIOD_BITS": image.CFG_PERIOD_BITS,
 }
 
 

@@ -4,11 +4,14 @@ The same image is the boot ROM ($readmemh, loaded into the core at reset) and
 what the CPU uploads through the register bus to swap tunings at run time.
 Addresses (words):
   0x000 magic 'EMPC'
-  0x001 {layout[31:24], algorithm[14:13], task[12] (1 = position), N[11:8], ncols[6:0]}
+  0x001 {layout[31:24], control period[23:16] (PWM periods per control period Ts the gains were designed
+        for, 1..255: CTRL.pwm_per_control of the axis that runs it), algorithm[14:13], task[12] (1 =
+        position), N[11:8], ncols[6:0]}  (bits 15 and 7 reserved, 0)
   0x002 ws field (scheduling speed shift ws + SIG_SHIFT_BIAS, < 2^SIG_SHIFT_BITS)   0x003 wn_min    0x004 wn_max
   0x005 u_max (Q14.4 PWM ticks)          0x006..0x008 ebar_lim[0..2]
   0x009 number of used words             0x00a checksum (sum of words 0..0x2ff except 0x00a, mod 2^32)
-  0x00b format fingerprint of the build (format_id: the constants that fix what a word means)
+  0x00b format fingerprint of the build (format_id: the constants that fix what a word means, without Ts:
+        the control period is the CFG field above, so one build accepts the designs of every Ts)
   (all other words below 0x300 are 0 in a generated image and count in the checksum)
   0x040 + j            column j: {shift field[11:8], sig[5:0]}  (field = operand shift c_j + SIG_SHIFT_BIAS
                        < 2^SIG_SHIFT_BITS; higher bits ignored)
@@ -20,7 +23,9 @@ f = 0 is a left shift by one (SIG_SHIFT_BIAS = 1; the model's Params hold the sh
 The RTL accepts an upload (or the boot image) only as a whole: words 0..USED-1 written in
 ascending order starting at word 0, with the magic, this LAYOUT, the build's N, algorithm 1
 or 2, ncols <= 64, reserved CFG bits 0, USED, the build's format fingerprint and a matching
-checksum (:func:`check` is the same rule in Python; rtl/mpc_boot.v the checker).
+checksum (:func:`check` is the same rule in Python; rtl/mpc_boot.v the checker).  The control
+period is not the checker's: it belongs to the axis (CTRL.pwm_per_control); the drivers refuse an
+image whose period differs from the axis's (``check(..., pwm_per_control=)``), see docs/blocks/mpc_core.md.
 """
 from __future__ import annotations
 
@@ -31,12 +36,15 @@ from . import formats as F
 from .rtlmodel import mpc_core as core
 
 MAGIC = 0x454D5043
-LAYOUT = 3              # 3: biased signal shift fields (2: format fingerprint word A_FMT; 1 had none)
+LAYOUT = 4              # 4: control period CFG[23:16], Ts out of the fingerprint (3: biased signal shift
+                        # fields; 2: format fingerprint word A_FMT; 1 had none)
 DEPTH = 1024
 A_MAGIC, A_CFG, A_WS, A_WNMIN, A_WNMAX, A_UMAX, A_EBAR, A_USED, A_CSUM, A_FMT = 0, 1, 2, 3, 4, 5, 6, 9, 10, 11
 A_COLS = 0x040
 A_GAINS = 0x100
 USED = A_GAINS + 4 * 2 * core.MAX_COLS    # 0x300
+CFG_PERIOD_LSB, CFG_PERIOD_BITS = 16, 8   # control period field of word A_CFG (CTRL.pwm_per_control's width)
+CFG_RESERVED = (1 << 15) | (1 << 7)       # reserved CFG bits (0 in a valid image)
 
 
 def _u32(v: int) -> int:
@@ -61,29 +69,40 @@ PROD_SHIFT_MASK = (1 << F.PROD_SHIFT_BITS) - 1
 
 
 # header constants that do not change what an image word means (the boot-image choice, the
-# register reset values of the speed correction and the ADC offset), and the fingerprint itself
+# register reset values of the speed correction, the ADC offset and the reference governor), the
+# control period (PWM_PER_CONTROL: it is the image's CFG field, checked against the axis's
+# CTRL.pwm_per_control) and the fingerprint itself.  Every Ts-dependent header constant is here
+# (gen/tests/test_header.py::test_format_id_ts_independent): KACC / KACC_SHIFT and the GOV_* words
+# are register reset values for the build's Ts, and PWM_PER_CONTROL is Ts / PWM period.
 FMT_EXCLUDE = ("BOOT_ALGORITHM", "BOOT_TASK_POSITION", "KACC", "KACC_SHIFT", "ADC_OFFSET", "IMG_FMT_ID",
-               "PWM_STAGGER_2", "PWM_STAGGER_3", "PWM_STAGGER_4")      # the carrier stagger: not the image format
+               "PWM_STAGGER_2", "PWM_STAGGER_3", "PWM_STAGGER_4",      # the carrier stagger: not the image format
+               "PWM_PER_CONTROL", "GOV_EN", "GOV_KSH", "GOV_VMAX_LO", "GOV_VMAX_HI", "GOV_A_LO", "GOV_A_HI")
+# units that depend on Ts (rad/s per count per Ts = rad per count / Ts: rad per count is in the
+# fingerprint, Ts is the image's control period times the PWM period, both covered)
+FMT_EXCLUDE_UNITS = ("rad_s_per_count_per_ts",)
 
 
 def format_id(constants: dict, units: dict) -> int:
     """Format fingerprint of a build (image word A_FMT, header EMPC_IMG_FMT_ID): CRC-32 (31 bits)
     of the header constants (formats, scalings, layout, N; without FMT_EXCLUDE) and the raw-unit
-    scalings (volts per PWM tick, amperes per ADC LSB, radians per count, rad/s per count/Ts).
-    Another weight tuning of the same build keeps it; another motor, encoder, inverter, PWM or
-    format gives another one."""
+    scalings (volts per PWM tick, amperes per ADC LSB, radians per count; not FMT_EXCLUDE_UNITS).
+    Another weight tuning or another control period Ts of the same build keeps it (the period is
+    the image's CFG field); another motor, encoder, inverter, PWM or format gives another one."""
     text = ";".join(f"{k}={int(v)}" for k, v in sorted(constants.items()) if k not in FMT_EXCLUDE)
-    text += "|" + ";".join(f"{k}={float(v)!r}" for k, v in sorted(units.items()))
+    text += "|" + ";".join(f"{k}={float(v)!r}" for k, v in sorted(units.items()) if k not in FMT_EXCLUDE_UNITS)
     return zlib.crc32(text.encode()) & 0x7FFFFFFF
 
 
-def encode(p: core.Params, fmt_id: int = 0) -> list[int]:
-    """Image words of ``p`` for a build with format fingerprint ``fmt_id``."""
+def encode(p: core.Params, fmt_id: int = 0, *, period: int) -> list[int]:
+    """Image words of ``p`` for a build with format fingerprint ``fmt_id``, designed for a control
+    period of ``period`` PWM periods (Config.pwm_per_control of the design)."""
+    if not 1 <= period < (1 << CFG_PERIOD_BITS):
+        raise ValueError(f"control period {period} PWM periods outside 1..{(1 << CFG_PERIOD_BITS) - 1}")
     if p.ncols > core.MAX_COLS:
         raise ValueError(f"{p.ncols} columns exceed the core's {core.MAX_COLS}")
     w = [0] * DEPTH
     w[A_MAGIC] = MAGIC
-    w[A_CFG] = (LAYOUT << 24) | (p.algorithm << 13) | ((1 if p.task == "position" else 0) << 12) | (p.N << 8) | p.ncols
+    w[A_CFG] = (LAYOUT << 24) | (period << CFG_PERIOD_LSB) | (p.algorithm << 13) | ((1 if p.task == "position" else 0) << 12) | (p.N << 8) | p.ncols
     if not SHIFT_MIN <= p.ws <= SHIFT_MAX:
         raise ValueError(f"ws={p.ws} outside {SHIFT_MIN}..{SHIFT_MAX}")
     w[A_WS] = shift_field(p.ws)
@@ -114,9 +133,16 @@ def checksum(w: list[int]) -> int:
     return sum(v for a, v in enumerate(w[:USED]) if a != A_CSUM) & 0xFFFFFFFF
 
 
-def check(w: list[int], N: int, fmt_id: int) -> list[str]:
+def period(w: list[int]) -> int:
+    """Control period of image ``w`` in PWM periods (CFG field)."""
+    return (w[A_CFG] >> CFG_PERIOD_LSB) & ((1 << CFG_PERIOD_BITS) - 1)
+
+
+def check(w: list[int], N: int, fmt_id: int, pwm_per_control: int | None = None) -> list[str]:
     """Why the RTL would refuse image ``w`` uploaded in order (empty list: accepted).  The same
-    rule as rtl/mpc_boot.v (header words and checksum of words 0..USED-1)."""
+    rule as rtl/mpc_boot.v (header words and checksum of words 0..USED-1).  ``pwm_per_control``
+    (the axis's CTRL.pwm_per_control): also refuse an image designed for another control period
+    (the drivers' rule: gen/empc/driver.py, fw/empc_drv.c)."""
     out = []
     if len(w) < USED:
         out.append(f"{len(w)} words, an image has {USED}")
@@ -126,7 +152,7 @@ def check(w: list[int], N: int, fmt_id: int) -> list[str]:
         out.append(f"magic {w[A_MAGIC]:#x} != {MAGIC:#x}")
     if cfgw >> 24 != LAYOUT:
         out.append(f"layout {cfgw >> 24} != {LAYOUT}")
-    if (cfgw >> 15) & 0x1FF or (cfgw >> 7) & 1:
+    if cfgw & CFG_RESERVED:
         out.append(f"reserved CFG bits set ({cfgw:#x})")
     if (cfgw >> 13) & 3 not in (1, 2):
         out.append(f"algorithm {(cfgw >> 13) & 3} not 1 or 2")
@@ -140,6 +166,9 @@ def check(w: list[int], N: int, fmt_id: int) -> list[str]:
         out.append(f"format fingerprint {w[A_FMT]:#x} != the build's {fmt_id:#x}")
     if checksum(w) != w[A_CSUM]:
         out.append(f"checksum {w[A_CSUM]:#x} != {checksum(w):#x}")
+    if pwm_per_control is not None and period(w) != pwm_per_control:
+        out.append(f"control period {period(w)} PWM periods (the image's design) != the axis's "
+                   f"CTRL.pwm_per_control {pwm_per_control}: gains for another Ts")
     return out
 
 

@@ -373,7 +373,8 @@ FAULT_CAUSES = (
     Field("adc", 6, 1, "ADC frame error (leading zero bit read as 1)"),
     Field("pstage", 7, 1, "power-stage fault input pwr_fault_n was low (clock-independent kill; not maskable)"),
     Field("clock", 8, 1, "PLL lock lost or fabric clock stopped (clock-independent kill; not maskable)"),
-    Field("coef", 9, 1, "the active coefficient bank holds no valid image (bad boot image; not maskable)"),
+    Field("coef", 9, 1, "the active coefficient bank holds no valid image (bad boot image), or its control "
+          "period (image CFG[23:16]) is not CTRL.pwm_per_control (not maskable)"),
     Field("hall_enc", 10, 1, "HALL sector and encoder disagree (angle 2+ sectors apart, HALL against or "
           "beyond the encoder)"),
     Field("enc_break", 11, 1, "encoder line break: a whole HALL sector crossed with under half its counts"),
@@ -413,8 +414,10 @@ AXIS = (
         Field("coef_bank", 6, 1, "active coefficient bank"),
         Field("swap_pending", 7, 1, "a bank swap waits for the next control period"),
         Field("fault", 8, 1, "a fault is latched (bridges forced off)"),
-        Field("coef_valid", 9, 1, "the inactive bank holds a complete valid upload (a swap would be accepted)"),
-        Field("swap_refused", 10, 1, "the last decided coefficient swap was refused (until a swap is accepted)"),
+        Field("coef_valid", 9, 1, "the inactive bank holds a complete valid upload (a swap is accepted if its "
+              "control period is CTRL.pwm_per_control)"),
+        Field("swap_refused", 10, 1, "the last decided coefficient swap was refused: no complete valid upload, or "
+              "its control period is not CTRL.pwm_per_control (until a swap is accepted)"),
         Field("adc_refused", 11, 1, "an ADC calibration or offset write was refused or a calibration aborted "
               "(bridges on / calibrating); CMD.clear_counters clears it"),
         Field("wr_refused", 12, 1, "a register write was refused (CNT_WR_REFUSED); CMD.clear_counters clears it"))),

@@ -60,7 +60,7 @@ def _write(cfg, out: Path, results: dict, all_designs: bool) -> dict:
     consts = header.constants(cfg)
     files = {}
     for (alg, task), r in results.items():
-        words = image.encode(r["params"], consts["image"]["IMG_FMT_ID"])
+        words = image.encode(r["params"], consts["image"]["IMG_FMT_ID"], period=cfg.pwm_per_control)
         name = f"coef_alg{alg}_{task}.hex"
         image.write_hex(words, out / name)
         files[f"alg{alg}_{task}"] = name

@@ -15,7 +15,7 @@ DESIGNS = {k: design.design(CFG, *k) for k in [(1, "speed"), (1, "position"), (2
 @pytest.mark.parametrize("key", list(DESIGNS))
 def test_image_roundtrip_and_checksum(key):
     p = DESIGNS[key]["params"]
-    w = image.encode(p)
+    w = image.encode(p, period=1)
     q = image.decode(w)
     assert q == p
     bad = list(w)
@@ -168,14 +168,14 @@ def test_biased_shift_fields_roundtrip_and_model():
     p = quantise.build(cfg, 1, "speed")[0]
     assert -1 in p.col_shift
     fmt = 0x1234
-    w = image.encode(p, fmt)
+    w = image.encode(p, fmt, period=cfg.pwm_per_control)
     for j, c in enumerate(p.col_shift):
         assert (w[image.A_COLS + j] >> 8) & 0xF == c + F.SIG_SHIFT_BIAS
     assert w[image.A_WS] == p.ws + F.SIG_SHIFT_BIAS
     assert image.decode(w) == p
     assert core.Banks(w, p.N, fmt).active() == p
     with pytest.raises(ValueError):
-        image.encode(core.Params(**{**p.__dict__, "ws": image.SHIFT_MIN - 1}))
+        image.encode(core.Params(**{**p.__dict__, "ws": image.SHIFT_MIN - 1}), period=1)
     # c_j = -1: a = sat18(2 S) -- the same term as c_j = 0 with the product shift one higher
     one = (1 << (F.OPW - 1)) - 1
     col = lambda c, s: core.Params(**{**p.__dict__, "col_sig": [core.SIG_DX], "col_shift": [c],
@@ -188,3 +188,32 @@ def test_biased_shift_fields_roundtrip_and_model():
         assert not o.counts.get("operand")
     o = core.update(col(-1, 0), dx(1 << 16))                    # 2 S = 2^17 saturates the operand
     assert o.counts.get("operand") and o.du[0] == F.rshift_round(one * one, F.ACC_FRAC - F.U_FRAC)
+
+
+def test_image_control_period():
+    """CFG[23:16] holds the design's control period (PWM periods); image.check accepts it for the build
+    whatever the period (the fingerprint has no Ts), and with ``pwm_per_control`` refuses another
+    period with a message naming both (the drivers' rule, empc.driver.period_mismatch); reserved CFG
+    bits 15 and 7 are refused."""
+    from empc import driver, header
+    for ts in (50e-6, 100e-6, 250e-6):
+        cfg = config.load(None, {"control.Ts": ts, "inverter.f_pwm": 20000.0})
+        fmt = header.flat(cfg)["IMG_FMT_ID"]
+        assert fmt == header.flat(CFG)["IMG_FMT_ID"]
+        p = DESIGNS[(1, "speed")]["params"]
+        w = image.encode(p, fmt, period=cfg.pwm_per_control)
+        assert image.period(w) == cfg.pwm_per_control and (w[image.A_CFG] >> 16) & 0xFF == cfg.pwm_per_control
+        assert image.check(w, p.N, fmt) == [] and image.check(w, p.N, fmt, cfg.pwm_per_control) == []
+        assert driver.period_mismatch(w, cfg.pwm_per_control) == ""
+        other = 5 if cfg.pwm_per_control != 5 else 1
+        why = image.check(w, p.N, fmt, other)
+        assert len(why) == 1 and f"control period {cfg.pwm_per_control}" in why[0] and f"pwm_per_control {other}" in why[0]
+        assert driver.period_mismatch(w, other) == why[0]
+    for bit in (15, 7):
+        bad = list(w)
+        bad[image.A_CFG] |= 1 << bit
+        bad[image.A_CSUM] = image.checksum(bad)
+        assert any("reserved" in x for x in image.check(bad, p.N, fmt)), bit
+    for per in (0, 256):
+        with pytest.raises(ValueError, match="control period"):
+            image.encode(p, fmt, period=per)

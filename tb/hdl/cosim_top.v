@@ -192,7 +192,7 @@ module cosim_top #(
         .swap_at(u_top.g_axis[0].u_axis.u_core.swap_at),
         .ready(ls_ready), .bank(ls_bank), .swap_pending(ls_swap_pending), .boot_ok(ls_boot_ok),
         .img_ok(ls_img_ok), .upl_ok(ls_upl_ok), .swap_refused(ls_swap_refused), .refused(ls_refused),
-        .task_pos(ls_task_pos));
+        .task_pos(ls_task_pos), .pwm_per_control(u_top.g_axis[0].u_axis.u_core.pwm_per_control));
     wire [LS_W-1:0] ls_out_ref = {ls_img_ok, ls_upl_ok, ls_swap_refused, ls_refused,
                                ls_busy, ls_done, ls_ready, ls_bank, ls_swap_pending, ls_boot_ok, ls_task_pos,
                                ls_u, ls_du, ls_u_raw, ls_ebar, ls_wn, ls_flags, ls_latency, ls_fw_hi, ls_fw_lo};

@@ -24,7 +24,8 @@ module mpc_core_stream #(
     parameter RSQRT_FILE = "rsqrt.hex",
     parameter IN_FILE = "mpc_stream_in.bin",
     parameter OUT_FILE = "mpc_stream_out.txt",
-    parameter integer CLK_HALF_PS = 5000
+    parameter integer CLK_HALF_PS = 5000,
+    parameter [`EMPC_IMG_CFG_PERIOD_BITS-1:0] PPC_IMG = `EMPC_PWM_PER_CONTROL
 ) (
     output reg         clk,
     input  wire        go,
@@ -61,7 +62,8 @@ module mpc_core_stream #(
         .cfg_we(cfg_we),
         .cfg_addr(cfg_addr), .cfg_wdata(cfg_wdata), .cfg_swap(cfg_swap), .swap_at(state == S_SWAP && !cfg_swap), .ready(ready),
         .bank(bank), .swap_pending(swap_pending), .boot_ok(boot_ok), .img_ok(img_ok), .upl_ok(upl_ok),
-        .swap_refused(swap_refused), .refused(refused), .task_pos(task_pos)
+        .swap_refused(swap_refused), .refused(refused), .task_pos(task_pos),
+        .pwm_per_control(PPC_IMG)        // the images' control period (the period rule: tb/test_mpc_core.py)
     );
 
     reg [3:0] rcnt = 4'd0;

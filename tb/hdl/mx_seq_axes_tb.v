@@ -15,7 +15,8 @@ module mx_seq_axes_tb #(
     parameter integer N = 4,
     parameter integer NAXES = 2,
     parameter integer STAGGER = 2516,
-    parameter integer T_VALID = 71
+    parameter integer T_VALID = 71,
+    parameter [`EMPC_IMG_CFG_PERIOD_BITS-1:0] PPC_IMG = `EMPC_PWM_PER_CONTROL
 ) (
     input  wire clk, input wire rst, input wire go,
     input  wire [8*NAXES-1:0] ppc, input wire [NAXES-1:0] run, input wire [NAXES-1:0] hold,
@@ -99,7 +100,8 @@ module mx_seq_axes_tb #(
         .latency(core_latency), .fw_thr(32'd0), .fw_hi(), .fw_lo(), .aw(2'b00), .cfg_we(cfg_we), .cfg_addr(cfg_addr),
         .cfg_wdata(cfg_wdata), .cfg_swap(cfg_swap), .swap_at(ctl_boundary | swap_at), .ready(core_ready),
         .bank(core_bank), .swap_pending(swap_pending), .boot_ok(core_boot_ok), .img_ok(), .upl_ok(),
-        .swap_refused(), .refused(), .task_pos(task_pos));
+        .swap_refused(), .refused(), .task_pos(task_pos),
+        .pwm_per_control({NAXES{PPC_IMG}}));   // the images' control period (the period rule: tb/test_mpc_core.py)
 
     // ---- monitors ----
     reg  [AXP-1:0] in_ax;           // the axis bits of the last core input write

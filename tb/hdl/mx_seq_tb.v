@@ -5,7 +5,8 @@
 `default_nettype none
 `include "empc_formats.vh"
 module mx_seq_tb #(
-    parameter integer N = 4
+    parameter integer N = 4,
+    parameter [`EMPC_IMG_CFG_PERIOD_BITS-1:0] PPC_IMG = `EMPC_PWM_PER_CONTROL
 ) (
     input  wire clk, input wire rst,
     input  wire adc_trig, input wire period_start, input wire [7:0] ppc, input wire run,
@@ -50,7 +51,8 @@ module mx_seq_tb #(
         .fw_lo(), .cfg_we(cfg_we),
         .cfg_addr(cfg_addr), .cfg_wdata(cfg_wdata), .cfg_swap(cfg_swap), .swap_at(ctl_boundary | swap_at),
         .ready(core_ready), .bank(core_bank), .swap_pending(swap_pending), .boot_ok(core_boot_ok), .img_ok(),
-        .upl_ok(), .swap_refused(), .refused(), .task_pos(core_task_pos));
+        .upl_ok(), .swap_refused(), .refused(), .task_pos(core_task_pos),
+        .pwm_per_control(PPC_IMG));     // the images' control period (the period rule: tb/test_mpc_core.py)
     assign task_pos = core_task_pos | force_pos;
     wire unused = &{1'b0, i_d, i_q, omega, theta_trig, seg_rdata, core_du, core_u_raw, core_wn,
                     core_flags, core_latency, core_busy, core_bank, core_boot_ok, pos_sample};

@@ -350,11 +350,15 @@ class MxBanks:
     acc += word (the checksum word: -= word); upl_ok[axis] = the word is USED-1, in sequence,
     nothing bad since word 0, acc == 0; the other axes' upl_ok hold.  Any later write to the axis
     clears its upl_ok, and so does an accepted swap of it; the end of the boot clears them all.
+    Control period (image CFG[23:16]): ``ppc_v[a]`` is axis a's CTRL.pwm_per_control (the core's input
+    pwm_per_control; ``set_ppc``, default the boot image's period, the build's reset value); a swap is
+    accepted only if the inactive bank's period is ppc_v[a], and img_ok_v[a] needs the active bank's
+    period to be ppc_v[a] (in the same clock).
     State compared with the RTL, per axis a: bank_v[a], pending_v[a], upl_ok_v[a], img_ok_v[a],
     swap_refused_v[a], refused_v[a] (count); boot_ok; ``active(a)``, the Params updates of axis a use.
     """
 
-    def __init__(self, boot_words: list[int], N: int, fmt_id: int, naxes: int = 1):
+    def __init__(self, boot_words: list[int], N: int, fmt_id: int, naxes: int = 1, ppc: int | None = None):
         from .. import image
         self._img = image
         self.N, self.fmt, self.naxes = N, fmt_id, naxes
@@ -374,10 +378,20 @@ class MxBanks:
         self.refused_v = [0] * naxes
         p0 = self._params(self.raw[0][0])
         self.params_v = [[p0, None] for _ in range(naxes)]
+        self.ppc_v = [image.period(boot) if ppc is None else ppc] * naxes
+
+    def set_ppc(self, axis: int, ppc: int) -> None:
+        """CTRL.pwm_per_control of ``axis`` (the core's input; axis_regs changes it only with the bridges off)."""
+        self.ppc_v[axis] = ppc
+
+    def period(self, axis: int, bank: int) -> int:
+        """Control period of a bank (CFG[23:16] of the last CFG word written into it)."""
+        return self._img.period(self.raw[axis][bank])
 
     @property
     def img_ok_v(self) -> list[bool]:
-        return [self.boot_ok or s for s in self.swapped_v]
+        return [(self.boot_ok or s) and self.period(a, self.bank_v[a]) == self.ppc_v[a]
+                for a, s in enumerate(self.swapped_v)]
 
     def active(self, axis: int = 0) -> Params:
         return self.params_v[axis][self.bank_v[axis]]
@@ -408,8 +422,8 @@ class MxBanks:
         if addr == im.A_FMT:
             return v != self.fmt
         if addr == im.A_CFG:
-            return (v >> 24 != im.LAYOUT or (v >> 15) & 0x1FF != 0 or (v >> 13) & 3 not in (1, 2)
-                    or (v >> 8) & 0xF != self.N or (v >> 7) & 1 or v & 0x7F > MAX_COLS)
+            return (v >> 24 != im.LAYOUT or v & im.CFG_RESERVED or (v >> 13) & 3 not in (1, 2)
+                    or (v >> 8) & 0xF != self.N or v & 0x7F > MAX_COLS)
         return False
 
     def _check(self, axis: int, addr: int, v: int) -> None:
@@ -441,7 +455,7 @@ class MxBanks:
         if not self.pending_v[axis]:
             return None
         self.pending_v[axis] = False
-        if self.upl_ok_v[axis] and not in_flight:
+        if self.upl_ok_v[axis] and not in_flight and self.period(axis, 1 - self.bank_v[axis]) == self.ppc_v[axis]:
             b = self.bank_v[axis] = self.bank_v[axis] ^ 1
             self.params_v[axis][b] = self._params(self.raw[axis][b])
             self.upl_ok_v[axis], self.swapped_v[axis], self.swap_refused_v[axis] = False, True, False
@@ -455,8 +469,8 @@ class Banks(MxBanks):
     """The banks of a one-axis core (NAXES = 1): MxBanks with scalar state (bank, pending, upl_ok,
     img_ok, swap_refused, refused) for axis 0."""
 
-    def __init__(self, boot_words: list[int], N: int, fmt_id: int):
-        super().__init__(boot_words, N, fmt_id, 1)
+    def __init__(self, boot_words: list[int], N: int, fmt_id: int, ppc: int | None = None):
+        super().__init__(boot_words, N, fmt_id, 1, ppc)
 
     bank = property(lambda self: self.bank_v[0])
     pending = property(lambda self: self.pending_v[0])
@@ -483,9 +497,9 @@ class MxCore:
     on that axis's words with its active bank.  Axes share nothing else: an upload, a swap or
     input words of one axis never change another axis's outputs."""
 
-    def __init__(self, boot_words: list[int], N: int, fmt_id: int, naxes: int):
+    def __init__(self, boot_words: list[int], N: int, fmt_id: int, naxes: int, ppc: int | None = None):
         self.N, self.naxes = N, naxes
-        self.banks = MxBanks(boot_words, N, fmt_id, naxes)
+        self.banks = MxBanks(boot_words, N, fmt_id, naxes, ppc)
         self.words = [dict() for _ in range(naxes)]
 
     def write_input(self, axis: int, word: int, value: int) -> None:
