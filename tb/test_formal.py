@@ -18,12 +18,12 @@ import formal  # noqa: E402  (flow/formal.py)
 
 # seconds on one idle core (make sim starts the costliest first; the rest are a few seconds).  prove_cp as in
 # the clean-clone .ci/run of c9990f2 (88 s); the others scaled from one loaded make sim run
-# (build/reports/formal.json "seconds" x 88 / 190): the mutants of the deep mpc_axis tasks run as long as a
+# (build/reports/formal.json "seconds" x 88 / 190): the mutants of the deep axis_periph tasks run as long as a
 # proof (a counterexample near the task's depth), not the default 5 s.
-COST = {"mpc_axis/prove_cp": 88, "mpc_axis/prove_pe": 74, "mpc_axis/cover": 62, "mpc_axis/mutant6:bmc_pe": 49,
-        "mpc_axis/mutant3:prove_pe": 44, "mpc_axis/mutant0:prove_pe": 36, "mpc_axis/bmc_pe": 37,
-        "mpc_axis/mutant4:bmc_pe": 29, "mpc_axis/mutant2:prove_pe": 22, "out_route/prove": 8, "out_kill/bmc": 7,
-        "mpc_axis/mutant1:prove_pe": 6}
+COST = {"axis_periph/prove_cp": 88, "axis_periph/prove_pe": 74, "axis_periph/cover": 62, "axis_periph/mutant6:bmc_pe": 49,
+        "axis_periph/mutant3:prove_pe": 44, "axis_periph/mutant0:prove_pe": 36, "axis_periph/bmc_pe": 37,
+        "axis_periph/mutant4:bmc_pe": 29, "axis_periph/mutant2:prove_pe": 22, "out_route/prove": 8, "out_kill/bmc": 7,
+        "axis_periph/mutant1:prove_pe": 6}
 
 
 @pytest.mark.skipif(formal.sby_cmd() is None, reason="yowasp-sby not installed")
