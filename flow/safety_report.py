@@ -55,7 +55,7 @@ CAUSES = {
                    ["tb/test_adc_spi.py"]),
 }
 # proofs that hold for every cause (the cause vector is free in them) and those of particular causes
-PROOFS_ALL = ("mpc_axis/prove_pe", "mpc_axis/prove_cp", "mpc_axis/bmc_pe", "pwm_center/prove_n3",
+PROOFS_ALL = ("axis_periph/prove_pe", "axis_periph/prove_cp", "axis_periph/bmc_pe", "pwm_center/prove_n3",
               "pwm_center/prove_n2", "pwm_center/prove_n1")
 PROOFS_CAUSE = {"pstage": ("out_kill/prove", "out_kill/bmc"), "clock": ("out_kill/prove", "out_kill/bmc")}
 

@@ -23,6 +23,7 @@ rtl/axis_regs.v
 rtl/clk_mon.v
 rtl/out_kill.v
 rtl/out_route.v
+rtl/axis_periph.v
 rtl/mpc_axis.v
 rtl/mx_axes.v
 rtl/fault_ctrl.v

@@ -495,7 +495,7 @@ def test_safety_report_from_the_test_reports(tmp_path, monkeypatch):
                       "peak_a_before": 10.0, "peak_a_after_restart": 1.5, "fault_bits_latched": [run]}}))
     entries = {lab: {"kind": "proof", "sby": "PASS", "ok": True} for lab in safety_report.PROOFS_ALL
                + ("out_kill/prove", "out_kill/bmc")}
-    entries["mpc_axis/mutant0:prove_pe"] = {"kind": "mutant", "what": "x", "ok": True}
+    entries["axis_periph/mutant0:prove_pe"] = {"kind": "mutant", "what": "x", "ok": True}
     (tmp_path / "formal.json").write_text(json.dumps({"entries": entries}))
     (tmp_path / "regblock_axis_regs.json").write_text(json.dumps({"block": "axis_regs", "writes": 100,
                                                                     "refused_writes": 7}))
@@ -510,7 +510,7 @@ def test_safety_report_from_the_test_reports(tmp_path, monkeypatch):
     rep = safety_report.build()
     assert rep["problems"] == [] and rep["causes"]["overcurrent"]["co_simulation_result"] == "pass"
     (tmp_path / "closed_loop_hall.json").unlink()
-    entries["mpc_axis/mutant0:prove_pe"]["ok"] = False
+    entries["axis_periph/mutant0:prove_pe"]["ok"] = False
     (tmp_path / "formal.json").write_text(json.dumps({"entries": entries}))
     probs = safety_report.build()["problems"]
     assert any(p.startswith("hall:") for p in probs) and any("mutant" in p for p in probs)

@@ -18,9 +18,9 @@ import formal  # noqa: E402  (flow/formal.py)
 
 # seconds on one idle core (make sim starts the costliest first; the rest are 2-5 s): CPU s of
 # `flow/formal.py <label>` with smtbmc yices (measured one at a time on a shared machine, see flow/formal.py)
-COST = {"mpc_axis/prove_cp": 18, "mpc_axis/bmc_pe": 15, "mpc_axis/mutant4:bmc_pe": 12, "mpc_axis/prove_pe": 11,
-        "mpc_axis/mutant3:prove_pe": 10, "mpc_axis/mutant6:bmc_pe": 10, "mpc_axis/cover": 8,
-        "mpc_axis/mutant0:prove_pe": 7, "mpc_axis/mutant2:prove_pe": 7, "out_route/prove": 6}
+COST = {"axis_periph/prove_cp": 18, "axis_periph/bmc_pe": 15, "axis_periph/mutant4:bmc_pe": 12, "axis_periph/prove_pe": 11,
+        "axis_periph/mutant3:prove_pe": 10, "axis_periph/mutant6:bmc_pe": 10, "axis_periph/cover": 8,
+        "axis_periph/mutant0:prove_pe": 7, "axis_periph/mutant2:prove_pe": 7, "out_route/prove": 6}
 
 
 @pytest.mark.skipif(formal.sby_cmd() is None, reason="yowasp-sby not installed")

@@ -353,8 +353,7 @@ MUTANTS = {    # name: (file in rtl/, its text, the mutant's text, the failure t
                  "        for (ji = 0; ji < NAXES; ji = ji + 1) if (ji == 0) begin\n",
                  "axes differ from the shifted reference"),
     # any axis's overcurrent trips every axis (a shared fault cause)
-    "shared_oc": ("mx_axes.v", "        assign causes[`EMPC_A_FAULT_OVERCURRENT] = adc_oc[n];\n",
-                  "        assign causes[`EMPC_A_FAULT_OVERCURRENT] = |adc_oc;\n",
+    "shared_oc": ("mx_axes.v", ".adc_oc(adc_oc[n])", ".adc_oc(|adc_oc)",
                   "only axis 1 may trip"),
     # the core's anti-windup input from axis 0's IQ_HOLD comparison for every job (axis 0: IQ_HOLD 0, off)
     "aw_axis0": ("mx_axes.v", ".aw({st_iq[IW-1], iq_big_v[job_axis]})", ".aw({st_iq[IW-1], iq_big_v[0]})",

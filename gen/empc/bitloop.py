@@ -102,7 +102,7 @@ class AxisModel:
         return self.seq.u
 
     def ref_sync(self, count: int) -> int:
-        """CMD.ref_sync (rtl/mpc_axis.v): the reference generator to the measured output, the bumpless
+        """CMD.ref_sync (rtl/axis_periph.v): the reference generator to the measured output, the bumpless
         start.  The RTL latches {count, 32'd0} (position task; ``count`` = the encoder count at the
         command) or {sext(omega), 16'd0} (speed task; omega = the sequencer's speed estimate of the
         last control period, which runs with the law off too: ADC noise gives a few LSB of i_q, the

@@ -358,8 +358,8 @@ GLOBAL = (
         arm=UNLOCK_ARM),
 ) + ROUTE_REGS
 
-# FAULT: one bit per cause, contiguous from bit 0 (FAULT_MASK has the same bits; mpc_axis: NCAUSE =
-# EMPC_A_FAULT_W).  Adding a cause = one line here plus its signal in mpc_axis.v.
+# FAULT: one bit per cause, contiguous from bit 0 (FAULT_MASK has the same bits; axis_periph: NCAUSE =
+# EMPC_A_FAULT_W).  Adding a cause = one line here plus its signal in axis_periph.v.
 FAULT_CAUSES = (
     Field("overcurrent", 0, 1, "|phase current| above OC_THRESH in some ADC frame (every frame is "
           "checked)"),

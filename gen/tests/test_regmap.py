@@ -150,7 +150,7 @@ def test_safety_settings_protected():
 
 
 def test_fault_causes_contiguous():
-    """FAULT: one bit per cause from bit 0 (mpc_axis wires cause k to FAULT bit k); FAULT_MASK the same bits."""
+    """FAULT: one bit per cause from bit 0 (axis_periph wires cause k to FAULT bit k); FAULT_MASK the same bits."""
     f = regmap.axis_reg("FAULT").fields
     assert [x.lsb for x in f] == list(range(len(f))) and all(x.width == 1 for x in f)
     m = regmap.axis_reg("FAULT_MASK")

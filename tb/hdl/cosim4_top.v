@@ -52,7 +52,7 @@ module cosim4_top #(
             .period_start(u_top.g_mx.u_mx.period_start[n]), .adc_trig(u_top.g_mx.u_mx.adc_trig[n]),
             .adc_valid(u_top.g_mx.u_mx.adc_valid[n]), .cmp_load(u_top.g_mx.u_mx.cmp_load[n]),
             .cmp(u_top.g_mx.u_mx.cmp), .per_cnt(u_top.g_mx.u_mx.u_seq.per_cnt[8*n +: 8]),
-            .running(u_top.g_mx.u_mx.running[n]), .trip(u_top.g_mx.u_mx.g_ax[n].trip),
+            .running(u_top.g_mx.u_mx.running[n]), .trip(u_top.g_mx.u_mx.g_ax[n].u_per.trip),
             .in_we(u_top.g_mx.u_mx.core_in_we && ia[5+$clog2(NAXES):6] == n),
             .in_addr(ia[IN_AW-1:0]), .in_wdata(u_top.g_mx.u_mx.core_in_wdata),
             .pwm_out(pwm_out[3*n +: 3]), .pwm_en(pwm_en[3*n +: 3]), .adc_sclk(adc_sclk), .adc_cs_n(adc_cs_n),

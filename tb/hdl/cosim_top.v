@@ -145,10 +145,10 @@ module cosim_top #(
     assign dbg_cmp = u_top.g_axis[0].u_axis.cmp;
     assign dbg_per_cnt = u_top.g_axis[0].u_axis.u_seq.per_cnt;
     assign dbg_running = u_top.g_axis[0].u_axis.running;
-    assign dbg_trip = u_top.g_axis[0].u_axis.trip;
+    assign dbg_trip = u_top.g_axis[0].u_axis.u_per.trip;
     assign dbg_out_reg = {u_top.lo_r, u_top.hi_r};
     assign dbg_adc_valid = u_top.g_axis[0].u_axis.adc_valid;
-    assign dbg_enc_err = u_top.g_axis[0].u_axis.enc_err_pulse;
+    assign dbg_enc_err = u_top.g_axis[0].u_axis.u_per.enc_err_pulse;
     assign dbg_wdog_expired = u_top.wdog_expired;
 
     // the per-period observation registers and the MPC core's input words as the sequencer last wrote

@@ -17,10 +17,10 @@ Front end of a control period (issue 15 items 1 and 6), raw units:
     t2 / 2 = u1 - (spd - spd_prev) / 2: the load estimate's error (float form: estimator.py).
     D is not saturated: it is a low-pass of ka - (spd - spd_prev) / 2, so |D| < 2^35 (|ka| <=
     2^34, |spd| < 2^31), and the sequencer keeps it in 40 bits (never wraps).
-    field weakening (rtl/mpc_axis.v; fw_nmax > 0, law running): n = min(n + 1, fw_nmax) if
+    field weakening (rtl/axis_periph.v; fw_nmax > 0, law running): n = min(n + 1, fw_nmax) if
         fw_hi, max(n - 1, 0) if fw_lo (the core's flags of the previous update); the
         d-current references are sat18(id_ref - (n << fw_shift))
-    hold (for the reference governor, rtl/mpc_axis.v): after the core update of a running
+    hold (for the reference governor, rtl/axis_periph.v): after the core update of a running
         control period, (iq_hold > 0 and (i_q >= 16 iq_hold or i_q < -16 iq_hold)) or the
         voltage limiter was active; 0 when the law is off.
     anti-windup of the speed integral: the core's aw input from i_q and iq_hold (mpc_core.aw_bits; step 2

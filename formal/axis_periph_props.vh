@@ -1,9 +1,10 @@
-// mpc_axis_props.vh: axis-level safety properties of rtl/mpc_axis.v (issue 14), included inside
-// mpc_axis under FORMAL only (formal/mpc_axis.sby, run by flow/formal.py).  The sequencer, the
-// MPC core, the ADC interface, the sensors, the reference generator and the status memory are
-// cut out (their outputs are free in every clock: every cause, theta_valid, the image state,
-// the compare values may do anything); what remains is the generated register block, the fault
-// latch, pwm_center and the axis glue.  The CPU port (reg_wr/reg_addr/reg_wdata), the watchdog
+// axis_periph_props.vh: axis-level safety properties of rtl/axis_periph.v (issue 14; the per-axis
+// module of mpc_axis and of every axis of mx_axes since issue 16), included inside axis_periph under
+// FORMAL only (formal/axis_periph.sby, run by flow/formal.py).  The shared engine (sequencer, MPC
+// core, ADC interface, reference generator, status memory) is outside the module: its outputs are
+// free inputs in every clock (every cause, the image state, the compare values may do anything);
+// the sensors are cut out (theta_valid free too).  What remains is the generated register block, the
+// fault latch, pwm_center and the axis glue.  The CPU port (reg_wr/reg_addr/reg_wdata), the watchdog
 // and the external (kill-path) causes are free inputs.  Every reference below is built from the
 // bus and the causes, not from the state it checks.
 //
