@@ -43,7 +43,7 @@ def test_every_proof_has_mutants():
 
 
 def test_every_engine_uses_the_pinned_solver():
-    """One solver for every proof (flow/formal.SOLVER, installed by requirements.txt): yices-smt2 is 4-15x
+    """One solver for every proof (SOLVER in flow/formal.py, installed by requirements.txt): yices-smt2 is 4-15x
     faster than z3 on these proofs; a task left on another solver would quietly cost make sim minutes."""
     import re
     for sby in sorted(formal.FORMAL.glob("*.sby")):
