@@ -286,10 +286,8 @@ async def driver_flow(dut):
     # the swap is decided at the PWM boundary before the next control sample (up to pwm_per_control PWM periods)
     polls = 4 * m["PWM_PER_CONTROL"] * m["PWM_HALF_PERIOD"]
     # the same image designed for another control period (CFG[23:16]): refused by the driver, nothing written
-    other = list(words)
-    assert image.period(other) == m["PWM_PER_CONTROL"]
-    other[image.A_CFG] += (1 if m["PWM_PER_CONTROL"] != 1 else 2) - m["PWM_PER_CONTROL"] << image.CFG_PERIOD_LSB
-    other[image.A_CSUM] = image.checksum(other)
+    assert image.period(words) == m["PWM_PER_CONTROL"]
+    other = image.with_period(words, 1 if m["PWM_PER_CONTROL"] != 1 else 2)
     oarr = (ctypes.c_uint32 * len(other))(*other)
     assert await env.call("empc_coef_load", 0, oarr, len(other), polls) == EMPC_ERR_PERIOD
     assert not [a for a, _ in env.writes[n0:] if a >= regmap.COEF_BASE], "a refused image was written"

@@ -880,8 +880,7 @@ try:
         # control period (CFG[23:16]): an image runs only at the axis's pwm_per_control
         ppc0 = tb.ppcs[tb.ax]
         per = ppc0 + 1 if ppc0 < 255 else 1
-        w_per = rebuilt(good[1], image.A_CFG, (good[1][image.A_CFG] & ~(0xFF << image.CFG_PERIOD_LSB))
-                        | (per << image.CFG_PERIOD_LSB))
+        w_per = image.with_period(good[1], per)
         assert not image.check(w_per, tb.N, fmt) and image.check(w_per, tb.N, fmt, ppc0)
         await swap("a valid image of another control period (not the axis's pwm_per_control)", False, full(w_per))
         assert tb.bit("img_ok") == 1 and tb.bit("upl_ok") == 1, "the old tuning must stay valid"

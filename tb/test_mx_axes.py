@@ -65,11 +65,7 @@ def roms_at_period(ppc: int = PPC) -> Path:
         if f.is_file():
             shutil.copyfile(f, out / f.name)
     for f in out.glob("coef_*.hex"):
-        w = image.read_hex(f)
-        w[image.A_CFG] = (w[image.A_CFG] & ~(((1 << image.CFG_PERIOD_BITS) - 1) << image.CFG_PERIOD_LSB)) \
-            | (ppc << image.CFG_PERIOD_LSB)
-        w[image.A_CSUM] = image.checksum(w)
-        image.write_hex(w, f)
+        image.write_hex(image.with_period(image.read_hex(f), ppc), f)
     vh = out / "empc_formats.vh"
     text, n = re.subn(r"^`define EMPC_PWM_PER_CONTROL \d+$", f"`define EMPC_PWM_PER_CONTROL {ppc}",
                       vh.read_text(), flags=re.M)

@@ -133,6 +133,18 @@ def checksum(w: list[int]) -> int:
     return sum(v for a, v in enumerate(w[:USED]) if a != A_CSUM) & 0xFFFFFFFF
 
 
+def with_period(w: list[int], period: int) -> list[int]:
+    """A copy of image ``w`` marked for control period ``period`` (CFG field, checksum updated), the same
+    gains: for tests that run one design at another period."""
+    if not 1 <= period < (1 << CFG_PERIOD_BITS):
+        raise ValueError(f"control period {period} PWM periods outside 1..{(1 << CFG_PERIOD_BITS) - 1}")
+    mask = ((1 << CFG_PERIOD_BITS) - 1) << CFG_PERIOD_LSB
+    out = list(w)
+    out[A_CFG] = (w[A_CFG] & ~mask) | (period << CFG_PERIOD_LSB)
+    out[A_CSUM] = checksum(out)
+    return out
+
+
 def period(w: list[int]) -> int:
     """Control period of image ``w`` in PWM periods (CFG field)."""
     return (w[A_CFG] >> CFG_PERIOD_LSB) & ((1 << CFG_PERIOD_BITS) - 1)
