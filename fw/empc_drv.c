@@ -8,6 +8,9 @@
 #define WR_G(reg, v)       empc_bus_write(EMPC_GLOBAL_ADDR(EMPC_G_##reg), (v))
 #define RD_A(n, reg)       empc_bus_read(EMPC_AXIS_ADDR((n), EMPC_A_##reg))
 #define WR_A(n, reg, v)    empc_bus_write(EMPC_AXIS_ADDR((n), EMPC_A_##reg), (v))
+/* an axis of this bitstream: any other number addresses another axis's or the global registers
+ * (EMC address wrap) or nothing */
+#define AXIS_OK(caps, n)   ((caps) != 0 && (n) < (caps)->naxes)
 
 #define VERSION_MAJOR(v)   EMPC_GET(EMPC_G_VERSION_MAJOR, (v))
 
@@ -45,6 +48,10 @@ int empc_init(empc_caps *caps)
     caps->pwm_half = RD_G(PWM_HALF);
     if (caps->img_layout != EMPC_IMG_LAYOUT)
         return EMPC_ERR_VERSION;
+    if (caps->naxes < 1u || caps->naxes > EMPC_ROUTE_AXES) {
+        caps->naxes = 0u;           /* AXIS_OK refuses every axis of a bitstream this map cannot address */
+        return EMPC_ERR_VERSION;
+    }
     for (n = 0; n < caps->naxes; n++)
         WR_A(n, CTRL, ctrl_word(caps->pwm_per_control, 0u, 0u));
     WR_G(IRQ_ENABLE, 0u);
@@ -57,7 +64,7 @@ int empc_axis_config(const empc_caps *caps, uint32_t axis, const empc_axis_cfg *
     uint32_t ppc;
     int err = EMPC_OK;
 
-    if (caps == 0 || cfg == 0 || axis >= caps->naxes)
+    if (!AXIS_OK(caps, axis) || cfg == 0)
         return EMPC_ERR_ARG;
     if (EMPC_GET(EMPC_A_STATUS_BRIDGES_ON, RD_A(axis, STATUS)) || EMPC_GET(EMPC_A_CTRL_ENABLE, RD_A(axis, CTRL)))
         return EMPC_ERR_BUSY;
@@ -84,11 +91,12 @@ int empc_axis_config(const empc_caps *caps, uint32_t axis, const empc_axis_cfg *
     return err;
 }
 
-int empc_coef_load(uint32_t axis, const uint32_t *image, uint32_t nwords, uint32_t max_polls)
+int empc_coef_load(const empc_caps *caps, uint32_t axis, const uint32_t *image, uint32_t nwords,
+                   uint32_t max_polls)
 {
     uint32_t w, st, bank;
 
-    if (image == 0 || nwords <= EMPC_IMG_A_CFG || nwords > EMPC_COEF_WORDS)
+    if (!AXIS_OK(caps, axis) || image == 0 || nwords <= EMPC_IMG_A_CFG || nwords > EMPC_COEF_WORDS)
         return EMPC_ERR_ARG;
     /* the image's control period (gains for that Ts) must be the axis's */
     if (((image[EMPC_IMG_A_CFG] >> EMPC_IMG_CFG_PERIOD_LSB) & ((1u << EMPC_IMG_CFG_PERIOD_BITS) - 1u))
@@ -116,7 +124,7 @@ int empc_axis_enable(const empc_caps *caps, uint32_t axis, uint32_t enable, uint
 {
     uint32_t ctrl;
 
-    if (caps == 0 || axis >= caps->naxes)
+    if (!AXIS_OK(caps, axis))
         return EMPC_ERR_ARG;
     ctrl = RD_A(axis, CTRL);
     ctrl &= ~(EMPC_A_CTRL_ENABLE_MASK | EMPC_A_CTRL_RUN_MASK);
@@ -124,10 +132,12 @@ int empc_axis_enable(const empc_caps *caps, uint32_t axis, uint32_t enable, uint
     return write_check(EMPC_AXIS_ADDR(axis, EMPC_A_CTRL), ctrl, EMPC_A_CTRL_BITS);
 }
 
-int empc_fault_clear(uint32_t axis, uint32_t *remaining)
+int empc_fault_clear(const empc_caps *caps, uint32_t axis, uint32_t *remaining)
 {
     uint32_t f;
 
+    if (!AXIS_OK(caps, axis))
+        return EMPC_ERR_ARG;
     WR_A(axis, CMD, EMPC_FIELD(EMPC_A_CMD_FAULT_CLEAR, 1u));
     f = RD_A(axis, FAULT) & EMPC_A_FAULT_BITS;
     if (remaining != 0)
@@ -135,9 +145,9 @@ int empc_fault_clear(uint32_t axis, uint32_t *remaining)
     return f ? EMPC_ERR_FAULT : EMPC_OK;
 }
 
-int empc_status_read(uint32_t axis, empc_status *st)
+int empc_status_read(const empc_caps *caps, uint32_t axis, empc_status *st)
 {
-    if (st == 0)
+    if (!AXIS_OK(caps, axis) || st == 0)
         return EMPC_ERR_ARG;
     st->status = RD_A(axis, STATUS);
     st->fault = RD_A(axis, FAULT);
@@ -153,9 +163,13 @@ int empc_status_read(uint32_t axis, empc_status *st)
     return EMPC_OK;
 }
 
-void empc_udc_write(uint32_t axis, uint32_t udc_mv)
+int empc_udc_write(const empc_caps *caps, uint32_t axis, uint32_t udc_mv)
 {
+    /* a value past the register would be cut to its low bits: a wrong, possibly plausible voltage */
+    if (!AXIS_OK(caps, axis) || (udc_mv & ~EMPC_A_UDC_BITS) != 0u)
+        return EMPC_ERR_ARG;
     WR_A(axis, UDC, udc_mv);
+    return EMPC_OK;
 }
 
 int empc_wdog_set(uint32_t timeout_periods)

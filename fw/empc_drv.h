@@ -39,8 +39,10 @@ static inline void empc_bus_write(uint32_t addr, uint32_t value)
 typedef enum {
     EMPC_OK = 0,
     EMPC_ERR_ID = -1,        /* ID register is not EMPC_ID_MAGIC: bus or bitstream */
-    EMPC_ERR_VERSION = -2,   /* IP major version differs from the header's */
-    EMPC_ERR_ARG = -3,       /* axis number or length out of range, NULL pointer */
+    EMPC_ERR_VERSION = -2,   /* IP major version or image layout differs from the header's, or CAPS.naxes
+                                outside 1..EMPC_ROUTE_AXES (the driver then refuses every axis) */
+    EMPC_ERR_ARG = -3,       /* axis not in the bitstream (>= caps->naxes), length or value out of range,
+                                NULL pointer: nothing written */
     EMPC_ERR_BUSY = -4,      /* bridges on (configuration refused) or a swap still pending */
     EMPC_ERR_VERIFY = -5,    /* a register did not read back what was written */
     EMPC_ERR_TIMEOUT = -6,   /* the poll count ran out */
@@ -104,20 +106,22 @@ int empc_axis_config(const empc_caps *caps, uint32_t axis, const empc_axis_cfg *
  * FPGA refused the image (STATUS.swap_refused: incomplete, bad checksum or another build's format),
  * EMPC_ERR_PERIOD (nothing written) if the image's control period (CFG field EMPC_IMG_CFG_PERIOD) is not
  * the axis's CTRL.pwm_per_control: set that first (empc_axis_config, bridges off). */
-int empc_coef_load(uint32_t axis, const uint32_t *image, uint32_t nwords, uint32_t max_polls);
+int empc_coef_load(const empc_caps *caps, uint32_t axis, const uint32_t *image, uint32_t nwords,
+                   uint32_t max_polls);
 
 /* Switch the bridges on (run = 0: zero voltage, run = 1: control law) or off (enable = 0). */
 int empc_axis_enable(const empc_caps *caps, uint32_t axis, uint32_t enable, uint32_t run);
 
 /* CMD.fault_clear, then read FAULT: EMPC_OK if it is 0, else EMPC_ERR_FAULT with the causes
  * that are still present in *remaining (may be NULL). */
-int empc_fault_clear(uint32_t axis, uint32_t *remaining);
+int empc_fault_clear(const empc_caps *caps, uint32_t axis, uint32_t *remaining);
 
 /* Read STATUS, FAULT and the measurements of the last control period. */
-int empc_status_read(uint32_t axis, empc_status *st);
+int empc_status_read(const empc_caps *caps, uint32_t axis, empc_status *st);
 
-/* DC-link voltage as measured by the CPU, mV: call at least every EMPC_UDC_FRESH_PERIODS PWM periods. */
-void empc_udc_write(uint32_t axis, uint32_t udc_mv);
+/* DC-link voltage as measured by the CPU, mV: call at least every EMPC_UDC_FRESH_PERIODS PWM periods.
+ * EMPC_ERR_ARG (nothing written) for a value that does not fit UDC (EMPC_A_UDC_BITS). */
+int empc_udc_write(const empc_caps *caps, uint32_t axis, uint32_t udc_mv);
 
 /* Watchdog: timeout in PWM periods (1..EMPC_G_WDOG_TIMEOUT_LEGAL_MAX: the watchdog cannot be disabled),
  * written through the unlock sequence with every axis off (else EMPC_ERR_REFUSED); the kick (write

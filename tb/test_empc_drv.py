@@ -19,7 +19,8 @@ bus, SCS.EMCSC = 0: emc_a = byte address bits [15:2]); any other address fails t
   another control period than CTRL.pwm_per_control; empc_coef_load of another image (alg1 speed) into the inactive bank
   and the swap (the bank's decoded configuration, seen in mpc_coef_mem, is the image's;
   the window writes are the image words in order), empc_status_read against plain reads,
-  the watchdog fault: empc_wdog_set(1) expires it, empc_fault_clear reports the cause while
+  every per-axis call with an axis the bitstream does not have (or a DC link past UDC) refused before any
+  bus access, the watchdog fault: empc_wdog_set(1) expires it, empc_fault_clear reports the cause while
   it is present, and clears it after empc_wdog_kick.
 """
 from __future__ import annotations
@@ -87,6 +88,7 @@ class Env:
         self.bfm = EmcBfm(dut, pins=dict(cs_n="cpu_cs_n", oe_n="cpu_oe_n", we_n="cpu_we_n", a="cpu_a", d="cpu_d",
                                          d_oe="cpu_d_oe", bus="emc_d_seen"))
         self.writes: list[tuple[int, int]] = []
+        self.reads = 0
         self.errors: list[str] = []
         rd, wr = resume(self.bfm.read), resume(self.bfm.write)
 
@@ -96,6 +98,7 @@ class Env:
             return (addr - EMC_BASE) >> 2
 
         def cb_rd(addr):
+            self.reads += 1
             try:
                 return rd(word(addr))
             except Exception as e:           # ctypes would swallow it: keep it for the test
@@ -252,6 +255,21 @@ async def driver_flow(dut):
         assert await env.call("empc_axis_config", ctypes.byref(caps), 0, ctypes.byref(AxisCfg(**kw))) == \
             EMPC_ERR_ARG, bad
     assert len(env.writes) == n0
+    # an axis this bitstream does not have (axis 1 of a one-axis build, the map's last axis, 15: axis 0's
+    # coefficient window, 0xFFFFFFFF) or a DC link past UDC's 20 bits: refused before any bus access
+    # (an access would address another axis's registers, the global registers or nothing)
+    n0, r0 = len(env.writes), env.reads
+    one = (ctypes.c_uint32 * 16)(*range(16))
+    st_bad = Status()
+    for ax in (caps.naxes, regmap.ROUTE_AXES - 1, 15, 0xFFFFFFFF):
+        for fn, args in (("empc_axis_config", (ctypes.byref(AxisCfg(pwm_per_control=0, dead_time=40)),)),
+                         ("empc_axis_enable", (0, 0)), ("empc_coef_load", (one, 16, 1)),
+                         ("empc_fault_clear", (None,)), ("empc_status_read", (ctypes.byref(st_bad),)),
+                         ("empc_udc_write", (UDC_MV,))):
+            assert await env.call(fn, ctypes.byref(caps), ctypes.c_uint32(ax), *args) == EMPC_ERR_ARG, (fn, ax)
+    assert await env.call("empc_udc_write", ctypes.byref(caps), 0, 1 << 20) == EMPC_ERR_ARG
+    assert await env.call("empc_fault_clear", None, 0, None) == EMPC_ERR_ARG
+    assert (len(env.writes), env.reads) == (n0, r0), "a refused call touched the bus"
     cfg = AxisCfg(pwm_per_control=0, dead_time=40, fault_mask=0x7F, kdc=0x10000, udc_mv=UDC_MV,
                   udc_min_mv=UDC_MIN_MV, udc_max_mv=UDC_MAX_MV, oc_thresh=1500, angle_cal=0x1234, hall_offset=0x4321)
     assert await env.call("empc_axis_config", ctypes.byref(caps), 0, ctypes.byref(cfg)) == EMPC_OK
@@ -265,7 +283,7 @@ async def driver_flow(dut):
     await env.write("FAULT_MASK", 0)
     assert await env.read("FAULT_MASK") == 0x7F and await env.read("CNT_WR_REFUSED") == ref0 + 1
     assert (await env.read("STATUS")) >> regmap.axis_reg("STATUS").fields[12].lsb & 1
-    assert await env.call("empc_fault_clear", 0, None) == EMPC_OK      # UDC was 0 (missing) until the config
+    assert await env.call("empc_fault_clear", ctypes.byref(caps), 0, None) == EMPC_OK      # UDC was 0 (missing) until the config
     # bridges on: the driver refuses to change the configuration
     assert await env.call("empc_axis_enable", ctypes.byref(caps), 0, 1, 0) == EMPC_OK
     await ClockCycles(dut.clk, 2 * m["PWM_HALF_PERIOD"] + 10)        # the outputs start at a period boundary
@@ -289,9 +307,9 @@ async def driver_flow(dut):
     assert image.period(words) == m["PWM_PER_CONTROL"]
     other = image.with_period(words, 1 if m["PWM_PER_CONTROL"] != 1 else 2)
     oarr = (ctypes.c_uint32 * len(other))(*other)
-    assert await env.call("empc_coef_load", 0, oarr, len(other), polls) == EMPC_ERR_PERIOD
+    assert await env.call("empc_coef_load", ctypes.byref(caps), 0, oarr, len(other), polls) == EMPC_ERR_PERIOD
     assert not [a for a, _ in env.writes[n0:] if a >= regmap.COEF_BASE], "a refused image was written"
-    assert await env.call("empc_coef_load", 0, arr, len(words), polls) == EMPC_OK
+    assert await env.call("empc_coef_load", ctypes.byref(caps), 0, arr, len(words), polls) == EMPC_OK
     coef_w = [(a, v) for a, v in env.writes[n0:] if a >= regmap.COEF_BASE]
     assert coef_w == [(regmap.COEF_BASE + i, v) for i, v in enumerate(words)], "window writes are not the image"
     st1 = await env.read("STATUS")
@@ -301,7 +319,7 @@ async def driver_flow(dut):
         (params.ncols, int(params.task == "position"), int(params.algorithm == 2)), "active bank is not the image"
     # status snapshot
     st = Status()
-    assert await env.call("empc_status_read", 0, ctypes.byref(st)) == EMPC_OK
+    assert await env.call("empc_status_read", ctypes.byref(caps), 0, ctypes.byref(st)) == EMPC_OK
     plain = {n: await env.read(n) for n in ("STATUS", "FAULT", "THETA", "LATENCY")}
     assert (st.status, st.fault, st.theta, st.latency) == tuple(plain.values())
     # watchdog: 0 (off) is out of the build limits; through the unlock with every axis off it takes a value
@@ -312,15 +330,15 @@ async def driver_flow(dut):
     assert await env.read("WDOG_TIMEOUT") == 400 and await env.read("CNT_WR_REFUSED") == ref0 + 1
     # watchdog fault: expires after one PWM period, the clear reports the cause until the kick
     assert await env.call("empc_wdog_set", 1) == EMPC_OK
-    await env.call("empc_udc_write", 0, UDC_MV)
+    assert await env.call("empc_udc_write", ctypes.byref(caps), 0, UDC_MV) == EMPC_OK
     await ClockCycles(dut.clk, 4 * 2 * m["PWM_HALF_PERIOD"])
     fault_bit = 1 << regmap.AXIS[3].fields[3].lsb
     assert regmap.AXIS[3].fields[3].name == "watchdog"
     rem = ctypes.c_uint32(0)
-    assert await env.call("empc_fault_clear", 0, ctypes.byref(rem)) == EMPC_ERR_FAULT
+    assert await env.call("empc_fault_clear", ctypes.byref(caps), 0, ctypes.byref(rem)) == EMPC_ERR_FAULT
     assert rem.value & fault_bit, rem.value
     await env.call("empc_wdog_kick")
-    assert await env.call("empc_fault_clear", 0, ctypes.byref(rem)) == EMPC_OK and rem.value == 0
+    assert await env.call("empc_fault_clear", ctypes.byref(caps), 0, ctypes.byref(rem)) == EMPC_OK and rem.value == 0
     assert await env.call("empc_wdog_set", 400) == EMPC_OK
     dut._log.info("driver: init, config (+ refused with bridges on), %d-word image uploaded and swapped "
                   "(ncols %d, %s), status, watchdog fault reported and cleared; %d bus writes by the C code",

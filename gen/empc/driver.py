@@ -19,10 +19,18 @@ _AXIS = {r.name: r for r in regmap.AXIS}
 assert not set(_GLOBAL) & set(_AXIS), "global and axis register names must differ"
 
 
+def _check_axis(axis: int) -> None:
+    # an axis number past the map's axes would alias: axis 15's registers are axis 0's coefficient
+    # window, and coefficient windows past 0x3FFF wrap on the 14 EMC address pins onto the global registers
+    if not (isinstance(axis, int) and 0 <= axis < regmap.ROUTE_AXES):
+        raise ValueError(f"axis {axis!r}: the register map has axes 0..{regmap.ROUTE_AXES - 1}")
+
+
 def address(name: str, axis: int = 0) -> int:
-    """Word address of a register (global registers ignore ``axis``)."""
+    """Word address of a register (global registers ignore ``axis``; ValueError for an axis outside the map)."""
     if name in _GLOBAL:
         return _GLOBAL[name].offset
+    _check_axis(axis)
     return regmap.AXIS_BASE + axis * regmap.AXIS_STRIDE + _AXIS[name].offset
 
 
@@ -49,6 +57,7 @@ def period_mismatch(words: list[int], pwm_per_control: int) -> str:
 
 class Drive:
     def __init__(self, bus, axis: int = 0):
+        _check_axis(axis)
         self.bus = bus
         self.axis = axis
 
@@ -67,7 +76,12 @@ class Drive:
     async def command(self, **bits) -> None:
         await self.write("CMD", field_value("CMD", **{k: int(v) for k, v in bits.items()}))
 
-    async def control(self, enable: bool, run: bool, pwm_per_control: int = 5) -> None:
+    async def control(self, enable: bool, run: bool, pwm_per_control: int | None = None) -> None:
+        """CTRL: enable / run; the control period (PWM periods) only if given, else the axis's current one
+        (a different period is refused by the FPGA while the bridges are live, and latches FAULT.coef unless
+        the active image was designed for it)."""
+        if pwm_per_control is None:
+            pwm_per_control = await self.control_period()
         await self.write("CTRL", field_value("CTRL", enable=int(enable), run=int(run), pwm_per_control=pwm_per_control))
 
     async def write_unlocked(self, name: str, value: int) -> None:

@@ -210,3 +210,40 @@ def test_routing_registers():
     w = sum(1 << (regmap.ROUTE_NIB * k) for k in range(regmap.ROUTE_PER_WORD))
     assert g["OUT_SEL0"].accepts(w) and not g["OUT_SEL0"].accepts(w, live=True)
     assert not g["OUT_SEL0"].accepts(w | ((npair + 1) << (regmap.ROUTE_NIB * 7)))
+
+
+def test_driver_axis_range_and_control_period():
+    """empc.driver refuses an axis outside the map (it would alias: axis 15's registers are axis 0's
+    coefficient window; the C driver refuses axes >= CAPS.naxes, tb/test_empc_drv.py), and Drive.control
+    keeps the axis's control period unless one is given (no hidden default that would change it)."""
+    import asyncio
+    from empc import driver
+
+    for ax in (-1, regmap.ROUTE_AXES, 15, 1.0):
+        with pytest.raises(ValueError, match="axis"):
+            driver.address("CTRL", ax)
+        with pytest.raises(ValueError, match="axis"):
+            driver.Drive(None, ax)
+    last = regmap.ROUTE_AXES - 1
+    assert driver.address("CTRL", last) == regmap.AXIS_BASE + last * regmap.AXIS_STRIDE + regmap.axis_reg("CTRL").offset
+    assert driver.address("ID", 99) == next(r.offset for r in regmap.GLOBAL if r.name == "ID")   # global: no axis
+
+    class Bus:
+        def __init__(self):
+            self.mem = {}
+
+        async def write(self, a, v):
+            self.mem[a] = v
+
+        async def read(self, a):
+            return self.mem.get(a, 0)
+
+    bus = Bus()
+    d = driver.Drive(bus, last)
+    a = driver.address("CTRL", last)
+    for ppc in (1, 3, 8):
+        bus.mem[a] = driver.field_value("CTRL", pwm_per_control=ppc)
+        asyncio.run(d.control(True, True))
+        assert bus.mem[a] == driver.field_value("CTRL", enable=1, run=1, pwm_per_control=ppc)
+    asyncio.run(d.control(False, False, pwm_per_control=2))
+    assert bus.mem[a] == driver.field_value("CTRL", pwm_per_control=2)
