@@ -270,7 +270,7 @@ def probe(name: str) -> Path:
     env = dict(os.environ, EMPC_ROMS=str(roms_dir()))
     subprocess.run([sys.executable, str(d / "flow" / "synth.py"), "--top", top, "--no-budget"] + args, cwd=d, env=env,
                    check=True)
-    return d / "build" / "reports" / f"synth_{top}.json"
+    return max((d / "build" / "reports").glob(f"synth_{top}*.json"), key=lambda f: f.stat().st_mtime)
 
 
 if __name__ == "__main__":

@@ -26,14 +26,20 @@ module axis_rd #(
 );
     localparam integer VW = 571;   // rd_vals bits per axis (EMPC_A_RD_VALS_W)
 
-    // ---------------- the read axis's values (AND-OR multiplexer)
-    reg  [VW-1:0] v;
-    integer a;
-    always @(*) begin
-        v = {VW{1'b0}};
-        for (a = 0; a < NAXES; a = a + 1)
-            if (rd_axis == a[AXB-1:0]) v = v | rd_vals[a*VW +: VW];
-    end
+    // ---------------- the read axis's values: a multiplexer on the bits of rd_axis (binary, so that
+    // synthesis maps four axes to one LUT6 a bit; a decoded AND-OR form came out at 2-3 LUTs a bit
+    // in the flattened top), the axes beyond NAXES padded with 0
+    localparam integer NP = 1 << AXB;
+    wire [NP*VW-1:0] vp;
+    genvar a;
+    generate for (a = 0; a < NP; a = a + 1) begin : g_pad
+        if (a < NAXES) begin : g_ax
+            assign vp[a*VW +: VW] = rd_vals[a*VW +: VW];
+        end else begin : g_none
+            assign vp[a*VW +: VW] = {VW{1'b0}};
+        end
+    end endgenerate
+    wire [VW-1:0] v = vp[rd_axis*VW +: VW];
     wire [9:0] v_ctrl = v[9:0];
     wire [12:0] v_status = v[22:10];
     wire [14:0] v_fault = v[37:23];

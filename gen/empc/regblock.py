@@ -22,7 +22,8 @@ What the generated module owns (one register = one line of gen/empc/regmap.py):
 * ``Block.shared`` (axis_regs: ``axis_rd``): a second module, ``render_shared`` -> rtl/<shared>.v, the
   read path of NAXES blocks in one: the block exports every readable value (``rd_vals``, packed,
   combinational) and the shared module keeps one set of read registers for all axes, each loaded
-  from the axis ``rd_axis`` selects (the CPU reads one axis at a time); same read rules.  mx_axes
+  from the axis ``rd_axis`` selects (the CPU reads one axis at a time; a binary multiplexer on the
+  bits of rd_axis); same read rules.  mx_axes
   uses it and leaves the blocks' own reg_rdata open (synthesis drops their copies).  Measured out
   of context (``flow/synth.py --top axis_regs``; docs/four_axes.md section 8): one axis_regs 345
   LUT / 887 FF with copies, 465 / 348 with "mux", 111 / 316 without a read path; the read path of
@@ -655,8 +656,8 @@ def render_shared(b: Block) -> str:
 
     The CPU reads one axis at a time, so one set of read registers (the block's read style: gated
     copies or one shared read register) serves every axis: each takes its register's value from the
-    axis ``rd_axis`` selects among the blocks' ``rd_vals`` exports (an AND-OR multiplexer, one LUT6 per
-    value bit for four axes) instead of every block keeping its own copies.  Same read rules as the
+    axis ``rd_axis`` selects among the blocks' ``rd_vals`` exports (a multiplexer on the bits of rd_axis,
+    one LUT6 per value bit for four axes) instead of every block keeping its own copies.  Same read rules as the
     block's own path (reg_rdata valid the clock after reg_rd, 0 otherwise; the windows' read data
     ORed), so the blocks' own ``reg_rdata`` is left unconnected (synthesis drops their copies)."""
     g = _Gen(b)
@@ -695,14 +696,20 @@ def render_shared(b: Block) -> str:
     L += [");",
           f"    localparam integer VW = {vw};   // rd_vals bits per axis (EMPC_{b.scope}_RD_VALS_W)",
           "",
-          "    // ---------------- the read axis's values (AND-OR multiplexer)",
-          "    reg  [VW-1:0] v;",
-          "    integer a;",
-          "    always @(*) begin",
-          "        v = {VW{1'b0}};",
-          "        for (a = 0; a < NAXES; a = a + 1)",
-          "            if (rd_axis == a[AXB-1:0]) v = v | rd_vals[a*VW +: VW];",
-          "    end"]
+          "    // ---------------- the read axis's values: a multiplexer on the bits of rd_axis (binary, so that",
+          "    // synthesis maps four axes to one LUT6 a bit; a decoded AND-OR form came out at 2-3 LUTs a bit",
+          "    // in the flattened top), the axes beyond NAXES padded with 0",
+          "    localparam integer NP = 1 << AXB;",
+          "    wire [NP*VW-1:0] vp;",
+          "    genvar a;",
+          "    generate for (a = 0; a < NP; a = a + 1) begin : g_pad",
+          "        if (a < NAXES) begin : g_ax",
+          "            assign vp[a*VW +: VW] = rd_vals[a*VW +: VW];",
+          "        end else begin : g_none",
+          "            assign vp[a*VW +: VW] = {VW{1'b0}};",
+          "        end",
+          "    end endgenerate",
+          "    wire [VW-1:0] v = vp[rd_axis*VW +: VW];"]
     names = {}
     for r, pos, w in lay:
         n = f"v_{r.name.lower()}"
