@@ -14,15 +14,15 @@ and runs the same flow/synth.py there, so the figures are comparable with `make 
 
   Register read path (branch regslim, 2026-11-27; docs/four_axes.md section 8), out of context, yosys 0.70:
   regs_mux  axis_regs generated with the "mux" read style (one read register, a case) instead of the
-            gated copies: 465 LUT / 348 FF (the copies: `flow/synth.py --top axis_regs`, 345 / 887).
-  regs_nord axis_regs with its reg_rdata left open (what mx_axes keeps of it): 111 LUT / 316 FF, so the
-            copies cost 234 LUT / 571 FF per axis.
+            gated copies: 475 LUT / 348 FF (the copies: `flow/synth.py --top axis_regs`, 345 / 887).
+  regs_nord axis_regs with its reg_rdata left open (what mx_axes keeps of it): 113 LUT / 316 FF, so the
+            copies cost 232 LUT / 571 FF per axis.
   rd4       rtl/axis_rd.v (the read path shared by the axes) at NAXES = 4, copies: 805 LUT / 571 FF.
-  rd4_mux   the same generated with the "mux" read style: 1030 LUT / 32 FF.
+  rd4_mux   the same generated with the "mux" read style: 1004 LUT / 32 FF.
   eng_ff    the engine registers of four axes (KDC, KACC, ID_REF, IQ_REF, FW, FW_R2, IQ_HOLD: 133 bits)
             in flip-flops with the job_axis and the CPU (rax) multiplexers: 294 LUT / 532 FF.
   eng_ram   the same in LUT-RAM {axis} (a memory per register, read at job_axis and rax) with a written-since-
-            reset flag per register and axis for the reset values: 48 RAM32M + 310 LUT = 502 LUT / 28 FF.
+            reset flag per register and axis for the reset values: 48 RAM32M + 312 LUT = 504 LUT / 28 FF.
 
     .venv/bin/python flow/mx_probes.py [core4|route|base|regs_mux|regs_nord|rd4|rd4_mux|eng_ff|eng_ram ...]
     (about 1 min each; the register probes take PYTHONPATH=gen for the generator)

@@ -25,9 +25,9 @@ What the generated module owns (one register = one line of gen/empc/regmap.py):
   from the axis ``rd_axis`` selects (the CPU reads one axis at a time; a binary multiplexer on the
   bits of rd_axis); same read rules.  mx_axes
   uses it and leaves the blocks' own reg_rdata open (synthesis drops their copies).  Measured out
-  of context (``flow/synth.py --top axis_regs``; docs/four_axes.md section 8): one axis_regs 345
-  LUT / 887 FF with copies, 465 / 348 with "mux", 111 / 316 without a read path; the read path of
-  four axes as four copy sets 4 x (234 LUT / 571 FF), shared copies 805 / 571, shared mux 1030 / 32;
+  of context (``flow/synth.py --top axis_regs``, ``flow/mx_probes.py``; docs/four_axes.md section 8): one axis_regs 345
+  LUT / 887 FF with copies, 475 / 348 with "mux", 113 / 316 without a read path; the read path of
+  four axes as four copy sets 4 x (232 LUT / 571 FF), shared copies 805 / 571, shared mux 1004 / 32;
 * ext storage: strobe groups (one-hot write pulse + written data, both registered; the
   values come back on inputs read through copies) and windows (combinational
   ``<w>_we``/``<w>_re`` from a 256-entry address table, no magnitude compares, and
