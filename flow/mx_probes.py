@@ -12,7 +12,20 @@ and runs the same flow/synth.py there, so the figures are comparable with `make 
   route   out_route: 16 outputs selected from 12 (axis, phase) pairs with the owner's trip, ADC channel,
           encoder and HALL input selects (section 5).  Measured: 374 LUT, 160 FF, 253 MHz proxy.
 
-    .venv/bin/python flow/mx_probes.py [core4|route|base ...]     (about 1 min each)
+  Register read path (branch regslim, 2026-11-27; docs/four_axes.md section 8), out of context, yosys 0.70:
+  regs_mux  axis_regs generated with the "mux" read style (one read register, a case) instead of the
+            gated copies: 475 LUT / 348 FF (the copies: `flow/synth.py --top axis_regs`, 345 / 887).
+  regs_nord axis_regs with its reg_rdata left open (what mx_axes keeps of it): 113 LUT / 316 FF, so the
+            copies cost 232 LUT / 571 FF per axis.
+  rd4       rtl/axis_rd.v (the read path shared by the axes) at NAXES = 4, copies: 805 LUT / 571 FF.
+  rd4_mux   the same generated with the "mux" read style: 1004 LUT / 32 FF.
+  eng_ff    the engine registers of four axes (KDC, KACC, ID_REF, IQ_REF, FW, FW_R2, IQ_HOLD: 133 bits)
+            in flip-flops with the job_axis and the CPU (rax) multiplexers: 294 LUT / 532 FF.
+  eng_ram   the same in LUT-RAM {axis} (a memory per register, read at job_axis and rax) with a written-since-
+            reset flag per register and axis for the reset values: 48 RAM32M + 312 LUT = 504 LUT / 28 FF.
+
+    .venv/bin/python flow/mx_probes.py [core4|route|base|regs_mux|regs_nord|rd4|rd4_mux|eng_ff|eng_ram ...]
+    (about 1 min each; the register probes take PYTHONPATH=gen for the generator)
 """
 from __future__ import annotations
 
@@ -153,6 +166,87 @@ def _edit_core(R: Path) -> None:
         "        .in_we(in_we), .in_addr(in_addr), .in_wdata(in_wdata), .rax(ax_r),\n        .kind(kind0)")
 
 
+ENG_PROBE = r"""// eng_probe (area probe for docs/four_axes.md, not a deliverable): the engine registers of four axes
+// in flip-flops (LUTRAM = 0: per-axis registers, the job_axis and CPU multiplexers) or in LUT-RAM {axis}
+// (LUTRAM = 1: a memory per register read at job_axis and rax; written-since-reset flags give the reset values)
+`default_nettype none
+module eng_probe #(parameter integer LUTRAM = 0) (
+    input wire clk, input wire rst, input wire [1:0] wax, input wire [6:0] we, input wire [31:0] wd,
+    input wire [1:0] jax, input wire [1:0] rax, output wire [132:0] j, output wire [132:0] c);
+    localparam [132:0] RST = {12'd1000, 32'h12345678, 8'd3, 18'd0, 18'd0, 27'h1234567, 18'h10000};
+    localparam integer NR = 7;
+    function integer W; input integer i; W = (i==0)?18:(i==1)?27:(i==2)?18:(i==3)?18:(i==4)?8:(i==5)?32:12; endfunction
+    function integer LSB; input integer i; integer k; begin LSB = 0; for (k = 0; k < i; k = k + 1) LSB = LSB + W(k); end
+    endfunction
+    genvar i;
+    generate if (LUTRAM == 0) begin : g_ff
+        reg [132:0] r0, r1, r2, r3;
+        for (i = 0; i < NR; i = i + 1) begin : g_r
+            always @(posedge clk)
+                if (rst) begin
+                    r0[LSB(i) +: W(i)] <= RST[LSB(i) +: W(i)]; r1[LSB(i) +: W(i)] <= RST[LSB(i) +: W(i)];
+                    r2[LSB(i) +: W(i)] <= RST[LSB(i) +: W(i)]; r3[LSB(i) +: W(i)] <= RST[LSB(i) +: W(i)];
+                end else if (we[i]) case (wax)
+                    2'd0: r0[LSB(i) +: W(i)] <= wd[W(i)-1:0];
+                    2'd1: r1[LSB(i) +: W(i)] <= wd[W(i)-1:0];
+                    2'd2: r2[LSB(i) +: W(i)] <= wd[W(i)-1:0];
+                    default: r3[LSB(i) +: W(i)] <= wd[W(i)-1:0];
+                endcase
+        end
+        assign j = (jax == 0) ? r0 : (jax == 1) ? r1 : (jax == 2) ? r2 : r3;
+        assign c = (rax == 0) ? r0 : (rax == 1) ? r1 : (rax == 2) ? r2 : r3;
+    end else begin : g_ram
+        for (i = 0; i < NR; i = i + 1) begin : g_r
+            reg [W(i)-1:0] m [0:3];
+            reg [3:0] vf;
+            always @(posedge clk) begin
+                if (we[i]) m[wax] <= wd[W(i)-1:0];
+                if (rst) vf <= 4'd0; else if (we[i]) vf[wax] <= 1'b1;
+            end
+            assign j[LSB(i) +: W(i)] = vf[jax] ? m[jax] : RST[LSB(i) +: W(i)];
+            assign c[LSB(i) +: W(i)] = vf[rax] ? m[rax] : RST[LSB(i) +: W(i)];
+        end
+    end endgenerate
+endmodule
+`default_nettype wire
+"""
+
+
+def _regs_probe(d: Path, name: str) -> tuple[str, list[str]]:
+    """Scratch RTL of the register read-path probes: (top, synth.py --param arguments)."""
+    from dataclasses import replace
+    from empc import regblock, regmap
+    b = next(x for x in regmap.BLOCKS if x.module == "axis_regs")
+    rtl, args = d / "rtl", []
+    if name == "regs_mux":
+        (rtl / "axis_regs.v").write_text(regblock.render(replace(b, read="mux")))
+        return "axis_regs", args
+    if name in ("rd4", "rd4_mux"):
+        (rtl / "axis_rd.v").write_text(regblock.render_shared(replace(b, read="mux") if name == "rd4_mux" else b))
+        return "axis_rd", ["--param", "NAXES=4"]
+    if name == "regs_nord":             # axis_regs with its read data unused (a wrapper without the port)
+        P = regblock.ports(b)
+        ins = [(n, w) for dr, n, w, _, _ in P if dr == "input"]
+        outs = [(n, w) for dr, n, w, _, _ in P if dr == "output" and n not in ("reg_rdata", "rd_vals")]
+        text = "\n".join(["module regs_nord (", ",\n".join([f"    input wire [{w - 1}:0] {n}" for n, w in ins] +
+                                                            [f"    output wire [{w - 1}:0] {n}" for n, w in outs]),
+                          ");", "    /* verilator lint_off PINCONNECTEMPTY */",
+                          "    axis_regs u (" + ", ".join(f".{n}({n})" for n, _ in ins + outs) +
+                          ", .reg_rdata(), .rd_vals());", "endmodule", ""])
+        new, top = rtl / "regs_nord.v", "regs_nord"
+    else:
+        new, top = rtl / "eng_probe.v", "eng_probe"
+        new.write_text(ENG_PROBE)
+        args = ["--param", f"LUTRAM={int(name == 'eng_ram')}"]
+        text = None
+    if text is not None:
+        new.write_text(text)
+    filelist = next(rtl.glob("*.f"))
+    with open(filelist, "a") as f:
+        f.write(f"{new.relative_to(d)}\n")
+    return top, args
+
+
 def probe(name: str) -> Path:
     """Build the scratch tree of probe ``name`` and synthesise it; returns the report path."""
     d = BUILD / "mx_probes" / name
@@ -161,8 +255,11 @@ def probe(name: str) -> Path:
     shutil.copytree(ROOT / "rtl", d / "rtl")
     shutil.copytree(ROOT / "flow", d / "flow", ignore=shutil.ignore_patterns("__pycache__"))
     shutil.copy(ROOT / "constraints" / "resource_budget.json", d / "constraints")
-    top = {"core4": "mpc_core", "base": "mpc_core", "route": "out_route"}[name]
-    if name == "core4":
+    top = {"core4": "mpc_core", "base": "mpc_core", "route": "out_route"}.get(name, "")
+    args: list[str] = []
+    if name in ("regs_mux", "regs_nord", "rd4", "rd4_mux", "eng_ff", "eng_ram"):
+        top, args = _regs_probe(d, name)
+    elif name == "core4":
         _edit_core(d / "rtl")
     elif name == "route":
         new = d / "rtl" / "out_route.v"
@@ -171,9 +268,9 @@ def probe(name: str) -> Path:
         with open(filelist, "a") as f:
             f.write(f"{new.relative_to(d)}\n")
     env = dict(os.environ, EMPC_ROMS=str(roms_dir()))
-    subprocess.run([sys.executable, str(d / "flow" / "synth.py"), "--top", top, "--no-budget"], cwd=d, env=env,
+    subprocess.run([sys.executable, str(d / "flow" / "synth.py"), "--top", top, "--no-budget"] + args, cwd=d, env=env,
                    check=True)
-    return d / "build" / "reports" / f"synth_{top}.json"
+    return max((d / "build" / "reports").glob(f"synth_{top}*.json"), key=lambda f: f.stat().st_mtime)
 
 
 if __name__ == "__main__":

@@ -17,7 +17,8 @@
 // sequencer, core and status-memory signals are this axis's.
 //
 // Register port: reg_wr / reg_rd already decoded to this axis, reg_addr the axis-local word offset;
-// reg_rdata valid one clock after reg_rd, 0 when this axis was not read.
+// reg_rdata valid one clock after reg_rd, 0 when this axis was not read (axis_regs' own read path:
+// mpc_axis; mx_axes leaves it open and reads every axis through one shared axis_rd fed by rd_vals).
 // Safety (formal/axis_periph_props.vh, A1..A6): every cause in FAULT_MASK forces the six outputs
 // off in the clock the cause is registered (fault_ctrl.trip combinational into pwm_center's fault,
 // outputs registered); latched until CMD.fault_clear with the cause gone.  The watchdog, overrun
@@ -52,6 +53,7 @@ module axis_periph #(
     input  wire [7:0]  reg_addr,
     input  wire [31:0] reg_wdata,
     output wire [31:0] reg_rdata,
+    output wire [`EMPC_A_RD_VALS_W-1:0] rd_vals,   // every readable value (axis_regs), for mx_axes' shared axis_rd
     // global
     input  wire        watchdog_expired,
     input  wire        g_wr_refused,     // a global register write was refused (counted here too)
@@ -371,7 +373,7 @@ module axis_periph #(
     // ---------------- axis registers (generated: rtl/axis_regs.v) ----------------
     axis_regs u_regs (
         .clk(clk), .rst(rst), .reg_wr(reg_wr), .reg_rd(reg_rd), .reg_addr(reg_addr), .reg_wdata(reg_wdata),
-        .reg_rdata(reg_rdata),
+        .reg_rdata(reg_rdata), .rd_vals(rd_vals),
         .ctrl_enable(ctrl_enable), .ctrl_run(ctrl_run),
         .ctrl_pwm_per_control(ctrl_pwm_per_control),
         .cmd_fault_clear(cmd_fault_clear), .cmd_adc_cal(cmd_adc_cal), .cmd_ref_sync(cmd_ref_sync),

@@ -15,107 +15,108 @@
 `default_nettype none
 `include "empc_formats.vh"
 module axis_regs (
-    input  wire        clk,
-    input  wire        rst,
-    input  wire        reg_wr,               // write strobe (1 clock) for a word of this block
-    input  wire        reg_rd,               // read strobe (1 clock)
-    input  wire [7:0]  reg_addr,             // word offset in the block
-    input  wire [31:0] reg_wdata,
-    output wire [31:0] reg_rdata,            // read data, the clock after reg_rd (0 otherwise)
-    output reg         ctrl_enable,          // CTRL.enable (RW)
-    output reg         ctrl_run,             // CTRL.run (RW)
-    output reg  [7:0]  ctrl_pwm_per_control, // CTRL.pwm_per_control (RW)
-    output reg         cmd_fault_clear,      // CMD.fault_clear: pulse
-    output reg         cmd_adc_cal,          // CMD.adc_cal: pulse
-    output reg         cmd_ref_sync,         // CMD.ref_sync: pulse
-    output reg         cmd_coef_swap,        // CMD.coef_swap: pulse
-    output reg         cmd_clear_counters,   // CMD.clear_counters: pulse
-    output reg         cmd_align_clear,      // CMD.align_clear: pulse
-    input  wire        status_running,       // STATUS.running value
-    input  wire        status_bridges_on,    // STATUS.bridges_on value
-    input  wire        status_aligned,       // STATUS.aligned value
-    input  wire        status_adc_cal_busy,  // STATUS.adc_cal_busy value
-    input  wire        status_adc_cal_done,  // STATUS.adc_cal_done value
-    input  wire        status_core_ready,    // STATUS.core_ready value
-    input  wire        status_coef_bank,     // STATUS.coef_bank value
-    input  wire        status_swap_pending,  // STATUS.swap_pending value
-    input  wire        status_fault,         // STATUS.fault value
-    input  wire        status_coef_valid,    // STATUS.coef_valid value
-    input  wire        status_swap_refused,  // STATUS.swap_refused value
-    input  wire        status_adc_refused,   // STATUS.adc_refused value
-    input  wire        status_wr_refused,    // STATUS.wr_refused value
-    input  wire        fault_overcurrent,    // FAULT.overcurrent value
-    input  wire        fault_hall,           // FAULT.hall value
-    input  wire        fault_encoder,        // FAULT.encoder value
-    input  wire        fault_watchdog,       // FAULT.watchdog value
-    input  wire        fault_dclink,         // FAULT.dclink value
-    input  wire        fault_overrun,        // FAULT.overrun value
-    input  wire        fault_adc,            // FAULT.adc value
-    input  wire        fault_pstage,         // FAULT.pstage value
-    input  wire        fault_clock,          // FAULT.clock value
-    input  wire        fault_coef,           // FAULT.coef value
-    input  wire        fault_hall_enc,       // FAULT.hall_enc value
-    input  wire        fault_enc_break,      // FAULT.enc_break value
-    input  wire        fault_adc_stuck,      // FAULT.adc_stuck value
-    input  wire        fault_adc_sum,        // FAULT.adc_sum value
-    input  wire        fault_adc_frozen,     // FAULT.adc_frozen value
-    output reg  [14:0] fault_mask,           // FAULT_MASK (RW)
-    output reg  [7:0]  dead_time,            // DEAD_TIME (RW)
-    output reg  [17:0] kdc,                  // KDC (RW)
-    output reg  [19:0] udc,                  // UDC (RW)
-    output reg         udc_wr,               // UDC: pulse when a write is accepted
-    output reg  [19:0] udc_min,              // UDC_MIN (RW)
-    output reg  [19:0] udc_max,              // UDC_MAX (RW)
-    output reg  [11:0] oc_thresh,            // OC_THRESH (RW)
-    output reg  [2:0]  adc_off_we,           // write pulse, one-hot: ADC_OFF0, ADC_OFF1, ADC_OFF2
-    output reg  [11:0] adc_off_wdata,        // written value
-    input  wire [11:0] adc_off0,             // ADC_OFF0 value
-    input  wire [11:0] adc_off1,             // ADC_OFF1 value
-    input  wire [11:0] adc_off2,             // ADC_OFF2 value
-    output reg  [15:0] angle_cal,            // ANGLE_CAL (RW)
-    output reg  [15:0] hall_offset,          // HALL_OFFSET (RW)
-    output reg  [17:0] kacc,                 // KACC.kacc (RW)
-    output reg  [3:0]  kacc_load_shift,      // KACC.load_shift (RW)
-    output reg  [4:0]  kacc_shift,           // KACC.shift (RW)
-    output reg  signed [17:0] id_ref,        // ID_REF (RW)
-    output reg  signed [17:0] iq_ref,        // IQ_REF (RW)
-    output reg  [3:0]  seg_addr,             // SEG_ADDR (RW)
-    output wire        seg_we,               // write of a word of window seg (combinational)
-    output wire        seg_re,               // read of a word of window seg (combinational)
-    output wire [2:0]  seg_idx,              // word index in the window (SEG_LEN = 0)
-    output reg         seg_start,            // SEG_START: pulse
-    output reg  [3:0]  seg_start_data,       // SEG_START: written value
-    output wire        gov_we,               // write of a word of window gov (combinational)
-    output wire        gov_re,               // read of a word of window gov (combinational)
-    output reg  [7:0]  fw_nmax,              // FW.nmax (RW)
-    output reg  [15:0] fw_r2_hi,             // FW_R2.hi (RW)
-    output reg  [15:0] fw_r2_lo,             // FW_R2.lo (RW)
-    output reg  [11:0] iq_hold,              // IQ_HOLD (RW)
-    input  wire [31:0] pos,                  // POS value
-    output wire        stat_re,              // read of a word of window stat (combinational)
-    input  wire [15:0] theta,                // THETA value
-    input  wire [11:0] iabc0_a,              // IABC0.a value
-    input  wire [11:0] iabc0_b,              // IABC0.b value
-    input  wire [11:0] iabc1,                // IABC1 value
-    input  wire [15:0] latency,              // LATENCY value
-    output wire        cnt_re,               // read of a word of window cnt (combinational)
-    input  wire [19:0] adc_psum0_sum,        // ADC_PSUM0.sum value
-    input  wire [6:0]  adc_psum0_count,      // ADC_PSUM0.count value
-    input  wire [19:0] adc_psum1_sum,        // ADC_PSUM1.sum value
-    input  wire [6:0]  adc_psum1_count,      // ADC_PSUM1.count value
-    input  wire [19:0] adc_psum2_sum,        // ADC_PSUM2.sum value
-    input  wire [6:0]  adc_psum2_count,      // ADC_PSUM2.count value
-    input  wire [7:0]  cnt_wr_refused,       // CNT_WR_REFUSED value
-    input  wire [7:0]  cnt_adc_miss,         // CNT_ADC_MISS value
-    input  wire [15:0] cnt_enc_err,          // CNT_ENC_ERR value
-    output reg  [11:0] adc_sum_thresh,       // ADC_SUM_THRESH (RW)
-    input  wire [7:0]  cnt_swap_ref,         // CNT_SWAP_REF value
-    input  wire [31:0] seg_rdata,            // window read data (0 unless read)
-    input  wire [31:0] smem_rdata,           // window read data (0 unless read)
-    input  wire        bridges_live,         // guard: writes to its registers are refused while high
-    input  wire        unlock_tick,          // timebase of the UNLOCK unlock (pulses)
-    output wire [1:0]  unlock_armed,         // UNLOCK unlock: ticks left, 0 = not armed (status, proofs)
-    output reg         wr_refused            // pulse: a write was refused (guard, unlock or illegal value)
+    input  wire         clk,
+    input  wire         rst,
+    input  wire         reg_wr,               // write strobe (1 clock) for a word of this block
+    input  wire         reg_rd,               // read strobe (1 clock)
+    input  wire [7:0]   reg_addr,             // word offset in the block
+    input  wire [31:0]  reg_wdata,
+    output wire [31:0]  reg_rdata,            // read data, the clock after reg_rd (0 otherwise)
+    output wire [570:0] rd_vals,              // every readable value, packed (combinational; the shared read path axis_rd)
+    output reg          ctrl_enable,          // CTRL.enable (RW)
+    output reg          ctrl_run,             // CTRL.run (RW)
+    output reg  [7:0]   ctrl_pwm_per_control, // CTRL.pwm_per_control (RW)
+    output reg          cmd_fault_clear,      // CMD.fault_clear: pulse
+    output reg          cmd_adc_cal,          // CMD.adc_cal: pulse
+    output reg          cmd_ref_sync,         // CMD.ref_sync: pulse
+    output reg          cmd_coef_swap,        // CMD.coef_swap: pulse
+    output reg          cmd_clear_counters,   // CMD.clear_counters: pulse
+    output reg          cmd_align_clear,      // CMD.align_clear: pulse
+    input  wire         status_running,       // STATUS.running value
+    input  wire         status_bridges_on,    // STATUS.bridges_on value
+    input  wire         status_aligned,       // STATUS.aligned value
+    input  wire         status_adc_cal_busy,  // STATUS.adc_cal_busy value
+    input  wire         status_adc_cal_done,  // STATUS.adc_cal_done value
+    input  wire         status_core_ready,    // STATUS.core_ready value
+    input  wire         status_coef_bank,     // STATUS.coef_bank value
+    input  wire         status_swap_pending,  // STATUS.swap_pending value
+    input  wire         status_fault,         // STATUS.fault value
+    input  wire         status_coef_valid,    // STATUS.coef_valid value
+    input  wire         status_swap_refused,  // STATUS.swap_refused value
+    input  wire         status_adc_refused,   // STATUS.adc_refused value
+    input  wire         status_wr_refused,    // STATUS.wr_refused value
+    input  wire         fault_overcurrent,    // FAULT.overcurrent value
+    input  wire         fault_hall,           // FAULT.hall value
+    input  wire         fault_encoder,        // FAULT.encoder value
+    input  wire         fault_watchdog,       // FAULT.watchdog value
+    input  wire         fault_dclink,         // FAULT.dclink value
+    input  wire         fault_overrun,        // FAULT.overrun value
+    input  wire         fault_adc,            // FAULT.adc value
+    input  wire         fault_pstage,         // FAULT.pstage value
+    input  wire         fault_clock,          // FAULT.clock value
+    input  wire         fault_coef,           // FAULT.coef value
+    input  wire         fault_hall_enc,       // FAULT.hall_enc value
+    input  wire         fault_enc_break,      // FAULT.enc_break value
+    input  wire         fault_adc_stuck,      // FAULT.adc_stuck value
+    input  wire         fault_adc_sum,        // FAULT.adc_sum value
+    input  wire         fault_adc_frozen,     // FAULT.adc_frozen value
+    output reg  [14:0]  fault_mask,           // FAULT_MASK (RW)
+    output reg  [7:0]   dead_time,            // DEAD_TIME (RW)
+    output reg  [17:0]  kdc,                  // KDC (RW)
+    output reg  [19:0]  udc,                  // UDC (RW)
+    output reg          udc_wr,               // UDC: pulse when a write is accepted
+    output reg  [19:0]  udc_min,              // UDC_MIN (RW)
+    output reg  [19:0]  udc_max,              // UDC_MAX (RW)
+    output reg  [11:0]  oc_thresh,            // OC_THRESH (RW)
+    output reg  [2:0]   adc_off_we,           // write pulse, one-hot: ADC_OFF0, ADC_OFF1, ADC_OFF2
+    output reg  [11:0]  adc_off_wdata,        // written value
+    input  wire [11:0]  adc_off0,             // ADC_OFF0 value
+    input  wire [11:0]  adc_off1,             // ADC_OFF1 value
+    input  wire [11:0]  adc_off2,             // ADC_OFF2 value
+    output reg  [15:0]  angle_cal,            // ANGLE_CAL (RW)
+    output reg  [15:0]  hall_offset,          // HALL_OFFSET (RW)
+    output reg  [17:0]  kacc,                 // KACC.kacc (RW)
+    output reg  [3:0]   kacc_load_shift,      // KACC.load_shift (RW)
+    output reg  [4:0]   kacc_shift,           // KACC.shift (RW)
+    output reg  signed [17:0]  id_ref,        // ID_REF (RW)
+    output reg  signed [17:0]  iq_ref,        // IQ_REF (RW)
+    output reg  [3:0]   seg_addr,             // SEG_ADDR (RW)
+    output wire         seg_we,               // write of a word of window seg (combinational)
+    output wire         seg_re,               // read of a word of window seg (combinational)
+    output wire [2:0]   seg_idx,              // word index in the window (SEG_LEN = 0)
+    output reg          seg_start,            // SEG_START: pulse
+    output reg  [3:0]   seg_start_data,       // SEG_START: written value
+    output wire         gov_we,               // write of a word of window gov (combinational)
+    output wire         gov_re,               // read of a word of window gov (combinational)
+    output reg  [7:0]   fw_nmax,              // FW.nmax (RW)
+    output reg  [15:0]  fw_r2_hi,             // FW_R2.hi (RW)
+    output reg  [15:0]  fw_r2_lo,             // FW_R2.lo (RW)
+    output reg  [11:0]  iq_hold,              // IQ_HOLD (RW)
+    input  wire [31:0]  pos,                  // POS value
+    output wire         stat_re,              // read of a word of window stat (combinational)
+    input  wire [15:0]  theta,                // THETA value
+    input  wire [11:0]  iabc0_a,              // IABC0.a value
+    input  wire [11:0]  iabc0_b,              // IABC0.b value
+    input  wire [11:0]  iabc1,                // IABC1 value
+    input  wire [15:0]  latency,              // LATENCY value
+    output wire         cnt_re,               // read of a word of window cnt (combinational)
+    input  wire [19:0]  adc_psum0_sum,        // ADC_PSUM0.sum value
+    input  wire [6:0]   adc_psum0_count,      // ADC_PSUM0.count value
+    input  wire [19:0]  adc_psum1_sum,        // ADC_PSUM1.sum value
+    input  wire [6:0]   adc_psum1_count,      // ADC_PSUM1.count value
+    input  wire [19:0]  adc_psum2_sum,        // ADC_PSUM2.sum value
+    input  wire [6:0]   adc_psum2_count,      // ADC_PSUM2.count value
+    input  wire [7:0]   cnt_wr_refused,       // CNT_WR_REFUSED value
+    input  wire [7:0]   cnt_adc_miss,         // CNT_ADC_MISS value
+    input  wire [15:0]  cnt_enc_err,          // CNT_ENC_ERR value
+    output reg  [11:0]  adc_sum_thresh,       // ADC_SUM_THRESH (RW)
+    input  wire [7:0]   cnt_swap_ref,         // CNT_SWAP_REF value
+    input  wire [31:0]  seg_rdata,            // window read data (0 unless read)
+    input  wire [31:0]  smem_rdata,           // window read data (0 unless read)
+    input  wire         bridges_live,         // guard: writes to its registers are refused while high
+    input  wire         unlock_tick,          // timebase of the UNLOCK unlock (pulses)
+    output wire [1:0]   unlock_armed,         // UNLOCK unlock: ticks left, 0 = not armed (status, proofs)
+    output reg          wr_refused            // pulse: a write was refused (guard, unlock or illegal value)
 );
     // legal values of CTRL.pwm_per_control as a table (one LUT, no compares)
     localparam [255:0] LEGAL_CTRL_PWM_PER_CONTROL = 256'hfffffffffffffffffffffffffffffffffffffffffffffffffffffffffffffffe;
@@ -489,5 +490,16 @@ module axis_regs (
                      | {16'd0, q_cnt_enc_err}
                      | {20'd0, q_adc_sum_thresh}
                      | {24'd0, q_cnt_swap_ref};
+
+    // ---------------- every readable value for the shared read path (axis_rd), first register at bit 0
+    assign rd_vals = {cnt_swap_ref, adc_sum_thresh, cnt_enc_err, cnt_adc_miss, cnt_wr_refused,
+                      {adc_psum2_count, adc_psum2_sum}, {adc_psum1_count, adc_psum1_sum},
+                      {adc_psum0_count, adc_psum0_sum}, latency, iabc1, {iabc0_b, iabc0_a}, theta, pos, iq_hold,
+                      {fw_r2_lo, fw_r2_hi}, fw_nmax, seg_addr, iq_ref, id_ref, {kacc_shift, kacc_load_shift, kacc},
+                      hall_offset, angle_cal, adc_off2, adc_off1, adc_off0, oc_thresh, udc_max, udc_min, udc, kdc,
+                      dead_time, fault_mask,
+                      {fault_adc_frozen, fault_adc_sum, fault_adc_stuck, fault_enc_break, fault_hall_enc, fault_coef, fault_clock, fault_pstage, fault_adc, fault_overrun, fault_dclink, fault_watchdog, fault_encoder, fault_hall, fault_overcurrent},
+                      {status_wr_refused, status_adc_refused, status_swap_refused, status_coef_valid, status_fault, status_swap_pending, status_coef_bank, status_core_ready, status_adc_cal_done, status_adc_cal_busy, status_aligned, status_bridges_on, status_running},
+                      {ctrl_pwm_per_control, ctrl_run, ctrl_enable}};
 endmodule
 `default_nettype wire

@@ -19,7 +19,8 @@
 // and must be taken with its theta_ok (docs/blocks/pos_sense.md); the handshake is not in mx_seq yet.
 //
 // Register port: reg_addr = {axis, word offset}, coef_addr = {axis, image word}; reg_rdata valid one
-// clock after reg_rd (every axis's read data is 0 unless that axis was read: ORed).
+// clock after reg_rd, 0 otherwise: one shared read path (generated rtl/axis_rd.v, gated copies) takes
+// each register from the read axis's axis_regs.rd_vals export (the axes' own copies are not kept).
 // Safety, per axis (axis_periph's, as mpc_axis): every cause in that axis's FAULT_MASK forces that axis's
 // six outputs off in the clock the cause is registered (its fault_ctrl.trip into its pwm_center);
 // the watchdog, overrun / stall, power-stage, clock and coefficient-image causes trip whatever
@@ -231,7 +232,8 @@ module mx_axes #(
         .st_we(st_we), .st_addr(st_addr), .st_wdata(st_wdata), .sweep(stat_sweep), .busy(status_busy));
 
     // ---------------- per axis: sensors, glue, faults, PWM, registers ----------------
-    wire [32*NAXES-1:0] a_rdata;
+    localparam integer VW = `EMPC_A_RD_VALS_W;
+    wire [VW*NAXES-1:0] rd_vals_v;       // every readable value of every axis (axis_regs.rd_vals)
     genvar n;
     generate for (n = 0; n < NAXES; n = n + 1) begin : g_ax
         localparam integer PHASE = n * STAGGER;
@@ -249,7 +251,7 @@ module mx_axes #(
         axis_periph #(.HALL_DEBOUNCE(HALL_DEBOUNCE), .ENC_FILTER(ENC_FILTER), .COMPLEMENTARY(COMPLEMENTARY),
                       .PWM_HALF_PERIOD(P), .PHASE(PHASE)) u_per (
             .clk(clk), .rst(rst), .reg_wr(reg_wr && sel), .reg_rd(reg_rd && sel), .reg_addr(roff),
-            .reg_wdata(reg_wdata), .reg_rdata(a_rdata[32*n +: 32]), .watchdog_expired(watchdog_expired),
+            .reg_wdata(reg_wdata), .reg_rdata(), .rd_vals(rd_vals_v[VW*n +: VW]), .watchdog_expired(watchdog_expired),
             .g_wr_refused(g_wr_refused), .ext_fault(ext_fault), .pwm_sync_in(1'b0), .pwm_sync_out(),
             .irc_a(irc_a[n]), .irc_b(irc_b[n]), .irc_idx(irc_idx[n]), .irc_mark(irc_mark[n]), .hall(hall[3*n +: 3]),
             .pwm_hi(pwm_hi[3*n +: 3]), .pwm_lo(pwm_lo[3*n +: 3]), .period_start(period_start[n]),
@@ -286,14 +288,12 @@ module mx_axes #(
         assign period_tick[n] = period_start[n];
     end endgenerate
 
-    // every axis's read data is 0 unless that axis was read: OR them
-    reg [31:0] a_or;
-    integer ai;
-    always @(*) begin
-        a_or = 32'd0;
-        for (ai = 0; ai < NAXES; ai = ai + 1) a_or = a_or | a_rdata[32*ai +: 32];
-    end
-    assign reg_rdata = a_or;
+    // ---------------- register read path, shared (generated: rtl/axis_rd.v) ----------------
+    // the CPU reads one axis at a time: one set of gated copies takes each register from axis rax
+    // (the axes' own axis_regs copies are left open and dropped); the windows' read data ORed there
+    axis_rd #(.NAXES(NAXES)) u_rd (
+        .clk(clk), .rst(rst), .reg_rd(reg_rd), .rd_axis(rax), .reg_addr(roff), .rd_vals(rd_vals_v),
+        .seg_rdata(seg_rdata), .smem_rdata(s_q), .reg_rdata(reg_rdata));
 
     wire unused = &{1'b0, adc_busy, adc_fvalid, adc_trig_miss, oc_ch, ref_busy, core_busy, core_du, core_u_raw,
                     core_wn, core_latency, core_boot_ok, st_id, st_iq[3:0], theta_trig, status_busy};

@@ -20,6 +20,7 @@ rtl/mx_seq.v
 rtl/axis_status.v
 rtl/clk_gen.v
 rtl/axis_regs.v
+rtl/axis_rd.v
 rtl/clk_mon.v
 rtl/out_kill.v
 rtl/out_route.v

@@ -93,7 +93,7 @@ async def run_block(dut, b: Block, n: int) -> None:
     ins_ports = [(p[1], p[2]) for p in m.ports if p[0] == "input" and p[1] != "clk"]
     outs = [p[1] for p in m.ports if p[0] == "output"]
     comb_outs = {"reg_rdata"} | {f"{e.name}_{s}" for e in g.windows for s in ("we", "re", "idx")} \
-        | {f"{a.base}_armed" for a in g.arms}
+        | {f"{a.base}_armed" for a in g.arms} | ({"rd_vals"} if b.shared else set())
     offsets = [r.offset for r in b.regs]
     locked_offs = [r.offset for r in b.regs if r.unlock]
     key_offs = [r.offset for r in b.regs if r.arm is not None]
@@ -181,7 +181,51 @@ async def run_block(dut, b: Block, n: int) -> None:
 @cocotb.test()
 async def block_vs_model(dut):
     b = ALL_BLOCKS[os.environ["TB_BLOCK"]]
-    await run_block(dut, b, int(os.environ.get("TB_CLOCKS", "6000")))
+    if os.environ.get("TB_SHARED"):
+        await run_shared(dut, b, int(os.environ["TB_NAXES"]), int(os.environ.get("TB_CLOCKS", "6000")))
+    else:
+        await run_block(dut, b, int(os.environ.get("TB_CLOCKS", "6000")))
+
+
+async def run_shared(dut, b: Block, naxes: int, n: int) -> None:
+    """The shared read path rtl/<b.shared>.v against regblock.SharedReadModel: random rd_vals per axis
+    (every clock), random reads of any axis (also axes >= NAXES) and word, window read data after a
+    read, rare resets; reg_rdata compared every clock."""
+    seed = int(os.environ.get("EMPC_SEED", DEFAULT_SEED))
+    rng = random.Random(seed)
+    m = regblock.SharedReadModel(b, naxes)
+    vw = m.g.rd_width()
+    ab = max(1, (naxes - 1).bit_length())
+    offsets = [r.offset for r in b.regs]
+    rdp = sorted({e.rdata_port for e in m.g.windows})
+    cocotb.start_soon(Clock(dut.clk, 10, unit="ns").start())
+    nz = per_axis = 0
+    prev_rd = False
+    for k in range(n):
+        vals = [rng.getrandbits(vw) for _ in range(naxes)]
+        ins = {"rst": int(k < 2 or rng.random() < 0.003), "reg_rd": int(rng.random() < 0.5),
+               "rd_axis": rng.getrandbits(ab), "reg_addr": rng.choice(offsets) if rng.random() < 0.9
+               else rng.getrandbits(m.g.aw), "rd_vals": vals}
+        for p in rdp:                               # windows answer only after a read
+            ins[p] = rng.getrandbits(32) if prev_rd and rng.random() < 0.2 else 0
+        dut.rst.value = ins["rst"]
+        dut.reg_rd.value = ins["reg_rd"]
+        dut.rd_axis.value = ins["rd_axis"]
+        dut.reg_addr.value = ins["reg_addr"]
+        dut.rd_vals.value = sum(v << (vw * a) for a, v in enumerate(vals))
+        for p in rdp:
+            getattr(dut, p).value = ins[p]
+        await Timer(1, unit="ns")
+        want = m.comb(ins)
+        got = int(dut.reg_rdata.value)
+        assert got == want, f"{b.shared} clock {k} seed {seed}: reg_rdata = {got:#x}, model {want:#x}"
+        nz += want != 0
+        per_axis += bool(m.q) and ins["rd_axis"] == naxes - 1
+        prev_rd = bool(ins["reg_rd"])
+        m.clock(ins)
+        await FallingEdge(dut.clk)
+    dut._log.info("%s, NAXES %d: %d clocks vs model (seed %d), %d non-zero reads", b.shared, naxes, n, seed, nz)
+    assert nz > n // 10 and per_axis > 0
 
 
 def _run(block: Block) -> None:
@@ -200,6 +244,17 @@ def _run(block: Block) -> None:
 @pytest.mark.cost(7)          # seconds on an idle core (make sim starts the costliest first)
 def test_axis_regs():
     _run(ALL_BLOCKS["axis_regs"])
+
+
+@pytest.mark.parametrize("naxes", [3, 4])
+def test_axis_rd(naxes):
+    """The read path shared by the axes (rtl/axis_rd.v) against regblock.SharedReadModel; NAXES 3
+    also reads the absent axis 3."""
+    from runner import run
+    b = ALL_BLOCKS["axis_regs"]
+    run(toplevel=b.shared, test_module="test_regblock", name=f"test_regblock_{b.shared}",
+        parameters={"NAXES": naxes},
+        extra_env={"TB_BLOCK": b.module, "TB_SHARED": "1", "TB_NAXES": str(naxes)})
 
 
 def test_global_regs():

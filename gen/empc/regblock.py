@@ -19,6 +19,15 @@ What the generated module owns (one register = one line of gen/empc/regmap.py):
   multiplexer); "mux" registers share one read register (a case, cleared when no mux
   register is read); reg_rdata (valid the clock after reg_rd, 0 otherwise) is the OR of the
   copies, the mux register and the read data of the windows;
+* ``Block.shared`` (axis_regs: ``axis_rd``): a second module, ``render_shared`` -> rtl/<shared>.v, the
+  read path of NAXES blocks in one: the block exports every readable value (``rd_vals``, packed,
+  combinational) and the shared module keeps one set of read registers for all axes, each loaded
+  from the axis ``rd_axis`` selects (the CPU reads one axis at a time; a binary multiplexer on the
+  bits of rd_axis); same read rules.  mx_axes
+  uses it and leaves the blocks' own reg_rdata open (synthesis drops their copies).  Measured out
+  of context (``flow/synth.py --top axis_regs``, ``flow/mx_probes.py``; docs/four_axes.md section 8): one axis_regs 345
+  LUT / 887 FF with copies, 475 / 348 with "mux", 113 / 316 without a read path; the read path of
+  four axes as four copy sets 4 x (232 LUT / 571 FF), shared copies 805 / 571, shared mux 1004 / 32;
 * ext storage: strobe groups (one-hot write pulse + written data, both registered; the
   values come back on inputs read through copies) and windows (combinational
   ``<w>_we``/``<w>_re`` from a 256-entry address table, no magnitude compares, and
@@ -222,6 +231,9 @@ class _Gen:
              ("input", "reg_addr", self.aw, False, "word offset in the block"),
              ("input", "reg_wdata", 32, False, ""),
              ("output", "reg_rdata", 32, False, "read data, the clock after reg_rd (0 otherwise)")]
+        if self.b.shared:
+            P.append(("output", "rd_vals", self.rd_width(), False,
+                      f"every readable value, packed (combinational; the shared read path {self.b.shared})"))
         done_ext = set()
         for r in self.regs:
             k = self.k[r.name]
@@ -274,6 +286,19 @@ class _Gen:
             P.append(("output", "wr_refused", 1, False, "pulse: a write was refused (guard, unlock or illegal value)"))
         return P
 
+    def rd_layout(self) -> list[tuple[Reg, int, int]]:
+        """(register, lsb in rd_vals, width) of every readable non-constant register, map order."""
+        out, pos = [], 0
+        for r in self.regs:
+            if self.k[r.name].readable and not self.k[r.name].const:
+                _, w = self.value_expr(r)
+                out.append((r, pos, w))
+                pos += w
+        return out
+
+    def rd_width(self) -> int:
+        return sum(w for _, _, w in self.rd_layout())
+
     def arm_w(self) -> int:
         return self.arms[0].arm.bit_length()
 
@@ -322,12 +347,14 @@ class _Gen:
         L += self.render_windows()
         L += self.render_write()
         L += self.render_read()
+        if b.shared:
+            L += self.render_export()
         L += self.render_unused()
         L += ["endmodule", "`default_nettype wire", ""]
         return "\n".join(L)
 
     def is_reg_out(self, name: str) -> bool:
-        return name not in ("reg_rdata",) and not any(name == f"{e.name}_{s}" for e in self.windows
+        return name not in ("reg_rdata", "rd_vals") and not any(name == f"{e.name}_{s}" for e in self.windows
                                                      for s in ("we", "re", "idx")) \
             and not any(name == f"{a.base}_armed" for a in self.arms)
 
@@ -490,7 +517,11 @@ class _Gen:
                          f"   // word - {mem[0].name}")
         return L
 
-    def render_read(self) -> list[str]:
+    def render_read(self, val=None, word=None) -> list[str]:
+        """The read path; ``val(r)`` / ``word(r)`` give a register's dense value (expression, width) and its
+        32-bit read word (default: from the ports; the shared read path: from the selected axis's rd_vals)."""
+        val = val or self.value_expr
+        word = word or self.mux_word
         L = [""]
         rregs = [r for r in self.regs if self.k[r.name].readable]
         copies = [r for r in rregs if self.read_style(r) == "copy"]
@@ -503,7 +534,7 @@ class _Gen:
         terms = []
         qn = {}
         for r in copies:
-            _, w = self.value_expr(r)
+            _, w = val(r)
             q = f"q_{r.name.lower()}"
             qn[r.name] = q
             L.append(f"    reg  {_rng(w):<7} {q};")
@@ -511,7 +542,7 @@ class _Gen:
             L.append("    reg  [31:0]  q_mux;")
         L.append("    always @(posedge clk) begin")
         for r in copies:
-            v, w = self.value_expr(r)
+            v, w = val(r)
             head = f"        {qn[r.name]} <= (rd_p{self.page(r.offset)} && reg_addr[{self.pb - 1}:0] == " \
                    f"{self.low(r.offset)}) ?"
             if len(head) + len(v) + len(_vlit(w, 0)) + 6 <= 118:
@@ -538,14 +569,14 @@ class _Gen:
             L.append(f"            case ({idx})")
             for r in muxed:
                 off = _lo(iw, r.offset & ((1 << iw) - 1))
-                L.append(f"                {off}: q_mux <= {self.mux_word(r)};   // {r.name}")
+                L.append(f"                {off}: q_mux <= {word(r)};   // {r.name}")
             L.append("                default: q_mux <= 32'd0;")
             L.append("            endcase")
             L.append("        end")
         if copies:
             L.append("        if (rst) begin")
             for r in copies:
-                _, w = self.value_expr(r)
+                _, w = val(r)
                 L.append(f"            {qn[r.name]} <= {_vlit(w, 0)};")
             L.append("        end")
         L.append("    end")
@@ -556,6 +587,20 @@ class _Gen:
             terms.append("q_mux")
         terms += [self.word_expr(r, qn[r.name]) for r in copies]
         L.append("    assign reg_rdata = " + "\n                     | ".join(terms) + ";")
+        return L
+
+    def render_export(self) -> list[str]:
+        items = [self.value_expr(r)[0] for r, _, _ in reversed(self.rd_layout())]
+        L = ["", f"    // ---------------- every readable value for the shared read path ({self.b.shared}), "
+             "first register at bit 0"]
+        line = "    assign rd_vals = {"
+        for i, it in enumerate(items):
+            piece = it + (", " if i < len(items) - 1 else "};")
+            if len(line) + len(piece) > 116:
+                L.append(line.rstrip())
+                line = "                      "
+            line += piece
+        L.append(line)
         return L
 
     def render_unused(self) -> list[str]:
@@ -599,6 +644,89 @@ class _Gen:
 def render(b: Block) -> str:
     """Text of rtl/<b.module>.v."""
     return _Gen(b).render()
+
+
+def rd_vals_width(b: Block) -> int:
+    """Width of the ``rd_vals`` export of a block with a shared read path."""
+    return _Gen(b).rd_width()
+
+
+def render_shared(b: Block) -> str:
+    """Text of rtl/<b.shared>.v: the read path of NAXES instances of block ``b`` in one module.
+
+    The CPU reads one axis at a time, so one set of read registers (the block's read style: gated
+    copies or one shared read register) serves every axis: each takes its register's value from the
+    axis ``rd_axis`` selects among the blocks' ``rd_vals`` exports (a multiplexer on the bits of rd_axis,
+    one LUT6 per value bit for four axes) instead of every block keeping its own copies.  Same read rules as the
+    block's own path (reg_rdata valid the clock after reg_rd, 0 otherwise; the windows' read data
+    ORed), so the blocks' own ``reg_rdata`` is left unconnected (synthesis drops their copies)."""
+    g = _Gen(b)
+    lay = g.rd_layout()
+    vw = g.rd_width()
+    rdp = sorted({e.rdata_port for e in g.windows})
+    P = [("input", "clk", "", "", ""), ("input", "rst", "", "", ""),
+         ("input", "reg_rd", "", "", "read strobe (1 clock), any axis"),
+         ("input", "rd_axis", "[AXB-1:0]", "", "the axis read (an axis >= NAXES reads 0)"),
+         ("input", "reg_addr", f"[{g.aw - 1}:0]", "", "word offset in the axis block"),
+         ("input", "rd_vals", f"[NAXES*{vw}-1:0]", "", f"axis a's {b.module}.rd_vals at [a*VW +: VW]")]
+    P += [("input", x, "[31:0]", "", "window read data (0 unless read), shared by the axes") for x in rdp]
+    P += [("output", "reg_rdata", "[31:0]", "", "read data, the clock after reg_rd (0 otherwise)")]
+    L = [_HDR, "//",
+         f"// {b.shared}: the read path of NAXES {b.module} blocks ({b.doc}), shared.",
+         "//",
+         "// The CPU reads one axis at a time: one set of read registers serves every axis, each taking its",
+         f"// register's value from the axis rd_axis selects among the blocks' rd_vals exports, instead of",
+         f"// every {b.module} keeping its own (their reg_rdata is left unconnected; synthesis drops them).",
+         "// Read path: " + ("gated copies (0 unless read) ORed" if b.read == "copy" else
+                             "one shared read register (a case)")
+         + (", plus per-register exceptions" if any(r.read for r in g.regs) else "") + ".",
+         "// Parameters: NAXES (1..), AXB (axis bits, derived); VW = the width of rd_vals per axis.",
+         "// Latency: reg_rdata is valid the clock after reg_rd and 0 in every other clock (as the block's).",
+         "// Reset: synchronous (rst); read data to 0.",
+         "`default_nettype none",
+         f"module {b.shared} #(",
+         "    parameter integer NAXES = 1,",
+         "    parameter integer AXB = (NAXES < 2) ? 1 : $clog2(NAXES)     // axis bits (derived)",
+         ") ("]
+    lines = [(f"    {d:<6} wire {w:<15} {n}", c) for d, n, w, _, c in P]
+    cw = max(len(x) for x, _ in lines) + 2
+    for i, (x, c) in enumerate(lines):
+        x += "," if i < len(lines) - 1 else ""
+        L.append(f"{x:<{cw}}// {c}" if c else x)
+    L += [");",
+          f"    localparam integer VW = {vw};   // rd_vals bits per axis (EMPC_{b.scope}_RD_VALS_W)",
+          "",
+          "    // ---------------- the read axis's values: a multiplexer on the bits of rd_axis (binary, so that",
+          "    // synthesis maps four axes to one LUT6 a bit; a decoded AND-OR form came out at 2-3 LUTs a bit",
+          "    // in the flattened top), the axes beyond NAXES padded with 0",
+          "    localparam integer NP = 1 << AXB;",
+          "    wire [NP*VW-1:0] vp;",
+          "    genvar a;",
+          "    generate for (a = 0; a < NP; a = a + 1) begin : g_pad",
+          "        if (a < NAXES) begin : g_ax",
+          "            assign vp[a*VW +: VW] = rd_vals[a*VW +: VW];",
+          "        end else begin : g_none",
+          "            assign vp[a*VW +: VW] = {VW{1'b0}};",
+          "        end",
+          "    end endgenerate",
+          "    wire [VW-1:0] v = vp[rd_axis*VW +: VW];"]
+    names = {}
+    for r, pos, w in lay:
+        n = f"v_{r.name.lower()}"
+        names[r.name] = (n, w)
+        L.append(f"    wire [{w - 1}:0] {n} = v[{pos + w - 1}:{pos}];")
+
+    def val(r):
+        return names[r.name] if r.name in names else g.value_expr(r)
+
+    def word(r):
+        if r.name not in names:
+            return g.mux_word(r)
+        return g.word_expr(r, names[r.name][0])
+
+    L += g.render_read(val, word)
+    L += ["endmodule", "`default_nettype wire", ""]
+    return "\n".join(L)
 
 
 def ports(b: Block) -> list[tuple[str, str, int, bool, str]]:
@@ -655,6 +783,20 @@ class Model:
             v |= (0xFFFFFFFF << r.width) & 0xFFFFFFFF
         return v
 
+    def rd_vals(self, ins: dict) -> int:
+        """The ``rd_vals`` export: every readable non-constant register's dense value (its fields'
+        bits, msb field first), the first register at bit 0."""
+        v = 0
+        for r, pos, w in self.g.rd_layout():
+            k = self.g.k[r.name]
+            x, b = 0, 0
+            for f in sorted(r.parts(), key=lambda f: f.lsb):
+                p = r.part_port(f)
+                x |= ((self.state[p] if k.stored else ins[p]) & ((1 << f.width) - 1)) << b
+                b += f.width
+            v |= x << pos
+        return v
+
     def _sel(self, e, addr: int) -> bool:
         return any(r.offset == addr for r in self.g.members(e.name))
 
@@ -674,6 +816,8 @@ class Model:
         for p in {e.rdata_port for e in self.g.windows}:
             rd |= ins[p]
         out["reg_rdata"] = rd
+        if self.b.shared:
+            out["rd_vals"] = self.rd_vals(ins)
         for a in self.g.arms:
             out[f"{a.base}_armed"] = self.unl
         return out
@@ -763,3 +907,43 @@ class Model:
                     elif k.wodata:
                         s[p] = 1
                         s[f"{p}_data"] = x
+
+
+class SharedReadModel:
+    """Cycle model of rtl/<b.shared>.v (``render_shared``) with NAXES axes: per clock ``comb(ins)``
+    (reg_rdata) then ``clock(ins)``; ins: reg_rd, rd_axis, reg_addr, rd_vals (list, one int per axis,
+    as ``Model.rd_vals``), the windows' read-data ports, rst."""
+
+    def __init__(self, b: Block, naxes: int):
+        self.g = _Gen(b)
+        self.naxes = naxes
+        self.lay = {r.name: (pos, w) for r, pos, w in self.g.rd_layout()}
+        self.q = 0
+
+    def word(self, r: Reg, vals: int) -> int:
+        """32-bit read word of register r from one axis's rd_vals."""
+        if self.g.k[r.name].const:
+            return r.reset_int()
+        pos, _ = self.lay[r.name]
+        v = 0
+        for f in sorted(r.parts(), key=lambda f: f.lsb):
+            v |= ((vals >> pos) & ((1 << f.width) - 1)) << f.lsb
+            pos += f.width
+        if r.signed and not r.fields and v >> (r.width - 1):
+            v |= (0xFFFFFFFF << r.width) & 0xFFFFFFFF
+        return v
+
+    def comb(self, ins: dict) -> int:
+        rd = self.q
+        for p in {e.rdata_port for e in self.g.windows}:
+            rd |= ins[p]
+        return rd
+
+    def clock(self, ins: dict) -> None:
+        q = 0
+        if ins["reg_rd"] and ins["rd_axis"] < self.naxes:
+            for r in self.g.regs:
+                if self.g.k[r.name].readable and r.offset == ins["reg_addr"]:
+                    q = self.word(r, ins["rd_vals"][ins["rd_axis"]])
+        self.q = 0 if ins["rst"] else q
+

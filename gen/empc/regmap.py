@@ -573,11 +573,13 @@ class Block:
     doc: str
     span: int = AXIS_STRIDE
     ext: tuple = EXT    # the blocks that keep ext storage (a test map brings its own)
+    shared: str = ""    # also a read path shared by NAXES blocks: rtl/<shared>.v (gen/empc/regblock.py
+                        # render_shared) reads the blocks' ``rd_vals`` exports, one copy set for all axes
 
 
 BLOCKS = (
     Block("global_regs", "G", GLOBAL, "mux", "global registers of lx_rocon_top (watchdog, time, interrupts)"),
-    Block("axis_regs", "A", AXIS, "copy", "registers of one axis (mpc_axis)"),
+    Block("axis_regs", "A", AXIS, "copy", "registers of one axis (mpc_axis)", shared="axis_rd"),
 )
 
 
@@ -770,7 +772,11 @@ def render_vh() -> str:
              f"`define EMPC_ROUTE_NIB {ROUTE_NIB}"]
     names = set()
     for b in BLOCKS:
-        for name, v in _macros(b.scope, b.regs, b.ext):
+        ms = _macros(b.scope, b.regs, b.ext)
+        if b.shared:                         # width of the rd_vals export (the shared read path's input)
+            from .regblock import rd_vals_width
+            ms.append((f"EMPC_{b.scope}_RD_VALS_W", rd_vals_width(b)))
+        for name, v in ms:
             if name in names:
                 raise MapError(f"empc_regs.vh: macro {name} defined twice (rename a register or field)")
             names.add(name)
@@ -842,6 +848,8 @@ def generated_files(root: Path) -> dict[Path, str]:
     out = {root / "docs" / "registers.md": render_md(), root / "fw" / "empc_regs.h": fwheader.render()}
     for b in BLOCKS:
         out[root / "rtl" / f"{b.module}.v"] = regblock.render(b)
+        if b.shared:
+            out[root / "rtl" / f"{b.shared}.v"] = regblock.render_shared(b)
     return out
 
 

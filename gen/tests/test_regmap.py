@@ -11,10 +11,13 @@ from empc.regmap import Block, Ext, Field, MapError, Reg
 ROOT = Path(__file__).resolve().parents[2]
 
 
-@pytest.mark.parametrize("rel", ["docs/registers.md", "fw/empc_regs.h", "rtl/global_regs.v", "rtl/axis_regs.v"])
+GENERATED = ["docs/registers.md", "fw/empc_regs.h", "rtl/global_regs.v", "rtl/axis_regs.v", "rtl/axis_rd.v"]
+
+
+@pytest.mark.parametrize("rel", GENERATED)
 def test_generated_files_current(rel):
     files = {str(p.relative_to(ROOT)): t for p, t in regmap.generated_files(ROOT).items()}
-    assert set(files) == {"docs/registers.md", "fw/empc_regs.h", "rtl/global_regs.v", "rtl/axis_regs.v"}
+    assert set(files) == set(GENERATED)
     assert (ROOT / rel).read_text() == files[rel], f"{rel} is stale: python -m empc.regmap --all (make regs)"
 
 
@@ -23,6 +26,9 @@ def test_generated_rtl_listed_and_marked():
     for b in regmap.BLOCKS:
         assert f"rtl/{b.module}.v" in listed
         assert "Do not edit" in regblock.render(b).splitlines()[0]
+        if b.shared:
+            assert f"rtl/{b.shared}.v" in listed
+            assert "Do not edit" in regblock.render_shared(b).splitlines()[0]
 
 
 @pytest.mark.parametrize("block", regmap.BLOCKS, ids=lambda b: b.module)
