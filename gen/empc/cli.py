@@ -192,9 +192,11 @@ def main(argv: list[str] | None = None) -> int:
                    help="task step (per unit of rated speed / position scale) whose peak current must stay "
                         "within control.i_max (default 0.1)")
     t.add_argument("--chatter", type=float, default=0.2,
-                   help="RMS i_q from sensor quantisation, per unit of rated current (default 0.2)")
+                   help="RMS i_q from sensor quantisation, per unit of rated current, the worst over the "
+                        "robustness box (default 0.2)")
     t.add_argument("--u-chatter", type=float, default=0.5,
-                   help="RMS |u| from sensor quantisation, per unit of the voltage limit (default 0.5)")
+                   help="RMS |u| from sensor quantisation, per unit of the voltage limit, the worst over the "
+                        "robustness box (default 0.5)")
     t.add_argument("--refine", action="store_true",
                    help="when the two-factor grid finds nothing: search one factor per weight element (and "
                         "algorithm 2's proportional weight Q_yp) until the full design check passes")

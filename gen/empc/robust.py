@@ -213,9 +213,28 @@ def verdict(cfg, res: dict) -> tuple[bool, str]:
     return True, "ok"
 
 
-def noise_rms(cfg, algorithm: int, task: str, g: dict, omega: float = 0.0) -> dict:
-    """RMS of i_q (A) and |u| (V) driven by the sensor quantisation on the nominal plant at ``omega``:
-    encoder angle uniform over one count (eq. 38), ADC uniform over one LSB."""
-    lp = loop_mod.loop(cfg, cfg.motor, omega, algorithm, task, g)
+def noise_rms(cfg, algorithm: int, task: str, g: dict, omega: float = 0.0, factors: dict | None = None) -> dict:
+    """RMS of i_q (A) and |u| (V) driven by the sensor quantisation at ``omega``, on the nominal plant or
+    the plant scaled by ``factors`` (a box point): encoder angle uniform over one count (eq. 38), ADC
+    uniform over one LSB."""
+    plant = perturbed(cfg.motor, factors) if factors else cfg.motor
+    lp = loop_mod.loop(cfg, plant, omega, algorithm, task, g)
     sig = np.array([cfg.rad_per_count, cfg.amps_per_lsb, cfg.amps_per_lsb]) / math.sqrt(12.0)
     return loop_mod.noise_gain(lp, sig)
+
+
+def noise_box(cfg, algorithm: int, task: str, g: dict, omega: float = 0.0) -> dict:
+    """:func:`noise_rms` at every point of the robustness box (box_points): the worst i_q RMS and the
+    worst |u| RMS with their box points, and the nominal values.  The quantisation chatter of a design is
+    its worst over the box, not its nominal value: with L and R -30 % the current loop is faster and less
+    damped (the EC 45 flat's algorithm-2 designs: 0.23 i_max RMS nominal, 0.48 at L, R -30 %)."""
+    out = {"i_q_rms": -1.0, "u_rms": -1.0, "i_q_point": None, "u_point": None}
+    for p in box_points(cfg.robustness):
+        n = noise_rms(cfg, algorithm, task, g, omega, p)
+        if all(abs(v - 1) < 1e-12 for v in p.values()):
+            out["i_q_rms_nominal"], out["u_rms_nominal"] = n["i_q_rms"], n["u_rms"]
+        if not n["i_q_rms"] <= out["i_q_rms"]:
+            out["i_q_rms"], out["i_q_point"] = n["i_q_rms"], p
+        if not n["u_rms"] <= out["u_rms"]:
+            out["u_rms"], out["u_point"] = n["u_rms"], p
+    return out

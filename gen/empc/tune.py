@@ -14,7 +14,9 @@ omega_e = 0, references seen N periods ahead as in the scenarios):
                  (algorithm 1 trades i_d against the task output in steady state: a slow tail
                  that a settling band would measure instead of the current loop)
   chatter        RMS i_q that the sensor quantisation drives (encoder count, ADC LSB), per unit
-                 of the rated current
+                 of the rated current, the worst over the robustness box (robust.noise_box; likewise
+                 the RMS |u|, ``u_chatter``): a design quiet on the nominal plant can chatter at a
+                 box corner (faster, less damped current loop with L, R -30 %)
   robustness     the design check's box and margins (robust.py), on a 7-point speed grid (the
                  chosen weights then go through the full check of `empc roms`)
 
@@ -129,9 +131,11 @@ def measure(cfg, algorithm: int, task: str, w_si, specs: Specs, robust_grid: int
     fin = si["i_d"][-1]
     up = np.nonzero(si["i_d"][k0:] * np.sign(fin) >= 0.9 * abs(fin))[0]
     m["current_rise"] = float(up[0] + 1) * c.Ts if len(up) else math.inf
-    noise = robust.noise_rms(cfg, algorithm, task, g, 0.0)
+    noise = robust.noise_box(cfg, algorithm, task, g, 0.0)
     m["chatter_pu"] = noise["i_q_rms"] / rt.current
     m["u_chatter"] = noise["u_rms"] / cfg.u_max
+    m["chatter_nominal_pu"] = noise["i_q_rms_nominal"] / rt.current
+    m["chatter_where"] = robust.label(noise["i_q_point"]) if noise["i_q_point"] is not None else ""
     res = robust.survey(cfg, algorithm, task, {"exact": robust.exact_gains(cfg, algorithm, task, w_si)},
                         grid=robust.speeds(cfg, robust_grid))
     ok, why = robust.verdict(cfg, res)
@@ -155,7 +159,8 @@ def _fails(cfg, algorithm: int, m: dict, specs: Specs) -> list[str]:
     if m["current_rise"] > ics:
         f.append(f"current-loop rise {1e3 * m['current_rise']:.2f} ms > {1e3 * ics:.2f} ms")
     if m["chatter_pu"] > specs.chatter:
-        f.append(f"quantisation chatter {m['chatter_pu']:.3f} pu > {specs.chatter:g} pu")
+        f.append(f"quantisation chatter {m['chatter_pu']:.3f} pu > {specs.chatter:g} pu"
+                 + (f" (at {m['chatter_where']})" if m.get("chatter_where") else ""))
     if m["u_chatter"] > specs.u_chatter:
         # a voltage noise near the limit makes the loop bang between +-u_max (a limit cycle the linear
         # check does not see: 50 us designs with u_rms = 4.6 u_max, docs/design.md)
