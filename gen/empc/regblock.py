@@ -320,9 +320,7 @@ class _Gen:
              "// the read path of the registers of this block in gen/empc/regmap.py (what each register",
              "// is and the rules: gen/empc/regblock.py, docs/registers.md).  Ports: a stored register",
              "// or field is an output named after it, a read-only value an input of the same name.",
-             "// Read path: " + ("gated copies (0 unless read) ORed" if b.read == "copy" else
-                                 "one shared read register (a case)")
-             + (", plus per-register exceptions" if any(r.read for r in self.regs) else "") + ".",
+             _read_path_doc(b, self.regs),
              "// Parameters: none (build-dependent reset values are empc_formats.vh macros).",
              "// Latency: writes act in the clock after reg_wr (window strobes: combinational);",
              "// reg_rdata is valid the clock after reg_rd and 0 in every other clock.",
@@ -651,6 +649,13 @@ def rd_vals_width(b: Block) -> int:
     return _Gen(b).rd_width()
 
 
+def _read_path_doc(b: Block, regs) -> str:
+    """The header line naming a block's read style (the block's and its shared read path's)."""
+    return ("// Read path: " + ("gated copies (0 unless read) ORed" if b.read == "copy" else
+                                "one shared read register (a case)")
+            + (", plus per-register exceptions" if any(r.read for r in regs) else "") + ".")
+
+
 def render_shared(b: Block) -> str:
     """Text of rtl/<b.shared>.v: the read path of NAXES instances of block ``b`` in one module.
 
@@ -677,9 +682,7 @@ def render_shared(b: Block) -> str:
          "// The CPU reads one axis at a time: one set of read registers serves every axis, each taking its",
          f"// register's value from the axis rd_axis selects among the blocks' rd_vals exports, instead of",
          f"// every {b.module} keeping its own (their reg_rdata is left unconnected; synthesis drops them).",
-         "// Read path: " + ("gated copies (0 unless read) ORed" if b.read == "copy" else
-                             "one shared read register (a case)")
-         + (", plus per-register exceptions" if any(r.read for r in g.regs) else "") + ".",
+         _read_path_doc(b, g.regs),
          "// Parameters: NAXES (1..), AXB (axis bits, derived); VW = the width of rd_vals per axis.",
          "// Latency: reg_rdata is valid the clock after reg_rd and 0 in every other clock (as the block's).",
          "// Reset: synchronous (rst); read data to 0.",
