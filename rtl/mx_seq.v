@@ -265,8 +265,17 @@ module mx_seq #(
         reg  [NAXES-1:0]   push;
         reg                js;
         reg  [AXB-1:0]     ja;
+        reg                idle0, lower;
+        reg  [NAXES-1:0]   ax_ohr;      // one-hot of ax, registered with it (ax_oh: no decoder
+                                        // between ax and busy_ax / trig, the queue's inputs)
         integer qi;
+        // Timing (docs/blocks/mx_seq.md "Job queue timing"): with the engine idle and no trigger
+        // waiting, busy_ax = 0, so trig = adc_trig there: the start decision and the lowest-axis
+        // pick read adc_trig, not trig (same values), and push excludes the started axis by
+        // "an adc_trig of a lower axis" instead of comparing ja; ax enters the queue only
+        // through trig (one LUT: adc_trig, tpend, busy_period, ax_ohr)
         always @(*) begin
+            idle0 = !busy_period && !(|tpend);
             js = 1'b0;
             ja = {AXB{1'b0}};
             if (!busy_period && |tpend) begin           // the oldest waiting trigger
@@ -275,15 +284,18 @@ module mx_seq #(
                     if (tpend[qi] && q_seq[2*qi +: 2] == q_pop) ja = qi[AXB-1:0];
             end else if (!busy_period) begin            // an idle engine: the lowest trigger now
                 for (qi = NAXES - 1; qi >= 0; qi = qi - 1)
-                    if (trig[qi]) begin
+                    if (adc_trig[qi]) begin             // = trig[qi] here (nothing busy)
                         js = 1'b1;
                         ja = qi[AXB-1:0];
                     end
             end
             np = q_push;
             q_seq_n = q_seq;
+            lower = 1'b0;                               // an adc_trig of a lower axis
             for (qi = 0; qi < NAXES; qi = qi + 1) begin
-                push[qi] = trig[qi] && !(js && !(|tpend) && ja == qi[AXB-1:0]);
+                // = trig[qi] && !(js && !(|tpend) && ja == qi): idle0 starts the lowest trigger
+                push[qi] = trig[qi] && !(idle0 && !lower);
+                lower = lower | adc_trig[qi];
                 if (push[qi]) begin
                     q_seq_n[2*qi +: 2] = np;
                     np = np + 2'd1;
@@ -301,10 +313,14 @@ module mx_seq #(
                 tpend <= (tpend | push) & ~jst_oh;
             end
             q_seq <= q_seq_n;
+            if (rst)
+                ax_ohr <= {{(NAXES-1){1'b0}}, 1'b1};            // ax <= 0
+            else if (js)
+                ax_ohr <= {{(NAXES-1){1'b0}}, 1'b1} << ja;      // ax <= jax
         end
         assign jstart = js;
         assign jax = ja;
-        assign ax_oh = {{(NAXES-1){1'b0}}, 1'b1} << ax;
+        assign ax_oh = ax_ohr;
     end endgenerate
     assign jst_oh = {NAXES{jstart}} & ({{(NAXES-1){1'b0}}, 1'b1} << jax);
 
