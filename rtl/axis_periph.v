@@ -75,6 +75,7 @@ module axis_periph #(
     output wire        running,          // CTRL.run with the outputs switching: the law runs
     output wire        bridges_live,     // CTRL.enable or outputs switching (guard of the safety settings)
     output wire        fault_any,
+    output wire        pwm_trip,         // fault_ctrl.trip into pwm_center (out_route clears the routed pins with it)
     // current ADC (shared adc_spi; this axis's window)
     output wire                                cmd_adc_cal,
     output wire                                cmd_clear_counters,
@@ -351,6 +352,7 @@ module axis_periph #(
         .clk(clk), .rst(rst), .cause_in(causes), .mask(fault_mask | NOMASK), .clear(cmd_fault_clear),
         .fault_latched(fault_latched), .trip(trip));
     assign fault_any = |fault_latched;
+    assign pwm_trip = trip;
 
     // ---------------- PWM ----------------
     wire            pwm_fault_latched, mode_eff, cmp_clip;

@@ -7,7 +7,16 @@
 // NAXES = 1: one axis (mpc_axis).  NAXES = 2..4: mx_axes, the shared control engine (mx_seq,
 // mpc_core, ref_gen, axis_status, adc_spi with NAXES) and the periphery per axis, carrier of axis n
 // delayed by n x EMPC_PWM_STAGGER_<NAXES> (docs/four_axes.md 3.1); the current ADCs of all axes share
-// SCLK/CS (one frame grid, per-axis windows), one MISO triple per axis.
+// SCLK/CS (one frame grid, per-axis windows).
+// Routing (issue 16 item 4, docs/blocks/out_route.md): NAXES = 1 has the fixed pinout (outputs 0..2,
+// IRC / HALL / MISO of axis 0; CAPS.route = 0, the routing registers locked and constant).  NAXES > 1
+// has the board's NOUT = 16 outputs, NENC = 8 IRC inputs, NHALL = 4 HALL sets and NADC = 16 MISO lines
+// and out_route (g_mx.u_route, CAPS.route = 1) between them and the axes: OUT_SEL picks each output's
+// (axis, phase) pair (0 = off; an axis the build lacks: off), registered after pwm_center and cleared by
+// the owner's trip at the edge pwm_center's registers go off, then out_kill; ADC_SEL / IN_SEL pick each
+// axis's MISO, IRC and HALL lines.  The routing registers accept writes only while no axis is live
+// (route_locked = |live: CTRL.enable set or outputs switching on any axis); the reset map is the fixed
+// pinout (output 3a + p = axis a, phase p; outputs 12..15 off).  The routed pins lag pwm_center by 1 clock.
 // Safety: after reset every axis is disabled (bridges off); the watchdog
 // (WDOG_TIMEOUT PWM periods, on by default) latches a fault on every axis when the
 // CPU stops writing WDOG_KICK; any latched, unmasked fault switches the bridges of
@@ -34,7 +43,14 @@ module lx_rocon_top #(
     parameter integer PLL_DIV = 6,
     parameter BOOT_FILE = "coef_boot.hex",
     parameter RSQRT_FILE = "rsqrt.hex",
-    parameter integer COMPLEMENTARY = 0    // bridge mode of the board (see above)
+    parameter integer COMPLEMENTARY = 0,   // bridge mode of the board (see above)
+    // board lines (NAXES = 1: the fixed pinout of one axis, must stay 3 / 1 / 1 / 3; NAXES > 1: the
+    // routable lines of LX_RoCoN through out_route, EMPC_ROUTE_* of empc_regs.vh; a simulation wrapper
+    // may build fewer)
+    parameter integer NOUT = (NAXES == 1) ? 3 : `EMPC_ROUTE_OUTPUTS,   // half-bridge outputs
+    parameter integer NENC = (NAXES == 1) ? 1 : `EMPC_ROUTE_ENC,       // IRC inputs
+    parameter integer NHALL = (NAXES == 1) ? 1 : `EMPC_ROUTE_HALL,     // HALL sets
+    parameter integer NADC = (NAXES == 1) ? 3 : `EMPC_ROUTE_ADC        // current ADC MISO lines
 ) (
     input  wire                 clk_in,    // board oscillator (PLL: clk_in * PLL_MULT / PLL_DIV = 100 MHz)
     input  wire                 rst_n_in,  // external reset, active low, asynchronous
@@ -46,20 +62,20 @@ module lx_rocon_top #(
     inout  wire [31:0]          emc_d,
     output reg                  cpu_irq,
     // encoders and HALL sensors
-    input  wire [NAXES-1:0]     irc_a,
-    input  wire [NAXES-1:0]     irc_b,
-    input  wire [NAXES-1:0]     irc_idx,
-    input  wire [NAXES-1:0]     irc_mark,
-    input  wire [3*NAXES-1:0]   hall,
+    input  wire [NENC-1:0]      irc_a,
+    input  wire [NENC-1:0]      irc_b,
+    input  wire [NENC-1:0]      irc_idx,
+    input  wire [NENC-1:0]      irc_mark,
+    input  wire [3*NHALL-1:0]   hall,
     input  wire                 pwr_fault_n,  // LX_PWR fault, active low: all bridges off without a clock
     // LX_PWR half-bridges: PWM (high-side command) + enable per half-bridge
     // (COMPLEMENTARY = 1 builds: high and low switch)
-    output wire [3*NAXES-1:0]   pwm_out,
-    output wire [3*NAXES-1:0]   pwm_en,
+    output wire [NOUT-1:0]      pwm_out,
+    output wire [NOUT-1:0]      pwm_en,
     // current ADCs (3 simultaneous-sampling channels per axis, shared SCLK/CS)
     output wire                 adc_sclk,
     output wire                 adc_cs_n,
-    input  wire [3*NAXES-1:0]   adc_miso,
+    input  wire [NADC-1:0]      adc_miso,
     output reg  [1:0]           led
 );
     wire clk, rst, locked;
@@ -69,9 +85,10 @@ module lx_rocon_top #(
     // ---------------- clock-independent kill path ----------------
     wire clk_dead, kill_pstage, kill_clock;
     wire [3*NAXES-1:0] hi_r, lo_r;              // the axes' output registers
+    wire [NOUT-1:0]    pin_hi, pin_lo;          // the output registers in front of out_kill (NAXES > 1: out_route's)
     clk_mon u_clkmon (.clk(clk), .rst(rst), .dead(clk_dead));
-    out_kill #(.W(6*NAXES)) u_kill (
-        .clk(clk), .rst(rst), .d({lo_r, hi_r}), .pwr_fault_n(pwr_fault_n), .rst_n_in(rst_n_in),
+    out_kill #(.W(2*NOUT)) u_kill (
+        .clk(clk), .rst(rst), .d({pin_lo, pin_hi}), .pwr_fault_n(pwr_fault_n), .rst_n_in(rst_n_in),
         .locked(locked), .clk_dead(clk_dead), .q({pwm_en, pwm_out}), .pstage(kill_pstage), .clock(kill_clock));
 
     // ---------------- CPU bus ----------------
@@ -97,6 +114,9 @@ module lx_rocon_top #(
     localparam integer COEF_PAGE = COEF_BASE / 1024;
     localparam integer NAPAGES = 1 << (EMC_AW - 8);
     localparam integer NCPAGES = 1 << (EMC_AW - 10);
+    generate if (NAXES == 1 && (NOUT != 3 || NENC != 1 || NHALL != 1 || NADC != 3)) begin : g_bad_pins
+        lx_rocon_top_one_axis_has_fixed_pins u_error ();    // no such module: elaboration stops here
+    end endgenerate
     generate if (AXIS_BASE % 256 != 0 || COEF_BASE % 1024 != 0 || AXIS_BASE + 256 * NAXES > COEF_BASE
                  || COEF_PAGE + NAXES > NCPAGES || EMC_AW < 10) begin : g_bad_map
         lx_rocon_top_unsupported_register_map u_error ();   // no such module: elaboration stops here
@@ -120,14 +140,17 @@ module lx_rocon_top #(
     wire [`EMPC_G_IRQ_ENABLE_W-1:0] irq_enable;
     wire [NAXES-1:0] period_tick, control_done, fault_any, live;
     wire        g_wr_refused;                               // counted by every axis (CNT_WR_REFUSED)
-    // routing registers (issue 16 item 4, rtl/out_route.v): this top has the fixed pinout (no out_route yet,
+    // routing registers (issue 16 item 4, rtl/out_route.v).  NAXES = 1: the fixed pinout (no out_route,
     // CAPS.route = 0), so they are locked for good: they read today's pinout, refuse every write (counted
-    // like any refused write) and synthesise to constants; ROUTE_STATUS reads 0
+    // like any refused write) and synthesise to constants; ROUTE_STATUS reads 0.  NAXES > 1: out_route
+    // (g_mx.u_route) uses them; writable only while no axis is live (route_locked = |live)
     wire [`EMPC_ROUTE_OUTPUTS*`EMPC_ROUTE_OUT_W-1:0] r_osel;
     wire [`EMPC_ROUTE_AXES*`EMPC_ROUTE_PHASES*`EMPC_ROUTE_ADC_W-1:0] r_asel;
     wire [`EMPC_ROUTE_AXES*`EMPC_ROUTE_ENC_W-1:0] r_esel;
     wire [`EMPC_ROUTE_AXES*`EMPC_ROUTE_HALL_W-1:0] r_hsel;
     wire [1:0]  r_osel_wr;
+    wire [`EMPC_ROUTE_AXES*`EMPC_ROUTE_PHASES-1:0] r_mapped;   // ROUTE_STATUS.mapped (axes of the build)
+    wire        r_bad_sel;
     wire [`EMPC_UNLOCK_ARM_W-1:0] wdog_armed;                              // WDOG_UNLOCK: ticks left (unused)
     reg  [`EMPC_G_TIME_W-1:0] time_cnt;                    // TIME: PWM periods of axis 0
     reg         fault_any_d;
@@ -158,7 +181,7 @@ module lx_rocon_top #(
     localparam [31:0] CAP_LAYOUT_W = `EMPC_IMG_LAYOUT;
     localparam [31:0] CAP_PPC_W = `EMPC_PWM_PER_CONTROL;
     localparam [0:0]  CAP_COMPL = (COMPLEMENTARY != 0);
-    localparam [0:0]  CAP_ROUTE = 1'b0;                    // out_route not instantiated (fixed pinout)
+    localparam [0:0]  CAP_ROUTE = (NAXES > 1);             // NAXES = 1: out_route not instantiated (fixed pinout)
     global_regs u_gregs (
         .clk(clk), .rst(rst), .reg_wr(reg_wr && in_global), .reg_rd(reg_rd && in_global),
         .reg_addr(reg_addr[7:0]), .reg_wdata(reg_wdata), .reg_rdata(g_rdata),
@@ -206,9 +229,11 @@ module lx_rocon_top #(
         .in_sel_hall1(r_hsel[1*`EMPC_ROUTE_HALL_W +: `EMPC_ROUTE_HALL_W]),
         .in_sel_hall2(r_hsel[2*`EMPC_ROUTE_HALL_W +: `EMPC_ROUTE_HALL_W]),
         .in_sel_hall3(r_hsel[3*`EMPC_ROUTE_HALL_W +: `EMPC_ROUTE_HALL_W]),
-        .route_status_mapped0({`EMPC_ROUTE_PHASES{1'b0}}), .route_status_mapped1({`EMPC_ROUTE_PHASES{1'b0}}),
-        .route_status_mapped2({`EMPC_ROUTE_PHASES{1'b0}}), .route_status_mapped3({`EMPC_ROUTE_PHASES{1'b0}}),
-        .route_status_bad_sel(1'b0),
+        .route_status_mapped0(r_mapped[0 +: `EMPC_ROUTE_PHASES]),
+        .route_status_mapped1(r_mapped[`EMPC_ROUTE_PHASES +: `EMPC_ROUTE_PHASES]),
+        .route_status_mapped2(r_mapped[2*`EMPC_ROUTE_PHASES +: `EMPC_ROUTE_PHASES]),
+        .route_status_mapped3(r_mapped[3*`EMPC_ROUTE_PHASES +: `EMPC_ROUTE_PHASES]),
+        .route_status_bad_sel(r_bad_sel),
         .bridges_live(|live), .wdog_unlock_tick(period_tick[0]), .wdog_unlock_armed(wdog_armed),
         .wr_refused(g_wr_refused));
 
@@ -236,6 +261,11 @@ module lx_rocon_top #(
                 .period_tick(period_tick[0]), .control_done(control_done[0]), .fault_any(fault_any[0]),
                 .bridges_live(live[0]));
             wire unused_one = &{1'b0, sync_out};
+            // fixed pinout: the axis's output registers go straight to out_kill; ROUTE_STATUS reads 0
+            assign pin_hi = hi_r;
+            assign pin_lo = lo_r;
+            assign r_mapped = {(`EMPC_ROUTE_AXES*`EMPC_ROUTE_PHASES){1'b0}};
+            assign r_bad_sel = 1'b0;
         end
     endgenerate
     generate if (NAXES > 1) begin : g_mx
@@ -263,10 +293,30 @@ module lx_rocon_top #(
             .reg_wr(reg_wr && |sel), .reg_rd(reg_rd && |sel), .reg_addr({ax, reg_addr[7:0]}), .reg_wdata(reg_wdata),
             .reg_rdata(a_rdata[31:0]), .coef_we(reg_wr && |csel), .coef_addr({cax, reg_addr[9:0]}),
             .watchdog_expired(wdog_expired), .g_wr_refused(g_wr_refused), .ext_fault({kill_clock, kill_pstage}),
-            .irc_a(irc_a), .irc_b(irc_b), .irc_idx(irc_idx), .irc_mark(irc_mark), .hall(hall),
-            .pwm_hi(hi_r), .pwm_lo(lo_r), .adc_sclk(adc_sclk), .adc_cs_n(adc_cs_n), .adc_miso(adc_miso),
-            .period_tick(period_tick), .control_done(control_done), .fault_any(fault_any), .bridges_live(live));
+            .irc_a(ax_irc_a), .irc_b(ax_irc_b), .irc_idx(ax_irc_idx), .irc_mark(ax_irc_mark), .hall(ax_hall),
+            .pwm_hi(hi_r), .pwm_lo(lo_r), .adc_sclk(adc_sclk), .adc_cs_n(adc_cs_n), .adc_miso(ax_miso),
+            .period_tick(period_tick), .control_done(control_done), .fault_any(fault_any), .pwm_trip(trip),
+            .bridges_live(live));
         assign a_rdata[32*NAXES-1:32] = {(32*(NAXES-1)){1'b0}};
+
+        // free output assignment (issue 16 item 4, docs/blocks/out_route.md): the axes' pwm_center pairs ->
+        // OUT_SEL -> registered pins (the owner's trip clears them at the edge pwm_center's own registers
+        // go off) -> out_kill (the last stage); the board's ADC / IRC / HALL lines -> ADC_SEL / IN_SEL -> axes
+        wire [NAXES-1:0]   trip, ax_irc_a, ax_irc_b, ax_irc_idx, ax_irc_mark;
+        wire [3*NAXES-1:0] ax_hall, ax_miso, mapped;
+        out_route #(.NAXES(NAXES), .NOUT(NOUT), .NENC(NENC), .NHALL(NHALL), .NADC(NADC)) u_route (
+            .clk(clk), .rst(rst), .osel(r_osel[NOUT*`EMPC_ROUTE_OUT_W-1:0]), .osel_wr(|r_osel_wr),
+            .asel(r_asel[3*NAXES*`EMPC_ROUTE_ADC_W-1:0]), .esel(r_esel[NAXES*`EMPC_ROUTE_ENC_W-1:0]),
+            .hsel(r_hsel[NAXES*`EMPC_ROUTE_HALL_W-1:0]), .hi(hi_r), .lo(lo_r), .trip(trip),
+            .pin_hi(pin_hi), .pin_lo(pin_lo), .miso(adc_miso), .ax_miso(ax_miso), .irc_a(irc_a), .irc_b(irc_b),
+            .irc_idx(irc_idx), .irc_mark(irc_mark), .ax_irc_a(ax_irc_a), .ax_irc_b(ax_irc_b),
+            .ax_irc_idx(ax_irc_idx), .ax_irc_mark(ax_irc_mark), .hall(hall), .ax_hall(ax_hall), .mapped(mapped),
+            .bad_sel(r_bad_sel));
+        if (NAXES < `EMPC_ROUTE_AXES) begin : g_mpad
+            assign r_mapped = {{((`EMPC_ROUTE_AXES - NAXES)*`EMPC_ROUTE_PHASES){1'b0}}, mapped};
+        end else begin : g_mfull
+            assign r_mapped = mapped;
+        end
     end endgenerate
 
     // every axis' read data is 0 unless that axis was read (gated copies, see mpc_axis): OR them

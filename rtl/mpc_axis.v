@@ -202,6 +202,7 @@ module mpc_axis #(
 
     // ---------------- the axis (one instance; mx_axes has one per axis) ----------------
     wire [`EMPC_A_RD_VALS_W-1:0] rd_vals;   // the values for mx_axes' shared read path: one axis reads its own
+    wire pwm_trip;                              // the trip into pwm_center (used by out_route only)
     axis_periph #(.HALL_DEBOUNCE(HALL_DEBOUNCE), .ENC_FILTER(ENC_FILTER), .COMPLEMENTARY(COMPLEMENTARY),
                   .PWM_HALF_PERIOD(PWM_HALF_PERIOD), .UDC_FRESH(UDC_FRESH)) u_per (
         .clk(clk), .rst(rst), .reg_wr(reg_wr), .reg_rd(reg_rd), .reg_addr(reg_addr), .reg_wdata(reg_wdata),
@@ -210,7 +211,7 @@ module mpc_axis #(
         .irc_a(irc_a), .irc_b(irc_b), .irc_idx(irc_idx), .irc_mark(irc_mark), .hall(hall),
         .pwm_hi(pwm_hi), .pwm_lo(pwm_lo), .period_start(period_start), .adc_trig(adc_trig),
         .bridges_on(bridges_on), .running(running), .bridges_live(bridges_live), .fault_any(fault_any),
-        .cmd_adc_cal(cmd_adc_cal), .cmd_clear_counters(cmd_clear_counters), .oc_thresh(oc_thresh),
+        .pwm_trip(pwm_trip), .cmd_adc_cal(cmd_adc_cal), .cmd_clear_counters(cmd_clear_counters), .oc_thresh(oc_thresh),
         .adc_sum_thresh(adc_sum_thresh), .adc_off_we(adc_off_we), .adc_off_wdata(adc_off_wdata),
         .adc_oc(adc_oc), .adc_frame_err(adc_frame_err), .adc_stuck(adc_stuck), .adc_sum_err(adc_sum_err),
         .adc_frozen(adc_frozen), .adc_sat(adc_sat), .adc_cal_busy(adc_cal_busy), .adc_cal_done(adc_cal_done),
@@ -232,7 +233,7 @@ module mpc_axis #(
     assign period_tick = period_start;
 
     // adc_trig_miss: counted by adc_spi itself (miss_cnt -> CNT_ADC_MISS)
-    wire unused = &{1'b0, adc_busy, adc_trig_miss, adc_fvalid, oc_ch, core_busy, core_du, core_u_raw, core_wn,
+    wire unused = &{1'b0, pwm_trip, adc_busy, adc_trig_miss, adc_fvalid, oc_ch, core_busy, core_du, core_u_raw, core_wn,
                     core_latency, core_boot_ok, theta_trig, ref_busy, st_id, status_busy, rd_vals};
 endmodule
 `default_nettype wire

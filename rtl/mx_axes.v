@@ -71,6 +71,7 @@ module mx_axes #(
     output wire [NAXES-1:0]     period_tick,
     output wire [NAXES-1:0]     control_done,
     output wire [NAXES-1:0]     fault_any,
+    output wire [NAXES-1:0]     pwm_trip,       // each axis's trip into its pwm_center (out_route's trip)
     output wire [NAXES-1:0]     bridges_live
 );
     localparam integer P = `EMPC_PWM_HALF_PERIOD;
@@ -256,7 +257,7 @@ module mx_axes #(
             .irc_a(irc_a[n]), .irc_b(irc_b[n]), .irc_idx(irc_idx[n]), .irc_mark(irc_mark[n]), .hall(hall[3*n +: 3]),
             .pwm_hi(pwm_hi[3*n +: 3]), .pwm_lo(pwm_lo[3*n +: 3]), .period_start(period_start[n]),
             .adc_trig(adc_trig[n]), .bridges_on(bridges_on[n]), .running(running[n]),
-            .bridges_live(bridges_live[n]), .fault_any(fault_any[n]),
+            .bridges_live(bridges_live[n]), .fault_any(fault_any[n]), .pwm_trip(pwm_trip[n]),
             .cmd_adc_cal(cmd_adc_cal[n]), .cmd_clear_counters(cmd_clear_counters[n]), .oc_thresh(oc_thr_v[AD*n +: AD]),
             .adc_sum_thresh(sum_thr_v[AD*n +: AD]), .adc_off_we(off_we_v[3*n +: 3]),
             .adc_off_wdata(off_wdata_v[AD*n +: AD]),

@@ -10,6 +10,7 @@
 `default_nettype none
 `timescale 1ns / 1ps
 `include "empc_formats.vh"
+`include "empc_regs.vh"
 module cosim4_top #(
     parameter integer NAXES = 4,
     parameter integer CPR = 4000,
@@ -28,8 +29,8 @@ module cosim4_top #(
     output wire [31:0]          emc_d_seen,
     output wire                 cpu_irq,
     input  wire                 pwr_fault_n,    // power-stage fault pin (active low)
-    output wire [3*NAXES-1:0]   pwm_out,
-    output wire [3*NAXES-1:0]   pwm_en,
+    output wire [`EMPC_ROUTE_OUTPUTS-1:0] pwm_out,   // the board's 16 outputs (out_route; reset map: 3a + p)
+    output wire [`EMPC_ROUTE_OUTPUTS-1:0] pwm_en,
     output wire [1:0]           led
 );
     initial clk = 1'b0;
@@ -43,6 +44,19 @@ module cosim4_top #(
     wire              adc_sclk, adc_cs_n;
     wire [NAXES-1:0]  enc_a, enc_b, enc_idx;
     wire [3*NAXES-1:0] hall, adc_miso;
+    // the board's lines beyond the axes' (reset map: axis a on IRC a, HALL set a, ADC channels 3a + p):
+    // IRC 0, HALL 000, MISO 1 (what out_route reads for a line the build lacks)
+    localparam integer NENC = `EMPC_ROUTE_ENC, NHALL = `EMPC_ROUTE_HALL, NADC = `EMPC_ROUTE_ADC;
+    wire [NENC-1:0]    b_enc_a = {{(NENC-NAXES){1'b0}}, enc_a};
+    wire [NENC-1:0]    b_enc_b = {{(NENC-NAXES){1'b0}}, enc_b};
+    wire [NENC-1:0]    b_enc_idx = {{(NENC-NAXES){1'b0}}, enc_idx};
+    wire [3*NHALL-1:0] b_hall;
+    wire [NADC-1:0]    b_miso = {{(NADC-3*NAXES){1'b1}}, adc_miso};     // NADC = 16 > 3 NAXES
+    generate if (NHALL > NAXES) begin : g_hpad
+        assign b_hall = {{(3*NHALL-3*NAXES){1'b0}}, hall};
+    end else begin : g_hfull
+        assign b_hall = hall;
+    end endgenerate
     genvar n;
     generate for (n = 0; n < NAXES; n = n + 1) begin : g_ax
         // core input words: mx_seq's address is {axis, word}
@@ -67,8 +81,8 @@ module cosim4_top #(
 
     lx_rocon_top #(.NAXES(NAXES)) u_top (
         .clk_in(clk), .rst_n_in(rst_n), .emc_cs_n(cpu_cs_n), .emc_oe_n(cpu_oe_n), .emc_we_n(cpu_we_n),
-        .emc_a(cpu_a), .emc_d(emc_d), .cpu_irq(cpu_irq), .irc_a(enc_a), .irc_b(enc_b), .irc_idx(enc_idx),
-        .irc_mark({NAXES{1'b0}}), .hall(hall), .pwr_fault_n(pwr_fault_n), .pwm_out(pwm_out), .pwm_en(pwm_en),
-        .adc_sclk(adc_sclk), .adc_cs_n(adc_cs_n), .adc_miso(adc_miso), .led(led));
+        .emc_a(cpu_a), .emc_d(emc_d), .cpu_irq(cpu_irq), .irc_a(b_enc_a), .irc_b(b_enc_b), .irc_idx(b_enc_idx),
+        .irc_mark({NENC{1'b0}}), .hall(b_hall), .pwr_fault_n(pwr_fault_n), .pwm_out(pwm_out), .pwm_en(pwm_en),
+        .adc_sclk(adc_sclk), .adc_cs_n(adc_cs_n), .adc_miso(b_miso), .led(led));
 endmodule
 `default_nettype wire

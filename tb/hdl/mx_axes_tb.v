@@ -121,13 +121,16 @@ module mx_axes_tb #(
     wire [3*NAXES-1:0] m_hi, m_lo;
     wire               m_sclk, m_cs;
     wire [NAXES-1:0]   m_ctl, m_live;
+    /* verilator lint_off UNUSEDSIGNAL */
+    wire [NAXES-1:0]   m_trip;          // the trips into the pwm_centers (out_route's, at the top): not compared
+    /* verilator lint_on UNUSEDSIGNAL */
     mx_axes #(.NAXES(NAXES)) u_mx (
         .clk(clk), .rst(rst), .reg_wr(m_wr), .reg_rd(m_rd), .reg_addr(m_addr[AXB+7:0]), .reg_wdata(m_wdata),
         .reg_rdata(m_rdata), .coef_we(m_cwe), .coef_addr(m_caddr[AXB+9:0]), .watchdog_expired(1'b0),
         .g_wr_refused(1'b0), .ext_fault(2'b00), .irc_a(a_l[NL-1:NAXES]), .irc_b(b_l[NL-1:NAXES]),
         .irc_idx({NAXES{1'b0}}), .irc_mark({NAXES{1'b0}}), .hall(hall_code), .pwm_hi(m_hi), .pwm_lo(m_lo), .adc_sclk(m_sclk),
         .adc_cs_n(m_cs), .adc_miso(miso_l[3*NL-1:3*NAXES]), .period_tick(ps_l[NL-1:NAXES]), .control_done(m_ctl),
-        .fault_any(fault_any), .bridges_live(m_live));
+        .fault_any(fault_any), .pwm_trip(m_trip), .bridges_live(m_live));
     generate for (l = NAXES; l < NL; l = l + 1) begin : g_spi
         assign sclk_l[l] = m_sclk;
         assign cs_l[l] = m_cs;

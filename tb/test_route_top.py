@@ -1,0 +1,193 @@
+"""Free output assignment at the top level (issue 16 item 4): lx_rocon_top with NAXES = 2 and out_route
+between the axes' pwm_center pairs and out_kill, through tb/hdl/cosim4_top.v (the board's 16 outputs; the
+co-simulation's pin emulators hold the sensors at rest, the test drives the CPU bus only).
+
+One run (`route`):
+ 1. after reset: CAPS.route = 1, OUT_SEL0/1 read the reset map (output 3a + p = axis a, phase p),
+    ROUTE_STATUS.mapped = 0b111 for axes 0 and 1 (0 for the axes the build lacks), bad_sel 0; axis 0
+    enabled (CTRL.enable = 1, run = 0: bridges on at zero voltage, LX_PWR mode: enable high, PWM low)
+    drives outputs 0..2 only (enable high for the whole period, every other pin low);
+ 2. with every axis off: axis 1 moved to outputs 12..14, its old outputs 3..5 set to 0 (off); the writes
+    are accepted (read back, CNT_WR_REFUSED unchanged), ROUTE_STATUS still 0b111 / 0b111; axis 1 enabled:
+    outputs 12..14 enabled for the whole period, every other pin (PWM and enable) low
+    (outputs 6..11 name axes 2, 3 the build lacks: held off);
+ 3. an OUT_SEL0 write while axis 1 is live is refused: the register unchanged, CNT_WR_REFUSED + 1.
+Mutant (`full`): route_locked tied to 0 in lx_rocon_top (writes accepted while an axis is live): step 3 fails.
+"""
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+ROOT = Path(__file__).resolve().parents[1]
+NAXES = 2
+RESET_SEL0, RESET_SEL1 = 0x87654321, 0x0000CBA9
+NEW_SEL0 = 0x87000321           # outputs 0..2 axis 0, 3..5 off, 6..7 axis 2 (not in the build)
+NEW_SEL1 = 0x0654CBA9           # outputs 8..11 axes 2, 3 (not in the build), 12..14 axis 1, 15 off
+
+try:
+    import cocotb
+    from cocotb.triggers import ClockCycles, RisingEdge
+except ImportError:                     # collection without cocotb: only the pytest wrappers below
+    cocotb = None
+
+
+if cocotb is not None:
+    async def _pins(dut, nclk: int) -> tuple[int, int, int]:
+        """Over nclk clocks: OR of pwm_out, OR of pwm_en, AND of pwm_en."""
+        o_or = e_or = 0
+        e_and = (1 << 16) - 1
+        for _ in range(nclk):
+            await RisingEdge(dut.clk)
+            o, e = int(dut.pwm_out.value), int(dut.pwm_en.value)
+            o_or, e_or, e_and = o_or | o, e_or | e, e_and & e
+        return o_or, e_or, e_and
+
+    async def _on(dut, drv, P: int, on: bool) -> None:
+        """CTRL.enable (run 0: zero voltage) and wait for STATUS.bridges_on to follow."""
+        from empc import regmap
+        await drv.kick()
+        await drv.control(on, False)
+        bit = {f.name: f.lsb for f in regmap.axis_reg("STATUS").fields}["bridges_on"]
+        for _ in range(6):
+            await ClockCycles(dut.clk, P)
+            st = await drv.read("STATUS")
+            if bool((st >> bit) & 1) == on:
+                await ClockCycles(dut.clk, 4)
+                return
+        f = await drv.read("FAULT")
+        raise AssertionError(f"axis {drv.axis}: bridges_on did not become {on} (STATUS {st:#x}, FAULT {f:#x})")
+
+    @cocotb.test()
+    async def route(dut):
+        from empc import driver, regmap
+        from emc_bfm import EmcBfm
+        import test_closed_loop as tcl
+
+        bfm = EmcBfm(dut, pins=dict(cs_n="cpu_cs_n", oe_n="cpu_oe_n", we_n="cpu_we_n", a="cpu_a", d="cpu_d",
+                                    d_oe="cpu_d_oe", bus="emc_d_seen"))
+        from test_closed_loop_4axes import LockedBus
+        bus = LockedBus(bfm)
+        d0, d1 = driver.Drive(bus, axis=0), driver.Drive(bus, axis=1)
+        dut.pwr_fault_n.value = 1
+        dut.rst_n.value = 0
+        for n in range(NAXES):
+            p = dut.g_ax[n].u_ax
+            p.enc_target.value = 0
+            p.idx_enable.value = 0
+            p.hall.value = tcl.hall_code(0.0)
+            for i in range(3):
+                getattr(p, f"adc_code{i}").value = 2048
+                getattr(p, f"adc_amp{i}").value = 0
+            p.adc_seed.value = 12345
+            p.adc_noise.value = 0
+            for sg in ("adc_inj_en", "adc_inj_tau", "adc_inj_ch", "adc_inj_code", "adc_hold", "adc_lead"):
+                getattr(p, sg).value = 0
+        bfm.idle()
+        await ClockCycles(dut.clk, 20)
+        dut.rst_n.value = 1
+        await ClockCycles(dut.clk, 3000)
+
+        # 1. reset map
+        caps = await d0.read("CAPS")
+        cf = {f.name: f.lsb for f in next(r for r in regmap.GLOBAL if r.name == "CAPS").fields}
+        assert caps & 0xF == NAXES and (caps >> cf["route"]) & 1, f"CAPS {caps:#x}: not a routed {NAXES}-axis build"
+        s0, s1 = await d0.read("OUT_SEL0"), await d0.read("OUT_SEL1")
+        assert (s0, s1) == (RESET_SEL0, RESET_SEL1), f"OUT_SEL after reset {s0:#x} {s1:#x}"
+        rs = await d0.read("ROUTE_STATUS")
+        assert rs == 0x077, f"ROUTE_STATUS after reset {rs:#x} (want mapped0 = mapped1 = 0b111, bad_sel 0)"
+        P = 2 * await d0.read("PWM_HALF")
+
+        async def keeper():             # the CPU's periodic duties: DC-link voltage of both axes, watchdog
+            while True:
+                for d in (d0, d1):
+                    await d.udc(tcl.UDC_MV)
+                await d0.kick()
+                await ClockCycles(dut.clk, P)
+        cocotb.start_soon(keeper())
+        await ClockCycles(dut.clk, 3 * P)
+        for d in (d0, d1):              # FAULT.dclink latched before the first UDC write
+            await d.command(fault_clear=1)
+            f = await d.read("FAULT")
+            assert f == 0, f"axis {d.axis}: FAULT {f:#x} after the clear"
+        o, e, _ = await _pins(dut, 100)
+        assert o == 0 and e == 0, f"pins on with every axis off: out {o:#06x} en {e:#06x}"
+        await _on(dut, d0, P, True)
+        o, e, ea = await _pins(dut, P)
+        assert o & ~0b111 == 0 and e == 0b111 and ea == 0b111, \
+            f"axis 0 on, reset map: out {o:#06x} en {e:#06x} (always {ea:#06x}), want outputs 0..2 only"
+        await _on(dut, d0, P, False)
+        o, e, _ = await _pins(dut, 100)
+        assert o == 0 and e == 0, f"pins on after axis 0 off: out {o:#06x} en {e:#06x}"
+
+        # 2. remap with every axis off: axis 1 -> outputs 12..14, outputs 3..5 off
+        c0 = await d1.read("CNT_WR_REFUSED")
+        await d0.write("OUT_SEL0", NEW_SEL0)
+        await d0.write("OUT_SEL1", NEW_SEL1)
+        s0, s1 = await d0.read("OUT_SEL0"), await d0.read("OUT_SEL1")
+        assert (s0, s1) == (NEW_SEL0, NEW_SEL1), f"OUT_SEL write with every axis off not taken: {s0:#x} {s1:#x}"
+        c1 = await d1.read("CNT_WR_REFUSED")
+        assert c1 == c0, f"CNT_WR_REFUSED {c0} -> {c1} on accepted writes"
+        await ClockCycles(dut.clk, 40)
+        rs = await d0.read("ROUTE_STATUS")
+        assert rs == 0x077, f"ROUTE_STATUS after the remap {rs:#x}"
+        await _on(dut, d1, P, True)
+        o, e, ea = await _pins(dut, P)
+        want = 0b111 << 12
+        assert o & ~want == 0 and e == want and ea == want, \
+            f"axis 1 on, remapped: out {o:#06x} en {e:#06x} (always {ea:#06x}), want outputs 12..14 only"
+        dut._log.info("remap: axis 1 on outputs 12..14 (out %#06x en %#06x), outputs 0..11, 15 off", o, e)
+
+        # 3. a routing write while axis 1 is live is refused
+        await d0.write("OUT_SEL0", RESET_SEL0)
+        s0 = await d0.read("OUT_SEL0")
+        c2 = await d1.read("CNT_WR_REFUSED")
+        assert s0 == NEW_SEL0 and c2 == c1 + 1, \
+            f"OUT_SEL0 write while axis 1 live: register {s0:#x} (want {NEW_SEL0:#x}), CNT_WR_REFUSED {c1} -> {c2}"
+        o, e, ea = await _pins(dut, P)
+        assert o & ~want == 0 and e == want and ea == want, f"pins after the refused write: out {o:#06x} en {e:#06x}"
+        await _on(dut, d1, P, False)
+        o, e, _ = await _pins(dut, 100)
+        assert o == 0 and e == 0, f"pins on after axis 1 off: out {o:#06x} en {e:#06x}"
+        dut._log.info("route: reset map, remap, refused write while live: ok")
+
+
+def _run(name: str = "route_top", run_name: str = "route"):
+    from runner import run
+    import test_closed_loop as tcl
+    run(toplevel="cosim4_top", test_module="test_route_top", sim="verilator", name=name,
+        public=ROOT / "tb" / "hdl" / "cosim4_top.vlt", timing=True,
+        parameters={"NAXES": NAXES, "CLK_HALF_PS": tcl.CLK_PERIOD_NS * 500}, defines={"EMPC_SIM_GATE": 1},
+        run_name=run_name, testcase="route")
+
+
+@pytest.mark.full
+@pytest.mark.cost(120)           # Verilator build of the two-axis top (about 100 s) + a few PWM periods
+def test_route_top():
+    """Reset map, a remap with every axis off (the axis on the new pins only), a refused write while live."""
+    _run()
+
+
+# mutant: (file in rtl/, its text, the mutant's text, what results.xml must say)
+MUTANTS = {
+    "route_unlocked": ("lx_rocon_top.v", ".route_locked((|live) || !CAP_ROUTE)", ".route_locked(1'b0)",
+                       "OUT_SEL0 write while axis 1 live"),
+}
+
+
+@pytest.mark.full
+@pytest.mark.cost(120)
+@pytest.mark.parametrize("mutant", list(MUTANTS))
+def test_route_top_mutant(mutant, tmp_path):
+    """The run must fail with route_locked tied to 0 (a routing write accepted while an axis is live)."""
+    import runner
+    fname, good, bad, why = MUTANTS[mutant]
+    name = f"route_top_mutant_{mutant}"
+    with runner.rtl_mutant(fname, good, bad, tmp_path):
+        with pytest.raises((AssertionError, SystemExit)):  # cocotb's runner exits on a failed test
+            _run(name=name)
+    res = runner.results_text(name, "cosim4_top", "route")
+    assert why in res, res[-2000:]
