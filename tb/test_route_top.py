@@ -11,7 +11,9 @@ One run (`route`):
     are accepted (read back, CNT_WR_REFUSED unchanged), ROUTE_STATUS still 0b111 / 0b111; axis 1 enabled:
     outputs 12..14 enabled for the whole period, every other pin (PWM and enable) low
     (outputs 6..11 name axes 2, 3 the build lacks: held off);
- 3. an OUT_SEL0 write while axis 1 is live is refused: the register unchanged, CNT_WR_REFUSED + 1.
+ 3. an OUT_SEL0 write while axis 1 is live is refused: the register unchanged, CNT_WR_REFUSED + 1;
+ 4. with every axis off, IN_SEL gives axis 1 HALL set 3 (tied to 000 in the harness): FAULT.hall on axis 1
+    only; restored and cleared: FAULT 0.
 Mutant (`full`): route_locked tied to 0 in lx_rocon_top (writes accepted while an axis is live): step 3 fails.
 """
 from __future__ import annotations
@@ -27,6 +29,8 @@ NAXES = 2
 RESET_SEL0, RESET_SEL1 = 0x87654321, 0x0000CBA9
 NEW_SEL0 = 0x87000321           # outputs 0..2 axis 0, 3..5 off, 6..7 axis 2 (not in the build)
 NEW_SEL1 = 0x0654CBA9           # outputs 8..11 axes 2, 3 (not in the build), 12..14 axis 1, 15 off
+RESET_IN = 0x32103210           # IN_SEL: IRC input a, HALL set a
+HALL1_SET3 = 0x32303210         # axis 1 on HALL set 3
 
 try:
     import cocotb
@@ -152,7 +156,21 @@ if cocotb is not None:
         await _on(dut, d1, P, False)
         o, e, _ = await _pins(dut, 100)
         assert o == 0 and e == 0, f"pins on after axis 1 off: out {o:#06x} en {e:#06x}"
-        dut._log.info("route: reset map, remap, refused write while live: ok")
+
+        # 4. an input select: axis 1's HALL from set 3 (a board line beyond the axes': 000, illegal)
+        iv = await d0.read("IN_SEL")
+        assert iv == RESET_IN, f"IN_SEL {iv:#x}"
+        await d0.write("IN_SEL", HALL1_SET3)
+        await ClockCycles(dut.clk, 2 * P)
+        hb = 1 << {f.name: f.lsb for f in regmap.axis_reg("FAULT").fields}["hall"]
+        f0, f1 = await d0.read("FAULT"), await d1.read("FAULT")
+        assert f1 & hb and not f0 & hb, f"axis 1 on HALL set 3: FAULT axis 0 {f0:#x}, axis 1 {f1:#x} (want hall on 1 only)"
+        await d0.write("IN_SEL", RESET_IN)
+        await ClockCycles(dut.clk, 2 * P)
+        await d1.command(fault_clear=1)
+        f1 = await d1.read("FAULT")
+        assert f1 == 0, f"axis 1 FAULT {f1:#x} after the HALL select restored and a clear"
+        dut._log.info("route: reset map, remap, refused write while live, HALL select: ok")
 
 
 def _run(name: str = "route_top", run_name: str = "route"):
