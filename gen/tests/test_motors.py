@@ -350,11 +350,11 @@ KNOWN_50US = {
 }
 # ipmsm_001 alg2 speed at corner_a (peak 1.033 / 1.096 i_max) passes since the speed integral's anti-windup
 # (issue 15, docs/design.md): 0.994 / 0.842, overshoot 15.2 / 8.3 %.
+# ec45flat_24v alg1 position at corner_a (peak 1.037 / 1.077 i_max, u_q RMS 0.34 / 0.35 u_max in the tail) passes
+# since its own Ts_50us table (issue 15, docs/design.md): peaks 0.46 / 0.30 / 0.70 i_max nominal / corner_a / corner_b,
+# u_q tail RMS <= 0.11 u_max, overshoot <= 2.1 %, settled in 29-33 ms.
 # at the box corners (full sweep): the same designs fail there (blwr alg1 speed: overshoot 28 / 55 %), and
 KNOWN_50US_CORNERS = {
-    ("ec45flat_24v", "alg1.position", "corner_a"): "peak 1.037 / 1.077 i_max, u_q RMS 0.34 / 0.35 u_max in the "
-                                                   "tail at the least-damped corner (overshoot 0.5 / 0.6 %, settled "
-                                                   "in 30 ms); not investigated",
     ("ec45flat_24v", "alg1.speed", "corner_a"): "sensor resolution (the step is one count): u_q RMS 0.49 / 0.50 "
                                                 "u_max in the tail, final error 26 %",
 }
