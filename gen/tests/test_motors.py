@@ -338,10 +338,11 @@ KNOWN_50US = {
     ("blwr233d", "alg2.position"): f"{_RES_BLWR}: u_q RMS 0.37 / 0.37 u_max in the step's tail (overshoot 0 %, "
                                    "settled in 45 ms)",
     ("ec45flat_24v", "alg2.position"): "sensor resolution (123 rad/s per count): its Ts_50us table's linear "
-                                       "quantisation noise is 0.69 u_max, u_q bangs on the circle (limiter in 26-31 % "
-                                       "of the periods), the rotor creeps at 43 rad/s: final error 78 / 78 % of the "
-                                       "8 rad step after 50 ms, u_q RMS 0.73 u_max in the tail; `empc tune --refine "
-                                       "--u-chatter 0.25` finds no table that passes the box (best radius 1.00000)",
+                                       "quantisation noise is 0.60 u_max at the worst box point, the rotor creeps: "
+                                       "final error 65-67 % of the 8 rad step after 50 ms, u_q RMS 0.51-0.55 u_max in "
+                                       "the tail (the table before the issue-15 retune, peak 1.09 i_max at corner_b: "
+                                       "0.69 u_max, 78-80 %, 0.70-0.73); `empc tune --refine --u-chatter 0.25` finds "
+                                       "no table that passes the box (best radius 1.00000)",
     ("ec45flat_24v", "alg2.speed"): "sensor resolution: 123 rad/s per count at 50 us, the scaled 120 rad/s step is "
                                     "one count: overshoot 30.7 / 30.7 %",
     ("premo_320v", "alg2.speed"): "overshoot 41 / 41 %, u_q RMS 0.54 / 0.53 u_max in the step's tail: its Ts_50us "
