@@ -338,10 +338,11 @@ KNOWN_50US = {
     ("blwr233d", "alg2.position"): f"{_RES_BLWR}: u_q RMS 0.37 / 0.37 u_max in the step's tail (overshoot 0 %, "
                                    "settled in 45 ms)",
     ("ec45flat_24v", "alg2.position"): "sensor resolution (123 rad/s per count): its Ts_50us table's linear "
-                                       "quantisation noise is 0.69 u_max, u_q bangs on the circle (limiter in 26-31 % "
-                                       "of the periods), the rotor creeps at 43 rad/s: final error 78 / 78 % of the "
-                                       "8 rad step after 50 ms, u_q RMS 0.73 u_max in the tail; `empc tune --refine "
-                                       "--u-chatter 0.25` finds no table that passes the box (best radius 1.00000)",
+                                       "quantisation noise is 0.60 u_max at the worst box point, the rotor creeps: "
+                                       "final error 65-67 % of the 8 rad step after 50 ms, u_q RMS 0.51-0.55 u_max in "
+                                       "the tail (the table before the issue-15 retune, peak 1.09 i_max at corner_b: "
+                                       "0.69 u_max, 78-80 %, 0.70-0.73); `empc tune --refine --u-chatter 0.25` finds "
+                                       "no table that passes the box (best radius 1.00000)",
     ("ec45flat_24v", "alg2.speed"): "sensor resolution: 123 rad/s per count at 50 us, the scaled 120 rad/s step is "
                                     "one count: overshoot 30.7 / 30.7 %",
     ("premo_320v", "alg2.speed"): "overshoot 41 / 41 %, u_q RMS 0.54 / 0.53 u_max in the step's tail: its Ts_50us "
@@ -350,11 +351,11 @@ KNOWN_50US = {
 }
 # ipmsm_001 alg2 speed at corner_a (peak 1.033 / 1.096 i_max) passes since the speed integral's anti-windup
 # (issue 15, docs/design.md): 0.994 / 0.842, overshoot 15.2 / 8.3 %.
+# ec45flat_24v alg1 position at corner_a (peak 1.037 / 1.077 i_max, u_q RMS 0.34 / 0.35 u_max in the tail) passes
+# since its own Ts_50us table (issue 15, docs/design.md): peaks 0.46 / 0.30 / 0.70 i_max nominal / corner_a / corner_b,
+# u_q tail RMS <= 0.11 u_max, overshoot <= 2.1 %, settled in 29-33 ms.
 # at the box corners (full sweep): the same designs fail there (blwr alg1 speed: overshoot 28 / 55 %), and
 KNOWN_50US_CORNERS = {
-    ("ec45flat_24v", "alg1.position", "corner_a"): "peak 1.037 / 1.077 i_max, u_q RMS 0.34 / 0.35 u_max in the "
-                                                   "tail at the least-damped corner (overshoot 0.5 / 0.6 %, settled "
-                                                   "in 30 ms); not investigated",
     ("ec45flat_24v", "alg1.speed", "corner_a"): "sensor resolution (the step is one count): u_q RMS 0.49 / 0.50 "
                                                 "u_max in the tail, final error 26 %",
 }
