@@ -68,6 +68,12 @@ def ports_from_json(netlist: Path, top: str = TOP) -> dict[str, dict]:
 
 def _eval_int(expr: str, params: dict[str, int]) -> int:
     expr = expr.strip()
+    # `(A == k) ? x : y` (lx_rocon_top's board-line counts by NAXES): only the chosen branch is evaluated,
+    # so a header macro in the other one does not matter
+    m = re.fullmatch(r"\((\w+)\s*==\s*(\w+)\)\s*\?\s*([^:?]+?)\s*:\s*([^:?]+)", expr)
+    if m:
+        a, b = (_eval_int(x, params) for x in m.group(1, 2))
+        return _eval_int(m.group(3) if a == b else m.group(4), params)
     if not re.fullmatch(r"[\w\s+\-*/()]+", expr):
         raise ValueError(f"cannot evaluate port range expression {expr!r}")
     expr = expr.replace("/", "//")
@@ -83,13 +89,14 @@ def ports_from_verilog(path: Path, overrides: dict[str, int] | None = None) -> d
     text = path.read_text()
     text = re.sub(r"//[^\n]*", "", text)
     text = re.sub(r"/\*.*?\*/", "", text, flags=re.S)
-    params: dict[str, int] = {}
-    for m in re.finditer(r"\bparameter\s+(?:integer\s+)?(\w+)\s*=\s*([^,;)]+)", text):
+    params: dict[str, int] = dict(overrides or {})      # overrides first: derived defaults follow them
+    for m in re.finditer(r"\bparameter\s+(?:integer\s+)?(\w+)\s*=\s*((?:\([^()]*\)|[^,;()])+)", text):
+        if m.group(1) in params:
+            continue
         try:
             params[m.group(1)] = _eval_int(m.group(2), params)
-        except ValueError:
+        except (ValueError, NameError):      # e.g. a header macro: a port using it needs an override
             pass
-    params.update(overrides or {})
     out = {}
     for m in re.finditer(r"\b(input|output|inout)\s+(?:wire\s+|reg\s+)?(?:signed\s+)?(\[[^\]]+\])?\s*(\w+)", text):
         direction, rng, name = m.group(1), m.group(2), m.group(3)

@@ -47,10 +47,13 @@ def test_port_parse_verilog_vs_json(tmp_path):
     bits = _all_bits(ports)
     assert "clk_in" in bits and "emc_d[31]" in bits and "emc_d[0]" in bits
     assert len(bits) == len(set(bits))
-    # NAXES=2 widens the per-axis buses; 1-bit ports stay scalar (Yosys EDIF naming)
-    p2 = bitstream.ports_from_verilog(TOP_V, {"NAXES": 2})
+    # NAXES > 1 has the board's lines (out_route: NOUT, NENC, NHALL, NADC default to header macros, given
+    # here); 1-bit ports stay scalar (Yosys EDIF naming)
+    p2 = bitstream.ports_from_verilog(TOP_V, {"NAXES": 2, "NOUT": 16, "NENC": 2, "NHALL": 4, "NADC": 16})
     assert p2["irc_a"]["bits"] == ["irc_a[0]", "irc_a[1]"]
-    assert len(p2["pwm_out"]["bits"]) == 6
+    assert len(p2["pwm_out"]["bits"]) == 16 and len(p2["hall"]["bits"]) == 12
+    with pytest.raises(NameError):                 # a width from an unknown macro is an error, not a guess
+        bitstream.ports_from_verilog(TOP_V, {"NAXES": 2})
     # a JSON netlist with the same ports gives the same names (bits lists LSB first)
     mods = {"lx_rocon_top": {"attributes": {"top": "00000000000000000000000000000001"}, "ports": {
         n: {"direction": p["direction"], "bits": list(range(len(p["bits"])))} for n, p in ports.items()}}}
