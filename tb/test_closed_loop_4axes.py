@@ -119,6 +119,22 @@ except ImportError:                     # collection without cocotb: only the py
     cocotb = None
 
 
+def pins_at_rest(p, adc_code: int, adc_noise: int = 0) -> None:
+    """One axis's pin emulators (tb/hdl/cosim_axis.v) at rest: encoder at 0 without index pulses, HALL of
+    angle 0, the three ADC lines at ``adc_code`` without ripple, no injected ADC fault."""
+    import test_closed_loop as tcl
+    p.enc_target.value = 0
+    p.idx_enable.value = 0
+    p.hall.value = tcl.hall_code(0.0)
+    for i in range(3):
+        getattr(p, f"adc_code{i}").value = adc_code
+        getattr(p, f"adc_amp{i}").value = 0
+    p.adc_seed.value = 12345
+    p.adc_noise.value = adc_noise
+    for sg in ("adc_inj_en", "adc_inj_tau", "adc_inj_ch", "adc_inj_code", "adc_hold", "adc_lead"):
+        getattr(p, sg).value = 0
+
+
 class LockedBus:
     """The one EMC bus-functional model shared by the four axes' drivers: one access at a time."""
 
@@ -192,17 +208,7 @@ if cocotb is not None:
         dut.rst_n.value = 0
         off = axes[0][0].cfg.sensors.adc_offset
         for cs, _ in axes:
-            p = cs.dut
-            p.enc_target.value = 0
-            p.idx_enable.value = 0
-            p.hall.value = tcl.hall_code(0.0)
-            for i in range(3):
-                getattr(p, f"adc_code{i}").value = off
-                getattr(p, f"adc_amp{i}").value = 0
-            p.adc_seed.value = 12345
-            p.adc_noise.value = cs.adc_noise
-            for sg in ("adc_inj_en", "adc_inj_tau", "adc_inj_ch", "adc_inj_code", "adc_hold", "adc_lead"):
-                getattr(p, sg).value = 0
+            pins_at_rest(cs.dut, off, cs.adc_noise)
         bfm.idle()
         await ClockCycles(dut.clk, 20)
         dut.rst_n.value = 1

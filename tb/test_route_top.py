@@ -73,23 +73,14 @@ if cocotb is not None:
 
         bfm = EmcBfm(dut, pins=dict(cs_n="cpu_cs_n", oe_n="cpu_oe_n", we_n="cpu_we_n", a="cpu_a", d="cpu_d",
                                     d_oe="cpu_d_oe", bus="emc_d_seen"))
-        from test_closed_loop_4axes import LockedBus
+        from test_closed_loop_4axes import LockedBus, pins_at_rest
         bus = LockedBus(bfm)
         d0, d1 = driver.Drive(bus, axis=0), driver.Drive(bus, axis=1)
         dut.pwr_fault_n.value = 1
         dut.rst_n.value = 0
-        for n in range(NAXES):
-            p = dut.g_ax[n].u_ax
-            p.enc_target.value = 0
-            p.idx_enable.value = 0
-            p.hall.value = tcl.hall_code(0.0)
-            for i in range(3):
-                getattr(p, f"adc_code{i}").value = 2048
-                getattr(p, f"adc_amp{i}").value = 0
-            p.adc_seed.value = 12345
-            p.adc_noise.value = 0
-            for sg in ("adc_inj_en", "adc_inj_tau", "adc_inj_ch", "adc_inj_code", "adc_hold", "adc_lead"):
-                getattr(p, sg).value = 0
+        from empc import config
+        for n in range(NAXES):          # the ADC lines at the configured zero-current code
+            pins_at_rest(dut.g_ax[n].u_ax, config.default().sensors.adc_offset)
         bfm.idle()
         await ClockCycles(dut.clk, 20)
         dut.rst_n.value = 1
