@@ -27,6 +27,8 @@ import tomllib
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
+from .governor import TAU_POSITION   # governor.py imports nothing of the package
+
 DEFAULT_CONFIG = Path(__file__).with_name("configs") / "blwr233d.toml"
 
 
@@ -148,7 +150,11 @@ SCHEMA: list[Key] = [
         doc="hold the reference after a period with |i_q| >= this x i_max (IQ_HOLD, 12 bit ADC LSB)"),
     Key("governor", "shift_speed", "int", 3, lo=0, hi=31, doc="catch-up gain 2^-shift per period, speed task (ksh, 5 bit)"),
     Key("governor", "shift_position", "int", None, lo=0, hi=31,
-        doc="the same, position task (default from control.Ts: Ts x 2^shift >= 4 ms, 4 at 250 us, 7 at 50 us)"),
+        doc="the same, position task (default from control.Ts: Ts x 2^shift >= tau_position, 4 at 250 us, 7 at 50 us)"),
+    Key("governor", "tau_position", "float", TAU_POSITION, lo=0, lo_open=True, hi=1.0,
+        doc="position catch-up time (s): the default shift_position is the smallest with Ts x 2^shift >= "
+            "tau_position x accel_current / accel_current_position; a longer one brakes earlier (no overshoot of "
+            "the governed step while the reference speed w <= 2 x acceleration x tau) but closes the last gap slower"),
     Key("governor", "jerk_periods", "int", 4, lo=1, hi=1 << 16,
         doc="speed task: periods the acceleration takes to ramp to its limit"),
     Key("field_weakening", "enable", "bool", True, doc="d-current reference from the voltage margin (FW register)"),
@@ -458,7 +464,7 @@ class Governor:
     does not raise its |speed| (speed task: its acceleration decays, a demand towards lower |speed|
     passes) or its speed (position) while |i_q| > ``hold_current`` x i_max or the voltage limiter
     was active.  The position catch-up ``shift_position`` defaults to
-    :func:`governor.default_shift_position` of control.Ts (the same catch-up time at every Ts).
+    :func:`governor.default_shift_position` of control.Ts (at least ``tau_position`` at every Ts).
     ``accel_current_position`` (default ``accel_current``) is the position task's own: a design
     whose position loop rings at a box corner needs less (premo_320v, docs/design.md).
     See gen/empc/governor.py."""
@@ -471,6 +477,7 @@ class Governor:
     hold_current: float
     shift_speed: int
     shift_position: int
+    tau_position: float
     jerk_periods: int
 
 
@@ -818,7 +825,8 @@ def from_dict(d: dict, source: str = "<dict>") -> Config:
     governor = Governor(**dict(gv, box_J=1.0 + robustness.J if gv["box_J"] is None else gv["box_J"],
                                box_psi=1.0 - robustness.psi if gv["box_psi"] is None else gv["box_psi"],
                                accel_current_position=acp,
-                               shift_position=(default_shift_position(c["Ts"], gv["accel_current"] / acp)
+                               shift_position=(default_shift_position(c["Ts"], gv["accel_current"] / acp,
+                                                                      gv["tau_position"])
                                                if gv["shift_position"] is None else gv["shift_position"])))
     if governor.box_psi <= 0.0:
         raise ConfigError(f"robustness.psi = {_fmt(robustness.psi)}: the governor's flux corner 1 - psi is not "

@@ -79,15 +79,16 @@ def speed_limit(cfg) -> float:
 
 TS_REF = 250e-6               # control period of the position catch-up's reference shift
 SHIFT_POSITION_REF = 4        # 2^-4 per period at 250 us: tau = 4 ms
+TAU_POSITION = TS_REF * 2 ** SHIFT_POSITION_REF   # governor.tau_position's default (the configurations' tuning)
 
 
-def default_shift_position(Ts: float, stretch: float = 1.0) -> int:
-    """Position catch-up shift for control period Ts (s): the smallest ksh whose tau = Ts x 2^ksh is at
-    least the 4 ms of 4 at 250 us (200 us: 5, 100 us: 6, 50 us: 7), within 0..31.  Rounded down
-    instead (tau >= 2.8 ms: 6 at 50 us) the premo's scaled position step still overshot 40 %.
-    ``stretch``: tau at least stretch x 4 ms, for an acceleration limit 1 / stretch of accel_current's
-    (accel_current_position: the braking condition w <= 2 alpha tau keeps its margin)."""
-    return min(31, max(0, SHIFT_POSITION_REF + math.ceil(math.log2(stretch * TS_REF / Ts) - 1e-9)))
+def default_shift_position(Ts: float, stretch: float = 1.0, tau: float = TAU_POSITION) -> int:
+    """Position catch-up shift for control period Ts (s): the smallest ksh whose Ts x 2^ksh is at
+    least ``tau`` (governor.tau_position; default the 4 ms of 4 at 250 us: 200 us 5, 100 us 6, 50 us 7),
+    within 0..31.  Rounded down instead (tau >= 2.8 ms: 6 at 50 us) the premo's scaled position step
+    still overshot 40 %.  ``stretch``: at least stretch x tau, for an acceleration limit 1 / stretch of
+    accel_current's (accel_current_position: the braking condition w <= 2 alpha tau keeps its margin)."""
+    return min(31, max(0, math.ceil(math.log2(stretch * tau / Ts) - 1e-9)))
 
 
 def params(cfg, task: str) -> Params:
