@@ -207,7 +207,7 @@ module mpc_axis #(
                   .PWM_HALF_PERIOD(PWM_HALF_PERIOD), .UDC_FRESH(UDC_FRESH)) u_per (
         .clk(clk), .rst(rst), .reg_wr(reg_wr), .reg_rd(reg_rd), .reg_addr(reg_addr), .reg_wdata(reg_wdata),
         .reg_rdata(reg_rdata), .rd_vals(rd_vals), .watchdog_expired(watchdog_expired), .g_wr_refused(g_wr_refused),
-        .ext_fault(ext_fault), .pwm_sync_in(pwm_sync_in), .pwm_sync_out(pwm_sync_out),
+        .ext_fault(ext_fault), .route_ok(1'b1), .pwm_sync_in(pwm_sync_in), .pwm_sync_out(pwm_sync_out),
         .irc_a(irc_a), .irc_b(irc_b), .irc_idx(irc_idx), .irc_mark(irc_mark), .hall(hall),
         .pwm_hi(pwm_hi), .pwm_lo(pwm_lo), .period_start(period_start), .adc_trig(adc_trig),
         .bridges_on(bridges_on), .running(running), .bridges_live(bridges_live), .fault_any(fault_any),
