@@ -19,7 +19,7 @@
 // Register port: reg_wr / reg_rd already decoded to this axis, reg_addr the axis-local word offset;
 // reg_rdata valid one clock after reg_rd, 0 when this axis was not read (axis_regs' own read path:
 // mpc_axis; mx_axes leaves it open and reads every axis through one shared axis_rd fed by rd_vals).
-// Safety (formal/axis_periph_props.vh, A1..A6): every cause in FAULT_MASK forces the six outputs
+// Safety (formal/axis_periph_props.vh, A1..A7): every cause in FAULT_MASK forces the six outputs
 // off in the clock the cause is registered (fault_ctrl.trip combinational into pwm_center's fault,
 // outputs registered); latched until CMD.fault_clear with the cause gone.  The watchdog, overrun
 // (also a stalled sequencer: no cmp_load for SEQ_STALL_PERIODS PWM periods), power-stage, clock

@@ -7,7 +7,7 @@
 // field weakening, governor hold, reference sync, refused-write counters, DC-link freshness, stall
 // check, fault causes), fault_ctrl and pwm_center with the ADC trigger at the period centre.
 // mx_axes (NAXES = 2..4) uses the same module per axis: the per-axis rules live in one file and
-// formal/axis_periph.sby (A1..A6) proves them for this axis and every axis of mx_axes.
+// formal/axis_periph.sby (A1..A7) proves them for this axis and every axis of mx_axes.
 //
 // Register port: reg_wr/reg_rd with a word offset inside the axis block
 // (reg_addr), coefficient-window writes on coef_we/coef_addr; reg_rdata is valid
