@@ -64,6 +64,7 @@ module cosim4_top #(
         assign b_hall = {{(3*NHALL-3*NAXES){1'b0}}, hall} | ({{(3*NHALL-3){1'b0}}, sp_hall} << 3*NAXES);
     end else begin : g_hfull
         assign b_hall = hall;
+        wire unused_sp = &{1'b0, sp_hall};     // no HALL set left for the spare
     end endgenerate
     generate if (SPARE != 0) begin : g_spare
         cosim_axis #(.CPR(CPR), .STEP_CLKS(STEP_CLKS), .IN_AW(IN_AW)) u_ax (
