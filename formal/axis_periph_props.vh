@@ -19,6 +19,8 @@
 //  A6  the safety registers change only through an accepted write with the bridges not live;
 //      FAULT_MASK only right after the unlock (reference: key write, consumed by the next write of
 //      the axis, timed out at the UNLOCK_ARM-th period start)
+//  A7  route_ok low (a routed build: one of the axis's phases drives no output, out_route's mapped)
+//      -> every bridge output off the next clock, whatever CTRL.enable says
 //  C*  covers: restart after a fault, FAULT_MASK written through the unlock
 /* verilator lint_off UNUSEDSIGNAL */
     localparam integer PP = PWM_HALF_PERIOD;
@@ -30,7 +32,7 @@
     wire [NCAUSE-1:0] f_m = fault_mask | NOMASK;
     wire       f_eff = |(causes & f_m);
     wire       f_off = (pwm_hi == 3'b000) && (pwm_lo == 3'b000);
-    reg        p_rst, p_eff, p_wdog, p_stale, p_stall, p_dcl_m, p_live, p_wr;
+    reg        p_rst, p_eff, p_wdog, p_stale, p_stall, p_dcl_m, p_live, p_wr, p_rok;
     reg [7:0]  p_addr;
     reg [31:0] p_wdata;
     reg [NCAUSE-1:0] p_mask;
@@ -48,6 +50,7 @@
         p_stall <= seq_stall;
         p_dcl_m <= fault_mask[`EMPC_A_FAULT_DCLINK];
         p_live <= bridges_live;
+        p_rok <= route_ok;
         p_wr <= reg_wr;
         p_addr <= reg_addr;
         p_wdata <= reg_wdata;
@@ -70,6 +73,7 @@
         if (p_wdog) assert(f_off);                                         // A2: watchdog, not maskable
         if (p_stale && p_dcl_m) assert(f_off);                             // A2: stale DC-link value
         if (p_stall) assert(f_off);                                        // A2: stalled sequencer
+        if (!p_rok) assert(f_off);                                         // A7: a phase unrouted
     end
 
     // A3: reference fault latch (the rule of the issue, independent of fault_ctrl): a cause is

@@ -13,6 +13,10 @@
 //  R6  mapped[j] (phase j drives an output) only while some output selects j (outside the clock of
 //      the write pulse, in which mapped still shows the previous table's scan).  Assumed, as global_regs guarantees (G4):
 //      the selects change only at a reset or with the osel_wr pulse in the clock they change.
+//  R7  a mapped bit falls only in the clock after a reset or an osel_wr pulse (a scan pass never drops
+//      a phase of an unchanged table).  With G4 (osel_wr only while no axis is live) and CTRL.enable 0
+//      from reset: mapped[a] cannot fall while an axis is live, so route_ok of an axis that is on stays 1
+//      (it can rise while live: an enable within NOUT + 1 clocks of an OUT_SEL write waits for the scan).
 `default_nettype none
 `include "empc_regs.vh"
 module out_route_props #(
@@ -67,6 +71,13 @@ module out_route_props #(
                 if (osel[SW*fk +: SW] == fj + 1) f_drv[fj] = 1'b1;
     end
     always @(*) if (f_pv && !osel_wr && !p_rst) assert((mapped & ~f_drv) == 0);                // R6
+    reg p_wr;
+    reg [NP-1:0] p_mapped;
+    always @(posedge clk) begin
+        p_wr <= osel_wr;
+        p_mapped <= mapped;
+    end
+    always @(*) if (f_pv && !p_rst && !p_wr) assert((p_mapped & ~mapped) == 0);               // R7
 `else
     genvar k, q;
     wire [NP-1:0] p_tp;                                        // previous trip of each pair's axis

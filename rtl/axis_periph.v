@@ -19,12 +19,13 @@
 // Register port: reg_wr / reg_rd already decoded to this axis, reg_addr the axis-local word offset;
 // reg_rdata valid one clock after reg_rd, 0 when this axis was not read (axis_regs' own read path:
 // mpc_axis; mx_axes leaves it open and reads every axis through one shared axis_rd fed by rd_vals).
-// Safety (formal/axis_periph_props.vh, A1..A6): every cause in FAULT_MASK forces the six outputs
+// Safety (formal/axis_periph_props.vh, A1..A7): every cause in FAULT_MASK forces the six outputs
 // off in the clock the cause is registered (fault_ctrl.trip combinational into pwm_center's fault,
 // outputs registered); latched until CMD.fault_clear with the cause gone.  The watchdog, overrun
 // (also a stalled sequencer: no cmp_load for SEQ_STALL_PERIODS PWM periods), power-stage, clock
 // (ext_fault) and coefficient-image causes trip whatever FAULT_MASK says.  The bridges are enabled
-// only while the angle is valid (pos_sense) and the active coefficient bank holds a valid image.
+// only while the angle is valid (pos_sense), the active coefficient bank holds a valid image and (route_ok)
+// all three phases drive an output (routed builds; tied 1 by mpc_axis).
 // Safety settings refused while bridges_live, FAULT_MASK only right after UNLOCK, refused writes
 // counted (CNT_WR_REFUSED, STATUS.wr_refused); UDC must be rewritten every UDC_FRESH PWM periods.
 // Parameters: HALL_DEBOUNCE, ENC_FILTER (sensors); COMPLEMENTARY (0 = PWM + enable for LX_PWR,
@@ -58,6 +59,7 @@ module axis_periph #(
     input  wire        watchdog_expired,
     input  wire        g_wr_refused,     // a global register write was refused (counted here too)
     input  wire [1:0]  ext_fault,        // {clock, pstage}: out_kill causes (synchronous levels)
+    input  wire        route_ok,         // all three phases drive an output (out_route mapped = 0b111; 1 if fixed pins)
     input  wire        pwm_sync_in,
     output wire        pwm_sync_out,
     // pins
@@ -191,7 +193,9 @@ module axis_periph #(
     // the controller (the law runs only while the outputs switch: with them off mx_seq
     // holds u = 0 and restarts from u_prev = ebar = 0, a bumpless restart) and the ADC checks
     wire        theta_valid;
-    wire        bridges_req = ctrl_enable && theta_valid && core_img_ok;
+    // route_ok: in a routed build (mx_axes under lx_rocon_top NAXES > 1) every phase of the axis drives an
+    // output (out_route's mapped = 0b111): an axis on two of three phases stays off (docs/blocks/out_route.md)
+    wire        bridges_req = ctrl_enable && theta_valid && core_img_ok && route_ok;
     assign      running = ctrl_run && bridges_on;
     assign      bridges_live = ctrl_enable || bridges_on;   // guard: safety settings change only when low
 

@@ -288,12 +288,16 @@ module lx_rocon_top #(
                 if (csel[k]) cax = cax | k[AXB-1:0];
             end
         end
+        // axis a may switch only while all three of its phases drive an output (out_route's mapped[3a+p],
+        // ROUTE_STATUS): its bridges_req carries route_ok[a] (docs/blocks/out_route.md, docs/safety.md 3)
+        wire [NAXES-1:0] route_ok;                 // from out_route's mapped (g_rok below)
         mx_axes #(.NAXES(NAXES), .BOOT_FILE(BOOT_FILE), .RSQRT_FILE(RSQRT_FILE), .COMPLEMENTARY(COMPLEMENTARY)) u_mx (
             .clk(clk), .rst(rst),
             .reg_wr(reg_wr && |sel), .reg_rd(reg_rd && |sel), .reg_addr({ax, reg_addr[7:0]}), .reg_wdata(reg_wdata),
             .reg_rdata(a_rdata[31:0]), .coef_we(reg_wr && |csel), .coef_addr({cax, reg_addr[9:0]}),
             .watchdog_expired(wdog_expired), .g_wr_refused(g_wr_refused), .ext_fault({kill_clock, kill_pstage}),
-            .irc_a(ax_irc_a), .irc_b(ax_irc_b), .irc_idx(ax_irc_idx), .irc_mark(ax_irc_mark), .hall(ax_hall),
+            .route_ok(route_ok), .irc_a(ax_irc_a), .irc_b(ax_irc_b), .irc_idx(ax_irc_idx), .irc_mark(ax_irc_mark),
+            .hall(ax_hall),
             .pwm_hi(hi_r), .pwm_lo(lo_r), .adc_sclk(adc_sclk), .adc_cs_n(adc_cs_n), .adc_miso(ax_miso),
             .period_tick(period_tick), .control_done(control_done), .fault_any(fault_any), .pwm_trip(trip),
             .bridges_live(live));
@@ -312,6 +316,9 @@ module lx_rocon_top #(
             .irc_idx(irc_idx), .irc_mark(irc_mark), .ax_irc_a(ax_irc_a), .ax_irc_b(ax_irc_b),
             .ax_irc_idx(ax_irc_idx), .ax_irc_mark(ax_irc_mark), .hall(hall), .ax_hall(ax_hall), .mapped(mapped),
             .bad_sel(r_bad_sel));
+        for (n = 0; n < NAXES; n = n + 1) begin : g_rok
+            assign route_ok[n] = &mapped[3*n +: 3];
+        end
         if (NAXES < `EMPC_ROUTE_AXES) begin : g_mpad
             assign r_mapped = {{((`EMPC_ROUTE_AXES - NAXES)*`EMPC_ROUTE_PHASES){1'b0}}, mapped};
         end else begin : g_mfull

@@ -7,7 +7,7 @@
 // field weakening, governor hold, reference sync, refused-write counters, DC-link freshness, stall
 // check, fault causes), fault_ctrl and pwm_center with the ADC trigger at the period centre.
 // mx_axes (NAXES = 2..4) uses the same module per axis: the per-axis rules live in one file and
-// formal/axis_periph.sby (A1..A6) proves them for this axis and every axis of mx_axes.
+// formal/axis_periph.sby (A1..A7) proves them for this axis and every axis of mx_axes.
 //
 // Register port: reg_wr/reg_rd with a word offset inside the axis block
 // (reg_addr), coefficient-window writes on coef_we/coef_addr; reg_rdata is valid
@@ -207,7 +207,7 @@ module mpc_axis #(
                   .PWM_HALF_PERIOD(PWM_HALF_PERIOD), .UDC_FRESH(UDC_FRESH)) u_per (
         .clk(clk), .rst(rst), .reg_wr(reg_wr), .reg_rd(reg_rd), .reg_addr(reg_addr), .reg_wdata(reg_wdata),
         .reg_rdata(reg_rdata), .rd_vals(rd_vals), .watchdog_expired(watchdog_expired), .g_wr_refused(g_wr_refused),
-        .ext_fault(ext_fault), .pwm_sync_in(pwm_sync_in), .pwm_sync_out(pwm_sync_out),
+        .ext_fault(ext_fault), .route_ok(1'b1), .pwm_sync_in(pwm_sync_in), .pwm_sync_out(pwm_sync_out),
         .irc_a(irc_a), .irc_b(irc_b), .irc_idx(irc_idx), .irc_mark(irc_mark), .hall(hall),
         .pwm_hi(pwm_hi), .pwm_lo(pwm_lo), .period_start(period_start), .adc_trig(adc_trig),
         .bridges_on(bridges_on), .running(running), .bridges_live(bridges_live), .fault_any(fault_any),

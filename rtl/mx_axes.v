@@ -25,7 +25,8 @@
 // six outputs off in the clock the cause is registered (its fault_ctrl.trip into its pwm_center);
 // the watchdog, overrun / stall, power-stage, clock and coefficient-image causes trip whatever
 // FAULT_MASK says; an axis's bridges are enabled only while its angle is valid and its active
-// coefficient bank holds a valid image.  A fault of axis a acts on a's pins only; ext_fault and the
+// coefficient bank holds a valid image and (route_ok, lx_rocon_top: out_route's mapped = 0b111) all three
+// of its phases drive an output.  A fault of axis a acts on a's pins only; ext_fault and the
 // watchdog act on every axis (they are inputs of every axis's fault_ctrl).
 // Parameters: NAXES (2..4; NAXES = 1 is mpc_axis), COMPLEMENTARY, HALL_DEBOUNCE, ENC_FILTER as mpc_axis.
 // Reset: every CTRL.enable = 0 (outputs off), registers at their map reset values.
@@ -56,6 +57,7 @@ module mx_axes #(
     input  wire                 watchdog_expired,
     input  wire                 g_wr_refused,
     input  wire [1:0]           ext_fault,       // {clock, pstage}: out_kill causes (every axis)
+    input  wire [NAXES-1:0]     route_ok,        // axis n's three phases drive outputs (out_route mapped = 0b111)
     // pins
     input  wire [NAXES-1:0]     irc_a,
     input  wire [NAXES-1:0]     irc_b,
@@ -253,7 +255,7 @@ module mx_axes #(
                       .PWM_HALF_PERIOD(P), .PHASE(PHASE)) u_per (
             .clk(clk), .rst(rst), .reg_wr(reg_wr && sel), .reg_rd(reg_rd && sel), .reg_addr(roff),
             .reg_wdata(reg_wdata), .reg_rdata(), .rd_vals(rd_vals_v[VW*n +: VW]), .watchdog_expired(watchdog_expired),
-            .g_wr_refused(g_wr_refused), .ext_fault(ext_fault), .pwm_sync_in(1'b0), .pwm_sync_out(),
+            .g_wr_refused(g_wr_refused), .ext_fault(ext_fault), .route_ok(route_ok[n]), .pwm_sync_in(1'b0), .pwm_sync_out(),
             .irc_a(irc_a[n]), .irc_b(irc_b[n]), .irc_idx(irc_idx[n]), .irc_mark(irc_mark[n]), .hall(hall[3*n +: 3]),
             .pwm_hi(pwm_hi[3*n +: 3]), .pwm_lo(pwm_lo[3*n +: 3]), .period_start(period_start[n]),
             .adc_trig(adc_trig[n]), .bridges_on(bridges_on[n]), .running(running[n]),

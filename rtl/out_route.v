@@ -212,26 +212,31 @@ module out_route #(
         bad_sel <= !rst && bad_c;
     end
 `ifdef FORMAL
-    // The scan's inductive invariant for R6 (formal/out_route.sby task map, properties in
+    // The scan's inductive invariant for R6, R7 (formal/out_route.sby task map, properties in
     // formal/out_route_props.sv, which assumes what global_regs guarantees: osel changes only at rst
     // or with osel_wr): after a reset clock the scan is at its start; outside a write clock, acc
-    // holds only phases of the outputs already scanned (k < scan_k).
+    // holds exactly the phases of the outputs already scanned (k < scan_k) and mapped is 0 (first
+    // pass after a write or reset) or the phases the whole table drives.
     reg f_pv = 1'b0, f_prst = 1'b0;
     always @(posedge clk) begin
         f_pv <= 1'b1;
         f_prst <= rst;
     end
-    reg [NP-1:0] f_part;
+    reg [NP-1:0] f_part, f_all;
     integer fk, fj;
     always @(*) begin
         f_part = {NP{1'b0}};
+        f_all = {NP{1'b0}};
         for (fk = 0; fk < NOUT; fk = fk + 1)
             for (fj = 0; fj < NP; fj = fj + 1)
-                if (fk < scan_k && osel[SW*fk +: SW] == fj + 1) f_part[fj] = 1'b1;
+                if (osel[SW*fk +: SW] == fj + 1) begin
+                    f_all[fj] = 1'b1;
+                    if (fk < scan_k) f_part[fj] = 1'b1;
+                end
     end
     always @(*) if (f_pv) begin
         if (f_prst) assert(scan_k == 0 && acc == 0 && mapped == 0);
-        if (!f_prst && !osel_wr) assert((acc & ~f_part) == 0);
+        if (!f_prst && !osel_wr) assert(acc == f_part && (mapped == 0 || mapped == f_all));
     end
 `endif
 endmodule

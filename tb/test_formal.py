@@ -20,7 +20,8 @@ import formal  # noqa: E402  (flow/formal.py)
 # `flow/formal.py <label>` with smtbmc yices (measured one at a time on a shared machine, see flow/formal.py)
 COST = {"axis_periph/prove_cp": 18, "axis_periph/bmc_pe": 15, "axis_periph/mutant4:bmc_pe": 12, "axis_periph/prove_pe": 11,
         "axis_periph/mutant3:prove_pe": 10, "axis_periph/mutant6:bmc_pe": 10, "axis_periph/cover": 8,
-        "axis_periph/mutant0:prove_pe": 7, "axis_periph/mutant2:prove_pe": 7, "out_route/prove": 6}
+        "axis_periph/mutant0:prove_pe": 7, "axis_periph/mutant2:prove_pe": 7, "out_route/prove": 6,
+        "out_route/map": 15}
 
 
 @pytest.mark.skipif(formal.sby_cmd() is None, reason="yowasp-sby not installed")

@@ -14,7 +14,18 @@ One run (`route`):
  3. an OUT_SEL0 write while axis 1 is live is refused: the register unchanged, CNT_WR_REFUSED + 1;
  4. with every axis off, IN_SEL gives axis 1 HALL set 3 (tied to 000 in the harness): FAULT.hall on axis 1
     only; restored and cleared: FAULT 0.
-Mutant (`full`): route_locked tied to 0 in lx_rocon_top (writes accepted while an axis is live): step 3 fails.
+ 5. an axis with a phase on no output stays off (issue 16 item 4): output 14 (axis 1, phase C) set to 0,
+    ROUTE_STATUS.mapped1 = 0b011; CTRL.enable of axis 1 is stored but STATUS.bridges_on stays 0 and every
+    pin stays low for a PWM period; the axis is live (CTRL.enable), so mapping the phase back is refused
+    (CNT_WR_REFUSED + 1) until the CPU clears CTRL.enable; then mapped back, 0b111, axis 1 enables on
+    outputs 12..14 again;
+ 6. ADC_SEL: axis 1's currents moved to MISO lines 6..8 (the harness's spare emulator g_spare, SPARE = 1):
+    an overcurrent code on its old lines 3..5 trips nothing; the same code on lines 6..8 latches
+    FAULT.overcurrent on axis 1, axis 0's FAULT stays 0; restored and cleared;
+ 7. IN_SEL.enc: axis 1 on IRC input 2 (the spare's encoder): axis 1's POS follows the spare's count (+100),
+    not its old emulator's (-60), axis 0's POS does not move; restored (both encoders back at 0 first).
+Mutants (`full`): route_locked tied to 0 in lx_rocon_top (writes accepted while an axis is live): step 3
+fails; route_ok tied to 1 (an axis on two of three phases switches): step 5 fails.
 """
 from __future__ import annotations
 
@@ -31,6 +42,11 @@ NEW_SEL0 = 0x87000321           # outputs 0..2 axis 0, 3..5 off, 6..7 axis 2 (no
 NEW_SEL1 = 0x0654CBA9           # outputs 8..11 axes 2, 3 (not in the build), 12..14 axis 1, 15 off
 RESET_IN = 0x32103210           # IN_SEL: IRC input a, HALL set a
 HALL1_SET3 = 0x32303210         # axis 1 on HALL set 3
+UNMAP1_SEL1 = NEW_SEL1 & ~(0xF << 24)   # output 14 (axis 1, phase C) off: axis 1 on two of three phases
+RESET_ADC0 = 0x76543210         # ADC_SEL0: channel 3a + p
+ADC1_SPARE = 0x76876210         # axis 1 on MISO lines 6..8 (the spare emulator's)
+AX01_FIELDS = 0x00FFFFFF        # ADC_SEL0's fields of axes 0 and 1
+ENC1_SPARE = 0x32103220         # IN_SEL: axis 1 on IRC input 2 (the spare emulator's)
 
 try:
     import cocotb
@@ -65,6 +81,11 @@ if cocotb is not None:
         f = await drv.read("FAULT")
         raise AssertionError(f"axis {drv.axis}: bridges_on did not become {on} (STATUS {st:#x}, FAULT {f:#x})")
 
+    def _lsb(reg: str, field: str) -> int:
+        from empc import regmap
+        r = regmap.axis_reg(reg) if reg in ("STATUS", "FAULT") else next(g for g in regmap.GLOBAL if g.name == reg)
+        return {f.name: f.lsb for f in r.fields}[field]
+
     @cocotb.test()
     async def route(dut):
         from empc import driver, regmap
@@ -79,8 +100,8 @@ if cocotb is not None:
         dut.pwr_fault_n.value = 1
         dut.rst_n.value = 0
         from empc import config
-        for n in range(NAXES):          # the ADC lines at the configured zero-current code
-            pins_at_rest(dut.g_ax[n].u_ax, config.default().sensors.adc_offset)
+        for p in [dut.g_ax[n].u_ax for n in range(NAXES)] + [dut.g_spare.u_ax]:   # ADC lines at zero current
+            pins_at_rest(p, config.default().sensors.adc_offset)
         bfm.idle()
         await ClockCycles(dut.clk, 20)
         dut.rst_n.value = 1
@@ -161,7 +182,83 @@ if cocotb is not None:
         await d1.command(fault_clear=1)
         f1 = await d1.read("FAULT")
         assert f1 == 0, f"axis 1 FAULT {f1:#x} after the HALL select restored and a clear"
-        dut._log.info("route: reset map, remap, refused write while live, HALL select: ok")
+
+        # 5. axis 1 on two of three phases: CTRL.enable stored, the bridges stay off
+        await d0.write("OUT_SEL1", UNMAP1_SEL1)
+        await ClockCycles(dut.clk, 40)
+        rs = await d0.read("ROUTE_STATUS")
+        assert rs == 0x037, f"ROUTE_STATUS with output 14 off {rs:#x} (want mapped1 = 0b011)"
+        await d1.control(True, False)
+        await ClockCycles(dut.clk, 3 * P)
+        ctrl, st = await d1.read("CTRL"), await d1.read("STATUS")
+        assert ctrl & 1 and not (st >> _lsb("STATUS", "bridges_on")) & 1, \
+            f"axis 1 unmapped phase: CTRL {ctrl:#x}, STATUS {st:#x} (want enable stored, bridges_on 0)"
+        o, e, _ = await _pins(dut, P)
+        assert o == 0 and e == 0, f"axis 1 on two phases switched: out {o:#06x} en {e:#06x}"
+        c3 = await d1.read("CNT_WR_REFUSED")
+        await d0.write("OUT_SEL1", NEW_SEL1)            # the axis is live (CTRL.enable): refused
+        s1, c4 = await d0.read("OUT_SEL1"), await d1.read("CNT_WR_REFUSED")
+        assert s1 == UNMAP1_SEL1 and c4 == c3 + 1, \
+            f"OUT_SEL1 write with axis 1 enabled: register {s1:#x}, CNT_WR_REFUSED {c3} -> {c4} (want refused)"
+        dut._log.info("unmapped phase: axis 1 CTRL %#x STATUS %#x ROUTE_STATUS %#x, pins off, remap refused",
+                      ctrl, st, rs)
+        await d1.control(False, False)
+        await d0.write("OUT_SEL1", NEW_SEL1)
+        await ClockCycles(dut.clk, 40)
+        rs = await d0.read("ROUTE_STATUS")
+        assert rs == 0x077, f"ROUTE_STATUS after mapping phase C back {rs:#x}"
+        await _on(dut, d1, P, True)
+        o, e, ea = await _pins(dut, P)
+        assert o & ~want == 0 and e == want and ea == want, \
+            f"axis 1 mapped back: out {o:#06x} en {e:#06x} (always {ea:#06x}), want outputs 12..14 only"
+        await _on(dut, d1, P, False)
+
+        # 6. ADC_SEL: axis 1's currents from the spare emulator's MISO lines 6..8
+        off = config.default().sensors.adc_offset
+        oc_code = off + await d1.read("OC_THRESH") + 100
+        ocb = 1 << _lsb("FAULT", "overcurrent")
+        old, new = dut.g_ax[1].u_ax, dut.g_spare.u_ax
+        await d0.write("ADC_SEL0", ADC1_SPARE)
+        a0 = await d0.read("ADC_SEL0")
+        assert a0 & AX01_FIELDS == ADC1_SPARE & AX01_FIELDS, f"ADC_SEL0 {a0:#x}"   # axis 2's fields: not in the build
+        await ClockCycles(dut.clk, 2 * P)
+        for line, what in ((old, "old lines 3..5"), (new, "new lines 6..8")):
+            line.adc_code0.value = oc_code
+            await ClockCycles(dut.clk, 2 * P)
+            line.adc_code0.value = off
+            f0, f1 = await d0.read("FAULT"), await d1.read("FAULT")
+            hit = line is new
+            assert f0 == 0 and bool(f1 & ocb) == hit, \
+                f"overcurrent code on axis 1's {what}: FAULT axis 0 {f0:#x}, axis 1 {f1:#x} (want overcurrent {hit})"
+            dut._log.info("ADC_SEL: overcurrent on %s: FAULT axis 0 %#x, axis 1 %#x", what, f0, f1)
+        await ClockCycles(dut.clk, 2 * P)
+        await d0.write("ADC_SEL0", RESET_ADC0)
+        await ClockCycles(dut.clk, 2 * P)
+        await d1.command(fault_clear=1)
+        f1 = await d1.read("FAULT")
+        assert f1 == 0, f"axis 1 FAULT {f1:#x} after ADC_SEL restored and a clear"
+
+        # 7. IN_SEL.enc: axis 1's position from the spare emulator's IRC input 2
+        p0, p1 = await d0.read("POS"), await d1.read("POS")
+        await d0.write("IN_SEL", ENC1_SPARE)
+        await ClockCycles(dut.clk, 100)
+        for line, delta, want_d in ((new, 100, 100), (old, -60, 100)):   # want_d: POS - the POS before
+            line.enc_target.value = delta & 0xFFFFFFFF
+            await ClockCycles(dut.clk, abs(delta) * 16 + 200)      # STEP_CLKS = 16 per count
+            q0, q1 = await d0.read("POS"), await d1.read("POS")
+            d_1 = ((q1 - p1 + (1 << 31)) & 0xFFFFFFFF) - (1 << 31)
+            assert q0 == p0 and d_1 == want_d, \
+                f"IN_SEL.enc1 = 2, {'spare' if line is new else 'old'} encoder at {delta}: axis 1 POS moved {d_1} " \
+                f"(want {want_d}), axis 0 POS {p0} -> {q0}"
+        for line in (new, old):
+            line.enc_target.value = 0
+        await ClockCycles(dut.clk, 160 * 16 + 200)
+        await d0.write("IN_SEL", RESET_IN)
+        await ClockCycles(dut.clk, 100)
+        f0, f1 = await d0.read("FAULT"), await d1.read("FAULT")
+        assert f0 == 0 and f1 == 0, f"FAULT after the IRC select: axis 0 {f0:#x}, axis 1 {f1:#x}"
+        dut._log.info("route: reset map, remap, refused write while live, HALL select, unmapped phase held off, "
+                      "ADC_SEL, IN_SEL.enc: ok")
 
 
 def _run(name: str = "route_top", run_name: str = "route"):
@@ -169,14 +266,15 @@ def _run(name: str = "route_top", run_name: str = "route"):
     import test_closed_loop as tcl
     run(toplevel="cosim4_top", test_module="test_route_top", sim="verilator", name=name,
         public=ROOT / "tb" / "hdl" / "cosim4_top.vlt", timing=True,
-        parameters={"NAXES": NAXES, "CLK_HALF_PS": tcl.CLK_PERIOD_NS * 500}, defines={"EMPC_SIM_GATE": 1},
+        parameters={"NAXES": NAXES, "CLK_HALF_PS": tcl.CLK_PERIOD_NS * 500, "SPARE": 1}, defines={"EMPC_SIM_GATE": 1},
         run_name=run_name, testcase="route")
 
 
 @pytest.mark.full
 @pytest.mark.cost(120)           # Verilator build of the two-axis top (about 100 s) + a few PWM periods
 def test_route_top():
-    """Reset map, a remap with every axis off (the axis on the new pins only), a refused write while live."""
+    """Reset map, a remap with every axis off (the axis on the new pins only), a refused write while live, an
+    input select, an axis with an unmapped phase held off, ADC_SEL and IN_SEL.enc moving axis 1's inputs."""
     _run()
 
 
@@ -184,6 +282,8 @@ def test_route_top():
 MUTANTS = {
     "route_unlocked": ("lx_rocon_top.v", ".route_locked((|live) || !CAP_ROUTE)", ".route_locked(1'b0)",
                        "OUT_SEL0 write while axis 1 live"),
+    "route_ok_tied": ("lx_rocon_top.v", "assign route_ok[n] = &mapped[3*n +: 3];", "assign route_ok[n] = 1'b1;",
+                      "axis 1 unmapped phase"),
 }
 
 
@@ -191,7 +291,8 @@ MUTANTS = {
 @pytest.mark.cost(120)
 @pytest.mark.parametrize("mutant", list(MUTANTS))
 def test_route_top_mutant(mutant, tmp_path):
-    """The run must fail with route_locked tied to 0 (a routing write accepted while an axis is live)."""
+    """The run must fail with route_locked tied to 0 (a routing write accepted while an axis is live) and with
+    route_ok tied to 1 (an axis on two of three phases switches)."""
     import runner
     fname, good, bad, why = MUTANTS[mutant]
     name = f"route_top_mutant_{mutant}"

@@ -127,7 +127,7 @@ module mx_axes_tb #(
     mx_axes #(.NAXES(NAXES)) u_mx (
         .clk(clk), .rst(rst), .reg_wr(m_wr), .reg_rd(m_rd), .reg_addr(m_addr[AXB+7:0]), .reg_wdata(m_wdata),
         .reg_rdata(m_rdata), .coef_we(m_cwe), .coef_addr(m_caddr[AXB+9:0]), .watchdog_expired(1'b0),
-        .g_wr_refused(1'b0), .ext_fault(2'b00), .irc_a(a_l[NL-1:NAXES]), .irc_b(b_l[NL-1:NAXES]),
+        .g_wr_refused(1'b0), .ext_fault(2'b00), .route_ok({NAXES{1'b1}}), .irc_a(a_l[NL-1:NAXES]), .irc_b(b_l[NL-1:NAXES]),
         .irc_idx({NAXES{1'b0}}), .irc_mark({NAXES{1'b0}}), .hall(hall_code), .pwm_hi(m_hi), .pwm_lo(m_lo), .adc_sclk(m_sclk),
         .adc_cs_n(m_cs), .adc_miso(miso_l[3*NL-1:3*NAXES]), .period_tick(ps_l[NL-1:NAXES]), .control_done(m_ctl),
         .fault_any(fault_any), .pwm_trip(m_trip), .bridges_live(m_live));
