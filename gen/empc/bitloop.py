@@ -23,7 +23,7 @@ import numpy as np
 
 from . import closedloop as cl
 from . import formats as F
-from . import design as design_mod, header, pmsm
+from . import config as config_mod, design as design_mod, header, pmsm
 from .rtlmodel import pos_sense
 from .rtlmodel.ctrl_seq import CtrlSeq, Regs
 from .rtlmodel.ref_gen import M64, RefGen, gov_step
@@ -205,6 +205,7 @@ def simulate(cfg, scenario: cl.Scenario, params=None, seed: int = 0, substeps: i
     target references of control period k (default: the scenario profile sampled and rounded);
     they pass through the governor ``gov`` (default: the header's for the task).
     ``plant_motor`` lets the plant differ from the design motor."""
+    config_mod.require_rtl_speed_window(cfg)
     c = cfg.control
     alg_task = (c.algorithm, scenario.task)
     params = params or design_mod.design(cfg.with_control(task=scenario.task), *alg_task, force=True)["params"]

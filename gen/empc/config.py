@@ -134,6 +134,10 @@ SCHEMA: list[Key] = [
             "accel_load: accel less a load estimate (offset-free under a constant load; estimator.py)"),
     Key("control", "speed_load_shift", "int", 6, lo=1, hi=15,
         doc="accel_load: load-estimate gain 2^-shift per control period (KACC.load_shift, 4 bit; 0 there = off)"),
+    Key("control", "speed_window", "int", 1, choices=(1, 2, 4, 8, 16),
+        doc="speed estimate over M control periods: (theta_k - theta_{k-M}) / (M Ts), the acceleration "
+            "correction over (M/2) Ts (estimator.py; 1 = eq. 37 over one period). Model only: the RTL "
+            "implements 1 (empc roms refuses other values)"),
     Key("governor", "enable", "bool", True, doc="reference governor in rtl/ref_gen.v (the current limit)"),
     Key("governor", "accel_current", "float", 0.5, lo=0, lo_open=True, hi=1,
         doc="the governed reference's acceleration needs at most this x i_max at the box corner"),
@@ -509,6 +513,7 @@ class Control:
     weights: dict = field(default_factory=dict)   # {(alg, task): Weights}, SI units
     weight_units: str = "si"                      # how the configuration gave them
     speed_load_shift: int = 6                     # "accel_load": load estimate gain 2^-shift per period
+    speed_window: int = 1                         # speed estimate over M periods (estimator.py; RTL: 1 only)
     governor: Governor = field(default_factory=Governor)
     field_weakening: FieldWeakening = field(default_factory=FieldWeakening)
     weight_tables: dict = field(default_factory=dict)   # {(alg, task): "weights.alg2.speed.Ts_50us"} where a
@@ -520,6 +525,17 @@ class Control:
             return self.weights[key]
         except KeyError:
             raise ConfigError(f"weights.alg{key[0]}.{key[1]} missing from the configuration") from None
+
+
+RTL_SPEED_WINDOWS = (1,)     # control.speed_window values the RTL implements (pos_sense / mx_seq: eq. 37, one period)
+
+
+def require_rtl_speed_window(cfg) -> None:
+    """Refuse a configuration whose speed window the RTL does not implement (ROMs, the RTL's model)."""
+    M = cfg.control.speed_window
+    if M not in RTL_SPEED_WINDOWS:
+        raise ConfigError(f"control.speed_window = {M}: the RTL implements {', '.join(map(str, RTL_SPEED_WINDOWS))} "
+                          f"only (the window is modelled in the float/fixed controllers and the design check)")
 
 
 @dataclass(frozen=True)
@@ -569,13 +585,16 @@ class Config:
         Eq. 37 is the mean speed over the last period, i.e. the speed half a period ago;
         the model state wants the speed now.  The torque equation gives the missing
         (Ts/2) * dw/dt = (Ts/2) * 1.5 p^2 psi / J * i_q.  0 when speed_estimate = "eq37".
+        Over a window of M = ``control.speed_window`` periods the difference is the speed (M/2) Ts
+        ago and the term is (M Ts/2) * 1.5 p^2 psi / J * i_q.
         With "accel_load" a load estimate removes the part of i_q that holds a load
         (gen/empc/estimator.py), so that the estimate is offset-free under load.
         """
         if self.control.speed_estimate not in ("accel", "accel_load"):
             return 0.0
         m = self.motor
-        return 0.5 * self.control.Ts * 1.5 * m.p * m.p * m.psi / m.J
+        kc = 0.5 * self.control.Ts * 1.5 * m.p * m.p * m.psi / m.J
+        return kc * self.control.speed_window if self.control.speed_window != 1 else kc
 
     @property
     def speed_load_shift(self) -> int:
@@ -882,7 +901,7 @@ def from_dict(d: dict, source: str = "<dict>") -> Config:
         algorithm=alg, task=task, N=c["N"], Ts=c["Ts"], omega_min=c["omega_min"], omega_max=c["omega_max"],
         omega_points=c["omega_points"], design_quantised=c["design_quantised"], voltage_limit=c["voltage_limit"],
         i_max=c["i_max"], speed_estimate=c["speed_estimate"], weights=weights, weight_units=units,
-        speed_load_shift=c["speed_load_shift"], governor=governor, field_weakening=fw, weight_tables=weight_tables)
+        speed_load_shift=c["speed_load_shift"], speed_window=c["speed_window"], governor=governor, field_weakening=fw, weight_tables=weight_tables)
     cfg = Config(motor=motor, inverter=inverter, sensors=sensors, f_clk=f_clk, control=control, source=source,
                  ratings=ratings, robustness=robustness)
     ratio = c["Ts"] * inverter.f_pwm

@@ -21,6 +21,17 @@
   correction at every frequency, also along a sustained acceleration.  s =
   ``control.speed_load_shift`` (6: 16 ms at Ts = 250 us).
 
+``control.speed_window`` = M > 1 (a power of two) takes the difference over M periods,
+w37_k = (theta_k - theta_{k-M}) / (M Ts): the mean speed over the window, i.e. the speed M/2
+periods ago, with 1/M of eq. 37's quantisation step (one count is rad_per_count / (M Ts)).  The
+correction covers the window's lag, kc = (M Ts/2) 1.5 p^2 psi / J (Config.speed_correction), and
+the load estimate compares it with the encoder's speed change over that lag, (M/2) (w37_k - w37_{k-1}):
+
+      D_k = D_{k-1} + 2^-s (u1 - M (w37_k - w37_{k-1}) / 2)
+
+(M = 1: the formulas above).  Before M angles are known the window reaches back to the first one.
+Model only (float, fixed-point FixedMPC, the robust check): the RTL implements M = 1.
+
 The RTL computes the same in raw units (rtlmodel/ctrl_seq.py ``speed_estimate``); this float
 form serves the float controller; :func:`state_space` gives the estimator as a linear block,
 the one the robust design check puts in the loop (loop.py ``ESTIMATORS``).
@@ -38,20 +49,37 @@ class SpeedEstimator:
         self.Ts = cfg.control.Ts
         self.kc = cfg.speed_correction
         self.g = 2.0 ** -cfg.speed_load_shift if cfg.speed_load_shift else 0.0
+        self.M = cfg.control.speed_window
         self.reset()
 
     def reset(self) -> None:
         self.theta_prev = None
         self.w37_prev = 0.0
         self.D = 0.0
+        self.hist: list = []            # speed_window > 1: theta_{k-M} .. theta_{k-1}
 
     def step(self, theta: float, i_q: float) -> float:
+        if self.M != 1:
+            return self._step_window(theta, i_q)
         w37 = 0.0 if self.theta_prev is None else (theta - self.theta_prev) / self.Ts   # eq. 37
         self.theta_prev = theta
         u1 = self.kc * i_q - self.D
         w = w37 + u1
         if self.g:
             self.D += self.g * (u1 - 0.5 * (w37 - self.w37_prev))
+        self.w37_prev = w37
+        return w
+
+    def _step_window(self, theta: float, i_q: float) -> float:
+        M = self.M
+        if not self.hist:
+            self.hist = [theta] * M
+        w37 = (theta - self.hist[0]) / (M * self.Ts)          # mean speed over the last M periods
+        self.hist = self.hist[1:] + [theta]
+        u1 = self.kc * i_q - self.D
+        w = w37 + u1
+        if self.g:
+            self.D += self.g * (u1 - 0.5 * M * (w37 - self.w37_prev))
         self.w37_prev = w37
         return w
 
@@ -74,6 +102,8 @@ def state_space(cfg) -> dict:
     Ts = cfg.control.Ts
     kc = cfg.speed_correction
     g = 2.0 ** -cfg.speed_load_shift if cfg.speed_load_shift else 0.0
+    if cfg.control.speed_window != 1:
+        return _state_space_window(cfg.control.speed_window, Ts, kc, g)
     # w37 = dtheta / Ts;  u1 = kc i - z1;  w = w37 + u1
     # z0' = w37;  z1' = z1 + g (u1 - (w37 - z0) / 2)
     A = np.array([[0.0, 0.0],
@@ -85,3 +115,28 @@ def state_space(cfg) -> dict:
     if not g:       # no states: w37_prev is read only by the load update, D would be a constant
         return {"A": A[:0, :0], "B": B[:0], "C": C[:, :0], "D": D, "states": (), "inputs": ("dtheta", "i_q")}
     return {"A": A, "B": B, "C": C, "D": D, "states": ("w37_prev", "D_load"), "inputs": ("dtheta", "i_q")}
+
+
+def _state_space_window(M: int, Ts: float, kc: float, g: float) -> dict:
+    """:func:`state_space` for ``control.speed_window`` = M > 1: states s_j = dtheta_{k-j} / (M Ts),
+    j = 1..M, and D_{k-1}:
+
+        w37_k = dtheta_k / (M Ts) + s_1 + .. + s_{M-1},   w37_k - w37_{k-1} = dtheta_k / (M Ts) - s_M
+        u1 = kc i_q - D;  w_k = w37_k + u1;  D' = D + g (u1 - (M/2) (w37_k - w37_{k-1}));  s_1' = dtheta_k / (M Ts)
+    """
+    n = M + 1
+    A = np.zeros((n, n)); B = np.zeros((n, 2)); C = np.zeros((1, n)); D = np.zeros((1, 2))
+    for j in range(1, M):
+        A[j, j - 1] = 1.0                       # s_{j+1}' = s_j
+    B[0, 0] = 1.0 / (M * Ts)
+    C[0, :M - 1] = 1.0
+    C[0, M] = -1.0
+    D[0, 0], D[0, 1] = 1.0 / (M * Ts), kc
+    A[M, M] = 1.0 - g
+    A[M, M - 1] = g * 0.5 * M
+    B[M, 0] = -g * 0.5 / Ts
+    B[M, 1] = g * kc
+    states = tuple(f"dtheta_{j}/(M Ts)" for j in range(1, M + 1)) + ("D_load",)
+    if not g:       # no load estimate: D stays 0 (no state; s_M is read only by its update)
+        return {"A": A[:M, :M], "B": B[:M], "C": C[:, :M], "D": D, "states": states[:M], "inputs": ("dtheta", "i_q")}
+    return {"A": A, "B": B, "C": C, "D": D, "states": states, "inputs": ("dtheta", "i_q")}

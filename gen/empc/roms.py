@@ -27,6 +27,7 @@ from .rtlmodel import mpc_core as core
 
 def generate(cfg, out: Path, all_designs: bool = True, force: bool = False) -> dict:
     final = Path(out)
+    config_mod.require_rtl_speed_window(cfg)
     results = {k: design(cfg, *k, force=force) for k in designs_of(cfg, all_designs)}   # raises before writing
     final.parent.mkdir(parents=True, exist_ok=True)
     out = Path(tempfile.mkdtemp(prefix=f".{final.name}.tmp-", dir=final.parent))

@@ -161,3 +161,122 @@ def test_raw_estimate_tracks_float():
             worst = max(worst, err)
             assert err < 0.005 * kc * 8.5 + 2.0 ** -8 * CFG.rad_s_per_count_ts, (k, wr, wf)
     print("raw vs float speed estimate: max |diff| %.4f rad/s" % worst)
+
+
+# ------------------------------------------------------------------------------------------------
+# control.speed_window = M > 1: the difference over M periods (model only; the RTL implements M = 1
+# and `empc roms` refuses other values: test_roms_refuse_speed_window).
+WINDOWS = [2, 4, 8]
+
+
+def _wcfg(kind, M):
+    return CFG.with_control(speed_estimate=kind, speed_window=M)
+
+
+def test_speed_window_default_is_one():
+    assert CFG.control.speed_window == 1
+    assert _wcfg("accel_load", 4).speed_correction == 4 * CFG.speed_correction
+    assert estimator.state_space(_wcfg("accel_load", 1))["states"] == ("w37_prev", "D_load")
+
+
+@pytest.mark.parametrize("M", WINDOWS)
+@pytest.mark.parametrize("kind", ["eq37", "accel", "accel_load"])
+def test_speed_window_state_space_matches_step(kind, M):
+    """state_space() of the window (the design check's block) equals the stepped float estimate."""
+    rng = np.random.default_rng(SEED)
+    cfg = _wcfg(kind, M)
+    ss = estimator.state_space(cfg)
+    est = estimator.SpeedEstimator(cfg)
+    theta = np.cumsum(rng.normal(0, 0.1, 200))
+    iq = rng.normal(0, 3, 200)
+    est.step(theta[0], iq[0])                                 # history = theta_0: s_j = 0, D
+    z = np.zeros(ss["A"].shape[0])
+    if kind == "accel_load":
+        z[-1] = est.D
+    for k in range(1, 200):
+        v = np.array([theta[k] - theta[k - 1], iq[k]])
+        w_ss = (ss["C"] @ z + ss["D"] @ v).item()
+        z = ss["A"] @ z + ss["B"] @ v
+        w = est.step(theta[k], iq[k])
+        assert abs(w - w_ss) < 1e-9 * (1 + abs(w)), (k, w, w_ss)
+    if kind == "accel_load":
+        A, B, C, D = ss["A"], ss["B"], ss["C"], ss["D"]
+        assert np.max(np.abs(np.linalg.eigvals(A))) < 1.0
+        dc = C @ np.linalg.solve(np.eye(A.shape[0]) - A, B[:, 1:2]) + D[:, 1:2]
+        assert abs(dc.item()) < 1e-9                          # offset-free under a constant load
+
+
+@pytest.mark.parametrize("M", WINDOWS)
+def test_speed_window_acceleration_and_load(M):
+    """The window's lag (M/2) Ts is corrected along an acceleration ("accel"; "accel_load" after D's
+    start-up transient), and "accel_load" is offset-free under a constant load."""
+    Ts = CFG.control.Ts
+    cfg = _wcfg("accel", M)
+    kc = cfg.speed_correction
+    i = np.full(800, 2.0)
+    acc = 2.0 * kc / (M * Ts / 2)
+    w = acc * Ts * np.arange(800)
+
+    def run(c, w, i):
+        est = estimator.SpeedEstimator(c)
+        theta, out = 0.0, []
+        for k in range(len(w)):
+            if k:
+                theta += 0.5 * (w[k - 1] + w[k]) * Ts
+            out.append(est.step(theta, i[k]))
+        return np.array(out)
+    e = run(cfg, w, i) - w
+    assert np.max(np.abs(e[M:])) < 1e-6 * w[-1], np.max(np.abs(e[M:]))
+    e = run(_wcfg("accel_load", M), w, i) - w
+    assert abs(e[-1]) < 1e-3, e[-5:]
+    e37 = run(_wcfg("eq37", M), w, i) - w
+    assert abs(e37[-1] + acc * M * Ts / 2) < 1e-6 * w[-1]
+    wl = np.full(800, 300.0)
+    e = run(_wcfg("accel_load", M), wl, np.full(800, 5.0)) - 300.0
+    assert abs(e[-1]) < 1e-3 * kc * 5.0, e[-1]
+
+
+@pytest.mark.parametrize("M", WINDOWS)
+def test_speed_window_raw_tracks_float(M):
+    """The fixed-point window (ctrl_seq.speed_estimate with win_shift = log2 M, as FixedMPC runs it)
+    against the float window fed with the same quantised angle and current."""
+    import dataclasses
+
+    from empc import bitloop, formats
+    cfg = _wcfg("accel_load", M)
+    rng = np.random.default_rng(SEED)
+    regs = dataclasses.replace(bitloop.regs_for(cfg, "speed"), win_shift=M.bit_length() - 1)
+    est = estimator.SpeedEstimator(cfg)
+    st = {"D": 0, "spd_prev": 0}
+    lsb_i = cfg.amps_per_lsb / (1 << formats.I_FRAC)
+    kc = cfg.speed_correction
+    pos, w, hist = 0, 0.0, [0] * M
+    for k in range(3000):
+        if k % 500 == 0:
+            i_load = rng.uniform(-8, 8)
+        i_q = i_load + rng.normal(0, 0.5)
+        w += rng.normal(0, 3.0)
+        pos += int(round(w * cfg.control.Ts / cfg.rad_per_count))
+        iq_raw = int(round(i_q / lsb_i))
+        om, sat = cs.speed_estimate(pos - hist[0], iq_raw, regs, st)
+        hist = hist[1:] + [pos]
+        assert not sat
+        wf = est.step(pos * cfg.rad_per_count, iq_raw * lsb_i)
+        wr = om / (1 << formats.W_FRAC) * cfg.rad_s_per_count_ts
+        if k >= M:
+            assert abs(wr - wf) < 0.005 * kc * 8.5 + 2.0 ** -8 * cfg.rad_s_per_count_ts, (k, wr, wf)
+
+
+def test_roms_refuse_speed_window(tmp_path):
+    """The RTL implements speed_window = 1 only: `empc roms` (and the RTL's loop model) refuse other
+    values with one line naming the key, and write nothing."""
+    from empc import bitloop, cli, roms, scenarios
+    cfg = CFG.with_control(speed_window=4)
+    with pytest.raises(config.ConfigError, match=r"^control\.speed_window = 4: the RTL implements 1 only"):
+        roms.generate(cfg, tmp_path / "r")
+    assert not (tmp_path / "r").exists()
+    assert cli.main(["roms", "--set", "control.speed_window=4", "--out", str(tmp_path / "c")]) != 0
+    assert not (tmp_path / "c").exists()
+    sc, _ = scenarios.get("speed_steps", cfg)
+    with pytest.raises(config.ConfigError, match="control.speed_window"):
+        bitloop.simulate(cfg, sc)

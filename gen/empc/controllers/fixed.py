@@ -35,7 +35,9 @@ class FixedMPC(Controller):
         self.regs = seq_mod.Regs(pwm_per_control=cfg.pwm_per_control, kacc=self.kacc, kacc_shift=self.kacc_shift,
                                  load_shift=cfg.speed_load_shift, fw_shift=fw["FW_SHIFT"], fw_nmax=fw["FW_NMAX"],
                                  fw_thr=(fw["FW_R2_HI"], fw["FW_R2_LO"]),
-                                 iq_hold=header.governor_raw(cfg, self.task)["IQ_HOLD"])
+                                 iq_hold=header.governor_raw(cfg, self.task)["IQ_HOLD"],
+                                 win_shift=c.speed_window.bit_length() - 1)
+        self.M = c.speed_window
         self.refpath = gov_mod.ReferencePath(cfg, self.task)
         self.reset()
 
@@ -55,6 +57,7 @@ class FixedMPC(Controller):
         self.ebar = (0, 0, 0)
         self.prev = None
         self.counts_prev = None
+        self.counts_hist: list = []          # speed_window > 1: counts_{k-M} .. counts_{k-1}
         self.saturations = 0
         self.flag_counts: dict = {}
         self.est = {"D": 0, "spd_prev": 0}
@@ -66,7 +69,13 @@ class FixedMPC(Controller):
 
     def step(self, meas) -> np.ndarray:
         counts = meas.counts
-        speed_counts = 0 if self.counts_prev is None else counts - self.counts_prev   # eq. 37, counts per Ts
+        if self.M == 1:
+            speed_counts = 0 if self.counts_prev is None else counts - self.counts_prev   # eq. 37, counts per Ts
+        else:                                    # counts per M Ts (the window reaches back to the first sample)
+            if not self.counts_hist:
+                self.counts_hist = [counts] * self.M
+            speed_counts = counts - self.counts_hist[0]
+            self.counts_hist = self.counts_hist[1:] + [counts]
         self.counts_prev = counts
         i_d, i_q = self.i_raw(meas.i_d), self.i_raw(meas.i_q)
         omega, _ = seq_mod.speed_estimate(speed_counts, i_q, self.regs, self.est)

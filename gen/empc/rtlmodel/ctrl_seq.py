@@ -65,11 +65,17 @@ class Regs:
     fw_nmax: int = 0               # FW.nmax: steps of the d-current offset (0 = field weakening off)
     fw_thr: tuple = (0xFFFF, 0)    # FW_R2 (hi, lo): thresholds on the limiter's r >> 20
     iq_hold: int = 0               # IQ_HOLD: |i_q| hold threshold of the governor, ADC LSB (0 = off)
+    win_shift: int = 0             # log2 control.speed_window (model only: the RTL implements 0)
 
 
 def speed_estimate(dpos: int, i_q: int, regs: "Regs", state: dict) -> tuple[int, bool]:
     """omega (Q16.16) of one control period; ``state`` holds D and spd_prev (updated).
-    Returns (omega, saturated)."""
+    Returns (omega, saturated).  ``regs.win_shift`` = m > 0 (control.speed_window = 2^m, FixedMPC
+    only, not in the RTL): ``dpos`` is the count difference over 2^m periods, spd = dpos << (16 - m)
+    (exact), and the load update compares u1 with 2^m (spd - spd_prev) / 2 (estimator.py)."""
+    m = regs.win_shift
+    if m:
+        return _speed_estimate_window(dpos, i_q, regs, state, m)
     spd = dpos << F.W_FRAC
     spd_s = F.sat(spd, F.W_W)
     ka = F.rshift_round(regs.kacc * i_q, regs.kacc_shift) if regs.kacc_shift else regs.kacc * i_q
@@ -79,6 +85,23 @@ def speed_estimate(dpos: int, i_q: int, regs: "Regs", state: dict) -> tuple[int,
     sat = spd_s != spd or omega != om
     if regs.load_shift:
         t2 = 2 * u1 - (spd_s - state["spd_prev"])
+        state["D"] = state["D"] + (t2 >> (regs.load_shift + 1))
+    else:
+        state["D"] = 0
+    state["spd_prev"] = spd_s
+    return omega, sat
+
+
+def _speed_estimate_window(dpos: int, i_q: int, regs: "Regs", state: dict, m: int) -> tuple[int, bool]:
+    spd = dpos << (F.W_FRAC - m)
+    spd_s = F.sat(spd, F.W_W)
+    ka = F.rshift_round(regs.kacc * i_q, regs.kacc_shift) if regs.kacc_shift else regs.kacc * i_q
+    u1 = ka - state["D"]
+    om = spd_s + u1
+    omega = F.sat(om, F.W_W)
+    sat = spd_s != spd or omega != om
+    if regs.load_shift:
+        t2 = 2 * u1 - ((spd_s - state["spd_prev"]) << m)
         state["D"] = state["D"] + (t2 >> (regs.load_shift + 1))
     else:
         state["D"] = 0
