@@ -89,11 +89,26 @@ def main(argv=None) -> int:
                       f"damping {r['worst_damping']:.3f}", f"noise u {r['noise_u_rms/u_max']:.2f} u_max",
                       "step", (r["step"]["passed"], r["step"]["fails"]) if "step" in r else "-",
                       f"{time.time() - t0:.0f} s", flush=True)
+                tab = tm.WINDOW_TABLES.get((name, M, key))
+                if tab:                     # the design again with weights tuned for the window (test_motors)
+                    ct = corners.load(name, **tm.TS_50US, **{"control.speed_window": M}, **tab)
+                    st = design.design(ct, *key, force=True)["stability"]
+                    nb = robust.noise_box(ct, *key, robust.exact_gains(ct, *key)(0.0), 0.0)
+                    r["window_tuned"] = {"weights": tab, "check_passed": st["passed"], "reason": st["reason"],
+                                         "worst_radius": st["worst_radius"]["value"],
+                                         "worst_damping": st["worst_damping"]["value"],
+                                         "noise_u_rms/u_max": nb["u_rms"] / ct.u_max}
+                    if not a.no_steps:
+                        r["window_tuned"]["step"] = step_case(tm, ct, key)
+                    print("   tuned for the window:", st["passed"], r["window_tuned"].get("step", {}).get("fails"))
             ds = row["designs"].values()
             row["check_pass"] = f"{sum(d['check_passed'] for d in ds)}/{len(ds)}"
             row["step_pass"] = (f"{sum(d['step']['passed'] for d in ds)}/{len(ds)}" if not a.no_steps else None)
             row["both_pass"] = (f"{sum(d['check_passed'] and d['step']['passed'] for d in ds)}/{len(ds)}"
                                 if not a.no_steps else None)
+            if any("window_tuned" in d for d in ds) and not a.no_steps:
+                dd = [d.get("window_tuned", d) for d in ds]
+                row["both_pass_window_tuned"] = f"{sum(d['check_passed'] and d['step']['passed'] for d in dd)}/{len(dd)}"
     out["wall_s"] = time.time() - t0
     from pathlib import Path
     p = Path(a.out)
