@@ -333,7 +333,7 @@ if cocotb is not None:
 OPT_FAST = "-O1"
 
 
-@pytest.mark.cost(80)            # Verilator build (three drives' worth of RTL: about 55-75 s) + 94k clocks with the image upload (2 s)
+@pytest.mark.cost(59)            # Verilator build at -O1 (three drives' worth of RTL: 0.74 of the -O2 build's 55-75 s) + 94k clocks with the image upload (2 s)
 @pytest.mark.parametrize("na", [2, pytest.param(4, marks=[pytest.mark.full, pytest.mark.cost(135)])])   # NAXES = 4: 101k clocks (3 s)
 def test_mx_axes_time_shift(na, monkeypatch):
     """NAXES axes against the one-axis drive, each shifted by its carrier phase: every PWM output bit- and

@@ -340,7 +340,7 @@ async def isolation(dut):
                   "syncs of axis 0 (both runs also bit-exact vs the model every clock)", [len(env1.trace[b]) for b in range(1, env1.A)], n1)
 
 
-@pytest.mark.cost(93)          # seconds on an idle core (make sim starts the costliest first)
+@pytest.mark.cost(57)          # seconds on an idle core (make sim starts the costliest first)
 def test_ref_gen_axes():
     from runner import run
     run(toplevel="ref_gen", test_module="test_ref_gen_axes", parameters=PARAMS,

@@ -300,7 +300,7 @@ async def physical(dut):
                   n_ok, len(res), drv.n)
 
 
-@pytest.mark.cost(29)          # seconds on an idle core (make sim starts the costliest first)
+@pytest.mark.cost(3)           # seconds on an idle core (make sim starts the costliest first)
 def test_sens_check():
     from runner import run
     run(toplevel="sens_check", test_module="test_sens_check", parameters={"CPR": CPR, "POLE_PAIRS": P, "DW": DW, "QS": QS})
