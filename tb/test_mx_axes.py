@@ -329,7 +329,11 @@ if cocotb is not None:
                       f"tick {int(dut.tick.value)}")
 
 
-@pytest.mark.cost(80)            # Verilator build (three drives' worth of RTL: about 55-75 s) + 94k clocks with the image upload (2 s)
+# C++ -O1 for the model: the build is most of this test (runner.py, opt_fast: 36 -> 24 CPU s, the same 1.1 s simulation)
+OPT_FAST = "-O1"
+
+
+@pytest.mark.cost(59)            # Verilator build at -O1 (three drives' worth of RTL: 0.74 of the -O2 build's 55-75 s) + 94k clocks with the image upload (2 s)
 @pytest.mark.parametrize("na", [2, pytest.param(4, marks=[pytest.mark.full, pytest.mark.cost(135)])])   # NAXES = 4: 101k clocks (3 s)
 def test_mx_axes_time_shift(na, monkeypatch):
     """NAXES axes against the one-axis drive, each shifted by its carrier phase: every PWM output bit- and
@@ -338,7 +342,7 @@ def test_mx_axes_time_shift(na, monkeypatch):
     monkeypatch.setenv("EMPC_ROMS", str(roms_at_period()))
     h = _hdr()
     run(toplevel="mx_axes_tb", test_module="test_mx_axes", sim="verilator", name=f"mx_axes{na}",
-        public=ROOT / "tb" / "hdl" / "mx_axes_tb.vlt", timing=True,
+        public=ROOT / "tb" / "hdl" / "mx_axes_tb.vlt", timing=True, opt_fast=OPT_FAST,
         parameters={"NAXES": na, "STAGGER": h[f"PWM_STAGGER_{na}"]}, run_name="time_shift",
         extra_env={"MXA_NAXES": str(na), "MXA_PERIODS": "10"}, testcase="time_shift")
 
@@ -375,6 +379,7 @@ def test_mx_axes_mutant(mutant, tmp_path, monkeypatch):
         with pytest.raises((AssertionError, SystemExit)):  # cocotb's runner exits on a failed test
             runner.run(toplevel="mx_axes_tb", test_module="test_mx_axes", sim="verilator",
                        name=f"mx_axes_mutant_{mutant}", public=ROOT / "tb" / "hdl" / "mx_axes_tb.vlt", timing=True,
+                       opt_fast=OPT_FAST,
                        parameters={"NAXES": 2, "STAGGER": h["PWM_STAGGER_2"]}, run_name="time_shift",
                        extra_env={"MXA_NAXES": "2", "MXA_PERIODS": "10"}, testcase="time_shift")
     res = runner.results_text(f"mx_axes_mutant_{mutant}", "mx_axes_tb", "time_shift")

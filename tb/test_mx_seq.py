@@ -496,7 +496,8 @@ def _run(task: str, n: int = 4, periods: int | None = None):
     if periods:
         env["EMPC_MX_PERIODS"] = str(periods)
     run(toplevel="mx_seq_tb", test_module="test_mx_seq", sim="verilator", name=f"mx_seq_n{n}", run_name=task,
-        parameters={"N": n}, extra_env=env, testcase="random_periods")     # one Verilator build per N
+        parameters={"N": n}, extra_env=env, testcase="random_periods",     # one Verilator build per N
+        opt_fast="-O1")     # C++ -O1: the build is most of these tests (runner.py opt_fast; README, co-simulation speed)
 
 
 @pytest.mark.cost(50)          # Verilator build (shared by the two tasks) + 400 periods (costs: x 1/2.3 of a loaded make sim)
