@@ -52,6 +52,14 @@
 // period_start and registers.  core_in_*, st_* and the ref_* read addresses are registered.
 // Latency: trigger -> cmp_load on `latency`; from the ADC's valid: 1 (front request) + 23 (front)
 // + the dependent program (21 + kacc_shift clocks) + 1 + the core (38 + columns) + 1 + 85 (mod).
+// Speed window (KACC.win = m, control.speed_window M = 2^m, 5..7 act as 4): per axis the counts of the
+// last 16 control samples in a shift register with a dynamic tap (32 SRL LUTs per axis, no reset; a
+// 5-bit count of the samples shifted in since rst gates the tap to 0 until it holds M of them, as the
+// state RAM's pos_prev = 0 after its clear: the first M speeds after reset see pos_k - 0); the A
+// source PH = pos_{k-M}; spd = sat32((pos - pos_{k-M}) << (16 - m)) as sat32(((dpos_M << 8) >>> m) << 8)
+// and the load update (2 u1 >>> m) - (spd - spd_prev) >>> (load_shift + 1 - m) (>= 0) on the serial
+// shifter (rtlmodel/ctrl_seq.py; equal to D += (2 u1 - M (spd - spd_prev)) >> (load_shift + 1) while
+// load_shift + 1 >= m, which the configuration requires).  m = 0: eq. 37 as before, same latency.
 // Reset: idle, every axis's first period flagged, the axis state RAM cleared by a 32 x NAXES-clock
 // sweep, the reference prefetch re-armed (it waits for ref_gen's w_ok), the job queue empty.
 `default_nettype none
@@ -187,18 +195,21 @@ module mx_seq #(
         // since rst, saturating at 16, and the tap reads 0 until it holds M of them, as the state
         // RAM's pos_prev after its clear).  Tap M - 1 = pos_{k-M}; the job's window m is the job
         // axis's KACC.win (win_shift), read only while the job runs (pos_trig / the history stay).
-        reg  [PW-1:0] ph [0:15];
+        // One 16-bit shift register per count bit, tap bit j_tap (yosys xilinx_srl -variable: SRLC16E).
         reg  [4:0]    nh;
-        integer hi;
-        always @(posedge clk)
-            if (trig[ga] && ctl_next[ga]) begin
-                for (hi = 15; hi > 0; hi = hi - 1) ph[hi] <= ph[hi-1];
-                ph[0] <= pos_trig[PW*ga +: PW];
-            end
+        wire          ph_sh = trig[ga] && ctl_next[ga];
+        wire [PW-1:0] ph_q;
+        genvar gb;
+        for (gb = 0; gb < PW; gb = gb + 1) begin : g_ph
+            reg [15:0] sr;
+            always @(posedge clk)
+                if (ph_sh) sr <= {sr[14:0], pos_trig[PW*ga + gb]};
+            assign ph_q[gb] = sr[j_tap];
+        end
         always @(posedge clk)
             if (rst) nh <= 5'd0;
-            else if (trig[ga] && ctl_next[ga] && !nh[4]) nh <= nh + 5'd1;
-        assign pos_hq[PW*ga +: PW] = (nh >= j_wm) ? ph[j_tap] : {PW{1'b0}};
+            else if (ph_sh && !nh[4]) nh <= nh + 5'd1;
+        assign pos_hq[PW*ga +: PW] = (nh >= j_wm) ? ph_q : {PW{1'b0}};
         always @(posedge clk) begin
             pos_sample[ga] <= 1'b0;
             ref_advance[ga] <= 1'b0;
@@ -551,7 +562,7 @@ module mx_seq #(
     reg  [RW-1:0] q;
     always @(posedge clk) q <= sram[{ax, iw[UW_RB +: 5]}];
     // stages: the selected source in the clock after its issue, 0 otherwise
-    reg  [PW-1:0] g_pos, g_ph;
+    reg  [PW-1:0] g_pos;            // POS or PH (never both: one stage, no extra OR input)
     reg  [AB-1:0] g_th;
     reg  [IW-1:0] g_id, g_iq, g_idr, g_iqr;
     reg  [UW-1:0] g_u0, g_u1;
@@ -560,8 +571,7 @@ module mx_seq #(
     reg           g_p;
     reg  signed [SHW-1:0] sh;               // serial shifter
     always @(posedge clk) begin
-        g_pos <= (issue && i_as == AS_POS) ? j_pos : {PW{1'b0}};
-        g_ph  <= (issue && i_as == AS_PH)  ? j_ph : {PW{1'b0}};
+        g_pos <= ((issue && i_as == AS_POS) ? j_pos : {PW{1'b0}}) | ((issue && i_as == AS_PH) ? j_ph : {PW{1'b0}});
         g_th  <= (issue && i_as == AS_TH)  ? theta_trig : {AB{1'b0}};
         g_id  <= (issue && i_as == AS_ID)  ? i_d : {IW{1'b0}};
         g_iq  <= (issue && i_as == AS_IQ)  ? i_q : {IW{1'b0}};
@@ -617,7 +627,7 @@ module mx_seq #(
             default: p_fwd = {p_w[XW-17:0], 16'd0};
         endcase
     end
-    wire [XW-1:0] a_or  = {{(XW-PW){g_pos[PW-1] | g_ph[PW-1]}}, g_pos | g_ph} | {{(XW-AB){1'b0}}, g_th} |
+    wire [XW-1:0] a_or  = {{(XW-PW){g_pos[PW-1]}}, g_pos} | {{(XW-AB){1'b0}}, g_th} |
                           {{(XW-IW){g_id[IW-1] | g_iq[IW-1] | g_idr[IW-1] | g_iqr[IW-1]}}, g_id | g_iq | g_idr | g_iqr} |
                           {{(XW-UW){g_u0[UW-1] | g_u1[UW-1]}}, g_u0 | g_u1} |
                           {{(XW-SW){g_e0[SW-1] | g_e1[SW-1] | g_e2[SW-1] | g_om[SW-1]}}, g_e0 | g_e1 | g_e2 | g_om} |
