@@ -307,8 +307,23 @@ async def random_periods(dut):
     st = dict(periods=0, control=0, core_checked=0, words_checked=0, run0=0, spd_sat=0, dth_sat=0, dom_sat=0,
               ref_sat=0, front_sat=0, late_trigger=0, lat_checked=0, cmd_after_boundary=0, ppc_change=0, lat_max=0, lat_valid_max=0,
               swap_wait=0, swapped=0)
+    reset_at = int(os.environ.get("MX_RESET_AT", "-1"))
+    assert reset_at < 0 or (task == "speed" and (swap_k is None or reset_at < swap_k))
     for k in range(PERIODS):
         await FallingEdge(dut.clk)
+        if k == reset_at:
+            # a reset mid-run (MX_RESET_AT): the speed window's history keeps its counts (no reset on the
+            # SRLs), its sample count restarts, so the first M speeds after it are pos_k - 0 again, as in
+            # a fresh CtrlSeq; the core reboots the boot image, ref_gen clears itself
+            dut.rst.value = 1
+            await ClockCycles(dut.clk, 5, rising=False)
+            dut.rst.value = 0
+            await ClockCycles(dut.clk, 900, rising=False)
+            model = CtrlSeq(params=image.decode(image.read_hex(roms / "coef_boot.hex")), N=n)
+            ref = RefGen(n)
+            ref.write_gov(hdr["GOV_VMAX_LO"] | hdr["GOV_VMAX_HI"] << 32, hdr["GOV_A_LO"] | hdr["GOV_A_HI"] << 32,
+                          hdr["GOV_KSH"], bool(hdr["GOV_EN"]))
+            st["reset"] = st.get("reset", 0) + 1
         if k == swap_k:
             words = image.read_hex(other[task][1])
             await upload(words)
@@ -492,6 +507,7 @@ async def random_periods(dut):
     assert mon["overrun"] == 1, f"a boundary during a running period: {mon['overrun']} overrun pulses, want 1"
     dut._log.info("mx_seq %s N=%d: seed %d, %s (compare values, core input words, core outputs, status words "
                   "and front_sat pulses bit-exact with the model)", task, n, seed, st)
+    assert reset_at < 0 or st.get("reset") == 1, st
     need = ["lat_checked", "dth_sat", "dom_sat", "spd_sat", "run0", "late_trigger", "cmd_after_boundary", "front_sat"]
     need += ["core_checked", "swapped"] if law else []
     need += ["ref_sat"] if task == "position" or law else []
@@ -499,9 +515,11 @@ async def random_periods(dut):
         assert st[key] > 0, f"no period exercised {key}: {st}"
 
 
-def _run(task: str, n: int = 4, periods: int | None = None, wins: str | None = None):
+def _run(task: str, n: int = 4, periods: int | None = None, wins: str | None = None, reset_at: int | None = None):
     from runner import run
     env = {"MX_TASK": task, "MX_N": str(n)}
+    if reset_at is not None:
+        env["MX_RESET_AT"] = str(reset_at)
     if periods:
         env["EMPC_MX_PERIODS"] = str(periods)
     if wins:
@@ -541,8 +559,9 @@ def test_mx_seq_window(task, wins):
     """KACC.win (the speed window M = 2^m): M = 4 from reset; M = 8 from reset, then rarely M = 1, 16 and
     the field's 7 (acts as 4): every core input word (spd over M periods, the first M after reset against
     0), the load estimate's D (through omega), the compare values and the latency bit-exact / clock-exact
-    against CtrlSeq and rtlmodel.mx_seq."""
-    _run(task, 4, periods=200, wins=wins)
+    against CtrlSeq and rtlmodel.mx_seq.  The speed run resets the block at period 60 (the history keeps
+    the counts before it: the first M speeds after the reset must still see 0)."""
+    _run(task, 4, periods=200, wins=wins, reset_at=60 if task == "speed" else None)
 
 
 def _draw_regs(rng, r, wins=None) -> tuple[bool, bool]:
