@@ -164,8 +164,8 @@ def test_raw_estimate_tracks_float():
 
 
 # ------------------------------------------------------------------------------------------------
-# control.speed_window = M > 1: the difference over M periods (model only; the RTL implements M = 1
-# and `empc roms` refuses other values: test_roms_refuse_speed_window).
+# control.speed_window = M > 1: the difference over M periods (the RTL: KACC.win in rtl/mx_seq.v; `empc roms`
+# refuses a load shift below log2 M - 1: test_roms_refuse_speed_window).
 WINDOWS = [2, 4, 8]
 
 
