@@ -651,8 +651,8 @@
 #define EMPC_A_KACC                  0x040u
 #define EMPC_A_KACC_ACCESS           EMPC_ACC_RW
 #define EMPC_A_KACC_RESET            0x00000000u
-#define EMPC_A_KACC_RESET_MASK       0xE0C00000u
-#define EMPC_A_KACC_BITS             0x1F3FFFFFu
+#define EMPC_A_KACC_RESET_MASK       0x00C00000u
+#define EMPC_A_KACC_BITS             0xFF3FFFFFu
 #define EMPC_A_KACC_SIGNED           0
 #define EMPC_A_KACC_KACC_SHIFT       0u
 #define EMPC_A_KACC_KACC_MASK        0x0003FFFFu
@@ -663,6 +663,9 @@
 #define EMPC_A_KACC_SHIFT_SHIFT      24u
 #define EMPC_A_KACC_SHIFT_MASK       0x1F000000u
 #define EMPC_A_KACC_SHIFT_WIDTH      5u
+#define EMPC_A_KACC_WIN_SHIFT        29u
+#define EMPC_A_KACC_WIN_MASK         0xE0000000u
+#define EMPC_A_KACC_WIN_WIDTH        3u
 /* ID_REF (RW): d-current reference, ADC LSB Q.4 (signed 18 bit). */
 #define EMPC_A_ID_REF            0x044u
 #define EMPC_A_ID_REF_ACCESS     EMPC_ACC_RW

@@ -128,6 +128,7 @@ module axis_periph #(
     output wire signed [`EMPC_A_KACC_KACC_W-1:0] kacc,
     output wire [`EMPC_A_KACC_SHIFT_W-1:0]     kacc_shift,
     output wire [`EMPC_A_KACC_LOAD_SHIFT_W-1:0] kacc_load_shift,
+    output wire [`EMPC_A_KACC_WIN_W-1:0]       kacc_win,
     output wire signed [`EMPC_I_W-1:0]         id_eff,     // sat(ID_REF - field weakening)
     output wire signed [`EMPC_A_IQ_REF_W-1:0]  iq_ref,
     input  wire [3*CW-1:0] cmp,
@@ -404,7 +405,7 @@ module axis_periph #(
         .fault_mask(fault_mask), .dead_time(dead_time), .kdc(kdc), .udc(udc), .udc_min(udc_min),
         .udc_max(udc_max), .oc_thresh(oc_thresh),
         .adc_off_we(adc_off_we), .adc_off_wdata(adc_off_wdata), .adc_off0(off0), .adc_off1(off1), .adc_off2(off2),
-        .angle_cal(angle_cal), .hall_offset(hall_offset), .kacc(kacc), .kacc_load_shift(kacc_load_shift),
+        .angle_cal(angle_cal), .hall_offset(hall_offset), .kacc(kacc), .kacc_load_shift(kacc_load_shift), .kacc_win(kacc_win),
         .kacc_shift(kacc_shift), .id_ref(id_ref), .iq_ref(iq_ref), .seg_addr(seg_slot),
         .seg_we(seg_we_w), .seg_re(seg_re_w), .seg_idx(seg_idx), .seg_start(seg_start), .seg_start_data(seg_start_slot),
         .gov_we(gov_we), .gov_re(gov_re), .fw_nmax(fw_nmax), .fw_r2_hi(fw_r2_hi), .fw_r2_lo(fw_r2_lo),

@@ -19,12 +19,12 @@ module axis_rd #(
     input  wire                 reg_rd,     // read strobe (1 clock), any axis
     input  wire [AXB-1:0]       rd_axis,    // the axis read (an axis >= NAXES reads 0)
     input  wire [7:0]           reg_addr,   // word offset in the axis block
-    input  wire [NAXES*571-1:0] rd_vals,    // axis a's axis_regs.rd_vals at [a*VW +: VW]
+    input  wire [NAXES*574-1:0] rd_vals,    // axis a's axis_regs.rd_vals at [a*VW +: VW]
     input  wire [31:0]          seg_rdata,  // window read data (0 unless read), shared by the axes
     input  wire [31:0]          smem_rdata, // window read data (0 unless read), shared by the axes
     output wire [31:0]          reg_rdata   // read data, the clock after reg_rd (0 otherwise)
 );
-    localparam integer VW = 571;   // rd_vals bits per axis (EMPC_A_RD_VALS_W)
+    localparam integer VW = 574;   // rd_vals bits per axis (EMPC_A_RD_VALS_W)
 
     // ---------------- the read axis's values: a multiplexer on the bits of rd_axis (binary, so that
     // synthesis maps four axes to one LUT6 a bit; a decoded AND-OR form came out at 2-3 LUTs a bit
@@ -55,26 +55,26 @@ module axis_rd #(
     wire [11:0] v_adc_off2 = v[186:175];
     wire [15:0] v_angle_cal = v[202:187];
     wire [15:0] v_hall_offset = v[218:203];
-    wire [26:0] v_kacc = v[245:219];
-    wire [17:0] v_id_ref = v[263:246];
-    wire [17:0] v_iq_ref = v[281:264];
-    wire [3:0] v_seg_addr = v[285:282];
-    wire [7:0] v_fw = v[293:286];
-    wire [31:0] v_fw_r2 = v[325:294];
-    wire [11:0] v_iq_hold = v[337:326];
-    wire [31:0] v_pos = v[369:338];
-    wire [15:0] v_theta = v[385:370];
-    wire [23:0] v_iabc0 = v[409:386];
-    wire [11:0] v_iabc1 = v[421:410];
-    wire [15:0] v_latency = v[437:422];
-    wire [26:0] v_adc_psum0 = v[464:438];
-    wire [26:0] v_adc_psum1 = v[491:465];
-    wire [26:0] v_adc_psum2 = v[518:492];
-    wire [7:0] v_cnt_wr_refused = v[526:519];
-    wire [7:0] v_cnt_adc_miss = v[534:527];
-    wire [15:0] v_cnt_enc_err = v[550:535];
-    wire [11:0] v_adc_sum_thresh = v[562:551];
-    wire [7:0] v_cnt_swap_ref = v[570:563];
+    wire [29:0] v_kacc = v[248:219];
+    wire [17:0] v_id_ref = v[266:249];
+    wire [17:0] v_iq_ref = v[284:267];
+    wire [3:0] v_seg_addr = v[288:285];
+    wire [7:0] v_fw = v[296:289];
+    wire [31:0] v_fw_r2 = v[328:297];
+    wire [11:0] v_iq_hold = v[340:329];
+    wire [31:0] v_pos = v[372:341];
+    wire [15:0] v_theta = v[388:373];
+    wire [23:0] v_iabc0 = v[412:389];
+    wire [11:0] v_iabc1 = v[424:413];
+    wire [15:0] v_latency = v[440:425];
+    wire [26:0] v_adc_psum0 = v[467:441];
+    wire [26:0] v_adc_psum1 = v[494:468];
+    wire [26:0] v_adc_psum2 = v[521:495];
+    wire [7:0] v_cnt_wr_refused = v[529:522];
+    wire [7:0] v_cnt_adc_miss = v[537:530];
+    wire [15:0] v_cnt_enc_err = v[553:538];
+    wire [11:0] v_adc_sum_thresh = v[565:554];
+    wire [7:0] v_cnt_swap_ref = v[573:566];
 
     // ---------------- read path: gated copies / shared read register, ORed
     wire rd_p0 = reg_rd && (reg_addr[7:7] == 1'd0);
@@ -93,7 +93,7 @@ module axis_rd #(
     reg  [11:0]  q_adc_off2;
     reg  [15:0]  q_angle_cal;
     reg  [15:0]  q_hall_offset;
-    reg  [26:0]  q_kacc;
+    reg  [29:0]  q_kacc;
     reg  [17:0]  q_id_ref;
     reg  [17:0]  q_iq_ref;
     reg  [3:0]   q_seg_addr;
@@ -129,7 +129,7 @@ module axis_rd #(
         q_adc_off2 <= (rd_p0 && reg_addr[6:0] == 7'hd) ? v_adc_off2 : 12'd0;
         q_angle_cal <= (rd_p0 && reg_addr[6:0] == 7'he) ? v_angle_cal : 16'd0;
         q_hall_offset <= (rd_p0 && reg_addr[6:0] == 7'hf) ? v_hall_offset : 16'd0;
-        q_kacc <= (rd_p0 && reg_addr[6:0] == 7'h10) ? v_kacc : 27'd0;
+        q_kacc <= (rd_p0 && reg_addr[6:0] == 7'h10) ? v_kacc : 30'd0;
         q_id_ref <= (rd_p0 && reg_addr[6:0] == 7'h11) ? v_id_ref : 18'd0;
         q_iq_ref <= (rd_p0 && reg_addr[6:0] == 7'h12) ? v_iq_ref : 18'd0;
         q_seg_addr <= (rd_p0 && reg_addr[6:0] == 7'h13) ? v_seg_addr : 4'd0;
@@ -165,7 +165,7 @@ module axis_rd #(
             q_adc_off2 <= 12'd0;
             q_angle_cal <= 16'd0;
             q_hall_offset <= 16'd0;
-            q_kacc <= 27'd0;
+            q_kacc <= 30'd0;
             q_id_ref <= 18'd0;
             q_iq_ref <= 18'd0;
             q_seg_addr <= 4'd0;
@@ -204,7 +204,7 @@ module axis_rd #(
                      | {20'd0, q_adc_off2}
                      | {16'd0, q_angle_cal}
                      | {16'd0, q_hall_offset}
-                     | {3'd0, q_kacc[26:22], 2'd0, q_kacc[21:0]}
+                     | {q_kacc[29:22], 2'd0, q_kacc[21:0]}
                      | {{14{q_id_ref[17]}}, q_id_ref[17:0]}
                      | {{14{q_iq_ref[17]}}, q_iq_ref[17:0]}
                      | {28'd0, q_seg_addr}

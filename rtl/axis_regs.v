@@ -22,7 +22,7 @@ module axis_regs (
     input  wire [7:0]   reg_addr,             // word offset in the block
     input  wire [31:0]  reg_wdata,
     output wire [31:0]  reg_rdata,            // read data, the clock after reg_rd (0 otherwise)
-    output wire [570:0] rd_vals,              // every readable value, packed (combinational; the shared read path axis_rd)
+    output wire [573:0] rd_vals,              // every readable value, packed (combinational; the shared read path axis_rd)
     output reg          ctrl_enable,          // CTRL.enable (RW)
     output reg          ctrl_run,             // CTRL.run (RW)
     output reg  [7:0]   ctrl_pwm_per_control, // CTRL.pwm_per_control (RW)
@@ -78,6 +78,7 @@ module axis_regs (
     output reg  [17:0]  kacc,                 // KACC.kacc (RW)
     output reg  [3:0]   kacc_load_shift,      // KACC.load_shift (RW)
     output reg  [4:0]   kacc_shift,           // KACC.shift (RW)
+    output reg  [2:0]   kacc_win,             // KACC.win (RW)
     output reg  signed [17:0]  id_ref,        // ID_REF (RW)
     output reg  signed [17:0]  iq_ref,        // IQ_REF (RW)
     output reg  [3:0]   seg_addr,             // SEG_ADDR (RW)
@@ -173,6 +174,7 @@ module axis_regs (
             kacc <= `EMPC_KACC;
             kacc_load_shift <= `EMPC_KACC_LOAD_SHIFT;
             kacc_shift <= `EMPC_KACC_SHIFT;
+            kacc_win <= `EMPC_KACC_WIN;
             id_ref <= 18'd0;
             iq_ref <= 18'd0;
             seg_addr <= 4'd0;
@@ -296,6 +298,7 @@ module axis_regs (
                         kacc <= reg_wdata[17:0];
                         kacc_load_shift <= reg_wdata[21:18];
                         kacc_shift <= reg_wdata[28:24];
+                        kacc_win <= reg_wdata[31:29];
                     end
                     7'h11: begin   // ID_REF
                         id_ref <= reg_wdata[17:0];
@@ -354,7 +357,7 @@ module axis_regs (
     reg  [11:0]  q_adc_off2;
     reg  [15:0]  q_angle_cal;
     reg  [15:0]  q_hall_offset;
-    reg  [26:0]  q_kacc;
+    reg  [29:0]  q_kacc;
     reg  [17:0]  q_id_ref;
     reg  [17:0]  q_iq_ref;
     reg  [3:0]   q_seg_addr;
@@ -395,7 +398,7 @@ module axis_regs (
         q_adc_off2 <= (rd_p0 && reg_addr[6:0] == 7'hd) ? adc_off2 : 12'd0;
         q_angle_cal <= (rd_p0 && reg_addr[6:0] == 7'he) ? angle_cal : 16'd0;
         q_hall_offset <= (rd_p0 && reg_addr[6:0] == 7'hf) ? hall_offset : 16'd0;
-        q_kacc <= (rd_p0 && reg_addr[6:0] == 7'h10) ? {kacc_shift, kacc_load_shift, kacc} : 27'd0;
+        q_kacc <= (rd_p0 && reg_addr[6:0] == 7'h10) ? {kacc_win, kacc_shift, kacc_load_shift, kacc} : 30'd0;
         q_id_ref <= (rd_p0 && reg_addr[6:0] == 7'h11) ? id_ref : 18'd0;
         q_iq_ref <= (rd_p0 && reg_addr[6:0] == 7'h12) ? iq_ref : 18'd0;
         q_seg_addr <= (rd_p0 && reg_addr[6:0] == 7'h13) ? seg_addr : 4'd0;
@@ -431,7 +434,7 @@ module axis_regs (
             q_adc_off2 <= 12'd0;
             q_angle_cal <= 16'd0;
             q_hall_offset <= 16'd0;
-            q_kacc <= 27'd0;
+            q_kacc <= 30'd0;
             q_id_ref <= 18'd0;
             q_iq_ref <= 18'd0;
             q_seg_addr <= 4'd0;
@@ -470,7 +473,7 @@ module axis_regs (
                      | {20'd0, q_adc_off2}
                      | {16'd0, q_angle_cal}
                      | {16'd0, q_hall_offset}
-                     | {3'd0, q_kacc[26:22], 2'd0, q_kacc[21:0]}
+                     | {q_kacc[29:22], 2'd0, q_kacc[21:0]}
                      | {{14{q_id_ref[17]}}, q_id_ref[17:0]}
                      | {{14{q_iq_ref[17]}}, q_iq_ref[17:0]}
                      | {28'd0, q_seg_addr}
@@ -495,9 +498,9 @@ module axis_regs (
     assign rd_vals = {cnt_swap_ref, adc_sum_thresh, cnt_enc_err, cnt_adc_miss, cnt_wr_refused,
                       {adc_psum2_count, adc_psum2_sum}, {adc_psum1_count, adc_psum1_sum},
                       {adc_psum0_count, adc_psum0_sum}, latency, iabc1, {iabc0_b, iabc0_a}, theta, pos, iq_hold,
-                      {fw_r2_lo, fw_r2_hi}, fw_nmax, seg_addr, iq_ref, id_ref, {kacc_shift, kacc_load_shift, kacc},
-                      hall_offset, angle_cal, adc_off2, adc_off1, adc_off0, oc_thresh, udc_max, udc_min, udc, kdc,
-                      dead_time, fault_mask,
+                      {fw_r2_lo, fw_r2_hi}, fw_nmax, seg_addr, iq_ref, id_ref,
+                      {kacc_win, kacc_shift, kacc_load_shift, kacc}, hall_offset, angle_cal, adc_off2, adc_off1,
+                      adc_off0, oc_thresh, udc_max, udc_min, udc, kdc, dead_time, fault_mask,
                       {fault_adc_frozen, fault_adc_sum, fault_adc_stuck, fault_enc_break, fault_hall_enc, fault_coef, fault_clock, fault_pstage, fault_adc, fault_overrun, fault_dclink, fault_watchdog, fault_encoder, fault_hall, fault_overcurrent},
                       {status_wr_refused, status_adc_refused, status_swap_refused, status_coef_valid, status_fault, status_swap_pending, status_coef_bank, status_core_ready, status_adc_cal_done, status_adc_cal_busy, status_aligned, status_bridges_on, status_running},
                       {ctrl_pwm_per_control, ctrl_run, ctrl_enable}};

@@ -91,6 +91,7 @@ module mpc_axis #(
     wire signed [`EMPC_A_KACC_KACC_W-1:0] kacc;
     wire [`EMPC_A_KACC_SHIFT_W-1:0]      kacc_shift;
     wire [`EMPC_A_KACC_LOAD_SHIFT_W-1:0] kacc_load_shift;
+    wire [`EMPC_A_KACC_WIN_W-1:0]        kacc_win;
     wire signed [`EMPC_I_W-1:0]          id_eff;
     wire signed [`EMPC_A_IQ_REF_W-1:0]   iq_ref;
     wire [`EMPC_A_FW_R2_LO_W+`EMPC_A_FW_R2_HI_W-1:0] fw_thr;
@@ -167,7 +168,7 @@ module mpc_axis #(
         .pwm_per_control(ctrl_pwm_per_control),
         .run(running), .theta(theta), .pos(pos), .pos_sample(pos_sample), .adc_valid(adc_valid),
         .cur0(cur0), .cur1(cur1), .cur2(cur2), .job_axis(), .kdc(kdc), .kacc(kacc), .kacc_shift(kacc_shift),
-        .load_shift(kacc_load_shift),
+        .load_shift(kacc_load_shift), .win_shift(kacc_win),
         .id_ref(id_eff), .iq_ref(iq_ref), .task_pos(task_pos), .ctl_boundary(ctl_boundary),
         .ref_advance(ref_advance), .ref_ok(ref_ok),
         .ref_age(ref_age), .ref_bit(ref_bit), .ref_q(ref_q),
@@ -221,7 +222,7 @@ module mpc_axis #(
         .seg_start_slot(seg_start_slot), .seg_rdata(seg_rdata), .ref_sync(ref_sync_d), .sync_idx(sync_idx),
         .sync_bit(sync_bit), .task_pos(task_pos), .gov_ev(gov_ev), .gov_hold(gov_hold),
         .ctrl_pwm_per_control(ctrl_pwm_per_control), .theta(theta), .pos(pos), .pos_sample(pos_sample),
-        .kdc(kdc), .kacc(kacc), .kacc_shift(kacc_shift), .kacc_load_shift(kacc_load_shift), .id_eff(id_eff),
+        .kdc(kdc), .kacc(kacc), .kacc_shift(kacc_shift), .kacc_load_shift(kacc_load_shift), .kacc_win(kacc_win), .id_eff(id_eff),
         .iq_ref(iq_ref), .cmp(cmp), .cmp_load(cmp_load), .overrun(overrun), .seq_front_sat(seq_front_sat),
         .control_done(control_done), .seq_latency(seq_latency), .st_iq(st_iq), .omega(omega),
         .fw_thr(fw_thr), .iq_big(iq_big), .cmd_coef_swap(cmd_coef_swap), .core_done(core_done),

@@ -104,6 +104,7 @@ module mx_axes #(
     wire [18*NAXES-1:0]    kdc_v, kacc_v, id_eff_v, iq_ref_v;
     wire [5*NAXES-1:0]     kacc_shift_v;
     wire [4*NAXES-1:0]     load_shift_v;
+    wire [3*NAXES-1:0]     win_v;
     wire [32*NAXES-1:0]    fw_thr_v;
     wire [NAXES-1:0]       iq_big_v;        // |i_q| (the job's, st_iq) >= the axis's IQ_HOLD
     wire [AD*NAXES-1:0]    oc_thr_v, sum_thr_v, off_wdata_v;
@@ -170,10 +171,11 @@ module mx_axes #(
     reg  [17:0]                     j_kdc, j_kacc, j_id, j_iq;
     reg  [4:0]                      j_ksh;
     reg  [3:0]                      j_lsh;
+    reg  [2:0]                      j_win;
     reg  [31:0]                     j_fw;
     integer                         ji;
     always @(*) begin                // the job axis's registers (AND-OR multiplexers)
-        j_kdc = 18'd0; j_kacc = 18'd0; j_id = 18'd0; j_iq = 18'd0; j_ksh = 5'd0; j_lsh = 4'd0; j_fw = 32'd0;
+        j_kdc = 18'd0; j_kacc = 18'd0; j_id = 18'd0; j_iq = 18'd0; j_ksh = 5'd0; j_lsh = 4'd0; j_win = 3'd0; j_fw = 32'd0;
         for (ji = 0; ji < NAXES; ji = ji + 1) if (job_axis == ji[AXB-1:0]) begin
             j_kdc = j_kdc | kdc_v[18*ji +: 18];
             j_kacc = j_kacc | kacc_v[18*ji +: 18];
@@ -181,6 +183,7 @@ module mx_axes #(
             j_iq = j_iq | iq_ref_v[18*ji +: 18];
             j_ksh = j_ksh | kacc_shift_v[5*ji +: 5];
             j_lsh = j_lsh | load_shift_v[4*ji +: 4];
+            j_win = j_win | win_v[3*ji +: 3];
             j_fw = j_fw | fw_thr_v[32*ji +: 32];
         end
     end
@@ -207,7 +210,7 @@ module mx_axes #(
         .clk(clk), .rst(rst), .adc_trig(adc_trig), .period_start(period_start), .pwm_per_control(ppc),
         .run(running), .theta(theta_v), .pos(pos_v), .pos_sample(pos_sample), .adc_valid(adc_valid),
         .cur0(cur0), .cur1(cur1), .cur2(cur2), .job_axis(job_axis), .kdc(j_kdc), .kacc(j_kacc), .kacc_shift(j_ksh),
-        .load_shift(j_lsh), .id_ref(j_id), .iq_ref(j_iq), .task_pos(task_pos), .ctl_boundary(ctl_boundary),
+        .load_shift(j_lsh), .win_shift(j_win), .id_ref(j_id), .iq_ref(j_iq), .task_pos(task_pos), .ctl_boundary(ctl_boundary),
         .ref_advance(ref_advance), .ref_ok(ref_ok), .ref_age(ref_age), .ref_bit(ref_bit), .ref_q(ref_q),
         .core_start(core_start), .core_in_we(core_in_we), .core_in_addr(core_in_addr),
         .core_in_wdata(core_in_wdata), .core_done(core_done), .core_u(core_u), .core_ebar(core_ebar),
@@ -276,7 +279,7 @@ module mx_axes #(
             .task_pos(task_pos[n]), .gov_ev(gov_ev[n]), .gov_hold(gov_hold[n]),
             .ctrl_pwm_per_control(ppc[8*n +: 8]), .theta(theta_v[AB*n +: AB]), .pos(pos_v[32*n +: 32]),
             .pos_sample(pos_sample[n]), .kdc(kdc_v[18*n +: 18]), .kacc(kacc_v[18*n +: 18]),
-            .kacc_shift(kacc_shift_v[5*n +: 5]), .kacc_load_shift(load_shift_v[4*n +: 4]),
+            .kacc_shift(kacc_shift_v[5*n +: 5]), .kacc_load_shift(load_shift_v[4*n +: 4]), .kacc_win(win_v[3*n +: 3]),
             .id_eff(id_eff_v[18*n +: 18]), .iq_ref(iq_ref_v[18*n +: 18]), .cmp(cmp), .cmp_load(cmp_load[n]),
             .overrun(overrun[n]), .seq_front_sat(seq_front_sat[n]), .control_done(control_done[n]),
             .seq_latency(seq_latency[16*n +: 16]), .st_iq(st_iq), .omega(omega_n),

@@ -52,6 +52,14 @@
 // period_start and registers.  core_in_*, st_* and the ref_* read addresses are registered.
 // Latency: trigger -> cmp_load on `latency`; from the ADC's valid: 1 (front request) + 23 (front)
 // + the dependent program (21 + kacc_shift clocks) + 1 + the core (38 + columns) + 1 + 85 (mod).
+// Speed window (KACC.win = m, control.speed_window M = 2^m, 5..7 act as 4): per axis the counts of the
+// last 16 control samples in a shift register with a dynamic tap (32 SRL LUTs per axis, no reset; a
+// 5-bit count of the samples shifted in since rst gates the tap to 0 until it holds M of them, as the
+// state RAM's pos_prev = 0 after its clear: the first M speeds after reset see pos_k - 0); the A
+// source PH = pos_{k-M}; spd = sat32((pos - pos_{k-M}) << (16 - m)) as sat32(((dpos_M << 8) >>> m) << 8)
+// and the load update (2 u1 >>> m) - (spd - spd_prev) >>> (load_shift + 1 - m) (>= 0) on the serial
+// shifter (rtlmodel/ctrl_seq.py; equal to D += (2 u1 - M (spd - spd_prev)) >> (load_shift + 1) while
+// load_shift + 1 >= m, which the configuration requires).  m = 0: eq. 37 as before, same latency.
 // Reset: idle, every axis's first period flagged, the axis state RAM cleared by a 32 x NAXES-clock
 // sweep, the reference prefetch re-armed (it waits for ref_gen's w_ok), the job queue empty.
 `default_nettype none
@@ -87,6 +95,7 @@ module mx_seq #(
     input  wire [17:0]                    kacc,            // signed 18 bit
     input  wire [4:0]                     kacc_shift,
     input  wire [3:0]                     load_shift,
+    input  wire [2:0]                     win_shift,       // KACC.win: speed window M = 2^m (5..7 act as 4)
     input  wire [`EMPC_I_W-1:0]           id_ref,          // signed
     input  wire [`EMPC_I_W-1:0]           iq_ref,
     input  wire [NAXES-1:0]               task_pos,
@@ -162,6 +171,10 @@ module mx_seq #(
     reg  [THETA_LAT*NAXES-1:0] th_sr;   // the trigger delayed by 1..THETA_LAT clocks (the angle: at the last)
     wire [15:0]         lat_now;    // the job axis's clocks since its trigger, + 1 (at cmp_load: latency)
     reg  [PW*NAXES-1:0] pos_trig;
+    wire [PW*NAXES-1:0] pos_hq;     // per axis: pos_{k-M} of the job's window (0 before M samples)
+    wire [2:0]          j_win = win_shift[2] ? 3'd4 : win_shift;   // the job axis's window m, 0..4
+    wire [4:0]          j_wm  = 5'd1 << j_win;                      // M = 2^m, 1..16
+    wire [3:0]          j_tap = j_wm[3:0] - 4'd1;                   // M - 1 (M = 16: 15)
     reg  [AB*NAXES-1:0] th_trig;
     wire [NAXES-1:0]    busy_ax;    // a job of the axis waits or runs
     wire [NAXES-1:0]    trig;       // a trigger taken
@@ -177,6 +190,26 @@ module mx_seq #(
         always @(posedge clk) ctl_now[ga] <= !rst && (per_nx[8*ga +: 8] >= pwm_per_control[8*ga +: 8]);
         assign ctl_boundary[ga] = period_start[ga] && ctl_now[ga];
         assign per_cnt[8*ga +: 8] = per_nx[8*ga +: 8] - 8'd1;
+        // the counts of the last 16 control samples (before this one): a shift register with a
+        // dynamic tap (SRL16 per bit: 32 LUTs per axis, no reset: nh counts the samples shifted in
+        // since rst, saturating at 16, and the tap reads 0 until it holds M of them, as the state
+        // RAM's pos_prev after its clear).  Tap M - 1 = pos_{k-M}; the job's window m is the job
+        // axis's KACC.win (win_shift), read only while the job runs (pos_trig / the history stay).
+        // One 16-bit shift register per count bit, tap bit j_tap (yosys xilinx_srl -variable: SRLC16E).
+        reg  [4:0]    nh;
+        wire          ph_sh = trig[ga] && ctl_next[ga];
+        wire [PW-1:0] ph_q;
+        genvar gb;
+        for (gb = 0; gb < PW; gb = gb + 1) begin : g_ph
+            reg [15:0] sr;
+            always @(posedge clk)
+                if (ph_sh) sr <= {sr[14:0], pos_trig[PW*ga + gb]};
+            assign ph_q[gb] = sr[j_tap];
+        end
+        always @(posedge clk)
+            if (rst) nh <= 5'd0;
+            else if (ph_sh && !nh[4]) nh <= nh + 5'd1;
+        assign pos_hq[PW*ga +: PW] = (nh >= j_wm) ? ph_q : {PW{1'b0}};
         always @(posedge clk) begin
             pos_sample[ga] <= 1'b0;
             ref_advance[ga] <= 1'b0;
@@ -326,6 +359,7 @@ module mx_seq #(
 
     // the job axis's inputs (NAXES = 1: the ports)
     wire [PW-1:0]  j_pos   = pos_trig[PW*ax +: PW];
+    wire [PW-1:0]  j_ph    = pos_hq[PW*ax +: PW];
     wire [CUW-1:0] j_cur0  = cur0[CUW*ax +: CUW];
     wire [CUW-1:0] j_cur1  = cur1[CUW*ax +: CUW];
     wire [CUW-1:0] j_cur2  = cur2[CUW*ax +: CUW];
@@ -334,6 +368,7 @@ module mx_seq #(
     wire [17:0]    j_kacc  = kacc;
     wire [4:0]     j_ksh   = kacc_shift;
     wire [3:0]     j_lsh   = load_shift;
+    wire [4:0]     j_lsm   = ({1'b0, j_lsh} + 5'd1 < {2'd0, j_win}) ? 5'd0 : {1'b0, j_lsh} + 5'd1 - {2'd0, j_win};
     wire [IW-1:0]  j_idr   = id_ref;
     wire [IW-1:0]  j_iqr   = iq_ref;
     wire           j_run   = run[ax];
@@ -527,7 +562,7 @@ module mx_seq #(
     reg  [RW-1:0] q;
     always @(posedge clk) q <= sram[{ax, iw[UW_RB +: 5]}];
     // stages: the selected source in the clock after its issue, 0 otherwise
-    reg  [PW-1:0] g_pos;
+    reg  [PW-1:0] g_pos;            // POS or PH (never both: one stage, no extra OR input)
     reg  [AB-1:0] g_th;
     reg  [IW-1:0] g_id, g_iq, g_idr, g_iqr;
     reg  [UW-1:0] g_u0, g_u1;
@@ -536,7 +571,7 @@ module mx_seq #(
     reg           g_p;
     reg  signed [SHW-1:0] sh;               // serial shifter
     always @(posedge clk) begin
-        g_pos <= (issue && i_as == AS_POS) ? j_pos : {PW{1'b0}};
+        g_pos <= ((issue && i_as == AS_POS) ? j_pos : {PW{1'b0}}) | ((issue && i_as == AS_PH) ? j_ph : {PW{1'b0}});
         g_th  <= (issue && i_as == AS_TH)  ? theta_trig : {AB{1'b0}};
         g_id  <= (issue && i_as == AS_ID)  ? i_d : {IW{1'b0}};
         g_iq  <= (issue && i_as == AS_IQ)  ? i_q : {IW{1'b0}};
@@ -664,14 +699,16 @@ module mx_seq #(
         if (wen && w_dk == DK_THM) th_mod <= w32[AB-1:0];
     end
     // serial shifter: loaded with R (SHKA: with kacc * i_q, xform's product, held since the front: no A stage for
-    // it), then count steps of an arithmetic right shift (sh_r: the bit out)
+    // it), then count steps of an arithmetic right shift (sh_r: the bit out): kacc_shift (SHKA), m (SHT2,
+    // da[0] = 1: the speed window) or load_shift + 1 - m, at least 0 (SHT2, da[0] = 0: the load update)
     reg  [4:0]    sh_cnt;
+    wire [4:0]    sh_n = (w_dk == DK_SHKA) ? j_ksh : w_da[0] ? {2'd0, j_win} : j_lsm;
     always @(posedge clk) begin
         if (wen && (w_dk == DK_SHKA || w_dk == DK_SHT2)) begin
             sh <= (w_dk == DK_SHKA) ? {{(SHW-36){pr[35]}}, pr} : r[SHW-1:0];
             sh_r <= 1'b0;
-            sh_cnt <= (w_dk == DK_SHKA) ? j_ksh : ({1'b0, j_lsh} + 5'd1);
-            sh_busy <= (w_dk == DK_SHKA) ? (j_ksh != 5'd0) : 1'b1;
+            sh_cnt <= sh_n;
+            sh_busy <= (sh_n != 5'd0);
         end else if (sh_busy) begin
             sh <= sh >>> 1;
             sh_r <= sh[0];

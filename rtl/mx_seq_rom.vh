@@ -4,124 +4,136 @@
 if (N == 1) begin
     for (ui = 0; ui < 256; ui = ui + 1) rom[ui] = 36'h000400007;   // END
     rom[0] = 36'h000601808;   // 0 P = dpos = pos - pos_prev
-    rom[1] = 36'h0150003f8;   // 1 spd = sat32(dpos << 16)
-    rom[2] = 36'h0730002f8;   // 2 dx3 = sat32(dpos << 8)
-    rom[3] = 36'h004400008;   // 3 pos_prev = pos
-    rom[4] = 36'h082400000;   // 4 dx4 = 0
-    rom[5] = 36'h0b2400048;   // 5 ebar_prev[0]
-    rom[6] = 36'h0c2400050;   // 6 ebar_prev[1]
-    rom[7] = 36'h0d2400058;   // 7 ebar_prev[2]
-    rom[8] = 36'h092400038;   // 8 u_prev[0]
-    rom[9] = 36'h0a2400040;   // 9 u_prev[1]
-    rom[10] = 36'h000611000;   // 10 P = spd
-    rom[11] = 36'h024831478;   // 11 ndsp = spd_prev - spd
-    rom[12] = 36'h034800078;   // 12 spd_prev = spd
-    rom[13] = 36'h484600011;   // 13 WTH P = theta; first period: theta_prev = theta
-    rom[14] = 36'h000400000;   // 14 (pipeline gap)
-    rom[15] = 36'h000400000;   // 15 (pipeline gap)
-    rom[16] = 36'h00a481978;   // 16 theta_mod = 2 theta - theta_prev (16 bit)
-    rom[17] = 36'h084400010;   // 17 theta_prev = theta
-    rom[18] = 36'h0006d1002;   // 18 WREF P = w_hi[0]
-    rom[19] = 36'h1220c6378;   // 19 w3[0] = sat32(P << 16 + round(w_lo >> 16))
-    rom[20] = 36'h2764c2378;   // 20 REF = w_k bits 47:16
-    rom[21] = 36'h000400000;   // 21 (pipeline gap)
-    rom[22] = 36'h102400028;   // 22 wref[0] id_ref
-    rom[23] = 36'h112400030;   // 23 wref[0] iq_ref
-    rom[24] = 36'h0006f1000;   // 24 P = w_hi[1]
-    rom[25] = 36'h1520e6378;   // 25 w3[1] = sat32(P << 16 + round(w_lo >> 16))
-    rom[26] = 36'h132400028;   // 26 wref[1] id_ref
-    rom[27] = 36'h142400030;   // 27 wref[1] iq_ref
-    rom[28] = 36'h00240001b;   // 28 WFRONT y0 = i_d
-    rom[29] = 36'h042451818;   // 29 dx0 = i_d - i_d,prev
-    rom[30] = 36'h012400020;   // 30 y1 = i_q
-    rom[31] = 36'h052461820;   // 31 dx1 = i_q - i_q,prev
-    rom[32] = 36'h00c400000;   // 32 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
-    rom[33] = 36'h000400000;   // 33 (pipeline gap)
-    rom[34] = 36'h000400000;   // 34 (pipeline gap)
-    rom[35] = 36'h00060806c;   // 35 WSH P = ka = rshift_round(kacc i_q, s)
-    rom[36] = 36'h000641878;   // 36 P = u1 = ka - D
-    rom[37] = 36'h009011078;   // 37 omega = sat32(spd + u1)
-    rom[38] = 36'h00ec21178;   // 38 shifter = t2 = 2 u1 - (spd - spd_prev)
-    rom[39] = 36'h000400000;   // 39 (pipeline gap)
-    rom[40] = 36'h032400070;   // 40 omega
-    rom[41] = 36'h022400070;   // 41 y2 = omega
-    rom[42] = 36'h063071870;   // 42 dx2 = sat32(omega - omega_prev)
-    rom[43] = 36'h000400005;   // 43 START core start (or, law off, skip)
-    rom[44] = 36'h074400070;   // 44 omega_prev
-    rom[45] = 36'h054400018;   // 45 i_d,prev
-    rom[46] = 36'h064400020;   // 46 i_q,prev
-    rom[47] = 36'h216400070;   // 47 SPEED
-    rom[48] = 36'h000400000;   // 48 (pipeline gap)
-    rom[49] = 36'h236400018;   // 49 I_D
-    rom[50] = 36'h000400000;   // 50 (pipeline gap)
-    rom[51] = 36'h246400020;   // 51 I_Q
-    rom[52] = 36'h84484106c;   // 52 WSH D += t2 >>> (load_shift + 1)
-    rom[53] = 36'hc44800000;   // 53 D = 0 (no load estimate)
-    rom[54] = 36'h000400006;   // 54 WCORE modulation start (held u, theta_mod), after the core
-    rom[55] = 36'h256400038;   // 55 U_D = the u applied
+    rom[1] = 36'h0730002f8;   // 1 dx3 = sat32(dpos << 8)
+    rom[2] = 36'h004400008;   // 2 pos_prev = pos
+    rom[3] = 36'h082400000;   // 3 dx4 = 0
+    rom[4] = 36'h0b2400048;   // 4 ebar_prev[0]
+    rom[5] = 36'h000601460;   // 5 P = dpos_M = pos - pos_{k-M}
+    rom[6] = 36'h01ec002f8;   // 6 shifter = dpos_M << 8, m steps
+    rom[7] = 36'h0c2400050;   // 7 ebar_prev[1]
+    rom[8] = 36'h0d2400058;   // 8 ebar_prev[2]
+    rom[9] = 36'h00060006c;   // 9 WSH P = (dpos_M << 8) >>> m
+    rom[10] = 36'h015000278;   // 10 spd = sat32(P << 8)
+    rom[11] = 36'h092400038;   // 11 u_prev[0]
+    rom[12] = 36'h0a2400040;   // 12 u_prev[1]
+    rom[13] = 36'h000611000;   // 13 P = spd
+    rom[14] = 36'h024831478;   // 14 ndsp = spd_prev - spd
+    rom[15] = 36'h034800078;   // 15 spd_prev = spd
+    rom[16] = 36'h484600011;   // 16 WTH P = theta; first period: theta_prev = theta
+    rom[17] = 36'h000400000;   // 17 (pipeline gap)
+    rom[18] = 36'h000400000;   // 18 (pipeline gap)
+    rom[19] = 36'h00a481978;   // 19 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[20] = 36'h084400010;   // 20 theta_prev = theta
+    rom[21] = 36'h0006d1002;   // 21 WREF P = w_hi[0]
+    rom[22] = 36'h1220c6378;   // 22 w3[0] = sat32(P << 16 + round(w_lo >> 16))
+    rom[23] = 36'h2764c2378;   // 23 REF = w_k bits 47:16
+    rom[24] = 36'h000400000;   // 24 (pipeline gap)
+    rom[25] = 36'h102400028;   // 25 wref[0] id_ref
+    rom[26] = 36'h112400030;   // 26 wref[0] iq_ref
+    rom[27] = 36'h0006f1000;   // 27 P = w_hi[1]
+    rom[28] = 36'h1520e6378;   // 28 w3[1] = sat32(P << 16 + round(w_lo >> 16))
+    rom[29] = 36'h132400028;   // 29 wref[1] id_ref
+    rom[30] = 36'h142400030;   // 30 wref[1] iq_ref
+    rom[31] = 36'h00240001b;   // 31 WFRONT y0 = i_d
+    rom[32] = 36'h042451818;   // 32 dx0 = i_d - i_d,prev
+    rom[33] = 36'h012400020;   // 33 y1 = i_q
+    rom[34] = 36'h052461820;   // 34 dx1 = i_q - i_q,prev
+    rom[35] = 36'h00c400000;   // 35 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
+    rom[36] = 36'h000400000;   // 36 (pipeline gap)
+    rom[37] = 36'h000400000;   // 37 (pipeline gap)
+    rom[38] = 36'h00060806c;   // 38 WSH P = ka = rshift_round(kacc i_q, s)
+    rom[39] = 36'h000641878;   // 39 P = u1 = ka - D
+    rom[40] = 36'h009011078;   // 40 omega = sat32(spd + u1)
+    rom[41] = 36'h01ec00178;   // 41 shifter = 2 u1, m steps
+    rom[42] = 36'h000400000;   // 42 (pipeline gap)
+    rom[43] = 36'h032400070;   // 43 omega
+    rom[44] = 36'h022400070;   // 44 y2 = omega
+    rom[45] = 36'h063071870;   // 45 dx2 = sat32(omega - omega_prev)
+    rom[46] = 36'h000400005;   // 46 START core start (or, law off, skip)
+    rom[47] = 36'h074400070;   // 47 omega_prev
+    rom[48] = 36'h054400018;   // 48 i_d,prev
+    rom[49] = 36'h064400020;   // 49 i_q,prev
+    rom[50] = 36'h216400070;   // 50 SPEED
+    rom[51] = 36'h000400000;   // 51 (pipeline gap)
+    rom[52] = 36'h236400018;   // 52 I_D
+    rom[53] = 36'h000400000;   // 53 (pipeline gap)
+    rom[54] = 36'h246400020;   // 54 I_Q
+    rom[55] = 36'h00ec2106c;   // 55 WSH shifter = t2 = (2 u1 >>> m) - (spd - spd_prev), load_shift + 1 - m steps (>= 0)
     rom[56] = 36'h000400000;   // 56 (pipeline gap)
-    rom[57] = 36'h266400040;   // 57 U_Q
-    rom[58] = 36'h000400007;   // 58 END program end
+    rom[57] = 36'h000400000;   // 57 (pipeline gap)
+    rom[58] = 36'h84484106c;   // 58 WSH D += t2 >>> (load_shift + 1)
+    rom[59] = 36'hc44800000;   // 59 D = 0 (no load estimate)
+    rom[60] = 36'h000400006;   // 60 WCORE modulation start (held u, theta_mod), after the core
+    rom[61] = 36'h256400038;   // 61 U_D = the u applied
+    rom[62] = 36'h000400000;   // 62 (pipeline gap)
+    rom[63] = 36'h266400040;   // 63 U_Q
+    rom[64] = 36'h000400007;   // 64 END program end
     rom[96] = 36'h000601808;   // 96 P = dpos = pos - pos_prev
-    rom[97] = 36'h0150003f8;   // 97 spd = sat32(dpos << 16)
-    rom[98] = 36'h0730002f8;   // 98 dx3 = sat32(dpos << 8)
-    rom[99] = 36'h004400008;   // 99 pos_prev = pos
-    rom[100] = 36'h082400000;   // 100 dx4 = 0
-    rom[101] = 36'h0b2400048;   // 101 ebar_prev[0]
-    rom[102] = 36'h0c2400050;   // 102 ebar_prev[1]
-    rom[103] = 36'h0d2400058;   // 103 ebar_prev[2]
-    rom[104] = 36'h092400038;   // 104 u_prev[0]
-    rom[105] = 36'h0a2400040;   // 105 u_prev[1]
-    rom[106] = 36'h000611000;   // 106 P = spd
-    rom[107] = 36'h024831478;   // 107 ndsp = spd_prev - spd
-    rom[108] = 36'h034800078;   // 108 spd_prev = spd
-    rom[109] = 36'h484600011;   // 109 WTH P = theta; first period: theta_prev = theta
-    rom[110] = 36'h000400000;   // 110 (pipeline gap)
-    rom[111] = 36'h000400000;   // 111 (pipeline gap)
-    rom[112] = 36'h00a481978;   // 112 theta_mod = 2 theta - theta_prev (16 bit)
-    rom[113] = 36'h084400010;   // 113 theta_prev = theta
-    rom[114] = 36'h0006d140a;   // 114 WREF P = w_hi[0] - pos
-    rom[115] = 36'h1220c72f8;   // 115 w3[0] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[116] = 36'h0006d1000;   // 116 P = w_hi[0]
-    rom[117] = 36'h2764c3278;   // 117 REF = w_k bits 55:24
-    rom[118] = 36'h000400000;   // 118 (pipeline gap)
-    rom[119] = 36'h102400028;   // 119 wref[0] id_ref
-    rom[120] = 36'h112400030;   // 120 wref[0] iq_ref
-    rom[121] = 36'h0006f1408;   // 121 P = w_hi[1] - pos
-    rom[122] = 36'h1520e72f8;   // 122 w3[1] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[123] = 36'h132400028;   // 123 wref[1] id_ref
-    rom[124] = 36'h142400030;   // 124 wref[1] iq_ref
-    rom[125] = 36'h00240001b;   // 125 WFRONT y0 = i_d
-    rom[126] = 36'h042451818;   // 126 dx0 = i_d - i_d,prev
-    rom[127] = 36'h012400020;   // 127 y1 = i_q
-    rom[128] = 36'h052461820;   // 128 dx1 = i_q - i_q,prev
-    rom[129] = 36'h00c400000;   // 129 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
-    rom[130] = 36'h000400000;   // 130 (pipeline gap)
-    rom[131] = 36'h000400000;   // 131 (pipeline gap)
-    rom[132] = 36'h00060806c;   // 132 WSH P = ka = rshift_round(kacc i_q, s)
-    rom[133] = 36'h000641878;   // 133 P = u1 = ka - D
-    rom[134] = 36'h009011078;   // 134 omega = sat32(spd + u1)
-    rom[135] = 36'h00ec21178;   // 135 shifter = t2 = 2 u1 - (spd - spd_prev)
-    rom[136] = 36'h000400000;   // 136 (pipeline gap)
-    rom[137] = 36'h032400070;   // 137 omega
-    rom[138] = 36'h022400000;   // 138 y2 = 0 (position task)
-    rom[139] = 36'h063071870;   // 139 dx2 = sat32(omega - omega_prev)
-    rom[140] = 36'h000400005;   // 140 START core start (or, law off, skip)
-    rom[141] = 36'h074400070;   // 141 omega_prev
-    rom[142] = 36'h054400018;   // 142 i_d,prev
-    rom[143] = 36'h064400020;   // 143 i_q,prev
-    rom[144] = 36'h216400070;   // 144 SPEED
-    rom[145] = 36'h000400000;   // 145 (pipeline gap)
-    rom[146] = 36'h236400018;   // 146 I_D
-    rom[147] = 36'h000400000;   // 147 (pipeline gap)
-    rom[148] = 36'h246400020;   // 148 I_Q
-    rom[149] = 36'h84484106c;   // 149 WSH D += t2 >>> (load_shift + 1)
-    rom[150] = 36'hc44800000;   // 150 D = 0 (no load estimate)
-    rom[151] = 36'h000400006;   // 151 WCORE modulation start (held u, theta_mod), after the core
-    rom[152] = 36'h256400038;   // 152 U_D = the u applied
+    rom[97] = 36'h0730002f8;   // 97 dx3 = sat32(dpos << 8)
+    rom[98] = 36'h004400008;   // 98 pos_prev = pos
+    rom[99] = 36'h082400000;   // 99 dx4 = 0
+    rom[100] = 36'h0b2400048;   // 100 ebar_prev[0]
+    rom[101] = 36'h000601460;   // 101 P = dpos_M = pos - pos_{k-M}
+    rom[102] = 36'h01ec002f8;   // 102 shifter = dpos_M << 8, m steps
+    rom[103] = 36'h0c2400050;   // 103 ebar_prev[1]
+    rom[104] = 36'h0d2400058;   // 104 ebar_prev[2]
+    rom[105] = 36'h00060006c;   // 105 WSH P = (dpos_M << 8) >>> m
+    rom[106] = 36'h015000278;   // 106 spd = sat32(P << 8)
+    rom[107] = 36'h092400038;   // 107 u_prev[0]
+    rom[108] = 36'h0a2400040;   // 108 u_prev[1]
+    rom[109] = 36'h000611000;   // 109 P = spd
+    rom[110] = 36'h024831478;   // 110 ndsp = spd_prev - spd
+    rom[111] = 36'h034800078;   // 111 spd_prev = spd
+    rom[112] = 36'h484600011;   // 112 WTH P = theta; first period: theta_prev = theta
+    rom[113] = 36'h000400000;   // 113 (pipeline gap)
+    rom[114] = 36'h000400000;   // 114 (pipeline gap)
+    rom[115] = 36'h00a481978;   // 115 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[116] = 36'h084400010;   // 116 theta_prev = theta
+    rom[117] = 36'h0006d140a;   // 117 WREF P = w_hi[0] - pos
+    rom[118] = 36'h1220c72f8;   // 118 w3[0] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[119] = 36'h0006d1000;   // 119 P = w_hi[0]
+    rom[120] = 36'h2764c3278;   // 120 REF = w_k bits 55:24
+    rom[121] = 36'h000400000;   // 121 (pipeline gap)
+    rom[122] = 36'h102400028;   // 122 wref[0] id_ref
+    rom[123] = 36'h112400030;   // 123 wref[0] iq_ref
+    rom[124] = 36'h0006f1408;   // 124 P = w_hi[1] - pos
+    rom[125] = 36'h1520e72f8;   // 125 w3[1] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[126] = 36'h132400028;   // 126 wref[1] id_ref
+    rom[127] = 36'h142400030;   // 127 wref[1] iq_ref
+    rom[128] = 36'h00240001b;   // 128 WFRONT y0 = i_d
+    rom[129] = 36'h042451818;   // 129 dx0 = i_d - i_d,prev
+    rom[130] = 36'h012400020;   // 130 y1 = i_q
+    rom[131] = 36'h052461820;   // 131 dx1 = i_q - i_q,prev
+    rom[132] = 36'h00c400000;   // 132 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
+    rom[133] = 36'h000400000;   // 133 (pipeline gap)
+    rom[134] = 36'h000400000;   // 134 (pipeline gap)
+    rom[135] = 36'h00060806c;   // 135 WSH P = ka = rshift_round(kacc i_q, s)
+    rom[136] = 36'h000641878;   // 136 P = u1 = ka - D
+    rom[137] = 36'h009011078;   // 137 omega = sat32(spd + u1)
+    rom[138] = 36'h01ec00178;   // 138 shifter = 2 u1, m steps
+    rom[139] = 36'h000400000;   // 139 (pipeline gap)
+    rom[140] = 36'h032400070;   // 140 omega
+    rom[141] = 36'h022400000;   // 141 y2 = 0 (position task)
+    rom[142] = 36'h063071870;   // 142 dx2 = sat32(omega - omega_prev)
+    rom[143] = 36'h000400005;   // 143 START core start (or, law off, skip)
+    rom[144] = 36'h074400070;   // 144 omega_prev
+    rom[145] = 36'h054400018;   // 145 i_d,prev
+    rom[146] = 36'h064400020;   // 146 i_q,prev
+    rom[147] = 36'h216400070;   // 147 SPEED
+    rom[148] = 36'h000400000;   // 148 (pipeline gap)
+    rom[149] = 36'h236400018;   // 149 I_D
+    rom[150] = 36'h000400000;   // 150 (pipeline gap)
+    rom[151] = 36'h246400020;   // 151 I_Q
+    rom[152] = 36'h00ec2106c;   // 152 WSH shifter = t2 = (2 u1 >>> m) - (spd - spd_prev), load_shift + 1 - m steps (>= 0)
     rom[153] = 36'h000400000;   // 153 (pipeline gap)
-    rom[154] = 36'h266400040;   // 154 U_Q
-    rom[155] = 36'h000400007;   // 155 END program end
+    rom[154] = 36'h000400000;   // 154 (pipeline gap)
+    rom[155] = 36'h84484106c;   // 155 WSH D += t2 >>> (load_shift + 1)
+    rom[156] = 36'hc44800000;   // 156 D = 0 (no load estimate)
+    rom[157] = 36'h000400006;   // 157 WCORE modulation start (held u, theta_mod), after the core
+    rom[158] = 36'h256400038;   // 158 U_D = the u applied
+    rom[159] = 36'h000400000;   // 159 (pipeline gap)
+    rom[160] = 36'h266400040;   // 160 U_Q
+    rom[161] = 36'h000400007;   // 161 END program end
     rom[192] = 36'h484600011;   // 192 WTH P = theta; first period: theta_prev = theta
     rom[193] = 36'h000400000;   // 193 (pipeline gap)
     rom[194] = 36'h000400000;   // 194 (pipeline gap)
@@ -136,132 +148,144 @@ end
 if (N == 2) begin
     for (ui = 0; ui < 256; ui = ui + 1) rom[ui] = 36'h000400007;   // END
     rom[0] = 36'h000601808;   // 0 P = dpos = pos - pos_prev
-    rom[1] = 36'h0150003f8;   // 1 spd = sat32(dpos << 16)
-    rom[2] = 36'h0730002f8;   // 2 dx3 = sat32(dpos << 8)
-    rom[3] = 36'h004400008;   // 3 pos_prev = pos
-    rom[4] = 36'h082400000;   // 4 dx4 = 0
-    rom[5] = 36'h0b2400048;   // 5 ebar_prev[0]
-    rom[6] = 36'h0c2400050;   // 6 ebar_prev[1]
-    rom[7] = 36'h0d2400058;   // 7 ebar_prev[2]
-    rom[8] = 36'h092400038;   // 8 u_prev[0]
-    rom[9] = 36'h0a2400040;   // 9 u_prev[1]
-    rom[10] = 36'h000611000;   // 10 P = spd
-    rom[11] = 36'h024831478;   // 11 ndsp = spd_prev - spd
-    rom[12] = 36'h034800078;   // 12 spd_prev = spd
-    rom[13] = 36'h484600011;   // 13 WTH P = theta; first period: theta_prev = theta
-    rom[14] = 36'h000400000;   // 14 (pipeline gap)
-    rom[15] = 36'h000400000;   // 15 (pipeline gap)
-    rom[16] = 36'h00a481978;   // 16 theta_mod = 2 theta - theta_prev (16 bit)
-    rom[17] = 36'h084400010;   // 17 theta_prev = theta
-    rom[18] = 36'h0006d1002;   // 18 WREF P = w_hi[0]
-    rom[19] = 36'h1220c6378;   // 19 w3[0] = sat32(P << 16 + round(w_lo >> 16))
-    rom[20] = 36'h2764c2378;   // 20 REF = w_k bits 47:16
-    rom[21] = 36'h000400000;   // 21 (pipeline gap)
-    rom[22] = 36'h102400028;   // 22 wref[0] id_ref
-    rom[23] = 36'h112400030;   // 23 wref[0] iq_ref
-    rom[24] = 36'h0006f1000;   // 24 P = w_hi[1]
-    rom[25] = 36'h1520e6378;   // 25 w3[1] = sat32(P << 16 + round(w_lo >> 16))
-    rom[26] = 36'h132400028;   // 26 wref[1] id_ref
-    rom[27] = 36'h142400030;   // 27 wref[1] iq_ref
-    rom[28] = 36'h000711000;   // 28 P = w_hi[2]
-    rom[29] = 36'h182106378;   // 29 w3[2] = sat32(P << 16 + round(w_lo >> 16))
-    rom[30] = 36'h162400028;   // 30 wref[2] id_ref
-    rom[31] = 36'h172400030;   // 31 wref[2] iq_ref
-    rom[32] = 36'h00240001b;   // 32 WFRONT y0 = i_d
-    rom[33] = 36'h042451818;   // 33 dx0 = i_d - i_d,prev
-    rom[34] = 36'h012400020;   // 34 y1 = i_q
-    rom[35] = 36'h052461820;   // 35 dx1 = i_q - i_q,prev
-    rom[36] = 36'h00c400000;   // 36 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
-    rom[37] = 36'h000400000;   // 37 (pipeline gap)
-    rom[38] = 36'h000400000;   // 38 (pipeline gap)
-    rom[39] = 36'h00060806c;   // 39 WSH P = ka = rshift_round(kacc i_q, s)
-    rom[40] = 36'h000641878;   // 40 P = u1 = ka - D
-    rom[41] = 36'h009011078;   // 41 omega = sat32(spd + u1)
-    rom[42] = 36'h00ec21178;   // 42 shifter = t2 = 2 u1 - (spd - spd_prev)
-    rom[43] = 36'h000400000;   // 43 (pipeline gap)
-    rom[44] = 36'h032400070;   // 44 omega
-    rom[45] = 36'h022400070;   // 45 y2 = omega
-    rom[46] = 36'h063071870;   // 46 dx2 = sat32(omega - omega_prev)
-    rom[47] = 36'h000400005;   // 47 START core start (or, law off, skip)
-    rom[48] = 36'h074400070;   // 48 omega_prev
-    rom[49] = 36'h054400018;   // 49 i_d,prev
-    rom[50] = 36'h064400020;   // 50 i_q,prev
-    rom[51] = 36'h216400070;   // 51 SPEED
-    rom[52] = 36'h000400000;   // 52 (pipeline gap)
-    rom[53] = 36'h236400018;   // 53 I_D
-    rom[54] = 36'h000400000;   // 54 (pipeline gap)
-    rom[55] = 36'h246400020;   // 55 I_Q
-    rom[56] = 36'h84484106c;   // 56 WSH D += t2 >>> (load_shift + 1)
-    rom[57] = 36'hc44800000;   // 57 D = 0 (no load estimate)
-    rom[58] = 36'h000400006;   // 58 WCORE modulation start (held u, theta_mod), after the core
-    rom[59] = 36'h256400038;   // 59 U_D = the u applied
+    rom[1] = 36'h0730002f8;   // 1 dx3 = sat32(dpos << 8)
+    rom[2] = 36'h004400008;   // 2 pos_prev = pos
+    rom[3] = 36'h082400000;   // 3 dx4 = 0
+    rom[4] = 36'h0b2400048;   // 4 ebar_prev[0]
+    rom[5] = 36'h000601460;   // 5 P = dpos_M = pos - pos_{k-M}
+    rom[6] = 36'h01ec002f8;   // 6 shifter = dpos_M << 8, m steps
+    rom[7] = 36'h0c2400050;   // 7 ebar_prev[1]
+    rom[8] = 36'h0d2400058;   // 8 ebar_prev[2]
+    rom[9] = 36'h00060006c;   // 9 WSH P = (dpos_M << 8) >>> m
+    rom[10] = 36'h015000278;   // 10 spd = sat32(P << 8)
+    rom[11] = 36'h092400038;   // 11 u_prev[0]
+    rom[12] = 36'h0a2400040;   // 12 u_prev[1]
+    rom[13] = 36'h000611000;   // 13 P = spd
+    rom[14] = 36'h024831478;   // 14 ndsp = spd_prev - spd
+    rom[15] = 36'h034800078;   // 15 spd_prev = spd
+    rom[16] = 36'h484600011;   // 16 WTH P = theta; first period: theta_prev = theta
+    rom[17] = 36'h000400000;   // 17 (pipeline gap)
+    rom[18] = 36'h000400000;   // 18 (pipeline gap)
+    rom[19] = 36'h00a481978;   // 19 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[20] = 36'h084400010;   // 20 theta_prev = theta
+    rom[21] = 36'h0006d1002;   // 21 WREF P = w_hi[0]
+    rom[22] = 36'h1220c6378;   // 22 w3[0] = sat32(P << 16 + round(w_lo >> 16))
+    rom[23] = 36'h2764c2378;   // 23 REF = w_k bits 47:16
+    rom[24] = 36'h000400000;   // 24 (pipeline gap)
+    rom[25] = 36'h102400028;   // 25 wref[0] id_ref
+    rom[26] = 36'h112400030;   // 26 wref[0] iq_ref
+    rom[27] = 36'h0006f1000;   // 27 P = w_hi[1]
+    rom[28] = 36'h1520e6378;   // 28 w3[1] = sat32(P << 16 + round(w_lo >> 16))
+    rom[29] = 36'h132400028;   // 29 wref[1] id_ref
+    rom[30] = 36'h142400030;   // 30 wref[1] iq_ref
+    rom[31] = 36'h000711000;   // 31 P = w_hi[2]
+    rom[32] = 36'h182106378;   // 32 w3[2] = sat32(P << 16 + round(w_lo >> 16))
+    rom[33] = 36'h162400028;   // 33 wref[2] id_ref
+    rom[34] = 36'h172400030;   // 34 wref[2] iq_ref
+    rom[35] = 36'h00240001b;   // 35 WFRONT y0 = i_d
+    rom[36] = 36'h042451818;   // 36 dx0 = i_d - i_d,prev
+    rom[37] = 36'h012400020;   // 37 y1 = i_q
+    rom[38] = 36'h052461820;   // 38 dx1 = i_q - i_q,prev
+    rom[39] = 36'h00c400000;   // 39 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
+    rom[40] = 36'h000400000;   // 40 (pipeline gap)
+    rom[41] = 36'h000400000;   // 41 (pipeline gap)
+    rom[42] = 36'h00060806c;   // 42 WSH P = ka = rshift_round(kacc i_q, s)
+    rom[43] = 36'h000641878;   // 43 P = u1 = ka - D
+    rom[44] = 36'h009011078;   // 44 omega = sat32(spd + u1)
+    rom[45] = 36'h01ec00178;   // 45 shifter = 2 u1, m steps
+    rom[46] = 36'h000400000;   // 46 (pipeline gap)
+    rom[47] = 36'h032400070;   // 47 omega
+    rom[48] = 36'h022400070;   // 48 y2 = omega
+    rom[49] = 36'h063071870;   // 49 dx2 = sat32(omega - omega_prev)
+    rom[50] = 36'h000400005;   // 50 START core start (or, law off, skip)
+    rom[51] = 36'h074400070;   // 51 omega_prev
+    rom[52] = 36'h054400018;   // 52 i_d,prev
+    rom[53] = 36'h064400020;   // 53 i_q,prev
+    rom[54] = 36'h216400070;   // 54 SPEED
+    rom[55] = 36'h000400000;   // 55 (pipeline gap)
+    rom[56] = 36'h236400018;   // 56 I_D
+    rom[57] = 36'h000400000;   // 57 (pipeline gap)
+    rom[58] = 36'h246400020;   // 58 I_Q
+    rom[59] = 36'h00ec2106c;   // 59 WSH shifter = t2 = (2 u1 >>> m) - (spd - spd_prev), load_shift + 1 - m steps (>= 0)
     rom[60] = 36'h000400000;   // 60 (pipeline gap)
-    rom[61] = 36'h266400040;   // 61 U_Q
-    rom[62] = 36'h000400007;   // 62 END program end
+    rom[61] = 36'h000400000;   // 61 (pipeline gap)
+    rom[62] = 36'h84484106c;   // 62 WSH D += t2 >>> (load_shift + 1)
+    rom[63] = 36'hc44800000;   // 63 D = 0 (no load estimate)
+    rom[64] = 36'h000400006;   // 64 WCORE modulation start (held u, theta_mod), after the core
+    rom[65] = 36'h256400038;   // 65 U_D = the u applied
+    rom[66] = 36'h000400000;   // 66 (pipeline gap)
+    rom[67] = 36'h266400040;   // 67 U_Q
+    rom[68] = 36'h000400007;   // 68 END program end
     rom[96] = 36'h000601808;   // 96 P = dpos = pos - pos_prev
-    rom[97] = 36'h0150003f8;   // 97 spd = sat32(dpos << 16)
-    rom[98] = 36'h0730002f8;   // 98 dx3 = sat32(dpos << 8)
-    rom[99] = 36'h004400008;   // 99 pos_prev = pos
-    rom[100] = 36'h082400000;   // 100 dx4 = 0
-    rom[101] = 36'h0b2400048;   // 101 ebar_prev[0]
-    rom[102] = 36'h0c2400050;   // 102 ebar_prev[1]
-    rom[103] = 36'h0d2400058;   // 103 ebar_prev[2]
-    rom[104] = 36'h092400038;   // 104 u_prev[0]
-    rom[105] = 36'h0a2400040;   // 105 u_prev[1]
-    rom[106] = 36'h000611000;   // 106 P = spd
-    rom[107] = 36'h024831478;   // 107 ndsp = spd_prev - spd
-    rom[108] = 36'h034800078;   // 108 spd_prev = spd
-    rom[109] = 36'h484600011;   // 109 WTH P = theta; first period: theta_prev = theta
-    rom[110] = 36'h000400000;   // 110 (pipeline gap)
-    rom[111] = 36'h000400000;   // 111 (pipeline gap)
-    rom[112] = 36'h00a481978;   // 112 theta_mod = 2 theta - theta_prev (16 bit)
-    rom[113] = 36'h084400010;   // 113 theta_prev = theta
-    rom[114] = 36'h0006d140a;   // 114 WREF P = w_hi[0] - pos
-    rom[115] = 36'h1220c72f8;   // 115 w3[0] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[116] = 36'h0006d1000;   // 116 P = w_hi[0]
-    rom[117] = 36'h2764c3278;   // 117 REF = w_k bits 55:24
-    rom[118] = 36'h000400000;   // 118 (pipeline gap)
-    rom[119] = 36'h102400028;   // 119 wref[0] id_ref
-    rom[120] = 36'h112400030;   // 120 wref[0] iq_ref
-    rom[121] = 36'h0006f1408;   // 121 P = w_hi[1] - pos
-    rom[122] = 36'h1520e72f8;   // 122 w3[1] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[123] = 36'h132400028;   // 123 wref[1] id_ref
-    rom[124] = 36'h142400030;   // 124 wref[1] iq_ref
-    rom[125] = 36'h000711408;   // 125 P = w_hi[2] - pos
-    rom[126] = 36'h1821072f8;   // 126 w3[2] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[127] = 36'h162400028;   // 127 wref[2] id_ref
-    rom[128] = 36'h172400030;   // 128 wref[2] iq_ref
-    rom[129] = 36'h00240001b;   // 129 WFRONT y0 = i_d
-    rom[130] = 36'h042451818;   // 130 dx0 = i_d - i_d,prev
-    rom[131] = 36'h012400020;   // 131 y1 = i_q
-    rom[132] = 36'h052461820;   // 132 dx1 = i_q - i_q,prev
-    rom[133] = 36'h00c400000;   // 133 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
-    rom[134] = 36'h000400000;   // 134 (pipeline gap)
-    rom[135] = 36'h000400000;   // 135 (pipeline gap)
-    rom[136] = 36'h00060806c;   // 136 WSH P = ka = rshift_round(kacc i_q, s)
-    rom[137] = 36'h000641878;   // 137 P = u1 = ka - D
-    rom[138] = 36'h009011078;   // 138 omega = sat32(spd + u1)
-    rom[139] = 36'h00ec21178;   // 139 shifter = t2 = 2 u1 - (spd - spd_prev)
-    rom[140] = 36'h000400000;   // 140 (pipeline gap)
-    rom[141] = 36'h032400070;   // 141 omega
-    rom[142] = 36'h022400000;   // 142 y2 = 0 (position task)
-    rom[143] = 36'h063071870;   // 143 dx2 = sat32(omega - omega_prev)
-    rom[144] = 36'h000400005;   // 144 START core start (or, law off, skip)
-    rom[145] = 36'h074400070;   // 145 omega_prev
-    rom[146] = 36'h054400018;   // 146 i_d,prev
-    rom[147] = 36'h064400020;   // 147 i_q,prev
-    rom[148] = 36'h216400070;   // 148 SPEED
-    rom[149] = 36'h000400000;   // 149 (pipeline gap)
-    rom[150] = 36'h236400018;   // 150 I_D
-    rom[151] = 36'h000400000;   // 151 (pipeline gap)
-    rom[152] = 36'h246400020;   // 152 I_Q
-    rom[153] = 36'h84484106c;   // 153 WSH D += t2 >>> (load_shift + 1)
-    rom[154] = 36'hc44800000;   // 154 D = 0 (no load estimate)
-    rom[155] = 36'h000400006;   // 155 WCORE modulation start (held u, theta_mod), after the core
-    rom[156] = 36'h256400038;   // 156 U_D = the u applied
+    rom[97] = 36'h0730002f8;   // 97 dx3 = sat32(dpos << 8)
+    rom[98] = 36'h004400008;   // 98 pos_prev = pos
+    rom[99] = 36'h082400000;   // 99 dx4 = 0
+    rom[100] = 36'h0b2400048;   // 100 ebar_prev[0]
+    rom[101] = 36'h000601460;   // 101 P = dpos_M = pos - pos_{k-M}
+    rom[102] = 36'h01ec002f8;   // 102 shifter = dpos_M << 8, m steps
+    rom[103] = 36'h0c2400050;   // 103 ebar_prev[1]
+    rom[104] = 36'h0d2400058;   // 104 ebar_prev[2]
+    rom[105] = 36'h00060006c;   // 105 WSH P = (dpos_M << 8) >>> m
+    rom[106] = 36'h015000278;   // 106 spd = sat32(P << 8)
+    rom[107] = 36'h092400038;   // 107 u_prev[0]
+    rom[108] = 36'h0a2400040;   // 108 u_prev[1]
+    rom[109] = 36'h000611000;   // 109 P = spd
+    rom[110] = 36'h024831478;   // 110 ndsp = spd_prev - spd
+    rom[111] = 36'h034800078;   // 111 spd_prev = spd
+    rom[112] = 36'h484600011;   // 112 WTH P = theta; first period: theta_prev = theta
+    rom[113] = 36'h000400000;   // 113 (pipeline gap)
+    rom[114] = 36'h000400000;   // 114 (pipeline gap)
+    rom[115] = 36'h00a481978;   // 115 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[116] = 36'h084400010;   // 116 theta_prev = theta
+    rom[117] = 36'h0006d140a;   // 117 WREF P = w_hi[0] - pos
+    rom[118] = 36'h1220c72f8;   // 118 w3[0] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[119] = 36'h0006d1000;   // 119 P = w_hi[0]
+    rom[120] = 36'h2764c3278;   // 120 REF = w_k bits 55:24
+    rom[121] = 36'h000400000;   // 121 (pipeline gap)
+    rom[122] = 36'h102400028;   // 122 wref[0] id_ref
+    rom[123] = 36'h112400030;   // 123 wref[0] iq_ref
+    rom[124] = 36'h0006f1408;   // 124 P = w_hi[1] - pos
+    rom[125] = 36'h1520e72f8;   // 125 w3[1] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[126] = 36'h132400028;   // 126 wref[1] id_ref
+    rom[127] = 36'h142400030;   // 127 wref[1] iq_ref
+    rom[128] = 36'h000711408;   // 128 P = w_hi[2] - pos
+    rom[129] = 36'h1821072f8;   // 129 w3[2] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[130] = 36'h162400028;   // 130 wref[2] id_ref
+    rom[131] = 36'h172400030;   // 131 wref[2] iq_ref
+    rom[132] = 36'h00240001b;   // 132 WFRONT y0 = i_d
+    rom[133] = 36'h042451818;   // 133 dx0 = i_d - i_d,prev
+    rom[134] = 36'h012400020;   // 134 y1 = i_q
+    rom[135] = 36'h052461820;   // 135 dx1 = i_q - i_q,prev
+    rom[136] = 36'h00c400000;   // 136 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
+    rom[137] = 36'h000400000;   // 137 (pipeline gap)
+    rom[138] = 36'h000400000;   // 138 (pipeline gap)
+    rom[139] = 36'h00060806c;   // 139 WSH P = ka = rshift_round(kacc i_q, s)
+    rom[140] = 36'h000641878;   // 140 P = u1 = ka - D
+    rom[141] = 36'h009011078;   // 141 omega = sat32(spd + u1)
+    rom[142] = 36'h01ec00178;   // 142 shifter = 2 u1, m steps
+    rom[143] = 36'h000400000;   // 143 (pipeline gap)
+    rom[144] = 36'h032400070;   // 144 omega
+    rom[145] = 36'h022400000;   // 145 y2 = 0 (position task)
+    rom[146] = 36'h063071870;   // 146 dx2 = sat32(omega - omega_prev)
+    rom[147] = 36'h000400005;   // 147 START core start (or, law off, skip)
+    rom[148] = 36'h074400070;   // 148 omega_prev
+    rom[149] = 36'h054400018;   // 149 i_d,prev
+    rom[150] = 36'h064400020;   // 150 i_q,prev
+    rom[151] = 36'h216400070;   // 151 SPEED
+    rom[152] = 36'h000400000;   // 152 (pipeline gap)
+    rom[153] = 36'h236400018;   // 153 I_D
+    rom[154] = 36'h000400000;   // 154 (pipeline gap)
+    rom[155] = 36'h246400020;   // 155 I_Q
+    rom[156] = 36'h00ec2106c;   // 156 WSH shifter = t2 = (2 u1 >>> m) - (spd - spd_prev), load_shift + 1 - m steps (>= 0)
     rom[157] = 36'h000400000;   // 157 (pipeline gap)
-    rom[158] = 36'h266400040;   // 158 U_Q
-    rom[159] = 36'h000400007;   // 159 END program end
+    rom[158] = 36'h000400000;   // 158 (pipeline gap)
+    rom[159] = 36'h84484106c;   // 159 WSH D += t2 >>> (load_shift + 1)
+    rom[160] = 36'hc44800000;   // 160 D = 0 (no load estimate)
+    rom[161] = 36'h000400006;   // 161 WCORE modulation start (held u, theta_mod), after the core
+    rom[162] = 36'h256400038;   // 162 U_D = the u applied
+    rom[163] = 36'h000400000;   // 163 (pipeline gap)
+    rom[164] = 36'h266400040;   // 164 U_Q
+    rom[165] = 36'h000400007;   // 165 END program end
     rom[192] = 36'h484600011;   // 192 WTH P = theta; first period: theta_prev = theta
     rom[193] = 36'h000400000;   // 193 (pipeline gap)
     rom[194] = 36'h000400000;   // 194 (pipeline gap)
@@ -276,140 +300,152 @@ end
 if (N == 3) begin
     for (ui = 0; ui < 256; ui = ui + 1) rom[ui] = 36'h000400007;   // END
     rom[0] = 36'h000601808;   // 0 P = dpos = pos - pos_prev
-    rom[1] = 36'h0150003f8;   // 1 spd = sat32(dpos << 16)
-    rom[2] = 36'h0730002f8;   // 2 dx3 = sat32(dpos << 8)
-    rom[3] = 36'h004400008;   // 3 pos_prev = pos
-    rom[4] = 36'h082400000;   // 4 dx4 = 0
-    rom[5] = 36'h0b2400048;   // 5 ebar_prev[0]
-    rom[6] = 36'h0c2400050;   // 6 ebar_prev[1]
-    rom[7] = 36'h0d2400058;   // 7 ebar_prev[2]
-    rom[8] = 36'h092400038;   // 8 u_prev[0]
-    rom[9] = 36'h0a2400040;   // 9 u_prev[1]
-    rom[10] = 36'h000611000;   // 10 P = spd
-    rom[11] = 36'h024831478;   // 11 ndsp = spd_prev - spd
-    rom[12] = 36'h034800078;   // 12 spd_prev = spd
-    rom[13] = 36'h484600011;   // 13 WTH P = theta; first period: theta_prev = theta
-    rom[14] = 36'h000400000;   // 14 (pipeline gap)
-    rom[15] = 36'h000400000;   // 15 (pipeline gap)
-    rom[16] = 36'h00a481978;   // 16 theta_mod = 2 theta - theta_prev (16 bit)
-    rom[17] = 36'h084400010;   // 17 theta_prev = theta
-    rom[18] = 36'h0006d1002;   // 18 WREF P = w_hi[0]
-    rom[19] = 36'h1220c6378;   // 19 w3[0] = sat32(P << 16 + round(w_lo >> 16))
-    rom[20] = 36'h2764c2378;   // 20 REF = w_k bits 47:16
-    rom[21] = 36'h000400000;   // 21 (pipeline gap)
-    rom[22] = 36'h102400028;   // 22 wref[0] id_ref
-    rom[23] = 36'h112400030;   // 23 wref[0] iq_ref
-    rom[24] = 36'h0006f1000;   // 24 P = w_hi[1]
-    rom[25] = 36'h1520e6378;   // 25 w3[1] = sat32(P << 16 + round(w_lo >> 16))
-    rom[26] = 36'h132400028;   // 26 wref[1] id_ref
-    rom[27] = 36'h142400030;   // 27 wref[1] iq_ref
-    rom[28] = 36'h000711000;   // 28 P = w_hi[2]
-    rom[29] = 36'h182106378;   // 29 w3[2] = sat32(P << 16 + round(w_lo >> 16))
-    rom[30] = 36'h162400028;   // 30 wref[2] id_ref
-    rom[31] = 36'h172400030;   // 31 wref[2] iq_ref
-    rom[32] = 36'h000731000;   // 32 P = w_hi[3]
-    rom[33] = 36'h1b2126378;   // 33 w3[3] = sat32(P << 16 + round(w_lo >> 16))
-    rom[34] = 36'h192400028;   // 34 wref[3] id_ref
-    rom[35] = 36'h1a2400030;   // 35 wref[3] iq_ref
-    rom[36] = 36'h00240001b;   // 36 WFRONT y0 = i_d
-    rom[37] = 36'h042451818;   // 37 dx0 = i_d - i_d,prev
-    rom[38] = 36'h012400020;   // 38 y1 = i_q
-    rom[39] = 36'h052461820;   // 39 dx1 = i_q - i_q,prev
-    rom[40] = 36'h00c400000;   // 40 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
-    rom[41] = 36'h000400000;   // 41 (pipeline gap)
-    rom[42] = 36'h000400000;   // 42 (pipeline gap)
-    rom[43] = 36'h00060806c;   // 43 WSH P = ka = rshift_round(kacc i_q, s)
-    rom[44] = 36'h000641878;   // 44 P = u1 = ka - D
-    rom[45] = 36'h009011078;   // 45 omega = sat32(spd + u1)
-    rom[46] = 36'h00ec21178;   // 46 shifter = t2 = 2 u1 - (spd - spd_prev)
-    rom[47] = 36'h000400000;   // 47 (pipeline gap)
-    rom[48] = 36'h032400070;   // 48 omega
-    rom[49] = 36'h022400070;   // 49 y2 = omega
-    rom[50] = 36'h063071870;   // 50 dx2 = sat32(omega - omega_prev)
-    rom[51] = 36'h000400005;   // 51 START core start (or, law off, skip)
-    rom[52] = 36'h074400070;   // 52 omega_prev
-    rom[53] = 36'h054400018;   // 53 i_d,prev
-    rom[54] = 36'h064400020;   // 54 i_q,prev
-    rom[55] = 36'h216400070;   // 55 SPEED
-    rom[56] = 36'h000400000;   // 56 (pipeline gap)
-    rom[57] = 36'h236400018;   // 57 I_D
-    rom[58] = 36'h000400000;   // 58 (pipeline gap)
-    rom[59] = 36'h246400020;   // 59 I_Q
-    rom[60] = 36'h84484106c;   // 60 WSH D += t2 >>> (load_shift + 1)
-    rom[61] = 36'hc44800000;   // 61 D = 0 (no load estimate)
-    rom[62] = 36'h000400006;   // 62 WCORE modulation start (held u, theta_mod), after the core
-    rom[63] = 36'h256400038;   // 63 U_D = the u applied
+    rom[1] = 36'h0730002f8;   // 1 dx3 = sat32(dpos << 8)
+    rom[2] = 36'h004400008;   // 2 pos_prev = pos
+    rom[3] = 36'h082400000;   // 3 dx4 = 0
+    rom[4] = 36'h0b2400048;   // 4 ebar_prev[0]
+    rom[5] = 36'h000601460;   // 5 P = dpos_M = pos - pos_{k-M}
+    rom[6] = 36'h01ec002f8;   // 6 shifter = dpos_M << 8, m steps
+    rom[7] = 36'h0c2400050;   // 7 ebar_prev[1]
+    rom[8] = 36'h0d2400058;   // 8 ebar_prev[2]
+    rom[9] = 36'h00060006c;   // 9 WSH P = (dpos_M << 8) >>> m
+    rom[10] = 36'h015000278;   // 10 spd = sat32(P << 8)
+    rom[11] = 36'h092400038;   // 11 u_prev[0]
+    rom[12] = 36'h0a2400040;   // 12 u_prev[1]
+    rom[13] = 36'h000611000;   // 13 P = spd
+    rom[14] = 36'h024831478;   // 14 ndsp = spd_prev - spd
+    rom[15] = 36'h034800078;   // 15 spd_prev = spd
+    rom[16] = 36'h484600011;   // 16 WTH P = theta; first period: theta_prev = theta
+    rom[17] = 36'h000400000;   // 17 (pipeline gap)
+    rom[18] = 36'h000400000;   // 18 (pipeline gap)
+    rom[19] = 36'h00a481978;   // 19 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[20] = 36'h084400010;   // 20 theta_prev = theta
+    rom[21] = 36'h0006d1002;   // 21 WREF P = w_hi[0]
+    rom[22] = 36'h1220c6378;   // 22 w3[0] = sat32(P << 16 + round(w_lo >> 16))
+    rom[23] = 36'h2764c2378;   // 23 REF = w_k bits 47:16
+    rom[24] = 36'h000400000;   // 24 (pipeline gap)
+    rom[25] = 36'h102400028;   // 25 wref[0] id_ref
+    rom[26] = 36'h112400030;   // 26 wref[0] iq_ref
+    rom[27] = 36'h0006f1000;   // 27 P = w_hi[1]
+    rom[28] = 36'h1520e6378;   // 28 w3[1] = sat32(P << 16 + round(w_lo >> 16))
+    rom[29] = 36'h132400028;   // 29 wref[1] id_ref
+    rom[30] = 36'h142400030;   // 30 wref[1] iq_ref
+    rom[31] = 36'h000711000;   // 31 P = w_hi[2]
+    rom[32] = 36'h182106378;   // 32 w3[2] = sat32(P << 16 + round(w_lo >> 16))
+    rom[33] = 36'h162400028;   // 33 wref[2] id_ref
+    rom[34] = 36'h172400030;   // 34 wref[2] iq_ref
+    rom[35] = 36'h000731000;   // 35 P = w_hi[3]
+    rom[36] = 36'h1b2126378;   // 36 w3[3] = sat32(P << 16 + round(w_lo >> 16))
+    rom[37] = 36'h192400028;   // 37 wref[3] id_ref
+    rom[38] = 36'h1a2400030;   // 38 wref[3] iq_ref
+    rom[39] = 36'h00240001b;   // 39 WFRONT y0 = i_d
+    rom[40] = 36'h042451818;   // 40 dx0 = i_d - i_d,prev
+    rom[41] = 36'h012400020;   // 41 y1 = i_q
+    rom[42] = 36'h052461820;   // 42 dx1 = i_q - i_q,prev
+    rom[43] = 36'h00c400000;   // 43 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
+    rom[44] = 36'h000400000;   // 44 (pipeline gap)
+    rom[45] = 36'h000400000;   // 45 (pipeline gap)
+    rom[46] = 36'h00060806c;   // 46 WSH P = ka = rshift_round(kacc i_q, s)
+    rom[47] = 36'h000641878;   // 47 P = u1 = ka - D
+    rom[48] = 36'h009011078;   // 48 omega = sat32(spd + u1)
+    rom[49] = 36'h01ec00178;   // 49 shifter = 2 u1, m steps
+    rom[50] = 36'h000400000;   // 50 (pipeline gap)
+    rom[51] = 36'h032400070;   // 51 omega
+    rom[52] = 36'h022400070;   // 52 y2 = omega
+    rom[53] = 36'h063071870;   // 53 dx2 = sat32(omega - omega_prev)
+    rom[54] = 36'h000400005;   // 54 START core start (or, law off, skip)
+    rom[55] = 36'h074400070;   // 55 omega_prev
+    rom[56] = 36'h054400018;   // 56 i_d,prev
+    rom[57] = 36'h064400020;   // 57 i_q,prev
+    rom[58] = 36'h216400070;   // 58 SPEED
+    rom[59] = 36'h000400000;   // 59 (pipeline gap)
+    rom[60] = 36'h236400018;   // 60 I_D
+    rom[61] = 36'h000400000;   // 61 (pipeline gap)
+    rom[62] = 36'h246400020;   // 62 I_Q
+    rom[63] = 36'h00ec2106c;   // 63 WSH shifter = t2 = (2 u1 >>> m) - (spd - spd_prev), load_shift + 1 - m steps (>= 0)
     rom[64] = 36'h000400000;   // 64 (pipeline gap)
-    rom[65] = 36'h266400040;   // 65 U_Q
-    rom[66] = 36'h000400007;   // 66 END program end
+    rom[65] = 36'h000400000;   // 65 (pipeline gap)
+    rom[66] = 36'h84484106c;   // 66 WSH D += t2 >>> (load_shift + 1)
+    rom[67] = 36'hc44800000;   // 67 D = 0 (no load estimate)
+    rom[68] = 36'h000400006;   // 68 WCORE modulation start (held u, theta_mod), after the core
+    rom[69] = 36'h256400038;   // 69 U_D = the u applied
+    rom[70] = 36'h000400000;   // 70 (pipeline gap)
+    rom[71] = 36'h266400040;   // 71 U_Q
+    rom[72] = 36'h000400007;   // 72 END program end
     rom[96] = 36'h000601808;   // 96 P = dpos = pos - pos_prev
-    rom[97] = 36'h0150003f8;   // 97 spd = sat32(dpos << 16)
-    rom[98] = 36'h0730002f8;   // 98 dx3 = sat32(dpos << 8)
-    rom[99] = 36'h004400008;   // 99 pos_prev = pos
-    rom[100] = 36'h082400000;   // 100 dx4 = 0
-    rom[101] = 36'h0b2400048;   // 101 ebar_prev[0]
-    rom[102] = 36'h0c2400050;   // 102 ebar_prev[1]
-    rom[103] = 36'h0d2400058;   // 103 ebar_prev[2]
-    rom[104] = 36'h092400038;   // 104 u_prev[0]
-    rom[105] = 36'h0a2400040;   // 105 u_prev[1]
-    rom[106] = 36'h000611000;   // 106 P = spd
-    rom[107] = 36'h024831478;   // 107 ndsp = spd_prev - spd
-    rom[108] = 36'h034800078;   // 108 spd_prev = spd
-    rom[109] = 36'h484600011;   // 109 WTH P = theta; first period: theta_prev = theta
-    rom[110] = 36'h000400000;   // 110 (pipeline gap)
-    rom[111] = 36'h000400000;   // 111 (pipeline gap)
-    rom[112] = 36'h00a481978;   // 112 theta_mod = 2 theta - theta_prev (16 bit)
-    rom[113] = 36'h084400010;   // 113 theta_prev = theta
-    rom[114] = 36'h0006d140a;   // 114 WREF P = w_hi[0] - pos
-    rom[115] = 36'h1220c72f8;   // 115 w3[0] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[116] = 36'h0006d1000;   // 116 P = w_hi[0]
-    rom[117] = 36'h2764c3278;   // 117 REF = w_k bits 55:24
-    rom[118] = 36'h000400000;   // 118 (pipeline gap)
-    rom[119] = 36'h102400028;   // 119 wref[0] id_ref
-    rom[120] = 36'h112400030;   // 120 wref[0] iq_ref
-    rom[121] = 36'h0006f1408;   // 121 P = w_hi[1] - pos
-    rom[122] = 36'h1520e72f8;   // 122 w3[1] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[123] = 36'h132400028;   // 123 wref[1] id_ref
-    rom[124] = 36'h142400030;   // 124 wref[1] iq_ref
-    rom[125] = 36'h000711408;   // 125 P = w_hi[2] - pos
-    rom[126] = 36'h1821072f8;   // 126 w3[2] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[127] = 36'h162400028;   // 127 wref[2] id_ref
-    rom[128] = 36'h172400030;   // 128 wref[2] iq_ref
-    rom[129] = 36'h000731408;   // 129 P = w_hi[3] - pos
-    rom[130] = 36'h1b21272f8;   // 130 w3[3] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[131] = 36'h192400028;   // 131 wref[3] id_ref
-    rom[132] = 36'h1a2400030;   // 132 wref[3] iq_ref
-    rom[133] = 36'h00240001b;   // 133 WFRONT y0 = i_d
-    rom[134] = 36'h042451818;   // 134 dx0 = i_d - i_d,prev
-    rom[135] = 36'h012400020;   // 135 y1 = i_q
-    rom[136] = 36'h052461820;   // 136 dx1 = i_q - i_q,prev
-    rom[137] = 36'h00c400000;   // 137 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
-    rom[138] = 36'h000400000;   // 138 (pipeline gap)
-    rom[139] = 36'h000400000;   // 139 (pipeline gap)
-    rom[140] = 36'h00060806c;   // 140 WSH P = ka = rshift_round(kacc i_q, s)
-    rom[141] = 36'h000641878;   // 141 P = u1 = ka - D
-    rom[142] = 36'h009011078;   // 142 omega = sat32(spd + u1)
-    rom[143] = 36'h00ec21178;   // 143 shifter = t2 = 2 u1 - (spd - spd_prev)
-    rom[144] = 36'h000400000;   // 144 (pipeline gap)
-    rom[145] = 36'h032400070;   // 145 omega
-    rom[146] = 36'h022400000;   // 146 y2 = 0 (position task)
-    rom[147] = 36'h063071870;   // 147 dx2 = sat32(omega - omega_prev)
-    rom[148] = 36'h000400005;   // 148 START core start (or, law off, skip)
-    rom[149] = 36'h074400070;   // 149 omega_prev
-    rom[150] = 36'h054400018;   // 150 i_d,prev
-    rom[151] = 36'h064400020;   // 151 i_q,prev
-    rom[152] = 36'h216400070;   // 152 SPEED
-    rom[153] = 36'h000400000;   // 153 (pipeline gap)
-    rom[154] = 36'h236400018;   // 154 I_D
-    rom[155] = 36'h000400000;   // 155 (pipeline gap)
-    rom[156] = 36'h246400020;   // 156 I_Q
-    rom[157] = 36'h84484106c;   // 157 WSH D += t2 >>> (load_shift + 1)
-    rom[158] = 36'hc44800000;   // 158 D = 0 (no load estimate)
-    rom[159] = 36'h000400006;   // 159 WCORE modulation start (held u, theta_mod), after the core
-    rom[160] = 36'h256400038;   // 160 U_D = the u applied
+    rom[97] = 36'h0730002f8;   // 97 dx3 = sat32(dpos << 8)
+    rom[98] = 36'h004400008;   // 98 pos_prev = pos
+    rom[99] = 36'h082400000;   // 99 dx4 = 0
+    rom[100] = 36'h0b2400048;   // 100 ebar_prev[0]
+    rom[101] = 36'h000601460;   // 101 P = dpos_M = pos - pos_{k-M}
+    rom[102] = 36'h01ec002f8;   // 102 shifter = dpos_M << 8, m steps
+    rom[103] = 36'h0c2400050;   // 103 ebar_prev[1]
+    rom[104] = 36'h0d2400058;   // 104 ebar_prev[2]
+    rom[105] = 36'h00060006c;   // 105 WSH P = (dpos_M << 8) >>> m
+    rom[106] = 36'h015000278;   // 106 spd = sat32(P << 8)
+    rom[107] = 36'h092400038;   // 107 u_prev[0]
+    rom[108] = 36'h0a2400040;   // 108 u_prev[1]
+    rom[109] = 36'h000611000;   // 109 P = spd
+    rom[110] = 36'h024831478;   // 110 ndsp = spd_prev - spd
+    rom[111] = 36'h034800078;   // 111 spd_prev = spd
+    rom[112] = 36'h484600011;   // 112 WTH P = theta; first period: theta_prev = theta
+    rom[113] = 36'h000400000;   // 113 (pipeline gap)
+    rom[114] = 36'h000400000;   // 114 (pipeline gap)
+    rom[115] = 36'h00a481978;   // 115 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[116] = 36'h084400010;   // 116 theta_prev = theta
+    rom[117] = 36'h0006d140a;   // 117 WREF P = w_hi[0] - pos
+    rom[118] = 36'h1220c72f8;   // 118 w3[0] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[119] = 36'h0006d1000;   // 119 P = w_hi[0]
+    rom[120] = 36'h2764c3278;   // 120 REF = w_k bits 55:24
+    rom[121] = 36'h000400000;   // 121 (pipeline gap)
+    rom[122] = 36'h102400028;   // 122 wref[0] id_ref
+    rom[123] = 36'h112400030;   // 123 wref[0] iq_ref
+    rom[124] = 36'h0006f1408;   // 124 P = w_hi[1] - pos
+    rom[125] = 36'h1520e72f8;   // 125 w3[1] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[126] = 36'h132400028;   // 126 wref[1] id_ref
+    rom[127] = 36'h142400030;   // 127 wref[1] iq_ref
+    rom[128] = 36'h000711408;   // 128 P = w_hi[2] - pos
+    rom[129] = 36'h1821072f8;   // 129 w3[2] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[130] = 36'h162400028;   // 130 wref[2] id_ref
+    rom[131] = 36'h172400030;   // 131 wref[2] iq_ref
+    rom[132] = 36'h000731408;   // 132 P = w_hi[3] - pos
+    rom[133] = 36'h1b21272f8;   // 133 w3[3] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[134] = 36'h192400028;   // 134 wref[3] id_ref
+    rom[135] = 36'h1a2400030;   // 135 wref[3] iq_ref
+    rom[136] = 36'h00240001b;   // 136 WFRONT y0 = i_d
+    rom[137] = 36'h042451818;   // 137 dx0 = i_d - i_d,prev
+    rom[138] = 36'h012400020;   // 138 y1 = i_q
+    rom[139] = 36'h052461820;   // 139 dx1 = i_q - i_q,prev
+    rom[140] = 36'h00c400000;   // 140 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
+    rom[141] = 36'h000400000;   // 141 (pipeline gap)
+    rom[142] = 36'h000400000;   // 142 (pipeline gap)
+    rom[143] = 36'h00060806c;   // 143 WSH P = ka = rshift_round(kacc i_q, s)
+    rom[144] = 36'h000641878;   // 144 P = u1 = ka - D
+    rom[145] = 36'h009011078;   // 145 omega = sat32(spd + u1)
+    rom[146] = 36'h01ec00178;   // 146 shifter = 2 u1, m steps
+    rom[147] = 36'h000400000;   // 147 (pipeline gap)
+    rom[148] = 36'h032400070;   // 148 omega
+    rom[149] = 36'h022400000;   // 149 y2 = 0 (position task)
+    rom[150] = 36'h063071870;   // 150 dx2 = sat32(omega - omega_prev)
+    rom[151] = 36'h000400005;   // 151 START core start (or, law off, skip)
+    rom[152] = 36'h074400070;   // 152 omega_prev
+    rom[153] = 36'h054400018;   // 153 i_d,prev
+    rom[154] = 36'h064400020;   // 154 i_q,prev
+    rom[155] = 36'h216400070;   // 155 SPEED
+    rom[156] = 36'h000400000;   // 156 (pipeline gap)
+    rom[157] = 36'h236400018;   // 157 I_D
+    rom[158] = 36'h000400000;   // 158 (pipeline gap)
+    rom[159] = 36'h246400020;   // 159 I_Q
+    rom[160] = 36'h00ec2106c;   // 160 WSH shifter = t2 = (2 u1 >>> m) - (spd - spd_prev), load_shift + 1 - m steps (>= 0)
     rom[161] = 36'h000400000;   // 161 (pipeline gap)
-    rom[162] = 36'h266400040;   // 162 U_Q
-    rom[163] = 36'h000400007;   // 163 END program end
+    rom[162] = 36'h000400000;   // 162 (pipeline gap)
+    rom[163] = 36'h84484106c;   // 163 WSH D += t2 >>> (load_shift + 1)
+    rom[164] = 36'hc44800000;   // 164 D = 0 (no load estimate)
+    rom[165] = 36'h000400006;   // 165 WCORE modulation start (held u, theta_mod), after the core
+    rom[166] = 36'h256400038;   // 166 U_D = the u applied
+    rom[167] = 36'h000400000;   // 167 (pipeline gap)
+    rom[168] = 36'h266400040;   // 168 U_Q
+    rom[169] = 36'h000400007;   // 169 END program end
     rom[192] = 36'h484600011;   // 192 WTH P = theta; first period: theta_prev = theta
     rom[193] = 36'h000400000;   // 193 (pipeline gap)
     rom[194] = 36'h000400000;   // 194 (pipeline gap)
@@ -424,148 +460,160 @@ end
 if (N == 4) begin
     for (ui = 0; ui < 256; ui = ui + 1) rom[ui] = 36'h000400007;   // END
     rom[0] = 36'h000601808;   // 0 P = dpos = pos - pos_prev
-    rom[1] = 36'h0150003f8;   // 1 spd = sat32(dpos << 16)
-    rom[2] = 36'h0730002f8;   // 2 dx3 = sat32(dpos << 8)
-    rom[3] = 36'h004400008;   // 3 pos_prev = pos
-    rom[4] = 36'h082400000;   // 4 dx4 = 0
-    rom[5] = 36'h0b2400048;   // 5 ebar_prev[0]
-    rom[6] = 36'h0c2400050;   // 6 ebar_prev[1]
-    rom[7] = 36'h0d2400058;   // 7 ebar_prev[2]
-    rom[8] = 36'h092400038;   // 8 u_prev[0]
-    rom[9] = 36'h0a2400040;   // 9 u_prev[1]
-    rom[10] = 36'h000611000;   // 10 P = spd
-    rom[11] = 36'h024831478;   // 11 ndsp = spd_prev - spd
-    rom[12] = 36'h034800078;   // 12 spd_prev = spd
-    rom[13] = 36'h484600011;   // 13 WTH P = theta; first period: theta_prev = theta
-    rom[14] = 36'h000400000;   // 14 (pipeline gap)
-    rom[15] = 36'h000400000;   // 15 (pipeline gap)
-    rom[16] = 36'h00a481978;   // 16 theta_mod = 2 theta - theta_prev (16 bit)
-    rom[17] = 36'h084400010;   // 17 theta_prev = theta
-    rom[18] = 36'h0006d1002;   // 18 WREF P = w_hi[0]
-    rom[19] = 36'h1220c6378;   // 19 w3[0] = sat32(P << 16 + round(w_lo >> 16))
-    rom[20] = 36'h2764c2378;   // 20 REF = w_k bits 47:16
-    rom[21] = 36'h000400000;   // 21 (pipeline gap)
-    rom[22] = 36'h102400028;   // 22 wref[0] id_ref
-    rom[23] = 36'h112400030;   // 23 wref[0] iq_ref
-    rom[24] = 36'h0006f1000;   // 24 P = w_hi[1]
-    rom[25] = 36'h1520e6378;   // 25 w3[1] = sat32(P << 16 + round(w_lo >> 16))
-    rom[26] = 36'h132400028;   // 26 wref[1] id_ref
-    rom[27] = 36'h142400030;   // 27 wref[1] iq_ref
-    rom[28] = 36'h000711000;   // 28 P = w_hi[2]
-    rom[29] = 36'h182106378;   // 29 w3[2] = sat32(P << 16 + round(w_lo >> 16))
-    rom[30] = 36'h162400028;   // 30 wref[2] id_ref
-    rom[31] = 36'h172400030;   // 31 wref[2] iq_ref
-    rom[32] = 36'h000731000;   // 32 P = w_hi[3]
-    rom[33] = 36'h1b2126378;   // 33 w3[3] = sat32(P << 16 + round(w_lo >> 16))
-    rom[34] = 36'h192400028;   // 34 wref[3] id_ref
-    rom[35] = 36'h1a2400030;   // 35 wref[3] iq_ref
-    rom[36] = 36'h000751000;   // 36 P = w_hi[4]
-    rom[37] = 36'h1e2146378;   // 37 w3[4] = sat32(P << 16 + round(w_lo >> 16))
-    rom[38] = 36'h1c2400028;   // 38 wref[4] id_ref
-    rom[39] = 36'h1d2400030;   // 39 wref[4] iq_ref
-    rom[40] = 36'h00240001b;   // 40 WFRONT y0 = i_d
-    rom[41] = 36'h042451818;   // 41 dx0 = i_d - i_d,prev
-    rom[42] = 36'h012400020;   // 42 y1 = i_q
-    rom[43] = 36'h052461820;   // 43 dx1 = i_q - i_q,prev
-    rom[44] = 36'h00c400000;   // 44 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
-    rom[45] = 36'h000400000;   // 45 (pipeline gap)
-    rom[46] = 36'h000400000;   // 46 (pipeline gap)
-    rom[47] = 36'h00060806c;   // 47 WSH P = ka = rshift_round(kacc i_q, s)
-    rom[48] = 36'h000641878;   // 48 P = u1 = ka - D
-    rom[49] = 36'h009011078;   // 49 omega = sat32(spd + u1)
-    rom[50] = 36'h00ec21178;   // 50 shifter = t2 = 2 u1 - (spd - spd_prev)
-    rom[51] = 36'h000400000;   // 51 (pipeline gap)
-    rom[52] = 36'h032400070;   // 52 omega
-    rom[53] = 36'h022400070;   // 53 y2 = omega
-    rom[54] = 36'h063071870;   // 54 dx2 = sat32(omega - omega_prev)
-    rom[55] = 36'h000400005;   // 55 START core start (or, law off, skip)
-    rom[56] = 36'h074400070;   // 56 omega_prev
-    rom[57] = 36'h054400018;   // 57 i_d,prev
-    rom[58] = 36'h064400020;   // 58 i_q,prev
-    rom[59] = 36'h216400070;   // 59 SPEED
-    rom[60] = 36'h000400000;   // 60 (pipeline gap)
-    rom[61] = 36'h236400018;   // 61 I_D
-    rom[62] = 36'h000400000;   // 62 (pipeline gap)
-    rom[63] = 36'h246400020;   // 63 I_Q
-    rom[64] = 36'h84484106c;   // 64 WSH D += t2 >>> (load_shift + 1)
-    rom[65] = 36'hc44800000;   // 65 D = 0 (no load estimate)
-    rom[66] = 36'h000400006;   // 66 WCORE modulation start (held u, theta_mod), after the core
-    rom[67] = 36'h256400038;   // 67 U_D = the u applied
+    rom[1] = 36'h0730002f8;   // 1 dx3 = sat32(dpos << 8)
+    rom[2] = 36'h004400008;   // 2 pos_prev = pos
+    rom[3] = 36'h082400000;   // 3 dx4 = 0
+    rom[4] = 36'h0b2400048;   // 4 ebar_prev[0]
+    rom[5] = 36'h000601460;   // 5 P = dpos_M = pos - pos_{k-M}
+    rom[6] = 36'h01ec002f8;   // 6 shifter = dpos_M << 8, m steps
+    rom[7] = 36'h0c2400050;   // 7 ebar_prev[1]
+    rom[8] = 36'h0d2400058;   // 8 ebar_prev[2]
+    rom[9] = 36'h00060006c;   // 9 WSH P = (dpos_M << 8) >>> m
+    rom[10] = 36'h015000278;   // 10 spd = sat32(P << 8)
+    rom[11] = 36'h092400038;   // 11 u_prev[0]
+    rom[12] = 36'h0a2400040;   // 12 u_prev[1]
+    rom[13] = 36'h000611000;   // 13 P = spd
+    rom[14] = 36'h024831478;   // 14 ndsp = spd_prev - spd
+    rom[15] = 36'h034800078;   // 15 spd_prev = spd
+    rom[16] = 36'h484600011;   // 16 WTH P = theta; first period: theta_prev = theta
+    rom[17] = 36'h000400000;   // 17 (pipeline gap)
+    rom[18] = 36'h000400000;   // 18 (pipeline gap)
+    rom[19] = 36'h00a481978;   // 19 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[20] = 36'h084400010;   // 20 theta_prev = theta
+    rom[21] = 36'h0006d1002;   // 21 WREF P = w_hi[0]
+    rom[22] = 36'h1220c6378;   // 22 w3[0] = sat32(P << 16 + round(w_lo >> 16))
+    rom[23] = 36'h2764c2378;   // 23 REF = w_k bits 47:16
+    rom[24] = 36'h000400000;   // 24 (pipeline gap)
+    rom[25] = 36'h102400028;   // 25 wref[0] id_ref
+    rom[26] = 36'h112400030;   // 26 wref[0] iq_ref
+    rom[27] = 36'h0006f1000;   // 27 P = w_hi[1]
+    rom[28] = 36'h1520e6378;   // 28 w3[1] = sat32(P << 16 + round(w_lo >> 16))
+    rom[29] = 36'h132400028;   // 29 wref[1] id_ref
+    rom[30] = 36'h142400030;   // 30 wref[1] iq_ref
+    rom[31] = 36'h000711000;   // 31 P = w_hi[2]
+    rom[32] = 36'h182106378;   // 32 w3[2] = sat32(P << 16 + round(w_lo >> 16))
+    rom[33] = 36'h162400028;   // 33 wref[2] id_ref
+    rom[34] = 36'h172400030;   // 34 wref[2] iq_ref
+    rom[35] = 36'h000731000;   // 35 P = w_hi[3]
+    rom[36] = 36'h1b2126378;   // 36 w3[3] = sat32(P << 16 + round(w_lo >> 16))
+    rom[37] = 36'h192400028;   // 37 wref[3] id_ref
+    rom[38] = 36'h1a2400030;   // 38 wref[3] iq_ref
+    rom[39] = 36'h000751000;   // 39 P = w_hi[4]
+    rom[40] = 36'h1e2146378;   // 40 w3[4] = sat32(P << 16 + round(w_lo >> 16))
+    rom[41] = 36'h1c2400028;   // 41 wref[4] id_ref
+    rom[42] = 36'h1d2400030;   // 42 wref[4] iq_ref
+    rom[43] = 36'h00240001b;   // 43 WFRONT y0 = i_d
+    rom[44] = 36'h042451818;   // 44 dx0 = i_d - i_d,prev
+    rom[45] = 36'h012400020;   // 45 y1 = i_q
+    rom[46] = 36'h052461820;   // 46 dx1 = i_q - i_q,prev
+    rom[47] = 36'h00c400000;   // 47 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
+    rom[48] = 36'h000400000;   // 48 (pipeline gap)
+    rom[49] = 36'h000400000;   // 49 (pipeline gap)
+    rom[50] = 36'h00060806c;   // 50 WSH P = ka = rshift_round(kacc i_q, s)
+    rom[51] = 36'h000641878;   // 51 P = u1 = ka - D
+    rom[52] = 36'h009011078;   // 52 omega = sat32(spd + u1)
+    rom[53] = 36'h01ec00178;   // 53 shifter = 2 u1, m steps
+    rom[54] = 36'h000400000;   // 54 (pipeline gap)
+    rom[55] = 36'h032400070;   // 55 omega
+    rom[56] = 36'h022400070;   // 56 y2 = omega
+    rom[57] = 36'h063071870;   // 57 dx2 = sat32(omega - omega_prev)
+    rom[58] = 36'h000400005;   // 58 START core start (or, law off, skip)
+    rom[59] = 36'h074400070;   // 59 omega_prev
+    rom[60] = 36'h054400018;   // 60 i_d,prev
+    rom[61] = 36'h064400020;   // 61 i_q,prev
+    rom[62] = 36'h216400070;   // 62 SPEED
+    rom[63] = 36'h000400000;   // 63 (pipeline gap)
+    rom[64] = 36'h236400018;   // 64 I_D
+    rom[65] = 36'h000400000;   // 65 (pipeline gap)
+    rom[66] = 36'h246400020;   // 66 I_Q
+    rom[67] = 36'h00ec2106c;   // 67 WSH shifter = t2 = (2 u1 >>> m) - (spd - spd_prev), load_shift + 1 - m steps (>= 0)
     rom[68] = 36'h000400000;   // 68 (pipeline gap)
-    rom[69] = 36'h266400040;   // 69 U_Q
-    rom[70] = 36'h000400007;   // 70 END program end
+    rom[69] = 36'h000400000;   // 69 (pipeline gap)
+    rom[70] = 36'h84484106c;   // 70 WSH D += t2 >>> (load_shift + 1)
+    rom[71] = 36'hc44800000;   // 71 D = 0 (no load estimate)
+    rom[72] = 36'h000400006;   // 72 WCORE modulation start (held u, theta_mod), after the core
+    rom[73] = 36'h256400038;   // 73 U_D = the u applied
+    rom[74] = 36'h000400000;   // 74 (pipeline gap)
+    rom[75] = 36'h266400040;   // 75 U_Q
+    rom[76] = 36'h000400007;   // 76 END program end
     rom[96] = 36'h000601808;   // 96 P = dpos = pos - pos_prev
-    rom[97] = 36'h0150003f8;   // 97 spd = sat32(dpos << 16)
-    rom[98] = 36'h0730002f8;   // 98 dx3 = sat32(dpos << 8)
-    rom[99] = 36'h004400008;   // 99 pos_prev = pos
-    rom[100] = 36'h082400000;   // 100 dx4 = 0
-    rom[101] = 36'h0b2400048;   // 101 ebar_prev[0]
-    rom[102] = 36'h0c2400050;   // 102 ebar_prev[1]
-    rom[103] = 36'h0d2400058;   // 103 ebar_prev[2]
-    rom[104] = 36'h092400038;   // 104 u_prev[0]
-    rom[105] = 36'h0a2400040;   // 105 u_prev[1]
-    rom[106] = 36'h000611000;   // 106 P = spd
-    rom[107] = 36'h024831478;   // 107 ndsp = spd_prev - spd
-    rom[108] = 36'h034800078;   // 108 spd_prev = spd
-    rom[109] = 36'h484600011;   // 109 WTH P = theta; first period: theta_prev = theta
-    rom[110] = 36'h000400000;   // 110 (pipeline gap)
-    rom[111] = 36'h000400000;   // 111 (pipeline gap)
-    rom[112] = 36'h00a481978;   // 112 theta_mod = 2 theta - theta_prev (16 bit)
-    rom[113] = 36'h084400010;   // 113 theta_prev = theta
-    rom[114] = 36'h0006d140a;   // 114 WREF P = w_hi[0] - pos
-    rom[115] = 36'h1220c72f8;   // 115 w3[0] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[116] = 36'h0006d1000;   // 116 P = w_hi[0]
-    rom[117] = 36'h2764c3278;   // 117 REF = w_k bits 55:24
-    rom[118] = 36'h000400000;   // 118 (pipeline gap)
-    rom[119] = 36'h102400028;   // 119 wref[0] id_ref
-    rom[120] = 36'h112400030;   // 120 wref[0] iq_ref
-    rom[121] = 36'h0006f1408;   // 121 P = w_hi[1] - pos
-    rom[122] = 36'h1520e72f8;   // 122 w3[1] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[123] = 36'h132400028;   // 123 wref[1] id_ref
-    rom[124] = 36'h142400030;   // 124 wref[1] iq_ref
-    rom[125] = 36'h000711408;   // 125 P = w_hi[2] - pos
-    rom[126] = 36'h1821072f8;   // 126 w3[2] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[127] = 36'h162400028;   // 127 wref[2] id_ref
-    rom[128] = 36'h172400030;   // 128 wref[2] iq_ref
-    rom[129] = 36'h000731408;   // 129 P = w_hi[3] - pos
-    rom[130] = 36'h1b21272f8;   // 130 w3[3] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[131] = 36'h192400028;   // 131 wref[3] id_ref
-    rom[132] = 36'h1a2400030;   // 132 wref[3] iq_ref
-    rom[133] = 36'h000751408;   // 133 P = w_hi[4] - pos
-    rom[134] = 36'h1e21472f8;   // 134 w3[4] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[135] = 36'h1c2400028;   // 135 wref[4] id_ref
-    rom[136] = 36'h1d2400030;   // 136 wref[4] iq_ref
-    rom[137] = 36'h00240001b;   // 137 WFRONT y0 = i_d
-    rom[138] = 36'h042451818;   // 138 dx0 = i_d - i_d,prev
-    rom[139] = 36'h012400020;   // 139 y1 = i_q
-    rom[140] = 36'h052461820;   // 140 dx1 = i_q - i_q,prev
-    rom[141] = 36'h00c400000;   // 141 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
-    rom[142] = 36'h000400000;   // 142 (pipeline gap)
-    rom[143] = 36'h000400000;   // 143 (pipeline gap)
-    rom[144] = 36'h00060806c;   // 144 WSH P = ka = rshift_round(kacc i_q, s)
-    rom[145] = 36'h000641878;   // 145 P = u1 = ka - D
-    rom[146] = 36'h009011078;   // 146 omega = sat32(spd + u1)
-    rom[147] = 36'h00ec21178;   // 147 shifter = t2 = 2 u1 - (spd - spd_prev)
-    rom[148] = 36'h000400000;   // 148 (pipeline gap)
-    rom[149] = 36'h032400070;   // 149 omega
-    rom[150] = 36'h022400000;   // 150 y2 = 0 (position task)
-    rom[151] = 36'h063071870;   // 151 dx2 = sat32(omega - omega_prev)
-    rom[152] = 36'h000400005;   // 152 START core start (or, law off, skip)
-    rom[153] = 36'h074400070;   // 153 omega_prev
-    rom[154] = 36'h054400018;   // 154 i_d,prev
-    rom[155] = 36'h064400020;   // 155 i_q,prev
-    rom[156] = 36'h216400070;   // 156 SPEED
-    rom[157] = 36'h000400000;   // 157 (pipeline gap)
-    rom[158] = 36'h236400018;   // 158 I_D
-    rom[159] = 36'h000400000;   // 159 (pipeline gap)
-    rom[160] = 36'h246400020;   // 160 I_Q
-    rom[161] = 36'h84484106c;   // 161 WSH D += t2 >>> (load_shift + 1)
-    rom[162] = 36'hc44800000;   // 162 D = 0 (no load estimate)
-    rom[163] = 36'h000400006;   // 163 WCORE modulation start (held u, theta_mod), after the core
-    rom[164] = 36'h256400038;   // 164 U_D = the u applied
+    rom[97] = 36'h0730002f8;   // 97 dx3 = sat32(dpos << 8)
+    rom[98] = 36'h004400008;   // 98 pos_prev = pos
+    rom[99] = 36'h082400000;   // 99 dx4 = 0
+    rom[100] = 36'h0b2400048;   // 100 ebar_prev[0]
+    rom[101] = 36'h000601460;   // 101 P = dpos_M = pos - pos_{k-M}
+    rom[102] = 36'h01ec002f8;   // 102 shifter = dpos_M << 8, m steps
+    rom[103] = 36'h0c2400050;   // 103 ebar_prev[1]
+    rom[104] = 36'h0d2400058;   // 104 ebar_prev[2]
+    rom[105] = 36'h00060006c;   // 105 WSH P = (dpos_M << 8) >>> m
+    rom[106] = 36'h015000278;   // 106 spd = sat32(P << 8)
+    rom[107] = 36'h092400038;   // 107 u_prev[0]
+    rom[108] = 36'h0a2400040;   // 108 u_prev[1]
+    rom[109] = 36'h000611000;   // 109 P = spd
+    rom[110] = 36'h024831478;   // 110 ndsp = spd_prev - spd
+    rom[111] = 36'h034800078;   // 111 spd_prev = spd
+    rom[112] = 36'h484600011;   // 112 WTH P = theta; first period: theta_prev = theta
+    rom[113] = 36'h000400000;   // 113 (pipeline gap)
+    rom[114] = 36'h000400000;   // 114 (pipeline gap)
+    rom[115] = 36'h00a481978;   // 115 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[116] = 36'h084400010;   // 116 theta_prev = theta
+    rom[117] = 36'h0006d140a;   // 117 WREF P = w_hi[0] - pos
+    rom[118] = 36'h1220c72f8;   // 118 w3[0] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[119] = 36'h0006d1000;   // 119 P = w_hi[0]
+    rom[120] = 36'h2764c3278;   // 120 REF = w_k bits 55:24
+    rom[121] = 36'h000400000;   // 121 (pipeline gap)
+    rom[122] = 36'h102400028;   // 122 wref[0] id_ref
+    rom[123] = 36'h112400030;   // 123 wref[0] iq_ref
+    rom[124] = 36'h0006f1408;   // 124 P = w_hi[1] - pos
+    rom[125] = 36'h1520e72f8;   // 125 w3[1] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[126] = 36'h132400028;   // 126 wref[1] id_ref
+    rom[127] = 36'h142400030;   // 127 wref[1] iq_ref
+    rom[128] = 36'h000711408;   // 128 P = w_hi[2] - pos
+    rom[129] = 36'h1821072f8;   // 129 w3[2] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[130] = 36'h162400028;   // 130 wref[2] id_ref
+    rom[131] = 36'h172400030;   // 131 wref[2] iq_ref
+    rom[132] = 36'h000731408;   // 132 P = w_hi[3] - pos
+    rom[133] = 36'h1b21272f8;   // 133 w3[3] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[134] = 36'h192400028;   // 134 wref[3] id_ref
+    rom[135] = 36'h1a2400030;   // 135 wref[3] iq_ref
+    rom[136] = 36'h000751408;   // 136 P = w_hi[4] - pos
+    rom[137] = 36'h1e21472f8;   // 137 w3[4] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[138] = 36'h1c2400028;   // 138 wref[4] id_ref
+    rom[139] = 36'h1d2400030;   // 139 wref[4] iq_ref
+    rom[140] = 36'h00240001b;   // 140 WFRONT y0 = i_d
+    rom[141] = 36'h042451818;   // 141 dx0 = i_d - i_d,prev
+    rom[142] = 36'h012400020;   // 142 y1 = i_q
+    rom[143] = 36'h052461820;   // 143 dx1 = i_q - i_q,prev
+    rom[144] = 36'h00c400000;   // 144 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
+    rom[145] = 36'h000400000;   // 145 (pipeline gap)
+    rom[146] = 36'h000400000;   // 146 (pipeline gap)
+    rom[147] = 36'h00060806c;   // 147 WSH P = ka = rshift_round(kacc i_q, s)
+    rom[148] = 36'h000641878;   // 148 P = u1 = ka - D
+    rom[149] = 36'h009011078;   // 149 omega = sat32(spd + u1)
+    rom[150] = 36'h01ec00178;   // 150 shifter = 2 u1, m steps
+    rom[151] = 36'h000400000;   // 151 (pipeline gap)
+    rom[152] = 36'h032400070;   // 152 omega
+    rom[153] = 36'h022400000;   // 153 y2 = 0 (position task)
+    rom[154] = 36'h063071870;   // 154 dx2 = sat32(omega - omega_prev)
+    rom[155] = 36'h000400005;   // 155 START core start (or, law off, skip)
+    rom[156] = 36'h074400070;   // 156 omega_prev
+    rom[157] = 36'h054400018;   // 157 i_d,prev
+    rom[158] = 36'h064400020;   // 158 i_q,prev
+    rom[159] = 36'h216400070;   // 159 SPEED
+    rom[160] = 36'h000400000;   // 160 (pipeline gap)
+    rom[161] = 36'h236400018;   // 161 I_D
+    rom[162] = 36'h000400000;   // 162 (pipeline gap)
+    rom[163] = 36'h246400020;   // 163 I_Q
+    rom[164] = 36'h00ec2106c;   // 164 WSH shifter = t2 = (2 u1 >>> m) - (spd - spd_prev), load_shift + 1 - m steps (>= 0)
     rom[165] = 36'h000400000;   // 165 (pipeline gap)
-    rom[166] = 36'h266400040;   // 166 U_Q
-    rom[167] = 36'h000400007;   // 167 END program end
+    rom[166] = 36'h000400000;   // 166 (pipeline gap)
+    rom[167] = 36'h84484106c;   // 167 WSH D += t2 >>> (load_shift + 1)
+    rom[168] = 36'hc44800000;   // 168 D = 0 (no load estimate)
+    rom[169] = 36'h000400006;   // 169 WCORE modulation start (held u, theta_mod), after the core
+    rom[170] = 36'h256400038;   // 170 U_D = the u applied
+    rom[171] = 36'h000400000;   // 171 (pipeline gap)
+    rom[172] = 36'h266400040;   // 172 U_Q
+    rom[173] = 36'h000400007;   // 173 END program end
     rom[192] = 36'h484600011;   // 192 WTH P = theta; first period: theta_prev = theta
     rom[193] = 36'h000400000;   // 193 (pipeline gap)
     rom[194] = 36'h000400000;   // 194 (pipeline gap)
@@ -580,156 +628,168 @@ end
 if (N == 5) begin
     for (ui = 0; ui < 256; ui = ui + 1) rom[ui] = 36'h000400007;   // END
     rom[0] = 36'h000601808;   // 0 P = dpos = pos - pos_prev
-    rom[1] = 36'h0150003f8;   // 1 spd = sat32(dpos << 16)
-    rom[2] = 36'h0730002f8;   // 2 dx3 = sat32(dpos << 8)
-    rom[3] = 36'h004400008;   // 3 pos_prev = pos
-    rom[4] = 36'h082400000;   // 4 dx4 = 0
-    rom[5] = 36'h0b2400048;   // 5 ebar_prev[0]
-    rom[6] = 36'h0c2400050;   // 6 ebar_prev[1]
-    rom[7] = 36'h0d2400058;   // 7 ebar_prev[2]
-    rom[8] = 36'h092400038;   // 8 u_prev[0]
-    rom[9] = 36'h0a2400040;   // 9 u_prev[1]
-    rom[10] = 36'h000611000;   // 10 P = spd
-    rom[11] = 36'h024831478;   // 11 ndsp = spd_prev - spd
-    rom[12] = 36'h034800078;   // 12 spd_prev = spd
-    rom[13] = 36'h484600011;   // 13 WTH P = theta; first period: theta_prev = theta
-    rom[14] = 36'h000400000;   // 14 (pipeline gap)
-    rom[15] = 36'h000400000;   // 15 (pipeline gap)
-    rom[16] = 36'h00a481978;   // 16 theta_mod = 2 theta - theta_prev (16 bit)
-    rom[17] = 36'h084400010;   // 17 theta_prev = theta
-    rom[18] = 36'h0006d1002;   // 18 WREF P = w_hi[0]
-    rom[19] = 36'h1220c6378;   // 19 w3[0] = sat32(P << 16 + round(w_lo >> 16))
-    rom[20] = 36'h2764c2378;   // 20 REF = w_k bits 47:16
-    rom[21] = 36'h000400000;   // 21 (pipeline gap)
-    rom[22] = 36'h102400028;   // 22 wref[0] id_ref
-    rom[23] = 36'h112400030;   // 23 wref[0] iq_ref
-    rom[24] = 36'h0006f1000;   // 24 P = w_hi[1]
-    rom[25] = 36'h1520e6378;   // 25 w3[1] = sat32(P << 16 + round(w_lo >> 16))
-    rom[26] = 36'h132400028;   // 26 wref[1] id_ref
-    rom[27] = 36'h142400030;   // 27 wref[1] iq_ref
-    rom[28] = 36'h000711000;   // 28 P = w_hi[2]
-    rom[29] = 36'h182106378;   // 29 w3[2] = sat32(P << 16 + round(w_lo >> 16))
-    rom[30] = 36'h162400028;   // 30 wref[2] id_ref
-    rom[31] = 36'h172400030;   // 31 wref[2] iq_ref
-    rom[32] = 36'h000731000;   // 32 P = w_hi[3]
-    rom[33] = 36'h1b2126378;   // 33 w3[3] = sat32(P << 16 + round(w_lo >> 16))
-    rom[34] = 36'h192400028;   // 34 wref[3] id_ref
-    rom[35] = 36'h1a2400030;   // 35 wref[3] iq_ref
-    rom[36] = 36'h000751000;   // 36 P = w_hi[4]
-    rom[37] = 36'h1e2146378;   // 37 w3[4] = sat32(P << 16 + round(w_lo >> 16))
-    rom[38] = 36'h1c2400028;   // 38 wref[4] id_ref
-    rom[39] = 36'h1d2400030;   // 39 wref[4] iq_ref
-    rom[40] = 36'h000771000;   // 40 P = w_hi[5]
-    rom[41] = 36'h212166378;   // 41 w3[5] = sat32(P << 16 + round(w_lo >> 16))
-    rom[42] = 36'h1f2400028;   // 42 wref[5] id_ref
-    rom[43] = 36'h202400030;   // 43 wref[5] iq_ref
-    rom[44] = 36'h00240001b;   // 44 WFRONT y0 = i_d
-    rom[45] = 36'h042451818;   // 45 dx0 = i_d - i_d,prev
-    rom[46] = 36'h012400020;   // 46 y1 = i_q
-    rom[47] = 36'h052461820;   // 47 dx1 = i_q - i_q,prev
-    rom[48] = 36'h00c400000;   // 48 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
-    rom[49] = 36'h000400000;   // 49 (pipeline gap)
-    rom[50] = 36'h000400000;   // 50 (pipeline gap)
-    rom[51] = 36'h00060806c;   // 51 WSH P = ka = rshift_round(kacc i_q, s)
-    rom[52] = 36'h000641878;   // 52 P = u1 = ka - D
-    rom[53] = 36'h009011078;   // 53 omega = sat32(spd + u1)
-    rom[54] = 36'h00ec21178;   // 54 shifter = t2 = 2 u1 - (spd - spd_prev)
-    rom[55] = 36'h000400000;   // 55 (pipeline gap)
-    rom[56] = 36'h032400070;   // 56 omega
-    rom[57] = 36'h022400070;   // 57 y2 = omega
-    rom[58] = 36'h063071870;   // 58 dx2 = sat32(omega - omega_prev)
-    rom[59] = 36'h000400005;   // 59 START core start (or, law off, skip)
-    rom[60] = 36'h074400070;   // 60 omega_prev
-    rom[61] = 36'h054400018;   // 61 i_d,prev
-    rom[62] = 36'h064400020;   // 62 i_q,prev
-    rom[63] = 36'h216400070;   // 63 SPEED
-    rom[64] = 36'h000400000;   // 64 (pipeline gap)
-    rom[65] = 36'h236400018;   // 65 I_D
-    rom[66] = 36'h000400000;   // 66 (pipeline gap)
-    rom[67] = 36'h246400020;   // 67 I_Q
-    rom[68] = 36'h84484106c;   // 68 WSH D += t2 >>> (load_shift + 1)
-    rom[69] = 36'hc44800000;   // 69 D = 0 (no load estimate)
-    rom[70] = 36'h000400006;   // 70 WCORE modulation start (held u, theta_mod), after the core
-    rom[71] = 36'h256400038;   // 71 U_D = the u applied
+    rom[1] = 36'h0730002f8;   // 1 dx3 = sat32(dpos << 8)
+    rom[2] = 36'h004400008;   // 2 pos_prev = pos
+    rom[3] = 36'h082400000;   // 3 dx4 = 0
+    rom[4] = 36'h0b2400048;   // 4 ebar_prev[0]
+    rom[5] = 36'h000601460;   // 5 P = dpos_M = pos - pos_{k-M}
+    rom[6] = 36'h01ec002f8;   // 6 shifter = dpos_M << 8, m steps
+    rom[7] = 36'h0c2400050;   // 7 ebar_prev[1]
+    rom[8] = 36'h0d2400058;   // 8 ebar_prev[2]
+    rom[9] = 36'h00060006c;   // 9 WSH P = (dpos_M << 8) >>> m
+    rom[10] = 36'h015000278;   // 10 spd = sat32(P << 8)
+    rom[11] = 36'h092400038;   // 11 u_prev[0]
+    rom[12] = 36'h0a2400040;   // 12 u_prev[1]
+    rom[13] = 36'h000611000;   // 13 P = spd
+    rom[14] = 36'h024831478;   // 14 ndsp = spd_prev - spd
+    rom[15] = 36'h034800078;   // 15 spd_prev = spd
+    rom[16] = 36'h484600011;   // 16 WTH P = theta; first period: theta_prev = theta
+    rom[17] = 36'h000400000;   // 17 (pipeline gap)
+    rom[18] = 36'h000400000;   // 18 (pipeline gap)
+    rom[19] = 36'h00a481978;   // 19 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[20] = 36'h084400010;   // 20 theta_prev = theta
+    rom[21] = 36'h0006d1002;   // 21 WREF P = w_hi[0]
+    rom[22] = 36'h1220c6378;   // 22 w3[0] = sat32(P << 16 + round(w_lo >> 16))
+    rom[23] = 36'h2764c2378;   // 23 REF = w_k bits 47:16
+    rom[24] = 36'h000400000;   // 24 (pipeline gap)
+    rom[25] = 36'h102400028;   // 25 wref[0] id_ref
+    rom[26] = 36'h112400030;   // 26 wref[0] iq_ref
+    rom[27] = 36'h0006f1000;   // 27 P = w_hi[1]
+    rom[28] = 36'h1520e6378;   // 28 w3[1] = sat32(P << 16 + round(w_lo >> 16))
+    rom[29] = 36'h132400028;   // 29 wref[1] id_ref
+    rom[30] = 36'h142400030;   // 30 wref[1] iq_ref
+    rom[31] = 36'h000711000;   // 31 P = w_hi[2]
+    rom[32] = 36'h182106378;   // 32 w3[2] = sat32(P << 16 + round(w_lo >> 16))
+    rom[33] = 36'h162400028;   // 33 wref[2] id_ref
+    rom[34] = 36'h172400030;   // 34 wref[2] iq_ref
+    rom[35] = 36'h000731000;   // 35 P = w_hi[3]
+    rom[36] = 36'h1b2126378;   // 36 w3[3] = sat32(P << 16 + round(w_lo >> 16))
+    rom[37] = 36'h192400028;   // 37 wref[3] id_ref
+    rom[38] = 36'h1a2400030;   // 38 wref[3] iq_ref
+    rom[39] = 36'h000751000;   // 39 P = w_hi[4]
+    rom[40] = 36'h1e2146378;   // 40 w3[4] = sat32(P << 16 + round(w_lo >> 16))
+    rom[41] = 36'h1c2400028;   // 41 wref[4] id_ref
+    rom[42] = 36'h1d2400030;   // 42 wref[4] iq_ref
+    rom[43] = 36'h000771000;   // 43 P = w_hi[5]
+    rom[44] = 36'h212166378;   // 44 w3[5] = sat32(P << 16 + round(w_lo >> 16))
+    rom[45] = 36'h1f2400028;   // 45 wref[5] id_ref
+    rom[46] = 36'h202400030;   // 46 wref[5] iq_ref
+    rom[47] = 36'h00240001b;   // 47 WFRONT y0 = i_d
+    rom[48] = 36'h042451818;   // 48 dx0 = i_d - i_d,prev
+    rom[49] = 36'h012400020;   // 49 y1 = i_q
+    rom[50] = 36'h052461820;   // 50 dx1 = i_q - i_q,prev
+    rom[51] = 36'h00c400000;   // 51 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
+    rom[52] = 36'h000400000;   // 52 (pipeline gap)
+    rom[53] = 36'h000400000;   // 53 (pipeline gap)
+    rom[54] = 36'h00060806c;   // 54 WSH P = ka = rshift_round(kacc i_q, s)
+    rom[55] = 36'h000641878;   // 55 P = u1 = ka - D
+    rom[56] = 36'h009011078;   // 56 omega = sat32(spd + u1)
+    rom[57] = 36'h01ec00178;   // 57 shifter = 2 u1, m steps
+    rom[58] = 36'h000400000;   // 58 (pipeline gap)
+    rom[59] = 36'h032400070;   // 59 omega
+    rom[60] = 36'h022400070;   // 60 y2 = omega
+    rom[61] = 36'h063071870;   // 61 dx2 = sat32(omega - omega_prev)
+    rom[62] = 36'h000400005;   // 62 START core start (or, law off, skip)
+    rom[63] = 36'h074400070;   // 63 omega_prev
+    rom[64] = 36'h054400018;   // 64 i_d,prev
+    rom[65] = 36'h064400020;   // 65 i_q,prev
+    rom[66] = 36'h216400070;   // 66 SPEED
+    rom[67] = 36'h000400000;   // 67 (pipeline gap)
+    rom[68] = 36'h236400018;   // 68 I_D
+    rom[69] = 36'h000400000;   // 69 (pipeline gap)
+    rom[70] = 36'h246400020;   // 70 I_Q
+    rom[71] = 36'h00ec2106c;   // 71 WSH shifter = t2 = (2 u1 >>> m) - (spd - spd_prev), load_shift + 1 - m steps (>= 0)
     rom[72] = 36'h000400000;   // 72 (pipeline gap)
-    rom[73] = 36'h266400040;   // 73 U_Q
-    rom[74] = 36'h000400007;   // 74 END program end
+    rom[73] = 36'h000400000;   // 73 (pipeline gap)
+    rom[74] = 36'h84484106c;   // 74 WSH D += t2 >>> (load_shift + 1)
+    rom[75] = 36'hc44800000;   // 75 D = 0 (no load estimate)
+    rom[76] = 36'h000400006;   // 76 WCORE modulation start (held u, theta_mod), after the core
+    rom[77] = 36'h256400038;   // 77 U_D = the u applied
+    rom[78] = 36'h000400000;   // 78 (pipeline gap)
+    rom[79] = 36'h266400040;   // 79 U_Q
+    rom[80] = 36'h000400007;   // 80 END program end
     rom[96] = 36'h000601808;   // 96 P = dpos = pos - pos_prev
-    rom[97] = 36'h0150003f8;   // 97 spd = sat32(dpos << 16)
-    rom[98] = 36'h0730002f8;   // 98 dx3 = sat32(dpos << 8)
-    rom[99] = 36'h004400008;   // 99 pos_prev = pos
-    rom[100] = 36'h082400000;   // 100 dx4 = 0
-    rom[101] = 36'h0b2400048;   // 101 ebar_prev[0]
-    rom[102] = 36'h0c2400050;   // 102 ebar_prev[1]
-    rom[103] = 36'h0d2400058;   // 103 ebar_prev[2]
-    rom[104] = 36'h092400038;   // 104 u_prev[0]
-    rom[105] = 36'h0a2400040;   // 105 u_prev[1]
-    rom[106] = 36'h000611000;   // 106 P = spd
-    rom[107] = 36'h024831478;   // 107 ndsp = spd_prev - spd
-    rom[108] = 36'h034800078;   // 108 spd_prev = spd
-    rom[109] = 36'h484600011;   // 109 WTH P = theta; first period: theta_prev = theta
-    rom[110] = 36'h000400000;   // 110 (pipeline gap)
-    rom[111] = 36'h000400000;   // 111 (pipeline gap)
-    rom[112] = 36'h00a481978;   // 112 theta_mod = 2 theta - theta_prev (16 bit)
-    rom[113] = 36'h084400010;   // 113 theta_prev = theta
-    rom[114] = 36'h0006d140a;   // 114 WREF P = w_hi[0] - pos
-    rom[115] = 36'h1220c72f8;   // 115 w3[0] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[116] = 36'h0006d1000;   // 116 P = w_hi[0]
-    rom[117] = 36'h2764c3278;   // 117 REF = w_k bits 55:24
-    rom[118] = 36'h000400000;   // 118 (pipeline gap)
-    rom[119] = 36'h102400028;   // 119 wref[0] id_ref
-    rom[120] = 36'h112400030;   // 120 wref[0] iq_ref
-    rom[121] = 36'h0006f1408;   // 121 P = w_hi[1] - pos
-    rom[122] = 36'h1520e72f8;   // 122 w3[1] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[123] = 36'h132400028;   // 123 wref[1] id_ref
-    rom[124] = 36'h142400030;   // 124 wref[1] iq_ref
-    rom[125] = 36'h000711408;   // 125 P = w_hi[2] - pos
-    rom[126] = 36'h1821072f8;   // 126 w3[2] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[127] = 36'h162400028;   // 127 wref[2] id_ref
-    rom[128] = 36'h172400030;   // 128 wref[2] iq_ref
-    rom[129] = 36'h000731408;   // 129 P = w_hi[3] - pos
-    rom[130] = 36'h1b21272f8;   // 130 w3[3] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[131] = 36'h192400028;   // 131 wref[3] id_ref
-    rom[132] = 36'h1a2400030;   // 132 wref[3] iq_ref
-    rom[133] = 36'h000751408;   // 133 P = w_hi[4] - pos
-    rom[134] = 36'h1e21472f8;   // 134 w3[4] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[135] = 36'h1c2400028;   // 135 wref[4] id_ref
-    rom[136] = 36'h1d2400030;   // 136 wref[4] iq_ref
-    rom[137] = 36'h000771408;   // 137 P = w_hi[5] - pos
-    rom[138] = 36'h2121672f8;   // 138 w3[5] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[139] = 36'h1f2400028;   // 139 wref[5] id_ref
-    rom[140] = 36'h202400030;   // 140 wref[5] iq_ref
-    rom[141] = 36'h00240001b;   // 141 WFRONT y0 = i_d
-    rom[142] = 36'h042451818;   // 142 dx0 = i_d - i_d,prev
-    rom[143] = 36'h012400020;   // 143 y1 = i_q
-    rom[144] = 36'h052461820;   // 144 dx1 = i_q - i_q,prev
-    rom[145] = 36'h00c400000;   // 145 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
-    rom[146] = 36'h000400000;   // 146 (pipeline gap)
-    rom[147] = 36'h000400000;   // 147 (pipeline gap)
-    rom[148] = 36'h00060806c;   // 148 WSH P = ka = rshift_round(kacc i_q, s)
-    rom[149] = 36'h000641878;   // 149 P = u1 = ka - D
-    rom[150] = 36'h009011078;   // 150 omega = sat32(spd + u1)
-    rom[151] = 36'h00ec21178;   // 151 shifter = t2 = 2 u1 - (spd - spd_prev)
-    rom[152] = 36'h000400000;   // 152 (pipeline gap)
-    rom[153] = 36'h032400070;   // 153 omega
-    rom[154] = 36'h022400000;   // 154 y2 = 0 (position task)
-    rom[155] = 36'h063071870;   // 155 dx2 = sat32(omega - omega_prev)
-    rom[156] = 36'h000400005;   // 156 START core start (or, law off, skip)
-    rom[157] = 36'h074400070;   // 157 omega_prev
-    rom[158] = 36'h054400018;   // 158 i_d,prev
-    rom[159] = 36'h064400020;   // 159 i_q,prev
-    rom[160] = 36'h216400070;   // 160 SPEED
-    rom[161] = 36'h000400000;   // 161 (pipeline gap)
-    rom[162] = 36'h236400018;   // 162 I_D
-    rom[163] = 36'h000400000;   // 163 (pipeline gap)
-    rom[164] = 36'h246400020;   // 164 I_Q
-    rom[165] = 36'h84484106c;   // 165 WSH D += t2 >>> (load_shift + 1)
-    rom[166] = 36'hc44800000;   // 166 D = 0 (no load estimate)
-    rom[167] = 36'h000400006;   // 167 WCORE modulation start (held u, theta_mod), after the core
-    rom[168] = 36'h256400038;   // 168 U_D = the u applied
+    rom[97] = 36'h0730002f8;   // 97 dx3 = sat32(dpos << 8)
+    rom[98] = 36'h004400008;   // 98 pos_prev = pos
+    rom[99] = 36'h082400000;   // 99 dx4 = 0
+    rom[100] = 36'h0b2400048;   // 100 ebar_prev[0]
+    rom[101] = 36'h000601460;   // 101 P = dpos_M = pos - pos_{k-M}
+    rom[102] = 36'h01ec002f8;   // 102 shifter = dpos_M << 8, m steps
+    rom[103] = 36'h0c2400050;   // 103 ebar_prev[1]
+    rom[104] = 36'h0d2400058;   // 104 ebar_prev[2]
+    rom[105] = 36'h00060006c;   // 105 WSH P = (dpos_M << 8) >>> m
+    rom[106] = 36'h015000278;   // 106 spd = sat32(P << 8)
+    rom[107] = 36'h092400038;   // 107 u_prev[0]
+    rom[108] = 36'h0a2400040;   // 108 u_prev[1]
+    rom[109] = 36'h000611000;   // 109 P = spd
+    rom[110] = 36'h024831478;   // 110 ndsp = spd_prev - spd
+    rom[111] = 36'h034800078;   // 111 spd_prev = spd
+    rom[112] = 36'h484600011;   // 112 WTH P = theta; first period: theta_prev = theta
+    rom[113] = 36'h000400000;   // 113 (pipeline gap)
+    rom[114] = 36'h000400000;   // 114 (pipeline gap)
+    rom[115] = 36'h00a481978;   // 115 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[116] = 36'h084400010;   // 116 theta_prev = theta
+    rom[117] = 36'h0006d140a;   // 117 WREF P = w_hi[0] - pos
+    rom[118] = 36'h1220c72f8;   // 118 w3[0] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[119] = 36'h0006d1000;   // 119 P = w_hi[0]
+    rom[120] = 36'h2764c3278;   // 120 REF = w_k bits 55:24
+    rom[121] = 36'h000400000;   // 121 (pipeline gap)
+    rom[122] = 36'h102400028;   // 122 wref[0] id_ref
+    rom[123] = 36'h112400030;   // 123 wref[0] iq_ref
+    rom[124] = 36'h0006f1408;   // 124 P = w_hi[1] - pos
+    rom[125] = 36'h1520e72f8;   // 125 w3[1] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[126] = 36'h132400028;   // 126 wref[1] id_ref
+    rom[127] = 36'h142400030;   // 127 wref[1] iq_ref
+    rom[128] = 36'h000711408;   // 128 P = w_hi[2] - pos
+    rom[129] = 36'h1821072f8;   // 129 w3[2] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[130] = 36'h162400028;   // 130 wref[2] id_ref
+    rom[131] = 36'h172400030;   // 131 wref[2] iq_ref
+    rom[132] = 36'h000731408;   // 132 P = w_hi[3] - pos
+    rom[133] = 36'h1b21272f8;   // 133 w3[3] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[134] = 36'h192400028;   // 134 wref[3] id_ref
+    rom[135] = 36'h1a2400030;   // 135 wref[3] iq_ref
+    rom[136] = 36'h000751408;   // 136 P = w_hi[4] - pos
+    rom[137] = 36'h1e21472f8;   // 137 w3[4] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[138] = 36'h1c2400028;   // 138 wref[4] id_ref
+    rom[139] = 36'h1d2400030;   // 139 wref[4] iq_ref
+    rom[140] = 36'h000771408;   // 140 P = w_hi[5] - pos
+    rom[141] = 36'h2121672f8;   // 141 w3[5] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[142] = 36'h1f2400028;   // 142 wref[5] id_ref
+    rom[143] = 36'h202400030;   // 143 wref[5] iq_ref
+    rom[144] = 36'h00240001b;   // 144 WFRONT y0 = i_d
+    rom[145] = 36'h042451818;   // 145 dx0 = i_d - i_d,prev
+    rom[146] = 36'h012400020;   // 146 y1 = i_q
+    rom[147] = 36'h052461820;   // 147 dx1 = i_q - i_q,prev
+    rom[148] = 36'h00c400000;   // 148 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
+    rom[149] = 36'h000400000;   // 149 (pipeline gap)
+    rom[150] = 36'h000400000;   // 150 (pipeline gap)
+    rom[151] = 36'h00060806c;   // 151 WSH P = ka = rshift_round(kacc i_q, s)
+    rom[152] = 36'h000641878;   // 152 P = u1 = ka - D
+    rom[153] = 36'h009011078;   // 153 omega = sat32(spd + u1)
+    rom[154] = 36'h01ec00178;   // 154 shifter = 2 u1, m steps
+    rom[155] = 36'h000400000;   // 155 (pipeline gap)
+    rom[156] = 36'h032400070;   // 156 omega
+    rom[157] = 36'h022400000;   // 157 y2 = 0 (position task)
+    rom[158] = 36'h063071870;   // 158 dx2 = sat32(omega - omega_prev)
+    rom[159] = 36'h000400005;   // 159 START core start (or, law off, skip)
+    rom[160] = 36'h074400070;   // 160 omega_prev
+    rom[161] = 36'h054400018;   // 161 i_d,prev
+    rom[162] = 36'h064400020;   // 162 i_q,prev
+    rom[163] = 36'h216400070;   // 163 SPEED
+    rom[164] = 36'h000400000;   // 164 (pipeline gap)
+    rom[165] = 36'h236400018;   // 165 I_D
+    rom[166] = 36'h000400000;   // 166 (pipeline gap)
+    rom[167] = 36'h246400020;   // 167 I_Q
+    rom[168] = 36'h00ec2106c;   // 168 WSH shifter = t2 = (2 u1 >>> m) - (spd - spd_prev), load_shift + 1 - m steps (>= 0)
     rom[169] = 36'h000400000;   // 169 (pipeline gap)
-    rom[170] = 36'h266400040;   // 170 U_Q
-    rom[171] = 36'h000400007;   // 171 END program end
+    rom[170] = 36'h000400000;   // 170 (pipeline gap)
+    rom[171] = 36'h84484106c;   // 171 WSH D += t2 >>> (load_shift + 1)
+    rom[172] = 36'hc44800000;   // 172 D = 0 (no load estimate)
+    rom[173] = 36'h000400006;   // 173 WCORE modulation start (held u, theta_mod), after the core
+    rom[174] = 36'h256400038;   // 174 U_D = the u applied
+    rom[175] = 36'h000400000;   // 175 (pipeline gap)
+    rom[176] = 36'h266400040;   // 176 U_Q
+    rom[177] = 36'h000400007;   // 177 END program end
     rom[192] = 36'h484600011;   // 192 WTH P = theta; first period: theta_prev = theta
     rom[193] = 36'h000400000;   // 193 (pipeline gap)
     rom[194] = 36'h000400000;   // 194 (pipeline gap)
@@ -744,164 +804,176 @@ end
 if (N == 6) begin
     for (ui = 0; ui < 256; ui = ui + 1) rom[ui] = 36'h000400007;   // END
     rom[0] = 36'h000601808;   // 0 P = dpos = pos - pos_prev
-    rom[1] = 36'h0150003f8;   // 1 spd = sat32(dpos << 16)
-    rom[2] = 36'h0730002f8;   // 2 dx3 = sat32(dpos << 8)
-    rom[3] = 36'h004400008;   // 3 pos_prev = pos
-    rom[4] = 36'h082400000;   // 4 dx4 = 0
-    rom[5] = 36'h0b2400048;   // 5 ebar_prev[0]
-    rom[6] = 36'h0c2400050;   // 6 ebar_prev[1]
-    rom[7] = 36'h0d2400058;   // 7 ebar_prev[2]
-    rom[8] = 36'h092400038;   // 8 u_prev[0]
-    rom[9] = 36'h0a2400040;   // 9 u_prev[1]
-    rom[10] = 36'h000611000;   // 10 P = spd
-    rom[11] = 36'h024831478;   // 11 ndsp = spd_prev - spd
-    rom[12] = 36'h034800078;   // 12 spd_prev = spd
-    rom[13] = 36'h484600011;   // 13 WTH P = theta; first period: theta_prev = theta
-    rom[14] = 36'h000400000;   // 14 (pipeline gap)
-    rom[15] = 36'h000400000;   // 15 (pipeline gap)
-    rom[16] = 36'h00a481978;   // 16 theta_mod = 2 theta - theta_prev (16 bit)
-    rom[17] = 36'h084400010;   // 17 theta_prev = theta
-    rom[18] = 36'h0006d1002;   // 18 WREF P = w_hi[0]
-    rom[19] = 36'h1220c6378;   // 19 w3[0] = sat32(P << 16 + round(w_lo >> 16))
-    rom[20] = 36'h2764c2378;   // 20 REF = w_k bits 47:16
-    rom[21] = 36'h000400000;   // 21 (pipeline gap)
-    rom[22] = 36'h102400028;   // 22 wref[0] id_ref
-    rom[23] = 36'h112400030;   // 23 wref[0] iq_ref
-    rom[24] = 36'h0006f1000;   // 24 P = w_hi[1]
-    rom[25] = 36'h1520e6378;   // 25 w3[1] = sat32(P << 16 + round(w_lo >> 16))
-    rom[26] = 36'h132400028;   // 26 wref[1] id_ref
-    rom[27] = 36'h142400030;   // 27 wref[1] iq_ref
-    rom[28] = 36'h000711000;   // 28 P = w_hi[2]
-    rom[29] = 36'h182106378;   // 29 w3[2] = sat32(P << 16 + round(w_lo >> 16))
-    rom[30] = 36'h162400028;   // 30 wref[2] id_ref
-    rom[31] = 36'h172400030;   // 31 wref[2] iq_ref
-    rom[32] = 36'h000731000;   // 32 P = w_hi[3]
-    rom[33] = 36'h1b2126378;   // 33 w3[3] = sat32(P << 16 + round(w_lo >> 16))
-    rom[34] = 36'h192400028;   // 34 wref[3] id_ref
-    rom[35] = 36'h1a2400030;   // 35 wref[3] iq_ref
-    rom[36] = 36'h000751000;   // 36 P = w_hi[4]
-    rom[37] = 36'h1e2146378;   // 37 w3[4] = sat32(P << 16 + round(w_lo >> 16))
-    rom[38] = 36'h1c2400028;   // 38 wref[4] id_ref
-    rom[39] = 36'h1d2400030;   // 39 wref[4] iq_ref
-    rom[40] = 36'h000771000;   // 40 P = w_hi[5]
-    rom[41] = 36'h212166378;   // 41 w3[5] = sat32(P << 16 + round(w_lo >> 16))
-    rom[42] = 36'h1f2400028;   // 42 wref[5] id_ref
-    rom[43] = 36'h202400030;   // 43 wref[5] iq_ref
-    rom[44] = 36'h000791000;   // 44 P = w_hi[6]
-    rom[45] = 36'h242186378;   // 45 w3[6] = sat32(P << 16 + round(w_lo >> 16))
-    rom[46] = 36'h222400028;   // 46 wref[6] id_ref
-    rom[47] = 36'h232400030;   // 47 wref[6] iq_ref
-    rom[48] = 36'h00240001b;   // 48 WFRONT y0 = i_d
-    rom[49] = 36'h042451818;   // 49 dx0 = i_d - i_d,prev
-    rom[50] = 36'h012400020;   // 50 y1 = i_q
-    rom[51] = 36'h052461820;   // 51 dx1 = i_q - i_q,prev
-    rom[52] = 36'h00c400000;   // 52 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
-    rom[53] = 36'h000400000;   // 53 (pipeline gap)
-    rom[54] = 36'h000400000;   // 54 (pipeline gap)
-    rom[55] = 36'h00060806c;   // 55 WSH P = ka = rshift_round(kacc i_q, s)
-    rom[56] = 36'h000641878;   // 56 P = u1 = ka - D
-    rom[57] = 36'h009011078;   // 57 omega = sat32(spd + u1)
-    rom[58] = 36'h00ec21178;   // 58 shifter = t2 = 2 u1 - (spd - spd_prev)
-    rom[59] = 36'h000400000;   // 59 (pipeline gap)
-    rom[60] = 36'h032400070;   // 60 omega
-    rom[61] = 36'h022400070;   // 61 y2 = omega
-    rom[62] = 36'h063071870;   // 62 dx2 = sat32(omega - omega_prev)
-    rom[63] = 36'h000400005;   // 63 START core start (or, law off, skip)
-    rom[64] = 36'h074400070;   // 64 omega_prev
-    rom[65] = 36'h054400018;   // 65 i_d,prev
-    rom[66] = 36'h064400020;   // 66 i_q,prev
-    rom[67] = 36'h216400070;   // 67 SPEED
-    rom[68] = 36'h000400000;   // 68 (pipeline gap)
-    rom[69] = 36'h236400018;   // 69 I_D
-    rom[70] = 36'h000400000;   // 70 (pipeline gap)
-    rom[71] = 36'h246400020;   // 71 I_Q
-    rom[72] = 36'h84484106c;   // 72 WSH D += t2 >>> (load_shift + 1)
-    rom[73] = 36'hc44800000;   // 73 D = 0 (no load estimate)
-    rom[74] = 36'h000400006;   // 74 WCORE modulation start (held u, theta_mod), after the core
-    rom[75] = 36'h256400038;   // 75 U_D = the u applied
+    rom[1] = 36'h0730002f8;   // 1 dx3 = sat32(dpos << 8)
+    rom[2] = 36'h004400008;   // 2 pos_prev = pos
+    rom[3] = 36'h082400000;   // 3 dx4 = 0
+    rom[4] = 36'h0b2400048;   // 4 ebar_prev[0]
+    rom[5] = 36'h000601460;   // 5 P = dpos_M = pos - pos_{k-M}
+    rom[6] = 36'h01ec002f8;   // 6 shifter = dpos_M << 8, m steps
+    rom[7] = 36'h0c2400050;   // 7 ebar_prev[1]
+    rom[8] = 36'h0d2400058;   // 8 ebar_prev[2]
+    rom[9] = 36'h00060006c;   // 9 WSH P = (dpos_M << 8) >>> m
+    rom[10] = 36'h015000278;   // 10 spd = sat32(P << 8)
+    rom[11] = 36'h092400038;   // 11 u_prev[0]
+    rom[12] = 36'h0a2400040;   // 12 u_prev[1]
+    rom[13] = 36'h000611000;   // 13 P = spd
+    rom[14] = 36'h024831478;   // 14 ndsp = spd_prev - spd
+    rom[15] = 36'h034800078;   // 15 spd_prev = spd
+    rom[16] = 36'h484600011;   // 16 WTH P = theta; first period: theta_prev = theta
+    rom[17] = 36'h000400000;   // 17 (pipeline gap)
+    rom[18] = 36'h000400000;   // 18 (pipeline gap)
+    rom[19] = 36'h00a481978;   // 19 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[20] = 36'h084400010;   // 20 theta_prev = theta
+    rom[21] = 36'h0006d1002;   // 21 WREF P = w_hi[0]
+    rom[22] = 36'h1220c6378;   // 22 w3[0] = sat32(P << 16 + round(w_lo >> 16))
+    rom[23] = 36'h2764c2378;   // 23 REF = w_k bits 47:16
+    rom[24] = 36'h000400000;   // 24 (pipeline gap)
+    rom[25] = 36'h102400028;   // 25 wref[0] id_ref
+    rom[26] = 36'h112400030;   // 26 wref[0] iq_ref
+    rom[27] = 36'h0006f1000;   // 27 P = w_hi[1]
+    rom[28] = 36'h1520e6378;   // 28 w3[1] = sat32(P << 16 + round(w_lo >> 16))
+    rom[29] = 36'h132400028;   // 29 wref[1] id_ref
+    rom[30] = 36'h142400030;   // 30 wref[1] iq_ref
+    rom[31] = 36'h000711000;   // 31 P = w_hi[2]
+    rom[32] = 36'h182106378;   // 32 w3[2] = sat32(P << 16 + round(w_lo >> 16))
+    rom[33] = 36'h162400028;   // 33 wref[2] id_ref
+    rom[34] = 36'h172400030;   // 34 wref[2] iq_ref
+    rom[35] = 36'h000731000;   // 35 P = w_hi[3]
+    rom[36] = 36'h1b2126378;   // 36 w3[3] = sat32(P << 16 + round(w_lo >> 16))
+    rom[37] = 36'h192400028;   // 37 wref[3] id_ref
+    rom[38] = 36'h1a2400030;   // 38 wref[3] iq_ref
+    rom[39] = 36'h000751000;   // 39 P = w_hi[4]
+    rom[40] = 36'h1e2146378;   // 40 w3[4] = sat32(P << 16 + round(w_lo >> 16))
+    rom[41] = 36'h1c2400028;   // 41 wref[4] id_ref
+    rom[42] = 36'h1d2400030;   // 42 wref[4] iq_ref
+    rom[43] = 36'h000771000;   // 43 P = w_hi[5]
+    rom[44] = 36'h212166378;   // 44 w3[5] = sat32(P << 16 + round(w_lo >> 16))
+    rom[45] = 36'h1f2400028;   // 45 wref[5] id_ref
+    rom[46] = 36'h202400030;   // 46 wref[5] iq_ref
+    rom[47] = 36'h000791000;   // 47 P = w_hi[6]
+    rom[48] = 36'h242186378;   // 48 w3[6] = sat32(P << 16 + round(w_lo >> 16))
+    rom[49] = 36'h222400028;   // 49 wref[6] id_ref
+    rom[50] = 36'h232400030;   // 50 wref[6] iq_ref
+    rom[51] = 36'h00240001b;   // 51 WFRONT y0 = i_d
+    rom[52] = 36'h042451818;   // 52 dx0 = i_d - i_d,prev
+    rom[53] = 36'h012400020;   // 53 y1 = i_q
+    rom[54] = 36'h052461820;   // 54 dx1 = i_q - i_q,prev
+    rom[55] = 36'h00c400000;   // 55 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
+    rom[56] = 36'h000400000;   // 56 (pipeline gap)
+    rom[57] = 36'h000400000;   // 57 (pipeline gap)
+    rom[58] = 36'h00060806c;   // 58 WSH P = ka = rshift_round(kacc i_q, s)
+    rom[59] = 36'h000641878;   // 59 P = u1 = ka - D
+    rom[60] = 36'h009011078;   // 60 omega = sat32(spd + u1)
+    rom[61] = 36'h01ec00178;   // 61 shifter = 2 u1, m steps
+    rom[62] = 36'h000400000;   // 62 (pipeline gap)
+    rom[63] = 36'h032400070;   // 63 omega
+    rom[64] = 36'h022400070;   // 64 y2 = omega
+    rom[65] = 36'h063071870;   // 65 dx2 = sat32(omega - omega_prev)
+    rom[66] = 36'h000400005;   // 66 START core start (or, law off, skip)
+    rom[67] = 36'h074400070;   // 67 omega_prev
+    rom[68] = 36'h054400018;   // 68 i_d,prev
+    rom[69] = 36'h064400020;   // 69 i_q,prev
+    rom[70] = 36'h216400070;   // 70 SPEED
+    rom[71] = 36'h000400000;   // 71 (pipeline gap)
+    rom[72] = 36'h236400018;   // 72 I_D
+    rom[73] = 36'h000400000;   // 73 (pipeline gap)
+    rom[74] = 36'h246400020;   // 74 I_Q
+    rom[75] = 36'h00ec2106c;   // 75 WSH shifter = t2 = (2 u1 >>> m) - (spd - spd_prev), load_shift + 1 - m steps (>= 0)
     rom[76] = 36'h000400000;   // 76 (pipeline gap)
-    rom[77] = 36'h266400040;   // 77 U_Q
-    rom[78] = 36'h000400007;   // 78 END program end
+    rom[77] = 36'h000400000;   // 77 (pipeline gap)
+    rom[78] = 36'h84484106c;   // 78 WSH D += t2 >>> (load_shift + 1)
+    rom[79] = 36'hc44800000;   // 79 D = 0 (no load estimate)
+    rom[80] = 36'h000400006;   // 80 WCORE modulation start (held u, theta_mod), after the core
+    rom[81] = 36'h256400038;   // 81 U_D = the u applied
+    rom[82] = 36'h000400000;   // 82 (pipeline gap)
+    rom[83] = 36'h266400040;   // 83 U_Q
+    rom[84] = 36'h000400007;   // 84 END program end
     rom[96] = 36'h000601808;   // 96 P = dpos = pos - pos_prev
-    rom[97] = 36'h0150003f8;   // 97 spd = sat32(dpos << 16)
-    rom[98] = 36'h0730002f8;   // 98 dx3 = sat32(dpos << 8)
-    rom[99] = 36'h004400008;   // 99 pos_prev = pos
-    rom[100] = 36'h082400000;   // 100 dx4 = 0
-    rom[101] = 36'h0b2400048;   // 101 ebar_prev[0]
-    rom[102] = 36'h0c2400050;   // 102 ebar_prev[1]
-    rom[103] = 36'h0d2400058;   // 103 ebar_prev[2]
-    rom[104] = 36'h092400038;   // 104 u_prev[0]
-    rom[105] = 36'h0a2400040;   // 105 u_prev[1]
-    rom[106] = 36'h000611000;   // 106 P = spd
-    rom[107] = 36'h024831478;   // 107 ndsp = spd_prev - spd
-    rom[108] = 36'h034800078;   // 108 spd_prev = spd
-    rom[109] = 36'h484600011;   // 109 WTH P = theta; first period: theta_prev = theta
-    rom[110] = 36'h000400000;   // 110 (pipeline gap)
-    rom[111] = 36'h000400000;   // 111 (pipeline gap)
-    rom[112] = 36'h00a481978;   // 112 theta_mod = 2 theta - theta_prev (16 bit)
-    rom[113] = 36'h084400010;   // 113 theta_prev = theta
-    rom[114] = 36'h0006d140a;   // 114 WREF P = w_hi[0] - pos
-    rom[115] = 36'h1220c72f8;   // 115 w3[0] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[116] = 36'h0006d1000;   // 116 P = w_hi[0]
-    rom[117] = 36'h2764c3278;   // 117 REF = w_k bits 55:24
-    rom[118] = 36'h000400000;   // 118 (pipeline gap)
-    rom[119] = 36'h102400028;   // 119 wref[0] id_ref
-    rom[120] = 36'h112400030;   // 120 wref[0] iq_ref
-    rom[121] = 36'h0006f1408;   // 121 P = w_hi[1] - pos
-    rom[122] = 36'h1520e72f8;   // 122 w3[1] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[123] = 36'h132400028;   // 123 wref[1] id_ref
-    rom[124] = 36'h142400030;   // 124 wref[1] iq_ref
-    rom[125] = 36'h000711408;   // 125 P = w_hi[2] - pos
-    rom[126] = 36'h1821072f8;   // 126 w3[2] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[127] = 36'h162400028;   // 127 wref[2] id_ref
-    rom[128] = 36'h172400030;   // 128 wref[2] iq_ref
-    rom[129] = 36'h000731408;   // 129 P = w_hi[3] - pos
-    rom[130] = 36'h1b21272f8;   // 130 w3[3] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[131] = 36'h192400028;   // 131 wref[3] id_ref
-    rom[132] = 36'h1a2400030;   // 132 wref[3] iq_ref
-    rom[133] = 36'h000751408;   // 133 P = w_hi[4] - pos
-    rom[134] = 36'h1e21472f8;   // 134 w3[4] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[135] = 36'h1c2400028;   // 135 wref[4] id_ref
-    rom[136] = 36'h1d2400030;   // 136 wref[4] iq_ref
-    rom[137] = 36'h000771408;   // 137 P = w_hi[5] - pos
-    rom[138] = 36'h2121672f8;   // 138 w3[5] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[139] = 36'h1f2400028;   // 139 wref[5] id_ref
-    rom[140] = 36'h202400030;   // 140 wref[5] iq_ref
-    rom[141] = 36'h000791408;   // 141 P = w_hi[6] - pos
-    rom[142] = 36'h2421872f8;   // 142 w3[6] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[143] = 36'h222400028;   // 143 wref[6] id_ref
-    rom[144] = 36'h232400030;   // 144 wref[6] iq_ref
-    rom[145] = 36'h00240001b;   // 145 WFRONT y0 = i_d
-    rom[146] = 36'h042451818;   // 146 dx0 = i_d - i_d,prev
-    rom[147] = 36'h012400020;   // 147 y1 = i_q
-    rom[148] = 36'h052461820;   // 148 dx1 = i_q - i_q,prev
-    rom[149] = 36'h00c400000;   // 149 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
-    rom[150] = 36'h000400000;   // 150 (pipeline gap)
-    rom[151] = 36'h000400000;   // 151 (pipeline gap)
-    rom[152] = 36'h00060806c;   // 152 WSH P = ka = rshift_round(kacc i_q, s)
-    rom[153] = 36'h000641878;   // 153 P = u1 = ka - D
-    rom[154] = 36'h009011078;   // 154 omega = sat32(spd + u1)
-    rom[155] = 36'h00ec21178;   // 155 shifter = t2 = 2 u1 - (spd - spd_prev)
-    rom[156] = 36'h000400000;   // 156 (pipeline gap)
-    rom[157] = 36'h032400070;   // 157 omega
-    rom[158] = 36'h022400000;   // 158 y2 = 0 (position task)
-    rom[159] = 36'h063071870;   // 159 dx2 = sat32(omega - omega_prev)
-    rom[160] = 36'h000400005;   // 160 START core start (or, law off, skip)
-    rom[161] = 36'h074400070;   // 161 omega_prev
-    rom[162] = 36'h054400018;   // 162 i_d,prev
-    rom[163] = 36'h064400020;   // 163 i_q,prev
-    rom[164] = 36'h216400070;   // 164 SPEED
-    rom[165] = 36'h000400000;   // 165 (pipeline gap)
-    rom[166] = 36'h236400018;   // 166 I_D
-    rom[167] = 36'h000400000;   // 167 (pipeline gap)
-    rom[168] = 36'h246400020;   // 168 I_Q
-    rom[169] = 36'h84484106c;   // 169 WSH D += t2 >>> (load_shift + 1)
-    rom[170] = 36'hc44800000;   // 170 D = 0 (no load estimate)
-    rom[171] = 36'h000400006;   // 171 WCORE modulation start (held u, theta_mod), after the core
-    rom[172] = 36'h256400038;   // 172 U_D = the u applied
+    rom[97] = 36'h0730002f8;   // 97 dx3 = sat32(dpos << 8)
+    rom[98] = 36'h004400008;   // 98 pos_prev = pos
+    rom[99] = 36'h082400000;   // 99 dx4 = 0
+    rom[100] = 36'h0b2400048;   // 100 ebar_prev[0]
+    rom[101] = 36'h000601460;   // 101 P = dpos_M = pos - pos_{k-M}
+    rom[102] = 36'h01ec002f8;   // 102 shifter = dpos_M << 8, m steps
+    rom[103] = 36'h0c2400050;   // 103 ebar_prev[1]
+    rom[104] = 36'h0d2400058;   // 104 ebar_prev[2]
+    rom[105] = 36'h00060006c;   // 105 WSH P = (dpos_M << 8) >>> m
+    rom[106] = 36'h015000278;   // 106 spd = sat32(P << 8)
+    rom[107] = 36'h092400038;   // 107 u_prev[0]
+    rom[108] = 36'h0a2400040;   // 108 u_prev[1]
+    rom[109] = 36'h000611000;   // 109 P = spd
+    rom[110] = 36'h024831478;   // 110 ndsp = spd_prev - spd
+    rom[111] = 36'h034800078;   // 111 spd_prev = spd
+    rom[112] = 36'h484600011;   // 112 WTH P = theta; first period: theta_prev = theta
+    rom[113] = 36'h000400000;   // 113 (pipeline gap)
+    rom[114] = 36'h000400000;   // 114 (pipeline gap)
+    rom[115] = 36'h00a481978;   // 115 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[116] = 36'h084400010;   // 116 theta_prev = theta
+    rom[117] = 36'h0006d140a;   // 117 WREF P = w_hi[0] - pos
+    rom[118] = 36'h1220c72f8;   // 118 w3[0] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[119] = 36'h0006d1000;   // 119 P = w_hi[0]
+    rom[120] = 36'h2764c3278;   // 120 REF = w_k bits 55:24
+    rom[121] = 36'h000400000;   // 121 (pipeline gap)
+    rom[122] = 36'h102400028;   // 122 wref[0] id_ref
+    rom[123] = 36'h112400030;   // 123 wref[0] iq_ref
+    rom[124] = 36'h0006f1408;   // 124 P = w_hi[1] - pos
+    rom[125] = 36'h1520e72f8;   // 125 w3[1] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[126] = 36'h132400028;   // 126 wref[1] id_ref
+    rom[127] = 36'h142400030;   // 127 wref[1] iq_ref
+    rom[128] = 36'h000711408;   // 128 P = w_hi[2] - pos
+    rom[129] = 36'h1821072f8;   // 129 w3[2] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[130] = 36'h162400028;   // 130 wref[2] id_ref
+    rom[131] = 36'h172400030;   // 131 wref[2] iq_ref
+    rom[132] = 36'h000731408;   // 132 P = w_hi[3] - pos
+    rom[133] = 36'h1b21272f8;   // 133 w3[3] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[134] = 36'h192400028;   // 134 wref[3] id_ref
+    rom[135] = 36'h1a2400030;   // 135 wref[3] iq_ref
+    rom[136] = 36'h000751408;   // 136 P = w_hi[4] - pos
+    rom[137] = 36'h1e21472f8;   // 137 w3[4] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[138] = 36'h1c2400028;   // 138 wref[4] id_ref
+    rom[139] = 36'h1d2400030;   // 139 wref[4] iq_ref
+    rom[140] = 36'h000771408;   // 140 P = w_hi[5] - pos
+    rom[141] = 36'h2121672f8;   // 141 w3[5] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[142] = 36'h1f2400028;   // 142 wref[5] id_ref
+    rom[143] = 36'h202400030;   // 143 wref[5] iq_ref
+    rom[144] = 36'h000791408;   // 144 P = w_hi[6] - pos
+    rom[145] = 36'h2421872f8;   // 145 w3[6] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[146] = 36'h222400028;   // 146 wref[6] id_ref
+    rom[147] = 36'h232400030;   // 147 wref[6] iq_ref
+    rom[148] = 36'h00240001b;   // 148 WFRONT y0 = i_d
+    rom[149] = 36'h042451818;   // 149 dx0 = i_d - i_d,prev
+    rom[150] = 36'h012400020;   // 150 y1 = i_q
+    rom[151] = 36'h052461820;   // 151 dx1 = i_q - i_q,prev
+    rom[152] = 36'h00c400000;   // 152 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
+    rom[153] = 36'h000400000;   // 153 (pipeline gap)
+    rom[154] = 36'h000400000;   // 154 (pipeline gap)
+    rom[155] = 36'h00060806c;   // 155 WSH P = ka = rshift_round(kacc i_q, s)
+    rom[156] = 36'h000641878;   // 156 P = u1 = ka - D
+    rom[157] = 36'h009011078;   // 157 omega = sat32(spd + u1)
+    rom[158] = 36'h01ec00178;   // 158 shifter = 2 u1, m steps
+    rom[159] = 36'h000400000;   // 159 (pipeline gap)
+    rom[160] = 36'h032400070;   // 160 omega
+    rom[161] = 36'h022400000;   // 161 y2 = 0 (position task)
+    rom[162] = 36'h063071870;   // 162 dx2 = sat32(omega - omega_prev)
+    rom[163] = 36'h000400005;   // 163 START core start (or, law off, skip)
+    rom[164] = 36'h074400070;   // 164 omega_prev
+    rom[165] = 36'h054400018;   // 165 i_d,prev
+    rom[166] = 36'h064400020;   // 166 i_q,prev
+    rom[167] = 36'h216400070;   // 167 SPEED
+    rom[168] = 36'h000400000;   // 168 (pipeline gap)
+    rom[169] = 36'h236400018;   // 169 I_D
+    rom[170] = 36'h000400000;   // 170 (pipeline gap)
+    rom[171] = 36'h246400020;   // 171 I_Q
+    rom[172] = 36'h00ec2106c;   // 172 WSH shifter = t2 = (2 u1 >>> m) - (spd - spd_prev), load_shift + 1 - m steps (>= 0)
     rom[173] = 36'h000400000;   // 173 (pipeline gap)
-    rom[174] = 36'h266400040;   // 174 U_Q
-    rom[175] = 36'h000400007;   // 175 END program end
+    rom[174] = 36'h000400000;   // 174 (pipeline gap)
+    rom[175] = 36'h84484106c;   // 175 WSH D += t2 >>> (load_shift + 1)
+    rom[176] = 36'hc44800000;   // 176 D = 0 (no load estimate)
+    rom[177] = 36'h000400006;   // 177 WCORE modulation start (held u, theta_mod), after the core
+    rom[178] = 36'h256400038;   // 178 U_D = the u applied
+    rom[179] = 36'h000400000;   // 179 (pipeline gap)
+    rom[180] = 36'h266400040;   // 180 U_Q
+    rom[181] = 36'h000400007;   // 181 END program end
     rom[192] = 36'h484600011;   // 192 WTH P = theta; first period: theta_prev = theta
     rom[193] = 36'h000400000;   // 193 (pipeline gap)
     rom[194] = 36'h000400000;   // 194 (pipeline gap)
@@ -916,172 +988,184 @@ end
 if (N == 7) begin
     for (ui = 0; ui < 256; ui = ui + 1) rom[ui] = 36'h000400007;   // END
     rom[0] = 36'h000601808;   // 0 P = dpos = pos - pos_prev
-    rom[1] = 36'h0150003f8;   // 1 spd = sat32(dpos << 16)
-    rom[2] = 36'h0730002f8;   // 2 dx3 = sat32(dpos << 8)
-    rom[3] = 36'h004400008;   // 3 pos_prev = pos
-    rom[4] = 36'h082400000;   // 4 dx4 = 0
-    rom[5] = 36'h0b2400048;   // 5 ebar_prev[0]
-    rom[6] = 36'h0c2400050;   // 6 ebar_prev[1]
-    rom[7] = 36'h0d2400058;   // 7 ebar_prev[2]
-    rom[8] = 36'h092400038;   // 8 u_prev[0]
-    rom[9] = 36'h0a2400040;   // 9 u_prev[1]
-    rom[10] = 36'h000611000;   // 10 P = spd
-    rom[11] = 36'h024831478;   // 11 ndsp = spd_prev - spd
-    rom[12] = 36'h034800078;   // 12 spd_prev = spd
-    rom[13] = 36'h484600011;   // 13 WTH P = theta; first period: theta_prev = theta
-    rom[14] = 36'h000400000;   // 14 (pipeline gap)
-    rom[15] = 36'h000400000;   // 15 (pipeline gap)
-    rom[16] = 36'h00a481978;   // 16 theta_mod = 2 theta - theta_prev (16 bit)
-    rom[17] = 36'h084400010;   // 17 theta_prev = theta
-    rom[18] = 36'h0006d1002;   // 18 WREF P = w_hi[0]
-    rom[19] = 36'h1220c6378;   // 19 w3[0] = sat32(P << 16 + round(w_lo >> 16))
-    rom[20] = 36'h2764c2378;   // 20 REF = w_k bits 47:16
-    rom[21] = 36'h000400000;   // 21 (pipeline gap)
-    rom[22] = 36'h102400028;   // 22 wref[0] id_ref
-    rom[23] = 36'h112400030;   // 23 wref[0] iq_ref
-    rom[24] = 36'h0006f1000;   // 24 P = w_hi[1]
-    rom[25] = 36'h1520e6378;   // 25 w3[1] = sat32(P << 16 + round(w_lo >> 16))
-    rom[26] = 36'h132400028;   // 26 wref[1] id_ref
-    rom[27] = 36'h142400030;   // 27 wref[1] iq_ref
-    rom[28] = 36'h000711000;   // 28 P = w_hi[2]
-    rom[29] = 36'h182106378;   // 29 w3[2] = sat32(P << 16 + round(w_lo >> 16))
-    rom[30] = 36'h162400028;   // 30 wref[2] id_ref
-    rom[31] = 36'h172400030;   // 31 wref[2] iq_ref
-    rom[32] = 36'h000731000;   // 32 P = w_hi[3]
-    rom[33] = 36'h1b2126378;   // 33 w3[3] = sat32(P << 16 + round(w_lo >> 16))
-    rom[34] = 36'h192400028;   // 34 wref[3] id_ref
-    rom[35] = 36'h1a2400030;   // 35 wref[3] iq_ref
-    rom[36] = 36'h000751000;   // 36 P = w_hi[4]
-    rom[37] = 36'h1e2146378;   // 37 w3[4] = sat32(P << 16 + round(w_lo >> 16))
-    rom[38] = 36'h1c2400028;   // 38 wref[4] id_ref
-    rom[39] = 36'h1d2400030;   // 39 wref[4] iq_ref
-    rom[40] = 36'h000771000;   // 40 P = w_hi[5]
-    rom[41] = 36'h212166378;   // 41 w3[5] = sat32(P << 16 + round(w_lo >> 16))
-    rom[42] = 36'h1f2400028;   // 42 wref[5] id_ref
-    rom[43] = 36'h202400030;   // 43 wref[5] iq_ref
-    rom[44] = 36'h000791000;   // 44 P = w_hi[6]
-    rom[45] = 36'h242186378;   // 45 w3[6] = sat32(P << 16 + round(w_lo >> 16))
-    rom[46] = 36'h222400028;   // 46 wref[6] id_ref
-    rom[47] = 36'h232400030;   // 47 wref[6] iq_ref
-    rom[48] = 36'h0007b1000;   // 48 P = w_hi[7]
-    rom[49] = 36'h2721a6378;   // 49 w3[7] = sat32(P << 16 + round(w_lo >> 16))
-    rom[50] = 36'h252400028;   // 50 wref[7] id_ref
-    rom[51] = 36'h262400030;   // 51 wref[7] iq_ref
-    rom[52] = 36'h00240001b;   // 52 WFRONT y0 = i_d
-    rom[53] = 36'h042451818;   // 53 dx0 = i_d - i_d,prev
-    rom[54] = 36'h012400020;   // 54 y1 = i_q
-    rom[55] = 36'h052461820;   // 55 dx1 = i_q - i_q,prev
-    rom[56] = 36'h00c400000;   // 56 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
-    rom[57] = 36'h000400000;   // 57 (pipeline gap)
-    rom[58] = 36'h000400000;   // 58 (pipeline gap)
-    rom[59] = 36'h00060806c;   // 59 WSH P = ka = rshift_round(kacc i_q, s)
-    rom[60] = 36'h000641878;   // 60 P = u1 = ka - D
-    rom[61] = 36'h009011078;   // 61 omega = sat32(spd + u1)
-    rom[62] = 36'h00ec21178;   // 62 shifter = t2 = 2 u1 - (spd - spd_prev)
-    rom[63] = 36'h000400000;   // 63 (pipeline gap)
-    rom[64] = 36'h032400070;   // 64 omega
-    rom[65] = 36'h022400070;   // 65 y2 = omega
-    rom[66] = 36'h063071870;   // 66 dx2 = sat32(omega - omega_prev)
-    rom[67] = 36'h000400005;   // 67 START core start (or, law off, skip)
-    rom[68] = 36'h074400070;   // 68 omega_prev
-    rom[69] = 36'h054400018;   // 69 i_d,prev
-    rom[70] = 36'h064400020;   // 70 i_q,prev
-    rom[71] = 36'h216400070;   // 71 SPEED
-    rom[72] = 36'h000400000;   // 72 (pipeline gap)
-    rom[73] = 36'h236400018;   // 73 I_D
-    rom[74] = 36'h000400000;   // 74 (pipeline gap)
-    rom[75] = 36'h246400020;   // 75 I_Q
-    rom[76] = 36'h84484106c;   // 76 WSH D += t2 >>> (load_shift + 1)
-    rom[77] = 36'hc44800000;   // 77 D = 0 (no load estimate)
-    rom[78] = 36'h000400006;   // 78 WCORE modulation start (held u, theta_mod), after the core
-    rom[79] = 36'h256400038;   // 79 U_D = the u applied
+    rom[1] = 36'h0730002f8;   // 1 dx3 = sat32(dpos << 8)
+    rom[2] = 36'h004400008;   // 2 pos_prev = pos
+    rom[3] = 36'h082400000;   // 3 dx4 = 0
+    rom[4] = 36'h0b2400048;   // 4 ebar_prev[0]
+    rom[5] = 36'h000601460;   // 5 P = dpos_M = pos - pos_{k-M}
+    rom[6] = 36'h01ec002f8;   // 6 shifter = dpos_M << 8, m steps
+    rom[7] = 36'h0c2400050;   // 7 ebar_prev[1]
+    rom[8] = 36'h0d2400058;   // 8 ebar_prev[2]
+    rom[9] = 36'h00060006c;   // 9 WSH P = (dpos_M << 8) >>> m
+    rom[10] = 36'h015000278;   // 10 spd = sat32(P << 8)
+    rom[11] = 36'h092400038;   // 11 u_prev[0]
+    rom[12] = 36'h0a2400040;   // 12 u_prev[1]
+    rom[13] = 36'h000611000;   // 13 P = spd
+    rom[14] = 36'h024831478;   // 14 ndsp = spd_prev - spd
+    rom[15] = 36'h034800078;   // 15 spd_prev = spd
+    rom[16] = 36'h484600011;   // 16 WTH P = theta; first period: theta_prev = theta
+    rom[17] = 36'h000400000;   // 17 (pipeline gap)
+    rom[18] = 36'h000400000;   // 18 (pipeline gap)
+    rom[19] = 36'h00a481978;   // 19 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[20] = 36'h084400010;   // 20 theta_prev = theta
+    rom[21] = 36'h0006d1002;   // 21 WREF P = w_hi[0]
+    rom[22] = 36'h1220c6378;   // 22 w3[0] = sat32(P << 16 + round(w_lo >> 16))
+    rom[23] = 36'h2764c2378;   // 23 REF = w_k bits 47:16
+    rom[24] = 36'h000400000;   // 24 (pipeline gap)
+    rom[25] = 36'h102400028;   // 25 wref[0] id_ref
+    rom[26] = 36'h112400030;   // 26 wref[0] iq_ref
+    rom[27] = 36'h0006f1000;   // 27 P = w_hi[1]
+    rom[28] = 36'h1520e6378;   // 28 w3[1] = sat32(P << 16 + round(w_lo >> 16))
+    rom[29] = 36'h132400028;   // 29 wref[1] id_ref
+    rom[30] = 36'h142400030;   // 30 wref[1] iq_ref
+    rom[31] = 36'h000711000;   // 31 P = w_hi[2]
+    rom[32] = 36'h182106378;   // 32 w3[2] = sat32(P << 16 + round(w_lo >> 16))
+    rom[33] = 36'h162400028;   // 33 wref[2] id_ref
+    rom[34] = 36'h172400030;   // 34 wref[2] iq_ref
+    rom[35] = 36'h000731000;   // 35 P = w_hi[3]
+    rom[36] = 36'h1b2126378;   // 36 w3[3] = sat32(P << 16 + round(w_lo >> 16))
+    rom[37] = 36'h192400028;   // 37 wref[3] id_ref
+    rom[38] = 36'h1a2400030;   // 38 wref[3] iq_ref
+    rom[39] = 36'h000751000;   // 39 P = w_hi[4]
+    rom[40] = 36'h1e2146378;   // 40 w3[4] = sat32(P << 16 + round(w_lo >> 16))
+    rom[41] = 36'h1c2400028;   // 41 wref[4] id_ref
+    rom[42] = 36'h1d2400030;   // 42 wref[4] iq_ref
+    rom[43] = 36'h000771000;   // 43 P = w_hi[5]
+    rom[44] = 36'h212166378;   // 44 w3[5] = sat32(P << 16 + round(w_lo >> 16))
+    rom[45] = 36'h1f2400028;   // 45 wref[5] id_ref
+    rom[46] = 36'h202400030;   // 46 wref[5] iq_ref
+    rom[47] = 36'h000791000;   // 47 P = w_hi[6]
+    rom[48] = 36'h242186378;   // 48 w3[6] = sat32(P << 16 + round(w_lo >> 16))
+    rom[49] = 36'h222400028;   // 49 wref[6] id_ref
+    rom[50] = 36'h232400030;   // 50 wref[6] iq_ref
+    rom[51] = 36'h0007b1000;   // 51 P = w_hi[7]
+    rom[52] = 36'h2721a6378;   // 52 w3[7] = sat32(P << 16 + round(w_lo >> 16))
+    rom[53] = 36'h252400028;   // 53 wref[7] id_ref
+    rom[54] = 36'h262400030;   // 54 wref[7] iq_ref
+    rom[55] = 36'h00240001b;   // 55 WFRONT y0 = i_d
+    rom[56] = 36'h042451818;   // 56 dx0 = i_d - i_d,prev
+    rom[57] = 36'h012400020;   // 57 y1 = i_q
+    rom[58] = 36'h052461820;   // 58 dx1 = i_q - i_q,prev
+    rom[59] = 36'h00c400000;   // 59 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
+    rom[60] = 36'h000400000;   // 60 (pipeline gap)
+    rom[61] = 36'h000400000;   // 61 (pipeline gap)
+    rom[62] = 36'h00060806c;   // 62 WSH P = ka = rshift_round(kacc i_q, s)
+    rom[63] = 36'h000641878;   // 63 P = u1 = ka - D
+    rom[64] = 36'h009011078;   // 64 omega = sat32(spd + u1)
+    rom[65] = 36'h01ec00178;   // 65 shifter = 2 u1, m steps
+    rom[66] = 36'h000400000;   // 66 (pipeline gap)
+    rom[67] = 36'h032400070;   // 67 omega
+    rom[68] = 36'h022400070;   // 68 y2 = omega
+    rom[69] = 36'h063071870;   // 69 dx2 = sat32(omega - omega_prev)
+    rom[70] = 36'h000400005;   // 70 START core start (or, law off, skip)
+    rom[71] = 36'h074400070;   // 71 omega_prev
+    rom[72] = 36'h054400018;   // 72 i_d,prev
+    rom[73] = 36'h064400020;   // 73 i_q,prev
+    rom[74] = 36'h216400070;   // 74 SPEED
+    rom[75] = 36'h000400000;   // 75 (pipeline gap)
+    rom[76] = 36'h236400018;   // 76 I_D
+    rom[77] = 36'h000400000;   // 77 (pipeline gap)
+    rom[78] = 36'h246400020;   // 78 I_Q
+    rom[79] = 36'h00ec2106c;   // 79 WSH shifter = t2 = (2 u1 >>> m) - (spd - spd_prev), load_shift + 1 - m steps (>= 0)
     rom[80] = 36'h000400000;   // 80 (pipeline gap)
-    rom[81] = 36'h266400040;   // 81 U_Q
-    rom[82] = 36'h000400007;   // 82 END program end
+    rom[81] = 36'h000400000;   // 81 (pipeline gap)
+    rom[82] = 36'h84484106c;   // 82 WSH D += t2 >>> (load_shift + 1)
+    rom[83] = 36'hc44800000;   // 83 D = 0 (no load estimate)
+    rom[84] = 36'h000400006;   // 84 WCORE modulation start (held u, theta_mod), after the core
+    rom[85] = 36'h256400038;   // 85 U_D = the u applied
+    rom[86] = 36'h000400000;   // 86 (pipeline gap)
+    rom[87] = 36'h266400040;   // 87 U_Q
+    rom[88] = 36'h000400007;   // 88 END program end
     rom[96] = 36'h000601808;   // 96 P = dpos = pos - pos_prev
-    rom[97] = 36'h0150003f8;   // 97 spd = sat32(dpos << 16)
-    rom[98] = 36'h0730002f8;   // 98 dx3 = sat32(dpos << 8)
-    rom[99] = 36'h004400008;   // 99 pos_prev = pos
-    rom[100] = 36'h082400000;   // 100 dx4 = 0
-    rom[101] = 36'h0b2400048;   // 101 ebar_prev[0]
-    rom[102] = 36'h0c2400050;   // 102 ebar_prev[1]
-    rom[103] = 36'h0d2400058;   // 103 ebar_prev[2]
-    rom[104] = 36'h092400038;   // 104 u_prev[0]
-    rom[105] = 36'h0a2400040;   // 105 u_prev[1]
-    rom[106] = 36'h000611000;   // 106 P = spd
-    rom[107] = 36'h024831478;   // 107 ndsp = spd_prev - spd
-    rom[108] = 36'h034800078;   // 108 spd_prev = spd
-    rom[109] = 36'h484600011;   // 109 WTH P = theta; first period: theta_prev = theta
-    rom[110] = 36'h000400000;   // 110 (pipeline gap)
-    rom[111] = 36'h000400000;   // 111 (pipeline gap)
-    rom[112] = 36'h00a481978;   // 112 theta_mod = 2 theta - theta_prev (16 bit)
-    rom[113] = 36'h084400010;   // 113 theta_prev = theta
-    rom[114] = 36'h0006d140a;   // 114 WREF P = w_hi[0] - pos
-    rom[115] = 36'h1220c72f8;   // 115 w3[0] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[116] = 36'h0006d1000;   // 116 P = w_hi[0]
-    rom[117] = 36'h2764c3278;   // 117 REF = w_k bits 55:24
-    rom[118] = 36'h000400000;   // 118 (pipeline gap)
-    rom[119] = 36'h102400028;   // 119 wref[0] id_ref
-    rom[120] = 36'h112400030;   // 120 wref[0] iq_ref
-    rom[121] = 36'h0006f1408;   // 121 P = w_hi[1] - pos
-    rom[122] = 36'h1520e72f8;   // 122 w3[1] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[123] = 36'h132400028;   // 123 wref[1] id_ref
-    rom[124] = 36'h142400030;   // 124 wref[1] iq_ref
-    rom[125] = 36'h000711408;   // 125 P = w_hi[2] - pos
-    rom[126] = 36'h1821072f8;   // 126 w3[2] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[127] = 36'h162400028;   // 127 wref[2] id_ref
-    rom[128] = 36'h172400030;   // 128 wref[2] iq_ref
-    rom[129] = 36'h000731408;   // 129 P = w_hi[3] - pos
-    rom[130] = 36'h1b21272f8;   // 130 w3[3] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[131] = 36'h192400028;   // 131 wref[3] id_ref
-    rom[132] = 36'h1a2400030;   // 132 wref[3] iq_ref
-    rom[133] = 36'h000751408;   // 133 P = w_hi[4] - pos
-    rom[134] = 36'h1e21472f8;   // 134 w3[4] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[135] = 36'h1c2400028;   // 135 wref[4] id_ref
-    rom[136] = 36'h1d2400030;   // 136 wref[4] iq_ref
-    rom[137] = 36'h000771408;   // 137 P = w_hi[5] - pos
-    rom[138] = 36'h2121672f8;   // 138 w3[5] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[139] = 36'h1f2400028;   // 139 wref[5] id_ref
-    rom[140] = 36'h202400030;   // 140 wref[5] iq_ref
-    rom[141] = 36'h000791408;   // 141 P = w_hi[6] - pos
-    rom[142] = 36'h2421872f8;   // 142 w3[6] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[143] = 36'h222400028;   // 143 wref[6] id_ref
-    rom[144] = 36'h232400030;   // 144 wref[6] iq_ref
-    rom[145] = 36'h0007b1408;   // 145 P = w_hi[7] - pos
-    rom[146] = 36'h2721a72f8;   // 146 w3[7] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[147] = 36'h252400028;   // 147 wref[7] id_ref
-    rom[148] = 36'h262400030;   // 148 wref[7] iq_ref
-    rom[149] = 36'h00240001b;   // 149 WFRONT y0 = i_d
-    rom[150] = 36'h042451818;   // 150 dx0 = i_d - i_d,prev
-    rom[151] = 36'h012400020;   // 151 y1 = i_q
-    rom[152] = 36'h052461820;   // 152 dx1 = i_q - i_q,prev
-    rom[153] = 36'h00c400000;   // 153 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
-    rom[154] = 36'h000400000;   // 154 (pipeline gap)
-    rom[155] = 36'h000400000;   // 155 (pipeline gap)
-    rom[156] = 36'h00060806c;   // 156 WSH P = ka = rshift_round(kacc i_q, s)
-    rom[157] = 36'h000641878;   // 157 P = u1 = ka - D
-    rom[158] = 36'h009011078;   // 158 omega = sat32(spd + u1)
-    rom[159] = 36'h00ec21178;   // 159 shifter = t2 = 2 u1 - (spd - spd_prev)
-    rom[160] = 36'h000400000;   // 160 (pipeline gap)
-    rom[161] = 36'h032400070;   // 161 omega
-    rom[162] = 36'h022400000;   // 162 y2 = 0 (position task)
-    rom[163] = 36'h063071870;   // 163 dx2 = sat32(omega - omega_prev)
-    rom[164] = 36'h000400005;   // 164 START core start (or, law off, skip)
-    rom[165] = 36'h074400070;   // 165 omega_prev
-    rom[166] = 36'h054400018;   // 166 i_d,prev
-    rom[167] = 36'h064400020;   // 167 i_q,prev
-    rom[168] = 36'h216400070;   // 168 SPEED
-    rom[169] = 36'h000400000;   // 169 (pipeline gap)
-    rom[170] = 36'h236400018;   // 170 I_D
-    rom[171] = 36'h000400000;   // 171 (pipeline gap)
-    rom[172] = 36'h246400020;   // 172 I_Q
-    rom[173] = 36'h84484106c;   // 173 WSH D += t2 >>> (load_shift + 1)
-    rom[174] = 36'hc44800000;   // 174 D = 0 (no load estimate)
-    rom[175] = 36'h000400006;   // 175 WCORE modulation start (held u, theta_mod), after the core
-    rom[176] = 36'h256400038;   // 176 U_D = the u applied
+    rom[97] = 36'h0730002f8;   // 97 dx3 = sat32(dpos << 8)
+    rom[98] = 36'h004400008;   // 98 pos_prev = pos
+    rom[99] = 36'h082400000;   // 99 dx4 = 0
+    rom[100] = 36'h0b2400048;   // 100 ebar_prev[0]
+    rom[101] = 36'h000601460;   // 101 P = dpos_M = pos - pos_{k-M}
+    rom[102] = 36'h01ec002f8;   // 102 shifter = dpos_M << 8, m steps
+    rom[103] = 36'h0c2400050;   // 103 ebar_prev[1]
+    rom[104] = 36'h0d2400058;   // 104 ebar_prev[2]
+    rom[105] = 36'h00060006c;   // 105 WSH P = (dpos_M << 8) >>> m
+    rom[106] = 36'h015000278;   // 106 spd = sat32(P << 8)
+    rom[107] = 36'h092400038;   // 107 u_prev[0]
+    rom[108] = 36'h0a2400040;   // 108 u_prev[1]
+    rom[109] = 36'h000611000;   // 109 P = spd
+    rom[110] = 36'h024831478;   // 110 ndsp = spd_prev - spd
+    rom[111] = 36'h034800078;   // 111 spd_prev = spd
+    rom[112] = 36'h484600011;   // 112 WTH P = theta; first period: theta_prev = theta
+    rom[113] = 36'h000400000;   // 113 (pipeline gap)
+    rom[114] = 36'h000400000;   // 114 (pipeline gap)
+    rom[115] = 36'h00a481978;   // 115 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[116] = 36'h084400010;   // 116 theta_prev = theta
+    rom[117] = 36'h0006d140a;   // 117 WREF P = w_hi[0] - pos
+    rom[118] = 36'h1220c72f8;   // 118 w3[0] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[119] = 36'h0006d1000;   // 119 P = w_hi[0]
+    rom[120] = 36'h2764c3278;   // 120 REF = w_k bits 55:24
+    rom[121] = 36'h000400000;   // 121 (pipeline gap)
+    rom[122] = 36'h102400028;   // 122 wref[0] id_ref
+    rom[123] = 36'h112400030;   // 123 wref[0] iq_ref
+    rom[124] = 36'h0006f1408;   // 124 P = w_hi[1] - pos
+    rom[125] = 36'h1520e72f8;   // 125 w3[1] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[126] = 36'h132400028;   // 126 wref[1] id_ref
+    rom[127] = 36'h142400030;   // 127 wref[1] iq_ref
+    rom[128] = 36'h000711408;   // 128 P = w_hi[2] - pos
+    rom[129] = 36'h1821072f8;   // 129 w3[2] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[130] = 36'h162400028;   // 130 wref[2] id_ref
+    rom[131] = 36'h172400030;   // 131 wref[2] iq_ref
+    rom[132] = 36'h000731408;   // 132 P = w_hi[3] - pos
+    rom[133] = 36'h1b21272f8;   // 133 w3[3] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[134] = 36'h192400028;   // 134 wref[3] id_ref
+    rom[135] = 36'h1a2400030;   // 135 wref[3] iq_ref
+    rom[136] = 36'h000751408;   // 136 P = w_hi[4] - pos
+    rom[137] = 36'h1e21472f8;   // 137 w3[4] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[138] = 36'h1c2400028;   // 138 wref[4] id_ref
+    rom[139] = 36'h1d2400030;   // 139 wref[4] iq_ref
+    rom[140] = 36'h000771408;   // 140 P = w_hi[5] - pos
+    rom[141] = 36'h2121672f8;   // 141 w3[5] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[142] = 36'h1f2400028;   // 142 wref[5] id_ref
+    rom[143] = 36'h202400030;   // 143 wref[5] iq_ref
+    rom[144] = 36'h000791408;   // 144 P = w_hi[6] - pos
+    rom[145] = 36'h2421872f8;   // 145 w3[6] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[146] = 36'h222400028;   // 146 wref[6] id_ref
+    rom[147] = 36'h232400030;   // 147 wref[6] iq_ref
+    rom[148] = 36'h0007b1408;   // 148 P = w_hi[7] - pos
+    rom[149] = 36'h2721a72f8;   // 149 w3[7] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[150] = 36'h252400028;   // 150 wref[7] id_ref
+    rom[151] = 36'h262400030;   // 151 wref[7] iq_ref
+    rom[152] = 36'h00240001b;   // 152 WFRONT y0 = i_d
+    rom[153] = 36'h042451818;   // 153 dx0 = i_d - i_d,prev
+    rom[154] = 36'h012400020;   // 154 y1 = i_q
+    rom[155] = 36'h052461820;   // 155 dx1 = i_q - i_q,prev
+    rom[156] = 36'h00c400000;   // 156 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
+    rom[157] = 36'h000400000;   // 157 (pipeline gap)
+    rom[158] = 36'h000400000;   // 158 (pipeline gap)
+    rom[159] = 36'h00060806c;   // 159 WSH P = ka = rshift_round(kacc i_q, s)
+    rom[160] = 36'h000641878;   // 160 P = u1 = ka - D
+    rom[161] = 36'h009011078;   // 161 omega = sat32(spd + u1)
+    rom[162] = 36'h01ec00178;   // 162 shifter = 2 u1, m steps
+    rom[163] = 36'h000400000;   // 163 (pipeline gap)
+    rom[164] = 36'h032400070;   // 164 omega
+    rom[165] = 36'h022400000;   // 165 y2 = 0 (position task)
+    rom[166] = 36'h063071870;   // 166 dx2 = sat32(omega - omega_prev)
+    rom[167] = 36'h000400005;   // 167 START core start (or, law off, skip)
+    rom[168] = 36'h074400070;   // 168 omega_prev
+    rom[169] = 36'h054400018;   // 169 i_d,prev
+    rom[170] = 36'h064400020;   // 170 i_q,prev
+    rom[171] = 36'h216400070;   // 171 SPEED
+    rom[172] = 36'h000400000;   // 172 (pipeline gap)
+    rom[173] = 36'h236400018;   // 173 I_D
+    rom[174] = 36'h000400000;   // 174 (pipeline gap)
+    rom[175] = 36'h246400020;   // 175 I_Q
+    rom[176] = 36'h00ec2106c;   // 176 WSH shifter = t2 = (2 u1 >>> m) - (spd - spd_prev), load_shift + 1 - m steps (>= 0)
     rom[177] = 36'h000400000;   // 177 (pipeline gap)
-    rom[178] = 36'h266400040;   // 178 U_Q
-    rom[179] = 36'h000400007;   // 179 END program end
+    rom[178] = 36'h000400000;   // 178 (pipeline gap)
+    rom[179] = 36'h84484106c;   // 179 WSH D += t2 >>> (load_shift + 1)
+    rom[180] = 36'hc44800000;   // 180 D = 0 (no load estimate)
+    rom[181] = 36'h000400006;   // 181 WCORE modulation start (held u, theta_mod), after the core
+    rom[182] = 36'h256400038;   // 182 U_D = the u applied
+    rom[183] = 36'h000400000;   // 183 (pipeline gap)
+    rom[184] = 36'h266400040;   // 184 U_Q
+    rom[185] = 36'h000400007;   // 185 END program end
     rom[192] = 36'h484600011;   // 192 WTH P = theta; first period: theta_prev = theta
     rom[193] = 36'h000400000;   // 193 (pipeline gap)
     rom[194] = 36'h000400000;   // 194 (pipeline gap)
@@ -1096,180 +1180,192 @@ end
 if (N == 8) begin
     for (ui = 0; ui < 256; ui = ui + 1) rom[ui] = 36'h000400007;   // END
     rom[0] = 36'h000601808;   // 0 P = dpos = pos - pos_prev
-    rom[1] = 36'h0150003f8;   // 1 spd = sat32(dpos << 16)
-    rom[2] = 36'h0730002f8;   // 2 dx3 = sat32(dpos << 8)
-    rom[3] = 36'h004400008;   // 3 pos_prev = pos
-    rom[4] = 36'h082400000;   // 4 dx4 = 0
-    rom[5] = 36'h0b2400048;   // 5 ebar_prev[0]
-    rom[6] = 36'h0c2400050;   // 6 ebar_prev[1]
-    rom[7] = 36'h0d2400058;   // 7 ebar_prev[2]
-    rom[8] = 36'h092400038;   // 8 u_prev[0]
-    rom[9] = 36'h0a2400040;   // 9 u_prev[1]
-    rom[10] = 36'h000611000;   // 10 P = spd
-    rom[11] = 36'h024831478;   // 11 ndsp = spd_prev - spd
-    rom[12] = 36'h034800078;   // 12 spd_prev = spd
-    rom[13] = 36'h484600011;   // 13 WTH P = theta; first period: theta_prev = theta
-    rom[14] = 36'h000400000;   // 14 (pipeline gap)
-    rom[15] = 36'h000400000;   // 15 (pipeline gap)
-    rom[16] = 36'h00a481978;   // 16 theta_mod = 2 theta - theta_prev (16 bit)
-    rom[17] = 36'h084400010;   // 17 theta_prev = theta
-    rom[18] = 36'h0006d1002;   // 18 WREF P = w_hi[0]
-    rom[19] = 36'h1220c6378;   // 19 w3[0] = sat32(P << 16 + round(w_lo >> 16))
-    rom[20] = 36'h2764c2378;   // 20 REF = w_k bits 47:16
-    rom[21] = 36'h000400000;   // 21 (pipeline gap)
-    rom[22] = 36'h102400028;   // 22 wref[0] id_ref
-    rom[23] = 36'h112400030;   // 23 wref[0] iq_ref
-    rom[24] = 36'h0006f1000;   // 24 P = w_hi[1]
-    rom[25] = 36'h1520e6378;   // 25 w3[1] = sat32(P << 16 + round(w_lo >> 16))
-    rom[26] = 36'h132400028;   // 26 wref[1] id_ref
-    rom[27] = 36'h142400030;   // 27 wref[1] iq_ref
-    rom[28] = 36'h000711000;   // 28 P = w_hi[2]
-    rom[29] = 36'h182106378;   // 29 w3[2] = sat32(P << 16 + round(w_lo >> 16))
-    rom[30] = 36'h162400028;   // 30 wref[2] id_ref
-    rom[31] = 36'h172400030;   // 31 wref[2] iq_ref
-    rom[32] = 36'h000731000;   // 32 P = w_hi[3]
-    rom[33] = 36'h1b2126378;   // 33 w3[3] = sat32(P << 16 + round(w_lo >> 16))
-    rom[34] = 36'h192400028;   // 34 wref[3] id_ref
-    rom[35] = 36'h1a2400030;   // 35 wref[3] iq_ref
-    rom[36] = 36'h000751000;   // 36 P = w_hi[4]
-    rom[37] = 36'h1e2146378;   // 37 w3[4] = sat32(P << 16 + round(w_lo >> 16))
-    rom[38] = 36'h1c2400028;   // 38 wref[4] id_ref
-    rom[39] = 36'h1d2400030;   // 39 wref[4] iq_ref
-    rom[40] = 36'h000771000;   // 40 P = w_hi[5]
-    rom[41] = 36'h212166378;   // 41 w3[5] = sat32(P << 16 + round(w_lo >> 16))
-    rom[42] = 36'h1f2400028;   // 42 wref[5] id_ref
-    rom[43] = 36'h202400030;   // 43 wref[5] iq_ref
-    rom[44] = 36'h000791000;   // 44 P = w_hi[6]
-    rom[45] = 36'h242186378;   // 45 w3[6] = sat32(P << 16 + round(w_lo >> 16))
-    rom[46] = 36'h222400028;   // 46 wref[6] id_ref
-    rom[47] = 36'h232400030;   // 47 wref[6] iq_ref
-    rom[48] = 36'h0007b1000;   // 48 P = w_hi[7]
-    rom[49] = 36'h2721a6378;   // 49 w3[7] = sat32(P << 16 + round(w_lo >> 16))
-    rom[50] = 36'h252400028;   // 50 wref[7] id_ref
-    rom[51] = 36'h262400030;   // 51 wref[7] iq_ref
-    rom[52] = 36'h0007d1000;   // 52 P = w_hi[8]
-    rom[53] = 36'h2a21c6378;   // 53 w3[8] = sat32(P << 16 + round(w_lo >> 16))
-    rom[54] = 36'h282400028;   // 54 wref[8] id_ref
-    rom[55] = 36'h292400030;   // 55 wref[8] iq_ref
-    rom[56] = 36'h00240001b;   // 56 WFRONT y0 = i_d
-    rom[57] = 36'h042451818;   // 57 dx0 = i_d - i_d,prev
-    rom[58] = 36'h012400020;   // 58 y1 = i_q
-    rom[59] = 36'h052461820;   // 59 dx1 = i_q - i_q,prev
-    rom[60] = 36'h00c400000;   // 60 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
-    rom[61] = 36'h000400000;   // 61 (pipeline gap)
-    rom[62] = 36'h000400000;   // 62 (pipeline gap)
-    rom[63] = 36'h00060806c;   // 63 WSH P = ka = rshift_round(kacc i_q, s)
-    rom[64] = 36'h000641878;   // 64 P = u1 = ka - D
-    rom[65] = 36'h009011078;   // 65 omega = sat32(spd + u1)
-    rom[66] = 36'h00ec21178;   // 66 shifter = t2 = 2 u1 - (spd - spd_prev)
-    rom[67] = 36'h000400000;   // 67 (pipeline gap)
-    rom[68] = 36'h032400070;   // 68 omega
-    rom[69] = 36'h022400070;   // 69 y2 = omega
-    rom[70] = 36'h063071870;   // 70 dx2 = sat32(omega - omega_prev)
-    rom[71] = 36'h000400005;   // 71 START core start (or, law off, skip)
-    rom[72] = 36'h074400070;   // 72 omega_prev
-    rom[73] = 36'h054400018;   // 73 i_d,prev
-    rom[74] = 36'h064400020;   // 74 i_q,prev
-    rom[75] = 36'h216400070;   // 75 SPEED
-    rom[76] = 36'h000400000;   // 76 (pipeline gap)
-    rom[77] = 36'h236400018;   // 77 I_D
-    rom[78] = 36'h000400000;   // 78 (pipeline gap)
-    rom[79] = 36'h246400020;   // 79 I_Q
-    rom[80] = 36'h84484106c;   // 80 WSH D += t2 >>> (load_shift + 1)
-    rom[81] = 36'hc44800000;   // 81 D = 0 (no load estimate)
-    rom[82] = 36'h000400006;   // 82 WCORE modulation start (held u, theta_mod), after the core
-    rom[83] = 36'h256400038;   // 83 U_D = the u applied
+    rom[1] = 36'h0730002f8;   // 1 dx3 = sat32(dpos << 8)
+    rom[2] = 36'h004400008;   // 2 pos_prev = pos
+    rom[3] = 36'h082400000;   // 3 dx4 = 0
+    rom[4] = 36'h0b2400048;   // 4 ebar_prev[0]
+    rom[5] = 36'h000601460;   // 5 P = dpos_M = pos - pos_{k-M}
+    rom[6] = 36'h01ec002f8;   // 6 shifter = dpos_M << 8, m steps
+    rom[7] = 36'h0c2400050;   // 7 ebar_prev[1]
+    rom[8] = 36'h0d2400058;   // 8 ebar_prev[2]
+    rom[9] = 36'h00060006c;   // 9 WSH P = (dpos_M << 8) >>> m
+    rom[10] = 36'h015000278;   // 10 spd = sat32(P << 8)
+    rom[11] = 36'h092400038;   // 11 u_prev[0]
+    rom[12] = 36'h0a2400040;   // 12 u_prev[1]
+    rom[13] = 36'h000611000;   // 13 P = spd
+    rom[14] = 36'h024831478;   // 14 ndsp = spd_prev - spd
+    rom[15] = 36'h034800078;   // 15 spd_prev = spd
+    rom[16] = 36'h484600011;   // 16 WTH P = theta; first period: theta_prev = theta
+    rom[17] = 36'h000400000;   // 17 (pipeline gap)
+    rom[18] = 36'h000400000;   // 18 (pipeline gap)
+    rom[19] = 36'h00a481978;   // 19 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[20] = 36'h084400010;   // 20 theta_prev = theta
+    rom[21] = 36'h0006d1002;   // 21 WREF P = w_hi[0]
+    rom[22] = 36'h1220c6378;   // 22 w3[0] = sat32(P << 16 + round(w_lo >> 16))
+    rom[23] = 36'h2764c2378;   // 23 REF = w_k bits 47:16
+    rom[24] = 36'h000400000;   // 24 (pipeline gap)
+    rom[25] = 36'h102400028;   // 25 wref[0] id_ref
+    rom[26] = 36'h112400030;   // 26 wref[0] iq_ref
+    rom[27] = 36'h0006f1000;   // 27 P = w_hi[1]
+    rom[28] = 36'h1520e6378;   // 28 w3[1] = sat32(P << 16 + round(w_lo >> 16))
+    rom[29] = 36'h132400028;   // 29 wref[1] id_ref
+    rom[30] = 36'h142400030;   // 30 wref[1] iq_ref
+    rom[31] = 36'h000711000;   // 31 P = w_hi[2]
+    rom[32] = 36'h182106378;   // 32 w3[2] = sat32(P << 16 + round(w_lo >> 16))
+    rom[33] = 36'h162400028;   // 33 wref[2] id_ref
+    rom[34] = 36'h172400030;   // 34 wref[2] iq_ref
+    rom[35] = 36'h000731000;   // 35 P = w_hi[3]
+    rom[36] = 36'h1b2126378;   // 36 w3[3] = sat32(P << 16 + round(w_lo >> 16))
+    rom[37] = 36'h192400028;   // 37 wref[3] id_ref
+    rom[38] = 36'h1a2400030;   // 38 wref[3] iq_ref
+    rom[39] = 36'h000751000;   // 39 P = w_hi[4]
+    rom[40] = 36'h1e2146378;   // 40 w3[4] = sat32(P << 16 + round(w_lo >> 16))
+    rom[41] = 36'h1c2400028;   // 41 wref[4] id_ref
+    rom[42] = 36'h1d2400030;   // 42 wref[4] iq_ref
+    rom[43] = 36'h000771000;   // 43 P = w_hi[5]
+    rom[44] = 36'h212166378;   // 44 w3[5] = sat32(P << 16 + round(w_lo >> 16))
+    rom[45] = 36'h1f2400028;   // 45 wref[5] id_ref
+    rom[46] = 36'h202400030;   // 46 wref[5] iq_ref
+    rom[47] = 36'h000791000;   // 47 P = w_hi[6]
+    rom[48] = 36'h242186378;   // 48 w3[6] = sat32(P << 16 + round(w_lo >> 16))
+    rom[49] = 36'h222400028;   // 49 wref[6] id_ref
+    rom[50] = 36'h232400030;   // 50 wref[6] iq_ref
+    rom[51] = 36'h0007b1000;   // 51 P = w_hi[7]
+    rom[52] = 36'h2721a6378;   // 52 w3[7] = sat32(P << 16 + round(w_lo >> 16))
+    rom[53] = 36'h252400028;   // 53 wref[7] id_ref
+    rom[54] = 36'h262400030;   // 54 wref[7] iq_ref
+    rom[55] = 36'h0007d1000;   // 55 P = w_hi[8]
+    rom[56] = 36'h2a21c6378;   // 56 w3[8] = sat32(P << 16 + round(w_lo >> 16))
+    rom[57] = 36'h282400028;   // 57 wref[8] id_ref
+    rom[58] = 36'h292400030;   // 58 wref[8] iq_ref
+    rom[59] = 36'h00240001b;   // 59 WFRONT y0 = i_d
+    rom[60] = 36'h042451818;   // 60 dx0 = i_d - i_d,prev
+    rom[61] = 36'h012400020;   // 61 y1 = i_q
+    rom[62] = 36'h052461820;   // 62 dx1 = i_q - i_q,prev
+    rom[63] = 36'h00c400000;   // 63 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
+    rom[64] = 36'h000400000;   // 64 (pipeline gap)
+    rom[65] = 36'h000400000;   // 65 (pipeline gap)
+    rom[66] = 36'h00060806c;   // 66 WSH P = ka = rshift_round(kacc i_q, s)
+    rom[67] = 36'h000641878;   // 67 P = u1 = ka - D
+    rom[68] = 36'h009011078;   // 68 omega = sat32(spd + u1)
+    rom[69] = 36'h01ec00178;   // 69 shifter = 2 u1, m steps
+    rom[70] = 36'h000400000;   // 70 (pipeline gap)
+    rom[71] = 36'h032400070;   // 71 omega
+    rom[72] = 36'h022400070;   // 72 y2 = omega
+    rom[73] = 36'h063071870;   // 73 dx2 = sat32(omega - omega_prev)
+    rom[74] = 36'h000400005;   // 74 START core start (or, law off, skip)
+    rom[75] = 36'h074400070;   // 75 omega_prev
+    rom[76] = 36'h054400018;   // 76 i_d,prev
+    rom[77] = 36'h064400020;   // 77 i_q,prev
+    rom[78] = 36'h216400070;   // 78 SPEED
+    rom[79] = 36'h000400000;   // 79 (pipeline gap)
+    rom[80] = 36'h236400018;   // 80 I_D
+    rom[81] = 36'h000400000;   // 81 (pipeline gap)
+    rom[82] = 36'h246400020;   // 82 I_Q
+    rom[83] = 36'h00ec2106c;   // 83 WSH shifter = t2 = (2 u1 >>> m) - (spd - spd_prev), load_shift + 1 - m steps (>= 0)
     rom[84] = 36'h000400000;   // 84 (pipeline gap)
-    rom[85] = 36'h266400040;   // 85 U_Q
-    rom[86] = 36'h000400007;   // 86 END program end
+    rom[85] = 36'h000400000;   // 85 (pipeline gap)
+    rom[86] = 36'h84484106c;   // 86 WSH D += t2 >>> (load_shift + 1)
+    rom[87] = 36'hc44800000;   // 87 D = 0 (no load estimate)
+    rom[88] = 36'h000400006;   // 88 WCORE modulation start (held u, theta_mod), after the core
+    rom[89] = 36'h256400038;   // 89 U_D = the u applied
+    rom[90] = 36'h000400000;   // 90 (pipeline gap)
+    rom[91] = 36'h266400040;   // 91 U_Q
+    rom[92] = 36'h000400007;   // 92 END program end
     rom[96] = 36'h000601808;   // 96 P = dpos = pos - pos_prev
-    rom[97] = 36'h0150003f8;   // 97 spd = sat32(dpos << 16)
-    rom[98] = 36'h0730002f8;   // 98 dx3 = sat32(dpos << 8)
-    rom[99] = 36'h004400008;   // 99 pos_prev = pos
-    rom[100] = 36'h082400000;   // 100 dx4 = 0
-    rom[101] = 36'h0b2400048;   // 101 ebar_prev[0]
-    rom[102] = 36'h0c2400050;   // 102 ebar_prev[1]
-    rom[103] = 36'h0d2400058;   // 103 ebar_prev[2]
-    rom[104] = 36'h092400038;   // 104 u_prev[0]
-    rom[105] = 36'h0a2400040;   // 105 u_prev[1]
-    rom[106] = 36'h000611000;   // 106 P = spd
-    rom[107] = 36'h024831478;   // 107 ndsp = spd_prev - spd
-    rom[108] = 36'h034800078;   // 108 spd_prev = spd
-    rom[109] = 36'h484600011;   // 109 WTH P = theta; first period: theta_prev = theta
-    rom[110] = 36'h000400000;   // 110 (pipeline gap)
-    rom[111] = 36'h000400000;   // 111 (pipeline gap)
-    rom[112] = 36'h00a481978;   // 112 theta_mod = 2 theta - theta_prev (16 bit)
-    rom[113] = 36'h084400010;   // 113 theta_prev = theta
-    rom[114] = 36'h0006d140a;   // 114 WREF P = w_hi[0] - pos
-    rom[115] = 36'h1220c72f8;   // 115 w3[0] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[116] = 36'h0006d1000;   // 116 P = w_hi[0]
-    rom[117] = 36'h2764c3278;   // 117 REF = w_k bits 55:24
-    rom[118] = 36'h000400000;   // 118 (pipeline gap)
-    rom[119] = 36'h102400028;   // 119 wref[0] id_ref
-    rom[120] = 36'h112400030;   // 120 wref[0] iq_ref
-    rom[121] = 36'h0006f1408;   // 121 P = w_hi[1] - pos
-    rom[122] = 36'h1520e72f8;   // 122 w3[1] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[123] = 36'h132400028;   // 123 wref[1] id_ref
-    rom[124] = 36'h142400030;   // 124 wref[1] iq_ref
-    rom[125] = 36'h000711408;   // 125 P = w_hi[2] - pos
-    rom[126] = 36'h1821072f8;   // 126 w3[2] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[127] = 36'h162400028;   // 127 wref[2] id_ref
-    rom[128] = 36'h172400030;   // 128 wref[2] iq_ref
-    rom[129] = 36'h000731408;   // 129 P = w_hi[3] - pos
-    rom[130] = 36'h1b21272f8;   // 130 w3[3] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[131] = 36'h192400028;   // 131 wref[3] id_ref
-    rom[132] = 36'h1a2400030;   // 132 wref[3] iq_ref
-    rom[133] = 36'h000751408;   // 133 P = w_hi[4] - pos
-    rom[134] = 36'h1e21472f8;   // 134 w3[4] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[135] = 36'h1c2400028;   // 135 wref[4] id_ref
-    rom[136] = 36'h1d2400030;   // 136 wref[4] iq_ref
-    rom[137] = 36'h000771408;   // 137 P = w_hi[5] - pos
-    rom[138] = 36'h2121672f8;   // 138 w3[5] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[139] = 36'h1f2400028;   // 139 wref[5] id_ref
-    rom[140] = 36'h202400030;   // 140 wref[5] iq_ref
-    rom[141] = 36'h000791408;   // 141 P = w_hi[6] - pos
-    rom[142] = 36'h2421872f8;   // 142 w3[6] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[143] = 36'h222400028;   // 143 wref[6] id_ref
-    rom[144] = 36'h232400030;   // 144 wref[6] iq_ref
-    rom[145] = 36'h0007b1408;   // 145 P = w_hi[7] - pos
-    rom[146] = 36'h2721a72f8;   // 146 w3[7] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[147] = 36'h252400028;   // 147 wref[7] id_ref
-    rom[148] = 36'h262400030;   // 148 wref[7] iq_ref
-    rom[149] = 36'h0007d1408;   // 149 P = w_hi[8] - pos
-    rom[150] = 36'h2a21c72f8;   // 150 w3[8] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
-    rom[151] = 36'h282400028;   // 151 wref[8] id_ref
-    rom[152] = 36'h292400030;   // 152 wref[8] iq_ref
-    rom[153] = 36'h00240001b;   // 153 WFRONT y0 = i_d
-    rom[154] = 36'h042451818;   // 154 dx0 = i_d - i_d,prev
-    rom[155] = 36'h012400020;   // 155 y1 = i_q
-    rom[156] = 36'h052461820;   // 156 dx1 = i_q - i_q,prev
-    rom[157] = 36'h00c400000;   // 157 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
-    rom[158] = 36'h000400000;   // 158 (pipeline gap)
-    rom[159] = 36'h000400000;   // 159 (pipeline gap)
-    rom[160] = 36'h00060806c;   // 160 WSH P = ka = rshift_round(kacc i_q, s)
-    rom[161] = 36'h000641878;   // 161 P = u1 = ka - D
-    rom[162] = 36'h009011078;   // 162 omega = sat32(spd + u1)
-    rom[163] = 36'h00ec21178;   // 163 shifter = t2 = 2 u1 - (spd - spd_prev)
-    rom[164] = 36'h000400000;   // 164 (pipeline gap)
-    rom[165] = 36'h032400070;   // 165 omega
-    rom[166] = 36'h022400000;   // 166 y2 = 0 (position task)
-    rom[167] = 36'h063071870;   // 167 dx2 = sat32(omega - omega_prev)
-    rom[168] = 36'h000400005;   // 168 START core start (or, law off, skip)
-    rom[169] = 36'h074400070;   // 169 omega_prev
-    rom[170] = 36'h054400018;   // 170 i_d,prev
-    rom[171] = 36'h064400020;   // 171 i_q,prev
-    rom[172] = 36'h216400070;   // 172 SPEED
-    rom[173] = 36'h000400000;   // 173 (pipeline gap)
-    rom[174] = 36'h236400018;   // 174 I_D
-    rom[175] = 36'h000400000;   // 175 (pipeline gap)
-    rom[176] = 36'h246400020;   // 176 I_Q
-    rom[177] = 36'h84484106c;   // 177 WSH D += t2 >>> (load_shift + 1)
-    rom[178] = 36'hc44800000;   // 178 D = 0 (no load estimate)
-    rom[179] = 36'h000400006;   // 179 WCORE modulation start (held u, theta_mod), after the core
-    rom[180] = 36'h256400038;   // 180 U_D = the u applied
+    rom[97] = 36'h0730002f8;   // 97 dx3 = sat32(dpos << 8)
+    rom[98] = 36'h004400008;   // 98 pos_prev = pos
+    rom[99] = 36'h082400000;   // 99 dx4 = 0
+    rom[100] = 36'h0b2400048;   // 100 ebar_prev[0]
+    rom[101] = 36'h000601460;   // 101 P = dpos_M = pos - pos_{k-M}
+    rom[102] = 36'h01ec002f8;   // 102 shifter = dpos_M << 8, m steps
+    rom[103] = 36'h0c2400050;   // 103 ebar_prev[1]
+    rom[104] = 36'h0d2400058;   // 104 ebar_prev[2]
+    rom[105] = 36'h00060006c;   // 105 WSH P = (dpos_M << 8) >>> m
+    rom[106] = 36'h015000278;   // 106 spd = sat32(P << 8)
+    rom[107] = 36'h092400038;   // 107 u_prev[0]
+    rom[108] = 36'h0a2400040;   // 108 u_prev[1]
+    rom[109] = 36'h000611000;   // 109 P = spd
+    rom[110] = 36'h024831478;   // 110 ndsp = spd_prev - spd
+    rom[111] = 36'h034800078;   // 111 spd_prev = spd
+    rom[112] = 36'h484600011;   // 112 WTH P = theta; first period: theta_prev = theta
+    rom[113] = 36'h000400000;   // 113 (pipeline gap)
+    rom[114] = 36'h000400000;   // 114 (pipeline gap)
+    rom[115] = 36'h00a481978;   // 115 theta_mod = 2 theta - theta_prev (16 bit)
+    rom[116] = 36'h084400010;   // 116 theta_prev = theta
+    rom[117] = 36'h0006d140a;   // 117 WREF P = w_hi[0] - pos
+    rom[118] = 36'h1220c72f8;   // 118 w3[0] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[119] = 36'h0006d1000;   // 119 P = w_hi[0]
+    rom[120] = 36'h2764c3278;   // 120 REF = w_k bits 55:24
+    rom[121] = 36'h000400000;   // 121 (pipeline gap)
+    rom[122] = 36'h102400028;   // 122 wref[0] id_ref
+    rom[123] = 36'h112400030;   // 123 wref[0] iq_ref
+    rom[124] = 36'h0006f1408;   // 124 P = w_hi[1] - pos
+    rom[125] = 36'h1520e72f8;   // 125 w3[1] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[126] = 36'h132400028;   // 126 wref[1] id_ref
+    rom[127] = 36'h142400030;   // 127 wref[1] iq_ref
+    rom[128] = 36'h000711408;   // 128 P = w_hi[2] - pos
+    rom[129] = 36'h1821072f8;   // 129 w3[2] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[130] = 36'h162400028;   // 130 wref[2] id_ref
+    rom[131] = 36'h172400030;   // 131 wref[2] iq_ref
+    rom[132] = 36'h000731408;   // 132 P = w_hi[3] - pos
+    rom[133] = 36'h1b21272f8;   // 133 w3[3] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[134] = 36'h192400028;   // 134 wref[3] id_ref
+    rom[135] = 36'h1a2400030;   // 135 wref[3] iq_ref
+    rom[136] = 36'h000751408;   // 136 P = w_hi[4] - pos
+    rom[137] = 36'h1e21472f8;   // 137 w3[4] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[138] = 36'h1c2400028;   // 138 wref[4] id_ref
+    rom[139] = 36'h1d2400030;   // 139 wref[4] iq_ref
+    rom[140] = 36'h000771408;   // 140 P = w_hi[5] - pos
+    rom[141] = 36'h2121672f8;   // 141 w3[5] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[142] = 36'h1f2400028;   // 142 wref[5] id_ref
+    rom[143] = 36'h202400030;   // 143 wref[5] iq_ref
+    rom[144] = 36'h000791408;   // 144 P = w_hi[6] - pos
+    rom[145] = 36'h2421872f8;   // 145 w3[6] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[146] = 36'h222400028;   // 146 wref[6] id_ref
+    rom[147] = 36'h232400030;   // 147 wref[6] iq_ref
+    rom[148] = 36'h0007b1408;   // 148 P = w_hi[7] - pos
+    rom[149] = 36'h2721a72f8;   // 149 w3[7] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[150] = 36'h252400028;   // 150 wref[7] id_ref
+    rom[151] = 36'h262400030;   // 151 wref[7] iq_ref
+    rom[152] = 36'h0007d1408;   // 152 P = w_hi[8] - pos
+    rom[153] = 36'h2a21c72f8;   // 153 w3[8] = sat32(wrap32(P) << 8 + round(w_lo >> 24))
+    rom[154] = 36'h282400028;   // 154 wref[8] id_ref
+    rom[155] = 36'h292400030;   // 155 wref[8] iq_ref
+    rom[156] = 36'h00240001b;   // 156 WFRONT y0 = i_d
+    rom[157] = 36'h042451818;   // 157 dx0 = i_d - i_d,prev
+    rom[158] = 36'h012400020;   // 158 y1 = i_q
+    rom[159] = 36'h052461820;   // 159 dx1 = i_q - i_q,prev
+    rom[160] = 36'h00c400000;   // 160 shifter = kacc * i_q (xform's product, loaded directly), kacc_shift steps
+    rom[161] = 36'h000400000;   // 161 (pipeline gap)
+    rom[162] = 36'h000400000;   // 162 (pipeline gap)
+    rom[163] = 36'h00060806c;   // 163 WSH P = ka = rshift_round(kacc i_q, s)
+    rom[164] = 36'h000641878;   // 164 P = u1 = ka - D
+    rom[165] = 36'h009011078;   // 165 omega = sat32(spd + u1)
+    rom[166] = 36'h01ec00178;   // 166 shifter = 2 u1, m steps
+    rom[167] = 36'h000400000;   // 167 (pipeline gap)
+    rom[168] = 36'h032400070;   // 168 omega
+    rom[169] = 36'h022400000;   // 169 y2 = 0 (position task)
+    rom[170] = 36'h063071870;   // 170 dx2 = sat32(omega - omega_prev)
+    rom[171] = 36'h000400005;   // 171 START core start (or, law off, skip)
+    rom[172] = 36'h074400070;   // 172 omega_prev
+    rom[173] = 36'h054400018;   // 173 i_d,prev
+    rom[174] = 36'h064400020;   // 174 i_q,prev
+    rom[175] = 36'h216400070;   // 175 SPEED
+    rom[176] = 36'h000400000;   // 176 (pipeline gap)
+    rom[177] = 36'h236400018;   // 177 I_D
+    rom[178] = 36'h000400000;   // 178 (pipeline gap)
+    rom[179] = 36'h246400020;   // 179 I_Q
+    rom[180] = 36'h00ec2106c;   // 180 WSH shifter = t2 = (2 u1 >>> m) - (spd - spd_prev), load_shift + 1 - m steps (>= 0)
     rom[181] = 36'h000400000;   // 181 (pipeline gap)
-    rom[182] = 36'h266400040;   // 182 U_Q
-    rom[183] = 36'h000400007;   // 183 END program end
+    rom[182] = 36'h000400000;   // 182 (pipeline gap)
+    rom[183] = 36'h84484106c;   // 183 WSH D += t2 >>> (load_shift + 1)
+    rom[184] = 36'hc44800000;   // 184 D = 0 (no load estimate)
+    rom[185] = 36'h000400006;   // 185 WCORE modulation start (held u, theta_mod), after the core
+    rom[186] = 36'h256400038;   // 186 U_D = the u applied
+    rom[187] = 36'h000400000;   // 187 (pipeline gap)
+    rom[188] = 36'h266400040;   // 188 U_Q
+    rom[189] = 36'h000400007;   // 189 END program end
     rom[192] = 36'h484600011;   // 192 WTH P = theta; first period: theta_prev = theta
     rom[193] = 36'h000400000;   // 193 (pipeline gap)
     rom[194] = 36'h000400000;   // 194 (pipeline gap)

@@ -98,8 +98,13 @@ COSIM = {
     # so the core holds the speed increment while the step accelerates (mpc_operand's aw path in the loop;
     # at the default 0.7 no make sim run reaches it); 0 compare-value mismatches, SAT_EBAR_INC as the model
     "speed_alg2_hold": ("speed_alg2", 0.030, None),
+    # the speed window (KACC.win, rtl/mx_seq.v): short with KACC.win = 2 (M = 4) written by the CPU before the
+    # bridges come on (COSIM_WIN; the model's register mirrored at the write, the float loop M = 1): the count
+    # history, the window's speed and the load update through the register block, 0 compare-value mismatches
+    "short_win4": ("position_alg2", 0.040, None),
 }
 COSIM_IQ_HOLD = {"speed_hold": 0.1, "speed_alg2_hold": 0.1}     # IQ_HOLD written with the governor words, x i_max
+COSIM_WIN = {"short_win4": 2}     # KACC.win written with the governor words (the header's reset value: 0)
 
 
 def _word_name(a: int) -> str:
@@ -907,6 +912,14 @@ def config_plan(cs: CoSim, bus, drv, regcheck: bool = True) -> tuple[list, objec
             await w("IQ_HOLD", v)
             assert await drv.read("IQ_HOLD") == v == cs.regs.iq_hold      # the model's regs_for has it already
         plan.append([iq_hold])
+    if name in COSIM_WIN:
+        async def win():
+            m = COSIM_WIN[name]
+            v = await drv.read("KACC")
+            await w("KACC", (v & ~(7 << 29)) | (m << 29))
+            assert await drv.read("KACC") >> 29 == m
+            cs.axis.regs.win_shift = m                  # the model's register, from this period on
+        plan.append([win])
 
     async def regcheck_():
         # RW registers read back in the format of the register map (width mask, sign extension,

@@ -402,9 +402,11 @@ def test_committed_budget_one_axis():
     # issue 16's word-parallel sequencer mx_seq (latency <= 300 clocks from the last ADC bit, the
     # per-axis state in block RAM of the shared engine) to 59.9 % (3428 LUT), merged with main's DC-link
     # and routing registers 60.5 % (3460 LUT, budget 3495 = 61.1 %); after the four-axis area cuts of
-    # mx_seq and mpc_core 59.9 % (3424 LUT, budget 3458 = 60.5 %): cap 62 %.
+    # mx_seq and mpc_core 59.9 % (3424 LUT, budget 3458 = 60.5 %); the speed window (KACC.win: a 16-deep
+    # count history, 32 SRL LUTs, and the shifter's window counts, branch speedrtl) 62.0 % (3544 LUT,
+    # budget 3580 = 62.6 %): cap 63 %.
     # All are required; four axes come from the shared engine, not from replicas (docs/four_axes.md).
-    assert b["lut"] < 0.62 * cap["lut"], "one axis must stay under 62 % of the LUTs"
+    assert b["lut"] < 0.63 * cap["lut"], "one axis must stay under 63 % of the LUTs"
     assert b["dsp48a1"] <= cap["dsp48a1"] // 2 and b["ramb16"] <= cap["ramb16"] // 2
     assert set(b) <= set(synth.resource_counts({"cells": {}, "ports": {}})) | {"iob", "fmax_mhz"}
     # the timing proxy must meet the 100 MHz fabric clock

@@ -82,6 +82,7 @@ def test_microprogram_vs_model(task, n):
         regs.kacc = rng.choice([rng.randrange(-2**17, 2**17), -2**17, 2**17 - 1, 0])
         regs.kacc_shift = rng.randrange(32)
         regs.load_shift = rng.choice([0, 1, 6, 15, rng.randrange(16)])
+        regs.win_shift = rng.choice([0, 2, 3, rng.randrange(8)])
         regs.id_ref, regs.iq_ref = rng.randrange(-2**17, 2**17), rng.randrange(-2**17, 2**17)
         regs.run = rng.random() > 0.1
         theta = rng.getrandbits(16)
@@ -93,13 +94,14 @@ def test_microprogram_vs_model(task, n):
         else:
             ref_w = [rng.getrandbits(64) for _ in range(n + 1)]
         u0, e0, first = m.u, m.ebar, m.first
+        pos_m = m.pos_hist[(1 << min(regs.win_shift, 4)) - 1]
         out = m.period(theta, pos, cur, regs, ref_w)
         for j in range(n + 1):
             ram[MX.REF0 + 2 * j] = F.wrap(ref_w[j] & 0xFFFFFFFF, 32)
             ram[MX.REF0 + 2 * j + 1] = F.wrap(ref_w[j] >> 32, 32)
         ctx = MX.Ctx(pos=pos, theta=theta, i_d=out["i_d"], i_q=out["i_q"], kacc=regs.kacc,
                      kacc_shift=regs.kacc_shift, load_shift=regs.load_shift, id_ref=out["id_eff"],
-                     iq_ref=regs.iq_ref, u=u0, ebar=e0, first=first)
+                     iq_ref=regs.iq_ref, u=u0, ebar=e0, first=first, win_shift=regs.win_shift, pos_m=pos_m)
         r = MX.run_job("POS" if task == "position" else "SPD", n, ram, ctx)
         want = {a: F.wrap(v, 32) for a, v in core.input_words(out["x"], n).items()}
         got = {a: r["core"].get(a) for a in want}
@@ -197,7 +199,7 @@ async def random_periods(dut):
     Clock(dut.clk, 10, unit="ns", impl="gpi").start()   # C clock: no Python per edge (inputs change at falling edges)
     for nm in ("adc_trig", "period_start", "run", "adc_valid", "seg_we", "start", "sync", "sync_bit", "cfg_we",
                "cfg_swap", "swap_at", "force_pos", "seg_slot", "seg_field", "seg_wdata", "start_slot", "cfg_addr", "cfg_wdata", "theta", "pos",
-               "cur0", "cur1", "cur2", "kacc", "kacc_shift", "load_shift", "hold", "id_ref", "iq_ref"):
+               "cur0", "cur1", "cur2", "kacc", "kacc_shift", "load_shift", "win_shift", "hold", "id_ref", "iq_ref"):
         getattr(dut, nm).value = 0
     dut.ppc.value = 1
     dut.kdc.value = 1 << F.KDC_FRAC
@@ -231,6 +233,9 @@ async def random_periods(dut):
     ref.write_gov(hdr["GOV_VMAX_LO"] | hdr["GOV_VMAX_HI"] << 32, hdr["GOV_A_LO"] | hdr["GOV_A_HI"] << 32,
                   hdr["GOV_KSH"], bool(hdr["GOV_EN"]))
     regs = Regs(pwm_per_control=1, half_period=half, run=True)
+    wins = _wins()
+    regs.win_shift = wins[0] if wins else 0
+    dut._log.info("mx_seq KACC.win %s (MX_WIN)", wins or [0])
     sync_val = [0]
 
     async def sync_drv():
@@ -302,8 +307,23 @@ async def random_periods(dut):
     st = dict(periods=0, control=0, core_checked=0, words_checked=0, run0=0, spd_sat=0, dth_sat=0, dom_sat=0,
               ref_sat=0, front_sat=0, late_trigger=0, lat_checked=0, cmd_after_boundary=0, ppc_change=0, lat_max=0, lat_valid_max=0,
               swap_wait=0, swapped=0)
+    reset_at = int(os.environ.get("MX_RESET_AT", "-1"))
+    assert reset_at < 0 or (task == "speed" and (swap_k is None or reset_at < swap_k))
     for k in range(PERIODS):
         await FallingEdge(dut.clk)
+        if k == reset_at:
+            # a reset mid-run (MX_RESET_AT): the speed window's history keeps its counts (no reset on the
+            # SRLs), its sample count restarts, so the first M speeds after it are pos_k - 0 again, as in
+            # a fresh CtrlSeq; the core reboots the boot image, ref_gen clears itself
+            dut.rst.value = 1
+            await ClockCycles(dut.clk, 5, rising=False)
+            dut.rst.value = 0
+            await ClockCycles(dut.clk, 900, rising=False)
+            model = CtrlSeq(params=image.decode(image.read_hex(roms / "coef_boot.hex")), N=n)
+            ref = RefGen(n)
+            ref.write_gov(hdr["GOV_VMAX_LO"] | hdr["GOV_VMAX_HI"] << 32, hdr["GOV_A_LO"] | hdr["GOV_A_HI"] << 32,
+                          hdr["GOV_KSH"], bool(hdr["GOV_EN"]))
+            st["reset"] = st.get("reset", 0) + 1
         if k == swap_k:
             words = image.read_hex(other[task][1])
             await upload(words)
@@ -334,12 +354,13 @@ async def random_periods(dut):
             await (do_start(slot) if cmd == "start" else do_sync())
             while int(dut.ref_busy.value):
                 await FallingEdge(dut.clk)
-        hold, ppc = _draw_regs(rng, regs)
+        hold, ppc = _draw_regs(rng, regs, wins)
         st["ppc_change"] += ppc
         regs.run = law and rng.random() > 0.1
         dut.kacc.value = regs.kacc & 0x3FFFF
         dut.kacc_shift.value = regs.kacc_shift
         dut.load_shift.value = regs.load_shift
+        dut.win_shift.value = regs.win_shift
         dut.hold.value = int(hold)
         dut.kdc.value = regs.kdc
         dut.id_ref.value = regs.id_ref & 0x3FFFF
@@ -381,7 +402,9 @@ async def random_periods(dut):
         ref_w = list(ref.w) if control else None
         if control:
             dpos = F.wrap(pos - model.pos_prev, 32)
-            st["spd_sat"] += int(F.sat(dpos << F.W_FRAC, F.W_W) != dpos << F.W_FRAC)
+            mw = min(regs.win_shift, 4)
+            dpos_m = F.wrap(pos - model.pos_hist[(1 << mw) - 1], 32)
+            st["spd_sat"] += int(F.sat(dpos_m << (F.W_FRAC - mw), F.W_W) != dpos_m << (F.W_FRAC - mw))
             st["dth_sat"] += int(F.sat(dpos << F.TH_FRAC, sw) != dpos << F.TH_FRAC)
             for wv in ref_w:
                 x = F.rshift_round(F.wrap(wv - (pos << 32), 64), 32 - F.TH_FRAC) if cur_task == "position" \
@@ -423,7 +446,8 @@ async def random_periods(dut):
         # a lower bound otherwise
         kind = ("POS" if cur_task == "position" else "SPD") if control else "MOD"
         core_lat = core.latency(model.params.ncols) if regs.run else None
-        lat_exp = MX.latency(kind, n, regs.kacc_shift, regs.load_shift, MX.job_timing(T_VALID, core_lat))
+        lat_exp = MX.latency(kind, n, regs.kacc_shift, regs.load_shift, MX.job_timing(T_VALID, core_lat),
+                             regs.win_shift)
         if gap >= 1500 or not control:
             assert lat == lat_exp, f"period {k} ({kind}, run {regs.run}, kacc_shift {regs.kacc_shift}, load_shift " \
                 f"{regs.load_shift}): latency rtl {lat} model {lat_exp}"
@@ -483,6 +507,7 @@ async def random_periods(dut):
     assert mon["overrun"] == 1, f"a boundary during a running period: {mon['overrun']} overrun pulses, want 1"
     dut._log.info("mx_seq %s N=%d: seed %d, %s (compare values, core input words, core outputs, status words "
                   "and front_sat pulses bit-exact with the model)", task, n, seed, st)
+    assert reset_at < 0 or st.get("reset") == 1, st
     need = ["lat_checked", "dth_sat", "dom_sat", "spd_sat", "run0", "late_trigger", "cmd_after_boundary", "front_sat"]
     need += ["core_checked", "swapped"] if law else []
     need += ["ref_sat"] if task == "position" or law else []
@@ -490,12 +515,17 @@ async def random_periods(dut):
         assert st[key] > 0, f"no period exercised {key}: {st}"
 
 
-def _run(task: str, n: int = 4, periods: int | None = None):
+def _run(task: str, n: int = 4, periods: int | None = None, wins: str | None = None, reset_at: int | None = None):
     from runner import run
     env = {"MX_TASK": task, "MX_N": str(n)}
+    if reset_at is not None:
+        env["MX_RESET_AT"] = str(reset_at)
     if periods:
         env["EMPC_MX_PERIODS"] = str(periods)
-    run(toplevel="mx_seq_tb", test_module="test_mx_seq", sim="verilator", name=f"mx_seq_n{n}", run_name=task,
+    if wins:
+        env["MX_WIN"] = wins
+    run(toplevel="mx_seq_tb", test_module="test_mx_seq", sim="verilator", name=f"mx_seq_n{n}",
+        run_name=task + (f"_win{wins.replace(',', '_')}" if wins else ""),
         parameters={"N": n}, extra_env=env, testcase="random_periods",     # one Verilator build per N
         opt_fast="-O1")     # C++ -O1: the build is most of these tests (runner.py opt_fast; README, co-simulation speed)
 
@@ -517,10 +547,31 @@ def test_mx_seq_horizons(n):
     _run("speed" if n == 1 else "position", n, periods=150)
 
 
-def _draw_regs(rng, r) -> tuple[bool, bool]:
+def _wins() -> list[int] | None:
+    """MX_WIN: the KACC.win values of a run (the first from reset, then rarely another of the list);
+    unset: win 0 (M = 1) and the random streams of the runs without the window."""
+    w = os.environ.get("MX_WIN")
+    return [int(x) for x in w.split(",")] if w else None
+
+
+@pytest.mark.cost(40)          # the N = 4 build of test_mx_seq_speed + 200 periods
+@pytest.mark.parametrize("task,wins", [("speed", "2"), ("position", "3,0,4,7")])
+def test_mx_seq_window(task, wins):
+    """KACC.win (the speed window M = 2^m): M = 4 from reset; M = 8 from reset, then rarely M = 1, 16 and
+    the field's 7 (acts as 4): every core input word (spd over M periods, the first M after reset against
+    0), the load estimate's D (through omega), the compare values and the latency bit-exact / clock-exact
+    against CtrlSeq and rtlmodel.mx_seq.  The speed run resets the block at period 60 (the history keeps
+    the counts before it: the first M speeds after the reset must still see 0)."""
+    _run(task, 4, periods=200, wins=wins, reset_at=60 if task == "speed" else None)
+
+
+def _draw_regs(rng, r, wins=None) -> tuple[bool, bool]:
     """One period's random register changes (the same draw order in the one- and the several-axes test):
     KACC and its shift (with the -2^17 corner), the load shift, KDC, the current references, and rarely
-    CTRL.pwm_per_control. Returns (the reference hold flag of this period, pwm_per_control changed)."""
+    CTRL.pwm_per_control (and, with ``wins``, rarely KACC.win). Returns (the reference hold flag of this
+    period, pwm_per_control changed)."""
+    if wins and rng.random() < 0.03:
+        r.win_shift = rng.choice(wins)
     if rng.random() < 0.3:
         r.kacc = rng.choice([rng.randrange(-2**17, 2**17), -2**17])
         r.kacc_shift = rng.randrange(32)
@@ -568,7 +619,7 @@ async def random_axes(dut):
     hdr = header.read(roms / "empc_formats.vh")
     Clock(dut.clk, 10, unit="ns", impl="gpi").start()   # C clock: no Python per edge (inputs change at falling edges)
     for nm in ("go", "run", "hold", "theta", "pos", "cur0", "cur1", "cur2", "kacc", "kacc_shift", "load_shift",
-               "id_ref", "iq_ref", "seg_we", "seg_slot", "seg_field", "seg_wdata", "start", "start_slot", "sync",
+               "win_shift", "id_ref", "iq_ref", "seg_we", "seg_slot", "seg_field", "seg_wdata", "start", "start_slot", "sync",
                "sync_val", "cfg_we", "cfg_addr", "cfg_wdata", "cfg_swap", "swap_at"):
         getattr(dut, nm).value = 0
     dut.ppc.value = _vec([1] * na, 8)
@@ -614,11 +665,14 @@ async def random_axes(dut):
         r.write_gov(hdr["GOV_VMAX_LO"] | hdr["GOV_VMAX_HI"] << 32, hdr["GOV_A_LO"] | hdr["GOV_A_HI"] << 32,
                     hdr["GOV_KSH"], bool(hdr["GOV_EN"]))
         refs.append(r)
-    regs = [Regs(pwm_per_control=[1, 2, 3, 5][a], half_period=half, run=True) for a in range(na)]
+    wins = _wins()
+    regs = [Regs(pwm_per_control=[1, 2, 3, 5][a], half_period=half, run=True,
+                 win_shift=wins[a % len(wins)] if wins else 0) for a in range(na)]
     val = {nm: [0] * na for nm in ("ppc", "run", "hold", "theta", "pos", "cur0", "cur1", "cur2", "kdc", "kacc",
-                                   "kacc_shift", "load_shift", "id_ref", "iq_ref", "sync_val", "start_slot")}
+                                   "kacc_shift", "load_shift", "win_shift", "id_ref", "iq_ref", "sync_val",
+                                   "start_slot")}
     width = dict(ppc=8, run=1, hold=1, theta=16, pos=32, cur0=13, cur1=13, cur2=13, kdc=18, kacc=18, kacc_shift=5,
-                 load_shift=4, id_ref=18, iq_ref=18, sync_val=64, start_slot=4)
+                 load_shift=4, win_shift=3, id_ref=18, iq_ref=18, sync_val=64, start_slot=4)
     pos = [rngs[a].getrandbits(32) for a in range(na)]
 
     def put(*names):
@@ -679,18 +733,19 @@ async def random_axes(dut):
             await pulse("sync", a)
             refs[a].sync(val["sync_val"][a])
             cmd = "sync"
-        hold, _ = _draw_regs(rng, rg)
+        hold, _ = _draw_regs(rng, rg, wins)
         rg.run = rng.random() > 0.1
         if a == drop and k >= periods // 2:
             rg.run = False                       # the isolation run: this axis's law dropped mid-run
         theta = rng.getrandbits(16)
         cur = (_s13(rng), _s13(rng), _s13(rng))
         for nm, v in (("kacc", rg.kacc), ("kacc_shift", rg.kacc_shift), ("load_shift", rg.load_shift),
+                      ("win_shift", rg.win_shift),
                       ("hold", int(hold)), ("kdc", rg.kdc), ("id_ref", rg.id_ref), ("iq_ref", rg.iq_ref),
                       ("ppc", rg.pwm_per_control), ("run", int(rg.run)), ("theta", theta), ("pos", pos[a]),
                       ("cur0", cur[0]), ("cur1", cur[1]), ("cur2", cur[2])):
             val[nm][a] = v
-        put("kacc", "kacc_shift", "load_shift", "hold", "kdc", "id_ref", "iq_ref", "ppc", "run", "theta", "pos",
+        put("kacc", "kacc_shift", "load_shift", "win_shift", "hold", "kdc", "id_ref", "iq_ref", "ppc", "run", "theta", "pos",
             "cur0", "cur1", "cur2")
         control = m.boundary(rg)
         if control:
@@ -701,7 +756,7 @@ async def random_axes(dut):
         kind = ("POS" if task == "position" else "SPD") if control else "MOD"
         core_lat = core.latency(m.params.ncols) if rg.run else None
         return dict(out=out, control=control, kind=kind, run=rg.run, u1=m.u[1], cmd=cmd,
-                    job=MX.Job(a, 0, kind, n, AX_T_VALID, rg.kacc_shift, rg.load_shift, core_lat))
+                    job=MX.Job(a, 0, kind, n, AX_T_VALID, rg.kacc_shift, rg.load_shift, core_lat, rg.win_shift))
 
     P2 = 2 * half
 
@@ -774,12 +829,15 @@ async def random_axes(dut):
         Path(os.environ["MX_TRACE"]).write_text(json.dumps(trace))
 
 
-def _run_axes(na: int, stagger: int | None = None, drop: int = -1, tag: str = "base", periods: int | None = None) -> Path:
+def _run_axes(na: int, stagger: int | None = None, drop: int = -1, tag: str = "base", periods: int | None = None,
+              wins: str | None = None) -> Path:
     from runner import run
     st = hdr_stagger(na) if stagger is None else stagger
     trace = ROOT / "build" / f"mx_seq_axes{na}_{st}_{tag}.json"
     env = {"MX_NAXES": str(na), "MX_STAGGER": str(st), "MX_DROP": str(drop), "MX_TRACE": str(trace),
            "EMPC_MX_PERIODS": str(periods or int(os.environ.get("MX_AX_PERIODS", "120")))}
+    if wins:
+        env["MX_WIN"] = wins
     run(toplevel="mx_seq_axes_tb", test_module="test_mx_seq", sim="verilator", name=f"mx_seq_axes{na}",
         run_name=f"s{st}_{tag}", parameters={"NAXES": na, "STAGGER": st, "T_VALID": AX_T_VALID}, extra_env=env,
         testcase="random_axes")
@@ -805,6 +863,14 @@ def test_mx_seq_axes(na, periods):
     for a in range(na - 1):
         assert base[str(a)] == dropped[str(a)], f"axis {a}: trace changed when axis {na - 1}'s law was dropped"
     assert base[str(na - 1)] != dropped[str(na - 1)], "the dropped axis's trace did not change"
+
+
+@pytest.mark.cost(30)            # the NAXES = 4 build of test_mx_seq_axes + 48 periods per axis
+def test_mx_seq_axes_window():
+    """NAXES = 4, each axis its own KACC.win from reset (M = 4, 8, 1, 16; rarely another): each axis's
+    position history and window (the job axis's tap) bit-exact against its CtrlSeq, the latencies
+    against the schedule model."""
+    _run_axes(4, tag="win", periods=48, wins="2,3,0,4")
 
 
 @pytest.mark.cost(40)            # Verilator build (about 32 CPU s) + 120 periods per axis (5 CPU s)

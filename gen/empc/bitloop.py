@@ -178,7 +178,8 @@ def regs_for(cfg, task: str, **kw) -> Regs:
     gov = header.governor_raw(cfg, task)
     base = dict(pwm_per_control=cfg.pwm_per_control, kacc=kacc, kacc_shift=kacc_shift,
                 half_period=cfg.pwm_half_period, load_shift=cfg.speed_load_shift, fw_shift=fw["FW_SHIFT"],
-                fw_nmax=fw["FW_NMAX"], fw_thr=(fw["FW_R2_HI"], fw["FW_R2_LO"]), iq_hold=gov["IQ_HOLD"])
+                fw_nmax=fw["FW_NMAX"], fw_thr=(fw["FW_R2_HI"], fw["FW_R2_LO"]), iq_hold=gov["IQ_HOLD"],
+                win_shift=cfg.control.speed_window.bit_length() - 1)
     base.update(kw)
     return Regs(**base)
 

@@ -136,8 +136,8 @@ SCHEMA: list[Key] = [
         doc="accel_load: load-estimate gain 2^-shift per control period (KACC.load_shift, 4 bit; 0 there = off)"),
     Key("control", "speed_window", "int", 1, choices=(1, 2, 4, 8, 16),
         doc="speed estimate over M control periods: (theta_k - theta_{k-M}) / (M Ts), the acceleration "
-            "correction over (M/2) Ts (estimator.py; 1 = eq. 37 over one period). Model only: the RTL "
-            "implements 1 (empc roms refuses other values)"),
+            "correction over (M/2) Ts (estimator.py; 1 = eq. 37 over one period). RTL: KACC.win = log2 M "
+            "(reset from the header), needs speed_load_shift >= log2 M - 1 with accel_load"),
     Key("governor", "enable", "bool", True, doc="reference governor in rtl/ref_gen.v (the current limit)"),
     Key("governor", "accel_current", "float", 0.5, lo=0, lo_open=True, hi=1,
         doc="the governed reference's acceleration needs at most this x i_max at the box corner"),
@@ -513,7 +513,7 @@ class Control:
     weights: dict = field(default_factory=dict)   # {(alg, task): Weights}, SI units
     weight_units: str = "si"                      # how the configuration gave them
     speed_load_shift: int = 6                     # "accel_load": load estimate gain 2^-shift per period
-    speed_window: int = 1                         # speed estimate over M periods (estimator.py; RTL: 1 only)
+    speed_window: int = 1                         # speed estimate over M periods (estimator.py; RTL: KACC.win)
     governor: Governor = field(default_factory=Governor)
     field_weakening: FieldWeakening = field(default_factory=FieldWeakening)
     weight_tables: dict = field(default_factory=dict)   # {(alg, task): "weights.alg2.speed.Ts_50us"} where a
@@ -527,15 +527,22 @@ class Control:
             raise ConfigError(f"weights.alg{key[0]}.{key[1]} missing from the configuration") from None
 
 
-RTL_SPEED_WINDOWS = (1,)     # control.speed_window values the RTL implements (pos_sense / mx_seq: eq. 37, one period)
+RTL_SPEED_WINDOWS = (1, 2, 4, 8, 16)   # control.speed_window values the RTL implements (rtl/mx_seq.v: KACC.win,
+                                       # a 16-deep position history per axis)
 
 
 def require_rtl_speed_window(cfg) -> None:
-    """Refuse a configuration whose speed window the RTL does not implement (ROMs, the RTL's model)."""
+    """Refuse a configuration whose speed window the RTL does not implement (ROMs, the RTL's model):
+    M not in RTL_SPEED_WINDOWS, or a load estimate with speed_load_shift + 1 < log2 M (the sequencer's
+    load update shifts right by log2 M, then by speed_load_shift + 1 - log2 M: rtlmodel/ctrl_seq.py)."""
     M = cfg.control.speed_window
     if M not in RTL_SPEED_WINDOWS:
         raise ConfigError(f"control.speed_window = {M}: the RTL implements {', '.join(map(str, RTL_SPEED_WINDOWS))} "
                           f"only (the window is modelled in the float/fixed controllers and the design check)")
+    m = M.bit_length() - 1
+    if cfg.speed_load_shift and cfg.speed_load_shift + 1 < m:
+        raise ConfigError(f"control.speed_window = {M} needs control.speed_load_shift >= {m - 1} "
+                          f"(is {cfg.speed_load_shift}): the RTL's load update shifts by speed_load_shift + 1 - log2 M")
 
 
 @dataclass(frozen=True)

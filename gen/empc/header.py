@@ -104,6 +104,7 @@ def config_constants(cfg) -> dict[str, int]:
         "KACC": kacc,
         "KACC_SHIFT": kacc_shift,
         "KACC_LOAD_SHIFT": cfg.speed_load_shift,
+        "KACC_WIN": cfg.control.speed_window.bit_length() - 1,
         **field_weakening_raw(cfg),
         **governor_raw(cfg),
         "CLK_HZ": int(round(cfg.f_clk)),

@@ -74,7 +74,7 @@ PROD_SHIFT_MASK = (1 << F.PROD_SHIFT_BITS) - 1
 # CTRL.pwm_per_control) and the fingerprint itself.  Every Ts-dependent header constant is here
 # (gen/tests/test_header.py::test_format_id_ts_independent): KACC / KACC_SHIFT and the GOV_* words
 # are register reset values for the build's Ts, and PWM_PER_CONTROL is Ts / PWM period.
-FMT_EXCLUDE = ("BOOT_ALGORITHM", "BOOT_TASK_POSITION", "KACC", "KACC_SHIFT", "ADC_OFFSET", "IMG_FMT_ID",
+FMT_EXCLUDE = ("BOOT_ALGORITHM", "BOOT_TASK_POSITION", "KACC", "KACC_SHIFT", "KACC_WIN", "ADC_OFFSET", "IMG_FMT_ID",
                "PWM_STAGGER_2", "PWM_STAGGER_3", "PWM_STAGGER_4",      # the carrier stagger: not the image format
                "PWM_PER_CONTROL", "GOV_EN", "GOV_KSH", "GOV_VMAX_LO", "GOV_VMAX_HI", "GOV_A_LO", "GOV_A_HI")
 # units that depend on Ts (rad/s per count per Ts = rad per count / Ts: rad per count is in the

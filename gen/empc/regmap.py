@@ -458,7 +458,10 @@ AXIS = (
         Field("kacc", 0, 18, "signed gain", reset="EMPC_KACC"),
         Field("load_shift", 18, 4, "load-estimate gain 2^-load_shift per control period (0 = no load estimate: "
               "offset kacc i_load under a load)", reset="EMPC_KACC_LOAD_SHIFT"),
-        Field("shift", 24, 5, "right shift", reset="EMPC_KACC_SHIFT"))),
+        Field("shift", 24, 5, "right shift", reset="EMPC_KACC_SHIFT"),
+        Field("win", 29, 3, "speed window m: the speed over M = 2^m control periods, "
+              "(pos_k - pos_{k-M}) << (16 - m), the load update's difference x M (control.speed_window; "
+              "5..7 act as 4; needs load_shift + 1 >= m)", reset="EMPC_KACC_WIN"))),
     Reg("ID_REF", 0x11, "RW", 0, "d-current reference, ADC LSB Q.4 (signed 18 bit).", width=18, signed=True),
     Reg("IQ_REF", 0x12, "RW", 0, "q-current reference (feed-forward), ADC LSB Q.4 (signed 18 bit).", width=18,
         signed=True),

@@ -69,3 +69,27 @@ def test_bitloop_follows_float():
     assert r.cmp.min() >= 0 and r.cmp.max() <= cfg.pwm_half_period
     assert abs(mb["rms_error"] - mf["rms_error"]) <= 0.05 * mf["rms_error"], (mb["rms_error"], mf["rms_error"])
     assert abs(mb["peak_phase_current"] - mf["peak_phase_current"]) <= 0.15 * mf["peak_phase_current"]
+
+
+def test_bitloop_speed_window_at_50us():
+    """control.speed_window = 4 in the RTL's loop model (KACC.win = 2: CtrlSeq with the position history,
+    bit-exact with rtl/mx_seq.v in tb/test_mx_seq.py): the BLWR233D algorithm-2 position step at 50 us
+    (test_motors.test_closed_loop_at_50us_speed_window's design and bounds) tracks like the fixed-point
+    controller: RMS error within 10 % + 1 count, peak phase current <= 1.05 i_max, u_q tail RMS <= 0.25
+    u_max (M = 1: 0.37, the quantisation chatter the window removes)."""
+    from empc import corners
+    cfg = corners.load("blwr233d", **{"control.Ts": 50e-6, "inverter.f_pwm": corners.TS_PWM,
+                                      "control.speed_window": 4})
+    assert bitloop.regs_for(cfg, "position").win_shift == 2
+    sc, c, tr_x, _ = corners.simulate(cfg, "position_alg2", "nominal", "fixed", 0.06)
+    r = bitloop.simulate(c, sc)
+    res = cfg.rad_per_count
+    kw = dict(settle_floor=4 * res, preview=cfg.control.N * cfg.control.Ts)
+    mb, mx = cl.metrics(r.trace, sc, **kw), cl.metrics(tr_x, sc, **kw)
+    _, t0, t1, _, _ = sc.segments[0]
+    tail = (r.trace.t >= t0 + 0.7 * (t1 - t0)) & (r.trace.t < t1 - cfg.control.N * cfg.control.Ts)
+    uq_tail = float(np.std(r.trace.u_q[tail]) / cfg.u_max)
+    peak = float(np.max(r.trace.i_phase_peak) / cfg.control.i_max)
+    print("bitloop M = 4:", {"rms": mb["rms_error"], "rms_fixed": mx["rms_error"], "uq_tail": uq_tail, "peak": peak})
+    assert abs(mb["rms_error"] - mx["rms_error"]) <= 0.10 * mx["rms_error"] + res, (mb["rms_error"], mx["rms_error"])
+    assert peak <= 1.05 and uq_tail <= 0.25, (peak, uq_tail)

@@ -164,8 +164,8 @@ def test_raw_estimate_tracks_float():
 
 
 # ------------------------------------------------------------------------------------------------
-# control.speed_window = M > 1: the difference over M periods (model only; the RTL implements M = 1
-# and `empc roms` refuses other values: test_roms_refuse_speed_window).
+# control.speed_window = M > 1: the difference over M periods (the RTL: KACC.win in rtl/mx_seq.v; `empc roms`
+# refuses a load shift below log2 M - 1: test_roms_refuse_speed_window).
 WINDOWS = [2, 4, 8]
 
 
@@ -268,14 +268,18 @@ def test_speed_window_raw_tracks_float(M):
 
 
 def test_roms_refuse_speed_window(tmp_path):
-    """The RTL implements speed_window = 1 only: `empc roms` (and the RTL's loop model) refuse other
-    values with one line naming the key, and write nothing."""
+    """The RTL implements speed_window = 1..16 (KACC.win) with speed_load_shift + 1 >= log2 M:
+    `empc roms` (and the RTL's loop model) refuse M = 16 with a load shift of 2, with one line naming
+    the keys, and write nothing; M = 16 with the default shift 6 passes the check."""
     from empc import bitloop, cli, roms, scenarios
-    cfg = CFG.with_control(speed_window=4)
-    with pytest.raises(config.ConfigError, match=r"^control\.speed_window = 4: the RTL implements 1 only"):
+    assert config.RTL_SPEED_WINDOWS == (1, 2, 4, 8, 16)
+    config.require_rtl_speed_window(CFG.with_control(speed_estimate="accel_load", speed_window=16))
+    cfg = CFG.with_control(speed_estimate="accel_load", speed_window=16, speed_load_shift=2)
+    with pytest.raises(config.ConfigError, match=r"^control\.speed_window = 16 needs control\.speed_load_shift >= 3"):
         roms.generate(cfg, tmp_path / "r")
     assert not (tmp_path / "r").exists()
-    assert cli.main(["roms", "--set", "control.speed_window=4", "--out", str(tmp_path / "c")]) != 0
+    assert cli.main(["roms", "--set", "control.speed_estimate=accel_load", "--set", "control.speed_window=16",
+                     "--set", "control.speed_load_shift=2", "--out", str(tmp_path / "c")]) != 0
     assert not (tmp_path / "c").exists()
     sc, _ = scenarios.get("speed_steps", cfg)
     with pytest.raises(config.ConfigError, match="control.speed_window"):

@@ -336,9 +336,9 @@ KNOWN_50US = {
     ("blwr233d", "alg2.speed"): f"{_RES_BLWR}: u_q RMS 0.87 / 0.92 u_max in the step's tail (u_q bangs on the "
                                 "limit), overshoot 58 % (float), fixed not settled (final error 79 % of the step)",
     ("blwr233d", "alg1.position"): f"{_RES_BLWR}: u_q RMS 0.47 / 0.45 u_max in the step's tail (passes with "
-                                   "control.speed_window = 4, not in the RTL: test_closed_loop_at_50us_speed_window)",
+                                   "control.speed_window = 4, not in the bundled config: test_closed_loop_at_50us_speed_window)",
     ("blwr233d", "alg2.position"): f"{_RES_BLWR}: u_q RMS 0.37 / 0.37 u_max in the step's tail (overshoot 0 %, "
-                                   "settled in 45 ms; passes with control.speed_window = 4, not in the RTL)",
+                                   "settled in 45 ms; passes with control.speed_window = 4, not in the bundled config)",
     ("ec45flat_24v", "alg2.position"): "sensor resolution (123 rad/s per count): its Ts_50us table's linear "
                                        "quantisation noise is 0.60 u_max at the worst box point, the rotor creeps: "
                                        "final error 65-67 % of the 8 rad step after 50 ms, u_q RMS 0.51-0.55 u_max in "
@@ -432,14 +432,15 @@ def test_closed_loop_at_50us_box_corners(name, key, plant):
     _check_50us(name, key, plant)
 
 
-# control.speed_window (the speed estimate over M control periods, estimator.py; model only: the RTL implements
-# M = 1 and `empc roms` refuses other values).  At 50 us on the BLWR233D the window takes the quantisation chatter
+# control.speed_window (the speed estimate over M control periods, estimator.py; the RTL: KACC.win, rtl/mx_seq.v).
+# At 50 us on the BLWR233D the window takes the quantisation chatter
 # of the position designs under the step's bound (u_q tail RMS 0.47 / 0.37 u_max at M = 1 -> 0.19 / 0.15 at M = 4,
 # 0.16 / 0.12 at M = 8), and the algorithm-2 speed design passes at M = 8 with a table tuned for the window
 # (`empc tune --set control.Ts=5e-5 --set inverter.f_pwm=20000.0 --set control.speed_window=8 --algorithm 2
 # --task speed --refine --ts-table --u-chatter 0.2`: radius 0.99868, damping 0.331; the bundled Ts_50us table
 # misses the damping margin with the window's lag, 0.048, and this one fails at M = 1: final error 79 %, u_q
-# tail 0.92 u_max, so it stays out of configs/blwr233d.toml until the RTL implements M).  Algorithm 1 speed
+# tail 0.92 u_max, so it stays out of configs/blwr233d.toml until the configuration can carry M per control
+# period).  Algorithm 1 speed
 # overshoots 42 % at any M (not the resolution, see KNOWN_50US).  flow/speed_window.py writes the sweep
 # (build/reports/speed_window_50us.json).
 WINDOW_TABLES = {("blwr233d", 8, (2, "speed")): {

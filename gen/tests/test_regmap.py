@@ -62,7 +62,8 @@ def test_reset_words():
     assert ctrl.reset_build_mask() == 0xFF00 and ctrl.reset_int() == 0
     assert ctrl.reset_word({"PWM_PER_CONTROL": 5}) == 0x500
     kacc = regmap.axis_reg("KACC")
-    assert kacc.reset_word({"KACC": 0x3FFFF, "KACC_SHIFT": 31, "KACC_LOAD_SHIFT": 6}) == 0x1F1BFFFF
+    assert kacc.reset_word({"KACC": 0x3FFFF, "KACC_SHIFT": 31, "KACC_LOAD_SHIFT": 6, "KACC_WIN": 0}) == 0x1F1BFFFF
+    assert kacc.reset_word({"KACC": 0x3FFFF, "KACC_SHIFT": 31, "KACC_LOAD_SHIFT": 6, "KACC_WIN": 3}) == 0x7F1BFFFF
     # DC link: UDC resets to 0, below the reset UDC_MIN: a missing value trips (issue 14 item 2)
     udc, lo, hi = (regmap.axis_reg(n).reset_word({}) for n in ("UDC", "UDC_MIN", "UDC_MAX"))
     assert udc == 0 and 0 < lo < hi
@@ -74,7 +75,7 @@ def test_readback():
     idr = regmap.axis_reg("ID_REF")
     assert idr.readback(0x00020000) == 0xFFFE0000                                   # sign-extended
     assert idr.readback(0xFFF1FFFF) == 0x0001FFFF
-    assert regmap.axis_reg("KACC").readback(0xFFFFFFFF) == 0x1F3FFFFF               # fields only
+    assert regmap.axis_reg("KACC").readback(0xFFFFFFFF) == 0xFF3FFFFF               # fields only
     assert regmap.axis_reg("SEG_LEN").readback(0xDEADBEEF) == 0xDEADBEEF
     with pytest.raises(KeyError):
         regmap.axis_reg("NO_SUCH")

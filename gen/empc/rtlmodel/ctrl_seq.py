@@ -9,6 +9,9 @@ loop state exactly like the RTL.
 Front end of a control period (issue 15 items 1 and 6), raw units:
 
     spd   = sat32(dpos << 16)                                  eq. 37, counts/Ts Q16.16
+            (KACC.win = m > 0: sat32((pos_k - pos_{k-M}) << (16 - m)), M = 2^m, the counts of the
+            last 16 control samples kept, 0 before the first ones after reset; the load update
+            below then takes ((2 u1 >> m) - (spd - spd_prev)) >> (load_shift + 1 - m))
     ka    = rshift_round(kacc * i_q, kacc_shift)               (Ts/2) accel from i_q
     u1    = ka - D
     omega = sat32(spd + u1)
@@ -48,6 +51,7 @@ from .xform_steps.sincos import sincos
 ANGLE_MASK = (1 << F.ANGLE_BITS) - 1
 POS_MASK = (1 << F.POS_W) - 1
 MASK64 = (1 << 64) - 1
+HIST = 16                          # position history (rtl/mx_seq.v: per axis, SRL16): window M <= 16
 
 
 @dataclass
@@ -65,15 +69,15 @@ class Regs:
     fw_nmax: int = 0               # FW.nmax: steps of the d-current offset (0 = field weakening off)
     fw_thr: tuple = (0xFFFF, 0)    # FW_R2 (hi, lo): thresholds on the limiter's r >> 20
     iq_hold: int = 0               # IQ_HOLD: |i_q| hold threshold of the governor, ADC LSB (0 = off)
-    win_shift: int = 0             # log2 control.speed_window (model only: the RTL implements 0)
+    win_shift: int = 0             # KACC.win: log2 control.speed_window (0..4; 5..7 act as 4)
 
 
 def speed_estimate(dpos: int, i_q: int, regs: "Regs", state: dict) -> tuple[int, bool]:
     """omega (Q16.16) of one control period; ``state`` holds D and spd_prev (updated).
-    Returns (omega, saturated).  ``regs.win_shift`` = m > 0 (control.speed_window = 2^m, FixedMPC
-    only, not in the RTL): ``dpos`` is the count difference over 2^m periods, spd = dpos << (16 - m)
-    (exact), and the load update compares u1 with 2^m (spd - spd_prev) / 2 (estimator.py)."""
-    m = regs.win_shift
+    Returns (omega, saturated).  ``regs.win_shift`` = m > 0 (control.speed_window = 2^m):
+    ``dpos`` is the count difference over 2^m periods, spd = sat32(dpos << (16 - m)) (exact),
+    and the load update compares u1 with 2^m (spd - spd_prev) / 2 (estimator.py)."""
+    m = win_eff(regs.win_shift)
     if m:
         return _speed_estimate_window(dpos, i_q, regs, state, m)
     spd = dpos << F.W_FRAC
@@ -92,6 +96,14 @@ def speed_estimate(dpos: int, i_q: int, regs: "Regs", state: dict) -> tuple[int,
     return omega, sat
 
 
+WIN_MAX = 4                        # KACC.win: the RTL's position history is 16 deep (M <= 16)
+
+
+def win_eff(m: int) -> int:
+    """The window shift the RTL uses for the 3-bit KACC.win field (5..7 act as 4)."""
+    return min(m, WIN_MAX)
+
+
 def _speed_estimate_window(dpos: int, i_q: int, regs: "Regs", state: dict, m: int) -> tuple[int, bool]:
     spd = dpos << (F.W_FRAC - m)
     spd_s = F.sat(spd, F.W_W)
@@ -101,8 +113,12 @@ def _speed_estimate_window(dpos: int, i_q: int, regs: "Regs", state: dict, m: in
     omega = F.sat(om, F.W_W)
     sat = spd_s != spd or omega != om
     if regs.load_shift:
-        t2 = 2 * u1 - ((spd_s - state["spd_prev"]) << m)
-        state["D"] = state["D"] + (t2 >> (regs.load_shift + 1))
+        # D += (2 u1 - ((spd - spd_prev) << m)) >> (load_shift + 1), computed as the RTL's serial shifter
+        # does it (right shifts only): ((2 u1 >> m) - (spd - spd_prev)) >> (load_shift + 1 - m); equal
+        # (floor(floor(a / 2^m) / 2^j) = floor(a / 2^(m+j))) while load_shift + 1 >= m (the configuration
+        # refuses less); below that the second shift is 0 (rtl/mx_seq.v clamps the count)
+        t2 = (2 * u1 >> m) - (spd_s - state["spd_prev"])
+        state["D"] = state["D"] + (t2 >> max(regs.load_shift + 1 - m, 0))
     else:
         state["D"] = 0
     state["spd_prev"] = spd_s
@@ -134,6 +150,7 @@ class CtrlSeq:
     first: bool = True
     theta_trig: int = 0
     pos_prev: int = 0
+    pos_hist: list = field(default_factory=lambda: [0] * HIST)   # counts of the last 16 control samples
     id_prev: int = 0
     iq_prev: int = 0
     omega_prev: int = 0
@@ -196,7 +213,11 @@ class CtrlSeq:
         s, c = sincos(theta)
         i_d, i_q, sat1 = park(ia, ib, s, c)
         dpos = F.wrap(pos - self.pos_prev, F.POS_W)
-        omega, esat = speed_estimate(dpos, i_q, regs, self.est)
+        # the speed window: pos_k - pos_{k-M}, from the history of the control samples' counts (0 before
+        # the first M samples after reset, as pos_prev: the first M speeds see pos_k - 0)
+        dpos_m = F.wrap(pos - self.pos_hist[(1 << win_eff(regs.win_shift)) - 1], F.POS_W)
+        self.pos_hist = [pos] + self.pos_hist[:-1]
+        omega, esat = speed_estimate(dpos_m, i_q, regs, self.est)
         out["front_sat"] |= bool(sat0 or sat1 or esat)
         if regs.run:
             self.fw_n = fw_update(self.fw_n, *self.fw_flags, regs)

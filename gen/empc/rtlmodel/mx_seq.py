@@ -35,7 +35,7 @@ from . import mpc_core as core
 # ---- microword ----------------------------------------------------------------------------
 CTL = {"OP": 0, "WTH": 1, "WREF": 2, "WFRONT": 3, "WSH": 4, "START": 5, "WCORE": 6, "END": 7}
 ASEL = {"NONE": 0, "POS": 1, "TH": 2, "ID": 3, "IQ": 4, "IDR": 5, "IQR": 6, "U0": 7, "U1": 8, "E0": 9,
-        "E1": 10, "E2": 11, "SH": 13, "OMR": 14, "P": 15}      # 12: was PR (SHKA loads the product itself)
+        "E1": 10, "E2": 11, "PH": 12, "SH": 13, "OMR": 14, "P": 15}   # PH: pos_{k-M} (the position history's tap)
 ASH = {0: 0, 1: 1, 8: 2, 16: 3}
 BM = {"ZERO": 0, "Q": 1, "HI16": 2, "HI24": 3}
 WM = {"SAT32": 0, "WRAP32": 1, "WRAP36": 2, "FULL": 3}
@@ -125,6 +125,7 @@ class Op:
 
 
 NOP = Op(note="(pipeline gap)")
+SH_WIN = 1        # da of a shifter load (dk SHT2): 1 = m steps (KACC.win), 0 = load_shift + 1 - m steps (>= 0)
 SH_W = 40         # serial shifter: |kacc i_q| < 2^35; |t2| = |2 (ka - D) + ndsp| < 2^37 (D wraps at 36 bits)
 HAZARD = 3        # a RAM word / special register is read >= 3 issues after its write
 STAT_GAP = 2      # after a status-word write, the next STAT or CORE write >= 2 issues later: axis_status defers
@@ -143,13 +144,22 @@ def _theta_ops() -> list[Op]:
 def _trigger_ops(n: int, task_pos: bool) -> list[Op]:
     """From the trigger: every core input word that does not depend on the currents."""
     ops = [Op(a="POS", nb=True, bm="Q", rb="POS_PREV", pe=True, note="P = dpos = pos - pos_prev"),
-           Op(a="P", aw=True, ash=16, wm="SAT32", fs=True, dk="RAM", da="SPD", note="spd = sat32(dpos << 16)"),
            Op(a="P", aw=True, ash=8, wm="SAT32", fs=True, dk="CORE", da=core.IN_DX + 3,
               note="dx3 = sat32(dpos << 8)"),
            Op(a="POS", dk="RAM", da="POS_PREV", note="pos_prev = pos"),
            Op(dk="CORE", da=core.IN_DX + 4, note="dx4 = 0")]
-    ops += [Op(a=f"E{o}", dk="CORE", da=core.IN_EBAR + o, note=f"ebar_prev[{o}]") for o in range(3)]
-    ops += [Op(a=f"U{o}", dk="CORE", da=core.IN_UPREV + o, note=f"u_prev[{o}]") for o in range(2)]
+    # the speed over the window M = 2^m (KACC.win): spd = sat32((pos - pos_{k-M}) << (16 - m)) as
+    # sat32(((dpos_M << 8) >>> m) << 8) (exact: m <= 4 < 8), the shift by m on the serial shifter;
+    # the ebar / u_prev words fill the hazard gaps
+    e = [Op(a=f"E{o}", dk="CORE", da=core.IN_EBAR + o, note=f"ebar_prev[{o}]") for o in range(3)]
+    u = [Op(a=f"U{o}", dk="CORE", da=core.IN_UPREV + o, note=f"u_prev[{o}]") for o in range(2)]
+    ops += [e[0],
+            Op(a="PH", na=True, bm="Q", rb="POS_PREV", pe=True, note="P = dpos_M = pos - pos_{k-M}"),
+            Op(a="P", aw=True, ash=8, wm="FULL", dk="SHT2", da=SH_WIN, note="shifter = dpos_M << 8, m steps"),
+            e[1], e[2],
+            Op("WSH", "SH", pe=True, note="P = (dpos_M << 8) >>> m"),
+            Op(a="P", ash=8, wm="SAT32", fs=True, dk="RAM", da="SPD", note="spd = sat32(P << 8)"),
+            u[0], u[1]]
     ops += [Op(bm="Q", rb="SPD", pe=True, note="P = spd"),
             Op(a="P", na=True, bm="Q", rb="SPD_PREV", wm="WRAP36", dk="RAM", da="NDSP",
                note="ndsp = spd_prev - spd"),
@@ -187,7 +197,7 @@ def _dependent_ops(task_pos: bool) -> list[Op]:
             Op("WSH", "SH", cr=True, pe=True, note="P = ka = rshift_round(kacc i_q, s)"),
             Op(a="P", nb=True, bm="Q", rb="D", pe=True, note="P = u1 = ka - D"),
             Op(a="P", bm="Q", rb="SPD", wm="SAT32", fs=True, dk="OMR", note="omega = sat32(spd + u1)"),
-            Op(a="P", ash=1, bm="Q", rb="NDSP", wm="FULL", dk="SHT2", note="shifter = t2 = 2 u1 - (spd - spd_prev)"),
+            Op(a="P", ash=1, wm="FULL", dk="SHT2", da=SH_WIN, note="shifter = 2 u1, m steps"),
             Op(a="OMR", dk="CORE", da=core.IN_OMEGA, note="omega"),
             Op(a="NONE" if task_pos else "OMR", dk="CORE", da=core.IN_Y + 2,
                note="y2 = 0 (position task)" if task_pos else "y2 = omega"),
@@ -204,6 +214,8 @@ def _post_ops() -> list[Op]:
             Op(a="OMR", dk="STAT", da=_a("SPEED"), note="SPEED"),
             Op(a="ID", dk="STAT", da=_a("I_D"), note="I_D"),
             Op(a="IQ", dk="STAT", da=_a("I_Q"), note="I_Q"),
+            Op("WSH", "SH", bm="Q", rb="NDSP", wm="FULL", dk="SHT2",
+               note="shifter = t2 = (2 u1 >>> m) - (spd - spd_prev), load_shift + 1 - m steps (>= 0)"),
             Op("WSH", "SH", bm="Q", rb="D", wm="WRAP36", dk="RAM", da="D", cond="LS",
                note="D += t2 >>> (load_shift + 1)"),
             Op(wm="WRAP36", dk="RAM", da="D", cond="NOLS", note="D = 0 (no load estimate)")]
@@ -331,6 +343,8 @@ class Ctx:
     kacc: int = 0
     kacc_shift: int = 0
     load_shift: int = 0
+    win_shift: int = 0         # KACC.win (the speed window M = 2^m; 5..7 act as 4)
+    pos_m: int = 0             # pos_{k-M}: the history's tap (0 before M control samples after reset)
     id_ref: int = 0            # the d-current reference after field weakening (mpc_axis)
     iq_ref: int = 0
     u: tuple = (0, 0)          # held u (u_st), 0 while the law is off
@@ -355,20 +369,20 @@ def job_timing(t_valid: int, core_lat: int | None, theta_lat: int = THETA_LAT, d
     return {"th": 1 + theta_lat - delay, "front": req + 1 + xform.latency("front") + 1 - delay, "core_lat": core_lat}
 
 
-def latency(kind: str, n: int, kacc_shift: int, load_shift: int, timing: dict) -> int:
+def latency(kind: str, n: int, kacc_shift: int, load_shift: int, timing: dict, win_shift: int = 0) -> int:
     """The RTL's ``latency`` (trigger -> cmp_load, in clocks, its counter's convention) of a job whose
     references are ready (read before the control program's WREF step): the program executed clock by
     clock with the waits of ``timing`` (:func:`job_timing`), then the modulation: the WCORE op's W
     stage requests it (issue + 2), xform starts the clock after and is done ``xform.latency("mod")``
     later, cmp_load the clock after.  The latency register counts cmp_load's cycle - trigger's - 1.
     A pure function of its arguments, cached (:func:`schedule_axes` asks it for every job of a run)."""
-    return _latency(kind, n, kacc_shift, load_shift, tuple(sorted(timing.items())))
+    return _latency(kind, n, kacc_shift, load_shift, tuple(sorted(timing.items())), win_shift)
 
 
 @functools.lru_cache(maxsize=4096)
-def _latency(kind: str, n: int, kacc_shift: int, load_shift: int, timing_items: tuple) -> int:
+def _latency(kind: str, n: int, kacc_shift: int, load_shift: int, timing_items: tuple, win_shift: int = 0) -> int:
     from . import xform
-    ctx = Ctx(pos=0, theta=0, kacc_shift=kacc_shift, load_shift=load_shift)
+    ctx = Ctx(pos=0, theta=0, kacc_shift=kacc_shift, load_shift=load_shift, win_shift=win_shift)
     r = run_job(kind, n, {}, ctx, dict(timing_items))
     return r["wcore"] + 3 + xform.latency("mod")
 
@@ -384,6 +398,7 @@ class Job:
     kacc_shift: int = 0
     load_shift: int = 0
     core_lat: int | None = None  # mpc_core.latency(ncols), None with the law off
+    win_shift: int = 0          # KACC.win
 
 
 def schedule_axes(jobs: list[Job], theta_lat: int = THETA_LAT) -> list[dict]:
@@ -402,7 +417,7 @@ def schedule_axes(jobs: list[Job], theta_lat: int = THETA_LAT) -> list[dict]:
         start = j.t_trig if free is None else max(j.t_trig, free)
         d = start - j.t_trig
         lat = d + latency(j.kind, j.n, j.kacc_shift, j.load_shift,
-                          job_timing(j.t_valid, j.core_lat, theta_lat, delay=d))
+                          job_timing(j.t_valid, j.core_lat, theta_lat, delay=d), j.win_shift)
         t_load = j.t_trig + 1 + lat
         free = t_load           # busy_period falls with cmp_load: a waiting job starts in that cycle
         out.append({"job": j, "start": start, "delay": d, "latency": lat, "t_load": t_load})
@@ -419,7 +434,7 @@ def run_job(kind: str, n: int, ram: dict, ctx: Ctx, timing: dict | None = None) 
     tm = timing or {"th": 0, "front": 0, "core_lat": None}
     t_core = 0 if (kind == "MOD" or timing is None) else None     # core_fin from this clock on
     prog = program(kind, n)
-    src = {"NONE": 0, "POS": ctx.pos & 0xFFFFFFFF, "TH": ctx.theta, "ID": ctx.i_d, "IQ": ctx.i_q,
+    src = {"NONE": 0, "POS": ctx.pos & 0xFFFFFFFF, "PH": ctx.pos_m & 0xFFFFFFFF, "TH": ctx.theta, "ID": ctx.i_d, "IQ": ctx.i_q,
            "IDR": ctx.id_ref, "IQR": ctx.iq_ref, "U0": ctx.u[0], "U1": ctx.u[1], "E0": ctx.ebar[0], "E1": ctx.ebar[1],
            "E2": ctx.ebar[2]}
     out = {"core": {}, "stat": {}, "thm": None, "fs": False, "omr": None, "wcore": None}
@@ -506,7 +521,9 @@ def run_job(kind: str, n: int, ram: dict, ctx: Ctx, timing: dict | None = None) 
                     elif op.dk in ("SHKA", "SHT2"):   # SHKA: the product kacc * i_q, not R
                         regs["SH"] = F.wrap(ctx.kacc * ctx.i_q if op.dk == "SHKA" else wv, SH_W)
                         regs["r"] = 0
-                        regs["sh_left"] = ctx.kacc_shift if op.dk == "SHKA" else ctx.load_shift + 1
+                        mw = min(ctx.win_shift, 4)
+                        regs["sh_left"] = (ctx.kacc_shift if op.dk == "SHKA" else mw if op.dan == SH_WIN
+                                           else max(ctx.load_shift + 1 - mw, 0))
                         regs["sh_load"] = True
                 pending.append((clock, land))
         pipe = [p for p in pipe if p[0] > clock - 2]
