@@ -72,30 +72,6 @@ class Regs:
     win_shift: int = 0             # KACC.win: log2 control.speed_window (0..4; 5..7 act as 4)
 
 
-def speed_estimate(dpos: int, i_q: int, regs: "Regs", state: dict) -> tuple[int, bool]:
-    """omega (Q16.16) of one control period; ``state`` holds D and spd_prev (updated).
-    Returns (omega, saturated).  ``regs.win_shift`` = m > 0 (control.speed_window = 2^m):
-    ``dpos`` is the count difference over 2^m periods, spd = sat32(dpos << (16 - m)) (exact),
-    and the load update compares u1 with 2^m (spd - spd_prev) / 2 (estimator.py)."""
-    m = win_eff(regs.win_shift)
-    if m:
-        return _speed_estimate_window(dpos, i_q, regs, state, m)
-    spd = dpos << F.W_FRAC
-    spd_s = F.sat(spd, F.W_W)
-    ka = F.rshift_round(regs.kacc * i_q, regs.kacc_shift) if regs.kacc_shift else regs.kacc * i_q
-    u1 = ka - state["D"]
-    om = spd_s + u1
-    omega = F.sat(om, F.W_W)
-    sat = spd_s != spd or omega != om
-    if regs.load_shift:
-        t2 = 2 * u1 - (spd_s - state["spd_prev"])
-        state["D"] = state["D"] + (t2 >> (regs.load_shift + 1))
-    else:
-        state["D"] = 0
-    state["spd_prev"] = spd_s
-    return omega, sat
-
-
 WIN_MAX = 4                        # KACC.win: the RTL's position history is 16 deep (M <= 16)
 
 
@@ -104,7 +80,12 @@ def win_eff(m: int) -> int:
     return min(m, WIN_MAX)
 
 
-def _speed_estimate_window(dpos: int, i_q: int, regs: "Regs", state: dict, m: int) -> tuple[int, bool]:
+def speed_estimate(dpos: int, i_q: int, regs: "Regs", state: dict) -> tuple[int, bool]:
+    """omega (Q16.16) of one control period; ``state`` holds D and spd_prev (updated).
+    Returns (omega, saturated).  ``regs.win_shift`` = m (control.speed_window = 2^m; 0: eq. 37 over one
+    period): ``dpos`` is the count difference over 2^m periods, spd = sat32(dpos << (16 - m)) (exact),
+    and the load update compares u1 with 2^m (spd - spd_prev) / 2 (estimator.py)."""
+    m = win_eff(regs.win_shift)
     spd = dpos << (F.W_FRAC - m)
     spd_s = F.sat(spd, F.W_W)
     ka = F.rshift_round(regs.kacc * i_q, regs.kacc_shift) if regs.kacc_shift else regs.kacc * i_q
