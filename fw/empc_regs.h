@@ -45,6 +45,7 @@
 #define EMPC_ROUTE_AXES          4u           /* axes the routing registers can name */
 #define EMPC_ROUTE_PHASES        3u           /* OUT_SEL code of axis a, phase p: 1 + EMPC_ROUTE_PHASES * a + p (0 = output off) */
 #define EMPC_ROUTE_OUTPUTS       16u          /* half-bridge outputs (OUT_SEL0/1 fields) */
+#define EMPC_WIN_LOG2_MAX        4u           /* largest KACC.win the sequencer implements (speed window 2^win; larger values act as this) */
 #define EMPC_ACC_RO              0u           /* access: read-only */
 #define EMPC_ACC_RW              1u           /* access: read/write */
 #define EMPC_ACC_WO              2u           /* access: write pulses (reads 0) */

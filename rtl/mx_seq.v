@@ -52,9 +52,10 @@
 // period_start and registers.  core_in_*, st_* and the ref_* read addresses are registered.
 // Latency: trigger -> cmp_load on `latency`; from the ADC's valid: 1 (front request) + 23 (front)
 // + the dependent program (21 + kacc_shift clocks) + 1 + the core (38 + columns) + 1 + 85 (mod).
-// Speed window (KACC.win = m, control.speed_window M = 2^m, 5..7 act as 4): per axis the counts of the
-// last 16 control samples in a shift register with a dynamic tap (32 SRL LUTs per axis, no reset; a
-// 5-bit count of the samples shifted in since rst gates the tap to 0 until it holds M of them, as the
+// Speed window (KACC.win = m, control.speed_window M = 2^m; m > WL = `EMPC_WIN_LOG2_MAX acts as WL): per
+// axis the counts of the last WD = `EMPC_WIN_DEPTH = 2^WL control samples in a shift register with a dynamic
+// tap (WD = 16: 32 SRL LUTs per axis, no reset; a (WL+1)-bit count of the samples shifted in since rst
+// gates the tap to 0 until it holds M of them, as the
 // state RAM's pos_prev = 0 after its clear: the first M speeds after reset see pos_k - 0); the A
 // source PH = pos_{k-M}; spd = sat32((pos - pos_{k-M}) << (16 - m)) as sat32(((dpos_M << 8) >>> m) << 8)
 // and the load update (2 u1 >>> m) - (spd - spd_prev) >>> (load_shift + 1 - m) (>= 0) on the serial
@@ -95,7 +96,7 @@ module mx_seq #(
     input  wire [17:0]                    kacc,            // signed 18 bit
     input  wire [4:0]                     kacc_shift,
     input  wire [3:0]                     load_shift,
-    input  wire [2:0]                     win_shift,       // KACC.win: speed window M = 2^m (5..7 act as 4)
+    input  wire [`EMPC_A_KACC_WIN_W-1:0]  win_shift,       // KACC.win: speed window M = 2^m (m > WL acts as WL)
     input  wire [`EMPC_I_W-1:0]           id_ref,          // signed
     input  wire [`EMPC_I_W-1:0]           iq_ref,
     input  wire [NAXES-1:0]               task_pos,
@@ -144,10 +145,15 @@ module mx_seq #(
     localparam integer PFB = $clog2(NREF);
     localparam integer CLB = $clog2(32 * NAXES) + 1;   // the clear sweep's counter (NAXES = 1: 6)
     localparam integer CLR_LAST = 32 * NAXES - 1;
+    localparam integer WL = `EMPC_WIN_LOG2_MAX;    // largest speed window m (formats.WIN_LOG2_MAX)
+    localparam integer WD = `EMPC_WIN_DEPTH;       // count history per axis, 2^WL
+    localparam integer WFW = `EMPC_A_KACC_WIN_W;   // the KACC.win field
+    localparam [WFW-1:0] WLF = WL[WFW-1:0];         // WL in the field's width (the clamp)
 `include "mx_seq_ucode.vh"
 
     generate if (SW != 32 || UW != 24 || IW != 18 || `EMPC_W_W != 32 || PW != 32 || AB != 16 || N > 8 || N < 1 ||
-                 THETA_LAT < 1 || THETA_LAT > 8 || NAXES < 1 || NAXES > 4 || !UC_MAP_OK)
+                 THETA_LAT < 1 || THETA_LAT > 8 || NAXES < 1 || NAXES > 4 || !UC_MAP_OK ||
+                 WL < 1 || WL > 7 || WD != (1 << WL) || WL >= (1 << WFW))
     begin : g_bad_params
         mx_seq_unsupported_parameters u_error ();   // no such module: elaboration stops here
     end endgenerate
@@ -172,9 +178,9 @@ module mx_seq #(
     wire [15:0]         lat_now;    // the job axis's clocks since its trigger, + 1 (at cmp_load: latency)
     reg  [PW*NAXES-1:0] pos_trig;
     wire [PW*NAXES-1:0] pos_hq;     // per axis: pos_{k-M} of the job's window (0 before M samples)
-    wire [2:0]          j_win = win_shift[2] ? 3'd4 : win_shift;   // the job axis's window m, 0..4
-    wire [4:0]          j_wm  = 5'd1 << j_win;                      // M = 2^m, 1..16
-    wire [3:0]          j_tap = j_wm[3:0] - 4'd1;                   // M - 1 (M = 16: 15)
+    wire [WFW-1:0]      j_win = (win_shift > WLF) ? WLF : win_shift;  // the job axis's m, 0..WL
+    wire [WL:0]         j_wm  = {{WL{1'b0}}, 1'b1} << j_win;       // M = 2^m, 1..WD
+    wire [WL-1:0]       j_tap = j_wm[WL-1:0] - {{(WL-1){1'b0}}, 1'b1};  // M - 1 (M = WD: WD - 1)
     reg  [AB*NAXES-1:0] th_trig;
     wire [NAXES-1:0]    busy_ax;    // a job of the axis waits or runs
     wire [NAXES-1:0]    trig;       // a trigger taken
@@ -190,25 +196,25 @@ module mx_seq #(
         always @(posedge clk) ctl_now[ga] <= !rst && (per_nx[8*ga +: 8] >= pwm_per_control[8*ga +: 8]);
         assign ctl_boundary[ga] = period_start[ga] && ctl_now[ga];
         assign per_cnt[8*ga +: 8] = per_nx[8*ga +: 8] - 8'd1;
-        // the counts of the last 16 control samples (before this one): a shift register with a
-        // dynamic tap (SRL16 per bit: 32 LUTs per axis, no reset: nh counts the samples shifted in
-        // since rst, saturating at 16, and the tap reads 0 until it holds M of them, as the state
+        // the counts of the last WD control samples (before this one): a shift register with a
+        // dynamic tap (WD = 16: SRL16 per bit, 32 LUTs per axis, no reset: nh counts the samples shifted
+        // in since rst, saturating at WD, and the tap reads 0 until it holds M of them, as the state
         // RAM's pos_prev after its clear).  Tap M - 1 = pos_{k-M}; the job's window m is the job
         // axis's KACC.win (win_shift), read only while the job runs (pos_trig / the history stay).
-        // One 16-bit shift register per count bit, tap bit j_tap (yosys xilinx_srl -variable: SRLC16E).
-        reg  [4:0]    nh;
+        // One WD-bit shift register per count bit, tap bit j_tap (yosys xilinx_srl -variable: SRLC16E).
+        reg  [WL:0]   nh;
         wire          ph_sh = trig[ga] && ctl_next[ga];
         wire [PW-1:0] ph_q;
         genvar gb;
         for (gb = 0; gb < PW; gb = gb + 1) begin : g_ph
-            reg [15:0] sr;
+            reg [WD-1:0] sr;
             always @(posedge clk)
-                if (ph_sh) sr <= {sr[14:0], pos_trig[PW*ga + gb]};
+                if (ph_sh) sr <= {sr[WD-2:0], pos_trig[PW*ga + gb]};
             assign ph_q[gb] = sr[j_tap];
         end
         always @(posedge clk)
-            if (rst) nh <= 5'd0;
-            else if (ph_sh && !nh[4]) nh <= nh + 5'd1;
+            if (rst) nh <= {(WL+1){1'b0}};
+            else if (ph_sh && !nh[WL]) nh <= nh + {{WL{1'b0}}, 1'b1};
         assign pos_hq[PW*ga +: PW] = (nh >= j_wm) ? ph_q : {PW{1'b0}};
         always @(posedge clk) begin
             pos_sample[ga] <= 1'b0;

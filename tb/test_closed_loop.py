@@ -45,6 +45,7 @@ from empc import bitloop, config, driver, governor, header, image, pmsm, regmap,
 from empc import formats as F
 from empc.bitloop import AxisModel
 from empc.rtlmodel.adc_spi import AdcSpiParams, window_cur
+from empc.rtlmodel.ctrl_seq import win_eff
 from empc.rtlmodel import mpc_core as core_model
 from empc.rtlmodel.hall_decoder import DEFAULT_SEQUENCE
 from empc.rtlmodel.ref_gen import GOV_FIELD, RefGen, gov_words, segments_from_points
@@ -102,9 +103,17 @@ COSIM = {
     # bridges come on (COSIM_WIN; the model's register mirrored at the write, the float loop M = 1): the count
     # history, the window's speed and the load update through the register block, 0 compare-value mismatches
     "short_win4": ("position_alg2", 0.040, None),
+    # the speed window across a fault (issues 15/16 review): overcurrent with KACC.win = 2 (M = 4) and the one clear
+    # 25 PWM periods (5 control samples) after the removal (COSIM_FAULT_SETTLE): the count history keeps shifting
+    # while the bridges are off (the sequencer takes every control sample, only the law is off), so after the clear
+    # the window's speed is the coasting rotor's over M samples of the fault, not stale counts from before the
+    # trip nor a restarted (zero) history (check_run: the model's pos_{k-M} at the restart; RTL vs model
+    # bit-exact through it, every core input word once the law is back on)
+    "overcurrent_win4": ("fault_step", 0.0080, "overcurrent"),
 }
 COSIM_IQ_HOLD = {"speed_hold": 0.1, "speed_alg2_hold": 0.1}     # IQ_HOLD written with the governor words, x i_max
-COSIM_WIN = {"short_win4": 2}     # KACC.win written with the governor words (the header's reset value: 0)
+COSIM_WIN = {"short_win4": 2, "overcurrent_win4": 2}   # KACC.win written with the governor words (reset value: 0)
+COSIM_FAULT_SETTLE = {"overcurrent_win4": 25}          # PWM periods from the fault's removal to the clear (FAULTS)
 
 
 def _word_name(a: int) -> str:
@@ -230,6 +239,7 @@ class CoSim:
         self.py_cpu = 0.0          # CPU seconds in the per-period Python (plant, pins, axis model, check)
         self.lockstep = hasattr(dut, "dbg_ls_errors")   # COSIM_LOCKSTEP build: gated vs ungated MPC core
         self.kill = {}             # kill-path measurements (pstage / clock scenarios)
+        self.ctl_log = []          # control periods: (period, law on at the trigger, count, the model's pos_{k-M})
         # ADC: back-to-back frames, the controller takes the window mean (rtl defaults)
         self.adcp = AdcSpiParams(half_period=self.P)
         self.ripple = AdcRipple(self.P)
@@ -340,6 +350,9 @@ class CoSim:
         control = self.axis.control_next                 # decided at the period's start (boundary; a
                                                           # requested coefficient swap is taken there too)
         cur, count = self.sampled
+        if control:
+            hist = self.seq.pos_hist[(1 << win_eff(self.regs.win_shift)) - 1]     # pos_{k-M} of this sample
+            self.ctl_log.append((self.period, self.regs.run, count, hist))
         out = self.axis.period(count, cur=cur)
         if lost:
             self.missed += 1
@@ -1003,7 +1016,7 @@ async def period_loop(cs: CoSim, drv, plan: list, kick, n_periods: int):
     if fr:
         k_f = k_on + FAULT_AT
         k_rm = k_f + spec["hold"]
-        k_clr = k_rm + spec.get("settle", 2)
+        k_clr = k_rm + COSIM_FAULT_SETTLE.get(name, spec.get("settle", 2))
         k_chk = k_clr + 3
         assert k_chk + RESTART_PERIODS < len(plan) + n_periods, f"{name}: the run is too short for the fault"
 
@@ -1286,10 +1299,36 @@ def check_run(cs: CoSim, res: dict) -> tuple[dict, tuple | None]:
                            "peak_a_after_restart": fr.post_peak, "status_checks": fr.checks,
                            "periods_without_compare_values": cs.missed, **{k: v for k, v in fr.extra.items()
                                                                            if "fault" not in k}}
+        if name in COSIM_WIN:
+            report["fault"]["speed_window"] = _window_across_fault(cs)
         report["kill_path"] = cs.kill
         for k, v in res["status"].items():
             assert v < 0xFFFFFFFF, f"counter {k} saturated/wrapped"
     return report, traces
+
+
+def _window_across_fault(cs: CoSim) -> dict:
+    """A fault run with the speed window (COSIM_WIN, M = 2^m): the control samples from the trip to the restart
+    (law off at the trigger), and at the first control sample with the law back on the window's far end
+    pos_{k-M} (the model's history, bit-exact with the RTL's: every core input word of that sample, omega
+    included, was compared): the count of the control sample M before, taken during the fault - not a count
+    from before the trip (a history that stopped with the law) nor 0 (one that restarted at the clear); the
+    rotor moved meanwhile, so either would have changed omega."""
+    M = 1 << win_eff(cs.regs.win_shift)
+    log = cs.ctl_log
+    on = [r for _, r, _, _ in log]
+    i_off = next(i for i in range(1, len(log)) if on[i - 1] and not on[i])        # the first sample after the trip
+    i_on = next(i for i in range(i_off, len(log)) if on[i])                         # the first after the restart
+    n_off = i_on - i_off
+    p_on, _, count_on, hist_on = log[i_on]
+    stale = log[i_off - 1][2]                      # the last count the law saw before the trip
+    assert M > 1 and n_off >= M + 1, f"{cs.name}: {n_off} control samples during the fault, the window needs {M + 1}"
+    assert hist_on == log[i_on - M][2], f"{cs.name}: pos_(k-M) {hist_on} at the restart, sample k-M: {log[i_on - M][2]}"
+    assert hist_on not in (stale, 0) and count_on != stale, \
+        f"{cs.name}: the rotor did not move during the fault ({stale} -> {hist_on} -> {count_on}): nothing checked"
+    assert not cs.word_mismatches and cs.words_checked > 0
+    return {"M": M, "control_samples_law_off": n_off, "restart_period": p_on, "count_before_trip": stale,
+            "pos_k_minus_M_at_restart": hist_on, "count_at_restart": count_on}
 
 
 def _plot(cs, tr, ftr, path):

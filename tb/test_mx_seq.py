@@ -39,7 +39,7 @@ from empc import header, image
 from empc.rtlmodel import mpc_core as core
 from empc.rtlmodel import mx_seq as MX
 from empc.rtlmodel.adc_spi import AdcSpiParams
-from empc.rtlmodel.ctrl_seq import CtrlSeq, Regs
+from empc.rtlmodel.ctrl_seq import CtrlSeq, Regs, win_eff
 from empc.rtlmodel.ref_gen import FIELDS, RefGen, Slot, slot_field
 
 DEFAULT_SEED = 777
@@ -94,7 +94,7 @@ def test_microprogram_vs_model(task, n):
         else:
             ref_w = [rng.getrandbits(64) for _ in range(n + 1)]
         u0, e0, first = m.u, m.ebar, m.first
-        pos_m = m.pos_hist[(1 << min(regs.win_shift, 4)) - 1]
+        pos_m = m.pos_hist[(1 << win_eff(regs.win_shift)) - 1]
         out = m.period(theta, pos, cur, regs, ref_w)
         for j in range(n + 1):
             ram[MX.REF0 + 2 * j] = F.wrap(ref_w[j] & 0xFFFFFFFF, 32)
@@ -402,7 +402,7 @@ async def random_periods(dut):
         ref_w = list(ref.w) if control else None
         if control:
             dpos = F.wrap(pos - model.pos_prev, 32)
-            mw = min(regs.win_shift, 4)
+            mw = win_eff(regs.win_shift)
             dpos_m = F.wrap(pos - model.pos_hist[(1 << mw) - 1], 32)
             st["spd_sat"] += int(F.sat(dpos_m << (F.W_FRAC - mw), F.W_W) != dpos_m << (F.W_FRAC - mw))
             st["dth_sat"] += int(F.sat(dpos << F.TH_FRAC, sw) != dpos << F.TH_FRAC)

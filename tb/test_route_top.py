@@ -24,6 +24,9 @@ One run (`route`):
     FAULT.overcurrent on axis 1, axis 0's FAULT stays 0; restored and cleared;
  7. IN_SEL.enc: axis 1 on IRC input 2 (the spare's encoder): axis 1's POS follows the spare's count (+100),
     not its old emulator's (-60), axis 0's POS does not move; restored (both encoders back at 0 first).
+ 8. a routed axis faulted: axis 1 on outputs 12..14, an overcurrent code at its ADC lines: every pin off,
+    STATUS.bridges_on 0, FAULT.overcurrent on axis 1 only, the routing unchanged; the code removed, one
+    fault clear: axis 1 back on outputs 12..14 only within a PWM period, OUT_SEL and ROUTE_STATUS intact.
 Mutants (`full`): route_locked tied to 0 in lx_rocon_top (writes accepted while an axis is live): step 3
 fails; route_ok tied to 1 (an axis on two of three phases switches): step 5 fails.
 """
@@ -257,8 +260,37 @@ if cocotb is not None:
         await ClockCycles(dut.clk, 100)
         f0, f1 = await d0.read("FAULT"), await d1.read("FAULT")
         assert f0 == 0 and f1 == 0, f"FAULT after the IRC select: axis 0 {f0:#x}, axis 1 {f1:#x}"
+
+        # 8. a fault on a routed axis: axis 1 on outputs 12..14, an overcurrent code at its ADC lines (3..5): every
+        #    pin off while FAULT.overcurrent is latched (axis 0 unaffected); the code removed, ONE clear: the bridges
+        #    back on outputs 12..14 only within a PWM period, the routing (OUT_SEL, ROUTE_STATUS) unchanged
+        await _on(dut, d1, P, True)
+        o, e, ea = await _pins(dut, P)
+        assert o & ~want == 0 and e == want and ea == want, f"axis 1 on before the fault: out {o:#06x} en {e:#06x}"
+        old.adc_code0.value = oc_code
+        await ClockCycles(dut.clk, 2 * P)
+        old.adc_code0.value = off
+        o, e, _ = await _pins(dut, 2 * P)
+        f0, f1, st = await d0.read("FAULT"), await d1.read("FAULT"), await d1.read("STATUS")
+        assert f0 == 0 and f1 & ocb, f"overcurrent on routed axis 1: FAULT axis 0 {f0:#x}, axis 1 {f1:#x}"
+        assert o == 0 and e == 0 and not (st >> _lsb("STATUS", "bridges_on")) & 1, \
+            f"axis 1 faulted: out {o:#06x} en {e:#06x}, STATUS {st:#x} (want every pin off, bridges_on 0)"
+        s0, s1, rs = await d0.read("OUT_SEL0"), await d0.read("OUT_SEL1"), await d0.read("ROUTE_STATUS")
+        assert (s0, s1, rs) == (NEW_SEL0, NEW_SEL1, 0x077), f"routing during the fault: {s0:#x} {s1:#x} {rs:#x}"
+        await d1.command(fault_clear=1)                 # one clear, nothing else
+        await ClockCycles(dut.clk, P + 20)              # the restart: at the next period boundary
+        o, e, ea = await _pins(dut, P)
+        f1, st = await d1.read("FAULT"), await d1.read("STATUS")
+        assert f1 == 0 and (st >> _lsb("STATUS", "bridges_on")) & 1, f"after one clear: FAULT {f1:#x}, STATUS {st:#x}"
+        assert o & ~want == 0 and e == want and ea == want, \
+            f"axis 1 after the clear: out {o:#06x} en {e:#06x} (always {ea:#06x}), want outputs 12..14 only"
+        s0, s1, rs = await d0.read("OUT_SEL0"), await d0.read("OUT_SEL1"), await d0.read("ROUTE_STATUS")
+        assert (s0, s1, rs) == (NEW_SEL0, NEW_SEL1, 0x077), f"routing after the clear: {s0:#x} {s1:#x} {rs:#x}"
+        dut._log.info("routed axis 1 faulted (overcurrent): every pin off, FAULT %#x; one clear: back on outputs "
+                      "12..14 (en %#06x), ROUTE_STATUS %#x", f1 | ocb, e, rs)
+        await _on(dut, d1, P, False)
         dut._log.info("route: reset map, remap, refused write while live, HALL select, unmapped phase held off, "
-                      "ADC_SEL, IN_SEL.enc: ok")
+                      "ADC_SEL, IN_SEL.enc, a routed axis faulted and restarted by one clear: ok")
 
 
 def _run(name: str = "route_top", run_name: str = "route"):

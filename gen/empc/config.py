@@ -27,6 +27,7 @@ import tomllib
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
+from . import formats                  # formats.py imports nothing of the package
 from .governor import TAU_POSITION   # governor.py imports nothing of the package
 
 DEFAULT_CONFIG = Path(__file__).with_name("configs") / "blwr233d.toml"
@@ -99,6 +100,9 @@ TABLES = {
     **{t: (False, "weights of one design") for t in _WEIGHT_TABLES},
 }
 
+SPEED_WINDOWS = tuple(1 << m for m in range(formats.WIN_LOG2_MAX + 1))   # control.speed_window M = 2^m
+                                                                         # (1, 2, 4, 8, 16 at WIN_LOG2_MAX = 4)
+
 SCHEMA: list[Key] = [
     Key("motor", "name", "str", "motor"),
     Key("motor", "R", "float", lo=0, lo_open=True, unit="ohm", doc="stator resistance (phase)"),
@@ -134,7 +138,7 @@ SCHEMA: list[Key] = [
             "accel_load: accel less a load estimate (offset-free under a constant load; estimator.py)"),
     Key("control", "speed_load_shift", "int", 6, lo=1, hi=15,
         doc="accel_load: load-estimate gain 2^-shift per control period (KACC.load_shift, 4 bit; 0 there = off)"),
-    Key("control", "speed_window", "int", 1, choices=(1, 2, 4, 8, 16),
+    Key("control", "speed_window", "int", 1, choices=SPEED_WINDOWS,
         doc="speed estimate over M control periods: (theta_k - theta_{k-M}) / (M Ts), the acceleration "
             "correction over (M/2) Ts (estimator.py; 1 = eq. 37 over one period). RTL: KACC.win = log2 M "
             "(reset from the header), needs speed_load_shift >= log2 M - 1 with accel_load"),
@@ -527,8 +531,8 @@ class Control:
             raise ConfigError(f"weights.alg{key[0]}.{key[1]} missing from the configuration") from None
 
 
-RTL_SPEED_WINDOWS = (1, 2, 4, 8, 16)   # control.speed_window values the RTL implements (rtl/mx_seq.v: KACC.win,
-                                       # a 16-deep position history per axis)
+RTL_SPEED_WINDOWS = SPEED_WINDOWS      # control.speed_window values the RTL implements (rtl/mx_seq.v: KACC.win,
+                                       # a formats.WIN_DEPTH-deep position history per axis)
 
 
 def require_rtl_speed_window(cfg) -> None:

@@ -30,8 +30,9 @@ the load estimate compares it with the encoder's speed change over that lag, (M/
       D_k = D_{k-1} + 2^-s (u1 - M (w37_k - w37_{k-1}) / 2)
 
 (M = 1: the formulas above).  Before M angles are known the window reaches back to the first one.
-Float, fixed-point FixedMPC, the robust check and the RTL (KACC.win = log2 M in rtl/mx_seq.v: a 16-deep count
-history; the RTL's first M speeds after reset take the counts before it as 0, FixedMPC's this first angle).
+Float, fixed-point FixedMPC, the robust check and the RTL (KACC.win = log2 M in rtl/mx_seq.v: a count history
+formats.WIN_DEPTH = 16 deep; the RTL's first M speeds after reset take the counts before it as 0, FixedMPC's this
+first angle).
 
 The RTL computes the same in raw units (rtlmodel/ctrl_seq.py ``speed_estimate``); this float
 form serves the float controller; :func:`state_space` gives the estimator as a linear block,

@@ -51,6 +51,14 @@ SIG_SHIFT_BIAS = 1  # signal shifts are stored biased, field = shift + 1: shift 
 PROD_SHIFT_BITS = 4 # per-gain product left shift 0..15
 ACC_FRAC = 32         # accumulator LSB = 2**-32 PWM ticks: small gains keep 18-bit mantissas; range +-2**15 ticks
 
+# Speed window (control.speed_window M = 2^m; the per-axis field KACC.win = m, rtl/mx_seq.v): the sequencer
+# keeps the counts of the last WIN_DEPTH control samples per axis, so m = 0..WIN_LOG2_MAX (larger KACC.win
+# values act as WIN_LOG2_MAX).  The one source of the largest window: config.SPEED_WINDOWS, the sequencer
+# model (rtlmodel/ctrl_seq.py) and the RTL (`EMPC_WIN_LOG2_MAX, `EMPC_WIN_DEPTH) take it from here.
+# 1..7: the 3-bit field KACC.win, and the sequencer's spd = sat32(((dpos_M << 8) >>> m) << 8) is exact for m < 8.
+WIN_LOG2_MAX = 4
+WIN_DEPTH = 1 << WIN_LOG2_MAX   # position history per axis (rtl/mx_seq.v: one SRL16 per count bit at 16)
+
 
 def sat(x: int, width: int) -> int:
     """Saturate a Python int to a signed ``width``-bit range."""

@@ -10,7 +10,7 @@ docs/registers.md count 32-bit words): FPGA word w is at EMPC_EMC_BASE + 4 w.
 """
 from __future__ import annotations
 
-from . import image
+from . import formats, image
 from .regmap import (AXIS_BASE, AXIS_STRIDE, BLOCKS, COEF_BASE, COEF_STRIDE, EMC_CS0_BASE, ID_MAGIC, VERSION,
                      ROUTE_AXES, ROUTE_OUTPUTS, ROUTE_PHASES, MapError, UDC_FRESH_PERIODS, UNLOCK_ARM, UNLOCK_KEY,
                      WDOG_KEY, WORD_BYTES, Reg)
@@ -84,6 +84,8 @@ def constants() -> list[tuple[str, str, int, str]]:
         ("EMPC_ROUTE_PHASES", f"{ROUTE_PHASES}u", ROUTE_PHASES,
          "OUT_SEL code of axis a, phase p: 1 + EMPC_ROUTE_PHASES * a + p (0 = output off)"),
         ("EMPC_ROUTE_OUTPUTS", f"{ROUTE_OUTPUTS}u", ROUTE_OUTPUTS, "half-bridge outputs (OUT_SEL0/1 fields)"),
+        ("EMPC_WIN_LOG2_MAX", f"{formats.WIN_LOG2_MAX}u", formats.WIN_LOG2_MAX,
+         "largest KACC.win the sequencer implements (speed window 2^win; larger values act as this)"),
         ("EMPC_ACC_RO", "0u", 0, "access: read-only"),
         ("EMPC_ACC_RW", "1u", 1, "access: read/write"),
         ("EMPC_ACC_WO", "2u", 2, "access: write pulses (reads 0)"),

@@ -46,6 +46,8 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .formats import WIN_LOG2_MAX   # formats.py imports nothing of the package
+
 ID_MAGIC = 0x454D5043   # 'EMPC'
 VERSION = 0x00010000     # major.minor.patch = 1.0.0 (bits 31:16 major, 15:8 minor, 7:0 patch)
 AXIS_BASE = 0x100
@@ -461,7 +463,7 @@ AXIS = (
         Field("shift", 24, 5, "right shift", reset="EMPC_KACC_SHIFT"),
         Field("win", 29, 3, "speed window m: the speed over M = 2^m control periods, "
               "(pos_k - pos_{k-M}) << (16 - m), the load update's difference x M (control.speed_window; "
-              "5..7 act as 4; needs load_shift + 1 >= m)", reset="EMPC_KACC_WIN"))),
+              f"{WIN_LOG2_MAX + 1}..7 act as {WIN_LOG2_MAX}; needs load_shift + 1 >= m)", reset="EMPC_KACC_WIN"))),
     Reg("ID_REF", 0x11, "RW", 0, "d-current reference, ADC LSB Q.4 (signed 18 bit).", width=18, signed=True),
     Reg("IQ_REF", 0x12, "RW", 0, "q-current reference (feed-forward), ADC LSB Q.4 (signed 18 bit).", width=18,
         signed=True),

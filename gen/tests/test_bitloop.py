@@ -93,3 +93,32 @@ def test_bitloop_speed_window_at_50us():
     print("bitloop M = 4:", {"rms": mb["rms_error"], "rms_fixed": mx["rms_error"], "uq_tail": uq_tail, "peak": peak})
     assert abs(mb["rms_error"] - mx["rms_error"]) <= 0.10 * mx["rms_error"] + res, (mb["rms_error"], mx["rms_error"])
     assert peak <= 1.05 and uq_tail <= 0.25, (peak, uq_tail)
+
+
+@pytest.mark.parametrize("plant", ["corner_a", "corner_b"])
+def test_bitloop_speed_window_load_at_box_corners(plant):
+    """control.speed_window = 4 (KACC.win = 2) off the nominal path: the EC 45 flat's algorithm-2 speed design at
+    250 us (its design check passes with the window's lag) in the RTL's loop model, the plant at the robustness
+    box's corners (corner_a: the design check's least-damped point, L +30 %, R -30 %, J -30 %, psi +20 %;
+    corner_b: the opposite), load_speed's rated-current load torque 0.10-0.25 s at the held speed: the speed
+    holds without offset under the load (mean error < 0.05 count per Ts, test_scenarios' bound), the load
+    current is on (i_q = I / psi factor within 12 %, the EC 45's friction), i_d stays near 0, every step
+    settles (to max(2 %, one count per Ts)) within 40 ms, peak |i| <= 1.05 i_max."""
+    from empc import corners
+    cfg = corners.load("ec45flat_24v", **{"control.speed_window": 4})
+    sc, c, tr, f = corners.simulate(cfg, "load_speed", plant, "bit")
+    assert bitloop.regs_for(c, "speed").win_shift == 2 and sc.task == "speed"
+    assert f is not None and [abs(f[k] - 1.0) for k in ("L", "R", "J", "psi")] == pytest.approx([0.3, 0.3, 0.3, 0.2]), f
+    res, I = c.rad_s_per_count_ts, c.ratings.current
+    held = (tr.t >= 0.18) & (tr.t < 0.25)                 # under the load, after its step (as test_alg2_load)
+    y = tr.output("speed")
+    offset = float(np.mean(y[held] - tr.ref[held, 2]))
+    iq, id_ = float(np.mean(tr.i_q[held])) * f["psi"] / I, float(np.mean(tr.i_d[held])) / I
+    m = cl.metrics(tr, sc, settle_floor=res, preview=c.control.N * c.control.Ts)
+    peak = float(np.max(tr.i_phase_peak) / c.control.i_max)
+    print(f"bitloop M = 4 at {plant} {f}: offset {offset:.3f} rad/s (count/Ts {res:.2f}), i_q x psi {iq:.3f} I, "
+          f"i_d {id_:.4f} I, settle {m['settling_time_max']}, peak {peak:.3f} i_max")
+    assert abs(offset) < 0.05 * res, offset
+    assert abs(iq - 1.0) < 0.12 and abs(id_) < 0.1, (iq, id_)
+    assert m["unsettled_steps"] == 0 and m["settling_time_max"] <= 0.04, m["settling_time_max"]
+    assert peak <= 1.05, peak

@@ -135,17 +135,19 @@ def test_check_fails_without_the_governor(motor, scen, plant, peak):
 def test_premo_position_accel_current():
     """premo_320v: the position task's acceleration limit (accel_current_position 0.3, the speed task's 0.5)
     and its catch-up shift (5 at 250 us, 8 at 50 us) come from the configuration; the other motors keep one
-    value for both tasks and the shift of default_shift_position(Ts) at their tau_position (the EC 45 flat 6 ms,
-    the others 4 ms)."""
+    value for both tasks and the shift of default_shift_position(Ts) at their tau_position (the EC 45 flat its
+    own, longer one from its TOML's [governor] tau_position, 6 ms; the others governor.TAU_POSITION, 4 ms)."""
     from empc import governor
     p = corners.load("premo_320v")
     g = p.control.governor
     assert (g.accel_current, g.accel_current_position, g.shift_position) == (0.5, 0.3, 5)
     assert governor.accel_limit(p, "position") == pytest.approx(0.6 * governor.accel_limit(p, "speed"))
     assert corners.load_ts("premo_320v", 50e-6).control.governor.shift_position == 8
+    tau_ec45 = corners.load("ec45flat_24v").control.governor.tau_position    # configs/ec45flat_24v.toml
+    assert tau_ec45 > governor.TAU_POSITION, "the EC 45 flat's catch-up time is its own, longer one"
     for m in corners.MOTORS:
         if m != "premo_320v":
             g = corners.load(m).control.governor
             assert g.accel_current_position == g.accel_current
             assert g.shift_position == governor.default_shift_position(corners.load(m).control.Ts, 1.0, g.tau_position)
-            assert g.tau_position == (6e-3 if m == "ec45flat_24v" else governor.TAU_POSITION)    # the EC 45 flat's own
+            assert g.tau_position == (tau_ec45 if m == "ec45flat_24v" else governor.TAU_POSITION)

@@ -246,19 +246,45 @@ def test_speed_window_raw_tracks_float(M):
 
 
 def test_roms_refuse_speed_window(tmp_path):
-    """The RTL implements speed_window = 1..16 (KACC.win) with speed_load_shift + 1 >= log2 M:
-    `empc roms` (and the RTL's loop model) refuse M = 16 with a load shift of 2, with one line naming
-    the keys, and write nothing; M = 16 with the default shift 6 passes the check."""
+    """The RTL implements speed_window = 1..2^WIN_LOG2_MAX (16; KACC.win) with speed_load_shift + 1 >= log2 M:
+    `empc roms` (and the RTL's loop model) refuse the largest M with a load shift of log2 M - 2, with one
+    line naming the keys, and write nothing; the largest M with the default shift 6 passes the check."""
     from empc import bitloop, cli, roms, scenarios
-    assert config.RTL_SPEED_WINDOWS == (1, 2, 4, 8, 16)
-    config.require_rtl_speed_window(CFG.with_control(speed_estimate="accel_load", speed_window=16))
-    cfg = CFG.with_control(speed_estimate="accel_load", speed_window=16, speed_load_shift=2)
-    with pytest.raises(config.ConfigError, match=r"^control\.speed_window = 16 needs control\.speed_load_shift >= 3"):
+    from empc import formats as F
+    mmax = F.WIN_LOG2_MAX
+    big = 1 << mmax
+    assert config.RTL_SPEED_WINDOWS == config.SPEED_WINDOWS == tuple(1 << m for m in range(mmax + 1))
+    assert big == F.WIN_DEPTH == cs.HIST == 1 << cs.WIN_MAX
+    config.require_rtl_speed_window(CFG.with_control(speed_estimate="accel_load", speed_window=big))
+    cfg = CFG.with_control(speed_estimate="accel_load", speed_window=big, speed_load_shift=mmax - 2)
+    with pytest.raises(config.ConfigError,
+                       match=rf"^control\.speed_window = {big} needs control\.speed_load_shift >= {mmax - 1}"):
         roms.generate(cfg, tmp_path / "r")
     assert not (tmp_path / "r").exists()
-    assert cli.main(["roms", "--set", "control.speed_estimate=accel_load", "--set", "control.speed_window=16",
-                     "--set", "control.speed_load_shift=2", "--out", str(tmp_path / "c")]) != 0
+    assert cli.main(["roms", "--set", "control.speed_estimate=accel_load", "--set", f"control.speed_window={big}",
+                     "--set", f"control.speed_load_shift={mmax - 2}", "--out", str(tmp_path / "c")]) != 0
     assert not (tmp_path / "c").exists()
     sc, _ = scenarios.get("speed_steps", cfg)
     with pytest.raises(config.ConfigError, match="control.speed_window"):
         bitloop.simulate(cfg, sc)
+
+
+def test_speed_window_max_one_source():
+    """The largest speed window has one source, formats.WIN_LOG2_MAX: the configuration's choices, the
+    sequencer model, the Verilog header (EMPC_WIN_LOG2_MAX, EMPC_WIN_DEPTH, used by rtl/mx_seq.v for the
+    history depth, the tap and the clamp: no hand-written depth there), the firmware header and KACC.win's text."""
+    import re
+    from pathlib import Path
+    from empc import fwheader, header, regmap
+    from empc import formats as F
+    consts = header.flat(CFG)
+    assert consts["WIN_LOG2_MAX"] == F.WIN_LOG2_MAX and consts["WIN_DEPTH"] == 1 << F.WIN_LOG2_MAX
+    assert fwheader.expected_macros()["EMPC_WIN_LOG2_MAX"] == F.WIN_LOG2_MAX
+    key = next(k for k in config.SCHEMA if (k.table, k.name) == ("control", "speed_window"))
+    assert key.choices == config.SPEED_WINDOWS
+    win = next(f for f in regmap.axis_reg("KACC").fields if f.name == "win")
+    assert F.WIN_LOG2_MAX < 1 << win.width and f"act as {F.WIN_LOG2_MAX};" in win.doc
+    assert cs.win_eff(7) == cs.win_eff(F.WIN_LOG2_MAX) == F.WIN_LOG2_MAX and cs.win_eff(1) == 1
+    rtl = (Path(__file__).resolve().parents[2] / "rtl" / "mx_seq.v").read_text()
+    assert "`EMPC_WIN_LOG2_MAX" in rtl and "`EMPC_WIN_DEPTH" in rtl
+    assert not re.search(r"reg\s*\[15:0\]\s*sr\b|3'd4|5'd1 << j_win", rtl), "a hand-written window depth in mx_seq.v"

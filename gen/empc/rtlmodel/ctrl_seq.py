@@ -10,7 +10,7 @@ Front end of a control period (issue 15 items 1 and 6), raw units:
 
     spd   = sat32(dpos << 16)                                  eq. 37, counts/Ts Q16.16
             (KACC.win = m > 0: sat32((pos_k - pos_{k-M}) << (16 - m)), M = 2^m, the counts of the
-            last 16 control samples kept, 0 before the first ones after reset; the load update
+            last HIST (formats.WIN_DEPTH) control samples kept, 0 before the first ones after reset; the load update
             below then takes ((2 u1 >> m) - (spd - spd_prev)) >> (load_shift + 1 - m))
     ka    = rshift_round(kacc * i_q, kacc_shift)               (Ts/2) accel from i_q
     u1    = ka - D
@@ -51,7 +51,7 @@ from .xform_steps.sincos import sincos
 ANGLE_MASK = (1 << F.ANGLE_BITS) - 1
 POS_MASK = (1 << F.POS_W) - 1
 MASK64 = (1 << 64) - 1
-HIST = 16                          # position history (rtl/mx_seq.v: per axis, SRL16): window M <= 16
+HIST = F.WIN_DEPTH                 # position history (rtl/mx_seq.v: per axis, SRL16 at 16): window M <= HIST
 
 
 @dataclass
@@ -69,14 +69,14 @@ class Regs:
     fw_nmax: int = 0               # FW.nmax: steps of the d-current offset (0 = field weakening off)
     fw_thr: tuple = (0xFFFF, 0)    # FW_R2 (hi, lo): thresholds on the limiter's r >> 20
     iq_hold: int = 0               # IQ_HOLD: |i_q| hold threshold of the governor, ADC LSB (0 = off)
-    win_shift: int = 0             # KACC.win: log2 control.speed_window (0..4; 5..7 act as 4)
+    win_shift: int = 0             # KACC.win: log2 control.speed_window (0..WIN_MAX; more acts as WIN_MAX)
 
 
-WIN_MAX = 4                        # KACC.win: the RTL's position history is 16 deep (M <= 16)
+WIN_MAX = F.WIN_LOG2_MAX           # KACC.win: the RTL's position history is HIST = 2^WIN_MAX deep (M <= HIST)
 
 
 def win_eff(m: int) -> int:
-    """The window shift the RTL uses for the 3-bit KACC.win field (5..7 act as 4)."""
+    """The window shift the RTL uses for the 3-bit KACC.win field (values above WIN_MAX act as WIN_MAX)."""
     return min(m, WIN_MAX)
 
 
@@ -131,7 +131,7 @@ class CtrlSeq:
     first: bool = True
     theta_trig: int = 0
     pos_prev: int = 0
-    pos_hist: list = field(default_factory=lambda: [0] * HIST)   # counts of the last 16 control samples
+    pos_hist: list = field(default_factory=lambda: [0] * HIST)   # counts of the last HIST control samples
     id_prev: int = 0
     iq_prev: int = 0
     omega_prev: int = 0

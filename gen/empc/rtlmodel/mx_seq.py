@@ -31,6 +31,7 @@ from .. import formats as F
 from .. import regmap
 from .. import ucode as U
 from . import mpc_core as core
+from .ctrl_seq import win_eff
 
 # ---- microword ----------------------------------------------------------------------------
 CTL = {"OP": 0, "WTH": 1, "WREF": 2, "WFRONT": 3, "WSH": 4, "START": 5, "WCORE": 6, "END": 7}
@@ -149,7 +150,7 @@ def _trigger_ops(n: int, task_pos: bool) -> list[Op]:
            Op(a="POS", dk="RAM", da="POS_PREV", note="pos_prev = pos"),
            Op(dk="CORE", da=core.IN_DX + 4, note="dx4 = 0")]
     # the speed over the window M = 2^m (KACC.win): spd = sat32((pos - pos_{k-M}) << (16 - m)) as
-    # sat32(((dpos_M << 8) >>> m) << 8) (exact: m <= 4 < 8), the shift by m on the serial shifter;
+    # sat32(((dpos_M << 8) >>> m) << 8) (exact: m <= F.WIN_LOG2_MAX < 8), the shift by m on the serial shifter;
     # the ebar / u_prev words fill the hazard gaps
     e = [Op(a=f"E{o}", dk="CORE", da=core.IN_EBAR + o, note=f"ebar_prev[{o}]") for o in range(3)]
     u = [Op(a=f"U{o}", dk="CORE", da=core.IN_UPREV + o, note=f"u_prev[{o}]") for o in range(2)]
@@ -343,7 +344,7 @@ class Ctx:
     kacc: int = 0
     kacc_shift: int = 0
     load_shift: int = 0
-    win_shift: int = 0         # KACC.win (the speed window M = 2^m; 5..7 act as 4)
+    win_shift: int = 0         # KACC.win (the speed window M = 2^m; above F.WIN_LOG2_MAX: as it)
     pos_m: int = 0             # pos_{k-M}: the history's tap (0 before M control samples after reset)
     id_ref: int = 0            # the d-current reference after field weakening (mpc_axis)
     iq_ref: int = 0
@@ -521,7 +522,7 @@ def run_job(kind: str, n: int, ram: dict, ctx: Ctx, timing: dict | None = None) 
                     elif op.dk in ("SHKA", "SHT2"):   # SHKA: the product kacc * i_q, not R
                         regs["SH"] = F.wrap(ctx.kacc * ctx.i_q if op.dk == "SHKA" else wv, SH_W)
                         regs["r"] = 0
-                        mw = min(ctx.win_shift, 4)
+                        mw = win_eff(ctx.win_shift)
                         regs["sh_left"] = (ctx.kacc_shift if op.dk == "SHKA" else mw if op.dan == SH_WIN
                                            else max(ctx.load_shift + 1 - mw, 0))
                         regs["sh_load"] = True
