@@ -24,10 +24,16 @@ What the generated module owns (one register = one line of gen/empc/regmap.py):
   combinational) and the shared module keeps one set of read registers for all axes, each loaded
   from the axis ``rd_axis`` selects (the CPU reads one axis at a time; a binary multiplexer on the
   bits of rd_axis); same read rules.  mx_axes
-  uses it and leaves the blocks' own reg_rdata open (synthesis drops their copies).  Measured out
-  of context (``flow/synth.py --top axis_regs``, ``flow/mx_probes.py``; docs/four_axes.md section 8): one axis_regs 345
+  uses it and leaves the blocks' own reg_rdata open (synthesis drops their copies).  With
+  ``Block.shadow`` the stored registers that only an accepted write changes (``_Gen.sh``: RW, no floor,
+  no safe field) leave rd_vals: the block exports ``sh_we`` (bit i: the write of the i-th is accepted in
+  this clock, the registers' own condition) and the shared module reads them back from a write-through
+  block RAM {region, axis, word} (region 0: the reset values, read until a per-axis "written since
+  reset" flip-flop is set; docs/blocks/axis_rd.md).  Measured out of context (``flow/synth.py --top
+  axis_regs``, ``flow/mx_probes.py``; docs/four_axes.md section 8): one axis_regs 345
   LUT / 887 FF with copies, 475 / 348 with "mux", 113 / 316 without a read path; the read path of
-  four axes as four copy sets 4 x (232 LUT / 571 FF), shared copies 805 / 571, shared mux 1004 / 32;
+  four axes as four copy sets 4 x (232 LUT / 571 FF), shared copies 805 / 571, shared mux 1004 / 32,
+  shared copies of the live values with the shadow RAM 525 / 363 / 0.5 RAMB16;
 * ext storage: strobe groups (one-hot write pulse + written data, both registered; the
   values come back on inputs read through copies) and windows (combinational
   ``<w>_we``/``<w>_re`` from a 256-entry address table, no magnitude compares, and
