@@ -227,12 +227,13 @@ def _regs_probe(d: Path, name: str) -> tuple[str, list[str]]:
     if name == "regs_nord":             # axis_regs with its read data unused (a wrapper without the port)
         P = regblock.ports(b)
         ins = [(n, w) for dr, n, w, _, _ in P if dr == "input"]
-        outs = [(n, w) for dr, n, w, _, _ in P if dr == "output" and n not in ("reg_rdata", "rd_vals")]
+        outs = [(n, w) for dr, n, w, _, _ in P if dr == "output" and n not in ("reg_rdata", "rd_vals", "sh_we")]
         text = "\n".join(["module regs_nord (", ",\n".join([f"    input wire [{w - 1}:0] {n}" for n, w in ins] +
                                                             [f"    output wire [{w - 1}:0] {n}" for n, w in outs]),
                           ");", "    /* verilator lint_off PINCONNECTEMPTY */",
                           "    axis_regs u (" + ", ".join(f".{n}({n})" for n, _ in ins + outs) +
-                          ", .reg_rdata(), .rd_vals());", "endmodule", ""])
+                          ", .reg_rdata(), .rd_vals()" + (", .sh_we()" if regblock.sh_n(b) else "") + ");",
+                          "endmodule", ""])
         new, top = rtl / "regs_nord.v", "regs_nord"
     else:
         new, top = rtl / "eng_probe.v", "eng_probe"

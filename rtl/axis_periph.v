@@ -54,7 +54,8 @@ module axis_periph #(
     input  wire [7:0]  reg_addr,
     input  wire [31:0] reg_wdata,
     output wire [31:0] reg_rdata,
-    output wire [`EMPC_A_RD_VALS_W-1:0] rd_vals,   // every readable value (axis_regs), for mx_axes' shared axis_rd
+    output wire [`EMPC_A_RD_VALS_W-1:0] rd_vals,   // readable values but the shadowed ones (axis_regs), for mx_axes' axis_rd
+    output wire [`EMPC_A_SH_N-1:0] sh_we,          // accepted writes of the registers axis_rd reads from its shadow RAM
     // global
     input  wire        watchdog_expired,
     input  wire        g_wr_refused,     // a global register write was refused (counted here too)
@@ -380,7 +381,7 @@ module axis_periph #(
     // ---------------- axis registers (generated: rtl/axis_regs.v) ----------------
     axis_regs u_regs (
         .clk(clk), .rst(rst), .reg_wr(reg_wr), .reg_rd(reg_rd), .reg_addr(reg_addr), .reg_wdata(reg_wdata),
-        .reg_rdata(reg_rdata), .rd_vals(rd_vals),
+        .reg_rdata(reg_rdata), .rd_vals(rd_vals), .sh_we(sh_we),
         .ctrl_enable(ctrl_enable), .ctrl_run(ctrl_run),
         .ctrl_pwm_per_control(ctrl_pwm_per_control),
         .cmd_fault_clear(cmd_fault_clear), .cmd_adc_cal(cmd_adc_cal), .cmd_ref_sync(cmd_ref_sync),

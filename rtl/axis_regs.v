@@ -22,7 +22,8 @@ module axis_regs (
     input  wire [7:0]   reg_addr,             // word offset in the block
     input  wire [31:0]  reg_wdata,
     output wire [31:0]  reg_rdata,            // read data, the clock after reg_rd (0 otherwise)
-    output wire [573:0] rd_vals,              // every readable value, packed (combinational; the shared read path axis_rd)
+    output wire [294:0] rd_vals,              // every readable value but the shadowed registers, packed (combinational; the shared read path axis_rd)
+    output wire [16:0]  sh_we,                // accepted write of a shadowed register (combinational), one-hot: FAULT_MASK, DEAD_TIME, KDC, UDC, UDC_MIN, UDC_MAX, OC_THRESH, ANGLE_CAL, HALL_OFFSET, KACC, ID_REF, IQ_REF, SEG_ADDR, FW, FW_R2, IQ_HOLD, ADC_SUM_THRESH
     output reg          ctrl_enable,          // CTRL.enable (RW)
     output reg          ctrl_run,             // CTRL.run (RW)
     output reg  [7:0]   ctrl_pwm_per_control, // CTRL.pwm_per_control (RW)
@@ -494,13 +495,30 @@ module axis_regs (
                      | {20'd0, q_adc_sum_thresh}
                      | {24'd0, q_cnt_swap_ref};
 
+    // ---------------- accepted writes of the registers axis_rd reads back from its write-through RAM
+    // (the condition under which each register takes reg_wdata below)
+    assign sh_we[0] = wr_p0 && reg_addr[6:0] == 7'h4 && !bridges_live && unl;   // FAULT_MASK
+    assign sh_we[1] = wr_p0 && reg_addr[6:0] == 7'h5 && !bridges_live && LEGAL_DEAD_TIME[reg_wdata[7:0]];   // DEAD_TIME
+    assign sh_we[2] = wr_p0 && reg_addr[6:0] == 7'h6;   // KDC
+    assign sh_we[3] = wr_p0 && reg_addr[6:0] == 7'h7;   // UDC
+    assign sh_we[4] = wr_p0 && reg_addr[6:0] == 7'h8 && !bridges_live && (reg_wdata[19:0] >= 20'd1) && (reg_wdata[19:0] <= 20'd1048574);   // UDC_MIN
+    assign sh_we[5] = wr_p0 && reg_addr[6:0] == 7'h9 && !bridges_live && (reg_wdata[19:0] >= 20'd1) && (reg_wdata[19:0] <= 20'd1048574);   // UDC_MAX
+    assign sh_we[6] = wr_p0 && reg_addr[6:0] == 7'ha && !bridges_live && (reg_wdata[11:0] >= 12'd1) && (reg_wdata[11:0] <= 12'd1900);   // OC_THRESH
+    assign sh_we[7] = wr_p0 && reg_addr[6:0] == 7'he && !bridges_live;   // ANGLE_CAL
+    assign sh_we[8] = wr_p0 && reg_addr[6:0] == 7'hf && !bridges_live;   // HALL_OFFSET
+    assign sh_we[9] = wr_p0 && reg_addr[6:0] == 7'h10;   // KACC
+    assign sh_we[10] = wr_p0 && reg_addr[6:0] == 7'h11;   // ID_REF
+    assign sh_we[11] = wr_p0 && reg_addr[6:0] == 7'h12;   // IQ_REF
+    assign sh_we[12] = wr_p0 && reg_addr[6:0] == 7'h13;   // SEG_ADDR
+    assign sh_we[13] = wr_p0 && reg_addr[6:0] == 7'h1d;   // FW
+    assign sh_we[14] = wr_p0 && reg_addr[6:0] == 7'h1e;   // FW_R2
+    assign sh_we[15] = wr_p0 && reg_addr[6:0] == 7'h1f;   // IQ_HOLD
+    assign sh_we[16] = wr_p0 && reg_addr[6:0] == 7'h40 && !bridges_live && (reg_wdata[11:0] >= 12'd1) && (reg_wdata[11:0] <= 12'd1900);   // ADC_SUM_THRESH
+
     // ---------------- every readable value for the shared read path (axis_rd), first register at bit 0
-    assign rd_vals = {cnt_swap_ref, adc_sum_thresh, cnt_enc_err, cnt_adc_miss, cnt_wr_refused,
-                      {adc_psum2_count, adc_psum2_sum}, {adc_psum1_count, adc_psum1_sum},
-                      {adc_psum0_count, adc_psum0_sum}, latency, iabc1, {iabc0_b, iabc0_a}, theta, pos, iq_hold,
-                      {fw_r2_lo, fw_r2_hi}, fw_nmax, seg_addr, iq_ref, id_ref,
-                      {kacc_win, kacc_shift, kacc_load_shift, kacc}, hall_offset, angle_cal, adc_off2, adc_off1,
-                      adc_off0, oc_thresh, udc_max, udc_min, udc, kdc, dead_time, fault_mask,
+    assign rd_vals = {cnt_swap_ref, cnt_enc_err, cnt_adc_miss, cnt_wr_refused, {adc_psum2_count, adc_psum2_sum},
+                      {adc_psum1_count, adc_psum1_sum}, {adc_psum0_count, adc_psum0_sum}, latency, iabc1,
+                      {iabc0_b, iabc0_a}, theta, pos, adc_off2, adc_off1, adc_off0,
                       {fault_adc_frozen, fault_adc_sum, fault_adc_stuck, fault_enc_break, fault_hall_enc, fault_coef, fault_clock, fault_pstage, fault_adc, fault_overrun, fault_dclink, fault_watchdog, fault_encoder, fault_hall, fault_overcurrent},
                       {status_wr_refused, status_adc_refused, status_swap_refused, status_coef_valid, status_fault, status_swap_pending, status_coef_bank, status_core_ready, status_adc_cal_done, status_adc_cal_busy, status_aligned, status_bridges_on, status_running},
                       {ctrl_pwm_per_control, ctrl_run, ctrl_enable}};

@@ -203,11 +203,12 @@ module mpc_axis #(
 
     // ---------------- the axis (one instance; mx_axes has one per axis) ----------------
     wire [`EMPC_A_RD_VALS_W-1:0] rd_vals;   // the values for mx_axes' shared read path: one axis reads its own
+    wire [`EMPC_A_SH_N-1:0] sh_we;           // (and its shadow RAM's write strobes)
     wire pwm_trip;                              // the trip into pwm_center (used by out_route only)
     axis_periph #(.HALL_DEBOUNCE(HALL_DEBOUNCE), .ENC_FILTER(ENC_FILTER), .COMPLEMENTARY(COMPLEMENTARY),
                   .PWM_HALF_PERIOD(PWM_HALF_PERIOD), .UDC_FRESH(UDC_FRESH)) u_per (
         .clk(clk), .rst(rst), .reg_wr(reg_wr), .reg_rd(reg_rd), .reg_addr(reg_addr), .reg_wdata(reg_wdata),
-        .reg_rdata(reg_rdata), .rd_vals(rd_vals), .watchdog_expired(watchdog_expired), .g_wr_refused(g_wr_refused),
+        .reg_rdata(reg_rdata), .rd_vals(rd_vals), .sh_we(sh_we), .watchdog_expired(watchdog_expired), .g_wr_refused(g_wr_refused),
         .ext_fault(ext_fault), .route_ok(1'b1), .pwm_sync_in(pwm_sync_in), .pwm_sync_out(pwm_sync_out),
         .irc_a(irc_a), .irc_b(irc_b), .irc_idx(irc_idx), .irc_mark(irc_mark), .hall(hall),
         .pwm_hi(pwm_hi), .pwm_lo(pwm_lo), .period_start(period_start), .adc_trig(adc_trig),
@@ -235,6 +236,6 @@ module mpc_axis #(
 
     // adc_trig_miss: counted by adc_spi itself (miss_cnt -> CNT_ADC_MISS)
     wire unused = &{1'b0, pwm_trip, adc_busy, adc_trig_miss, adc_fvalid, oc_ch, core_busy, core_du, core_u_raw, core_wn,
-                    core_latency, core_boot_ok, theta_trig, ref_busy, st_id, status_busy, rd_vals};
+                    core_latency, core_boot_ok, theta_trig, ref_busy, st_id, status_busy, rd_vals, sh_we};
 endmodule
 `default_nettype wire

@@ -19,8 +19,10 @@
 // and must be taken with its theta_ok (docs/blocks/pos_sense.md); the handshake is not in mx_seq yet.
 //
 // Register port: reg_addr = {axis, word offset}, coef_addr = {axis, image word}; reg_rdata valid one
-// clock after reg_rd, 0 otherwise: one shared read path (generated rtl/axis_rd.v, gated copies) takes
-// each register from the read axis's axis_regs.rd_vals export (the axes' own copies are not kept).
+// clock after reg_rd, 0 otherwise: one shared read path (generated rtl/axis_rd.v) takes each live value
+// from the read axis's axis_regs.rd_vals export through gated copies and reads the stored registers back
+// from a write-through block RAM {axis, word} written at the axes' accepted writes (axis_regs.sh_we;
+// the axes' own copies are not kept).
 // Safety, per axis (axis_periph's, as mpc_axis): every cause in that axis's FAULT_MASK forces that axis's
 // six outputs off in the clock the cause is registered (its fault_ctrl.trip into its pwm_center);
 // the watchdog, overrun / stall, power-stage, clock and coefficient-image causes trip whatever
@@ -239,7 +241,9 @@ module mx_axes #(
 
     // ---------------- per axis: sensors, glue, faults, PWM, registers ----------------
     localparam integer VW = `EMPC_A_RD_VALS_W;
-    wire [VW*NAXES-1:0] rd_vals_v;       // every readable value of every axis (axis_regs.rd_vals)
+    wire [VW*NAXES-1:0] rd_vals_v;       // the readable values of every axis (axis_regs.rd_vals)
+    localparam integer NSH = `EMPC_A_SH_N;
+    wire [NSH*NAXES-1:0] sh_we_v;        // accepted writes of the shadowed registers (axis_regs.sh_we)
     genvar n;
     generate for (n = 0; n < NAXES; n = n + 1) begin : g_ax
         localparam integer PHASE = n * STAGGER;
@@ -257,7 +261,8 @@ module mx_axes #(
         axis_periph #(.HALL_DEBOUNCE(HALL_DEBOUNCE), .ENC_FILTER(ENC_FILTER), .COMPLEMENTARY(COMPLEMENTARY),
                       .PWM_HALF_PERIOD(P), .PHASE(PHASE)) u_per (
             .clk(clk), .rst(rst), .reg_wr(reg_wr && sel), .reg_rd(reg_rd && sel), .reg_addr(roff),
-            .reg_wdata(reg_wdata), .reg_rdata(), .rd_vals(rd_vals_v[VW*n +: VW]), .watchdog_expired(watchdog_expired),
+            .reg_wdata(reg_wdata), .reg_rdata(), .rd_vals(rd_vals_v[VW*n +: VW]),
+            .sh_we(sh_we_v[NSH*n +: NSH]), .watchdog_expired(watchdog_expired),
             .g_wr_refused(g_wr_refused), .ext_fault(ext_fault), .route_ok(route_ok[n]), .pwm_sync_in(1'b0), .pwm_sync_out(),
             .irc_a(irc_a[n]), .irc_b(irc_b[n]), .irc_idx(irc_idx[n]), .irc_mark(irc_mark[n]), .hall(hall[3*n +: 3]),
             .pwm_hi(pwm_hi[3*n +: 3]), .pwm_lo(pwm_lo[3*n +: 3]), .period_start(period_start[n]),
@@ -295,10 +300,12 @@ module mx_axes #(
     end endgenerate
 
     // ---------------- register read path, shared (generated: rtl/axis_rd.v) ----------------
-    // the CPU reads one axis at a time: one set of gated copies takes each register from axis rax
+    // the CPU reads one axis at a time: one set of gated copies takes each live value from axis rax, the
+    // stored registers come from a write-through block RAM {axis, word} written at the axes' sh_we
     // (the axes' own axis_regs copies are left open and dropped); the windows' read data ORed there
     axis_rd #(.NAXES(NAXES)) u_rd (
         .clk(clk), .rst(rst), .reg_rd(reg_rd), .rd_axis(rax), .reg_addr(roff), .rd_vals(rd_vals_v),
+        .reg_wdata(reg_wdata), .sh_we(sh_we_v),
         .seg_rdata(seg_rdata), .smem_rdata(s_q), .reg_rdata(reg_rdata));
 
     wire unused = &{1'b0, adc_busy, adc_fvalid, adc_trig_miss, oc_ch, ref_busy, core_busy, core_du, core_u_raw,

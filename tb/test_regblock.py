@@ -93,7 +93,7 @@ async def run_block(dut, b: Block, n: int) -> None:
     ins_ports = [(p[1], p[2]) for p in m.ports if p[0] == "input" and p[1] != "clk"]
     outs = [p[1] for p in m.ports if p[0] == "output"]
     comb_outs = {"reg_rdata"} | {f"{e.name}_{s}" for e in g.windows for s in ("we", "re", "idx")} \
-        | {f"{a.base}_armed" for a in g.arms} | ({"rd_vals"} if b.shared else set())
+        | {f"{a.base}_armed" for a in g.arms} | ({"rd_vals", "sh_we"} if b.shared else set())
     offsets = [r.offset for r in b.regs]
     locked_offs = [r.offset for r in b.regs if r.unlock]
     key_offs = [r.offset for r in b.regs if r.arm is not None]
@@ -188,44 +188,97 @@ async def block_vs_model(dut):
 
 
 async def run_shared(dut, b: Block, naxes: int, n: int) -> None:
-    """The shared read path rtl/<b.shared>.v against regblock.SharedReadModel: random rd_vals per axis
-    (every clock), random reads of any axis (also axes >= NAXES) and word, window read data after a
-    read, rare resets; reg_rdata compared every clock."""
+    """The shared read path rtl/<b.shared>.v against regblock.SharedReadModel, driven by NAXES block models
+    (regblock.Model, random inputs every clock, as in run_block): their rd_vals and sh_we exports, bus
+    writes and reads of any axis (also axes >= NAXES) and word, window read data after a read, rare
+    resets.  reg_rdata is compared every clock with the shared model and with what the read axis's own
+    block (its copies, Model) returns: the shadow RAM reads exactly the stored registers."""
     seed = int(os.environ.get("EMPC_SEED", DEFAULT_SEED))
     rng = random.Random(seed)
-    m = regblock.SharedReadModel(b, naxes)
-    vw = m.g.rd_width()
+    mac = _macros()
+    m = regblock.SharedReadModel(b, naxes, mac)
+    ax = [regblock.Model(b, mac) for _ in range(naxes)]
+    g = m.g
+    vw = g.rd_width()
+    nsh = len(g.sh)
     ab = max(1, (naxes - 1).bit_length())
     offsets = [r.offset for r in b.regs]
-    rdp = sorted({e.rdata_port for e in m.g.windows})
+    sh_offs = [r.offset for r in g.sh]
+    ins_ports = [(p[1], p[2]) for p in ax[0].ports if p[0] == "input" and p[1] != "clk"]
+    specials = [0, 0xFFFFFFFF] + [r.key for r in b.regs if r.key is not None]
+    for r in b.regs:
+        for f in r.parts():
+            if f.legal is not None:
+                vals = list(f.legal)
+                specials += [(v << f.lsb) & 0xFFFFFFFF for v in (vals[0], vals[-1], vals[0] - 1, vals[-1] + 1) if v >= 0]
+    rdp = sorted({e.rdata_port for e in g.windows})
     cocotb.start_soon(Clock(dut.clk, 10, unit="ns").start())
-    nz = per_axis = 0
+    st = dict(nz=0, per_axis=0, sh_rd=0, sh_rd_written=0, sh_wr=0, refused=0, both=0)
     prev_rd = False
     for k in range(n):
-        vals = [rng.getrandbits(vw) for _ in range(naxes)]
-        ins = {"rst": int(k < 2 or rng.random() < 0.003), "reg_rd": int(rng.random() < 0.5),
-               "rd_axis": rng.getrandbits(ab), "reg_addr": rng.choice(offsets) if rng.random() < 0.9
-               else rng.getrandbits(m.g.aw), "rd_vals": vals}
+        x = rng.random()
+        bus = {"rst": int(k < 2 or rng.random() < 0.003), "reg_wr": int(x < 0.4 or 0.97 < x),
+               "reg_rd": int(0.4 <= x < 0.8 or 0.97 < x), "rd_axis": rng.getrandbits(ab),
+               "reg_addr": (rng.choice(sh_offs) if rng.random() < 0.5 else rng.choice(offsets))
+               if rng.random() < 0.9 else rng.getrandbits(g.aw),
+               "reg_wdata": rng.choice(specials) if rng.random() < 0.3 else rng.getrandbits(32)}
         for p in rdp:                               # windows answer only after a read
-            ins[p] = rng.getrandbits(32) if prev_rd and rng.random() < 0.2 else 0
+            bus[p] = rng.getrandbits(32) if prev_rd and rng.random() < 0.2 else 0
+        vals, shw, ref, aix = [], [], 0, []
+        for a in range(naxes):
+            ia = {name: rng.getrandbits(w) for name, w in ins_ports}
+            for gname in ax[a].g.guards:
+                ia[gname] = int(rng.random() < 0.3)
+            sel = bus["rd_axis"] == a
+            ia.update(rst=bus["rst"], reg_wr=bus["reg_wr"] & sel, reg_rd=bus["reg_rd"] & sel,
+                      reg_addr=bus["reg_addr"], reg_wdata=bus["reg_wdata"])
+            for p in rdp:
+                ia[p] = 0
+            c = ax[a].comb(ia)
+            vals.append(c["rd_vals"])
+            shw.append(c.get("sh_we", 0))
+            ref |= c["reg_rdata"]                   # the axes' own read paths (0 unless read; windows 0 here)
+            aix.append(ia)
+        ins = dict(bus, rd_vals=vals, sh_we=shw)
         dut.rst.value = ins["rst"]
         dut.reg_rd.value = ins["reg_rd"]
         dut.rd_axis.value = ins["rd_axis"]
         dut.reg_addr.value = ins["reg_addr"]
         dut.rd_vals.value = sum(v << (vw * a) for a, v in enumerate(vals))
+        if nsh:
+            dut.reg_wdata.value = ins["reg_wdata"]
+            dut.sh_we.value = sum(v << (nsh * a) for a, v in enumerate(shw))
         for p in rdp:
             getattr(dut, p).value = ins[p]
         await Timer(1, unit="ns")
         want = m.comb(ins)
         got = int(dut.reg_rdata.value)
         assert got == want, f"{b.shared} clock {k} seed {seed}: reg_rdata = {got:#x}, model {want:#x}"
-        nz += want != 0
-        per_axis += bool(m.q) and ins["rd_axis"] == naxes - 1
+        win = 0
+        for p in rdp:
+            win |= ins[p]
+        assert want == ref | win, (f"{b.shared} clock {k} seed {seed}: shared model {want:#x}, the axis's own "
+                                   f"read path {ref | win:#x}")
+        st["nz"] += want != 0
+        st["per_axis"] += bool(m.q | m.sh_q) and ins["rd_axis"] == naxes - 1
+        st["sh_rd"] += bool(m.sh_q)
+        st["both"] += bool(ins["reg_rd"] and any(shw))
         prev_rd = bool(ins["reg_rd"])
         m.clock(ins)
+        if nsh and ins["reg_rd"] and ins["rd_axis"] < naxes and ins["reg_addr"] in sh_offs:
+            kk = sh_offs.index(ins["reg_addr"])
+            st["sh_rd_written"] += m.flags[ins["rd_axis"]] >> kk & 1
+        st["sh_wr"] += any(shw)
+        for a in range(naxes):
+            ax[a].clock(aix[a])
+            st["refused"] += ax[a].state.get("wr_refused", 0)
         await FallingEdge(dut.clk)
-    dut._log.info("%s, NAXES %d: %d clocks vs model (seed %d), %d non-zero reads", b.shared, naxes, n, seed, nz)
-    assert nz > n // 10 and per_axis > 0
+    dut._log.info("%s, NAXES %d: %d clocks vs SharedReadModel and the axes' own read paths (seed %d): %s",
+                  b.shared, naxes, n, seed, st)
+    assert st["nz"] > n // 10 and st["per_axis"] > 0
+    if nsh:
+        assert st["sh_rd"] > n // 50 and st["sh_rd_written"] > n // 100 and st["sh_wr"] > n // 50
+        assert st["refused"] > 0 and st["both"] > 0
 
 
 def _run(block: Block) -> None:

@@ -24,10 +24,16 @@ What the generated module owns (one register = one line of gen/empc/regmap.py):
   combinational) and the shared module keeps one set of read registers for all axes, each loaded
   from the axis ``rd_axis`` selects (the CPU reads one axis at a time; a binary multiplexer on the
   bits of rd_axis); same read rules.  mx_axes
-  uses it and leaves the blocks' own reg_rdata open (synthesis drops their copies).  Measured out
-  of context (``flow/synth.py --top axis_regs``, ``flow/mx_probes.py``; docs/four_axes.md section 8): one axis_regs 345
+  uses it and leaves the blocks' own reg_rdata open (synthesis drops their copies).  With
+  ``Block.shadow`` the stored registers that only an accepted write changes (``_Gen.sh``: RW, no floor,
+  no safe field) leave rd_vals: the block exports ``sh_we`` (bit i: the write of the i-th is accepted in
+  this clock, the registers' own condition) and the shared module reads them back from a write-through
+  block RAM {region, axis, word} (region 0: the reset values, read until a per-axis "written since
+  reset" flip-flop is set; docs/blocks/axis_rd.md).  Measured out of context (``flow/synth.py --top
+  axis_regs``, ``flow/mx_probes.py``; docs/four_axes.md section 8): one axis_regs 345
   LUT / 887 FF with copies, 475 / 348 with "mux", 113 / 316 without a read path; the read path of
-  four axes as four copy sets 4 x (232 LUT / 571 FF), shared copies 805 / 571, shared mux 1004 / 32;
+  four axes as four copy sets 4 x (232 LUT / 571 FF), shared copies 805 / 571, shared mux 1004 / 32,
+  shared copies of the live values with the shadow RAM 525 / 363 / 0.5 RAMB16;
 * ext storage: strobe groups (one-hot write pulse + written data, both registered; the
   values come back on inputs read through copies) and windows (combinational
   ``<w>_we``/``<w>_re`` from a 256-entry address table, no magnitude compares, and
@@ -131,6 +137,31 @@ class _Gen:
             raise ValueError(f"{b.module}: more than one key register with arm")
         self.refuse = bool(self.guards) or bool(self.arms) or any(
             f.legal is not None for r in self.regs for f in r.parts())
+        # shadowed registers (Block.shadow): stored values the shared read path reads back from its
+        # write-through block RAM; written only by accepted writes (no floor, no safe field, no W1C)
+        self.sh = [r for r in self.regs if b.shared and b.shadow and self.shadowable(r)]
+        self.sh_bits = self.index_bits([r.offset for r in self.sh]) if self.sh else []
+
+    def shadowable(self, r: Reg) -> bool:
+        """A stored RW register that only an accepted write changes, to exactly its read-back value."""
+        k = self.k[r.name]
+        return (k.stored and not k.w1c and k.readable and r.access == "RW"
+                and all(f.floor is None and f.safe is None for f in r.parts())
+                and not (r.signed and any(isinstance(f.reset, str) for f in r.parts())))
+
+    def index_bits(self, offs: list[int]) -> list[int]:
+        """The fewest address bits (ascending) whose values tell the offsets apart."""
+        from itertools import combinations
+        for n in range(self.aw + 1):
+            for bits in combinations(range(self.aw), n):
+                keys = {tuple((o >> x) & 1 for x in bits) for o in offs}
+                if len(keys) == len(offs):
+                    return list(bits)
+        raise ValueError("offsets not distinct")
+
+    def sh_index(self, off: int) -> int:
+        """Word index of an address in the shadow RAM (the sh_bits of the offset)."""
+        return sum(((off >> x) & 1) << i for i, x in enumerate(self.sh_bits))
 
     # ------------------------------------------------------------------ helpers
     def members(self, ext_name: str) -> list[Reg]:
@@ -233,7 +264,12 @@ class _Gen:
              ("output", "reg_rdata", 32, False, "read data, the clock after reg_rd (0 otherwise)")]
         if self.b.shared:
             P.append(("output", "rd_vals", self.rd_width(), False,
-                      f"every readable value, packed (combinational; the shared read path {self.b.shared})"))
+                      ("every readable value but the shadowed registers" if self.sh else "every readable value")
+                      + f", packed (combinational; the shared read path {self.b.shared})"))
+            if self.sh:
+                P.append(("output", "sh_we", len(self.sh), False,
+                          "accepted write of a shadowed register (combinational), one-hot: "
+                          + ", ".join(r.name for r in self.sh)))
         done_ext = set()
         for r in self.regs:
             k = self.k[r.name]
@@ -290,7 +326,7 @@ class _Gen:
         """(register, lsb in rd_vals, width) of every readable non-constant register, map order."""
         out, pos = [], 0
         for r in self.regs:
-            if self.k[r.name].readable and not self.k[r.name].const:
+            if self.k[r.name].readable and not self.k[r.name].const and r not in self.sh:
                 _, w = self.value_expr(r)
                 out.append((r, pos, w))
                 pos += w
@@ -352,7 +388,7 @@ class _Gen:
         return "\n".join(L)
 
     def is_reg_out(self, name: str) -> bool:
-        return name not in ("reg_rdata", "rd_vals") and not any(name == f"{e.name}_{s}" for e in self.windows
+        return name not in ("reg_rdata", "rd_vals", "sh_we") and not any(name == f"{e.name}_{s}" for e in self.windows
                                                      for s in ("we", "re", "idx")) \
             and not any(name == f"{a.base}_armed" for a in self.arms)
 
@@ -515,13 +551,13 @@ class _Gen:
                          f"   // word - {mem[0].name}")
         return L
 
-    def render_read(self, val=None, word=None) -> list[str]:
+    def render_read(self, val=None, word=None, skip=(), extra=()) -> list[str]:
         """The read path; ``val(r)`` / ``word(r)`` give a register's dense value (expression, width) and its
         32-bit read word (default: from the ports; the shared read path: from the selected axis's rd_vals)."""
         val = val or self.value_expr
         word = word or self.mux_word
         L = [""]
-        rregs = [r for r in self.regs if self.k[r.name].readable]
+        rregs = [r for r in self.regs if self.k[r.name].readable and r.name not in skip]
         copies = [r for r in rregs if self.read_style(r) == "copy"]
         muxed = [r for r in rregs if self.read_style(r) == "mux"]
         pages = sorted({self.page(r.offset) for r in rregs})
@@ -583,11 +619,23 @@ class _Gen:
                 terms.append(e.rdata_port)
         if muxed:
             terms.append("q_mux")
+        terms += list(extra)
         terms += [self.word_expr(r, qn[r.name]) for r in copies]
         L.append("    assign reg_rdata = " + "\n                     | ".join(terms) + ";")
         return L
 
     def render_export(self) -> list[str]:
+        L = []
+        if self.sh:
+            L += ["", f"    // ---------------- accepted writes of the registers {self.b.shared} reads back from its "
+                  "write-through RAM", "    // (the condition under which each register takes reg_wdata below)"]
+            for i, r in enumerate(self.sh):
+                ok = self.ok_expr(r)
+                L.append(f"    assign sh_we[{i}] = wr_p{self.page(r.offset)} && reg_addr[{self.pb - 1}:0] == "
+                         f"{self.low(r.offset)}" + (f" && {ok}" if ok else "") + f";   // {r.name}")
+        return L + self.render_export_vals()
+
+    def render_export_vals(self) -> list[str]:
         items = [self.value_expr(r)[0] for r, _, _ in reversed(self.rd_layout())]
         L = ["", f"    // ---------------- every readable value for the shared read path ({self.b.shared}), "
              "first register at bit 0"]
@@ -644,6 +692,11 @@ def render(b: Block) -> str:
     return _Gen(b).render()
 
 
+def sh_n(b: Block) -> int:
+    """Width of the ``sh_we`` export: the registers a shadowed shared read path reads from its RAM."""
+    return len(_Gen(b).sh)
+
+
 def rd_vals_width(b: Block) -> int:
     """Width of the ``rd_vals`` export of a block with a shared read path."""
     return _Gen(b).rd_width()
@@ -674,6 +727,10 @@ def render_shared(b: Block) -> str:
          ("input", "rd_axis", "[AXB-1:0]", "", "the axis read (an axis >= NAXES reads 0)"),
          ("input", "reg_addr", f"[{g.aw - 1}:0]", "", "word offset in the axis block"),
          ("input", "rd_vals", f"[NAXES*{vw}-1:0]", "", f"axis a's {b.module}.rd_vals at [a*VW +: VW]")]
+    if g.sh:
+        P += [("input", "reg_wdata", "[31:0]", "", "write data (the shadow RAM's)"),
+              ("input", "sh_we", f"[NAXES*{len(g.sh)}-1:0]", "",
+               f"axis a's {b.module}.sh_we at [a*NSH +: NSH] (only axis rd_axis writes)")]
     P += [("input", x, "[31:0]", "", "window read data (0 unless read), shared by the axes") for x in rdp]
     P += [("output", "reg_rdata", "[31:0]", "", "read data, the clock after reg_rd (0 otherwise)")]
     L = [_HDR, "//",
@@ -683,10 +740,12 @@ def render_shared(b: Block) -> str:
          f"// register's value from the axis rd_axis selects among the blocks' rd_vals exports, instead of",
          f"// every {b.module} keeping its own (their reg_rdata is left unconnected; synthesis drops them).",
          _read_path_doc(b, g.regs),
+         *(_shadow_doc(b, g) if g.sh else []),
          "// Parameters: NAXES (1..), AXB (axis bits, derived); VW = the width of rd_vals per axis.",
          "// Latency: reg_rdata is valid the clock after reg_rd and 0 in every other clock (as the block's).",
          "// Reset: synchronous (rst); read data to 0.",
          "`default_nettype none",
+         *(['`include "empc_formats.vh"'] if any(isinstance(f.reset, str) for r in g.sh for f in r.parts()) else []),
          f"module {b.shared} #(",
          "    parameter integer NAXES = 1,",
          "    parameter integer AXB = (NAXES < 2) ? 1 : $clog2(NAXES)     // axis bits (derived)",
@@ -727,9 +786,117 @@ def render_shared(b: Block) -> str:
             return g.mux_word(r)
         return g.word_expr(r, names[r.name][0])
 
-    L += g.render_read(val, word)
+    if g.sh:
+        L += _render_shadow(b, g)
+    L += g.render_read(val, word, skip={r.name for r in g.sh}, extra=["sh_q"] if g.sh else [])
     L += ["endmodule", "`default_nettype wire", ""]
     return "\n".join(L)
+
+
+def _shadow_doc(b: Block, g: "_Gen") -> list[str]:
+    return ["//",
+            f"// Shadow (Block.shadow): the {len(g.sh)} stored registers that only an accepted write changes "
+            f"({', '.join(r.name for r in g.sh)})",
+            "// are read back from a write-through block RAM {region, axis, word} instead of the axes' flip-flops:",
+            "// written (the register's read-back value of reg_wdata) in the clock of an accepted write "
+            f"({b.module}.sh_we,",
+            "// the same condition under which the register takes the value; refused writes never reach it), and a",
+            "// flip-flop per axis and register, cleared by rst, records 'written since reset'; until then the read",
+            "// addresses region 0, which holds the reset values (initial contents, never written).  A read and a",
+            "// write of the same word in one clock read the old value (read-first), as the registers' copies did.",
+            "// The words: reg_addr bits " + ", ".join(str(x) for x in reversed(g.sh_bits))
+            + " (the fewest that tell them apart)."]
+
+
+def _reset_expr(r: Reg) -> str:
+    """32-bit read-back word of r after reset (build-dependent fields as empc_formats.vh macros)."""
+    const = r.readback(r.reset_word({f.reset.removeprefix("EMPC_"): 0 for f in r.parts() if isinstance(f.reset, str)}))
+    t = [f"32'h{const:08x}"]
+    for f in r.parts():
+        if isinstance(f.reset, str):
+            t.append(f"(((`{f.reset}) & 32'h{(1 << f.width) - 1:x}) << {f.lsb})")
+    return " | ".join(t)
+
+
+def _render_shadow(b: Block, g: "_Gen") -> list[str]:
+    nsh, ib = len(g.sh), max(1, len(g.sh_bits))
+    ni = 1 << ib
+    idx_bits = ", ".join(f"reg_addr[{x}]" for x in reversed(g.sh_bits)) if g.sh_bits else "1'b0"
+    words = sum(1 << r.offset for r in g.sh)
+    n = 1 << g.aw
+    # per data bit: the words whose bit b is reg_wdata[b] (a field), and those where it copies a sign bit
+    pas = [0] * 32
+    sx: dict[int, list[int]] = {}
+    for r in g.sh:
+        i = g.sh_index(r.offset)
+        for f in r.parts():
+            for bb in range(f.lsb, f.lsb + f.width):
+                pas[bb] |= 1 << i
+        if r.signed and r.width < 32:
+            t = sx.setdefault(r.width - 1, [0] * 32)
+            for bb in range(r.width, 32):
+                t[bb] |= 1 << i
+    flat = lambda tab: sum(v << (ni * bb) for bb, v in enumerate(tab))
+    L = ["",
+         "    // ---------------- shadow: the stored registers, read back from a write-through block RAM",
+         f"    localparam integer NSH = {nsh};   // shadowed registers per axis (EMPC_{b.scope}_SH_N)",
+         f"    localparam integer IB = {ib};    // word index bits",
+         f"    localparam [{n - 1}:0] SH_WORDS = {n}'h{words:0{n // 4}x};",
+         f"    wire [IB-1:0] sh_idx = {{{idx_bits}}};",
+         "    wire [NP-1:0] ax_ok;              // the axes this build has",
+         "    generate for (a = 0; a < NP; a = a + 1) begin : g_axok",
+         "        assign ax_ok[a] = (a < NAXES);",
+         "    end endgenerate",
+         "    wire sh_hit = SH_WORDS[reg_addr] && ax_ok[rd_axis];",
+         "    // written since reset: one flip-flop per axis and register (set by its accepted write)",
+         "    reg  [NAXES*NSH-1:0] sh_wr;",
+         "    integer si;",
+         "    always @(posedge clk)",
+         "        for (si = 0; si < NAXES*NSH; si = si + 1)",
+         "            if (rst) sh_wr[si] <= 1'b0;",
+         "            else if (sh_we[si]) sh_wr[si] <= 1'b1;",
+         "    // the flag of (rd_axis, word): at {axis, word index}, 0 where no register is",
+         f"    wire [NP*{ni}-1:0] flv;",
+         "    generate for (a = 0; a < NP; a = a + 1) begin : g_fl",
+         "        if (a < NAXES) begin : g_ax",
+         f"            assign flv[a*{ni} +: {ni}] = {{" + ", ".join(
+             next((f"sh_wr[a*NSH+{k}]" for k, r in enumerate(g.sh) if g.sh_index(r.offset) == j), "1'b0")
+             for j in reversed(range(ni))) + "};",
+         "        end else begin : g_none",
+         f"            assign flv[a*{ni} +: {ni}] = {ni}'d0;",
+         "        end",
+         "    end endgenerate",
+         "    wire sh_fl = flv[{rd_axis, sh_idx}];",
+         "    // the written word: the register's read-back value (its fields, sign extension), per bit a table on",
+         "    // the word index (bit b of SH_PASS row b: reg_wdata[b] is stored; SH_SX<s>: bit b copies reg_wdata[s])",
+         f"    localparam [32*{ni}-1:0] SH_PASS = {32 * ni}'h{flat(pas):0{32 * ni // 4}x};"]
+    for sb, tab in sorted(sx.items()):
+        L.append(f"    localparam [32*{ni}-1:0] SH_SX{sb} = {32 * ni}'h{flat(tab):0{32 * ni // 4}x};")
+    L += ["    wire [31:0] sh_din;",
+          "    genvar db;",
+          "    generate for (db = 0; db < 32; db = db + 1) begin : g_din",
+          "        assign sh_din[db] = (reg_wdata[db] & SH_PASS[db*" + str(ni) + " + sh_idx])" + "".join(
+              f"\n                          | (reg_wdata[{sb}] & SH_SX{sb}[db*{ni} + sh_idx])"
+              for sb in sorted(sx)) + ";",
+          "    end endgenerate",
+          "    // {region, axis, word}: region 1 written by the CPU, region 0 the reset values (never written)",
+          "    localparam integer SHW = 2 * NP * (1 << IB);",
+          "    (* ram_style = \"block\" *) reg [31:0] sh_mem [0:SHW-1];",
+          "    integer ri;",
+          "    initial begin",
+          "        for (ri = 0; ri < SHW; ri = ri + 1) sh_mem[ri] = 32'd0;",
+          "        for (ri = 0; ri < NP; ri = ri + 1) begin"]
+    for r in g.sh:
+        L.append(f"            sh_mem[(ri << IB) + {g.sh_index(r.offset)}] = {_reset_expr(r)};   // {r.name}")
+    L += ["        end",
+          "    end",
+          "    reg  [31:0] sh_q;                 // 0 unless the clock after reg_rd of a shadowed word",
+          "    always @(posedge clk) begin",
+          "        if (|sh_we) sh_mem[{1'b1, rd_axis, sh_idx}] <= sh_din;",
+          "        if (rst || !(reg_rd && sh_hit)) sh_q <= 32'd0;",
+          "        else sh_q <= sh_mem[{sh_fl, rd_axis, sh_idx}];",
+          "    end"]
+    return L
 
 
 def ports(b: Block) -> list[tuple[str, str, int, bool, str]]:
@@ -800,6 +967,13 @@ class Model:
             v |= x << pos
         return v
 
+    def sh_we(self, ins: dict) -> int:
+        """The ``sh_we`` export: bit i = the write of the i-th shadowed register is accepted in this clock."""
+        if not ins["reg_wr"]:
+            return 0
+        return sum(1 << i for i, r in enumerate(self.g.sh)
+                   if r.offset == ins["reg_addr"] and self._ok(r, ins, ins["reg_wdata"], self.unl))
+
     def _sel(self, e, addr: int) -> bool:
         return any(r.offset == addr for r in self.g.members(e.name))
 
@@ -821,6 +995,8 @@ class Model:
         out["reg_rdata"] = rd
         if self.b.shared:
             out["rd_vals"] = self.rd_vals(ins)
+        if self.g.sh:
+            out["sh_we"] = self.sh_we(ins)
         for a in self.g.arms:
             out[f"{a.base}_armed"] = self.unl
         return out
@@ -915,13 +1091,20 @@ class Model:
 class SharedReadModel:
     """Cycle model of rtl/<b.shared>.v (``render_shared``) with NAXES axes: per clock ``comb(ins)``
     (reg_rdata) then ``clock(ins)``; ins: reg_rd, rd_axis, reg_addr, rd_vals (list, one int per axis,
-    as ``Model.rd_vals``), the windows' read-data ports, rst."""
+    as ``Model.rd_vals``), the windows' read-data ports, rst; with a shadow (``Block.shadow``) also
+    reg_wdata and sh_we (list, one int per axis, as ``Model.sh_we``).  ``macros``: empc_formats.vh
+    values (the shadow's reset words)."""
 
-    def __init__(self, b: Block, naxes: int):
+    def __init__(self, b: Block, naxes: int, macros: dict | None = None):
         self.g = _Gen(b)
         self.naxes = naxes
         self.lay = {r.name: (pos, w) for r, pos, w in self.g.rd_layout()}
         self.q = 0
+        self.sh_q = 0
+        macros = macros or {}
+        self.sh_reset = {self.g.sh_index(r.offset): r.readback(r.reset_word(macros)) for r in self.g.sh}
+        self.mem: dict[tuple[int, int], int] = {}      # region 1 {axis, word index}; never cleared
+        self.flags = [0] * naxes                        # per axis: bit i = shadowed register i written
 
     def word(self, r: Reg, vals: int) -> int:
         """32-bit read word of register r from one axis's rd_vals."""
@@ -936,17 +1119,36 @@ class SharedReadModel:
             v |= (0xFFFFFFFF << r.width) & 0xFFFFFFFF
         return v
 
+    def sh_din(self, addr: int, wd: int) -> int:
+        """The word the shadow RAM is written with: the read-back value of wd for the register whose
+        word index addr has (0 where none)."""
+        i = self.g.sh_index(addr)
+        r = next((r for r in self.g.sh if self.g.sh_index(r.offset) == i), None)
+        return r.readback(wd) if r else 0
+
     def comb(self, ins: dict) -> int:
-        rd = self.q
+        rd = self.q | self.sh_q
         for p in {e.rdata_port for e in self.g.windows}:
             rd |= ins[p]
         return rd
 
     def clock(self, ins: dict) -> None:
-        q = 0
-        if ins["reg_rd"] and ins["rd_axis"] < self.naxes:
-            for r in self.g.regs:
-                if self.g.k[r.name].readable and r.offset == ins["reg_addr"]:
-                    q = self.word(r, ins["rd_vals"][ins["rd_axis"]])
-        self.q = 0 if ins["rst"] else q
-
+        g, addr, ax = self.g, ins["reg_addr"], ins["rd_axis"]
+        q = sh_q = 0
+        if ins["reg_rd"] and ax < self.naxes:
+            for r in g.regs:
+                if g.k[r.name].readable and r.offset == addr and r not in g.sh:
+                    q = self.word(r, ins["rd_vals"][ax])
+            k = next((k for k, r in enumerate(g.sh) if r.offset == addr), None)
+            if k is not None:                          # read-first: before this clock's write
+                i = g.sh_index(addr)
+                sh_q = self.mem.get((ax, i), 0) if self.flags[ax] >> k & 1 else self.sh_reset[i]
+        if g.sh and any(ins["sh_we"]):
+            self.mem[(ax, g.sh_index(addr))] = self.sh_din(addr, ins["reg_wdata"])
+        if ins["rst"]:
+            self.q = self.sh_q = 0
+            self.flags = [0] * self.naxes
+            return
+        self.q, self.sh_q = q, sh_q
+        if g.sh:
+            self.flags = [f | w for f, w in zip(self.flags, ins["sh_we"])]

@@ -580,11 +580,14 @@ class Block:
     ext: tuple = EXT    # the blocks that keep ext storage (a test map brings its own)
     shared: str = ""    # also a read path shared by NAXES blocks: rtl/<shared>.v (gen/empc/regblock.py
                         # render_shared) reads the blocks' ``rd_vals`` exports, one copy set for all axes
+    shadow: bool = False  # the shared read path reads the stored registers (regblock ``shadowed``) back from a
+                          # write-through block RAM {axis, word} written at the blocks' ``sh_we`` (accepted
+                          # writes); rd_vals then carries only the other readable values
 
 
 BLOCKS = (
     Block("global_regs", "G", GLOBAL, "mux", "global registers of lx_rocon_top (watchdog, time, interrupts)"),
-    Block("axis_regs", "A", AXIS, "copy", "registers of one axis (mpc_axis)", shared="axis_rd"),
+    Block("axis_regs", "A", AXIS, "copy", "registers of one axis (mpc_axis)", shared="axis_rd", shadow=True),
 )
 
 
@@ -779,8 +782,10 @@ def render_vh() -> str:
     for b in BLOCKS:
         ms = _macros(b.scope, b.regs, b.ext)
         if b.shared:                         # width of the rd_vals export (the shared read path's input)
-            from .regblock import rd_vals_width
+            from .regblock import rd_vals_width, sh_n
             ms.append((f"EMPC_{b.scope}_RD_VALS_W", rd_vals_width(b)))
+            if b.shadow:                     # width of the sh_we export (accepted writes of shadowed registers)
+                ms.append((f"EMPC_{b.scope}_SH_N", sh_n(b)))
         for name, v in ms:
             if name in names:
                 raise MapError(f"empc_regs.vh: macro {name} defined twice (rename a register or field)")
