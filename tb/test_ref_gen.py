@@ -33,6 +33,9 @@ readout port (rd_age, rd_bit -> rd_q).
   never exceeds vmax and changes by at most a per period (speed and position task, with
   and without hold), ending exactly on the target; the extreme words (a step of 2^63,
   vmax = a = 2^63 - 1, ksh = 31) bit-exact against gov_step.
+* braking (position task, the braking distance): target steps from rest and interrupting a motion, small
+  shifts (where the proportional catch-up alone overshoots by 100-1500 a), holds; bit-exact vs the model
+  after every advance, no step from rest passes its target by more than a, every zone / V step exercised.
 
 Cost: test_ref_gen and test_ref_gen_governed share one Verilator build (the clock-level checks of 1.3 M
 clocks ran 3-4 minutes on Icarus); test_ref_gen_n1 and the hold mutant stay on Icarus.  The clock is cocotb's
