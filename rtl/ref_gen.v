@@ -37,8 +37,8 @@
 //                      and remaining are updated in the same pass
 //   advance with load: flags (2 clocks), head pass (64: h1 or r0 from the RAM), then
 //                      d1 (64), d2 (32), len (32) read from the RAM into the state
-//   governor enabled:  the head pass writes rt, and passes G1..G4 (64 each) follow it (before
-//                      d1 / d2 / len of a load); G4 shifts the delay line
+//   governor enabled:  the head pass writes rt, and passes G1..G5 (64 each) follow it (before
+//                      d1 / d2 / len of a load); G4 shifts the delay line, G5 updates V, B
 //   sync:              N+1 passes of 64: the sync value (also into rt; v = 0), then N copies
 //                      of the head
 // Delay line: w_k .. w_{k+N} in one shift register ((N+1)*64 bits, SRL LUT-RAM): each
@@ -52,11 +52,20 @@
 // enabled (field 7 of slot 4, bit 0), the profile above runs on the target r (register rt)
 // and the delay line receives the governed g: after the head pass (r_old -> r_new) four
 // passes compute, in 64-bit two's complement with the 65th bit tracked for the clamps,
-//   G1: vd = (r_new - r_old) + ((r_old - g) >>> ksh), compared with +-vmax
-//   G2: dv = clamp(vd, +-vmax) [0 in the speed task when hold and vd would raise |g|] - v
+//   G1: vd = (r_new - r_old) + ((r_old - g) >>> ksh), compared with +-vmax; braking zones
+//   G2: dv = clamp(vd, +-vmax) [0 in the speed task when hold and vd would raise |g|; 0 in the
+//       position task in the brake zone] - v
 //   G3: dv compared with +-a
-//   G4: v = v + clamp(dv, +-a) [0 in the position task when hold and dv would raise |v|],
-//       g = g + v shifted into the delay line
+//   G4: v = v + clamp(dv, +-a) [0 in the position task when hold or in the no-speed-up zone and dv
+//       would raise |v|], g = g + v shifted into the delay line; |v| compared with V and V - a
+//   G5: V, B updated
+// Braking distance (position task, issue 15; rtlmodel/ref_gen.brake_zone / brake_update): per axis
+// V = n a (n = ceil(|v| / a), tracked one step per advance: up when |v'| > V, down when |v'| + a <= V)
+// and B = a n (n + 1) / 2 (B += V' up, B -= V down), adds only; the distance a reference at |v| <= V
+// travels while braking at a.  When the target holds (r_new = r_old) and v moves towards it
+// (v != 0, sign(v) = sign(e), e = r_old - g): |e| < B brakes (vd = 0: dv = -a), |e| < B + 2V allows
+// no speed-up; G1 computes |e| - B and |e| - (B + 2V) (sign bits, mod 2^64).  A sync and a head pass
+// without the governor clear V and B with v.
 // vmax, a: field 7 of slots 0/1 and 2/3 (63 bit: bit 63 reads as 0), ksh: field 7 of slot 4,
 // bits 12:8.  hold and task_pos are taken when an advance begins; gov_ev pulses at the end
 // of G4 when a clamp or the hold changed the reference.  Disabled: g = r, v = 0.
@@ -74,9 +83,10 @@
 // lowest-numbered axis (fixed order; an axis's operation may wait for another axis's).  An
 // operation reads and writes only its own axis's state: the slot memory is one block RAM
 // {axis, slot, field, bit} (16 Kbit at 4 axes); the delay line is a shift register (SRL) per
-// axis, shifted only by an operation of its axis; d1, d2, remaining, the governor's rt, v and a
-// copy of the head are one block RAM {axis, bit} read and written bit-serially by the engine
-// (NAXES = 1: rt, v SRLs, d1, d2, remaining flip-flops); ends, last, remaining == 1, slot
+// axis, shifted only by an operation of its axis; d1, d2, remaining, the governor's rt, v, the
+// braking state V, B and a copy of the head are one block RAM {axis, bit} (8 bits wide) read and
+// written bit-serially by the engine (NAXES = 1: rt, v, V, B SRLs, d1, d2, remaining flip-flops);
+// ends, last, remaining == 1, slot
 // and the governor's enable / ksh are a LUT-RAM {axis}; sa, sb and the engine's counters and
 // carries are shared scratch (empty between operations).  The CPU port and the readout take
 // the axis in the high bits of seg_slot and rd_age; the axis's strobes, sync value, hold /
@@ -107,7 +117,7 @@
 //   N                         prediction horizon (delay line N+1 deep), >= 1
 //   NAXES                     axes, 1..4 (AW, AXB: derived widths, leave at their defaults)
 // Latency (per axis, engine idle): advance strobe -> w_ok: 66 clocks (no load), 69 (load; busy
-//   199), with the governor 326 / 329 (busy 325 / 459); sync -> w_ok (N+1)*65 + 1 clocks.
+//   199), with the governor 326 / 329 (busy 390 / 524: G5 after the delay line); sync -> w_ok (N+1)*65 + 1 clocks.
 //   An operation that finds the engine busy with another axis waits for it (at most one
 //   operation per other axis with an advance pending, or all their pending syncs).  Consumers
 //   wait for w_ok.
@@ -119,6 +129,8 @@
 // Resources (Yosys xc6s, N = 4, out of context): NAXES = 1 212 LUT (17 SRLC32E) / 247 FF /
 //   1 RAMB16; NAXES = 4 323 LUT (51 of them SRLC32E / RAM32M) / 154 FF / 1.5 RAMB16; no DSP
 //   (406 LUT / 1 RAMB16 at NAXES = 4 with the state in SRLs; 198 at NAXES = 1, mapping noise).
+//   With the braking distance (V, B, passes G1 / G4 / G5): NAXES = 4 362 LUT / 164 FF / 1.5 RAMB16;
+//   one-axis top +24 LUT / +10 FF (3568 / 5146).
 `default_nettype none
 `include "empc_formats.vh"
 module ref_gen #(
@@ -193,7 +205,7 @@ module ref_gen #(
 
     // ---------------- engine registers (shared: the operation that runs) ----------------
     localparam [3:0] K_FLG = 4'd0, K_HEAD = 4'd1, K_D1 = 4'd2, K_D2 = 4'd3, K_LEN = 4'd4, K_SYNC = 4'd5,
-                     K_G1 = 4'd6, K_G2 = 4'd7, K_G3 = 4'd8, K_G4 = 4'd9;
+                     K_G1 = 4'd6, K_G2 = 4'd7, K_G3 = 4'd8, K_G4 = 4'd9, K_G5 = 4'd10;
     reg         run;                                   // a pass is running
     reg  [AXW-1:0] ax_r;                               // axis of the running operation
     wire [AXW-1:0] ax = (NAXES > 1) ? ax_r : {AXW{1'b0}};
@@ -211,7 +223,10 @@ module ref_gen #(
     reg         k0, k1, k2;                            // governor: carries of a pass's adders
     reg         e_sgn, ovr, x_sgn;                     // sign of e, sb tap past bit 63, sign of x1 / vdc
     reg         hi1, lo1, hi2, lo2, s2, v_nz, v_sgn, dv_nz;
-    reg         g_nz, g_sgn, hblk;                     // speed hold: g != 0, sign of g; vd = 0 in G2
+    reg         g_nz, g_sgn, hblk;                     // speed hold: g != 0, sign of g; vd = 0 in G2 (or brake)
+    reg         x1z, slow, up, dn, vp;                 // braking: x1 = 0, no speed-up, V up / down, V bit j-1
+    reg         k3, k4, k5, k6;                        // braking: carries (G1: |e|, |e| - B, B + 2V, |e| - (B + 2V);
+                                                       // G4: |v'|, |v'| - V - 1, |v'| + a, |v'| + a - V - 1; G5: V', B')
 
     // ---------------- per-axis pending flags (flip-flops) ----------------
     reg  [NAP-1:0] adv_pend, sync_pend, pend;
@@ -328,6 +343,7 @@ module ref_gen #(
     localparam integer DL = (N + 1) * 64;
     reg  [NAXES*DL-1:0] dl;
     reg                 dl_sh, dl_in, d1_sh, d1_in, d2_sh, d2_in, rem_sh, rem_in, rt_sh, rt_in, v_sh, v_in;
+    reg                 vq_sh, vq_in, bq_sh, bq_in;
     wire [NAP-1:0]      ax_hot;
     always @(posedge clk)
         for (ai = 0; ai < NAXES; ai = ai + 1)
@@ -342,33 +358,36 @@ module ref_gen #(
     localparam          SHZ = (NAXES > 1);
     // NAXES > 1: also the engine's copy of the head w_{k+N} (st_w, the tap: bit jc of the old head
     // while the delay line shifts, of the head in a governed head pass, where it stands still).
-    wire                st_d1, st_d2, st_rem, st_rt, st_v, st_w;
+    wire                st_d1, st_d2, st_rem, st_rt, st_v, st_w, st_vq, st_bq;
     generate
         if (NAXES > 1) begin : g_sram
-            // block RAM {axis, bit} x {w, v, rt, remaining, d2, d1}: read bit t (the next bit) one clock
+            // block RAM {axis, bit} x {B, V, w, v, rt, remaining, d2, d1}: read bit t (the next bit) one clock
             // ahead like the slot memory, write bit jc in every clock of a pass (a word that does not
             // change writes back the bit it read: no read and write of the same address in one clock).
             // In a pass that does not change a word its bit is not needed (the carries that see it are
             // preset at every lead clock).
-            (* ram_style = "block" *) reg [5:0] st_m [0:NAP*64-1];
-            reg  [5:0]  st_q;
+            (* ram_style = "block" *) reg [7:0] st_m [0:NAP*64-1];
+            reg  [7:0]  st_q;
             integer     sj;
-            initial for (sj = 0; sj < NAP * 64; sj = sj + 1) st_m[sj] = 6'd0;
+            initial for (sj = 0; sj < NAP * 64; sj = sj + 1) st_m[sj] = 8'd0;
             always @(posedge clk) begin
                 st_q <= st_m[{ax, t}];
                 if (run && act)
-                    st_m[{ax, jc}] <= {dl_sh ? dl_in : st_q[5], v_sh ? v_in : st_q[4], rt_sh ? rt_in : st_q[3],
+                    st_m[{ax, jc}] <= {bq_sh ? bq_in : st_q[7], vq_sh ? vq_in : st_q[6],
+                                       dl_sh ? dl_in : st_q[5], v_sh ? v_in : st_q[4], rt_sh ? rt_in : st_q[3],
                                        rem_sh ? rem_in : st_q[2], d2_sh ? d2_in : st_q[1], d1_sh ? d1_in : st_q[0]};
             end
-            assign {st_w, st_v, st_rt, st_rem, st_d2, st_d1} = st_q;
+            assign {st_bq, st_vq, st_w, st_v, st_rt, st_rem, st_d2, st_d1} = st_q;
         end else begin : g_sff
-            // one axis: shift registers (rt, v: SRL; d1, d2, remaining: flip-flops with a parallel clear)
-            reg  [63:0] d1, rt, v;
+            // one axis: shift registers (rt, v, V, B: SRL; d1, d2, remaining: flip-flops with a parallel clear)
+            reg  [63:0] d1, rt, v, vq, bq;
             reg  [31:0] d2, rem;
             always @(posedge clk)
                 if (ax_hot[0]) begin
                     if (rt_sh) rt <= {rt[62:0], rt_in};
                     if (v_sh)  v  <= {v[62:0], v_in};
+                    if (vq_sh) vq <= {vq[62:0], vq_in};
+                    if (bq_sh) bq <= {bq[62:0], bq_in};
                 end
             always @(posedge clk)
                 if (zclr) begin
@@ -385,6 +404,8 @@ module ref_gen #(
             assign st_rem = rem[0];
             assign st_rt = rt[63];
             assign st_v = v[63];
+            assign st_vq = vq[63];
+            assign st_bq = bq[63];
             assign st_w = 1'b0;                            // the tap is the delay line's read port
         end
     endgenerate
@@ -447,14 +468,15 @@ module ref_gen #(
     assign jcw = jc;
     wire        ends = ends_ax;
     wire        gk   = (kind == K_G1) || (kind == K_G2) || (kind == K_G3) || (kind == K_G4);
+    wire        gk5  = gk || (kind == K_G5);                 // the passes that read field 7
     wire [5:0]  jlast = (kind == K_FLG) ? 6'd1 : (kind == K_D2 || kind == K_LEN) ? 6'd31 : 6'd63;
     wire        last_bit = act && (jc == jlast);
     // field of the bit issued in this clock
     wire [2:0]  fld = (kind == K_FLG) ? F_FLAGS : (kind == K_HEAD) ? (F_R0 + {2'b00, t[5]}) :
                       (kind == K_D1) ? (F_D1 + {2'b00, t[5]}) : (kind == K_D2) ? F_D2 :
-                      gk ? 3'd7 : F_LEN;
-    // governor words: vmax in slots 0/1 (G1, G2), a in slots 2/3 (G3, G4); bit 63 reads as 0
-    assign      g_slot = {2'b00, (kind == K_G3) || (kind == K_G4), t[5]};
+                      gk5 ? 3'd7 : F_LEN;
+    // governor words: vmax in slots 0/1 (G1, G2), a in slots 2/3 (G3, G4, G5); bit 63 reads as 0
+    assign      g_slot = {2'b00, (kind == K_G3) || (kind == K_G4) || (kind == K_G5), t[5]};
     wire        pm = rb_q && (jc != 6'd63);            // vmax / a bit jc
 
     // head pass arithmetic (bit jc)
@@ -486,10 +508,40 @@ module ref_gen #(
     //   G3: dv + ~a (k1), dv + a (k2): the clamps; dv recirculates in sb
     //   G4: dvc = clamp(dv) (-a: k1) or 0 (hold), v' = v + dvc (k0), g' = g + v' (k2) -> delay line
     wire        na   = ~pm ^ k1;
-    wire        blk  = gv_hold && gv_pos && dv_nz && v_nz && (s2 == v_sgn);
+    wire        blk  = (gv_hold || slow) && gv_pos && dv_nz && v_nz && (s2 == v_sgn);
     wire        dvc  = blk ? 1'b0 : hi2 ? pm : lo2 ? na : sb[63];
     wire        vnb  = v_o ^ dvc ^ k0;
     wire        gnb  = tap ^ vnb ^ k2;
+    // braking distance (position task): V = n a >= |v|, B = a n (n + 1) / 2, per axis (rtlmodel/ref_gen.py)
+    //   G1: |e| (k3), |e| - B (k4), T = B + 2V (k5, vp = V bit j-1), |e| - T (k6): brake / no speed-up
+    wire        eo   = sb[63];                         // e, bit jc (sb recirculates in G1)
+    wire        aex  = eo ^ e_sgn;
+    wire        aeb  = aex ^ k3;
+    wire        d0b  = aeb ^ ~st_bq ^ k4;
+    wire        t1b  = st_bq ^ vp ^ k5;
+    wire        dtb = aeb ^ ~t1b ^ k6;
+    wire        zc   = gv_pos && x1z && (v_nz || v_o) && (v_o == e_sgn);  // at bit 63 (v streams in G1)
+    //   G4: w = |v'| by the sign of v (of dv when v = 0) (k3), w - V - 1 (k4), w + a (k5), w + a - V - 1 (k6)
+    wire        sw   = v_nz ? v_sgn : s2;
+    wire        wx   = vnb ^ sw;
+    wire        wb   = wx ^ k3;
+    wire        ub   = wb ^ ~st_vq ^ k4;
+    wire        tb   = wb ^ pm ^ k5;
+    wire        qb   = tb ^ ~st_vq ^ k6;
+    //   G5: V' = V + a (up) / V - a (down) (k3), B' = B + V' (up) / B - V (down) (k4)
+    wire        dnx  = dn && !up;
+    wire        as5  = up ? pm : (dnx && !pm);
+    wire        vqn  = st_vq ^ as5 ^ k3;
+    wire        bs5  = up ? vqn : (dnx && !st_vq);
+    wire        bqn  = st_bq ^ bs5 ^ k4;
+    wire        k3n  = (kind == K_G1) ? (aex & k3) : (kind == K_G4) ? (wx & k3) :
+                       ((st_vq & as5) | (k3 & (st_vq ^ as5)));
+    wire        k4n  = (kind == K_G1) ? ((aeb & ~st_bq) | (k4 & (aeb ^ ~st_bq))) :
+                       (kind == K_G4) ? ((wb & ~st_vq) | (k4 & (wb ^ ~st_vq))) :
+                       ((st_bq & bs5) | (k4 & (st_bq ^ bs5)));
+    wire        k5n  = (kind == K_G1) ? ((st_bq & vp) | (k5 & (st_bq ^ vp))) : ((wb & pm) | (k5 & (wb ^ pm)));
+    wire        k6n  = (kind == K_G1) ? ((aeb & ~t1b) | (k6 & (aeb ^ ~t1b))) : ((tb & ~st_vq) | (k6 & (tb ^ ~st_vq)));
+
     // compare operand of G1 (vd) / G3 (dv) and its carries
     wire        cx   = (kind == K_G1) ? vdb : sb[63];
     wire        k1n  = (kind == K_G2 || kind == K_G4) ? (~pm & k1) :
@@ -514,14 +566,21 @@ module ref_gen #(
     always @(*) begin
         dl_sh = dl_pass;
         dl_in = (kind == K_G4) ? gnb : in_head;
-        rb_addr = gk ? {g_slot_x, fld, t[4:0]} : {ld_slot_x, fld, t[4:0]};
+        rb_addr = gk5 ? {g_slot_x, fld, t[4:0]} : {ld_slot_x, fld, t[4:0]};
         // rt: the new target in the head pass, the sync value in the first sync pass
         rt_sh = run && act && (kind == K_HEAD || (kind == K_SYNC && cp == N[AW-1:0]));
         rt_in = in_head;
         // v: 0 in a head pass without the governor and in the first sync pass, v' in G4,
         // recirculates in G2
-        v_sh  = run && act && ((kind == K_HEAD && !g_on) || first_sync || kind == K_G2 || kind == K_G4);
-        v_in  = (kind == K_G4) ? vnb : (kind == K_G2) ? v_o : 1'b0;
+        v_sh  = run && act && ((kind == K_HEAD && !g_on) || first_sync || kind == K_G1 || kind == K_G2 ||
+                               kind == K_G4);
+        v_in  = (kind == K_G4) ? vnb : (kind == K_G1 || kind == K_G2) ? v_o : 1'b0;
+        // V, B: 0 where v is cleared, read in G1 and G4 (recirculate), updated in G5
+        vq_sh = run && act && ((kind == K_HEAD && !g_on) || first_sync || kind == K_G1 || kind == K_G4 ||
+                               kind == K_G5);
+        vq_in = (kind == K_G5) ? vqn : (kind == K_G1 || kind == K_G4) ? st_vq : 1'b0;
+        bq_sh = vq_sh;
+        bq_in = (kind == K_G5) ? bqn : (kind == K_G1 || kind == K_G4) ? st_bq : 1'b0;
         sa_sh = run && act && ((kind == K_HEAD && g_on) || kind == K_G1 || kind == K_G2);
         sa_in = (kind == K_G1) ? vdb : (kind == K_G2) ? sa_o : x1b;
         sb_sh = run && act && ((kind == K_HEAD && g_on) || gk);
@@ -634,6 +693,15 @@ module ref_gen #(
             g_nz <= 1'b0;
             g_sgn <= 1'b0;
             hblk <= 1'b0;
+            x1z <= 1'b0;
+            slow <= 1'b0;
+            up <= 1'b0;
+            dn <= 1'b0;
+            vp <= 1'b0;
+            k3 <= 1'b0;
+            k4 <= 1'b0;
+            k5 <= 1'b0;
+            k6 <= 1'b0;
         end else begin
             for (ai = 0; ai < NAP; ai = ai + 1) begin
                 if (in_adv[ai]) adv_pend[ai] <= 1'b1;
@@ -699,6 +767,12 @@ module ref_gen #(
                     k0 <= k0n;
                     k1 <= k1n;
                     k2 <= k2n;
+                    k3 <= k3n;
+                    k4 <= k4n;
+                    k5 <= k5n;
+                    k6 <= k6n;
+                    vp <= st_vq;
+                    if (kind == K_HEAD && x1b) x1z <= 1'b0;
                     if (kind == K_HEAD && normal && !jc[5]) begin
                         if (jc == 6'd0) one_acc <= remn;
                         else if (remn) one_acc <= 1'b0;
@@ -710,10 +784,12 @@ module ref_gen #(
                         g_sgn <= tap;
                     end
                     if (kind == K_G1 && jc == {1'b1, ~ksh}) ovr <= 1'b1;
-                    if (kind == K_G2) begin
+                    if (kind == K_G1) begin
                         if (v_o) v_nz <= 1'b1;
+                        if (jc == 6'd63) v_sgn <= v_o;
+                    end
+                    if (kind == K_G2) begin
                         if (jc == 6'd63) begin
-                            v_sgn <= v_o;
                             s2 <= ov2 ? vdc : dvb;              // sign of the exact vdc - v
                             x_sgn <= ov2;                       // (overflowed: the clamp is certain)
                         end
@@ -723,12 +799,19 @@ module ref_gen #(
                         if (kind == K_G1) begin                 // exact vd: 65-bit sign if overflowed
                             hi1 <= ov1 ? !sa_o : (vdb ^ c_hi);
                             lo1 <= ov1 ? sa_o : (vdb ^ c_lo);
-                            // speed hold: vd = 0 unless it lowers |g| (g != 0, sign(vd) != sign(g))
-                            hblk <= gv_hold && !gv_pos && !(g_nz && ((ov1 ? sa_o : vdb) != g_sgn));
+                            // speed hold: vd = 0 unless it lowers |g| (g != 0, sign(vd) != sign(g));
+                            // position task: vd = 0 (brake) when |e| < B, no speed-up when |e| < B + 2V
+                            hblk <= (gv_hold && !gv_pos && !(g_nz && ((ov1 ? sa_o : vdb) != g_sgn))) ||
+                                    (zc && d0b);
+                            slow <= zc && dtb;
                         end
                         if (kind == K_G3) begin
                             hi2 <= x_sgn ? !s2 : (sb[63] ^ c_hi);
                             lo2 <= x_sgn ? s2 : (sb[63] ^ c_lo);
+                        end
+                        if (kind == K_G4) begin                 // |v'| > V, |v'| + a <= V
+                            up <= !ub;
+                            dn <= qb;
                         end
                     end
                 end else begin
@@ -740,7 +823,13 @@ module ref_gen #(
                     k1 <= (kind == K_HEAD) || (kind == K_G2) || (kind == K_G4);
                     k2 <= 1'b0;
                     if (kind == K_G1) ovr <= 1'b0;
-                    if (kind == K_G2) v_nz <= 1'b0;
+                    if (kind == K_G1) v_nz <= 1'b0;
+                    k3 <= (kind == K_G1) ? e_sgn : (kind == K_G4) ? sw : (kind == K_G5) && dnx;
+                    k4 <= (kind == K_G1) || ((kind == K_G5) && dnx);
+                    k5 <= 1'b0;
+                    k6 <= (kind == K_G1);
+                    vp <= 1'b0;
+                    if (kind == K_HEAD) x1z <= 1'b1;
                     if (kind == K_G3) dv_nz <= 1'b0;
                     if (kind == K_HEAD) g_nz <= 1'b0;
                 end
@@ -760,6 +849,9 @@ module ref_gen #(
                         K_G4: begin
                             for (ai = 0; ai < NAXES; ai = ai + 1)
                                 if (ax_hot[ai]) gov_ev[ai] <= gv_hold || hi1 || lo1 || hi2 || lo2;
+                            kind <= K_G5;
+                        end
+                        K_G5: begin
                             if (m_load) kind <= K_D1;
                             else run <= 1'b0;
                         end

@@ -12,6 +12,8 @@ empc.rtlmodel.ref_gen.RefGenAxes (NAXES per-axis RefGen models on a clock-exact 
   axis 0 and once without: the delay-line words of axes 1..3 after each of their advances, and
   their gov_ev pulses, are identical (the engine time a sync of axis 0 takes only moves the
   other axes' operations later).
+* braking_axes: the position task's braking distance on all four axes (V, B in the state RAM),
+  bit-exact vs the model after every period, each axis's brake / no-speed-up zones exercised.
 * test_ref_gen_axes_mutant: an engine that shifts every axis's target word rt (not only the
   running axis's) must fail random_axes.
 """
@@ -26,7 +28,7 @@ import pytest
 from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, Timer
 
-from empc.rtlmodel.ref_gen import FIELDS, GOV_FIELD, M32, M64, NSLOT, RefGenAxes, gov_words, slot_field
+from empc.rtlmodel.ref_gen import FIELDS, GOV_FIELD, M32, M64, NSLOT, RefGenAxes, Slot, gov_words, slot_field
 
 DEFAULT_SEED = 20261126
 CLOCK = False
@@ -282,7 +284,7 @@ async def random_axes(dut):
 
 async def iso_run(dut, seed, n_clocks, sync_axis0):
     """Stimulus whose effect on axes 1..3 does not depend on the engine's timing: every axis's
-    strobes come >= 2500 clocks apart (longer than any wait for the engine), a start, a sync and a
+    strobes come >= 3000 clocks apart (longer than any wait for the engine), a start, a sync and a
     hold / task change of axis b only in the clock of b's advance strobe, no CPU traffic after the
     programs.  Axis 0 is synced at random (its own random stream) or never."""
     env = Env(dut, seed)
@@ -296,7 +298,7 @@ async def iso_run(dut, seed, n_clocks, sync_axis0):
         for slot, word in words.items():
             await env.cycle(seg=(a, slot, GOV_FIELD, word))
     await env.cycle(start=[rng.randrange(NSLOT) for _ in range(A)])
-    next_adv = [rng.randrange(2500) for _ in range(A)]
+    next_adv = [rng.randrange(3000) for _ in range(A)]
     n_sync0 = 0
     while env.n < n_clocks:
         adv = [env.n >= next_adv[a] for a in range(A)]
@@ -305,7 +307,7 @@ async def iso_run(dut, seed, n_clocks, sync_axis0):
             if adv[a]:
                 # the premise: the axis's previous advance has run (no strobe merges into a pending one)
                 assert a == 0 or not m[a].busy, f"clock {env.n}: axis {a} still busy at its next advance"
-                next_adv[a] = env.n + rng.choice([2500, 2600, 3000])
+                next_adv[a] = env.n + rng.choice([3000, 3100, 3500])
                 if a > 0 or True:
                     env.hold[a] = int(rng.random() < 0.3)
                     env.task_pos[a] = int(rng.random() < 0.5)
@@ -329,7 +331,7 @@ async def isolation(dut):
     global CLOCK
     CLOCK = False
     seed = int(os.environ.get("EMPC_SEED", DEFAULT_SEED)) + 7
-    n = int(os.environ.get("EMPC_REFGEN_ISO_CLOCKS", 60000))
+    n = int(os.environ.get("EMPC_REFGEN_ISO_CLOCKS", 72000))
     env1, n1 = await iso_run(dut, seed, n, sync_axis0=True)
     env2, n2 = await iso_run(dut, seed, n, sync_axis0=False)
     assert n1 > n / 6000 and n2 == 0, "axis 0 was never synced"
@@ -340,7 +342,64 @@ async def isolation(dut):
                   "syncs of axis 0 (both runs also bit-exact vs the model every clock)", [len(env1.trace[b]) for b in range(1, env1.A)], n1)
 
 
-@pytest.mark.cost(57)          # seconds on an idle core (make sim starts the costliest first)
+async def run_idle(env):
+    """Clocks without inputs until every axis is idle (model and RTL), compared at the end: Python sleeps
+    through them (one timer; no sync may run, its value is read bit by bit)."""
+    m, n = env.m, 0
+    env._drive()
+    while any(g.busy for g in m.axes):
+        assert not any(g._op is not None and g._op["kind"] == "sync" for g in m.axes)
+        m.step(hold=env.hold, task_pos=env.task_pos)
+        n += 1
+    if n:
+        await Timer(n * 10 - 2, unit="ns")          # past the n-th rising edge, before the n-th falling one
+        await FallingEdge(env.dut.clk)
+        env.n += n
+    env.check()
+
+
+@cocotb.test()
+async def braking_axes(dut):
+    """Position task, braking distance (V, B of every axis in the state RAM): every axis governed with its
+    own vmax, a and ksh (a small shift: the proportional catch-up alone would overshoot), target steps
+    of 5..40 vmax, staggered between the axes, advances of all four axes in one clock (the engine
+    serialises them), holds at random; the delay lines of all axes bit-exact vs RefGenAxes after every
+    period, and the brake / no-speed-up zones seen on every axis."""
+    global CLOCK
+    CLOCK = False
+    env = Env(dut, int(os.environ.get("EMPC_SEED", DEFAULT_SEED)) + 11)
+    await env.start()
+    A, m, rng = env.A, env.m, env.rng
+    env.task_pos = [1] * A
+    vm = []
+    for a in range(A):
+        vmax = rng.getrandbits(33) | (1 << 33)                  # 2..4 counts per period
+        vm.append(vmax >> 32)
+        k = rng.randrange(4, 8)
+        for slot, word in gov_words(vmax, max(1, vmax >> k), rng.randrange(0, k - 2), True).items():
+            await env.cycle(seg=(a, slot, GOV_FIELD, word))
+    await env.cycle(sync=[0] * A)
+    while any(g.busy for g in m.axes):
+        await env.cycle()
+    tgt = [0] * A
+    periods = int(os.environ.get("EMPC_REFGEN_BRAKE_PERIODS", 120))
+    for p in range(periods):
+        start = [None] * A
+        for a in range(A):
+            if p % 60 == a * 7:
+                tgt[a] += rng.choice([1, -1]) * vm[a] * rng.randrange(5, 40)
+                await env.program(a, [Slot(0, (tgt[a] << 32) & M64, 0, 0, last=True)])
+                start[a] = 0
+            env.hold[a] = int(rng.random() < 0.03)
+        await env.cycle(start=start, advance=[True] * A)
+        await run_idle(env)
+    bc = [g.brake_cases for g in m.axes]
+    dut._log.info("braking_axes: %d periods x %d axes bit-exact vs RefGenAxes, %d clocks; cases per axis %s",
+                  periods, A, env.n, bc)
+    assert all(c["brake"] >= 10 and c["slow"] >= 10 and c["down"] >= 10 for c in bc), bc
+
+
+@pytest.mark.cost(85)          # seconds on an idle core (make sim starts the costliest first)
 def test_ref_gen_axes():
     from runner import run
     run(toplevel="ref_gen", test_module="test_ref_gen_axes", parameters=PARAMS,

@@ -64,7 +64,7 @@ class AxisModel:
         self.k = 0                  # control periods evaluated
         self.last_control = None    # outputs of the last control period (+ ref_w0: the w_k it applied)
         self.gov_clamps = 0         # control periods in which the governor shaped the reference (SAT_GOV)
-        self._gdl, self._r_prev, self._v_gov = None, 0, 0     # governor of the refs path
+        self._gdl, self._r_prev, self._v_gov, self._vb_gov = None, 0, 0, (0, 0)     # governor of the refs path
         self._boundary_ref = None   # (control, references) decided at boundary(), for the next period()
         self.swap_params = None     # a coefficient swap requested (swap()): decided at the next control boundary
 
@@ -128,8 +128,8 @@ class AxisModel:
         else:
             if self._gdl is None:                  # as the RTL after a sync to w_k (governor.ReferencePath)
                 self._gdl, self._r_prev = [target[0]] * len(target), target[0]
-            g_new, self._v_gov, clamped = gov_step(self.gov, self._v_gov, self._r_prev, target[-1], self._gdl[-1],
-                                                   self.seq.hold, task_pos)
+            g_new, self._v_gov, clamped, self._vb_gov = gov_step(self.gov, self._v_gov, self._r_prev, target[-1],
+                                                                 self._gdl[-1], self.seq.hold, task_pos, self._vb_gov)
             self._gdl = self._gdl[1:] + [g_new]
             self.gov_clamps += int(clamped)
         self._r_prev = target[-1]

@@ -16,6 +16,14 @@ reference g (what the controller gets), its increment v:
     if hold and position task and dv would increase |v|: dv = 0
     v += dv;  g += v
 
+Position task, braking distance (issue 15, the position overshoot): while the target holds (r_k = r_{k-1}) and v moves
+towards it, vd = 0 (brake at a) when |r - g| < B, and no speed-up when |r - g| < B + 2 V, where
+V = n a >= |v| (n changes by at most one per period: V += a when |v| > V, V -= a when |v| + a <= V,
+after the step) and B = a n (n + 1) / 2 the distance the reference travels while braking at a from
+a speed <= V (B += V on the way up, -= V on the way down): the time-optimal switching curve
+v^2 / 2a + |v| / 2 kept with adds only (rtl/ref_gen.v passes G1, G4, G5).  Near the target (B
+small) the proportional catch-up below does the final approach.
+
 Position task: v is the reference speed (<= vmax: speed_frac of the no-load base speed
 u_max/psi and of Omega_e), dv its change (<= a: the acceleration that needs accel_current x
 i_max at the box corner J x box_J, psi x box_psi).  Speed task: v is the reference's
@@ -35,7 +43,8 @@ The catch-up is a proportional position (speed) loop on the reference with time 
 tau = Ts x 2^ksh: it brakes (v follows vd = e >> ksh down) from an error of tau x the reference speed
 w; it follows that braking exactly while the deceleration it asks, w / tau, is within the acceleration
 limit alpha, and stops without overshoot while the braking distance w^2 / 2 alpha is within w tau
-(w <= 2 alpha tau).  Position task: the limits are SI (vmax = w_max Ts, a = alpha Ts^2), so
+(w <= 2 alpha tau); above that the braking distance takes over (it brakes when the remaining distance
+falls to the braking distance, whatever tau).  Position task: the limits are SI (vmax = w_max Ts, a = alpha Ts^2), so
 the same braking needs the same tau at every control period, and ``shift_position`` defaults to
 :func:`default_shift_position` of Ts: the smallest ksh with tau >= 4 ms, the tau of 4 at 250 us (the
 value the configurations were tuned with): 200 us 5, 100 us 6, 50 us 7.  Taken as 4 at 50 us (tau =
@@ -127,26 +136,45 @@ class Governor:
         self.r = value
         self.g = value
         self.v = 0.0
+        self.vq = 0.0                       # braking state: V = n a >= |v|, B = a n (n + 1) / 2
+        self.bq = 0.0
 
     def step(self, r_new: float, hold: bool) -> float:
         p = self.p
         if not p.enable:
             self.r = self.g = r_new
-            self.v = 0.0
+            self.v = self.vq = self.bq = 0.0
             self.clamped = False
             return self.g
-        vd0 = (r_new - self.r) + self.K * (self.r - self.g)
+        x1 = r_new - self.r
+        e = self.r - self.g
+        vd0 = x1 + self.K * e
         vd = min(max(vd0, -p.vmax), p.vmax)
         if hold and p.task == "speed" and not (self.g != 0.0 and (vd < 0.0) != (self.g < 0.0)):
             vd = 0.0                        # no more |speed| while held (towards lower |g| passes)
+        # braking distance (position task, target holding, moving towards it): brake at a inside B,
+        # no speed-up inside B + 2 V
+        brake = slow = False
+        if p.task == "position" and x1 == 0.0 and self.v != 0.0 and (self.v < 0.0) == (e < 0.0):
+            brake, slow = abs(e) < self.bq, abs(e) < self.bq + 2.0 * self.vq
+        if brake:
+            vd = 0.0
         dv0 = vd - self.v
         dv = min(max(dv0, -p.a), p.a)
-        if hold and p.task == "position" and dv * self.v > 0:
+        if (hold or slow) and p.task == "position" and dv * self.v > 0:
             dv = 0.0                        # no more speed while held (slowing down stays allowed)
         self.clamped = bool(hold or vd != vd0 or dv != dv0)
+        s = self.v < 0.0 if self.v != 0.0 else dv0 < 0.0
         self.v += dv
         self.g += self.v
         self.r = r_new
+        w = -self.v if s else self.v
+        if w > self.vq:                     # V, B of n + 1
+            self.vq += p.a
+            self.bq += self.vq
+        elif w + p.a <= self.vq:            # of n - 1
+            self.bq -= self.vq
+            self.vq -= p.a
         return self.g
 
 

@@ -33,15 +33,25 @@ complement Q.32 (exact integers where stated; s64 = the signed value of a 64-bit
     vd  = vmax if vd > vmax, -vmax if vd < -vmax
     speed task, hold, and not (s64(g) != 0 and sign(vd) != sign(s64(g))): vd = 0
                                    (one-sided: vd passes only towards lower |g|; sign of the exact vd)
+    position task, brake (below): vd = 0
     dv  = vd - s64(v)                                                (exact)
     dv  = a if dv > a, -a if dv < -a
-    position task, hold, dv != 0, v != 0 and sign(dv) = sign(v): dv = 0
+    position task, hold or slow, dv != 0, v != 0 and sign(dv) = sign(v): dv = 0
     v   = s64(v + dv);  g = g + v (mod 2^64)
+
+Braking distance (position task, :func:`brake_zone`, :func:`brake_update`): the state V (a
+multiple n of a, tracked one step per advance so that V - a < |v| <= V) and B = a n (n + 1) / 2,
+the distance a reference at a speed <= V travels while braking at a (this period's step included).
+With the target holding (r_new = r_old), v != 0 moving towards it (sign(v) = sign(e), e = r_old - g)
+and |e| (mod 2^64): brake = s64(|e| - B) < 0, slow = s64(|e| - (B + 2V)) < 0 (no speed-up; B + 2V >=
+B of n + 1).  After the step, w = |v| by the sign of the old v (of the exact dv when v was 0):
+s64(w - V - 1) >= 0 -> V += a, B += V;  else s64(w + a - V - 1) < 0 -> B -= V, V -= a (mod 2^64).
+Adds and compares only: the RTL computes the zones in G1, the compares in G4 and the update in G5.
 
 vmax and a are 63-bit unsigned (bit 63 of each reads as 0); they sit with ksh and enable in
 field 7 of slots 0..4 (:data:`GOV_SLOTS`, register SEG_GOV).  ``hold`` and the task come from
 the axis (``advance(hold=..., task_pos=...)``).  Disabled: g = r, v = 0 (the plain generator).
-A sync sets r, g and the delay line to the sync value and v to 0.  ``clamped`` tells whether
+A sync sets r, g and the delay line to the sync value and v, V, B to 0.  ``clamped`` tells whether
 the last advance changed the reference (hold or a clamp: the SAT_GOV event).  A held target is
 reached to within 2^ksh LSB of Q.32 (where e >> ksh becomes 0): 2^-29 counts for ksh = 3.
 """
@@ -105,23 +115,58 @@ def speed_hold_case(gp: dict, r_old: int, r_new: int, g: int) -> tuple[bool, boo
     return wrap(g, 64) < 0, speed_hold_passes(vd0, g)
 
 
-def gov_step(gp: dict, v: int, r_old: int, r_new: int, g: int, hold: bool, task_pos: bool) -> tuple[int, int, bool]:
-    """One governor step (module docstring): returns (g_new, v_new, clamped), 64-bit words."""
+def brake_zone(gp: dict, v: int, vq: int, bq: int, x1: int, e: int, task_pos: bool) -> tuple[bool, bool]:
+    """Position task, braking distance (module docstring): (brake, no speed-up) of an advance with the
+    target step x1 = r_new - r_old, e = r_old - g and the braking state vq, bq (64-bit words)."""
+    vs, es = wrap(v, 64), wrap(e, 64)
+    if not (task_pos and x1 & M64 == 0 and vs != 0 and (vs < 0) == (es < 0)):
+        return False, False
+    ae = -es & M64 if es < 0 else es                    # |e| (mod 2^64)
+    lt0 = wrap(ae - bq, 64) < 0                         # |e| < B
+    lt1 = wrap(ae - (bq + 2 * vq), 64) < 0              # |e| < B + 2 V
+    return lt0, lt1
+
+
+def brake_update(a: int, v_old: int, dv0: int, v_new: int, vq: int, bq: int) -> tuple[int, int]:
+    """The braking state after an advance (pass G4 compares, G5 updates): V = n a tracks |v| from above
+    (up by a when |v| > V, down when |v| + a <= V), B = a n (n + 1) / 2 (B += V' up, B -= V down); the
+    sign of |v| is that of the old v, or of the exact dv0 when v was 0 (64-bit words, mod 2^64)."""
+    vs = wrap(v_old, 64)
+    s = vs < 0 if vs != 0 else dv0 < 0
+    w = -v_new & M64 if s else v_new & M64
+    up = wrap(w - vq - 1, 64) >= 0                      # |v'| > V
+    dn = wrap(w + a - vq - 1, 64) < 0                   # |v'| + a <= V
+    if up:
+        vq = (vq + a) & M64
+        bq = (bq + vq) & M64
+    elif dn:
+        bq = (bq - vq) & M64
+        vq = (vq - a) & M64
+    return vq, bq
+
+
+def gov_step(gp: dict, v: int, r_old: int, r_new: int, g: int, hold: bool, task_pos: bool,
+             vb: tuple[int, int] = (0, 0)) -> tuple[int, int, bool, tuple[int, int]]:
+    """One governor step (module docstring): returns (g_new, v_new, clamped, (V, B)), 64-bit words; ``vb``
+    is the braking state (V, B) before the step."""
     if not gp["enable"]:
-        return r_new & M64, 0, False
+        return r_new & M64, 0, False, (0, 0)
     vmax, a = gp["vmax"], gp["a"]
-    vd0 = wrap(r_new - r_old, 64) + (wrap(r_old - g, 64) >> gp["ksh"])
+    vq, bq = vb
+    x1 = wrap(r_new - r_old, 64)
+    vd0 = x1 + (wrap(r_old - g, 64) >> gp["ksh"])
     vd = vmax if vd0 > vmax else -vmax if vd0 < -vmax else vd0
-    if hold and not task_pos and not speed_hold_passes(vd0, g):
+    brake, slow = brake_zone(gp, v, vq, bq, x1, r_old - g, task_pos)
+    if (hold and not task_pos and not speed_hold_passes(vd0, g)) or brake:
         vd = 0
     vs = wrap(v, 64)
     dv0 = vd - vs
     dv = a if dv0 > a else -a if dv0 < -a else dv0
-    if hold and task_pos and dv != 0 and vs != 0 and (dv > 0) == (vs > 0):
+    if (hold or slow) and task_pos and dv != 0 and vs != 0 and (dv > 0) == (vs > 0):
         dv = 0
     clamped = bool(hold or vd0 > vmax or vd0 < -vmax or dv0 > a or dv0 < -a)
     v_new = (vs + dv) & M64
-    return (g + v_new) & M64, v_new, clamped
+    return (g + v_new) & M64, v_new, clamped, brake_update(a, v, dv0, v_new, vq, bq)
 
 
 def gov_words(vmax: int, a: int, ksh: int, enable: bool) -> dict[int, int]:
@@ -159,7 +204,8 @@ def with_field(s: Slot, field: int, value: int) -> Slot:
 
 # engine timing of rtl/ref_gen.v (clocks per pass include the lead clock of the block RAM read)
 PASS_CLOCKS = {"flags": 3, "head": 65, "d1": 65, "d2": 33, "len": 33, "sync": 65, "gov": 65}
-GOV_PASSES = 4                  # governor passes after the head pass (the last one shifts the delay line)
+GOV_PASSES = 5                  # governor passes after the head pass (G1..G5)
+GOV_W_PASSES = 4                # the 4th (G4) shifts the delay line; G5 updates the braking state
 
 
 class RefGen:
@@ -186,6 +232,7 @@ class RefGen:
         # statistics for the tests (not state): speed-task holds by (g < 0, vd passes), counted when the
         # advance is computed (clock level: when it begins; the snapshot shares this dict)
         self.hold_cases = {(n, p): 0 for n in (False, True) for p in (False, True)}
+        self.brake_cases = {"brake": 0, "slow": 0, "up": 0, "down": 0, "vq_max": 0}    # braking zones and V steps
         self.reset(settled=True)
 
     def reset(self, settled: bool = False) -> None:
@@ -205,6 +252,7 @@ class RefGen:
         self.dl = [0] * self.N
         self.r = 0                         # target (the profile); = head when the governor is off
         self.v = 0                         # governed increment per period
+        self.vb = (0, 0)                   # braking state (V, B) of the position task
         self.clamped = False
         self._op = None                    # running operation: dict(kind, clocks left, ...)
         self._sync_value = 0
@@ -256,6 +304,7 @@ class RefGen:
         self.head = self.r = v
         self.dl = [v] * self.N
         self.d1 = self.d2 = self.rem = self.v = 0
+        self.vb = (0, 0)
         self.ends = self.last = False
 
     def advance(self, hold: bool = False, task_pos: bool = False) -> list[int]:
@@ -297,7 +346,17 @@ class RefGen:
         """The governed head after an advance of the target from r_old to r_new (g: the old head)."""
         if self._hold and not self._task_pos and self.gov["enable"]:
             self.hold_cases[speed_hold_case(self.gov, r_old, r_new, g)] += 1
-        g_new, self.v, self.clamped = gov_step(self.gov, self.v, r_old, r_new, g, self._hold, self._task_pos)
+        gp = self.gov
+        if gp["enable"]:
+            br = brake_zone(gp, self.v, *self.vb, wrap(r_new - r_old, 64), r_old - g, self._task_pos)
+            for k, z in zip(("brake", "slow"), br):
+                self.brake_cases[k] += int(z)
+        g_new, self.v, self.clamped, vb = gov_step(gp, self.v, r_old, r_new, g, self._hold, self._task_pos, self.vb)
+        if gp["enable"]:
+            self.brake_cases["up"] += int(vb[0] > self.vb[0])
+            self.brake_cases["down"] += int(vb[0] < self.vb[0])
+            self.brake_cases["vq_max"] = max(self.brake_cases["vq_max"], vb[0] // max(1, gp["a"]))
+        self.vb = vb
         return g_new
 
     # ---- clock level (RTL engine timing) ----
@@ -332,8 +391,8 @@ class RefGen:
         snap._hold, snap._task_pos = self._hold_in, self._task_pos_in
         snap._advance()
         gov = self.gov["enable"]
-        w_left = PASS_CLOCKS["head"] + (GOV_PASSES * PASS_CLOCKS["gov"] if gov else 0)
-        clocks = w_left
+        w_left = PASS_CLOCKS["head"] + (GOV_W_PASSES * PASS_CLOCKS["gov"] if gov else 0)
+        clocks = PASS_CLOCKS["head"] + (GOV_PASSES * PASS_CLOCKS["gov"] if gov else 0)
         if load:
             clocks += sum(PASS_CLOCKS[k] for k in ("flags", "d1", "d2", "len"))
             w_left += PASS_CLOCKS["flags"]
@@ -375,10 +434,10 @@ class RefGen:
         if op["left"] == 0:
             if op["kind"] == "sync":
                 v = op["value"]
-                self.head, self.dl, self.r, self.v = v, [v] * self.N, v, 0
+                self.head, self.dl, self.r, self.v, self.vb = v, [v] * self.N, v, 0, (0, 0)
             else:
                 r = op["result"]
-                for k in ("d1", "d2", "rem", "ends", "last", "slot", "r", "v", "clamped"):
+                for k in ("d1", "d2", "rem", "ends", "last", "slot", "r", "v", "vb", "clamped"):
                     setattr(self, k, getattr(r, k))
             self._op = None
 
