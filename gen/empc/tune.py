@@ -114,6 +114,7 @@ def _settling(y: np.ndarray, final: float, k0: int, Ts: float, band: float) -> f
 
 
 def measure(cfg, algorithm: int, task: str, w_si, specs: Specs, robust_grid: int = 7) -> dict:
+    cfg = cfg.for_design(algorithm, task)
     c = cfg.control
     rt = cfg.ratings
     g = mpc.gains(cfg.motor, c, 0.0, algorithm, task, weights=w_si)
