@@ -404,7 +404,8 @@ def test_control_period_tables_select_by_ts():
     assert _ts(e, 250e-6).weights_pu(1, "speed").Q_du == pytest.approx(config.DEFAULT_WEIGHTS_PU[(1, "speed")].Q_du)
     # the bundled default: tables for 50 us, none used at its own 250 us
     assert config.default().control.weight_tables == {}
-    assert set(_ts(DEFAULT, 50e-6).control.weight_tables) == {(1, "position"), (2, "speed"), (2, "position")}
+    assert set(_ts(DEFAULT, 50e-6).control.weight_tables) == {(1, "speed"), (1, "position"), (2, "speed"),
+                                                               (2, "position")}
 
 
 def test_design_speed_window():
