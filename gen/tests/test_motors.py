@@ -337,7 +337,12 @@ KNOWN_50US = {
                                        "0.69 u_max, 78-80 %, 0.70-0.73); `empc tune --refine --u-chatter 0.25` finds "
                                        "no table that passes the box (best radius 1.00000); the final error stays "
                                        "65 % with 128000 cpr and with control.speed_window = 2..8 (u_q tail 0.17 at "
-                                       "M = 4): not only the resolution",
+                                       "M = 4): not only the resolution.  The weights: its linear loop (empc tune's) "
+                                       "does not settle in 100 ms (0.11 A for a 0.1 pu step; u chatter 0.60 / 0.42 / "
+                                       "0.19 u_max at M = 1 / 2 / 4); `empc tune --refine --settling 0.03..0.05` at "
+                                       "M = 1, 2, 4 finds no table: the damping of the 208 Hz mode at +-5500 rad/s under "
+                                       "the rated load binds (best 0.046 < 0.05 at M = 4) and the search walks to "
+                                       "near-zero gains (0.00 A for the step), none settling",
 }
 # ipmsm_001 alg2 speed at corner_a (peak 1.033 / 1.096 i_max) passes since the speed integral's anti-windup
 # (issue 15, docs/design.md): 0.994 / 0.842, overshoot 15.2 / 8.3 %.
