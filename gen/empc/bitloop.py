@@ -54,7 +54,7 @@ class AxisModel:
         if (refgen is None) == (refs is None):
             raise ValueError("AxisModel needs exactly one reference source: refgen or refs")
         self.cfg = cfg
-        self.regs = regs if regs is not None else regs_for(cfg, params.task)
+        self.regs = regs if regs is not None else regs_for(cfg, params.task, params.algorithm)
         self.seq = CtrlSeq(params=params, N=cfg.control.N)
         self.ref = refgen
         self.refs = refs
@@ -171,8 +171,11 @@ def ref_q32(cfg, task: str, value_si: float) -> int:
     return int(round(value_si / unit * (1 << 32))) & ((1 << 64) - 1)
 
 
-def regs_for(cfg, task: str, **kw) -> Regs:
-    """Sequencer registers as the generator's header sets them after reset (``kw`` overrides)."""
+def regs_for(cfg, task: str, algorithm: int | None = None, **kw) -> Regs:
+    """Sequencer registers of the design (``algorithm``, default control.algorithm; ``task``) as the firmware
+    writes them with its image (the header's reset values for the boot design; KACC and KACC.win follow the
+    design's speed window, manifest designs.kacc); ``kw`` overrides."""
+    cfg = cfg.for_design(algorithm or cfg.control.algorithm, task)
     kacc, kacc_shift = header.speed_correction_raw(cfg)
     fw = header.field_weakening_raw(cfg)
     gov = header.governor_raw(cfg, task)
@@ -207,6 +210,7 @@ def simulate(cfg, scenario: cl.Scenario, params=None, seed: int = 0, substeps: i
     they pass through the governor ``gov`` (default: the header's for the task).
     ``plant_motor`` lets the plant differ from the design motor."""
     config_mod.require_rtl_speed_window(cfg)
+    cfg = cfg.for_design(cfg.control.algorithm, scenario.task)     # the design's speed window (KACC.win)
     c = cfg.control
     alg_task = (c.algorithm, scenario.task)
     params = params or design_mod.design(cfg.with_control(task=scenario.task), *alg_task, force=True)["params"]

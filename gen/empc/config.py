@@ -214,6 +214,10 @@ for _t in _WEIGHT_TABLES:
                 "(algorithm 2: i_q, whose reference 0 a load cannot follow, docs/design.md)"),
         Key(_t, "Q_dy", "float[3]", lo=0, lo_open=True, doc="output increment weight"),
         Key(_t, "Q_du", "float[2]", lo=0, lo_open=True, doc="input increment weight (u_d, u_q)"),
+        Key(_t, "speed_window", "int", 0, choices=(0,) + SPEED_WINDOWS,
+            doc="this design's speed window M (control.speed_window; 0 = control.speed_window): the window's "
+                "lag helps one design and costs another its margin (docs/design.md), so a control-period "
+                "table may set it per design; the firmware writes KACC with the design (manifest designs.kacc)"),
     ]
     if _t.startswith("weights.alg2"):
         SCHEMA += [
@@ -517,11 +521,18 @@ class Control:
     weights: dict = field(default_factory=dict)   # {(alg, task): Weights}, SI units
     weight_units: str = "si"                      # how the configuration gave them
     speed_load_shift: int = 6                     # "accel_load": load estimate gain 2^-shift per period
-    speed_window: int = 1                         # speed estimate over M periods (estimator.py; RTL: KACC.win)
+    speed_window: int = 1                         # speed estimate over M periods (estimator.py; RTL: KACC.win):
+                                                  # this design's (algorithm, task), see window_of
+    speed_window_default: int = 1                 # control.speed_window: designs without their own
+    speed_windows: dict = field(default_factory=dict)   # {(alg, task): M} a design table's speed_window
     governor: Governor = field(default_factory=Governor)
     field_weakening: FieldWeakening = field(default_factory=FieldWeakening)
     weight_tables: dict = field(default_factory=dict)   # {(alg, task): "weights.alg2.speed.Ts_50us"} where a
                                                         # control-period table gave (some of) the weights
+
+    def window_of(self, algorithm: int, task: str) -> int:
+        """The speed window M of one design: its table's speed_window, else control.speed_window."""
+        return self.speed_windows.get((algorithm, task), self.speed_window_default)
 
     def weights_for(self, algorithm: int | None = None, task: str | None = None) -> Weights:
         key = (algorithm or self.algorithm, task or self.task)
@@ -539,14 +550,16 @@ def require_rtl_speed_window(cfg) -> None:
     """Refuse a configuration whose speed window the RTL does not implement (ROMs, the RTL's model):
     M not in RTL_SPEED_WINDOWS, or a load estimate with speed_load_shift + 1 < log2 M (the sequencer's
     load update shifts right by log2 M, then by speed_load_shift + 1 - log2 M: rtlmodel/ctrl_seq.py)."""
-    M = cfg.control.speed_window
-    if M not in RTL_SPEED_WINDOWS:
-        raise ConfigError(f"control.speed_window = {M}: the RTL implements {', '.join(map(str, RTL_SPEED_WINDOWS))} "
-                          f"only (the window is modelled in the float/fixed controllers and the design check)")
-    m = M.bit_length() - 1
-    if cfg.speed_load_shift and cfg.speed_load_shift + 1 < m:
-        raise ConfigError(f"control.speed_window = {M} needs control.speed_load_shift >= {m - 1} "
-                          f"(is {cfg.speed_load_shift}): the RTL's load update shifts by speed_load_shift + 1 - log2 M")
+    c = cfg.control
+    for key, M in [(None, c.speed_window), (None, c.speed_window_default), *sorted(c.speed_windows.items())]:
+        what = "control.speed_window" if key is None else (c.weight_tables.get(key) or f"weights.alg{key[0]}.{key[1]}") + ".speed_window"
+        if M not in RTL_SPEED_WINDOWS:
+            raise ConfigError(f"{what} = {M}: the RTL implements {', '.join(map(str, RTL_SPEED_WINDOWS))} "
+                              f"only (the window is modelled in the float/fixed controllers and the design check)")
+        m = M.bit_length() - 1
+        if cfg.speed_load_shift and cfg.speed_load_shift + 1 < m:
+            raise ConfigError(f"{what} = {M} needs control.speed_load_shift >= {m - 1} "
+                              f"(is {cfg.speed_load_shift}): the RTL's load update shifts by speed_load_shift + 1 - log2 M")
 
 
 @dataclass(frozen=True)
@@ -625,7 +638,21 @@ class Config:
         return min(off, (1 << ADC_BITS) - 1 - off) * self.sensors.adc_amps_per_lsb
 
     def with_control(self, **kw) -> "Config":
-        return replace(self, control=replace(self.control, **kw))
+        """A copy with control fields replaced.  ``speed_window`` given: M for every design (the design
+        tables' own are dropped); ``algorithm`` / ``task`` given: the speed window follows the design."""
+        c = self.control
+        if "speed_window" in kw:
+            kw.setdefault("speed_window_default", kw["speed_window"])
+            kw.setdefault("speed_windows", {})
+        elif "algorithm" in kw or "task" in kw:
+            kw["speed_window"] = c.window_of(kw.get("algorithm", c.algorithm), kw.get("task", c.task))
+        return replace(self, control=replace(c, **kw))
+
+    def for_design(self, algorithm: int, task: str) -> "Config":
+        """This configuration as one design (algorithm, task) runs it: control.speed_window is the
+        design's (Control.window_of); algorithm and task themselves are unchanged."""
+        m = self.control.window_of(algorithm, task)
+        return self if m == self.control.speed_window else replace(self, control=replace(self.control, speed_window=m))
 
     def with_motor(self, **kw) -> "Config":
         return replace(self, motor=replace(self.motor, **kw))
@@ -866,7 +893,7 @@ def from_dict(d: dict, source: str = "<dict>") -> Config:
         raise ConfigError(f"field_weakening.u_lo = {_fmt(fw.u_lo)}, field_weakening.u_hi = {_fmt(fw.u_hi)}: "
                           f"the band is empty; allowed: u_lo < u_hi")
     wv = v.get("weights")
-    weights, units, weight_tables = {}, "pu", {}
+    weights, units, weight_tables, windows = {}, "pu", {}, {}
     if wv is None:
         weights = {k: weights_si(w, pu_bases(ratings, motor, c["Ts"], k[1])) for k, w in DEFAULT_WEIGHTS_PU.items()}
     else:
@@ -898,6 +925,8 @@ def from_dict(d: dict, source: str = "<dict>") -> Config:
             if not any(sec.get("integrate", (True,))):
                 raise ConfigError(f"{src}.integrate = {_fmt(sec['integrate'])}: must integrate at least one "
                                   f"output; allowed: a list of 3 booleans, one or more true")
+            if sec.get("speed_window"):
+                windows[(a, task)] = sec["speed_window"]
             w = Weights(Q_yw=sec["Q_yw"], Q_dy=sec["Q_dy"], Q_du=sec["Q_du"],
                         ebar_step_max=sec.get("ebar_step_max", (0.0, 0.0, 0.0)),
                         integrate=sec.get("integrate", (True, True, True)), Q_yp=sec.get("Q_yp", (0.0, 0.0, 0.0)))
@@ -912,7 +941,8 @@ def from_dict(d: dict, source: str = "<dict>") -> Config:
         algorithm=alg, task=task, N=c["N"], Ts=c["Ts"], omega_min=c["omega_min"], omega_max=c["omega_max"],
         omega_points=c["omega_points"], design_quantised=c["design_quantised"], voltage_limit=c["voltage_limit"],
         i_max=c["i_max"], speed_estimate=c["speed_estimate"], weights=weights, weight_units=units,
-        speed_load_shift=c["speed_load_shift"], speed_window=c["speed_window"], governor=governor, field_weakening=fw, weight_tables=weight_tables)
+        speed_load_shift=c["speed_load_shift"], speed_window=windows.get((alg, task), c["speed_window"]), speed_window_default=c["speed_window"],
+        speed_windows=windows, governor=governor, field_weakening=fw, weight_tables=weight_tables)
     cfg = Config(motor=motor, inverter=inverter, sensors=sensors, f_clk=f_clk, control=control, source=source,
                  ratings=ratings, robustness=robustness)
     ratio = c["Ts"] * inverter.f_pwm

@@ -73,6 +73,7 @@ def check_stability(cfg, algorithm: int, task: str, gf=None, params=None, points
     the fitted (``gf``) and the quantised (``params``) gains; the verdict against the margins.
 
     Returns a report dict (``passed``, ``reason``, worst radius / damping and where, margins)."""
+    cfg = cfg.for_design(algorithm, task)
     c = cfg.control
     rob = cfg.robustness
     sets = {"exact": robust.exact_gains(cfg, algorithm, task)}
@@ -125,6 +126,7 @@ def design(cfg, algorithm: int, task: str, force: bool = False) -> dict:
     """Fit, quantise and check one design.  Raises :class:`DesignError` (one line: the design, the
     failing criterion, speed, plant corner and value) unless ``force``; the report is under
     ``stability`` (``passed`` False when forced through)."""
+    cfg = cfg.for_design(algorithm, task)
     key = (repr(cfg.motor), repr(cfg.inverter), repr(cfg.sensors), cfg.f_clk, repr(cfg.control),
            repr(cfg.ratings), repr(cfg.robustness), algorithm, task)
     if key not in _CACHE:

@@ -133,6 +133,7 @@ def survey(cfg, algorithm: int, task: str, gain_sets: dict, points: list[dict] |
     ``gain_sets``: {name: f(omega) -> gains in SI}.  Returns a dict with ``worst_radius``,
     ``worst_damping`` (:class:`Worst`), ``nominal_radius``, ``nominal_damping`` and per
     gain set its worst radius."""
+    cfg = cfg.for_design(algorithm, task)
     rob = cfg.robustness
     gain_sets = {name: _memo(f) for name, f in gain_sets.items()}    # f(w) is asked 9 times per speed
     points = points if points is not None else box_points(rob)
@@ -217,6 +218,7 @@ def noise_rms(cfg, algorithm: int, task: str, g: dict, omega: float = 0.0, facto
     """RMS of i_q (A) and |u| (V) driven by the sensor quantisation at ``omega``, on the nominal plant or
     the plant scaled by ``factors`` (a box point): encoder angle uniform over one count (eq. 38), ADC
     uniform over one LSB."""
+    cfg = cfg.for_design(algorithm, task)
     plant = perturbed(cfg.motor, factors) if factors else cfg.motor
     lp = loop_mod.loop(cfg, plant, omega, algorithm, task, g)
     sig = np.array([cfg.rad_per_count, cfg.amps_per_lsb, cfg.amps_per_lsb]) / math.sqrt(12.0)

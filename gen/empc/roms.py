@@ -103,10 +103,19 @@ def _write(cfg, out: Path, results: dict, all_designs: bool) -> dict:
             "weights_pu": _weights_dict(cfg.weights_pu(alg, task)),
             "coefficients": {"p0_p1_p2_shift": p.coef, "col_sig": p.col_sig, "col_shift": p.col_shift},
         }
+        manifest["designs"][f"alg{alg}_{task}"]["kacc"] = kacc_fields(cfg.for_design(alg, task))
         if (alg, task) in cfg.control.weight_tables:      # a control-period table gave (some of) the weights
             manifest["designs"][f"alg{alg}_{task}"]["weights_table"] = cfg.control.weight_tables[(alg, task)]
     (out / "manifest.json").write_text(json.dumps(manifest, indent=1) + "\n")
     return manifest
+
+
+def kacc_fields(cfg) -> dict:
+    """KACC's fields (regmap) for a design (``cfg.for_design``): the firmware writes them with the design's
+    image; the header's reset values are the boot design's.  ``speed_window`` is M = 2^win."""
+    kacc, shift = header.speed_correction_raw(cfg)
+    return {"kacc": kacc, "load_shift": cfg.speed_load_shift, "shift": shift,
+            "win": cfg.control.speed_window.bit_length() - 1, "speed_window": cfg.control.speed_window}
 
 
 def _weights_dict(w) -> dict:

@@ -74,6 +74,7 @@ class TuneResult:
     tried: int
     base_pu: config_mod.Weights
     note: str = ""
+    speed_window: int = 1          # the design's speed window the weights were tuned with (Control.window_of)
 
     def as_dict(self) -> dict:
         c = self.chosen
@@ -114,6 +115,7 @@ def _settling(y: np.ndarray, final: float, k0: int, Ts: float, band: float) -> f
 
 
 def measure(cfg, algorithm: int, task: str, w_si, specs: Specs, robust_grid: int = 7) -> dict:
+    cfg = cfg.for_design(algorithm, task)
     c = cfg.control
     rt = cfg.ratings
     g = mpc.gains(cfg.motor, c, 0.0, algorithm, task, weights=w_si)
@@ -200,7 +202,7 @@ def tune(cfg, algorithm: int, task: str, specs: Specs | None = None, a_grid=None
                 k = f.split(" ")[0]
                 counts[k] = counts.get(k, 0) + 1
         binding = "every candidate fails: " + ", ".join(f"{k} ({n})" for k, n in sorted(counts.items(), key=lambda x: -x[1]))
-        return TuneResult(algorithm, task, False, None, binding, len(cands), base,
+        return _result(cfg, algorithm, task, False, None, binding, len(cands), base,
                           note="relax the specifications or the robustness box, or change N / Ts")
     from . import design as design_mod
     for best in sorted(good, key=lambda c: (c.m["settling"], -c.m["damping"]))[:8]:
@@ -216,7 +218,7 @@ def tune(cfg, algorithm: int, task: str, specs: Specs | None = None, a_grid=None
             break
         best.fails.append(f"robustness (full check: {why})")
     else:
-        return TuneResult(algorithm, task, False, None, "the candidates that meet the specifications on the coarse "
+        return _result(cfg, algorithm, task, False, None, "the candidates that meet the specifications on the coarse "
                           "grid fail the full design check", len(cands), base)
     faster = [c for c in cands if not c.ok and c.m and c.m.get("settling", math.inf) < best.m["settling"]]
     if faster:
@@ -229,7 +231,7 @@ def tune(cfg, algorithm: int, task: str, specs: Specs | None = None, a_grid=None
         binding = (f"{top[0]} stops {len(top[1])} of the {len(faster)} faster candidates, e.g. {top[1][0]}")
     else:
         binding = "none: the fastest candidate on the grid meets every specification (widen the grid)"
-    return TuneResult(algorithm, task, True, best, binding, len(cands), base)
+    return _result(cfg, algorithm, task, True, best, binding, len(cands), base)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -330,13 +332,19 @@ def refine(cfg, algorithm: int, task: str, specs: Specs | None = None, start: di
             break
     score, cand = best
     if score >= 0:
-        return TuneResult(algorithm, task, False, None, "refinement: no candidate passes the full design check "
+        return _result(cfg, algorithm, task, False, None, "refinement: no candidate passes the full design check "
                           f"and the specifications (best: {'; '.join(cand.fails) or 'no margin'})", tried, base,
                           note="relax the specifications or the robustness box, or change N / Ts")
     fac = ", ".join(f"{k} x{v:.3g}" if k != "Q_yp2" else f"Q_yp[2] = {v:.4g}" for k, v in cand.m["factors"].items()
                     if k == "Q_yp2" or abs(v - 1.0) > 1e-9)
-    return TuneResult(algorithm, task, True, cand, f"refinement ({fac}): the full design check passes (worst "
+    return _result(cfg, algorithm, task, True, cand, f"refinement ({fac}): the full design check passes (worst "
                       f"radius {cand.m['radius']:.5f}, damping {cand.m['damping']:.3f})", tried, base)
+
+
+def _result(cfg, *args, **kw) -> TuneResult:
+    """A TuneResult with the design's speed window (the table written for it carries it)."""
+    r = TuneResult(*args, **kw)
+    return replace(r, speed_window=cfg.control.window_of(r.algorithm, r.task))
 
 
 def _table_name(r: "TuneResult", ts: float | None) -> str:
@@ -361,4 +369,6 @@ def toml_tables(results: list[TuneResult], ts: float | None = None) -> str:
                     f"ebar_step_max = [{', '.join(f'{v:.6g}' for v in w.ebar_step_max)}]"]
             if any(w.Q_yp):
                 out += [f"Q_yp = [{', '.join(f'{v:.6g}' for v in w.Q_yp)}]"]
+        if r.speed_window != 1:
+            out += [f"speed_window = {r.speed_window}"]
     return "\n".join(out)

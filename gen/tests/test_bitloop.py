@@ -72,15 +72,14 @@ def test_bitloop_follows_float():
 
 
 def test_bitloop_speed_window_at_50us():
-    """control.speed_window = 4 in the RTL's loop model (KACC.win = 2: CtrlSeq with the position history,
-    bit-exact with rtl/mx_seq.v in tb/test_mx_seq.py): the BLWR233D algorithm-2 position step at 50 us
-    (test_motors.test_closed_loop_at_50us_speed_window's design and bounds) tracks like the fixed-point
-    controller: RMS error within 10 % + 1 count, peak phase current <= 1.05 i_max, u_q tail RMS <= 0.25
-    u_max (M = 1: 0.37, the quantisation chatter the window removes)."""
+    """The design's speed window in the RTL's loop model: the BLWR233D algorithm-2 position design at 50 us
+    has speed_window = 8 in its Ts_50us table (KACC.win = 3: CtrlSeq with the position history, bit-exact
+    with rtl/mx_seq.v in tb/test_mx_seq.py; test_motors.test_closed_loop_at_50us_speed_window's design and
+    bounds) and tracks like the fixed-point controller: RMS error within 10 % + 1 count, peak phase current
+    <= 1.05 i_max, u_q tail RMS <= 0.25 u_max (M = 1: 0.37, the quantisation chatter the window removes)."""
     from empc import corners
-    cfg = corners.load("blwr233d", **{"control.Ts": 50e-6, "inverter.f_pwm": corners.TS_PWM,
-                                      "control.speed_window": 4})
-    assert bitloop.regs_for(cfg, "position").win_shift == 2
+    cfg = corners.load("blwr233d", **{"control.Ts": 50e-6, "inverter.f_pwm": corners.TS_PWM})
+    assert bitloop.regs_for(cfg, "position", 2).win_shift == 3 and bitloop.regs_for(cfg, "speed", 1).win_shift == 0
     sc, c, tr_x, _ = corners.simulate(cfg, "position_alg2", "nominal", "fixed", 0.06)
     r = bitloop.simulate(c, sc)
     res = cfg.rad_per_count
@@ -90,7 +89,7 @@ def test_bitloop_speed_window_at_50us():
     tail = (r.trace.t >= t0 + 0.7 * (t1 - t0)) & (r.trace.t < t1 - cfg.control.N * cfg.control.Ts)
     uq_tail = float(np.std(r.trace.u_q[tail]) / cfg.u_max)
     peak = float(np.max(r.trace.i_phase_peak) / cfg.control.i_max)
-    print("bitloop M = 4:", {"rms": mb["rms_error"], "rms_fixed": mx["rms_error"], "uq_tail": uq_tail, "peak": peak})
+    print("bitloop M = 8:", {"rms": mb["rms_error"], "rms_fixed": mx["rms_error"], "uq_tail": uq_tail, "peak": peak})
     assert abs(mb["rms_error"] - mx["rms_error"]) <= 0.10 * mx["rms_error"] + res, (mb["rms_error"], mx["rms_error"])
     assert peak <= 1.05 and uq_tail <= 0.25, (peak, uq_tail)
 

@@ -170,6 +170,8 @@ ISSUE_CASES = [
                                                 "weights.alg1.position.Ts_050us", {"Q_du": [2.0, 2.0]}), "Ts_050us"),
     ("control-period table without weights to change",
      _with(DEFAULT, "weights.alg1.position", {"Ts_50us": {"Q_du": [1.0, 1.0]}}), "has no weights"),
+    ("control-period table: speed_window 3", _with(DEFAULT, "weights.alg1.position.Ts_50us", {"speed_window": 3}),
+     "Ts_50us.speed_window"),
     ("control-period table: integrate all false at its Ts",
      _with(_with(DEFAULT, "weights.alg2.speed.Ts_50us", {"integrate": [False, False, False]}), "control.Ts", 50e-6),
      "Ts_50us.integrate"),
@@ -402,11 +404,49 @@ def test_control_period_tables_select_by_ts():
     assert _ts(e, 250e-6).weights_pu(1, "speed").Q_du == pytest.approx(config.DEFAULT_WEIGHTS_PU[(1, "speed")].Q_du)
     # the bundled default: tables for 50 us, none used at its own 250 us
     assert config.default().control.weight_tables == {}
-    assert set(_ts(DEFAULT, 50e-6).control.weight_tables) == {(1, "position"), (2, "speed"), (2, "position")}
+    assert set(_ts(DEFAULT, 50e-6).control.weight_tables) == {(1, "speed"), (1, "position"), (2, "speed"),
+                                                               (2, "position")}
+
+
+def test_design_speed_window():
+    """A design table's speed_window (here a Ts_50us table's) is that design's M; control.speed_window is
+    the M of the others.  cfg.control.speed_window is the M of the design cfg runs (algorithm, task):
+    with_control(algorithm / task) follows it, for_design gives it for another design, and
+    with_control(speed_window=M) sets M for every design; the speed correction follows M."""
+    d = _with(_with(_without_ts_tables(DEFAULT), "weights.alg1.position.Ts_50us", {"speed_window": 4}),
+              "control.speed_window", 2)
+    at50, at250 = _ts(d, 50e-6), _ts(d, 250e-6)
+    c = at50.control
+    assert c.speed_windows == {(1, "position"): 4} and c.window_of(1, "position") == 4 and c.window_of(2, "speed") == 2
+    assert (c.algorithm, c.task) == (1, "speed") and c.speed_window == 2 and c.speed_window_default == 2
+    assert at250.control.speed_windows == {} and at250.control.window_of(1, "position") == 2
+    assert at50.with_control(task="position").control.speed_window == 4
+    assert at50.with_control(task="position").with_control(algorithm=2).control.speed_window == 2
+    f = at50.for_design(1, "position")
+    assert f.control.speed_window == 4 and (f.control.algorithm, f.control.task) == (1, "speed")
+    assert at50.for_design(1, "speed") is at50
+    every = at50.with_control(speed_window=8)
+    assert every.control.speed_windows == {} and every.control.window_of(1, "position") == 8
+    assert f.speed_correction == pytest.approx(4 * at50.with_control(speed_window=1).speed_correction)
+    # in a design's own (not per-Ts) table too
+    e = config.from_dict(_with(_without_ts_tables(DEFAULT), "weights.alg2.speed.speed_window", 16))
+    assert e.control.speed_windows == {(2, "speed"): 16} and e.control.window_of(1, "speed") == 1
+    # the RTL's limit names the table: M = 16 needs speed_load_shift >= 3
+    bad = config.from_dict(_with(_with(d, "weights.alg2.speed.Ts_50us", {"speed_window": 16}),
+                                 "control.speed_load_shift", 2) | {"control": {**d["control"], "Ts": 50e-6,
+                                                                               "speed_load_shift": 2}})
+    with pytest.raises(config.ConfigError, match=r"^weights\.alg2\.speed\.Ts_50us\.speed_window = 16 needs "
+                                                 r"control\.speed_load_shift >= 3 \(is 2\)"):
+        config.require_rtl_speed_window(bad)
+    # the bundled BLWR233D: M = 8 for three of its 50 us designs, none at its own 250 us
+    b50 = _ts(DEFAULT, 50e-6).control
+    assert b50.speed_windows == {(1, "position"): 8, (2, "speed"): 8, (2, "position"): 8} and b50.speed_window == 1
+    assert config.default().control.speed_windows == {}
 
 
 def test_per_ts_table_in_the_manifest(tmp_path):
-    d = _with(_with(_without_ts_tables(DEFAULT), "weights.alg1.position.Ts_50us", {"Q_du": [7.875, 7.875]}),
+    d = _with(_with(_without_ts_tables(DEFAULT), "weights.alg1.position.Ts_50us", {"Q_du": [7.875, 7.875],
+                                                                                  "speed_window": 4}),
               "control.Ts", 50e-6)
     p = tmp_path / "c.toml"
     p.write_text(_dump(d))
@@ -414,3 +454,8 @@ def test_per_ts_table_in_the_manifest(tmp_path):
     man = roms.generate(cfg, tmp_path / "out", all_designs=True, force=True)
     assert man["designs"]["alg1_position"]["weights_table"] == "weights.alg1.position.Ts_50us"
     assert "weights_table" not in man["designs"]["alg1_speed"]
+    # KACC per design (the firmware writes it with the design's image); the header resets to the boot design's
+    k1, k4 = man["designs"]["alg1_speed"]["kacc"], man["designs"]["alg1_position"]["kacc"]
+    assert (k1["win"], k1["speed_window"], k4["win"], k4["speed_window"]) == (0, 1, 2, 4)
+    assert k4["kacc"] / 2 ** k4["shift"] == pytest.approx(4 * k1["kacc"] / 2 ** k1["shift"], rel=1e-4), (k1, k4)
+    assert man["header_constants"]["KACC_WIN"] == 0 and man["header_constants"]["KACC"] == k1["kacc"]

@@ -1,6 +1,7 @@
 """`empc tune`: the chosen weights meet the specifications, the binding one is named, the printed
 tables are a valid configuration whose design passes the check."""
 import copy
+import dataclasses
 import tomllib
 
 import pytest
@@ -86,3 +87,18 @@ def test_chatter_is_the_worst_over_the_box():
     m_old = tune.measure(cfg, 2, "speed", config.weights_si(old, cfg.bases("speed")), tune.Specs(), robust_grid=3)
     assert any(f.startswith("quantisation chatter") and "at L -30 %" in f
                for f in tune._fails(cfg, 2, m_old, tune.Specs())), m_old
+
+
+def test_tune_table_carries_the_design_speed_window():
+    """A design tuned with its own speed window (Control.window_of) gets a table that says so: pasted into the
+    configuration, the design runs with the window its weights were tuned for."""
+    cfg = CFG.with_control(speed_window=4)
+    r = tune.tune(cfg, 1, "position", tune.Specs(), a_grid=[1.0], b_grid=[1.0])
+    assert r.speed_window == 4 and tune.tune(CFG, 1, "position", tune.Specs(), a_grid=[1.0], b_grid=[1.0]).speed_window == 1
+    r = dataclasses.replace(r, chosen=tune.Candidate(1.0, 1.0, cfg.weights_pu(1, "position")))
+    t = tomllib.loads(tune.toml_tables([r], ts=50e-6))["weights"]["alg1"]["position"]["Ts_50us"]
+    assert t["speed_window"] == 4
+    d = tomllib.loads(config.DEFAULT_CONFIG.read_text())
+    d["weights"]["alg1"]["position"]["Ts_50us"] = t
+    c50 = config.from_dict({**d, "control": {**d["control"], "Ts": 50e-6}})
+    assert c50.control.window_of(1, "position") == 4 and c50.control.window_of(1, "speed") == 1

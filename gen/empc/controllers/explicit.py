@@ -36,6 +36,7 @@ from .base import Controller, limit_circle
 class ExplicitMPC(Controller):
     def __init__(self, cfg, algorithm: int | None = None, task: str | None = None,
                  gains: str = "poly", gain_fit: "fit_mod.GainFit | None" = None):
+        cfg = cfg.for_design(algorithm or cfg.control.algorithm, task or cfg.control.task)   # its speed window
         super().__init__(cfg)
         c = cfg.control
         self.algorithm = algorithm or c.algorithm

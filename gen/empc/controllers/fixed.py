@@ -23,6 +23,7 @@ from .base import Controller
 
 class FixedMPC(Controller):
     def __init__(self, cfg, algorithm: int | None = None, task: str | None = None, params: core.Params | None = None):
+        cfg = cfg.for_design(algorithm or cfg.control.algorithm, task or cfg.control.task)   # its speed window
         super().__init__(cfg)
         c = cfg.control
         self.algorithm = algorithm or c.algorithm
