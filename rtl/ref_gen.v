@@ -225,6 +225,7 @@ module ref_gen #(
     reg         hi1, lo1, hi2, lo2, s2, v_nz, v_sgn, dv_nz;
     reg         g_nz, g_sgn, hblk;                     // speed hold: g != 0, sign of g; vd = 0 in G2 (or brake)
     reg         x1z, slow, up, dn, vp;                 // braking: x1 = 0, no speed-up, V up / down, V bit j-1
+    reg         k7;                                    // braking: carry of B + ~V in G1 (out: B > V, i.e. n >= 2)
     reg         k3, k4, k5, k6;                        // braking: carries (G1: |e|, |e| - B, B + 2V, |e| - (B + 2V);
                                                        // G4: |v'|, |v'| - V - 1, |v'| + a, |v'| + a - V - 1; G5: V', B')
 
@@ -541,6 +542,9 @@ module ref_gen #(
                        ((st_bq & bs5) | (k4 & (st_bq ^ bs5)));
     wire        k5n  = (kind == K_G1) ? ((st_bq & vp) | (k5 & (st_bq ^ vp))) : ((wb & pm) | (k5 & (wb ^ pm)));
     wire        k6n  = (kind == K_G1) ? ((aeb & ~t1b) | (k6 & (aeb ^ ~t1b))) : ((tb & ~st_vq) | (k6 & (tb ^ ~st_vq)));
+    //   G1: B + ~V (k7): its carry out is B > V, n >= 2; below (|v| <= a) the proportional catch-up stops
+    //   in time by itself, and a brake there would stop the last approach every other period
+    wire        k7n  = (st_bq & ~st_vq) | (k7 & (st_bq ^ ~st_vq));
 
     // compare operand of G1 (vd) / G3 (dv) and its carries
     wire        cx   = (kind == K_G1) ? vdb : sb[63];
@@ -702,6 +706,7 @@ module ref_gen #(
             k4 <= 1'b0;
             k5 <= 1'b0;
             k6 <= 1'b0;
+            k7 <= 1'b0;
         end else begin
             for (ai = 0; ai < NAP; ai = ai + 1) begin
                 if (in_adv[ai]) adv_pend[ai] <= 1'b1;
@@ -771,6 +776,7 @@ module ref_gen #(
                     k4 <= k4n;
                     k5 <= k5n;
                     k6 <= k6n;
+                    k7 <= k7n;
                     vp <= st_vq;
                     if (kind == K_HEAD && x1b) x1z <= 1'b0;
                     if (kind == K_HEAD && normal && !jc[5]) begin
@@ -800,9 +806,9 @@ module ref_gen #(
                             hi1 <= ov1 ? !sa_o : (vdb ^ c_hi);
                             lo1 <= ov1 ? sa_o : (vdb ^ c_lo);
                             // speed hold: vd = 0 unless it lowers |g| (g != 0, sign(vd) != sign(g));
-                            // position task: vd = 0 (brake) when |e| < B, no speed-up when |e| < B + 2V
+                            // position task: vd = 0 (brake) when |e| < B and B > V, no speed-up when |e| < B + 2V
                             hblk <= (gv_hold && !gv_pos && !(g_nz && ((ov1 ? sa_o : vdb) != g_sgn))) ||
-                                    (zc && d0b);
+                                    (zc && d0b && k7n);
                             slow <= zc && dtb;
                         end
                         if (kind == K_G3) begin
@@ -828,6 +834,7 @@ module ref_gen #(
                     k4 <= (kind == K_G1) || ((kind == K_G5) && dnx);
                     k5 <= 1'b0;
                     k6 <= (kind == K_G1);
+                    k7 <= 1'b0;
                     vp <= 1'b0;
                     if (kind == K_HEAD) x1z <= 1'b1;
                     if (kind == K_G3) dv_nz <= 1'b0;

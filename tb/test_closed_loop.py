@@ -1156,10 +1156,7 @@ def metrics_report(cs: CoSim, res: dict) -> dict:
     # governor off it must equal the profile except at step edges (one sample each, by the same
     # rounding); with the governor on, the profile shaped within the governor's limits: increments
     # of at most vmax, changing by at most a per period, the profile's value wherever the profile
-    # has held still for 240 periods (60 ms: after the move and the 2^-ksh catch-up); position task 480:
-    # the braking distance (governor.py) stops the reference when a step of less than one acceleration
-    # step a is left, so the last approach moves every other period (time constant 2^(ksh+1) periods;
-    # the governed 10 rad step of the BLWR233D alone is within 1e-5 rad after 348 periods, 244 before).
+    # has held still for 240 periods (60 ms: after the move and the 2^-ksh catch-up).
     applied = rec["ref"][sel]
     off = np.abs(applied - ref[:, 2]) > 1e-6 * max(1.0, float(np.max(np.abs(ref[:, 2]))))
     if not cs.gov["enable"]:
@@ -1171,15 +1168,14 @@ def metrics_report(cs: CoSim, res: dict) -> dict:
         lsb = 4.0                                    # rounding of the recorded SI values
         assert np.all(np.abs(d) <= cs.gov["vmax"] + lsb), f"governed increment {np.max(np.abs(d))} > vmax"
         assert np.all(np.abs(np.diff(d)) <= cs.gov["a"] + 2 * lsb), "governed increment changed by more than a"
-        hold = 480 if cs.sc.task == "position" else 240
-        still = _held_still(prof, t[sel], Ts, hold)
+        still = _held_still(prof, t[sel], Ts, 240)
         # ... and long enough for the distance left when the profile stopped moving, at vmax: a large
         # position step travels at the governor's speed limit for longer than the 240 periods.
         r2 = ref[:, 2]
         idx = np.arange(r2.size)
         last = np.maximum.accumulate(np.where(np.r_[False, np.diff(r2) != 0], idx, 0))   # last profile move
         dist = np.abs(r2[last] - applied[last]) * unit_q32
-        still &= (idx - last) >= hold + np.ceil(dist / max(cs.gov["vmax"], 1))
+        still &= (idx - last) >= 240 + np.ceil(dist / max(cs.gov["vmax"], 1))
         assert not np.any(off & still), (f"governed reference off the held profile in {np.sum(off & still)} samples "
                                          f"(first at t = {t[sel][np.argmax(off & still)]:.4f} s)")
     if not cs.gov["enable"]:

@@ -17,7 +17,9 @@ reference g (what the controller gets), its increment v:
     v += dv;  g += v
 
 Position task, braking distance (issue 15, the position overshoot): while the target holds (r_k = r_{k-1}) and v moves
-towards it, vd = 0 (brake at a) when |r - g| < B, and no speed-up when |r - g| < B + 2 V, where
+towards it, vd = 0 (brake at a) when |r - g| < B and n >= 2 (B > V: at |v| <= a the proportional catch-up
+stops in time by itself, and a brake there stopped the last approach every other period, which doubled the
+time constant of the final approach), and no speed-up when |r - g| < B + 2 V, where
 V = n a >= |v| (n changes by at most one per period: V += a when |v| > V, V -= a when |v| + a <= V,
 after the step) and B = a n (n + 1) / 2 the distance the reference travels while braking at a from
 a speed <= V (B += V on the way up, -= V on the way down): the time-optimal switching curve
@@ -156,7 +158,7 @@ class Governor:
         # no speed-up inside B + 2 V
         brake = slow = False
         if p.task == "position" and x1 == 0.0 and self.v != 0.0 and (self.v < 0.0) == (e < 0.0):
-            brake, slow = abs(e) < self.bq, abs(e) < self.bq + 2.0 * self.vq
+            brake, slow = abs(e) < self.bq and self.vq > 1.5 * p.a, abs(e) < self.bq + 2.0 * self.vq   # n >= 2 (V = n a; raw: B > V)
         if brake:
             vd = 0.0
         dv0 = vd - self.v

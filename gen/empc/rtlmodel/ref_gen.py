@@ -122,7 +122,7 @@ def brake_zone(gp: dict, v: int, vq: int, bq: int, x1: int, e: int, task_pos: bo
     if not (task_pos and x1 & M64 == 0 and vs != 0 and (vs < 0) == (es < 0)):
         return False, False
     ae = -es & M64 if es < 0 else es                    # |e| (mod 2^64)
-    lt0 = wrap(ae - bq, 64) < 0                         # |e| < B
+    lt0 = wrap(ae - bq, 64) < 0 and bq > vq             # |e| < B, and n >= 2 (B > V: |v| <= a stops in time)
     lt1 = wrap(ae - (bq + 2 * vq), 64) < 0              # |e| < B + 2 V
     return lt0, lt1
 
