@@ -113,9 +113,9 @@ def _write(cfg, out: Path, results: dict, all_designs: bool) -> dict:
 def kacc_fields(cfg) -> dict:
     """KACC's fields (regmap) for a design (``cfg.for_design``): the firmware writes them with the design's
     image; the header's reset values are the boot design's.  ``speed_window`` is M = 2^win."""
-    kacc, shift = header.speed_correction_raw(cfg)
-    return {"kacc": kacc, "load_shift": cfg.speed_load_shift, "shift": shift,
-            "win": cfg.control.speed_window.bit_length() - 1, "speed_window": cfg.control.speed_window}
+    c = header.config_constants(cfg)          # the header's own KACC constants, for this design
+    return {"kacc": c["KACC"], "load_shift": c["KACC_LOAD_SHIFT"], "shift": c["KACC_SHIFT"], "win": c["KACC_WIN"],
+            "speed_window": cfg.control.speed_window}
 
 
 def _weights_dict(w) -> dict:
