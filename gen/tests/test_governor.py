@@ -193,7 +193,7 @@ def test_braking_keeps_the_final_approach(name):
     (position_alg1's first and position_large's) sits on the target (1e-6 of the step) within 1.15 x the
     periods of the proportional catch-up alone (measured: 0.25-1.0 x, ipmsm_001 position_alg1 1.12 x: it
     brakes earlier).  A brake at n = 1 (|v| <= a) stopped the reference every other period there: 1.27-1.48 x
-    on position_alg1 of every motor (tb/test_closed_loop load_step's held-profile check failed on it)."""
+    on position_alg1 of every motor (tb/test_closed_loop.py::test_closed_loop[load_step]'s held-profile check failed on it)."""
     from empc import scenarios
     cfg = config.load(config.DEFAULT_CONFIG.parent / f"{name}.toml")
     p = gov.params(cfg, "position")
