@@ -49,20 +49,20 @@ def compile_target(out: Path, arm: bool | None = None) -> list[str]:
     return cmd
 
 
-def build_host_lib(out_dir: Path) -> Path:
-    """The host shared library (driver + tb/empc_drv_host.c)."""
+def build_host_lib(out_dir: Path, driver: Path | None = None, name: str = "libempc_host.so") -> Path:
+    """The host shared library (driver + tb/empc_drv_host.c); ``driver``: another driver source (mutants)."""
     out_dir.mkdir(parents=True, exist_ok=True)
-    lib = out_dir / "libempc_host.so"
-    _run([host_cc()] + CFLAGS + ["-DEMPC_HOST", "-shared", "-fPIC", f"-I{FW}", str(FW / "empc_drv.c"),
+    lib = out_dir / name
+    _run([host_cc()] + CFLAGS + ["-DEMPC_HOST", "-shared", "-fPIC", f"-I{FW}", str(driver or FW / "empc_drv.c"),
                                  str(ROOT / "tb" / "empc_drv_host.c"), "-o", str(lib)])
     return lib
 
 
-def run_program(source: str, out_dir: Path, name: str) -> str:
-    """Compile a C program (includes fw/) with the host compiler and the flags above; its stdout."""
+def run_program(source: str, out_dir: Path, name: str, include: tuple[Path, ...] = ()) -> str:
+    """Compile a C program (includes fw/ and ``include``) with the host compiler and the flags above; its stdout."""
     out_dir.mkdir(parents=True, exist_ok=True)
     src = out_dir / f"{name}.c"
     src.write_text(source)
     exe = out_dir / name
-    _run([host_cc()] + CFLAGS + [f"-I{FW}", str(src), "-o", str(exe)])
+    _run([host_cc()] + CFLAGS + [f"-I{FW}"] + [f"-I{p}" for p in include] + [str(src), "-o", str(exe)])
     return subprocess.run([str(exe)], check=True, capture_output=True, text=True).stdout

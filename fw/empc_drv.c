@@ -91,13 +91,12 @@ int empc_axis_config(const empc_caps *caps, uint32_t axis, const empc_axis_cfg *
     return err;
 }
 
-int empc_coef_load(const empc_caps *caps, uint32_t axis, const uint32_t *image, uint32_t nwords,
-                   uint32_t max_polls)
+/* the checks of a coefficient load before any write: period (EMPC_ERR_PERIOD), swap pending (EMPC_ERR_BUSY);
+ * *bank = the active bank */
+static int coef_check(uint32_t axis, const uint32_t *image, uint32_t *bank)
 {
-    uint32_t w, st, bank;
+    uint32_t st;
 
-    if (!AXIS_OK(caps, axis) || image == 0 || nwords <= EMPC_IMG_A_CFG || nwords > EMPC_COEF_WORDS)
-        return EMPC_ERR_ARG;
     /* the image's control period (gains for that Ts) must be the axis's */
     if (((image[EMPC_IMG_A_CFG] >> EMPC_IMG_CFG_PERIOD_LSB) & ((1u << EMPC_IMG_CFG_PERIOD_BITS) - 1u))
         != EMPC_GET(EMPC_A_CTRL_PWM_PER_CONTROL, RD_A(axis, CTRL)))
@@ -105,7 +104,15 @@ int empc_coef_load(const empc_caps *caps, uint32_t axis, const uint32_t *image, 
     st = RD_A(axis, STATUS);
     if (EMPC_GET(EMPC_A_STATUS_SWAP_PENDING, st))
         return EMPC_ERR_BUSY;
-    bank = EMPC_GET(EMPC_A_STATUS_COEF_BANK, st);
+    *bank = EMPC_GET(EMPC_A_STATUS_COEF_BANK, st);
+    return EMPC_OK;
+}
+
+/* upload into the inactive bank, request the swap and poll until it is decided */
+static int coef_swap(uint32_t axis, const uint32_t *image, uint32_t nwords, uint32_t bank, uint32_t max_polls)
+{
+    uint32_t w, st;
+
     for (w = 0; w < nwords; w++)
         empc_bus_write(EMPC_COEF_ADDR(axis, w), image[w]);
     WR_A(axis, CMD, EMPC_FIELD(EMPC_A_CMD_COEF_SWAP, 1u));
@@ -118,6 +125,59 @@ int empc_coef_load(const empc_caps *caps, uint32_t axis, const uint32_t *image, 
         return EMPC_GET(EMPC_A_STATUS_COEF_BANK, st) != bank ? EMPC_OK : EMPC_ERR_VERIFY;
     }
     return EMPC_ERR_TIMEOUT;
+}
+
+#define IMAGE_OK(image, nwords) ((image) != 0 && (nwords) > EMPC_IMG_A_CFG && (nwords) <= EMPC_COEF_WORDS)
+
+int empc_coef_load(const empc_caps *caps, uint32_t axis, const uint32_t *image, uint32_t nwords,
+                   uint32_t max_polls)
+{
+    uint32_t bank;
+    int err;
+
+    if (!AXIS_OK(caps, axis) || !IMAGE_OK(image, nwords))
+        return EMPC_ERR_ARG;
+    err = coef_check(axis, image, &bank);
+    return err != EMPC_OK ? err : coef_swap(axis, image, nwords, bank, max_polls);
+}
+
+/* a KACC word the sequencer runs as written: only the register's fields, win within the implemented
+ * windows, and (with a load estimate) the load update's shift load_shift + 1 - win not negative */
+static int kacc_ok(uint32_t k)
+{
+    uint32_t win = EMPC_GET(EMPC_A_KACC_WIN, k), ls = EMPC_GET(EMPC_A_KACC_LOAD_SHIFT, k);
+
+    return (k & ~EMPC_A_KACC_BITS) == 0u && win <= EMPC_WIN_LOG2_MAX && (ls == 0u || ls + 1u >= win);
+}
+
+int empc_design_load(const empc_caps *caps, uint32_t axis, const uint32_t *image, uint32_t nwords,
+                     uint32_t kacc_word, uint32_t max_polls)
+{
+    uint32_t bank, old;
+    int err;
+
+    if (!AXIS_OK(caps, axis) || !IMAGE_OK(image, nwords) || !kacc_ok(kacc_word))
+        return EMPC_ERR_ARG;
+    err = coef_check(axis, image, &bank);
+    if (err != EMPC_OK)
+        return err;
+    old = RD_A(axis, KACC) & EMPC_A_KACC_BITS;
+    if (old != kacc_word) {
+        /* the law commanded or running: KACC acts at once, the gains only at the swap */
+        if (EMPC_GET(EMPC_A_CTRL_RUN, RD_A(axis, CTRL)) || EMPC_GET(EMPC_A_STATUS_RUNNING, RD_A(axis, STATUS)))
+            return EMPC_ERR_BUSY;
+        err = write_check(EMPC_AXIS_ADDR(axis, EMPC_A_KACC), kacc_word, EMPC_A_KACC_BITS);
+        if (err != EMPC_OK) {
+            WR_A(axis, KACC, old);
+            return err;
+        }
+    }
+    err = coef_swap(axis, image, nwords, bank, max_polls);
+    /* decided and not taken: the old gains stay active, so does their KACC (a timed-out swap may still be
+     * taken: the new KACC stays with it) */
+    if (err != EMPC_OK && err != EMPC_ERR_TIMEOUT && old != kacc_word)
+        WR_A(axis, KACC, old);
+    return err;
 }
 
 int empc_axis_enable(const empc_caps *caps, uint32_t axis, uint32_t enable, uint32_t run)

@@ -43,7 +43,8 @@ typedef enum {
                                 outside 1..EMPC_ROUTE_AXES (the driver then refuses every axis) */
     EMPC_ERR_ARG = -3,       /* axis not in the bitstream (>= caps->naxes), length or value out of range,
                                 NULL pointer: nothing written */
-    EMPC_ERR_BUSY = -4,      /* bridges on (configuration refused) or a swap still pending */
+    EMPC_ERR_BUSY = -4,      /* bridges on (configuration refused), a swap still pending, or a design with
+                                another KACC while the law runs (empc_design_load) */
     EMPC_ERR_VERIFY = -5,    /* a register did not read back what was written */
     EMPC_ERR_TIMEOUT = -6,   /* the poll count ran out */
     EMPC_ERR_FAULT = -7,     /* a fault is still latched (its cause has not gone) */
@@ -105,9 +106,30 @@ int empc_axis_config(const empc_caps *caps, uint32_t axis, const empc_axis_cfg *
  * times until it is decided.  EMPC_ERR_BUSY if a swap was already pending, EMPC_ERR_REFUSED if the
  * FPGA refused the image (STATUS.swap_refused: incomplete, bad checksum or another build's format),
  * EMPC_ERR_PERIOD (nothing written) if the image's control period (CFG field EMPC_IMG_CFG_PERIOD) is not
- * the axis's CTRL.pwm_per_control: set that first (empc_axis_config, bridges off). */
+ * the axis's CTRL.pwm_per_control: set that first (empc_axis_config, bridges off).  KACC (the speed
+ * estimate's correction and window) is left as it is: for a design of a ROM directory use empc_design_load. */
 int empc_coef_load(const empc_caps *caps, uint32_t axis, const uint32_t *image, uint32_t nwords,
                    uint32_t max_polls);
+
+/* Load a coefficient design: its image and its KACC word (the speed estimate's correction and speed window,
+ * which differ per design), e.g. from the empc_designs.h that `empc roms` writes into the ROM directory:
+ *     static const uint32_t img[] = EMPC_DESIGN_ALG1_POSITION_IMAGE;
+ *     empc_design_load(&caps, 0, img, EMPC_DESIGN_ALG1_POSITION_NWORDS, EMPC_DESIGN_ALG1_POSITION_KACC, polls);
+ * KACC acts in the next control period, the image only at the swap: so that the law never runs the new
+ * gains with the old KACC or the old gains with the new one, a KACC that differs from the axis's is written
+ * only while the law is off (CTRL.run = 0 and STATUS.running = 0; the bridges may be on with zero voltage).
+ *   - KACC equal to the axis's: exactly empc_coef_load (also while running; KACC is not written).
+ *   - KACC differs and CTRL.run or STATUS.running is set: EMPC_ERR_BUSY, nothing written (switch run off,
+ *     load, switch run on; the load estimate D re-settles in about 2^load_shift control periods with run off).
+ *   - otherwise: KACC written and read back, then the image uploaded and swapped as by empc_coef_load.
+ * Checked before any write: EMPC_ERR_ARG (axis, image length, a KACC word with bits outside its fields, win >
+ * EMPC_WIN_LOG2_MAX, or a load estimate whose shift load_shift + 1 < win), EMPC_ERR_PERIOD, EMPC_ERR_BUSY
+ * (swap pending).  When the swap is decided and not taken (EMPC_ERR_REFUSED, EMPC_ERR_VERIFY) or KACC does
+ * not read back, the old KACC is written back: the old design stays whole.  EMPC_ERR_TIMEOUT (the swap still
+ * pending after max_polls) leaves the new KACC with the pending swap, the law still off: wait for
+ * STATUS.swap_pending = 0 and check STATUS.coef_bank before setting run. */
+int empc_design_load(const empc_caps *caps, uint32_t axis, const uint32_t *image, uint32_t nwords,
+                     uint32_t kacc_word, uint32_t max_polls);
 
 /* Switch the bridges on (run = 0: zero voltage, run = 1: control law) or off (enable = 0). */
 int empc_axis_enable(const empc_caps *caps, uint32_t axis, uint32_t enable, uint32_t run);

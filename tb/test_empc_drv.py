@@ -22,12 +22,21 @@ bus, SCS.EMCSC = 0: emc_a = byte address bits [15:2]); any other address fails t
   every per-axis call with an axis the bitstream does not have (or a DC link past UDC) refused before any
   bus access, the watchdog fault: empc_wdog_set(1) expires it, empc_fault_clear reports the cause while
   it is present, and clears it after empc_wdog_kick.
+* design_load_kacc: empc_design_load with the designs of the build's configuration at a control period of
+  one PWM period (generated here by empc.roms; KACC differs from the boot design's and between designs):
+  a KACC word outside its rules refused before any bus access; with the law off the design's KACC reads
+  back bit-exact to the manifest's fields and the bank swaps; with the law running (STATUS.running) a
+  design with another KACC is refused with nothing written (KACC and bank unchanged), one with the same
+  KACC loads the image alone; a swap the FPGA refuses (incomplete image) writes the old KACC back; the
+  active bank's decoded configuration is the loaded design's.
 """
 from __future__ import annotations
 
 import ctypes
 import json
 import os
+import shutil
+import tempfile
 from pathlib import Path
 
 import cocotb
@@ -36,7 +45,7 @@ from cocotb.task import bridge, resume
 from cocotb.triggers import ClockCycles
 
 from emc_bfm import EmcBfm
-from empc import header, image, regmap
+from empc import config, header, image, regmap, roms
 
 ROOT = Path(__file__).resolve().parents[1]
 EMC_BASE = 0x80000000
@@ -343,6 +352,115 @@ async def driver_flow(dut):
     dut._log.info("driver: init, config (+ refused with bridges on), %d-word image uploaded and swapped "
                   "(ncols %d, %s), status, watchdog fault reported and cleared; %d bus writes by the C code",
                   len(words), params.ncols, params.task, len(env.writes))
+
+
+def _field(reg: str, name: str):
+    return next(f for f in regmap.axis_reg(reg).parts() if f.name == name)
+
+
+def _get(reg: str, name: str, word: int) -> int:
+    f = _field(reg, name)
+    return (word >> f.lsb) & ((1 << f.width) - 1)
+
+
+@cocotb.test()
+async def design_load_kacc(dut):
+    """empc_design_load writes the design's KACC with its image, and never while the law runs."""
+    env = Env(dut)
+    await env.start()
+    m = env.macros
+    caps = Caps()
+    assert await env.call("empc_init", ctypes.byref(caps)) == EMPC_OK
+    # the build's configuration at a control period of one PWM period: another Ts, so every design's KACC differs
+    # from the boot design's, and three of the four (speed window 8) differ from alg1_speed's (window 1)
+    man0 = json.loads((_roms() / "manifest.json").read_text())
+    base = config.load(ROOT / man0["config"])
+    cfg = config.load(ROOT / man0["config"], {"control.Ts": 1 / base.inverter.f_pwm})
+    out = Path(tempfile.mkdtemp(prefix="design_load_", dir=ROOT / "build"))
+    man = roms.generate(cfg, out, all_designs=True, force=True)
+    assert man["header_constants"]["IMG_FMT_ID"] == m["IMG_FMT_ID"], "another build's format"
+    ppc = man["header_constants"]["PWM_PER_CONTROL"]
+    assert ppc == 1 != m["PWM_PER_CONTROL"]
+    des = {d: (image.read_hex(out / v["file"])[:image.USED], v["kacc"]) for d, v in man["designs"].items()}
+    shutil.rmtree(out, ignore_errors=True)
+    polls = 4 * ppc * m["PWM_HALF_PERIOD"]
+    kacc_w = regmap.AXIS_BASE + regmap.axis_reg("KACC").offset
+    coef_written = lambda n0: [a for a, _ in env.writes[n0:] if a >= regmap.COEF_BASE]   # noqa: E731
+
+    async def load(d, words=None, kacc=None):
+        w, k = des[d]
+        w = words or w
+        arr = (ctypes.c_uint32 * len(w))(*w)
+        return await env.call("empc_design_load", ctypes.byref(caps), 0, arr, len(w),
+                              ctypes.c_uint32(k["word"] if kacc is None else kacc), polls)
+
+    def same_fields(word, k):           # the register's fields read back = the manifest's (kacc signed 18 bit)
+        kf = _field("KACC", "kacc")
+        got = {f.name: _get("KACC", f.name, word) for f in regmap.axis_reg("KACC").parts()}
+        got["kacc"] -= (got["kacc"] >> (kf.width - 1)) << kf.width
+        return got == {n: k[n] for n in got}
+
+    boot = regmap.axis_reg("KACC").reset_word(m)
+    assert await env.read("KACC") == boot
+    assert all(k["word"] != boot for _, k in des.values())
+    cfg_ax = AxisCfg(pwm_per_control=ppc, dead_time=40, fault_mask=0x7F, kdc=0x10000, udc_mv=UDC_MV,
+                     udc_min_mv=UDC_MIN_MV, udc_max_mv=UDC_MAX_MV, oc_thresh=1500, angle_cal=0, hall_offset=0)
+    assert await env.call("empc_axis_config", ctypes.byref(caps), 0, ctypes.byref(cfg_ax)) == EMPC_OK
+    # a KACC word the sequencer would not run as written: refused before any bus access
+    n0, r0 = len(env.writes), env.reads
+    k1 = des["alg1_position"][1]["word"]
+    wf, lf = _field("KACC", "win"), _field("KACC", "load_shift")
+    for bad in (k1 | 1 << 22, k1 | 7 << wf.lsb, (k1 & ~lf.mask) | 1 << lf.lsb):
+        assert await load("alg1_position", kacc=bad) == EMPC_ERR_ARG, hex(bad)
+    assert (len(env.writes), env.reads) == (n0, r0), "a refused call touched the bus"
+    # law off (bridges off): KACC written bit-exact to the manifest's fields, then the image swapped
+    st0 = await env.read("STATUS")
+    assert await load("alg1_speed") == EMPC_OK
+    got = await env.read("KACC")
+    assert got == des["alg1_speed"][1]["word"] and same_fields(got, des["alg1_speed"][1]), (hex(got), des["alg1_speed"][1])
+    st1 = await env.read("STATUS")
+    assert _get("STATUS", "coef_bank", st1) != _get("STATUS", "coef_bank", st0)
+    # the law running: a design with another KACC is refused, nothing written (KACC, window, bank unchanged)
+    assert await env.call("empc_udc_write", ctypes.byref(caps), 0, UDC_MV) == EMPC_OK
+    rem = ctypes.c_uint32(0)
+    assert await env.call("empc_fault_clear", ctypes.byref(caps), 0, ctypes.byref(rem)) == EMPC_OK, hex(rem.value)
+    assert await env.call("empc_axis_enable", ctypes.byref(caps), 0, 1, 1) == EMPC_OK
+    await ClockCycles(dut.clk, 6 * m["PWM_HALF_PERIOD"])
+    st1 = await env.read("STATUS")
+    assert _get("STATUS", "running", st1), f"law not running: STATUS {st1:#x}, FAULT {await env.read('FAULT'):#x}"
+    n0 = len(env.writes)
+    assert await load("alg1_position") == EMPC_ERR_BUSY
+    assert env.writes[n0:] == [], f"refused load wrote {env.writes[n0:]}"
+    st2 = await env.read("STATUS")
+    assert await env.read("KACC") == got and _get("STATUS", "coef_bank", st2) == _get("STATUS", "coef_bank", st1)
+    # ... the same KACC while running: the image alone (KACC not written), swapped
+    n0 = len(env.writes)
+    assert await load("alg1_speed") == EMPC_OK
+    assert kacc_w not in [a for a, _ in env.writes[n0:]] and len(coef_written(n0)) == image.USED
+    st3 = await env.read("STATUS")
+    assert _get("STATUS", "coef_bank", st3) != _get("STATUS", "coef_bank", st2) and _get("STATUS", "running", st3)
+    # law off, bridges on (zero voltage): the other design with its KACC
+    assert await env.call("empc_axis_enable", ctypes.byref(caps), 0, 1, 0) == EMPC_OK
+    await ClockCycles(dut.clk, 2 * m["PWM_HALF_PERIOD"])
+    # an image the FPGA refuses at the swap (incomplete: its first words only): the old KACC is written back,
+    # the old bank stays
+    w, k = des["alg1_position"]
+    n0 = len(env.writes)
+    assert await load("alg1_position", words=w[:image.A_CFG + 1]) == EMPC_ERR_REFUSED
+    assert [v for a, v in env.writes[n0:] if a == kacc_w] == [k["word"], got], "KACC not restored after the refusal"
+    st4 = await env.read("STATUS")
+    assert await env.read("KACC") == got and _get("STATUS", "coef_bank", st4) == _get("STATUS", "coef_bank", st3)
+    assert await load("alg1_position") == EMPC_OK
+    got = await env.read("KACC")
+    assert got == k["word"] and same_fields(got, k), (hex(got), k)
+    assert _get("KACC", "win", got) == k["win"] == 3
+    mem = dut.u_top.g_axis[0].u_axis.u_core.u_mem
+    p = image.decode(w + [0] * (image.DEPTH - image.USED))
+    assert (int(mem.ncols.value), int(mem.pos.value), int(mem.alg2.value)) == (p.ncols, 1, 0), "active bank"
+    assert await env.call("empc_axis_enable", ctypes.byref(caps), 0, 0, 0) == EMPC_OK
+    dut._log.info("design_load: KACC %#x -> %#x (alg1_speed) -> %#x (alg1_position, window %d) read back; "
+                  "refused while running, restored after a refused swap", boot, des["alg1_speed"][1]["word"],
+                  got, k["speed_window"])
 
 
 def test_empc_drv():

@@ -31,7 +31,7 @@ def cmd_roms(args) -> int:
                   f"{st['reason']}", file=sys.stderr)
         if st.get("fit_gate", {}).get("warning"):
             print(f"empc: warning: {st['design']}: {st['fit_gate']['warning']}", file=sys.stderr)
-    print(f"wrote coefficient ROMs, empc_formats.vh and manifest.json to {args.out}")
+    print(f"wrote coefficient ROMs, empc_formats.vh, empc_designs.h and manifest.json to {args.out}")
     return 0
 
 

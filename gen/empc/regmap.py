@@ -209,6 +209,20 @@ class Reg:
                 v |= (macros[f.reset.removeprefix("EMPC_")] & ((1 << f.width) - 1)) << f.lsb
         return v
 
+    def pack(self, values: dict) -> int:
+        """The word with every field set to ``values[field name]`` (exactly the register's fields, each
+        value fitting its width: unsigned, or two's complement for a negative value); MapError otherwise."""
+        parts = self.parts()
+        if set(values) != {f.name for f in parts}:
+            raise MapError(f"{self.name}: fields {sorted(values)} given, the register has {[f.name for f in parts]}")
+        v = 0
+        for f in parts:
+            x = values[f.name]
+            if not -(1 << (f.width - 1)) <= x < (1 << f.width):
+                raise MapError(f"{self.name}.{f.name} = {x} does not fit {f.width} bits")
+            v |= (x & ((1 << f.width) - 1)) << f.lsb
+        return v
+
     def readback(self, value: int) -> int:
         """What an RW register reads after ``value`` was written: the fields (or the low
         ``width`` bits, sign-extended if ``signed``) of the word, other bits 0 (floor and

@@ -6,6 +6,8 @@ Writes into the output directory:
   rsqrt.hex                     the voltage limiter's 1/sqrt table (rtlmodel/mpc_core.py)
   empc_formats.vh               formats, layout and configuration constants for the RTL
   empc_regs.vh                  register map (gen/empc/regmap.py)
+  empc_designs.h                the designs for the firmware (gen/empc/fwdesigns.py): per design its image
+                                words, control period and KACC word (the manifest's designs.<d>.kacc)
   manifest.json                 formats, scalings, column layout, fit and quantisation errors
 Nothing is written if the configuration or any requested design is invalid (a design that fails
 the robust design check is written only with ``force``), and the directory is replaced as a
@@ -20,7 +22,7 @@ import shutil
 import tempfile
 from pathlib import Path
 
-from . import __version__, config as config_mod, header, image, mpc, regmap
+from . import __version__, config as config_mod, fwdesigns, header, image, mpc, regmap
 from .design import design, designs_of
 from .rtlmodel import mpc_core as core
 
@@ -59,12 +61,13 @@ def _replace_dir(new: Path, final: Path) -> None:
 def _write(cfg, out: Path, results: dict, all_designs: bool) -> dict:
     boot = (cfg.control.algorithm, cfg.control.task)
     consts = header.constants(cfg)
-    files = {}
+    files, images = {}, {}
     for (alg, task), r in results.items():
         words = image.encode(r["params"], consts["image"]["IMG_FMT_ID"], period=cfg.pwm_per_control)
         name = f"coef_alg{alg}_{task}.hex"
         image.write_hex(words, out / name)
         files[f"alg{alg}_{task}"] = name
+        images[f"alg{alg}_{task}"] = words
         if (alg, task) == boot:
             image.write_hex(words, out / "coef_boot.hex")
     image.write_hex(core.RSQRT, out / "rsqrt.hex", digits=5)
@@ -106,16 +109,18 @@ def _write(cfg, out: Path, results: dict, all_designs: bool) -> dict:
         manifest["designs"][f"alg{alg}_{task}"]["kacc"] = kacc_fields(cfg.for_design(alg, task))
         if (alg, task) in cfg.control.weight_tables:      # a control-period table gave (some of) the weights
             manifest["designs"][f"alg{alg}_{task}"]["weights_table"] = cfg.control.weight_tables[(alg, task)]
+    (out / fwdesigns.NAME).write_text(fwdesigns.render(manifest, images))
     (out / "manifest.json").write_text(json.dumps(manifest, indent=1) + "\n")
     return manifest
 
 
 def kacc_fields(cfg) -> dict:
     """KACC's fields (regmap) for a design (``cfg.for_design``): the firmware writes them with the design's
-    image; the header's reset values are the boot design's.  ``speed_window`` is M = 2^win."""
+    image; the header's reset values are the boot design's.  ``speed_window`` is M = 2^win; ``word`` the
+    register word of the fields (regmap ``Reg.pack``; empc_designs.h builds it from the same fields)."""
     c = header.config_constants(cfg)          # the header's own KACC constants, for this design
-    return {"kacc": c["KACC"], "load_shift": c["KACC_LOAD_SHIFT"], "shift": c["KACC_SHIFT"], "win": c["KACC_WIN"],
-            "speed_window": cfg.control.speed_window}
+    f = {"kacc": c["KACC"], "load_shift": c["KACC_LOAD_SHIFT"], "shift": c["KACC_SHIFT"], "win": c["KACC_WIN"]}
+    return {**f, "speed_window": cfg.control.speed_window, "word": regmap.axis_reg("KACC").pack(f)}
 
 
 def _weights_dict(w) -> dict:

@@ -69,6 +69,23 @@ def test_reset_words():
     assert udc == 0 and 0 < lo < hi
 
 
+def test_pack():
+    """Reg.pack: the fields by name into their bits (a negative value two's complement); every field exactly
+    once and each value fitting its width, else MapError (KACC: the word empc_designs.h and the manifest hold)."""
+    r = regmap.axis_reg("KACC")
+    f = {x.name: x for x in r.fields}
+    w = r.pack({"kacc": -2, "load_shift": 6, "shift": 17, "win": 3})
+    assert w == (((1 << 18) - 2) | 6 << f["load_shift"].lsb | 17 << f["shift"].lsb | 3 << f["win"].lsb)
+    assert w == r.readback(w) and w & ~r.mask == 0
+    assert r.pack({"kacc": 5, "load_shift": 0, "shift": 0, "win": 0}) == 5
+    for bad in ({"kacc": 1 << 18, "load_shift": 0, "shift": 0, "win": 0},
+                {"kacc": -(1 << 17) - 1, "load_shift": 0, "shift": 0, "win": 0},
+                {"kacc": 0, "load_shift": 0, "shift": 0, "win": 8}, {"kacc": 0, "load_shift": 0, "shift": 0},
+                {"kacc": 0, "load_shift": 0, "shift": 0, "win": 0, "speed_window": 1}):
+        with pytest.raises(MapError):
+            r.pack(bad)
+
+
 def test_readback():
     assert regmap.axis_reg("DEAD_TIME").readback(0xFFFFFF37) == 0x37                 # width mask
     assert regmap.axis_reg("KDC").readback(0xFFFFFFFF) == 0x3FFFF
