@@ -3,6 +3,7 @@ for the Cortex-M4 (arm-none-eabi-gcc when installed) and the host; every macro o
 fw/empc_regs.h, evaluated by the C compiler, equals the register map; the header defines nothing
 else.  The header against the RTL: tb/test_empc_drv.py (every register over the bus)."""
 import ctypes
+import hashlib
 import json
 import re
 import shutil
@@ -100,7 +101,8 @@ def designs_vs_manifest(d: Path) -> list[str]:
     """What the compiled empc_designs.h of ROM directory ``d`` says that manifest.json and the .hex files do not."""
     from empc import header, image
     man = json.loads((d / "manifest.json").read_text())
-    out = fw_build.run_program(DESIGNS_PROG, OUT, "designs_" + d.parent.name, include=(d,))
+    tag = hashlib.sha1(str(d).encode()).hexdigest()[:10]          # one program per directory (xdist workers)
+    out = fw_build.run_program(DESIGNS_PROG, OUT, f"designs_{tag}", include=(d,))
     got = {}
     for line in out.splitlines():
         name, *v = line.split()
@@ -271,7 +273,7 @@ DESIGN_LOAD_MUTANTS = {
 
 
 def test_design_load_rules():
-    bad = design_load_faults(fw_build.build_host_lib(OUT))
+    bad = design_load_faults(fw_build.build_host_lib(OUT, name="libempc_rules.so"))
     assert not bad, bad
 
 
