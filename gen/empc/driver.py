@@ -35,15 +35,8 @@ def address(name: str, axis: int = 0) -> int:
 
 
 def field_value(reg: str, **fields) -> int:
-    r = _AXIS.get(reg) or _GLOBAL[reg]
-    by_name = {f.name: f for f in r.fields}
-    v = 0
-    for k, x in fields.items():
-        f = by_name[k]
-        if x >> f.width:
-            raise ValueError(f"{reg}.{k}={x} does not fit {f.width} bits")
-        v |= (int(x) & ((1 << f.width) - 1)) << f.lsb
-    return v
+    """The word of register ``reg`` with the given fields (others 0); ValueError (MapError) if one does not fit."""
+    return (_AXIS.get(reg) or _GLOBAL[reg]).pack({k: int(x) for k, x in fields.items()}, partial=True)
 
 
 def period_mismatch(words: list[int], pwm_per_control: int) -> str:

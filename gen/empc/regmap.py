@@ -209,14 +209,18 @@ class Reg:
                 v |= (macros[f.reset.removeprefix("EMPC_")] & ((1 << f.width) - 1)) << f.lsb
         return v
 
-    def pack(self, values: dict) -> int:
-        """The word with every field set to ``values[field name]`` (exactly the register's fields, each
-        value fitting its width: unsigned, or two's complement for a negative value); MapError otherwise."""
+    def pack(self, values: dict, partial: bool = False) -> int:
+        """The word with every field set to ``values[field name]`` (exactly the register's fields, or with
+        ``partial`` any of them, the others 0; each value fitting its width: unsigned, or two's complement
+        for a negative value); MapError otherwise."""
         parts = self.parts()
-        if set(values) != {f.name for f in parts}:
+        names = {f.name for f in parts}
+        if not (set(values) <= names if partial else set(values) == names):
             raise MapError(f"{self.name}: fields {sorted(values)} given, the register has {[f.name for f in parts]}")
         v = 0
         for f in parts:
+            if f.name not in values:
+                continue
             x = values[f.name]
             if not -(1 << (f.width - 1)) <= x < (1 << f.width):
                 raise MapError(f"{self.name}.{f.name} = {x} does not fit {f.width} bits")
