@@ -945,7 +945,8 @@ class Model:
             if r.access != "RO" and not g.k[r.name].window:
                 self._wr_at.setdefault(r.offset, []).append(r)
         self._layout = [(pos, g.k[r.name].stored,
-                         tuple((r.part_port(f), (1 << f.width) - 1, f.width) for f in sorted(r.parts(), key=lambda f: f.lsb)))
+                         tuple((r.part_port(f), (1 << f.width) - 1, f.width)
+                               for f in sorted(r.parts(), key=lambda f: f.lsb)))
                         for r, pos, w in g.rd_layout()]
         self._members = {e.name: g.members(e.name) for e in list(g.windows) + list(g.strobes)}
         self._win = []
