@@ -324,6 +324,11 @@ class _Gen:
 
     def rd_layout(self) -> list[tuple[Reg, int, int]]:
         """(register, lsb in rd_vals, width) of every readable non-constant register, map order."""
+        if getattr(self, "_rd_layout", None) is None:
+            self._rd_layout = self._make_rd_layout()
+        return list(self._rd_layout)
+
+    def _make_rd_layout(self) -> list[tuple[Reg, int, int]]:
         out, pos = [], 0
         for r in self.regs:
             if self.k[r.name].readable and not self.k[r.name].const and r not in self.sh:
@@ -920,7 +925,36 @@ class Model:
         self.ports = self.g.ports()
         self.state: dict[str, int] = {}
         self.q = 0                      # read data of the copies / mux (registered)
+        self._tables()
         self.reset()
+
+    def _tables(self) -> None:
+        """What comb / clock look up every clock, derived once from the block (it does not change):
+        each register's parts with their ports and masks, the registers at each address, the windows'
+        members (the same lists, in the same order, the loops over the whole map would find)."""
+        g = self.g
+        self._parts = {r.name: tuple((f, r.part_port(f), (1 << f.width) - 1) for f in r.parts()) for r in g.regs}
+        self._each = list(g.each_part(g.regs))
+        self._drop = [p for r, k, f, p in self._each if k.pulses or (k.key and r.arm is None) or k.wodata]
+        self._w1c = [p for r, k, f, p in self._each if k.w1c]
+        self._rd_at: dict[int, Reg] = {}            # the last readable register at an offset (as the loop)
+        self._wr_at: dict[int, list[Reg]] = {}      # the writable, non-window registers at an offset, map order
+        for r in g.regs:
+            if g.k[r.name].readable:
+                self._rd_at[r.offset] = r
+            if r.access != "RO" and not g.k[r.name].window:
+                self._wr_at.setdefault(r.offset, []).append(r)
+        self._layout = [(pos, g.k[r.name].stored,
+                         tuple((r.part_port(f), (1 << f.width) - 1, f.width)
+                               for f in sorted(r.parts(), key=lambda f: f.lsb)))
+                        for r, pos, w in g.rd_layout()]
+        self._members = {e.name: g.members(e.name) for e in list(g.windows) + list(g.strobes)}
+        self._win = []
+        for e in g.windows:
+            mem = self._members[e.name]
+            self._win.append((e, frozenset(m.offset for m in mem), any(m.access != "RO" for m in mem),
+                              g.window_guard(e.name), g.idx_bits(mem) if e.idx else 0, mem[0].offset))
+        self._rdata_ports = {e.rdata_port for e in g.windows}
 
     def _reset_of(self, r: Reg, f: Field) -> int:
         if isinstance(f.reset, str):
@@ -945,10 +979,9 @@ class Model:
         if k.const:
             return r.reset_int()
         v = 0
-        for f in r.parts():
-            p = r.part_port(f)
-            x = (self.state[p] if k.stored else ins[p]) & ((1 << f.width) - 1)
-            v |= x << f.lsb
+        src = self.state if k.stored else ins
+        for f, p, m in self._parts[r.name]:
+            v |= (src[p] & m) << f.lsb
         if r.signed and not r.fields and v >> (r.width - 1):
             v |= (0xFFFFFFFF << r.width) & 0xFFFFFFFF
         return v
@@ -957,13 +990,12 @@ class Model:
         """The ``rd_vals`` export: every readable non-constant register's dense value (its fields'
         bits, msb field first), the first register at bit 0."""
         v = 0
-        for r, pos, w in self.g.rd_layout():
-            k = self.g.k[r.name]
+        for pos, stored, parts in self._layout:
+            src = self.state if stored else ins
             x, b = 0, 0
-            for f in sorted(r.parts(), key=lambda f: f.lsb):
-                p = r.part_port(f)
-                x |= ((self.state[p] if k.stored else ins[p]) & ((1 << f.width) - 1)) << b
-                b += f.width
+            for p, m, w in parts:
+                x |= (src[p] & m) << b
+                b += w
             v |= x << pos
         return v
 
@@ -975,22 +1007,19 @@ class Model:
                    if r.offset == ins["reg_addr"] and self._ok(r, ins, ins["reg_wdata"], self.unl))
 
     def _sel(self, e, addr: int) -> bool:
-        return any(r.offset == addr for r in self.g.members(e.name))
+        return any(r.offset == addr for r in self._members[e.name])
 
     def comb(self, ins: dict) -> dict:
         out = {}
         rd = self.q
-        for e in self.g.windows:
-            mem = self.g.members(e.name)
-            sel = self._sel(e, ins["reg_addr"])
-            if any(m.access != "RO" for m in mem):
-                g = self.g.window_guard(e.name)
+        for e, offs, writable, g, ib, off0 in self._win:
+            sel = ins["reg_addr"] in offs
+            if writable:
                 out[f"{e.name}_we"] = int(ins["reg_wr"] and sel and not (g and ins[g]))
             out[f"{e.name}_re"] = int(ins["reg_rd"] and sel)
             if e.idx:
-                ib = self.g.idx_bits(mem)
-                out[f"{e.name}_idx"] = (ins["reg_addr"] - mem[0].offset) & ((1 << ib) - 1)
-        for p in {e.rdata_port for e in self.g.windows}:
+                out[f"{e.name}_idx"] = (ins["reg_addr"] - off0) & ((1 << ib) - 1)
+        for p in self._rdata_ports:
             rd |= ins[p]
         out["reg_rdata"] = rd
         if self.b.shared:
@@ -1007,11 +1036,11 @@ class Model:
         if r.unlock and not unl:
             return False
         k = self.g.k[r.name]
-        for f in r.parts():
-            x = (wd >> f.lsb) & ((1 << f.width) - 1)
-            if f.legal is not None and x not in set(f.legal):
+        for f, p, m in self._parts[r.name]:
+            x = (wd >> f.lsb) & m
+            if f.legal is not None and x not in f.legal:         # range / tuple of ints: as set(f.legal)
                 return False
-            if f.guard and ins[f.guard] and (x != self.state[r.part_port(f)] if k.stored else x != 0):
+            if f.guard and ins[f.guard] and (x != self.state[p] if k.stored else x != 0):
                 return False
         return True
 
@@ -1020,13 +1049,10 @@ class Model:
         addr, wd = ins["reg_addr"], ins["reg_wdata"]
         # read path: copies / mux capture the pre-edge values
         q = 0
-        if ins["reg_rd"]:
-            for r in g.regs:
-                if g.k[r.name].readable and r.offset == addr:
-                    q = self._value(r, ins)
-        for r, k, f, p in g.each_part(g.regs):        # pulses drop
-            if k.pulses or (k.key and r.arm is None) or k.wodata:
-                s[p] = 0
+        if ins["reg_rd"] and addr in self._rd_at:
+            q = self._value(self._rd_at[addr], ins)
+        for p in self._drop:                            # pulses drop
+            s[p] = 0
         for r in g.regs:
             if r.wstrobe:
                 s[f"{r.base}_wr"] = 0
@@ -1042,18 +1068,15 @@ class Model:
         if g.arms:
             self.unl = 0 if ins["reg_wr"] else max(unl - ins[f"{g.arms[0].base}_tick"], 0)
         old = dict(s)                   # W1C: a write clears from the value before this clock's set
-        for r, k, f, p in g.each_part(g.regs):
-            if k.w1c and ins[f"{p}_set"]:
+        for p in self._w1c:
+            if ins[f"{p}_set"]:
                 s[p] = 1
         if ins["reg_wr"]:
-            for e in g.windows:
-                gd = g.window_guard(e.name)
-                if gd and ins[gd] and self._sel(e, addr):
+            for e, offs, _, gd, _, _ in self._win:
+                if gd and ins[gd] and addr in offs:
                     s["wr_refused"] = 1
-            for r in g.regs:
+            for r in self._wr_at.get(addr, ()):
                 k = g.k[r.name]
-                if r.offset != addr or r.access == "RO" or k.window:
-                    continue
                 if not self._ok(r, ins, wd, unl):
                     s["wr_refused"] = 1
                     for f in r.parts():                 # safe values pass a refused write
@@ -1063,7 +1086,7 @@ class Model:
                 if r.wstrobe:
                     s[f"{r.base}_wr"] = 1
                 if k.strobe:
-                    mem = g.members(r.ext)
+                    mem = self._members[r.ext]
                     s[f"{r.ext}_we"] = 1 << mem.index(r)
                     s[f"{r.ext}_wdata"] = wd & ((1 << r.width) - 1)
                     continue
@@ -1105,16 +1128,32 @@ class SharedReadModel:
         self.sh_reset = {self.g.sh_index(r.offset): r.readback(r.reset_word(macros)) for r in self.g.sh}
         self.mem: dict[tuple[int, int], int] = {}      # region 1 {axis, word index}; never cleared
         self.flags = [0] * naxes                        # per axis: bit i = shadowed register i written
+        # per clock look-ups, derived once: the last readable non-shadowed register at an offset (as the loop
+        # over the map), the first shadowed register's index at an offset, each shadowed word's index
+        self._rd_at = {}
+        for r in self.g.regs:
+            if self.g.k[r.name].readable and r not in self.g.sh:
+                self._rd_at[r.offset] = r
+        self._sh_k: dict[int, int] = {}
+        for k, r in enumerate(self.g.sh):
+            self._sh_k.setdefault(r.offset, k)
+        self._sh_i: dict[int, int] = {}
+        self._word_parts: dict[str, list] = {}
+        self._rdata_ports = {e.rdata_port for e in self.g.windows}
 
     def word(self, r: Reg, vals: int) -> int:
         """32-bit read word of register r from one axis's rd_vals."""
         if self.g.k[r.name].const:
             return r.reset_int()
         pos, _ = self.lay[r.name]
+        parts = self._word_parts.get(r.name)
+        if parts is None:
+            parts = self._word_parts[r.name] = [((1 << f.width) - 1, f.lsb, f.width)
+                                                for f in sorted(r.parts(), key=lambda f: f.lsb)]
         v = 0
-        for f in sorted(r.parts(), key=lambda f: f.lsb):
-            v |= ((vals >> pos) & ((1 << f.width) - 1)) << f.lsb
-            pos += f.width
+        for m, lsb, w in parts:
+            v |= ((vals >> pos) & m) << lsb
+            pos += w
         if r.signed and not r.fields and v >> (r.width - 1):
             v |= (0xFFFFFFFF << r.width) & 0xFFFFFFFF
         return v
@@ -1128,23 +1167,28 @@ class SharedReadModel:
 
     def comb(self, ins: dict) -> int:
         rd = self.q | self.sh_q
-        for p in {e.rdata_port for e in self.g.windows}:
+        for p in self._rdata_ports:
             rd |= ins[p]
         return rd
+
+    def _sh_index(self, addr: int) -> int:
+        i = self._sh_i.get(addr)
+        if i is None:
+            i = self._sh_i[addr] = self.g.sh_index(addr)
+        return i
 
     def clock(self, ins: dict) -> None:
         g, addr, ax = self.g, ins["reg_addr"], ins["rd_axis"]
         q = sh_q = 0
         if ins["reg_rd"] and ax < self.naxes:
-            for r in g.regs:
-                if g.k[r.name].readable and r.offset == addr and r not in g.sh:
-                    q = self.word(r, ins["rd_vals"][ax])
-            k = next((k for k, r in enumerate(g.sh) if r.offset == addr), None)
+            if addr in self._rd_at:
+                q = self.word(self._rd_at[addr], ins["rd_vals"][ax])
+            k = self._sh_k.get(addr)
             if k is not None:                          # read-first: before this clock's write
-                i = g.sh_index(addr)
+                i = self._sh_index(addr)
                 sh_q = self.mem.get((ax, i), 0) if self.flags[ax] >> k & 1 else self.sh_reset[i]
         if g.sh and any(ins["sh_we"]):
-            self.mem[(ax, g.sh_index(addr))] = self.sh_din(addr, ins["reg_wdata"])
+            self.mem[(ax, self._sh_index(addr))] = self.sh_din(addr, ins["reg_wdata"])
         if ins["rst"]:
             self.q = self.sh_q = 0
             self.flags = [0] * self.naxes
