@@ -329,21 +329,14 @@ AGREE_50US = 0.10       # fixed vs float RMS tracking error within 10 % + 1 sens
 # 0.35 u_max (robust.noise_rms), the u_q RMS measured in its step's tail (0.36 / 0.35 u_max); with Q_du x4 and
 # Q_yw[i_q] x32 (from `empc tune --refine --u-chatter 0.2`): 0.13 linear, 0.12 / 0.11 in the tail, overshoot
 # 5.2 %, settled in 48 ms (configs/premo_320v.toml).
-KNOWN_50US = {
-    ("ec45flat_24v", "alg2.position"): "sensor resolution (123 rad/s per count): its Ts_50us table's linear "
-                                       "quantisation noise is 0.60 u_max at the worst box point, the rotor creeps: "
-                                       "final error 65-67 % of the 8 rad step after 50 ms, u_q RMS 0.51-0.55 u_max in "
-                                       "the tail (the table before the issue-15 retune, peak 1.09 i_max at corner_b: "
-                                       "0.69 u_max, 78-80 %, 0.70-0.73); `empc tune --refine --u-chatter 0.25` finds "
-                                       "no table that passes the box (best radius 1.00000); the final error stays "
-                                       "65 % with 128000 cpr and with control.speed_window = 2..8 (u_q tail 0.17 at "
-                                       "M = 4): not only the resolution.  The weights: its linear loop (empc tune's) "
-                                       "does not settle in 100 ms (0.11 A for a 0.1 pu step; u chatter 0.60 / 0.42 / "
-                                       "0.19 u_max at M = 1 / 2 / 4); `empc tune --refine --settling 0.03..0.05` at "
-                                       "M = 1, 2, 4 finds no table: the damping of the 208 Hz mode at +-5500 rad/s under "
-                                       "the rated load binds (best 0.046 < 0.05 at M = 4) and the search walks to "
-                                       "near-zero gains (0.00 A for the step), none settling",
-}
+KNOWN_50US: dict = {}
+# ec45flat_24v alg2 position (the rotor crept: final error 65-67 % of the 8 rad step after 50 ms, u_q tail RMS
+# 0.51-0.55 u_max; first blamed on the sensor resolution, 123 rad/s per count, but the same at 128000 cpr and at any
+# speed window: its Ts_50us table was a slow loop, a 1.35 Hz mode, radius 0.99969, 0.11 A for a 0.1 pu step in
+# the linear loop) passes since that table is the algorithm-1 Ts_50us table as the proportional part (Q_yp[2] =
+# its Q_yw[2]) with a weak position integrator Q_yw[2] = 10 (issue 16, configs/ec45flat_24v.toml): radius 0.99955,
+# damping 0.251; settled in 28.9 / 31.0 / 27.1 ms nominal / corner_a / corner_b, overshoot <= 2.0 %, peak <= 0.76
+# i_max, u_q tail RMS <= 0.12 u_max (float and fixed alike).
 # ipmsm_001 alg2 speed at corner_a (peak 1.033 / 1.096 i_max) passes since the speed integral's anti-windup
 # (issue 15, docs/design.md): 0.994 / 0.842, overshoot 15.2 / 8.3 %.
 # ec45flat_24v alg1 position at corner_a (peak 1.037 / 1.077 i_max, u_q RMS 0.34 / 0.35 u_max in the tail) passes
@@ -359,10 +352,10 @@ KNOWN_50US = {
 # its Ts_50us table's Q_yw[2] x0.5 (the same `empc tune`): overshoot 13.7 / 13.5 % (corners <= 14.6 %), u_q tail
 # RMS <= 0.07 u_max.
 # at the box corners (full sweep): the same designs fail there (blwr alg1 speed did: overshoot 28 / 55 %), and
-KNOWN_50US_CORNERS = {
-    ("ec45flat_24v", "alg1.speed", "corner_a"): "sensor resolution (the step is one count): u_q RMS 0.49 / 0.50 "
-                                                "u_max in the tail, final error 26 %",
-}
+# ec45flat_24v alg1 speed at corner_a (the sensor resolution: the step is one count; u_q RMS 0.49 / 0.50 u_max in the
+# tail, final error 26 %) passes since its Ts_50us table's speed_window = 4 (configs/ec45flat_24v.toml): u_q tail
+# RMS <= 0.056 u_max at the three plants, final error <= 3.0 %.
+KNOWN_50US_CORNERS: dict = {}
 
 
 def _designs_50us(plants=(None,), only_task=None):
