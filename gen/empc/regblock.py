@@ -717,8 +717,8 @@ def render_shared(b: Block) -> str:
     copies of its ``rd_vals`` export, gated (0 unless that axis's word is read) by the flip-flops'
     synchronous reset, the axes' words ORed; else one set of copies (the block's read style) taking each
     value from the axis ``rd_axis`` selects (a multiplexer on the bits of rd_axis, one LUT6 per value bit
-    for four axes).  Branch area2, flattened top: SPLIT saves 137 LUT at NAXES = 2, none at NAXES = 4.  Same read rules as the
-    block's own path (reg_rdata valid the clock after reg_rd, 0 otherwise; the windows' read data
+    for four axes).  Branch area2, flattened top: SPLIT saves 137 LUT at NAXES = 2, none at NAXES = 4.
+    Same read rules as the block's own path (reg_rdata valid the clock after reg_rd, 0 otherwise; the windows' read data
     ORed), so the blocks' own ``reg_rdata`` is left unconnected (synthesis drops their copies)."""
     g = _Gen(b)
     lay = g.rd_layout()
@@ -755,7 +755,8 @@ def render_shared(b: Block) -> str:
          *(['`include "empc_formats.vh"'] if any(isinstance(f.reset, str) for r in g.sh for f in r.parts()) else []),
          f"module {b.shared} #(",
          "    parameter integer NAXES = 1,",
-         "    parameter integer SPLIT = (NAXES <= 2) ? 1 : 0,   // read registers per axis (1) or one set behind an rd_axis multiplexer (0)",
+         "    parameter integer SPLIT = (NAXES <= 2) ? 1 : 0,   // read registers per axis (1) or one set "
+         "behind an rd_axis multiplexer (0)",
          "    parameter integer AXB = (NAXES < 2) ? 1 : $clog2(NAXES)     // axis bits (derived)",
          ") ("]
     lines = [(f"    {d:<6} wire {w:<15} {n}", c) for d, n, w, _, c in P]
@@ -825,7 +826,8 @@ def render_shared(b: Block) -> str:
           *vl,
           *[("    " + x) if x else x for x in rm],
           "    end endgenerate",
-          "    assign reg_rdata = " + "\n                     | ".join(rdp + (["sh_q"] if g.sh else []) + ["q_or"]) + ";"]
+          "    assign reg_rdata = "
+          + "\n                     | ".join(rdp + (["sh_q"] if g.sh else []) + ["q_or"]) + ";"]
     L += ["endmodule", "`default_nettype wire", ""]
     return "\n".join(L)
 
