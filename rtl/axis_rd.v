@@ -2,9 +2,13 @@
 //
 // axis_rd: the read path of NAXES axis_regs blocks (registers of one axis (mpc_axis)), shared.
 //
-// The CPU reads one axis at a time: one set of read registers serves every axis, each taking its
-// register's value from the axis rd_axis selects among the blocks' rd_vals exports, instead of
-// every axis_regs keeping its own (their reg_rdata is left unconnected; synthesis drops them).
+// The CPU reads one axis at a time: the read registers of every axis live here instead of in
+// every axis_regs (their reg_rdata is left unconnected; synthesis drops them).  SPLIT = 1 (default at
+// NAXES <= 2): per axis gated copies of its own rd_vals export (the gate, axis and word, is the
+// flip-flops' synchronous reset: no LUT per bit), the axes' words ORed; SPLIT = 0 (default at NAXES > 2):
+// one set of copies, each taking its value from the axis rd_axis selects (a LUT per value bit).
+// Flattened lx_rocon_top (branch area2): NAXES = 2 SPLIT 137 LUT fewer for 295 more flip-flops; NAXES = 4
+// the same LUTs within abc's noise for 885 more flip-flops, so the default keeps the multiplexer there.
 // Read path: gated copies (0 unless read) ORed.
 //
 // Shadow (Block.shadow): the 17 stored registers that only an accepted write changes (FAULT_MASK, DEAD_TIME, KDC, UDC, UDC_MIN, UDC_MAX, OC_THRESH, ANGLE_CAL, HALL_OFFSET, KACC, ID_REF, IQ_REF, SEG_ADDR, FW, FW_R2, IQ_HOLD, ADC_SUM_THRESH)
@@ -15,13 +19,15 @@
 // addresses region 0, which holds the reset values (initial contents, never written).  A read and a
 // write of the same word in one clock read the old value (read-first), as the registers' copies did.
 // The words: reg_addr bits 4, 3, 2, 1, 0 (the fewest that tell them apart).
-// Parameters: NAXES (1..), AXB (axis bits, derived); VW = the width of rd_vals per axis.
+// Parameters: NAXES (1..), SPLIT (read registers per axis: 1, or one set: 0; the same reg_rdata),
+// AXB (axis bits, derived); VW = the width of rd_vals per axis.
 // Latency: reg_rdata is valid the clock after reg_rd and 0 in every other clock (as the block's).
 // Reset: synchronous (rst); read data to 0.
 `default_nettype none
 `include "empc_formats.vh"
 module axis_rd #(
     parameter integer NAXES = 1,
+    parameter integer SPLIT = (NAXES <= 2) ? 1 : 0,   // read registers per axis (1) or one set behind an rd_axis multiplexer (0)
     parameter integer AXB = (NAXES < 2) ? 1 : $clog2(NAXES)     // axis bits (derived)
 ) (
     input  wire                 clk,
@@ -38,38 +44,8 @@ module axis_rd #(
 );
     localparam integer VW = 295;   // rd_vals bits per axis (EMPC_A_RD_VALS_W)
 
-    // ---------------- the read axis's values: a multiplexer on the bits of rd_axis (binary, so that
-    // synthesis maps four axes to one LUT6 a bit; a decoded AND-OR form came out at 2-3 LUTs a bit
-    // in the flattened top), the axes beyond NAXES padded with 0
     localparam integer NP = 1 << AXB;
-    wire [NP*VW-1:0] vp;
     genvar a;
-    generate for (a = 0; a < NP; a = a + 1) begin : g_pad
-        if (a < NAXES) begin : g_ax
-            assign vp[a*VW +: VW] = rd_vals[a*VW +: VW];
-        end else begin : g_none
-            assign vp[a*VW +: VW] = {VW{1'b0}};
-        end
-    end endgenerate
-    wire [VW-1:0] v = vp[rd_axis*VW +: VW];
-    wire [9:0] v_ctrl = v[9:0];
-    wire [12:0] v_status = v[22:10];
-    wire [14:0] v_fault = v[37:23];
-    wire [11:0] v_adc_off0 = v[49:38];
-    wire [11:0] v_adc_off1 = v[61:50];
-    wire [11:0] v_adc_off2 = v[73:62];
-    wire [31:0] v_pos = v[105:74];
-    wire [15:0] v_theta = v[121:106];
-    wire [23:0] v_iabc0 = v[145:122];
-    wire [11:0] v_iabc1 = v[157:146];
-    wire [15:0] v_latency = v[173:158];
-    wire [26:0] v_adc_psum0 = v[200:174];
-    wire [26:0] v_adc_psum1 = v[227:201];
-    wire [26:0] v_adc_psum2 = v[254:228];
-    wire [7:0] v_cnt_wr_refused = v[262:255];
-    wire [7:0] v_cnt_adc_miss = v[270:263];
-    wire [15:0] v_cnt_enc_err = v[286:271];
-    wire [7:0] v_cnt_swap_ref = v[294:287];
 
     // ---------------- shadow: the stored registers, read back from a write-through block RAM
     localparam integer NSH = 17;   // shadowed registers per axis (EMPC_A_SH_N)
@@ -141,86 +117,234 @@ module axis_rd #(
         else sh_q <= sh_mem[{sh_fl, rd_axis, sh_idx}];
     end
 
-    // ---------------- read path: gated copies / shared read register, ORed
-    wire rd_p0 = reg_rd && (reg_addr[7:7] == 1'd0);
-    reg  [9:0]   q_ctrl;
-    reg  [12:0]  q_status;
-    reg  [14:0]  q_fault;
-    reg  [11:0]  q_adc_off0;
-    reg  [11:0]  q_adc_off1;
-    reg  [11:0]  q_adc_off2;
-    reg  [31:0]  q_pos;
-    reg  [15:0]  q_theta;
-    reg  [23:0]  q_iabc0;
-    reg  [11:0]  q_iabc1;
-    reg  [15:0]  q_latency;
-    reg  [26:0]  q_adc_psum0;
-    reg  [26:0]  q_adc_psum1;
-    reg  [26:0]  q_adc_psum2;
-    reg  [7:0]   q_cnt_wr_refused;
-    reg  [7:0]   q_cnt_adc_miss;
-    reg  [15:0]  q_cnt_enc_err;
-    reg  [7:0]   q_cnt_swap_ref;
-    always @(posedge clk) begin
-        q_ctrl <= (rd_p0 && reg_addr[6:0] == 7'h0) ? v_ctrl : 10'd0;
-        q_status <= (rd_p0 && reg_addr[6:0] == 7'h2) ? v_status : 13'd0;
-        q_fault <= (rd_p0 && reg_addr[6:0] == 7'h3) ? v_fault : 15'd0;
-        q_adc_off0 <= (rd_p0 && reg_addr[6:0] == 7'hb) ? v_adc_off0 : 12'd0;
-        q_adc_off1 <= (rd_p0 && reg_addr[6:0] == 7'hc) ? v_adc_off1 : 12'd0;
-        q_adc_off2 <= (rd_p0 && reg_addr[6:0] == 7'hd) ? v_adc_off2 : 12'd0;
-        q_pos <= (rd_p0 && reg_addr[6:0] == 7'h20) ? v_pos : 32'd0;
-        q_theta <= (rd_p0 && reg_addr[6:0] == 7'h22) ? v_theta : 16'd0;
-        q_iabc0 <= (rd_p0 && reg_addr[6:0] == 7'h28) ? v_iabc0 : 24'd0;
-        q_iabc1 <= (rd_p0 && reg_addr[6:0] == 7'h29) ? v_iabc1 : 12'd0;
-        q_latency <= (rd_p0 && reg_addr[6:0] == 7'h2a) ? v_latency : 16'd0;
-        q_adc_psum0 <= (rd_p0 && reg_addr[6:0] == 7'h2c) ? v_adc_psum0 : 27'd0;
-        q_adc_psum1 <= (rd_p0 && reg_addr[6:0] == 7'h2d) ? v_adc_psum1 : 27'd0;
-        q_adc_psum2 <= (rd_p0 && reg_addr[6:0] == 7'h2e) ? v_adc_psum2 : 27'd0;
-        q_cnt_wr_refused <= (rd_p0 && reg_addr[6:0] == 7'h2f) ? v_cnt_wr_refused : 8'd0;
-        q_cnt_adc_miss <= (rd_p0 && reg_addr[6:0] == 7'h3d) ? v_cnt_adc_miss : 8'd0;
-        q_cnt_enc_err <= (rd_p0 && reg_addr[6:0] == 7'h3e) ? v_cnt_enc_err : 16'd0;
-        q_cnt_swap_ref <= (rd_p0 && reg_addr[6:0] == 7'h42) ? v_cnt_swap_ref : 8'd0;
-        if (rst) begin
-            q_ctrl <= 10'd0;
-            q_status <= 13'd0;
-            q_fault <= 15'd0;
-            q_adc_off0 <= 12'd0;
-            q_adc_off1 <= 12'd0;
-            q_adc_off2 <= 12'd0;
-            q_pos <= 32'd0;
-            q_theta <= 16'd0;
-            q_iabc0 <= 24'd0;
-            q_iabc1 <= 12'd0;
-            q_latency <= 16'd0;
-            q_adc_psum0 <= 27'd0;
-            q_adc_psum1 <= 27'd0;
-            q_adc_psum2 <= 27'd0;
-            q_cnt_wr_refused <= 8'd0;
-            q_cnt_adc_miss <= 8'd0;
-            q_cnt_enc_err <= 16'd0;
-            q_cnt_swap_ref <= 8'd0;
+    // ---------------- read path (SPLIT: per axis; else one set behind a multiplexer on rd_axis)
+    wire [31:0] q_or;                 // the copies' read word (0 unless read)
+    generate if (SPLIT != 0) begin : g_split
+        // each axis's gated copies of its own values (0 unless that axis's word is read: the gate is
+        // the flip-flops' synchronous reset, no LUT per bit), the axes' words ORed
+        wire [NAXES*32-1:0] q_ax;
+        for (a = 0; a < NAXES; a = a + 1) begin : g_rd
+            wire [VW-1:0] v = rd_vals[a*VW +: VW];
+            wire [9:0] v_ctrl = v[9:0];
+            wire [12:0] v_status = v[22:10];
+            wire [14:0] v_fault = v[37:23];
+            wire [11:0] v_adc_off0 = v[49:38];
+            wire [11:0] v_adc_off1 = v[61:50];
+            wire [11:0] v_adc_off2 = v[73:62];
+            wire [31:0] v_pos = v[105:74];
+            wire [15:0] v_theta = v[121:106];
+            wire [23:0] v_iabc0 = v[145:122];
+            wire [11:0] v_iabc1 = v[157:146];
+            wire [15:0] v_latency = v[173:158];
+            wire [26:0] v_adc_psum0 = v[200:174];
+            wire [26:0] v_adc_psum1 = v[227:201];
+            wire [26:0] v_adc_psum2 = v[254:228];
+            wire [7:0] v_cnt_wr_refused = v[262:255];
+            wire [7:0] v_cnt_adc_miss = v[270:263];
+            wire [15:0] v_cnt_enc_err = v[286:271];
+            wire [7:0] v_cnt_swap_ref = v[294:287];
+            wire rd_a = reg_rd && (rd_axis == a[AXB-1:0]);
+
+            // ---------------- read path: gated copies / shared read register, ORed
+            wire rd_p0 = rd_a && (reg_addr[7:7] == 1'd0);
+            reg  [9:0]   q_ctrl;
+            reg  [12:0]  q_status;
+            reg  [14:0]  q_fault;
+            reg  [11:0]  q_adc_off0;
+            reg  [11:0]  q_adc_off1;
+            reg  [11:0]  q_adc_off2;
+            reg  [31:0]  q_pos;
+            reg  [15:0]  q_theta;
+            reg  [23:0]  q_iabc0;
+            reg  [11:0]  q_iabc1;
+            reg  [15:0]  q_latency;
+            reg  [26:0]  q_adc_psum0;
+            reg  [26:0]  q_adc_psum1;
+            reg  [26:0]  q_adc_psum2;
+            reg  [7:0]   q_cnt_wr_refused;
+            reg  [7:0]   q_cnt_adc_miss;
+            reg  [15:0]  q_cnt_enc_err;
+            reg  [7:0]   q_cnt_swap_ref;
+            always @(posedge clk) begin
+                q_ctrl <= (rd_p0 && reg_addr[6:0] == 7'h0) ? v_ctrl : 10'd0;
+                q_status <= (rd_p0 && reg_addr[6:0] == 7'h2) ? v_status : 13'd0;
+                q_fault <= (rd_p0 && reg_addr[6:0] == 7'h3) ? v_fault : 15'd0;
+                q_adc_off0 <= (rd_p0 && reg_addr[6:0] == 7'hb) ? v_adc_off0 : 12'd0;
+                q_adc_off1 <= (rd_p0 && reg_addr[6:0] == 7'hc) ? v_adc_off1 : 12'd0;
+                q_adc_off2 <= (rd_p0 && reg_addr[6:0] == 7'hd) ? v_adc_off2 : 12'd0;
+                q_pos <= (rd_p0 && reg_addr[6:0] == 7'h20) ? v_pos : 32'd0;
+                q_theta <= (rd_p0 && reg_addr[6:0] == 7'h22) ? v_theta : 16'd0;
+                q_iabc0 <= (rd_p0 && reg_addr[6:0] == 7'h28) ? v_iabc0 : 24'd0;
+                q_iabc1 <= (rd_p0 && reg_addr[6:0] == 7'h29) ? v_iabc1 : 12'd0;
+                q_latency <= (rd_p0 && reg_addr[6:0] == 7'h2a) ? v_latency : 16'd0;
+                q_adc_psum0 <= (rd_p0 && reg_addr[6:0] == 7'h2c) ? v_adc_psum0 : 27'd0;
+                q_adc_psum1 <= (rd_p0 && reg_addr[6:0] == 7'h2d) ? v_adc_psum1 : 27'd0;
+                q_adc_psum2 <= (rd_p0 && reg_addr[6:0] == 7'h2e) ? v_adc_psum2 : 27'd0;
+                q_cnt_wr_refused <= (rd_p0 && reg_addr[6:0] == 7'h2f) ? v_cnt_wr_refused : 8'd0;
+                q_cnt_adc_miss <= (rd_p0 && reg_addr[6:0] == 7'h3d) ? v_cnt_adc_miss : 8'd0;
+                q_cnt_enc_err <= (rd_p0 && reg_addr[6:0] == 7'h3e) ? v_cnt_enc_err : 16'd0;
+                q_cnt_swap_ref <= (rd_p0 && reg_addr[6:0] == 7'h42) ? v_cnt_swap_ref : 8'd0;
+                if (rst) begin
+                    q_ctrl <= 10'd0;
+                    q_status <= 13'd0;
+                    q_fault <= 15'd0;
+                    q_adc_off0 <= 12'd0;
+                    q_adc_off1 <= 12'd0;
+                    q_adc_off2 <= 12'd0;
+                    q_pos <= 32'd0;
+                    q_theta <= 16'd0;
+                    q_iabc0 <= 24'd0;
+                    q_iabc1 <= 12'd0;
+                    q_latency <= 16'd0;
+                    q_adc_psum0 <= 27'd0;
+                    q_adc_psum1 <= 27'd0;
+                    q_adc_psum2 <= 27'd0;
+                    q_cnt_wr_refused <= 8'd0;
+                    q_cnt_adc_miss <= 8'd0;
+                    q_cnt_enc_err <= 16'd0;
+                    q_cnt_swap_ref <= 8'd0;
+                end
+            end
+            assign q_ax[a*32 +: 32] = {16'd0, q_ctrl[9:2], 6'd0, q_ctrl[1:0]}
+                             | {19'd0, q_status}
+                             | {17'd0, q_fault}
+                             | {20'd0, q_adc_off0}
+                             | {20'd0, q_adc_off1}
+                             | {20'd0, q_adc_off2}
+                             | q_pos
+                             | {16'd0, q_theta}
+                             | {4'd0, q_iabc0[23:12], 4'd0, q_iabc0[11:0]}
+                             | {20'd0, q_iabc1}
+                             | {16'd0, q_latency}
+                             | {1'd0, q_adc_psum0[26:20], 4'd0, q_adc_psum0[19:0]}
+                             | {1'd0, q_adc_psum1[26:20], 4'd0, q_adc_psum1[19:0]}
+                             | {1'd0, q_adc_psum2[26:20], 4'd0, q_adc_psum2[19:0]}
+                             | {24'd0, q_cnt_wr_refused}
+                             | {24'd0, q_cnt_adc_miss}
+                             | {16'd0, q_cnt_enc_err}
+                             | {24'd0, q_cnt_swap_ref};
         end
-    end
+        reg  [31:0] q_any;
+        integer oi;
+        always @(*) begin
+            q_any = 32'd0;
+            for (oi = 0; oi < NAXES; oi = oi + 1) q_any = q_any | q_ax[oi*32 +: 32];
+        end
+        assign q_or = q_any;
+    end else begin : g_mux
+        // the read axis's values: a multiplexer on the bits of rd_axis (binary, so that synthesis maps
+        // four axes to one LUT6 a bit; a decoded AND-OR form came out at 2-3 LUTs a bit in the
+        // flattened top), the axes beyond NAXES padded with 0; one set of gated copies
+        wire [NP*VW-1:0] vp;
+        for (a = 0; a < NP; a = a + 1) begin : g_pad
+            if (a < NAXES) begin : g_ax
+                assign vp[a*VW +: VW] = rd_vals[a*VW +: VW];
+            end else begin : g_none
+                assign vp[a*VW +: VW] = {VW{1'b0}};
+            end
+        end
+        wire [VW-1:0] v = vp[rd_axis*VW +: VW];
+        wire [9:0] v_ctrl = v[9:0];
+        wire [12:0] v_status = v[22:10];
+        wire [14:0] v_fault = v[37:23];
+        wire [11:0] v_adc_off0 = v[49:38];
+        wire [11:0] v_adc_off1 = v[61:50];
+        wire [11:0] v_adc_off2 = v[73:62];
+        wire [31:0] v_pos = v[105:74];
+        wire [15:0] v_theta = v[121:106];
+        wire [23:0] v_iabc0 = v[145:122];
+        wire [11:0] v_iabc1 = v[157:146];
+        wire [15:0] v_latency = v[173:158];
+        wire [26:0] v_adc_psum0 = v[200:174];
+        wire [26:0] v_adc_psum1 = v[227:201];
+        wire [26:0] v_adc_psum2 = v[254:228];
+        wire [7:0] v_cnt_wr_refused = v[262:255];
+        wire [7:0] v_cnt_adc_miss = v[270:263];
+        wire [15:0] v_cnt_enc_err = v[286:271];
+        wire [7:0] v_cnt_swap_ref = v[294:287];
+
+        // ---------------- read path: gated copies / shared read register, ORed
+        wire rd_p0 = reg_rd && (reg_addr[7:7] == 1'd0);
+        reg  [9:0]   q_ctrl;
+        reg  [12:0]  q_status;
+        reg  [14:0]  q_fault;
+        reg  [11:0]  q_adc_off0;
+        reg  [11:0]  q_adc_off1;
+        reg  [11:0]  q_adc_off2;
+        reg  [31:0]  q_pos;
+        reg  [15:0]  q_theta;
+        reg  [23:0]  q_iabc0;
+        reg  [11:0]  q_iabc1;
+        reg  [15:0]  q_latency;
+        reg  [26:0]  q_adc_psum0;
+        reg  [26:0]  q_adc_psum1;
+        reg  [26:0]  q_adc_psum2;
+        reg  [7:0]   q_cnt_wr_refused;
+        reg  [7:0]   q_cnt_adc_miss;
+        reg  [15:0]  q_cnt_enc_err;
+        reg  [7:0]   q_cnt_swap_ref;
+        always @(posedge clk) begin
+            q_ctrl <= (rd_p0 && reg_addr[6:0] == 7'h0) ? v_ctrl : 10'd0;
+            q_status <= (rd_p0 && reg_addr[6:0] == 7'h2) ? v_status : 13'd0;
+            q_fault <= (rd_p0 && reg_addr[6:0] == 7'h3) ? v_fault : 15'd0;
+            q_adc_off0 <= (rd_p0 && reg_addr[6:0] == 7'hb) ? v_adc_off0 : 12'd0;
+            q_adc_off1 <= (rd_p0 && reg_addr[6:0] == 7'hc) ? v_adc_off1 : 12'd0;
+            q_adc_off2 <= (rd_p0 && reg_addr[6:0] == 7'hd) ? v_adc_off2 : 12'd0;
+            q_pos <= (rd_p0 && reg_addr[6:0] == 7'h20) ? v_pos : 32'd0;
+            q_theta <= (rd_p0 && reg_addr[6:0] == 7'h22) ? v_theta : 16'd0;
+            q_iabc0 <= (rd_p0 && reg_addr[6:0] == 7'h28) ? v_iabc0 : 24'd0;
+            q_iabc1 <= (rd_p0 && reg_addr[6:0] == 7'h29) ? v_iabc1 : 12'd0;
+            q_latency <= (rd_p0 && reg_addr[6:0] == 7'h2a) ? v_latency : 16'd0;
+            q_adc_psum0 <= (rd_p0 && reg_addr[6:0] == 7'h2c) ? v_adc_psum0 : 27'd0;
+            q_adc_psum1 <= (rd_p0 && reg_addr[6:0] == 7'h2d) ? v_adc_psum1 : 27'd0;
+            q_adc_psum2 <= (rd_p0 && reg_addr[6:0] == 7'h2e) ? v_adc_psum2 : 27'd0;
+            q_cnt_wr_refused <= (rd_p0 && reg_addr[6:0] == 7'h2f) ? v_cnt_wr_refused : 8'd0;
+            q_cnt_adc_miss <= (rd_p0 && reg_addr[6:0] == 7'h3d) ? v_cnt_adc_miss : 8'd0;
+            q_cnt_enc_err <= (rd_p0 && reg_addr[6:0] == 7'h3e) ? v_cnt_enc_err : 16'd0;
+            q_cnt_swap_ref <= (rd_p0 && reg_addr[6:0] == 7'h42) ? v_cnt_swap_ref : 8'd0;
+            if (rst) begin
+                q_ctrl <= 10'd0;
+                q_status <= 13'd0;
+                q_fault <= 15'd0;
+                q_adc_off0 <= 12'd0;
+                q_adc_off1 <= 12'd0;
+                q_adc_off2 <= 12'd0;
+                q_pos <= 32'd0;
+                q_theta <= 16'd0;
+                q_iabc0 <= 24'd0;
+                q_iabc1 <= 12'd0;
+                q_latency <= 16'd0;
+                q_adc_psum0 <= 27'd0;
+                q_adc_psum1 <= 27'd0;
+                q_adc_psum2 <= 27'd0;
+                q_cnt_wr_refused <= 8'd0;
+                q_cnt_adc_miss <= 8'd0;
+                q_cnt_enc_err <= 16'd0;
+                q_cnt_swap_ref <= 8'd0;
+            end
+        end
+        assign q_or = {16'd0, q_ctrl[9:2], 6'd0, q_ctrl[1:0]}
+                  | {19'd0, q_status}
+                  | {17'd0, q_fault}
+                  | {20'd0, q_adc_off0}
+                  | {20'd0, q_adc_off1}
+                  | {20'd0, q_adc_off2}
+                  | q_pos
+                  | {16'd0, q_theta}
+                  | {4'd0, q_iabc0[23:12], 4'd0, q_iabc0[11:0]}
+                  | {20'd0, q_iabc1}
+                  | {16'd0, q_latency}
+                  | {1'd0, q_adc_psum0[26:20], 4'd0, q_adc_psum0[19:0]}
+                  | {1'd0, q_adc_psum1[26:20], 4'd0, q_adc_psum1[19:0]}
+                  | {1'd0, q_adc_psum2[26:20], 4'd0, q_adc_psum2[19:0]}
+                  | {24'd0, q_cnt_wr_refused}
+                  | {24'd0, q_cnt_adc_miss}
+                  | {16'd0, q_cnt_enc_err}
+                  | {24'd0, q_cnt_swap_ref};
+    end endgenerate
     assign reg_rdata = seg_rdata
                      | smem_rdata
                      | sh_q
-                     | {16'd0, q_ctrl[9:2], 6'd0, q_ctrl[1:0]}
-                     | {19'd0, q_status}
-                     | {17'd0, q_fault}
-                     | {20'd0, q_adc_off0}
-                     | {20'd0, q_adc_off1}
-                     | {20'd0, q_adc_off2}
-                     | q_pos
-                     | {16'd0, q_theta}
-                     | {4'd0, q_iabc0[23:12], 4'd0, q_iabc0[11:0]}
-                     | {20'd0, q_iabc1}
-                     | {16'd0, q_latency}
-                     | {1'd0, q_adc_psum0[26:20], 4'd0, q_adc_psum0[19:0]}
-                     | {1'd0, q_adc_psum1[26:20], 4'd0, q_adc_psum1[19:0]}
-                     | {1'd0, q_adc_psum2[26:20], 4'd0, q_adc_psum2[19:0]}
-                     | {24'd0, q_cnt_wr_refused}
-                     | {24'd0, q_cnt_adc_miss}
-                     | {16'd0, q_cnt_enc_err}
-                     | {24'd0, q_cnt_swap_ref};
+                     | q_or;
 endmodule
 `default_nettype wire

@@ -167,7 +167,8 @@ module mpc_axis #(
         .clk(clk), .rst(rst), .adc_trig(adc_trig), .period_start(period_start),
         .pwm_per_control(ctrl_pwm_per_control),
         .run(running), .theta(theta), .pos(pos), .pos_sample(pos_sample), .adc_valid(adc_valid),
-        .cur0(cur0), .cur1(cur1), .cur2(cur2), .job_axis(), .kdc(kdc), .kacc(kacc), .kacc_shift(kacc_shift),
+        .cur0(cur0), .cur1(cur1), .cur2(cur2), .job_axis(), .job_next(),
+        .kdc(kdc), .kacc(kacc), .kacc_shift(kacc_shift),
         .load_shift(kacc_load_shift), .win_shift(kacc_win),
         .id_ref(id_eff), .iq_ref(iq_ref), .task_pos(task_pos), .ctl_boundary(ctl_boundary),
         .ref_advance(ref_advance), .ref_ok(ref_ok),
@@ -175,7 +176,7 @@ module mpc_axis #(
         .core_start(core_start), .core_in_we(core_in_we), .core_in_addr(core_in_addr),
         .core_in_wdata(core_in_wdata), .core_done(core_done), .core_u(core_u), .core_ebar(core_ebar),
         .cmp(cmp), .cmp_load(cmp_load), .control_done(control_done), .overrun(overrun),
-        .front_sat(seq_front_sat), .latency(seq_latency), .i_d(st_id), .i_q(st_iq), .omega(omega),
+        .front_sat(seq_front_sat), .latency(seq_latency), .i_d(st_id), .i_q(st_iq), .omega(omega), .omega_next(),
         .theta_trig(theta_trig), .st_we(st_we), .st_addr(st_addr), .st_wdata(st_wdata), .stat_sweep(stat_sweep));
     /* verilator lint_on PINCONNECTEMPTY */
 

@@ -170,6 +170,7 @@ module mx_axes #(
 
     // ---------------- sequencer and MPC core, shared ----------------
     wire [AXB-1:0]                  job_axis;
+    wire [NAXES-1:0]                job_next;
     reg  [17:0]                     j_kdc, j_kacc, j_id, j_iq;
     reg  [4:0]                      j_ksh;
     reg  [3:0]                      j_lsh;
@@ -202,7 +203,7 @@ module mx_axes #(
     wire [NAXES-1:0]                core_bank, core_swap_pending, core_img_ok, core_upl_ok, core_swap_refused, core_refused;
     wire [16*NAXES-1:0]             seq_latency;
     wire signed [IW-1:0]            st_id, st_iq;
-    wire signed [`EMPC_W_W-1:0]     omega;
+    wire signed [`EMPC_W_W-1:0]     omega, omega_next;
     wire [AB-1:0]                   theta_trig;
     wire [3*CW-1:0]                 cmp;
     wire                            st_we;
@@ -211,13 +212,15 @@ module mx_axes #(
     mx_seq #(.N(N), .NAXES(NAXES)) u_seq (
         .clk(clk), .rst(rst), .adc_trig(adc_trig), .period_start(period_start), .pwm_per_control(ppc),
         .run(running), .theta(theta_v), .pos(pos_v), .pos_sample(pos_sample), .adc_valid(adc_valid),
-        .cur0(cur0), .cur1(cur1), .cur2(cur2), .job_axis(job_axis), .kdc(j_kdc), .kacc(j_kacc), .kacc_shift(j_ksh),
+        .cur0(cur0), .cur1(cur1), .cur2(cur2), .job_axis(job_axis), .job_next(job_next),
+        .kdc(j_kdc), .kacc(j_kacc), .kacc_shift(j_ksh),
         .load_shift(j_lsh), .win_shift(j_win), .id_ref(j_id), .iq_ref(j_iq), .task_pos(task_pos), .ctl_boundary(ctl_boundary),
         .ref_advance(ref_advance), .ref_ok(ref_ok), .ref_age(ref_age), .ref_bit(ref_bit), .ref_q(ref_q),
         .core_start(core_start), .core_in_we(core_in_we), .core_in_addr(core_in_addr),
         .core_in_wdata(core_in_wdata), .core_done(core_done), .core_u(core_u), .core_ebar(core_ebar),
         .cmp(cmp), .cmp_load(cmp_load), .control_done(control_done), .overrun(overrun),
         .front_sat(seq_front_sat), .latency(seq_latency), .i_d(st_id), .i_q(st_iq), .omega(omega),
+        .omega_next(omega_next),
         .theta_trig(theta_trig), .st_we(st_we), .st_addr(st_addr), .st_wdata(st_wdata), .stat_sweep(stat_sweep));
 
     mpc_core #(.N(N), .NAXES(NAXES), .BOOT_FILE(BOOT_FILE), .RSQRT_FILE(RSQRT_FILE)) u_core (
@@ -251,10 +254,12 @@ module mx_axes #(
         wire sel = (rax == n[AXB-1:0]);
         assign ax_core_done[n] = core_done && job_is_n;
 
-        // this axis's speed for the reference sync: the core's omega while its job runs, held after
-        reg  [31:0] omega_h;
-        always @(posedge clk) if (rst) omega_h <= 32'd0; else if (job_is_n) omega_h <= omega;
-        wire [31:0] omega_n = job_is_n ? omega : omega_h;
+        // this axis's speed for the reference sync: the core's omega while its job runs, held after;
+        // loaded with omega's next value in the clock before the job axis is n (job_next[n]: n is the
+        // job axis in the next clock), so omega_n equals (job_is_n ? omega : omega held from the
+        // last clock with job_is_n) every clock without a multiplexer per axis
+        reg  [31:0] omega_n;
+        always @(posedge clk) if (rst) omega_n <= 32'd0; else if (job_next[n]) omega_n <= omega_next;
 
         // ---- the axis (rtl/axis_periph.v, as mpc_axis's): sensors, registers, glue, faults, PWM ----
         /* verilator lint_off PINCONNECTEMPTY */    // pwm_sync_out: the carriers are phased by PHASE
@@ -309,6 +314,7 @@ module mx_axes #(
         .seg_rdata(seg_rdata), .smem_rdata(s_q), .reg_rdata(reg_rdata));
 
     wire unused = &{1'b0, adc_busy, adc_fvalid, adc_trig_miss, oc_ch, ref_busy, core_busy, core_du, core_u_raw,
-                    core_wn, core_latency, core_boot_ok, st_id, st_iq[3:0], theta_trig, status_busy};
+                    core_wn, core_latency, core_boot_ok, st_id, st_iq[3:0], theta_trig, status_busy,
+                    omega};
 endmodule
 `default_nettype wire

@@ -92,6 +92,7 @@ module mx_seq #(
     // registers of the job's axis: read at job_axis = {axis} from the register block (docs/four_axes.md
     // 2.1: a LUT RAM {axis, reg} whose read address is job_axis; NAXES = 1: the axis's registers)
     output wire [AXB-1:0]                 job_axis,
+    output wire [NAXES-1:0]               job_next,        // one-hot of job_axis's value in the next clock (its D)
     input  wire [17:0]                    kdc,
     input  wire [17:0]                    kacc,            // signed 18 bit
     input  wire [4:0]                     kacc_shift,
@@ -126,6 +127,7 @@ module mx_seq #(
     output wire signed [`EMPC_I_W-1:0]    i_d,
     output wire signed [`EMPC_I_W-1:0]    i_q,
     output reg  signed [`EMPC_W_W-1:0]    omega,
+    output wire signed [`EMPC_W_W-1:0]    omega_next,      // omega's value in the next clock (its D)
     output wire [`EMPC_ANGLE_BITS-1:0]    theta_trig,
     output reg                            st_we,           // axis_status NAXES: st_addr = {axis, word}
     output reg  [5+$clog2(NAXES):0]       st_addr,
@@ -296,6 +298,7 @@ module mx_seq #(
         assign jax = {AXB{1'b0}};
         always @(posedge clk) tpend <= 1'b0;
         assign ax_oh = 1'b1;
+        assign job_next = 1'b1;
     end else begin : g_qn
         // each waiting axis holds its place in the sample order (q_seq, mod 4: at most NAXES wait);
         // the head is the waiting axis whose place is q_pop
@@ -360,6 +363,9 @@ module mx_seq #(
         assign jstart = js;
         assign jax = ja;
         assign ax_oh = ax_ohr;
+        // ax_ohr's D (rst, then js: the job-start condition of ax <= jax), for a parent's copies that
+        // load in the clock before ax changes
+        assign job_next = rst ? {{(NAXES-1){1'b0}}, 1'b1} : js ? ({{(NAXES-1){1'b0}}, 1'b1} << ja) : ax_ohr;
     end endgenerate
     assign jst_oh = {NAXES{jstart}} & ({{(NAXES-1){1'b0}}, 1'b1} << jax);
 
@@ -684,6 +690,8 @@ module mx_seq #(
         endcase
     end
     wire          wen = w_v && w_ok_c;
+    // omega's D (below), for a parent's per-axis copies (mx_axes: each axis's speed for the reference sync)
+    assign omega_next = rst ? {SW{1'b0}} : (wen && w_dk == DK_OMR) ? w32 : omega;
     assign eng_sat = w_v && w_fs && w_wm == WM_SAT32 && ovf;
     assign a_start = w_v && w_ctl == CTL_START;
     assign a_mod   = w_v && w_ctl == CTL_WCORE;

@@ -266,6 +266,10 @@ if cocotb is not None:
         assert all(words[n]["SAT_U"] == 0 for n in range(na)), f"a reference's u saturates: {words}"
         assert len({(words[n]["U_D"], words[n]["U_Q"]) for n in range(na)}) == na, f"equal voltages {words}"
         assert all(m == 0 for m in mism), f"axes differ from the shifted reference: {mism} first at {tm}"
+        om_bad = [_vec(dut.om_bad, n) for n in range(na)]
+        om_chg = [_vec(dut.om_chg, n) for n in range(na)]
+        assert all(b == 0 for b in om_bad), f"an axis's held omega differs from the multiplexer form: {om_bad}"
+        assert all(c > 0 for c in om_chg), f"an axis's held omega never changed: {om_chg}"
         # the images: the ALG2 axes switched to the uploaded bank (reference and mx_axes), the others not
         for n in range(na):
             m_st = await _read(dut, "m", (n << 8) | reg["STATUS"])

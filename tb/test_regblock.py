@@ -299,14 +299,16 @@ def test_axis_regs():
     _run(ALL_BLOCKS["axis_regs"])
 
 
-@pytest.mark.parametrize("naxes", [3, 4])
-def test_axis_rd(naxes):
+@pytest.mark.parametrize("naxes,split", [(3, None), (4, None), (2, None), (3, 1)])
+def test_axis_rd(naxes, split):
     """The read path shared by the axes (rtl/axis_rd.v) against regblock.SharedReadModel; NAXES 3
-    also reads the absent axis 3."""
+    also reads the absent axis 3.  SPLIT: its default (NAXES <= 2: read registers per axis; 3, 4: one set
+    behind the rd_axis multiplexer), and per axis at NAXES = 3."""
     from runner import run
     b = ALL_BLOCKS["axis_regs"]
-    run(toplevel=b.shared, test_module="test_regblock", name=f"test_regblock_{b.shared}",
-        parameters={"NAXES": naxes},
+    run(toplevel=b.shared, test_module="test_regblock",
+        name=f"test_regblock_{b.shared}" + ("" if split is None else f"_split{split}"),
+        parameters={"NAXES": naxes, **({} if split is None else {"SPLIT": split})},
         extra_env={"TB_BLOCK": b.module, "TB_SHARED": "1", "TB_NAXES": str(naxes)})
 
 

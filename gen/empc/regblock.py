@@ -556,7 +556,8 @@ class _Gen:
                          f"   // word - {mem[0].name}")
         return L
 
-    def render_read(self, val=None, word=None, skip=(), extra=()) -> list[str]:
+    def render_read(self, val=None, word=None, skip=(), extra=(), strobe="reg_rd", windows=True,
+                    out=("assign reg_rdata = ", "                     | ")) -> list[str]:
         """The read path; ``val(r)`` / ``word(r)`` give a register's dense value (expression, width) and its
         32-bit read word (default: from the ports; the shared read path: from the selected axis's rd_vals)."""
         val = val or self.value_expr
@@ -569,7 +570,7 @@ class _Gen:
         hb = self.aw - self.pb
         L.append("    // ---------------- read path: gated copies / shared read register, ORed")
         for p in pages:
-            L.append(f"    wire rd_p{p} = reg_rd && (reg_addr[{self.aw - 1}:{self.pb}] == {_vlit(hb, p)});")
+            L.append(f"    wire rd_p{p} = {strobe} && (reg_addr[{self.aw - 1}:{self.pb}] == {_vlit(hb, p)});")
         terms = []
         qn = {}
         for r in copies:
@@ -619,14 +620,14 @@ class _Gen:
                 L.append(f"            {qn[r.name]} <= {_vlit(w, 0)};")
             L.append("        end")
         L.append("    end")
-        for e in self.windows:
+        for e in (self.windows if windows else []):
             if e.rdata_port not in terms:
                 terms.append(e.rdata_port)
         if muxed:
             terms.append("q_mux")
         terms += list(extra)
         terms += [self.word_expr(r, qn[r.name]) for r in copies]
-        L.append("    assign reg_rdata = " + "\n                     | ".join(terms) + ";")
+        L.append("    " + out[0] + ("\n" + out[1]).join(terms) + ";")
         return L
 
     def render_export(self) -> list[str]:
@@ -717,11 +718,12 @@ def _read_path_doc(b: Block, regs) -> str:
 def render_shared(b: Block) -> str:
     """Text of rtl/<b.shared>.v: the read path of NAXES instances of block ``b`` in one module.
 
-    The CPU reads one axis at a time, so one set of read registers (the block's read style: gated
-    copies or one shared read register) serves every axis: each takes its register's value from the
-    axis ``rd_axis`` selects among the blocks' ``rd_vals`` exports (a multiplexer on the bits of rd_axis,
-    one LUT6 per value bit for four axes) instead of every block keeping its own copies.  Same read rules as the
-    block's own path (reg_rdata valid the clock after reg_rd, 0 otherwise; the windows' read data
+    The CPU reads one axis at a time.  Parameter SPLIT (default NAXES <= 2): per axis one set of gated
+    copies of its ``rd_vals`` export, gated (0 unless that axis's word is read) by the flip-flops'
+    synchronous reset, the axes' words ORed; else one set of copies (the block's read style) taking each
+    value from the axis ``rd_axis`` selects (a multiplexer on the bits of rd_axis, one LUT6 per value bit
+    for four axes).  Branch area2, flattened top: SPLIT saves 137 LUT at NAXES = 2, none at NAXES = 4.
+    Same read rules as the block's own path (reg_rdata valid the clock after reg_rd, 0 otherwise; the windows' read data
     ORed), so the blocks' own ``reg_rdata`` is left unconnected (synthesis drops their copies)."""
     g = _Gen(b)
     lay = g.rd_layout()
@@ -741,18 +743,25 @@ def render_shared(b: Block) -> str:
     L = [_HDR, "//",
          f"// {b.shared}: the read path of NAXES {b.module} blocks ({b.doc}), shared.",
          "//",
-         "// The CPU reads one axis at a time: one set of read registers serves every axis, each taking its",
-         f"// register's value from the axis rd_axis selects among the blocks' rd_vals exports, instead of",
-         f"// every {b.module} keeping its own (their reg_rdata is left unconnected; synthesis drops them).",
+         "// The CPU reads one axis at a time: the read registers of every axis live here instead of in",
+         f"// every {b.module} (their reg_rdata is left unconnected; synthesis drops them).  SPLIT = 1 (default at",
+         "// NAXES <= 2): per axis gated copies of its own rd_vals export (the gate, axis and word, is the",
+         "// flip-flops' synchronous reset: no LUT per bit), the axes' words ORed; SPLIT = 0 (default at NAXES > 2):",
+         "// one set of copies, each taking its value from the axis rd_axis selects (a LUT per value bit).",
+         "// Flattened lx_rocon_top (branch area2): NAXES = 2 SPLIT 137 LUT fewer for 295 more flip-flops; NAXES = 4",
+         "// the same LUTs within abc's noise for 885 more flip-flops, so the default keeps the multiplexer there.",
          _read_path_doc(b, g.regs),
          *(_shadow_doc(b, g) if g.sh else []),
-         "// Parameters: NAXES (1..), AXB (axis bits, derived); VW = the width of rd_vals per axis.",
+         "// Parameters: NAXES (1..), SPLIT (read registers per axis: 1, or one set: 0; the same reg_rdata),",
+         "// AXB (axis bits, derived); VW = the width of rd_vals per axis.",
          "// Latency: reg_rdata is valid the clock after reg_rd and 0 in every other clock (as the block's).",
          "// Reset: synchronous (rst); read data to 0.",
          "`default_nettype none",
          *(['`include "empc_formats.vh"'] if any(isinstance(f.reset, str) for r in g.sh for f in r.parts()) else []),
          f"module {b.shared} #(",
          "    parameter integer NAXES = 1,",
+         "    parameter integer SPLIT = (NAXES <= 2) ? 1 : 0,   // read registers per axis (1) or one set "
+         "behind an rd_axis multiplexer (0)",
          "    parameter integer AXB = (NAXES < 2) ? 1 : $clog2(NAXES)     // axis bits (derived)",
          ") ("]
     lines = [(f"    {d:<6} wire {w:<15} {n}", c) for d, n, w, _, c in P]
@@ -763,25 +772,14 @@ def render_shared(b: Block) -> str:
     L += [");",
           f"    localparam integer VW = {vw};   // rd_vals bits per axis (EMPC_{b.scope}_RD_VALS_W)",
           "",
-          "    // ---------------- the read axis's values: a multiplexer on the bits of rd_axis (binary, so that",
-          "    // synthesis maps four axes to one LUT6 a bit; a decoded AND-OR form came out at 2-3 LUTs a bit",
-          "    // in the flattened top), the axes beyond NAXES padded with 0",
           "    localparam integer NP = 1 << AXB;",
-          "    wire [NP*VW-1:0] vp;",
-          "    genvar a;",
-          "    generate for (a = 0; a < NP; a = a + 1) begin : g_pad",
-          "        if (a < NAXES) begin : g_ax",
-          "            assign vp[a*VW +: VW] = rd_vals[a*VW +: VW];",
-          "        end else begin : g_none",
-          "            assign vp[a*VW +: VW] = {VW{1'b0}};",
-          "        end",
-          "    end endgenerate",
-          "    wire [VW-1:0] v = vp[rd_axis*VW +: VW];"]
+          "    genvar a;"]
     names = {}
+    vl = []
     for r, pos, w in lay:
         n = f"v_{r.name.lower()}"
         names[r.name] = (n, w)
-        L.append(f"    wire [{w - 1}:0] {n} = v[{pos + w - 1}:{pos}];")
+        vl.append(f"        wire [{w - 1}:0] {n} = v[{pos + w - 1}:{pos}];")
 
     def val(r):
         return names[r.name] if r.name in names else g.value_expr(r)
@@ -793,7 +791,48 @@ def render_shared(b: Block) -> str:
 
     if g.sh:
         L += _render_shadow(b, g)
-    L += g.render_read(val, word, skip={r.name for r in g.sh}, extra=["sh_q"] if g.sh else [])
+    rd = g.render_read(val, word, skip={r.name for r in g.sh}, extra=[], strobe="rd_a", windows=False,
+                       out=("assign q_ax[a*32 +: 32] = ", "                             | "))
+    rm = g.render_read(val, word, skip={r.name for r in g.sh}, extra=[], windows=False,
+                       out=("assign q_or = ", "                  | "))
+    L += ["",
+          "    // ---------------- read path (SPLIT: per axis; else one set behind a multiplexer on rd_axis)",
+          "    wire [31:0] q_or;                 // the copies' read word (0 unless read)",
+          "    generate if (SPLIT != 0) begin : g_split",
+          "        // each axis's gated copies of its own values (0 unless that axis's word is read: the gate is",
+          "        // the flip-flops' synchronous reset, no LUT per bit), the axes' words ORed",
+          "        wire [NAXES*32-1:0] q_ax;",
+          "        for (a = 0; a < NAXES; a = a + 1) begin : g_rd",
+          "            wire [VW-1:0] v = rd_vals[a*VW +: VW];",
+          *[("    " + x) for x in vl],
+          "            wire rd_a = reg_rd && (rd_axis == a[AXB-1:0]);",
+          *[("        " + x) if x else x for x in rd],
+          "        end",
+          "        reg  [31:0] q_any;",
+          "        integer oi;",
+          "        always @(*) begin",
+          "            q_any = 32'd0;",
+          "            for (oi = 0; oi < NAXES; oi = oi + 1) q_any = q_any | q_ax[oi*32 +: 32];",
+          "        end",
+          "        assign q_or = q_any;",
+          "    end else begin : g_mux",
+          "        // the read axis's values: a multiplexer on the bits of rd_axis (binary, so that synthesis maps",
+          "        // four axes to one LUT6 a bit; a decoded AND-OR form came out at 2-3 LUTs a bit in the",
+          "        // flattened top), the axes beyond NAXES padded with 0; one set of gated copies",
+          "        wire [NP*VW-1:0] vp;",
+          "        for (a = 0; a < NP; a = a + 1) begin : g_pad",
+          "            if (a < NAXES) begin : g_ax",
+          "                assign vp[a*VW +: VW] = rd_vals[a*VW +: VW];",
+          "            end else begin : g_none",
+          "                assign vp[a*VW +: VW] = {VW{1'b0}};",
+          "            end",
+          "        end",
+          "        wire [VW-1:0] v = vp[rd_axis*VW +: VW];",
+          *vl,
+          *[("    " + x) if x else x for x in rm],
+          "    end endgenerate",
+          "    assign reg_rdata = "
+          + "\n                     | ".join(rdp + (["sh_q"] if g.sh else []) + ["q_or"]) + ";"]
     L += ["endmodule", "`default_nettype wire", ""]
     return "\n".join(L)
 

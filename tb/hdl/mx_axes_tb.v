@@ -58,7 +58,10 @@ module mx_axes_tb #(
     output reg  [32*NAXES-1:0]  n_ctl_ref,
     output reg  [32*NAXES-1:0]  n_duty_chg,    // reference n: PWM periods whose on-time (three phases) differs from the last
     output reg  [32*NAXES-1:0]  n_aw_ref,      // reference n: control periods ending with aw[0] (|i_q| >= IQ_HOLD)
-    output reg  [32*NAXES-1:0]  n_aw_mx        // mx axis n: the same (iq_big_v[n] at its control_done)
+    output reg  [32*NAXES-1:0]  n_aw_mx,       // mx axis n: the same (iq_big_v[n] at its control_done)
+    output reg  [32*NAXES-1:0]  om_bad,        // mx axis n: clocks whose held omega (g_ax[n].omega_n) differs
+                                               // from the multiplexer form
+    output reg  [32*NAXES-1:0]  om_chg         // mx axis n: clocks in which that held omega changed
 );
     localparam integer P = `EMPC_PWM_HALF_PERIOD;
     localparam integer NL = 2 * NAXES;
@@ -203,6 +206,27 @@ module mx_axes_tb #(
                 if (fault_any[a] && out != 6'd0) off_bad[32*a +: 32] <= off_bad[32*a +: 32] + 32'd1;
                 if (fault_any[a] && exp_o != 6'd0) nz_ref_f[32*a +: 32] <= nz_ref_f[32*a +: 32] + 32'd1;
                 if (out != 6'd0) nz[32*a +: 32] <= nz[32*a +: 32] + 32'd1;
+            end
+        end
+    end endgenerate
+    // each axis's held speed for the reference sync (mx_axes g_ax[n].omega_n, loaded with mx_seq's omega_next
+    // while job_next[n], branch area2) against the multiplexer form it replaced: job_axis == n ? omega : the
+    // omega held from the last clock with job_axis == n (reset 0), every clock after reset
+    genvar om;
+    generate for (om = 0; om < NAXES; om = om + 1) begin : g_omchk
+        reg  [31:0] om_h;
+        wire        om_job = (u_mx.job_axis == om);
+        wire [31:0] om_ref = om_job ? u_mx.omega : om_h;
+        reg  [31:0] om_last;
+        always @(posedge clk) begin
+            if (rst) om_h <= 32'd0; else if (om_job) om_h <= u_mx.omega;
+            om_last <= u_mx.g_ax[om].omega_n;
+            if (rst) begin
+                om_bad[32*om +: 32] <= 32'd0;
+                om_chg[32*om +: 32] <= 32'd0;
+            end else begin
+                if (u_mx.g_ax[om].omega_n != om_ref) om_bad[32*om +: 32] <= om_bad[32*om +: 32] + 32'd1;
+                if (u_mx.g_ax[om].omega_n != om_last) om_chg[32*om +: 32] <= om_chg[32*om +: 32] + 32'd1;
             end
         end
     end endgenerate

@@ -84,7 +84,7 @@ module mx_seq_axes_tb #(
         .task_pos(task_pos), .gov_ev());
     mx_seq #(.N(N), .NAXES(NAXES)) u_seq (.clk(clk), .rst(rst), .adc_trig(adc_trig), .period_start(period_start),
         .pwm_per_control(ppc), .run(run), .theta(theta), .pos(pos), .pos_sample(pos_sample), .adc_valid(adc_valid),
-        .cur0(cur0), .cur1(cur1), .cur2(cur2), .job_axis(job_axis), .kdc(kdc[18*job_axis +: 18]),
+        .cur0(cur0), .cur1(cur1), .cur2(cur2), .job_axis(job_axis), .job_next(), .kdc(kdc[18*job_axis +: 18]),
         .kacc(kacc[18*job_axis +: 18]), .kacc_shift(kacc_shift[5*job_axis +: 5]),
         .load_shift(load_shift[4*job_axis +: 4]), .win_shift(win_shift[3*job_axis +: 3]), .id_ref(id_ref[18*job_axis +: 18]),
         .iq_ref(iq_ref[18*job_axis +: 18]), .task_pos(task_pos),
@@ -92,7 +92,7 @@ module mx_seq_axes_tb #(
         .ref_bit(ref_bit), .ref_q(ref_q), .core_start(core_start), .core_in_we(core_in_we),
         .core_in_addr(core_in_addr), .core_in_wdata(core_in_wdata), .core_done(core_done), .core_u(core_u),
         .core_ebar(core_ebar), .cmp(cmp), .cmp_load(cmp_load), .control_done(control_done), .overrun(overrun),
-        .front_sat(front_sat), .latency(latency), .i_d(i_d), .i_q(i_q), .omega(omega),
+        .front_sat(front_sat), .latency(latency), .i_d(i_d), .i_q(i_q), .omega(omega), .omega_next(),
         .theta_trig(theta_trig), .st_we(st_we), .st_addr(st_addr), .st_wdata(st_wdata), .stat_sweep(stat_sweep));
     mpc_core #(.N(N), .NAXES(NAXES)) u_core (.clk(clk), .rst(rst), .start(core_start), .in_we(core_in_we),
         .in_addr(core_in_addr), .in_wdata(core_in_wdata), .busy(core_busy), .done(core_done), .u(core_u),

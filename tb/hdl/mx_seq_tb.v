@@ -38,12 +38,13 @@ module mx_seq_tb #(
         .gov_ev());
     mx_seq #(.N(N)) u_seq (.clk(clk), .rst(rst), .adc_trig(adc_trig), .period_start(period_start),
         .pwm_per_control(ppc), .run(run), .theta(theta), .pos(pos), .pos_sample(pos_sample), .adc_valid(adc_valid),
-        .cur0(cur0), .cur1(cur1), .cur2(cur2), .job_axis(), .kdc(kdc), .kacc(kacc), .kacc_shift(kacc_shift),
+        .cur0(cur0), .cur1(cur1), .cur2(cur2), .job_axis(), .job_next(),
+        .kdc(kdc), .kacc(kacc), .kacc_shift(kacc_shift),
         .load_shift(load_shift), .win_shift(win_shift), .id_ref(id_ref), .iq_ref(iq_ref), .task_pos(task_pos), .ctl_boundary(ctl_boundary), .ref_advance(ref_advance),
         .ref_ok(ref_ok), .ref_age(ref_age), .ref_bit(ref_bit), .ref_q(ref_q), .core_start(core_start),
         .core_in_we(core_in_we), .core_in_addr(core_in_addr), .core_in_wdata(core_in_wdata), .core_done(core_done),
         .core_u(core_u), .core_ebar(core_ebar), .cmp(cmp), .cmp_load(cmp_load), .control_done(control_done),
-        .overrun(overrun), .front_sat(front_sat), .latency(latency), .i_d(i_d), .i_q(i_q), .omega(omega),
+        .overrun(overrun), .front_sat(front_sat), .latency(latency), .i_d(i_d), .i_q(i_q), .omega(omega), .omega_next(),
         .theta_trig(theta_trig), .st_we(st_we), .st_addr(st_addr), .st_wdata(st_wdata), .stat_sweep(stat_sweep));
     mpc_core #(.N(N)) u_core (.clk(clk), .rst(rst), .start(core_start), .in_we(core_in_we), .in_addr(core_in_addr),
         .in_wdata(core_in_wdata), .busy(core_busy), .done(core_done), .u(core_u), .du(core_du), .u_raw(core_u_raw),
