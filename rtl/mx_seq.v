@@ -355,16 +355,13 @@ module mx_seq #(
                 tpend <= (tpend | push) & ~jst_oh;
             end
             q_seq <= q_seq_n;
-            if (rst)
-                ax_ohr <= {{(NAXES-1){1'b0}}, 1'b1};            // ax <= 0
-            else if (js)
-                ax_ohr <= {{(NAXES-1){1'b0}}, 1'b1} << ja;      // ax <= jax
+            ax_ohr <= job_next;                                 // one-hot of ax's next value (below)
         end
         assign jstart = js;
         assign jax = ja;
         assign ax_oh = ax_ohr;
-        // ax_ohr's D (rst, then js: the job-start condition of ax <= jax), for a parent's copies that
-        // load in the clock before ax changes
+        // ax_ohr's D, as ax's update (rst: ax <= 0; js: ax <= jax); also for a parent's copies that load in
+        // the clock before ax changes
         assign job_next = rst ? {{(NAXES-1){1'b0}}, 1'b1} : js ? ({{(NAXES-1){1'b0}}, 1'b1} << ja) : ax_ohr;
     end endgenerate
     assign jst_oh = {NAXES{jstart}} & ({{(NAXES-1){1'b0}}, 1'b1} << jax);
@@ -690,7 +687,8 @@ module mx_seq #(
         endcase
     end
     wire          wen = w_v && w_ok_c;
-    // omega's D (below), for a parent's per-axis copies (mx_axes: each axis's speed for the reference sync)
+    // omega's D (the only place omega's update is written), also for a parent's per-axis copies (mx_axes:
+    // each axis's speed for the reference sync)
     assign omega_next = rst ? {SW{1'b0}} : (wen && w_dk == DK_OMR) ? w32 : omega;
     assign eng_sat = w_v && w_fs && w_wm == WM_SAT32 && ovf;
     assign a_start = w_v && w_ctl == CTL_START;
@@ -708,8 +706,7 @@ module mx_seq #(
             st_addr <= da_ax;
             st_wdata <= w32;
         end
-        if (rst) omega <= {SW{1'b0}};
-        else if (wen && w_dk == DK_OMR) omega <= w32;
+        omega <= omega_next;
         if (wen && w_dk == DK_THM) th_mod <= w32[AB-1:0];
     end
     // serial shifter: loaded with R (SHKA: with kacc * i_q, xform's product, held since the front: no A stage for

@@ -174,6 +174,13 @@ class Env:
         d.rst_n.value = 1
         await ClockCycles(d.clk, 200)
 
+    async def start_driver(self) -> "Caps":
+        """start(), then empc_init: the capabilities it read."""
+        await self.start()
+        caps = Caps()
+        assert await self.call("empc_init", ctypes.byref(caps)) == EMPC_OK
+        return caps
+
 
 def reg_legal_word(reg) -> int:
     """A word whose every field is a legal value (the middle of each legal range; random bits elsewhere)."""
@@ -246,10 +253,8 @@ async def registers_vs_header(dut):
 @cocotb.test()
 async def driver_flow(dut):
     env = Env(dut)
-    await env.start()
+    caps = await env.start_driver()
     m = env.macros
-    caps = Caps()
-    assert await env.call("empc_init", ctypes.byref(caps)) == EMPC_OK
     assert (caps.version, caps.naxes, caps.horizon, caps.img_layout, caps.pwm_per_control, caps.pwm_half,
             caps.complementary) == (regmap.VERSION, 1, m["N"], image.LAYOUT, m["PWM_PER_CONTROL"],
                                     m["PWM_HALF_PERIOD"], 0)
@@ -367,10 +372,8 @@ def _get(reg: str, name: str, word: int) -> int:
 async def design_load_kacc(dut):
     """empc_design_load writes the design's KACC with its image, and never while the law runs."""
     env = Env(dut)
-    await env.start()
+    caps = await env.start_driver()
     m = env.macros
-    caps = Caps()
-    assert await env.call("empc_init", ctypes.byref(caps)) == EMPC_OK
     # the build's configuration at a control period of one PWM period: another Ts, so every design's KACC differs
     # from the boot design's, and three of the four (speed window 8) differ from alg1_speed's (window 1)
     man0 = json.loads((_roms() / "manifest.json").read_text())
