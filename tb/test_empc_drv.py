@@ -29,6 +29,11 @@ bus, SCS.EMCSC = 0: emc_a = byte address bits [15:2]); any other address fails t
   design with another KACC is refused with nothing written (KACC and bank unchanged), one with the same
   KACC loads the image alone; a swap the FPGA refuses (incomplete image) writes the old KACC back; the
   active bank's decoded configuration is the loaded design's.
+* fault_during_design_load: the law running on the boot design, the power-stage fault pin pulled low half way
+  through empc_design_load of another design (same KACC: the image alone): the bridges go off within a few
+  clocks, the load's result and the active bank agree (EMPC_OK and the new design's decoded configuration, or
+  an error and the old one: never a mix); empc_fault_clear reports the cause while the pin is low, clears it
+  once the pin is back, and the law restarts (STATUS.running) on the active bank; a second load then swaps.
 """
 from __future__ import annotations
 
@@ -464,6 +469,90 @@ async def design_load_kacc(dut):
     dut._log.info("design_load: KACC %#x -> %#x (alg1_speed) -> %#x (alg1_position, window %d) read back; "
                   "refused while running, restored after a refused swap", boot, des["alg1_speed"][1]["word"],
                   got, k["speed_window"])
+
+
+@cocotb.test()
+async def fault_during_design_load(dut):
+    """A power-stage fault in the middle of a design load, then one clear: the law restarts on a whole bank."""
+    env = Env(dut)
+    caps = await env.start_driver()
+    m = env.macros
+    man = json.loads((_roms() / "manifest.json").read_text())
+    boot = f"alg{man['boot']['algorithm']}_{man['boot']['task']}"
+    new = next(d for d in ("alg2_position", "alg1_position", "alg2_speed") if d in man["designs"])
+    des = {d: (image.read_hex(_roms() / v["file"])[:image.USED], v["kacc"]) for d, v in man["designs"].items()}
+    assert des[new][1]["word"] == await env.read("KACC"), "the same KACC: the image alone while running"
+    mem = dut.u_top.g_axis[0].u_axis.u_core.u_mem
+
+    dut.adc_seed.value, dut.adc_noise.value = 0x5EED, 3   # +-3 LSB: a live ADC (a constant one trips adc_frozen)
+    dut._log.info("ADC noise seed %#x", 0x5EED)
+
+    def decoded():                      # the active bank's decoded configuration (mpc_coef_mem)
+        return int(mem.ncols.value), int(mem.pos.value), int(mem.alg2.value)
+
+    def want(d):
+        p = image.decode(des[d][0] + [0] * (image.DEPTH - image.USED))
+        return p.ncols, int(p.task == "position"), int(p.algorithm == 2)
+    assert want(new) != want(boot) and decoded() == want(boot)
+    ppc = m["PWM_PER_CONTROL"]
+    polls = 4 * ppc * m["PWM_HALF_PERIOD"]
+    cfg_ax = AxisCfg(pwm_per_control=ppc, dead_time=40, fault_mask=0x7F, kdc=0x10000, udc_mv=UDC_MV,
+                     udc_min_mv=UDC_MIN_MV, udc_max_mv=UDC_MAX_MV, oc_thresh=1500, angle_cal=0, hall_offset=0)
+    assert await env.call("empc_axis_config", ctypes.byref(caps), 0, ctypes.byref(cfg_ax)) == EMPC_OK
+    rem = ctypes.c_uint32(0)
+
+    async def run_law():
+        assert await env.call("empc_udc_write", ctypes.byref(caps), 0, UDC_MV) == EMPC_OK
+        assert await env.call("empc_fault_clear", ctypes.byref(caps), 0, ctypes.byref(rem)) == EMPC_OK, hex(rem.value)
+        assert await env.call("empc_axis_enable", ctypes.byref(caps), 0, 1, 1) == EMPC_OK
+        await ClockCycles(dut.clk, 6 * m["PWM_HALF_PERIOD"])
+        st = await env.read("STATUS")
+        assert _get("STATUS", "running", st), f"law not running: STATUS {st:#x}, FAULT {await env.read('FAULT'):#x}"
+        assert int(dut.pwm_en.value) == 0b111, "bridges not on"
+        return st
+    st0 = await run_law()
+    n0 = len(env.writes)
+    half = n0 + image.USED // 2
+    off_at: list[int] = []
+
+    async def pull_pin():               # the pin low once half the image is written; the bridges must follow
+        while len([a for a, _ in env.writes[n0:] if a >= regmap.COEF_BASE]) < image.USED // 2:
+            await ClockCycles(dut.clk, 1)
+        dut.pwr_fault_n.value = 0
+        for n in range(64):
+            await ClockCycles(dut.clk, 1)
+            if int(dut.pwm_en.value) == 0:
+                off_at.append(n + 1)
+                return
+    task = cocotb.start_soon(pull_pin())
+    w, k = des[new]
+    arr = (ctypes.c_uint32 * len(w))(*w)
+    rc = await env.call("empc_design_load", ctypes.byref(caps), 0, arr, len(w), ctypes.c_uint32(k["word"]), polls)
+    await task
+    assert len(env.writes) > half and off_at, f"bridges still on 64 clocks after the fault pin ({off_at})"
+    fault = await env.read("FAULT")
+    st1 = await env.read("STATUS")
+    pst = next(f for f in regmap.FAULT_CAUSES if f.name == "pstage")
+    assert fault >> pst.lsb & 1, hex(fault)
+    assert not _get("STATUS", "running", st1) and int(dut.pwm_en.value) == 0
+    swapped = _get("STATUS", "coef_bank", st1) != _get("STATUS", "coef_bank", st0)
+    assert (rc == EMPC_OK) == swapped, (rc, hex(st0), hex(st1))
+    assert decoded() == want(new if swapped else boot), (rc, decoded())
+    # the cause present: the clear reports it and the bridges stay off
+    assert await env.call("empc_fault_clear", ctypes.byref(caps), 0, ctypes.byref(rem)) == EMPC_ERR_FAULT
+    assert rem.value >> pst.lsb & 1 and int(dut.pwm_en.value) == 0, (hex(rem.value), hex(fault))
+    dut.pwr_fault_n.value = 1
+    await ClockCycles(dut.clk, 4 * m["PWM_HALF_PERIOD"])
+    st2 = await run_law()                # one clear, then the law runs again on the active bank
+    assert await env.read("FAULT") == 0 and decoded() == want(new if swapped else boot)
+    if not swapped:                      # the refused load leaves the axis ready for the same load
+        assert await env.call("empc_design_load", ctypes.byref(caps), 0, arr, len(w), ctypes.c_uint32(k["word"]),
+                              polls) == EMPC_OK
+        assert decoded() == want(new) and _get("STATUS", "running", await env.read("STATUS"))
+    assert await env.call("empc_axis_enable", ctypes.byref(caps), 0, 0, 0) == EMPC_OK
+    dut._log.info("fault during design load: bridges off %d clocks after the pin, load rc %d (%s), STATUS %#x -> "
+                  "%#x -> %#x, FAULT %#x, restarted on %s", off_at[0], rc, "swapped" if swapped else "not swapped",
+                  st0, st1, st2, fault, new)
 
 
 def test_empc_drv():
