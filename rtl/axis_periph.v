@@ -31,7 +31,9 @@
 // Parameters: HALL_DEBOUNCE, ENC_FILTER (sensors); COMPLEMENTARY (0 = PWM + enable for LX_PWR,
 // 1 = complementary with dead time >= DEAD_TIME_MIN); PWM_HALF_PERIOD (the build's; the proof
 // shrinks it), PHASE (carrier delay: mx_axes' stagger, 0 for one axis), UDC_FRESH (the map's
-// UDC_FRESH_PERIODS; the proof shortens it).
+// UDC_FRESH_PERIODS; the proof shortens it), POS_JUMP_W (pos_sense's JUMP_W: 32 = POS_W in mpc_axis,
+// 8 in mx_axes; exact with irc_decoder's pos, rtl/pos_sense.v).  id_ref_q / fw_step: id_eff's operands
+// (mx_axes forms id_eff once, for the job's axis, and leaves id_eff open).
 // Latency: cause -> outputs off 1 clock; CPU write -> register 1 clock (axis_regs).
 // Reset: CTRL.enable = 0 (outputs off), registers at their map reset values, counters 0.
 `default_nettype none
@@ -44,6 +46,7 @@ module axis_periph #(
     parameter integer PWM_HALF_PERIOD = `EMPC_PWM_HALF_PERIOD,  // the build's; formal/axis_periph.sby shrinks it
     parameter integer PHASE = 0,                                 // carrier delay, clocks (mx_axes' stagger)
     parameter integer UDC_FRESH = `EMPC_UDC_FRESH_PERIODS,       // the map's; the proofs shrink it too
+    parameter integer POS_JUMP_W = `EMPC_POS_W,                  // pos_sense's JUMP_W (mx_axes: 8; exact, pos_sense header)
     parameter integer CW = $clog2(PWM_HALF_PERIOD + 1)           // compare width (derived)
 ) (
     input  wire        clk,
@@ -131,6 +134,8 @@ module axis_periph #(
     output wire [`EMPC_A_KACC_LOAD_SHIFT_W-1:0] kacc_load_shift,
     output wire [`EMPC_A_KACC_WIN_W-1:0]       kacc_win,
     output wire signed [`EMPC_I_W-1:0]         id_eff,     // sat(ID_REF - field weakening)
+    output wire signed [`EMPC_A_ID_REF_W-1:0]  id_ref_q,   // its operands, ID_REF and the step count fw_n
+    output wire [`EMPC_A_FW_NMAX_W-1:0]        fw_step,    // (mx_axes forms id_eff once, for the job's axis)
     output wire signed [`EMPC_A_IQ_REF_W-1:0]  iq_ref,
     input  wire [3*CW-1:0] cmp,
     input  wire        cmp_load,
@@ -207,7 +212,7 @@ module axis_periph #(
     wire        enc_err_pulse, enc_err_flag, enc_ready;
     wire [`EMPC_A_CNT_ENC_ERR_W-1:0] enc_err_cnt;
     wire [3:0]  enc_in_state;
-    irc_decoder #(.FILTER_LEN(ENC_FILTER)) u_irc (
+    irc_decoder #(.FILTER_LEN(ENC_FILTER), .FILT_FIXED(1)) u_irc (    // filt_len tied 0: the length is ENC_FILTER
         .clk(clk), .rst(rst), .irc_a(irc_a), .irc_b(irc_b), .irc_index(irc_idx), .irc_mark(irc_mark),
         .filt_len(8'd0), .err_clear(cmd_clear_counters), .index_clear(1'b0), .mark_clear(1'b0),
         .pos(pos), .dir(dir), .index_pos(index_pos), .index_seen(index_seen), .index_event(index_event),
@@ -228,7 +233,7 @@ module axis_periph #(
     wire        aligned, speed_sat, sample_valid;
     wire [31:0] ps_speed, pos_at_sample, ps_speed_q;
     /* verilator lint_off PINCONNECTEMPTY */
-    pos_sense u_pos (
+    pos_sense #(.JUMP_W(POS_JUMP_W)) u_pos (
         .clk(clk), .rst(rst), .pos(pos), .index_event(index_event), .index_pos(index_pos),
         .hall_sector(hall_sector), .hall_valid(hall_valid), .hall_change(hall_change),
         .cal_offset(angle_cal), .hall_offset(hall_offset), .align_clear(cmd_align_clear), .sample(pos_sample),
@@ -282,6 +287,8 @@ module axis_periph #(
     wire signed [`EMPC_I_W:0]   id_sum = {id_ref[`EMPC_I_W-1], id_ref} - ({{(`EMPC_I_W+1-`EMPC_A_FW_NMAX_W){1'b0}}, fw_n} << FWS);
     assign id_eff = (id_sum[`EMPC_I_W] != id_sum[`EMPC_I_W-1]) ?
                     {id_sum[`EMPC_I_W], {(`EMPC_I_W-1){~id_sum[`EMPC_I_W]}}} : id_sum[`EMPC_I_W-1:0];
+    assign id_ref_q = id_ref;
+    assign fw_step = fw_n;
     wire [`EMPC_I_W-5:0] iq_int = st_iq[`EMPC_I_W-1:4];           // floor(i_q / 16): ADC LSB
     wire [`EMPC_I_W-5:0] iq_mag = iq_int[`EMPC_I_W-5] ? ~iq_int : iq_int;   // |i_q| >= 16 H <=> iq_mag >= H
     // |i_q| at the hold current: the governor's hold (after the update) and the core's speed-integral hold

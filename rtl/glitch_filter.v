@@ -23,13 +23,20 @@
 //   RESET_VALUE  q after reset
 // Latency: L clock cycles from a change of d to the change of q.
 // Reset: q = RESET_VALUE, counters 0.
-// Resources: WIDTH * (LEN_W + 1) flip-flops, no DSP/BRAM.
+// FIXED = 1 (the length is always FILTER_LEN; len is ignored): each counter is an
+// XNOR LFSR of FW bits (the least FW >= 2 with FILTER_LEN <= 2**FW - 1), started at 0
+// and stepped where the binary counter increments; the L-th differing sample is the
+// LFSR state FILTER_LEN - 1 steps after 0 (F_TERM; the states 0 .. FILTER_LEN - 1 steps
+// are distinct, checked at elaboration), so q is the binary counter's clock for clock,
+// without an incrementer or a magnitude compare (hall_decoder, irc_decoder).
+// Resources: WIDTH * (LEN_W + 1) flip-flops (FIXED = 1: WIDTH * (FW + 1)), no DSP/BRAM.
 `default_nettype none
 module glitch_filter #(
     parameter integer WIDTH = 1,
     parameter integer FILTER_LEN = 4,
     parameter integer LEN_W = 8,
-    parameter [WIDTH-1:0] RESET_VALUE = {WIDTH{1'b0}}
+    parameter [WIDTH-1:0] RESET_VALUE = {WIDTH{1'b0}},
+    parameter integer FIXED = 0           // 1: len ignored, the length is FILTER_LEN (LFSR counters)
 ) (
     input  wire             clk,
     input  wire             rst,
@@ -40,10 +47,87 @@ module glitch_filter #(
 );
     localparam [LEN_W-1:0] DEF_LEN = FILTER_LEN[LEN_W-1:0];
 
-    wire [LEN_W-1:0] len_eff = (len == {LEN_W{1'b0}}) ? DEF_LEN : len;
+    // ---- FIXED = 1: LFSR counters (XNOR feedback, maximal-length taps, all-zero start allowed) ----
+    function integer lfsr_w;
+        input integer l;
+        begin
+            lfsr_w = 2;
+            while (lfsr_w < 16 && l > (1 << lfsr_w) - 1) lfsr_w = lfsr_w + 1;
+        end
+    endfunction
+    localparam integer FW = lfsr_w(FILTER_LEN);
+    // taps (bit positions, bit 0 = the newest) of the maximal-length sequences, FW = 2 .. 16
+    function [15:0] lfsr_taps;
+        input integer w;
+        begin
+            case (w)
+                2: lfsr_taps = 16'h0003;  3: lfsr_taps = 16'h0006;  4: lfsr_taps = 16'h000c;
+                5: lfsr_taps = 16'h0014;  6: lfsr_taps = 16'h0030;  7: lfsr_taps = 16'h0060;
+                8: lfsr_taps = 16'h00b8;  9: lfsr_taps = 16'h0110; 10: lfsr_taps = 16'h0240;
+               11: lfsr_taps = 16'h0500; 12: lfsr_taps = 16'h0829; 13: lfsr_taps = 16'h100d;
+               14: lfsr_taps = 16'h2015; 15: lfsr_taps = 16'h6000; default: lfsr_taps = 16'hd008;
+            endcase
+        end
+    endfunction
+    localparam [15:0]   TAPS16 = lfsr_taps(FW);
+    localparam [FW-1:0] TAPS = TAPS16[FW-1:0];
+    function [FW-1:0] lfsr_step;
+        input [FW-1:0] v;
+        begin
+            lfsr_step = {v[FW-2:0], ~(^(v & TAPS))};
+        end
+    endfunction
+    // the state FILTER_LEN - 1 steps after 0, and the first step that reaches it (must be FILTER_LEN - 1)
+    function [FW-1:0] lfsr_term;
+        input integer l;
+        integer j;
+        begin
+            lfsr_term = {FW{1'b0}};
+            for (j = 1; j < l; j = j + 1) lfsr_term = lfsr_step(lfsr_term);
+        end
+    endfunction
+    localparam [FW-1:0] F_TERM = lfsr_term(FILTER_LEN);
+    function integer lfsr_first;
+        input integer l;
+        integer j;
+        reg [FW-1:0] v;
+        begin
+            lfsr_first = -1;
+            v = {FW{1'b0}};
+            for (j = 0; j < l; j = j + 1) begin
+                if (lfsr_first < 0 && v == F_TERM) lfsr_first = j;
+                v = lfsr_step(v);
+            end
+        end
+    endfunction
 
     genvar i;
     generate
+    if (FIXED != 0) begin : g_fixed
+        wire unused_len = &{1'b0, len};
+        for (i = 0; i < WIDTH; i = i + 1) begin : g_bit
+            reg              qr;
+            reg  [FW-1:0]    cnt;
+            always @(posedge clk) begin
+                if (rst) begin
+                    qr   <= RESET_VALUE[i];
+                    cnt  <= {FW{1'b0}};
+                end else if (load) begin
+                    qr   <= d[i];
+                    cnt  <= {FW{1'b0}};
+                end else if (d[i] == qr) begin
+                    cnt  <= {FW{1'b0}};
+                end else if (cnt == F_TERM) begin
+                    qr   <= d[i];
+                    cnt  <= {FW{1'b0}};
+                end else begin
+                    cnt  <= lfsr_step(cnt);
+                end
+            end
+            assign q[i] = qr;
+        end
+    end else begin : g_var
+        wire [LEN_W-1:0] len_eff = (len == {LEN_W{1'b0}}) ? DEF_LEN : len;
         for (i = 0; i < WIDTH; i = i + 1) begin : g_bit
             reg              qr;
             reg  [LEN_W-1:0] cnt;
@@ -66,12 +150,15 @@ module glitch_filter #(
             end
             assign q[i] = qr;
         end
+    end
     endgenerate
 
 `ifndef SYNTHESIS
     initial begin
         if (FILTER_LEN < 1 || FILTER_LEN >= (1 << LEN_W))
             $display("ERROR: glitch_filter FILTER_LEN=%0d out of range 1..%0d", FILTER_LEN, (1 << LEN_W) - 1);
+        if (FIXED != 0 && lfsr_first(FILTER_LEN) != FILTER_LEN - 1)
+            $display("ERROR: glitch_filter FIXED: LFSR of %0d bits repeats before %0d steps", FW, FILTER_LEN - 1);
     end
 `endif
 endmodule

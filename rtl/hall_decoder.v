@@ -78,7 +78,8 @@ module hall_decoder #(
     wire [SYNC_STAGES+1:0] init_ge = {init_sh, 1'b1};
     wire filt_load = init_ge[SYNC_STAGES] && !init_ge[SYNC_STAGES+1];
 
-    glitch_filter #(.WIDTH(3), .FILTER_LEN(DEBOUNCE), .LEN_W(LEN_W)) u_filt (
+    // the length is always DEBOUNCE: LFSR counters (glitch_filter FIXED, the same q clock for clock)
+    glitch_filter #(.WIDTH(3), .FILTER_LEN(DEBOUNCE), .LEN_W(LEN_W), .FIXED((DEBOUNCE < 65536) ? 1 : 0)) u_filt (
         .clk(clk), .rst(rst), .load(filt_load), .len({LEN_W{1'b0}}), .d(synced), .q(code)
     );
 

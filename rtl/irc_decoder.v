@@ -46,6 +46,8 @@
 //   POS_W        counter width (default `EMPC_POS_W = 32)
 //   FILTER_LEN   default glitch-filter length in clocks (1..2**LEN_W-1)
 //   LEN_W        width of filt_len
+//   FILT_FIXED   1: filt_len ignored, the length is always FILTER_LEN (glitch_filter FIXED:
+//                LFSR counters, the same outputs; axis_periph, which ties filt_len to 0)
 //   ERR_W        width of the saturating error counter
 //   SYNC_STAGES  synchroniser depth
 // Latency: pin -> pos / events: SYNC_STAGES + L + 1 clocks (L = filter length).
@@ -64,7 +66,8 @@ module irc_decoder #(
     parameter integer FILTER_LEN = 8,
     parameter integer LEN_W = 8,
     parameter integer ERR_W = 16,
-    parameter integer SYNC_STAGES = 2
+    parameter integer SYNC_STAGES = 2,
+    parameter integer FILT_FIXED = 0      // 1: filt_len ignored, the filters' length is FILTER_LEN (LFSR counters)
 ) (
     input  wire             clk,
     input  wire             rst,
@@ -107,7 +110,7 @@ module irc_decoder #(
     wire [SYNC_STAGES+1:0] init_ge = {init_sh, 1'b1};
     wire filt_load = init_ge[SYNC_STAGES] && !init_ge[SYNC_STAGES+1];
 
-    glitch_filter #(.WIDTH(4), .FILTER_LEN(FILTER_LEN), .LEN_W(LEN_W)) u_filt (
+    glitch_filter #(.WIDTH(4), .FILTER_LEN(FILTER_LEN), .LEN_W(LEN_W), .FIXED(FILT_FIXED)) u_filt (
         .clk(clk), .rst(rst), .load(filt_load), .len(filt_len), .d(synced), .q(filt)
     );
     assign in_state = filt;

@@ -206,6 +206,8 @@ module mpc_axis #(
     wire [`EMPC_A_RD_VALS_W-1:0] rd_vals;   // the values for mx_axes' shared read path: one axis reads its own
     wire [`EMPC_A_SH_N-1:0] sh_we;           // (and its shadow RAM's write strobes)
     wire pwm_trip;                              // the trip into pwm_center (used by out_route only)
+    wire [`EMPC_A_ID_REF_W-1:0]  id_ref_q;     // id_eff's operands (mx_axes forms id_eff once; here axis_periph's)
+    wire [`EMPC_A_FW_NMAX_W-1:0] fw_step;
     axis_periph #(.HALL_DEBOUNCE(HALL_DEBOUNCE), .ENC_FILTER(ENC_FILTER), .COMPLEMENTARY(COMPLEMENTARY),
                   .PWM_HALF_PERIOD(PWM_HALF_PERIOD), .UDC_FRESH(UDC_FRESH)) u_per (
         .clk(clk), .rst(rst), .reg_wr(reg_wr), .reg_rd(reg_rd), .reg_addr(reg_addr), .reg_wdata(reg_wdata),
@@ -225,6 +227,7 @@ module mpc_axis #(
         .sync_bit(sync_bit), .task_pos(task_pos), .gov_ev(gov_ev), .gov_hold(gov_hold),
         .ctrl_pwm_per_control(ctrl_pwm_per_control), .theta(theta), .pos(pos), .pos_sample(pos_sample),
         .kdc(kdc), .kacc(kacc), .kacc_shift(kacc_shift), .kacc_load_shift(kacc_load_shift), .kacc_win(kacc_win), .id_eff(id_eff),
+        .id_ref_q(id_ref_q), .fw_step(fw_step),
         .iq_ref(iq_ref), .cmp(cmp), .cmp_load(cmp_load), .overrun(overrun), .seq_front_sat(seq_front_sat),
         .control_done(control_done), .seq_latency(seq_latency), .st_iq(st_iq), .omega(omega),
         .fw_thr(fw_thr), .iq_big(iq_big), .cmd_coef_swap(cmd_coef_swap), .core_done(core_done),
@@ -236,7 +239,7 @@ module mpc_axis #(
     assign period_tick = period_start;
 
     // adc_trig_miss: counted by adc_spi itself (miss_cnt -> CNT_ADC_MISS)
-    wire unused = &{1'b0, pwm_trip, adc_busy, adc_trig_miss, adc_fvalid, oc_ch, core_busy, core_du, core_u_raw, core_wn,
+    wire unused = &{1'b0, pwm_trip, id_ref_q, fw_step, adc_busy, adc_trig_miss, adc_fvalid, oc_ch, core_busy, core_du, core_u_raw, core_wn,
                     core_latency, core_boot_ok, theta_trig, ref_busy, st_id, status_busy, rd_vals, sh_we};
 endmodule
 `default_nettype wire

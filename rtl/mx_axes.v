@@ -10,8 +10,9 @@
 // hall_decoder, pos_sense, sens_check, fault_ctrl, pwm_center with PHASE = n x EMPC_PWM_STAGGER_<NAXES>,
 // the axis's generated axis_regs (the LUT-RAM {axis, reg} block of piece 3 is a later step) and the
 // glue (bridges, field weakening, governor hold, reference sync, counters, DC link, stall, causes).
-// Here: the registers the engine reads (KDC, KACC, shifts, the effective ID_REF, IQ_REF, the
-// field-weakening thresholds) multiplexed at mx_seq's job_axis; the core's single done / flags /
+// Here: the registers the engine reads (KDC, KACC, shifts, ID_REF with the field-weakening steps fw_n,
+// IQ_REF, the field-weakening thresholds) multiplexed at mx_seq's job_axis, the effective ID_REF formed
+// once from the job axis's ID_REF and fw_n; the core's single done / flags /
 // fw_hi / fw_lo / i_q / omega belong to the job's axis (axis a gets core_done && job_axis == a, and
 // the omega held while its job is not running).
 // pos_sense stays per axis (NAXES = 1, THETA_LAT = 4 exact): mx_seq latches the angle a fixed
@@ -90,6 +91,9 @@ module mx_axes #(
     localparam integer AD = `EMPC_ADC_BITS;
     localparam integer PSW = `EMPC_A_ADC_PSUM0_SUM_W;
     localparam integer PCW = `EMPC_A_ADC_PSUM0_COUNT_W;
+    // pos_sense's reducer on the low 8 bits of the counts: exact, since irc_decoder moves pos by at most
+    // one count per clock and the reducer looks at most 9 clocks apart (rtl/pos_sense.v, JUMP_W)
+    localparam integer POS_JUMP_W = 8;
 
     generate if (NAXES < 2 || NAXES > 4 || CAX != AXB || AD != `EMPC_A_OC_THRESH_W || AD != `EMPC_A_ADC_OFF0_W)
     begin : g_bad_params
@@ -103,7 +107,8 @@ module mx_axes #(
     wire [NAXES-1:0]       running, bridges_on;
     wire [8*NAXES-1:0]     ppc;
     wire [NAXES-1:0]       cmd_adc_cal, cmd_coef_swap, cmd_clear_counters;
-    wire [18*NAXES-1:0]    kdc_v, kacc_v, id_eff_v, iq_ref_v;
+    wire [18*NAXES-1:0]    kdc_v, kacc_v, id_ref_v, iq_ref_v;
+    wire [8*NAXES-1:0]     fw_n_v;          // field-weakening steps (axis_periph's fw_n)
     wire [5*NAXES-1:0]     kacc_shift_v;
     wire [4*NAXES-1:0]     load_shift_v;
     wire [3*NAXES-1:0]     win_v;
@@ -171,18 +176,21 @@ module mx_axes #(
     // ---------------- sequencer and MPC core, shared ----------------
     wire [AXB-1:0]                  job_axis;
     wire [NAXES-1:0]                job_next;
-    reg  [17:0]                     j_kdc, j_kacc, j_id, j_iq;
+    reg  [17:0]                     j_kdc, j_kacc, j_idr, j_iq;
+    reg  [7:0]                      j_fwn;
     reg  [4:0]                      j_ksh;
     reg  [3:0]                      j_lsh;
     reg  [2:0]                      j_win;
     reg  [31:0]                     j_fw;
     integer                         ji;
     always @(*) begin                // the job axis's registers (AND-OR multiplexers)
-        j_kdc = 18'd0; j_kacc = 18'd0; j_id = 18'd0; j_iq = 18'd0; j_ksh = 5'd0; j_lsh = 4'd0; j_win = 3'd0; j_fw = 32'd0;
+        j_kdc = 18'd0; j_kacc = 18'd0; j_idr = 18'd0; j_fwn = 8'd0; j_iq = 18'd0; j_ksh = 5'd0; j_lsh = 4'd0; j_win = 3'd0;
+        j_fw = 32'd0;
         for (ji = 0; ji < NAXES; ji = ji + 1) if (job_axis == ji[AXB-1:0]) begin
             j_kdc = j_kdc | kdc_v[18*ji +: 18];
             j_kacc = j_kacc | kacc_v[18*ji +: 18];
-            j_id = j_id | id_eff_v[18*ji +: 18];
+            j_idr = j_idr | id_ref_v[18*ji +: 18];
+            j_fwn = j_fwn | fw_n_v[8*ji +: 8];
             j_iq = j_iq | iq_ref_v[18*ji +: 18];
             j_ksh = j_ksh | kacc_shift_v[5*ji +: 5];
             j_lsh = j_lsh | load_shift_v[4*ji +: 4];
@@ -190,6 +198,10 @@ module mx_axes #(
             j_fw = j_fw | fw_thr_v[32*ji +: 32];
         end
     end
+    // the job axis's effective d-current reference, formed once from its ID_REF and field-weakening
+    // steps (axis_periph's id_eff of that axis, the same expression: sat18(ID_REF - (fw_n << EMPC_FW_SHIFT)))
+    wire signed [IW:0]              j_isum = {j_idr[IW-1], j_idr} - ({{(IW+1-8){1'b0}}, j_fwn} << `EMPC_FW_SHIFT);
+    wire [17:0]                     j_id = (j_isum[IW] != j_isum[IW-1]) ? {j_isum[IW], {(IW-1){~j_isum[IW]}}} : j_isum[IW-1:0];
     wire [NAXES-1:0]                core_start, ctl_boundary, cmp_load, overrun, seq_front_sat, stat_sweep;
     wire                            core_done, core_busy, core_in_we;
     wire [6+CAX-1:0]                core_in_addr;
@@ -264,7 +276,7 @@ module mx_axes #(
         // ---- the axis (rtl/axis_periph.v, as mpc_axis's): sensors, registers, glue, faults, PWM ----
         /* verilator lint_off PINCONNECTEMPTY */    // pwm_sync_out: the carriers are phased by PHASE
         axis_periph #(.HALL_DEBOUNCE(HALL_DEBOUNCE), .ENC_FILTER(ENC_FILTER), .COMPLEMENTARY(COMPLEMENTARY),
-                      .PWM_HALF_PERIOD(P), .PHASE(PHASE)) u_per (
+                      .PWM_HALF_PERIOD(P), .PHASE(PHASE), .POS_JUMP_W(POS_JUMP_W)) u_per (
             .clk(clk), .rst(rst), .reg_wr(reg_wr && sel), .reg_rd(reg_rd && sel), .reg_addr(roff),
             .reg_wdata(reg_wdata), .reg_rdata(), .rd_vals(rd_vals_v[VW*n +: VW]),
             .sh_we(sh_we_v[NSH*n +: NSH]), .watchdog_expired(watchdog_expired),
@@ -290,7 +302,7 @@ module mx_axes #(
             .ctrl_pwm_per_control(ppc[8*n +: 8]), .theta(theta_v[AB*n +: AB]), .pos(pos_v[32*n +: 32]),
             .pos_sample(pos_sample[n]), .kdc(kdc_v[18*n +: 18]), .kacc(kacc_v[18*n +: 18]),
             .kacc_shift(kacc_shift_v[5*n +: 5]), .kacc_load_shift(load_shift_v[4*n +: 4]), .kacc_win(win_v[3*n +: 3]),
-            .id_eff(id_eff_v[18*n +: 18]), .iq_ref(iq_ref_v[18*n +: 18]), .cmp(cmp), .cmp_load(cmp_load[n]),
+            .id_eff(), .id_ref_q(id_ref_v[18*n +: 18]), .fw_step(fw_n_v[8*n +: 8]), .iq_ref(iq_ref_v[18*n +: 18]), .cmp(cmp), .cmp_load(cmp_load[n]),
             .overrun(overrun[n]), .seq_front_sat(seq_front_sat[n]), .control_done(control_done[n]),
             .seq_latency(seq_latency[16*n +: 16]), .st_iq(st_iq), .omega(omega_n),
             .fw_thr(fw_thr_v[32*n +: 32]), .iq_big(iq_big_v[n]), .cmd_coef_swap(cmd_coef_swap[n]),

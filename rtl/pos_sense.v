@@ -81,7 +81,14 @@
 //   auto), W_W, W_FRAC (>= 1), REALIGN (0/1, see above), ANGLE_DSP (1 = the
 //   product on a DSP48A1; 0 = m * ANGLE_MUL tracked in fabric next to m, same
 //   outputs and latency, about 90 LUTs more, no DSP; NAXES = 1 only), NAXES (1 =
-//   today's one-axis datapath; > 1 = the shared engine below).  MW = clog2(CPR).
+//   today's one-axis datapath; > 1 = the shared engine below), JUMP_W (NAXES = 1: the
+//   reducer takes the low JUMP_W bits of pos, index_pos and last_pos and d modulo
+//   2**JUMP_W, so it is exact while every jump between two looks, pos - last_pos or
+//   pos - index_pos at an index alignment, is in [-2**(JUMP_W-1), 2**(JUMP_W-1)); default
+//   POS_W = the full counter.  With irc_decoder's pos (at most one count per clock,
+//   index_pos = pos at index_event) a look comes at most JUMP_W + 1 clocks after the last,
+//   so any JUMP_W >= 5 is exact: axis_periph's POS_JUMP_W, 8 in mx_axes, about 40 LUTs and
+//   48 FFs less than 32).  MW = clog2(CPR).
 //   2 <= CPR < 2**17 keeps the product in one DSP (larger works, more DSPs).
 // Latency (NAXES = 1): pos step -> pos_mod 2 clocks (+1 per extra bit of a jump);
 //   pos_mod -> theta 2 clocks (DSP M register, then the DSP post-adder adds
@@ -129,7 +136,8 @@ module pos_sense #(
     parameter integer W_FRAC = `EMPC_W_FRAC,
     parameter integer REALIGN = 0,
     parameter integer ANGLE_DSP = 1,
-    parameter integer NAXES = 1
+    parameter integer NAXES = 1,
+    parameter integer JUMP_W = POS_W      // NAXES = 1: bits of the jump d the reducer takes (see the header)
 ) (
     input  wire                          clk,
     input  wire                          rst,
@@ -295,31 +303,33 @@ module pos_sense #(
     end
 
     // ---------------- reducer datapath shared by both variants ----------------
-    reg  [POS_W-1:0]     r;          // remaining jump (signed), shifted right per clock
+    // RW: the reducer's width (NAXES = 1: JUMP_W, the low bits of the counts; NAXES > 1: POS_W)
+    localparam integer RW = (NAXES == 1) ? JUMP_W : POS_W;
+    reg  [RW-1:0]        r;          // remaining jump (signed), shifted right per clock
     reg  [KW-1:0]        k;          // bit of the jump in r[0]: weight 2**k
     reg                  busy;
     wire                 load;       // r <= d this clock (per variant)
     wire [MW-1:0]        m_cur;      // m of the axis the reducer works on
-    wire [POS_W-1:0] r_sh = {r[POS_W-1], r[POS_W-1:1]};
-    // r[POS_W-1:1] all 0 or all 1 = r[POS_W-2:1] all equal to the sign r[POS_W-1]: groups of
+    wire [RW-1:0] r_sh = {r[RW-1], r[RW-1:1]};
+    // r[RW-1:1] all 0 or all 1 = r[RW-2:1] all equal to the sign r[RW-1]: groups of
     // UGS bits (one LUT6 each with the sign), ANDed on a carry chain (carry out of +1)
     localparam integer UGS = 5;
-    localparam integer UG = (POS_W - 2 + UGS - 1) / UGS;
-    localparam integer UEW = (UGS * UG + 1 > POS_W) ? UGS * UG + 1 : POS_W;
+    localparam integer UG = (RW - 2 + UGS - 1) / UGS;
+    localparam integer UEW = (UGS * UG + 1 > RW) ? UGS * UG + 1 : RW;
     /* verilator lint_off UNUSEDSIGNAL */ // bit 0 and the top sign copies (padding) unused
-    wire [UEW-1:0] r_ext = {{(UEW - POS_W + 1){r[POS_W-1]}}, r[POS_W-2:0]};
+    wire [UEW-1:0] r_ext = {{(UEW - RW + 1){r[RW-1]}}, r[RW-2:0]};
     /* verilator lint_on UNUSEDSIGNAL */
     wire [UG-1:0]  r_gu;
     genvar gi;
     generate
         for (gi = 0; gi < UG; gi = gi + 1) begin : g_uni
-            assign r_gu[gi] = (r_ext[UGS*gi+1 +: UGS] == {UGS{r[POS_W-1]}});
+            assign r_gu[gi] = (r_ext[UGS*gi+1 +: UGS] == {UGS{r[RW-1]}});
         end
     endgenerate
     wire [UG:0] r_unc = {1'b0, r_gu} + {{UG{1'b0}}, 1'b1};
-    wire r_uni = r_unc[UG];                     // r[POS_W-1:1] is 0 or -1
-    wire r_neg1 = r_uni & r[POS_W-1] & r[0];    // remainder -1: subtract 2**k, done
-    wire r_done = r_uni & (~r[POS_W-1] | r[0]); // last bit of the jump
+    wire r_uni = r_unc[UG];                     // r[RW-1:1] is 0 or -1
+    wire r_neg1 = r_uni & r[RW-1] & r[0];    // remainder -1: subtract 2**k, done
+    wire r_done = r_uni & (~r[RW-1] | r[0]); // last bit of the jump
     // m +- c (c = 2**k mod CPR), then back into [0, CPR): + CPR if negative (subtract),
     // - CPR if >= CPR (add).  s is in (-CPR, 2*CPR); the reduced value's top bit is 0.
     // c = C_TAB[k]: ROM port B read with k's next value
@@ -372,7 +382,7 @@ module pos_sense #(
     generate
     if (NAXES == 1) begin : g_one
     // ================= one axis: the reducer and the angle pipeline of that axis alone =================
-    reg [POS_W-1:0]      last_pos;   // count already handed to the reducer
+    reg [RW-1:0]      last_pos;   // count already handed to the reducer
     reg [MW-1:0]         m;          // (pos - ref) mod CPR
     reg                  al;         // index aligned (internal, leads the output by 2 clocks)
     reg                  rel_cal;    // not aligned, but base_rel is relative to cal_offset (align_clear)
@@ -402,12 +412,16 @@ module pos_sense #(
     // ---------------- bit-serial modular accumulation ----------------
     // d: the new counts (pos - last_pos), or at an index event the lag pos - index_pos
     // (m restarts at 0 = index_pos and the reducer adds the counts since the index)
-    wire [POS_W-1:0] d_ref = ev_index ? index_pos : last_pos;
-    wire [POS_W-1:0] d = pos - d_ref;
+    // JUMP_W < POS_W: the low JUMP_W bits of the counts, d modulo 2**JUMP_W (exact while every jump
+    // between two looks is below 2**(JUMP_W-1) counts, header)
+    wire [RW-1:0] pos_j = pos[RW-1:0];
+    wire [RW-1:0] d_ref = ev_index ? index_pos[RW-1:0] : last_pos;
+    wire [RW-1:0] d = pos_j - d_ref;
+    wire          unused_jump = &{1'b0, index_pos};    // bits above JUMP_W (JUMP_W < POS_W)
     // d == 0 without an OR tree over d: pos ~^ d_ref (the subtractor's own propagate LUTs)
     // all ones, as the carry out of +1 on a carry chain
-    wire [POS_W:0]   d_eqc = {1'b0, pos ~^ d_ref} + {{POS_W{1'b0}}, 1'b1};
-    wire             d_zero = d_eqc[POS_W];
+    wire [RW:0]   d_eqc = {1'b0, pos_j ~^ d_ref} + {{RW{1'b0}}, 1'b1};
+    wire             d_zero = d_eqc[RW];
     assign load = !busy || ev_any;              // r <= d (ignored when d = 0 or at a HALL event)
     always @(posedge clk) begin
         if (rst || ev_index || (align_clear[0] && al))
@@ -418,8 +432,8 @@ module pos_sense #(
 
     always @(posedge clk) begin
         if (rst) begin
-            last_pos    <= {POS_W{1'b0}};
-            r           <= {POS_W{1'b0}};
+            last_pos    <= {RW{1'b0}};
+            r           <= {RW{1'b0}};
             k           <= {KW{1'b0}};
             m           <= {MW{1'b0}};
             busy        <= 1'b0;
@@ -430,7 +444,7 @@ module pos_sense #(
         end else begin
             // reducer
             if (load) begin
-                last_pos <= pos;
+                last_pos <= pos_j;
                 r        <= d;
             end else begin
                 r        <= r_sh;
@@ -847,6 +861,8 @@ module pos_sense #(
         if (W_FRAC < 1 || WIDE < W_W) $display("ERROR: pos_sense needs W_FRAC >= 1 and POS_W + W_FRAC >= W_W");
         if (NAXES < 1) $display("ERROR: pos_sense NAXES=%0d < 1", NAXES);
         if (NAXES > 1 && ANGLE_DSP == 0) $display("ERROR: pos_sense NAXES > 1 needs ANGLE_DSP = 1");
+        if (JUMP_W < 5 || JUMP_W > POS_W || (NAXES > 1 && JUMP_W != POS_W))
+            $display("ERROR: pos_sense JUMP_W=%0d: 5..POS_W, and POS_W when NAXES > 1", JUMP_W);
         if (NAXES > 1 && POS_W >= 2**TA) $display("ERROR: pos_sense NAXES > 1 needs POS_W < %0d (a zero ROM word)", 2**TA);
     end
 `endif

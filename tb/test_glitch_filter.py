@@ -6,7 +6,9 @@
   directly, independent of the model), on every bit and both polarities;
 * random: runs of random length around L, run-time len changes and load
   pulses, compared bit-exact with the model every clock;
-* reset value and load.
+* reset value and load;
+* FIXED = 1 (LFSR counters, len ignored: the DUT gets the same run-time len values, the model len = 0),
+  at L = 5, 1, 8 (irc_decoder's) and 1000 (hall_decoder's): the same checks against the binary-counter model.
 """
 from __future__ import annotations
 
@@ -15,6 +17,7 @@ import os
 import random
 
 import cocotb
+import pytest
 from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge
 
@@ -30,6 +33,7 @@ class Env:
         self.p = json.loads(os.environ.get("TB_PARAMS", json.dumps(PARAMS)))
         self.seed = int(os.environ.get("EMPC_SEED", DEFAULT_SEED))
         self.rng = random.Random(self.seed)
+        self.fixed = bool(self.p.get("FIXED", 0))
         self.model = GlitchFilter(self.p["WIDTH"], self.p["FILTER_LEN"], self.p["LEN_W"], self.p["RESET_VALUE"])
         self.n = 0
         dut._log.info("params %s seed %d (EMPC_SEED)", self.p, self.seed)
@@ -52,7 +56,7 @@ class Env:
         d.d.value = din
         d.len.value = length
         d.load.value = load
-        self.model.step(din, length, bool(load))
+        self.model.step(din, 0 if self.fixed else length, bool(load))
         await FallingEdge(d.clk)
         self.n += 1
         q = int(d.q.value)
@@ -67,6 +71,10 @@ async def corners(dut):
     w = env.p["WIDTH"]
     mask = (1 << w) - 1
     lens = [(0, env.p["FILTER_LEN"]), (1, 1), (2, 2), (7, 7), ((1 << env.p["LEN_W"]) - 1, (1 << env.p["LEN_W"]) - 1)]
+    if env.fixed:           # len ignored: every run-time value gives FILTER_LEN
+        lens = [(0, env.p["FILTER_LEN"]), (1, env.p["FILTER_LEN"]), ((1 << env.p["LEN_W"]) - 1, env.p["FILTER_LEN"])]
+        if env.p["FILTER_LEN"] > 64:
+            lens = lens[:2]
     checks = 0
     for length, L in lens:
         for base in (0, mask):
@@ -112,7 +120,7 @@ async def random_vs_model(dut):
     while env.n < n_cycles:
         if rng.random() < 0.01:
             length = rng.choice([0, 0, 1, 2, 3, 4, 5, 6, 9, 15])
-        L = length or env.p["FILTER_LEN"]
+        L = env.p["FILTER_LEN"] if env.fixed else (length or env.p["FILTER_LEN"])
         # a run of one value: glitch-ish or long
         run = rng.choice([1, max(1, L - 1), L, L + 1, rng.randint(1, 3 * L + 2)])
         din = rng.getrandbits(w) if rng.random() < 0.5 else din ^ (1 << rng.randrange(w))
@@ -123,7 +131,10 @@ async def random_vs_model(dut):
     dut._log.info("random: %d clocks bit-exact vs model (%d loads, seed %d)", env.n, n_load, env.seed)
 
 
-def test_glitch_filter():
+@pytest.mark.parametrize("fixed", [None, (5, 4), (1, 4), (8, 8), (1000, 10)])
+def test_glitch_filter(fixed):
     from runner import run
-    run(toplevel="glitch_filter", test_module="test_glitch_filter", parameters=PARAMS,
-        extra_env={"TB_PARAMS": json.dumps(PARAMS)})
+    params = dict(PARAMS) if fixed is None else dict(PARAMS, FILTER_LEN=fixed[0], LEN_W=fixed[1], FIXED=1)
+    run(toplevel="glitch_filter", test_module="test_glitch_filter", parameters=params,
+        name=None if fixed is None else f"test_glitch_filter_fixed_{fixed[0]}",
+        extra_env={"TB_PARAMS": json.dumps(params)})
