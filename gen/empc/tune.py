@@ -114,7 +114,7 @@ def _settling(y: np.ndarray, final: float, k0: int, Ts: float, band: float) -> f
     return (out[-1] + 1 - k0) * Ts
 
 
-def measure(cfg, algorithm: int, task: str, w_si, specs: Specs, robust_grid: int = 7) -> dict:
+def measure(cfg, algorithm: int, task: str, w_si, specs: Specs, robust_grid: int | None = 7) -> dict:
     cfg = cfg.for_design(algorithm, task)
     c = cfg.control
     rt = cfg.ratings
@@ -138,6 +138,8 @@ def measure(cfg, algorithm: int, task: str, w_si, specs: Specs, robust_grid: int
     m["u_chatter"] = noise["u_rms"] / cfg.u_max
     m["chatter_nominal_pu"] = noise["i_q_rms_nominal"] / rt.current
     m["chatter_where"] = robust.label(noise["i_q_point"]) if noise["i_q_point"] is not None else ""
+    if robust_grid is None:               # the caller has the full design check's figures
+        return m
     res = robust.survey(cfg, algorithm, task, {"exact": robust.exact_gains(cfg, algorithm, task, w_si)},
                         grid=robust.speeds(cfg, robust_grid))
     ok, why = robust.verdict(cfg, res)
@@ -253,16 +255,60 @@ def refined(base: config_mod.Weights, f: dict) -> config_mod.Weights:
     return w
 
 
-def _refine_score(cfg, algorithm: int, task: str, wpu, specs: Specs):
+def _violation(cfg, radius: float, damping: float, bound: float) -> float:
+    """The check's violation: the radius over its bound, or the damping under its minimum (with the aim)."""
+    return max(radius - bound, 0.02 * (cfg.robustness.damping_min + DAMPING_AIM - damping))
+
+
+def _score_floor(cfg, algorithm: int, task: str) -> float:
+    """A lower bound of the design check's :func:`_violation`: the exact gains at a subset of the check's
+    own speeds (its ends, middle and 0).  The check surveys these and more speeds with the exact,
+    fitted and quantised gains, so its worst radius is no smaller and its worst damping no larger."""
+    rob = cfg.for_design(algorithm, task).robustness
+    g = robust.speeds(cfg.for_design(algorithm, task), rob.speed_points)
+    sub = np.unique(np.concatenate([g[[0, len(g) // 2, len(g) - 1]], g[g == 0.0]]))
+    res = robust.survey(cfg, algorithm, task, {"exact": robust.exact_gains(cfg, algorithm, task)}, grid=sub)
+    return _violation(cfg, res["worst_radius"].value, res["worst_damping"].value, robust.radius_bound(cfg))
+
+
+def _penalty(cfg, m: dict, fails: list[str], specs: Specs) -> float:
+    """The score's part for the specifications other than the check: a penalty above any margin left,
+    growing with the excess so that the search can walk towards them (the current-loop rise is
+    reported, not searched for)."""
+    lim = {"chatter_pu": specs.chatter, "u_chatter": specs.u_chatter, "current": cfg.control.i_max}
+    pen = sum(1e-3 * (1.0 + math.log(m[k] / x)) for k, x in lim.items() if not m[k] <= x)
+    if not math.isfinite(m["settling"]):
+        pen += 1e-3
+    if any(f.startswith("overshoot") or f.startswith("settling") for f in fails):
+        pen += 1e-3
+    return pen
+
+
+def _score(v: float, pen: float) -> float:
+    return max(v, 0.0) + (pen if math.isfinite(pen) else 1.0) if pen else v
+
+
+def _refine_score(cfg, algorithm: int, task: str, wpu, specs: Specs, beat: float = math.inf):
     """(score, candidate): score < 0 when the full design check passes with margin and the specifications
-    hold; the check's violation (radius over its bound, damping under its minimum) dominates."""
+    hold; the check's violation (radius over its bound, damping under its minimum) dominates.  A
+    candidate whose score is bounded below by ``beat`` (:func:`_score_floor`'s violation with the
+    specification penalty) is not designed and returns that bound: the search keeps only a score
+    below ``beat``, so its walk is the one it takes with every candidate designed."""
     from . import design as design_mod
     cand = Candidate(0.0, 0.0, wpu)
     w_si = config_mod.weights_si(wpu, cfg.bases(task))
     c2 = cfg.with_control(weights={**cfg.control.weights, (algorithm, task): w_si})
     try:
+        m = measure(cfg, algorithm, task, w_si, specs, robust_grid=None)
+        m["robust_ok"], m["robust"] = True, "not checked yet"
+        pen = _penalty(cfg, m, _fails(cfg, algorithm, m, specs), specs)
+        if math.isfinite(beat):
+            floor = _score(_score_floor(c2, algorithm, task), pen)
+            if floor >= beat:
+                cand.m = m
+                cand.fails = [f"pruned: the score is at least {floor:.4g}"]
+                return floor, cand
         st = design_mod.design(c2, algorithm, task, force=True)["stability"]
-        m = measure(cfg, algorithm, task, w_si, specs, robust_grid=3)
     except (config_mod.ConfigError, np.linalg.LinAlgError, ValueError) as e:
         cand.fails = [f"design failed: {e}"]
         return math.inf, cand
@@ -270,19 +316,7 @@ def _refine_score(cfg, algorithm: int, task: str, wpu, specs: Specs):
     m["robust_ok"], m["robust"] = st["passed"], st["reason"]
     cand.m = m
     cand.fails = _fails(cfg, algorithm, m, specs)
-    rob = cfg.robustness
-    v = max(m["radius"] - st["radius_bound"], 0.02 * (rob.damping_min + DAMPING_AIM - m["damping"]))
-    # the other specifications: a penalty above any margin left, growing with the excess so that the
-    # search can walk towards them (the current-loop rise is reported, not searched for)
-    lim = {"chatter_pu": specs.chatter, "u_chatter": specs.u_chatter, "current": cfg.control.i_max}
-    pen = sum(1e-3 * (1.0 + math.log(m[k] / x)) for k, x in lim.items() if not m[k] <= x)
-    if not math.isfinite(m["settling"]):
-        pen += 1e-3
-    if any(f.startswith("overshoot") or f.startswith("settling") for f in cand.fails):
-        pen += 1e-3
-    if pen:
-        v = max(v, 0.0) + (pen if math.isfinite(pen) else 1.0)
-    return v, cand
+    return _score(_violation(cfg, m["radius"], m["damping"], st["radius_bound"]), pen), cand
 
 
 def refine(cfg, algorithm: int, task: str, specs: Specs | None = None, start: dict | None = None,
@@ -316,7 +350,7 @@ def refine(cfg, algorithm: int, task: str, specs: Specs | None = None, start: di
             for k in list(f):
                 for s in (step, 1.0 / step):
                     g = dict(f, **{k: f[k] * s})
-                    sc, c = _refine_score(cfg, algorithm, task, refined(base, g), specs)
+                    sc, c = _refine_score(cfg, algorithm, task, refined(base, g), specs, beat=score - 1e-9)
                     tried += 1
                     if sc < score - 1e-9:
                         score, cand, f, moved = sc, c, g, True
